@@ -1,0 +1,22 @@
+/* Portability macros shared by the C11 build and the CUDA build.
+ *
+ * Every pair interaction (tasks/<name>/<name>_iact.h) and every material
+ * model (src/materials/) is written once as a BOLIDE_INLINE function: under
+ * nvcc it becomes __host__ __device__, under a C compiler a plain static
+ * inline function.  Headers that use it compile as C11 and as CUDA C++: no
+ * variable-length arrays, no compound literals, explicit enum casts, and
+ * BOLIDE_RESTRICT instead of the C99 keyword. */
+#ifndef BOLIDE_INLINE_H
+#define BOLIDE_INLINE_H
+
+#ifdef __CUDACC__
+#define BOLIDE_HD __host__ __device__
+#define BOLIDE_RESTRICT __restrict__
+#else
+#define BOLIDE_HD
+#define BOLIDE_RESTRICT restrict
+#endif
+
+#define BOLIDE_INLINE static inline BOLIDE_HD
+
+#endif

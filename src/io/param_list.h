@@ -1,0 +1,90 @@
+/* Every parameter key Bolide knows: the one list from which validation,
+ * defaults, the reference file examples/parameters.yml (bolide
+ * --param-reference) and the parameters echoed into snapshots come.
+ *
+ * X(name, type, default, min, max, choices, unit, doc)
+ *   default NULL means the key is required.  Ranges are inclusive; use
+ *   PARAM_INF for no bound.  Keys follow SWIFT's sections and names where
+ *   SWIFT has the same thing. */
+#ifndef BOLIDE_PARAM_LIST_H
+#define BOLIDE_PARAM_LIST_H
+
+#define PARAM_INF 1e308
+
+/* clang-format off */
+#define BOLIDE_PARAMS(X)                                                                                 \
+  X("MetaData:run_name", PARAM_STRING, "bolide", 0, 0, NULL, "-", "name of the run, recorded in every output") \
+                                                                                                         \
+  X("InternalUnitSystem:UnitMass_in_cgs", PARAM_REAL, "1000", 1e-300, PARAM_INF, NULL, "g", "internal mass unit (default: 1 kg)") \
+  X("InternalUnitSystem:UnitLength_in_cgs", PARAM_REAL, "100", 1e-300, PARAM_INF, NULL, "cm", "internal length unit (default: 1 m)") \
+  X("InternalUnitSystem:UnitVelocity_in_cgs", PARAM_REAL, "100", 1e-300, PARAM_INF, NULL, "cm/s", "internal velocity unit (default: 1 m/s); the time unit is length/velocity") \
+  X("InternalUnitSystem:UnitCurrent_in_cgs", PARAM_REAL, "1", 1e-300, PARAM_INF, NULL, "A", "internal current unit") \
+  X("InternalUnitSystem:UnitTemp_in_cgs", PARAM_REAL, "1", 1e-300, PARAM_INF, NULL, "K", "internal temperature unit") \
+                                                                                                         \
+  X("InitialConditions:file_name", PARAM_STRING, NULL, 0, 0, NULL, "-", "HDF5 initial conditions (relative paths: to the parameter file's folder)") \
+  X("InitialConditions:periodic", PARAM_BOOL, "false", 0, 0, NULL, "-", "periodic box (true) or open box (false)") \
+  X("InitialConditions:box_size", PARAM_REAL_ARRAY, "[]", 0, PARAM_INF, NULL, "internal length", "box size overriding /Header/BoxSize (1 or 3 values)") \
+  X("InitialConditions:shift", PARAM_REAL_ARRAY, "[0, 0, 0]", -PARAM_INF, PARAM_INF, NULL, "internal length", "shift added to every position on reading") \
+  X("InitialConditions:smoothing_length_scaling", PARAM_REAL, "1", 1e-6, 1e6, NULL, "-", "factor applied to the smoothing lengths read") \
+  X("InitialConditions:cleanup_h_factors", PARAM_BOOL, "false", 0, 0, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
+                                                                                                         \
+  X("TimeIntegration:time_begin", PARAM_REAL, "0", -PARAM_INF, PARAM_INF, NULL, "internal time", "simulation time at the start") \
+  X("TimeIntegration:time_end", PARAM_REAL, NULL, -PARAM_INF, PARAM_INF, NULL, "internal time", "simulation time at which the run stops") \
+  X("TimeIntegration:dt_min", PARAM_REAL, "1e-12", 0, PARAM_INF, NULL, "internal time", "smallest allowed time step; a smaller one stops the run with an error") \
+  X("TimeIntegration:dt_max", PARAM_REAL, "1e30", 0, PARAM_INF, NULL, "internal time", "largest allowed time step") \
+                                                                                                         \
+  X("Snapshots:basename", PARAM_STRING, "snapshot", 0, 0, NULL, "-", "snapshot file prefix (files are BASENAME_NNNN.hdf5; relative to the output folder)") \
+  X("Snapshots:subdir", PARAM_STRING, ".", 0, 0, NULL, "-", "folder for snapshots and statistics, created if missing") \
+  X("Snapshots:time_first", PARAM_REAL, "0", -PARAM_INF, PARAM_INF, NULL, "internal time", "time of the first snapshot") \
+  X("Snapshots:delta_time", PARAM_REAL, "0", 0, PARAM_INF, NULL, "internal time", "time between snapshots (0: only the first and last)") \
+  X("Snapshots:output_list", PARAM_STRING, "", 0, 0, NULL, "-", "file with one output time per line (overrides time_first/delta_time)") \
+  X("Snapshots:int_time_label_on", PARAM_BOOL, "false", 0, 0, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
+  X("Snapshots:accelerations", PARAM_BOOL, "false", 0, 0, NULL, "-", "write Accelerations (and Potentials with gravity) in every snapshot") \
+  X("Snapshots:compression", PARAM_INT, "0", 0, 9, NULL, "-", "gzip level of the datasets (0: none)") \
+                                                                                                         \
+  X("Statistics:delta_time", PARAM_REAL, "0", 0, PARAM_INF, NULL, "internal time", "time between lines of the statistics file (0: every step)") \
+  X("Statistics:energy_file_name", PARAM_STRING, "statistics", 0, 0, NULL, "-", "statistics file name (a .txt suffix is added)") \
+                                                                                                         \
+  X("SPH:resolution_eta", PARAM_REAL, "1.2348", 0.1, 10, NULL, "-", "target h in units of the mean inter-particle spacing (1.2348: 48 neighbours with the cubic spline)") \
+  X("SPH:h_tolerance", PARAM_REAL, "1e-4", 1e-10, 0.1, NULL, "-", "relative tolerance of the smoothing length iteration") \
+  X("SPH:h_max", PARAM_REAL, "1e30", 0, PARAM_INF, NULL, "internal length", "largest allowed smoothing length") \
+  X("SPH:h_min_ratio", PARAM_REAL, "0", 0, 1, NULL, "-", "smallest allowed h in units of the softening (0: no limit)") \
+  X("SPH:max_ghost_iterations", PARAM_INT, "30", 1, 1000, NULL, "-", "iterations of the smoothing length before the run stops with an error") \
+  X("SPH:CFL_condition", PARAM_REAL, "0.2", 1e-4, 1, NULL, "-", "Courant factor of the time step") \
+  X("SPH:max_volume_change", PARAM_REAL, "1.4", 1.01, 10, NULL, "-", "largest allowed change of kernel volume in one step") \
+  X("SPH:viscosity_alpha", PARAM_REAL, "1.5", 0, 10, NULL, "-", "Monaghan artificial viscosity alpha") \
+  X("SPH:viscosity_beta", PARAM_REAL, "3", 0, 20, NULL, "-", "Monaghan artificial viscosity beta (in units of alpha: beta = 2 alpha when 2)") \
+  X("SPH:balsara", PARAM_BOOL, "true", 0, 0, NULL, "-", "Balsara switch on the artificial viscosity") \
+  X("SPH:conductivity_alpha", PARAM_REAL, "0", 0, 10, NULL, "-", "artificial conduction of internal energy (Price 2008); 0 switches it off") \
+  X("SPH:density", PARAM_ENUM, "summation", 0, 0, "summation|continuity", "-", "density from kernel summation or from the continuity equation") \
+  X("SPH:xsph_epsilon", PARAM_REAL, "0", 0, 1, NULL, "-", "XSPH velocity smoothing factor (0: off)") \
+  X("SPH:minimal_temperature", PARAM_REAL, "0", 0, PARAM_INF, NULL, "K", "accepted for SWIFT compatibility; has no effect") \
+  X("SPH:hydro", PARAM_BOOL, "true", 0, 0, NULL, "-", "compute hydrodynamics (false: gravity-only run)") \
+  X("SPH:gamma", PARAM_REAL, "1.6666666666666667", 1.0001, 10, NULL, "-", "adiabatic index of the default ideal-gas material (id 0) when no Materials section is given") \
+                                                                                                         \
+  X("Gravity:enabled", PARAM_BOOL, "false", 0, 0, NULL, "-", "self-gravity on or off") \
+  X("Gravity:direct", PARAM_BOOL, "false", 0, 0, NULL, "-", "exact O(N^2) summation instead of multipoles") \
+  X("Gravity:theta_cr", PARAM_REAL, "0.5", 0, 1, NULL, "-", "opening angle of the multipole acceptance criterion") \
+  X("Gravity:eta", PARAM_REAL, "0.025", 1e-6, 10, NULL, "-", "gravitational time-step factor: dt = sqrt(2 eta eps / |a|)") \
+  X("Gravity:softening", PARAM_REAL, "0", 0, PARAM_INF, NULL, "internal length", "Plummer-equivalent softening length (absolute)") \
+  X("Gravity:max_physical_baryon_softening", PARAM_REAL, "0", 0, PARAM_INF, NULL, "internal length", "SWIFT's name for the softening; used when Gravity:softening is 0") \
+  X("Gravity:mesh_side_length", PARAM_INT, "0", 0, 4096, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
+  X("Gravity:comoving_DM_softening", PARAM_REAL, "0", 0, PARAM_INF, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
+  X("Gravity:max_physical_DM_softening", PARAM_REAL, "0", 0, PARAM_INF, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
+  X("Gravity:comoving_baryon_softening", PARAM_REAL, "0", 0, PARAM_INF, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
+                                                                                                         \
+  X("Scheduler:cell_split_size", PARAM_INT, "400", 8, 1000000, NULL, "-", "largest number of particles in a leaf cell") \
+  X("Scheduler:max_top_level_cells", PARAM_INT, "16", 1, 1024, NULL, "-", "largest number of top-level cells along one side") \
+  X("Scheduler:tasks_per_cell", PARAM_REAL, "0", 0, PARAM_INF, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
+  X("Scheduler:dump_tasks", PARAM_INT, "0", 0, PARAM_INF, NULL, "-", "write a task timeline (thread, start, end, type, cell) every this many steps (0: never)") \
+  X("Scheduler:rebuild_fraction", PARAM_REAL, "0.25", 0.01, 1, NULL, "-", "rebuild the cells once a particle drifted this fraction of its cell's width") \
+  X("Scheduler:gpu", PARAM_STRING, "auto", 0, 0, NULL, "-", "which task families run on the GPU: auto, off, all, or a comma-separated list") \
+                                                                                                         \
+  X("Restarts:enable", PARAM_BOOL, "false", 0, 0, NULL, "-", "write restart files") \
+  X("Restarts:delta_hours", PARAM_REAL, "1", 0, PARAM_INF, NULL, "h", "wall-clock hours between restart files") \
+  X("Restarts:subdir", PARAM_STRING, "restart", 0, 0, NULL, "-", "folder of the restart files") \
+                                                                                                         \
+  X("Materials", PARAM_SECTION, "", 0, 0, NULL, "-", "material table: see examples/parameters.yml")
+/* clang-format on */
+
+#endif

@@ -1,0 +1,93 @@
+/* Particles: allocation and reordering of the structure of arrays. */
+#include "part.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "error.h"
+
+#define PART_TYPE_ID(type) \
+  _Generic((type)0, double: PART_DOUBLE, int64_t: PART_INT64, int32_t: PART_INT32)
+
+#define PART_FIELD_ENTRY(ctype, name_, h5, c, nc, m, l, t, fl, desc) \
+  {.name = #name_,                                                    \
+   .h5name = h5,                                                      \
+   .comp = c,                                                         \
+   .ncomp = nc,                                                       \
+   .uM = m,                                                           \
+   .uL = l,                                                           \
+   .uT = t,                                                           \
+   .flags = fl,                                                       \
+   .type = PART_TYPE_ID(ctype),                                       \
+   .size = sizeof(ctype),                                             \
+   .offset = offsetof(struct parts, name_),                           \
+   .description = desc},
+const struct part_field part_fields[] = {BOLIDE_PART_FIELDS(PART_FIELD_ENTRY)};
+#undef PART_FIELD_ENTRY
+const int part_nr_fields = sizeof(part_fields) / sizeof(part_fields[0]);
+
+void *part_field_array(const struct parts *p, const struct part_field *f) {
+  return *(void *const *)((const char *)p + f->offset);
+}
+
+static void **part_field_slot(struct parts *p, const struct part_field *f) {
+  return (void **)((char *)p + f->offset);
+}
+
+void parts_alloc(struct parts *p, size_t n) {
+  memset(p, 0, sizeof *p);
+  p->count = n;
+  p->capacity = n;
+  for (int k = 0; k < part_nr_fields; k++)
+    *part_field_slot(p, &part_fields[k]) = error_calloc(n, part_fields[k].size, part_fields[k].name);
+}
+
+void parts_reserve(struct parts *p, size_t n) {
+  if (n <= p->capacity) return;
+  for (int k = 0; k < part_nr_fields; k++) {
+    const struct part_field *f = &part_fields[k];
+    void **slot = part_field_slot(p, f);
+    *slot = error_realloc(*slot, n * f->size, f->name);
+    memset((char *)*slot + p->capacity * f->size, 0, (n - p->capacity) * f->size);
+  }
+  p->capacity = n;
+}
+
+void parts_free(struct parts *p) {
+  for (int k = 0; k < part_nr_fields; k++) {
+    void **slot = part_field_slot(p, &part_fields[k]);
+    free(*slot);
+    *slot = NULL;
+  }
+  p->count = p->capacity = 0;
+}
+
+void parts_permute(struct parts *p, const size_t *perm) {
+  const size_t n = p->count;
+  size_t maxsize = 0;
+  for (int k = 0; k < part_nr_fields; k++)
+    if (part_fields[k].size > maxsize) maxsize = part_fields[k].size;
+  char *tmp = error_malloc(n * maxsize, "particle reordering buffer");
+  for (int k = 0; k < part_nr_fields; k++) {
+    const struct part_field *f = &part_fields[k];
+    char *a = *part_field_slot(p, f);
+    const size_t s = f->size;
+    for (size_t i = 0; i < n; i++) memcpy(tmp + i * s, a + perm[i] * s, s);
+    memcpy(a, tmp, n * s);
+  }
+  free(tmp);
+}
+
+void parts_copy_one(struct parts *p, size_t dst, size_t src) {
+  for (int k = 0; k < part_nr_fields; k++) {
+    const struct part_field *f = &part_fields[k];
+    char *a = *part_field_slot(p, f);
+    memcpy(a + dst * f->size, a + src * f->size, f->size);
+  }
+}
+
+size_t parts_bytes_per_particle(void) {
+  size_t b = 0;
+  for (int k = 0; k < part_nr_fields; k++) b += part_fields[k].size;
+  return b;
+}

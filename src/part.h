@@ -1,0 +1,138 @@
+/* Particles: one structure of arrays.
+ *
+ * Every per-particle field is declared once, in BOLIDE_PART_FIELDS below.
+ * From that one list come the struct members, allocation, reordering on
+ * rebuild, the HDF5 dataset names of initial conditions and snapshots, their
+ * units and the XDMF description (STYLE.md: "one list, many uses").
+ *
+ * Vectors and tensors are stored one array per component (x, y, z each a
+ * contiguous array) so that CPU loops vectorise and GPU loads coalesce; the
+ * I/O layer gathers the components sharing an HDF5 name into an N x ncomp
+ * dataset.
+ *
+ * X(type, name, h5name, comp, ncomp, uM, uL, uT, flags, description)
+ *   type        C type of the array (double, int64_t, int32_t)
+ *   name        struct member
+ *   h5name      dataset in /PartType0 (NULL: internal, never in files)
+ *   comp,ncomp  component index and component count of that dataset
+ *   uM,uL,uT    unit exponents of mass, length and time
+ *   flags       PART_IC_REQ  must be present in initial conditions
+ *               PART_IC_OPT  read from initial conditions when present
+ *               PART_SNAP    written to every snapshot
+ *               PART_SNAP_ACC written when Snapshots:accelerations is true
+ *
+ * "Hot" fields (read by neighbour loops) come first; "cold" fields (kick,
+ * drift, bookkeeping) after.  The GPU runner moves only the hot fields a loop
+ * needs. */
+#ifndef BOLIDE_PART_H
+#define BOLIDE_PART_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+enum part_flags {
+  PART_IC_REQ = 1,
+  PART_IC_OPT = 2,
+  PART_SNAP = 4,
+  PART_SNAP_ACC = 8,
+};
+
+/* clang-format off */
+#define BOLIDE_PART_FIELDS(X)                                                                     \
+  /* hot: positions, predicted velocities, masses, smoothing lengths */                           \
+  X(double,  x,   "Coordinates",      0, 3, 0,  1,  0, PART_IC_REQ | PART_SNAP, "position")       \
+  X(double,  y,   "Coordinates",      1, 3, 0,  1,  0, PART_IC_REQ | PART_SNAP, "position")       \
+  X(double,  z,   "Coordinates",      2, 3, 0,  1,  0, PART_IC_REQ | PART_SNAP, "position")       \
+  X(double,  vpx, NULL,               0, 3, 0,  1, -1, 0, "predicted velocity used in interactions") \
+  X(double,  vpy, NULL,               1, 3, 0,  1, -1, 0, "predicted velocity used in interactions") \
+  X(double,  vpz, NULL,               2, 3, 0,  1, -1, 0, "predicted velocity used in interactions") \
+  X(double,  m,   "Masses",           0, 1, 1,  0,  0, PART_IC_REQ | PART_SNAP, "mass")           \
+  X(double,  h,   "SmoothingLengths", 0, 1, 0,  1,  0, PART_IC_OPT | PART_SNAP, "smoothing length (kernel support = kernel_gamma * h)") \
+  X(double,  rho, "Densities",        0, 1, 1, -3,  0, PART_IC_OPT | PART_SNAP, "density")        \
+  X(double,  up,  NULL,               0, 1, 0,  2, -2, 0, "predicted specific internal energy")   \
+  X(double,  P,   "Pressures",        0, 1, 1, -1, -2, PART_SNAP, "pressure")                     \
+  X(double,  cs,  "SoundSpeeds",      0, 1, 0,  1, -1, PART_SNAP, "sound speed")                  \
+  X(double,  balsara, NULL,           0, 1, 0,  0,  0, 0, "Balsara switch")                       \
+  X(double,  f_gradh, NULL,           0, 1, 0,  0,  0, 0, "grad-h correction factor")             \
+  X(int32_t, mat, "MaterialIDs",      0, 1, 0,  0,  0, PART_IC_OPT | PART_SNAP, "material id")    \
+  /* density loop accumulators */                                                                 \
+  X(double,  wcount,    NULL,         0, 1, 0,  0,  0, 0, "kernel-weighted neighbour count")      \
+  X(double,  wcount_dh, NULL,         0, 1, 0, -1,  0, 0, "d wcount / dh")                        \
+  X(double,  rho_dh,    NULL,         0, 1, 1, -4,  0, 0, "d rho / dh")                           \
+  X(double,  div_v,     NULL,         0, 1, 0,  0, -1, 0, "velocity divergence")                  \
+  X(double,  curl_vx,   NULL,         0, 3, 0,  0, -1, 0, "velocity curl")                        \
+  X(double,  curl_vy,   NULL,         1, 3, 0,  0, -1, 0, "velocity curl")                        \
+  X(double,  curl_vz,   NULL,         2, 3, 0,  0, -1, 0, "velocity curl")                        \
+  /* force loop accumulators */                                                                   \
+  X(double,  ax,  "Accelerations",    0, 3, 0,  1, -2, PART_SNAP_ACC, "acceleration")             \
+  X(double,  ay,  "Accelerations",    1, 3, 0,  1, -2, PART_SNAP_ACC, "acceleration")             \
+  X(double,  az,  "Accelerations",    2, 3, 0,  1, -2, PART_SNAP_ACC, "acceleration")             \
+  X(double,  du_dt,  NULL,            0, 1, 0,  2, -3, 0, "rate of change of specific internal energy") \
+  X(double,  drho_dt, NULL,           0, 1, 1, -3, -1, 0, "rate of change of density")           \
+  X(double,  v_sig,  NULL,            0, 1, 0,  1, -1, 0, "maximum signal velocity")              \
+  X(double,  pot,  "Potentials",      0, 1, 0,  2, -2, PART_SNAP_ACC, "gravitational potential")  \
+  /* cold: integrated state, bookkeeping */                                                       \
+  X(double,  vx,  "Velocities",       0, 3, 0,  1, -1, PART_IC_REQ | PART_SNAP, "velocity")       \
+  X(double,  vy,  "Velocities",       1, 3, 0,  1, -1, PART_IC_REQ | PART_SNAP, "velocity")       \
+  X(double,  vz,  "Velocities",       2, 3, 0,  1, -1, PART_IC_REQ | PART_SNAP, "velocity")       \
+  X(double,  u,   "InternalEnergies", 0, 1, 0,  2, -2, PART_IC_OPT | PART_SNAP, "specific internal energy") \
+  X(double,  h_lo, NULL,              0, 1, 0,  1,  0, 0, "lower bracket of the h iteration")     \
+  X(double,  h_hi, NULL,              0, 1, 0,  1,  0, 0, "upper bracket of the h iteration")     \
+  X(double,  x0,  NULL,               0, 3, 0,  1,  0, 0, "position at the last rebuild")         \
+  X(double,  y0,  NULL,               1, 3, 0,  1,  0, 0, "position at the last rebuild")         \
+  X(double,  z0,  NULL,               2, 3, 0,  1,  0, 0, "position at the last rebuild")         \
+  X(int64_t, id,  "ParticleIDs",      0, 1, 0,  0,  0, PART_IC_REQ | PART_SNAP, "unique particle id") \
+  X(int32_t, flags, NULL,             0, 1, 0,  0,  0, 0, "internal state bits (enum part_state)")
+/* clang-format on */
+
+/** Bits of parts.flags. */
+enum part_state {
+  PART_ACTIVE = 1,       /**< updated in the current step */
+  PART_H_CONVERGED = 2,  /**< smoothing length iteration converged */
+};
+
+/** All particles, one array per field. */
+struct parts {
+  size_t count;    /**< number of particles */
+  size_t capacity; /**< allocated length of every array */
+#define PART_MEMBER(type, name, ...) type *name;
+  BOLIDE_PART_FIELDS(PART_MEMBER)
+#undef PART_MEMBER
+};
+
+/** Description of one field, generated from BOLIDE_PART_FIELDS. */
+struct part_field {
+  const char *name;   /**< struct member name */
+  const char *h5name; /**< HDF5 dataset name, NULL if internal */
+  int comp, ncomp;    /**< component of the dataset */
+  int uM, uL, uT;     /**< unit exponents */
+  int flags;          /**< enum part_flags */
+  int type;           /**< enum part_field_type */
+  size_t size;        /**< bytes per element */
+  size_t offset;      /**< offset of the array pointer in struct parts */
+  const char *description;
+};
+
+enum part_field_type { PART_DOUBLE, PART_INT64, PART_INT32 };
+
+/** The table of all fields, in declaration order. */
+extern const struct part_field part_fields[];
+extern const int part_nr_fields;
+
+/** Pointer to the array of field f in p. */
+void *part_field_array(const struct parts *p, const struct part_field *f);
+
+/** Allocate every array for n particles (zero-filled). */
+void parts_alloc(struct parts *p, size_t n);
+/** Grow the arrays to at least n particles, keeping the contents. */
+void parts_reserve(struct parts *p, size_t n);
+/** Free every array. */
+void parts_free(struct parts *p);
+/** Reorder every array: new[i] = old[perm[i]]. */
+void parts_permute(struct parts *p, const size_t *perm);
+/** Copy particle src to position dst (every field). */
+void parts_copy_one(struct parts *p, size_t dst, size_t src);
+/** Bytes of memory per particle for all arrays. */
+size_t parts_bytes_per_particle(void);
+
+#endif
