@@ -1,5 +1,95 @@
-/* The engine: the time-step loop (rebuild, build the task graph, run it,
- * output). */
+/* The engine: the time-step loop.  Each step: kick and drift the cells,
+ * rebuild the cells and the task graph when particles have moved too far,
+ * run the density -> ghost -> force -> kick/time-step graph, write
+ * statistics and snapshots. */
 #ifndef BOLIDE_ENGINE_H
 #define BOLIDE_ENGINE_H
+
+#include <stdio.h>
+
+#include "hydro_props.h"
+#include "part.h"
+#include "scheduler.h"
+#include "space.h"
+#include "units.h"
+
+struct params;
+struct material_table;
+
+/** Command-line choices that shape the run. */
+struct engine_options {
+  int nr_threads;  /**< CPU workers (0: every allowed core) */
+  long max_steps;  /**< stop after this many steps (-1: no limit) */
+  int use_gpu;     /**< 0 never, 1 when present, 2 required */
+  int check_only;  /**< validate and exit */
+  int restart;     /**< resume from a restart file */
+};
+
+/** Tasks of one top-level cell (the graph is built on these cells). */
+struct engine_cell_tasks {
+  struct task *drift;    /**< kick1 + drift of the cell */
+  struct task *ghost;    /**< h iteration and equation of state */
+  struct task *kick2;    /**< second half kick and new time step */
+  int nr_ngb;            /**< number of neighbouring top-level cells (itself included) */
+  int *ngb;              /**< their indices */
+  double (*ngb_shift)[3];/**< periodic shift to add to the neighbour's positions */
+};
+
+/** Phases of a step: which tasks a scheduler_run activates. */
+enum engine_phase { ENGINE_PHASE_DRIFT = 0, ENGINE_PHASE_FORCE = 1 };
+
+/** The whole state of a run. */
+struct engine {
+  const struct params *params;    /**< the run's parameters */
+  struct engine_options opt;      /**< command-line choices */
+  struct unit_system us;          /**< internal units */
+  struct hydro_props hp;          /**< SPH settings */
+  struct material_table *mats;    /**< materials by id */
+  struct parts parts;             /**< the particles */
+  struct space space;             /**< cells */
+  struct scheduler sched;         /**< tasks and workers */
+  int nr_threads;                 /**< workers in use */
+
+  struct engine_cell_tasks *ct;   /**< per top-level cell */
+  struct task **phase_tasks[2];   /**< tasks of each phase */
+  int phase_count[2];             /**< their numbers */
+ struct space_pair *pairs;       /**< neighbouring top-level cell pairs (with periodic shifts) */
+  int nr_pairs;                   /**< their number */
+  int *task_pair;                 /**< pair number of each pair task, by task id */
+  double *cell_dt_min;            /**< smallest new time step per top-level cell */
+  double *cell_dx_max;            /**< largest drift since rebuild per top-level cell */
+  int need_rebuild;               /**< set by tasks (atomic): h outgrew the cells */
+  int first_force;                /**< 1 while computing the initial forces */
+
+  double time;                    /**< current simulation time */
+  double time_end;                /**< end of the run */
+  double dt;                      /**< current global time step */
+  double dt_min, dt_max;          /**< limits */
+  long step;                      /**< steps done */
+  long long updates;              /**< particle updates so far */
+  long long nr_removed;           /**< particles that left an open box */
+
+  char outdir[1024];              /**< folder of snapshots and statistics */
+  char basename[256];             /**< snapshot prefix */
+  double *out_times;              /**< snapshot times */
+  int nr_out, next_out;           /**< their count and the next to write */
+  int snap_index;                 /**< index of the next snapshot file */
+  int write_acc;                  /**< Snapshots:accelerations */
+  int compression;                /**< gzip level */
+  char *params_text;              /**< the parameters in use, for snapshots */
+
+  FILE *stats;                    /**< statistics file */
+  double stats_dt, next_stats;    /**< its interval */
+  long dump_tasks;                /**< dump a task timeline every this many steps */
+  double wall_start;              /**< wall time at the first step */
+};
+
+/** Read everything (units, materials, initial conditions), build the cells,
+ *  write used_parameters.yml.  Stops with an error on bad input. */
+void engine_init(struct engine *e, const struct params *params, const struct engine_options *opt);
+/** Run to TimeIntegration:time_end or the step limit. */
+void engine_run(struct engine *e);
+/** Free everything. */
+void engine_clean(struct engine *e);
+
 #endif

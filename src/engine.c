@@ -1,0 +1,351 @@
+/* The engine: initialisation and the time-step loop (see engine.h). */
+#include "engine.h"
+
+#include <errno.h>
+#include <float.h>
+#include <libgen.h>
+#include <limits.h>
+#include <math.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "engine_tasks.h"
+#include "error.h"
+#include "ic.h"
+#include "kernel.h"
+#include "material.h"
+#include "params.h"
+#include "version.h"
+
+/* ------------------------------------------------------------------------ */
+/* initial conditions                                                        */
+
+/** Resolve the IC path: relative paths are relative to the parameter file. */
+static void engine_ic_path(const struct params *p, char *out, size_t len) {
+  const char *f = params_get_string(p, "InitialConditions:file_name");
+  if (f[0] == '/') {
+    snprintf(out, len, "%s", f);
+    return;
+  }
+  char tmp[PATH_MAX];
+  snprintf(tmp, sizeof tmp, "%s", params_filename(p));
+  const char *dir = dirname(tmp);
+  if (strcmp(dir, ".") == 0)
+    snprintf(out, len, "%s", f);
+  else
+    snprintf(out, len, "%s/%s", dir, f);
+}
+
+/** Smoothing lengths for ICs that have none: eta times the mean spacing of
+ *  the bounding box (the iteration then finds each particle's own). */
+static void engine_guess_h(struct engine *e) {
+  struct parts *p = &e->parts;
+  size_t missing = 0;
+  for (size_t i = 0; i < p->count; i++) missing += !(p->h[i] > 0.0);
+  if (missing == 0 || p->count == 0) return;
+  double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
+  for (size_t i = 0; i < p->count; i++) {
+    const double x[3] = {p->x[i], p->y[i], p->z[i]};
+    for (int k = 0; k < 3; k++) {
+      if (x[k] < lo[k]) lo[k] = x[k];
+      if (x[k] > hi[k]) hi[k] = x[k];
+    }
+  }
+  double vol = 1.0;
+  for (int k = 0; k < 3; k++) vol *= fmax(hi[k] - lo[k], 1e-300);
+  const double h0 = e->hp.eta * cbrt(vol / (double)p->count);
+  for (size_t i = 0; i < p->count; i++)
+    if (!(p->h[i] > 0.0)) p->h[i] = h0;
+  error_log(0, "%zu particles had no smoothing length: initial guess h = %g", missing, h0);
+}
+
+/* ------------------------------------------------------------------------ */
+/* output times                                                              */
+
+static int engine_cmp_double(const void *a, const void *b) {
+  const double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/** The snapshot times after time_begin: from Snapshots:output_list, or
+ *  time_first + k delta_time; time_end is always an output time. */
+static void engine_init_outputs(struct engine *e, double t0) {
+  const struct params *p = e->params;
+  const char *list = params_get_string(p, "Snapshots:output_list");
+  int cap = 16, n = 0;
+  double *t = error_malloc(cap * sizeof(double), "output times");
+  if (list[0]) {
+    FILE *f = fopen(list, "r");
+    if (!f) error_exit("%s: cannot open the output list: %s", list, strerror(errno));
+    char line[256];
+    int lineno = 0;
+    while (fgets(line, sizeof line, f)) {
+      lineno++;
+      char *s = line;
+      while (*s == ' ' || *s == '\t') s++;
+      if (*s == '#' || *s == '\n' || *s == '\0') continue;
+      if (!strncmp(s, "Time", 4)) continue; /* SWIFT's header line */
+      char *end;
+      const double v = strtod(s, &end);
+      if (end == s || !isfinite(v)) error_exit("%s:%d: expected an output time, found '%.40s'", list, lineno, s);
+      if (n == cap) t = error_realloc(t, (cap *= 2) * sizeof(double), "output times");
+      t[n++] = v;
+    }
+    fclose(f);
+  } else {
+    const double first = params_get_real(p, "Snapshots:time_first");
+    const double delta = params_get_real(p, "Snapshots:delta_time");
+    if (delta > 0.0) {
+      for (long k = 0;; k++) {
+        const double v = first + (double)k * delta;
+        if (v > e->time_end * (1.0 + 1e-12)) break;
+        if (k > 1000000) error_exit("Snapshots:delta_time %g gives more than a million snapshots", delta);
+        if (n == cap) t = error_realloc(t, (cap *= 2) * sizeof(double), "output times");
+        t[n++] = v;
+      }
+    } else if (first > t0 && first < e->time_end) {
+      t[n++] = first;
+    }
+  }
+  if (n == cap) t = error_realloc(t, (cap += 1) * sizeof(double), "output times");
+  t[n++] = e->time_end;
+  qsort(t, n, sizeof(double), engine_cmp_double);
+  /* keep the times strictly after t0, without duplicates */
+  int m = 0;
+  for (int k = 0; k < n; k++) {
+    if (t[k] <= t0 * (1.0 + 1e-14) + 1e-300 && t[k] <= t0) continue;
+    if (m > 0 && fabs(t[k] - t[m - 1]) <= 1e-12 * fabs(t[k])) continue;
+    if (t[k] > e->time_end) continue;
+    t[m++] = t[k];
+  }
+  e->out_times = t;
+  e->nr_out = m;
+  e->next_out = 0;
+}
+
+/** Create the output folder (and parents) if missing. */
+static void engine_mkdir(const char *dir) {
+  char tmp[1024];
+  snprintf(tmp, sizeof tmp, "%s", dir);
+  for (char *s = tmp + 1; *s; s++)
+    if (*s == '/') {
+      *s = '\0';
+      if (mkdir(tmp, 0755) && errno != EEXIST) error_exit("%s: cannot create folder: %s", tmp, strerror(errno));
+      *s = '/';
+    }
+  if (mkdir(tmp, 0755) && errno != EEXIST) error_exit("%s: cannot create folder: %s", tmp, strerror(errno));
+}
+
+/* ------------------------------------------------------------------------ */
+
+void engine_init(struct engine *e, const struct params *params, const struct engine_options *opt) {
+  memset(e, 0, sizeof *e);
+  e->params = params;
+  e->opt = *opt;
+  units_init_from_params(&e->us, params);
+  hydro_props_init(&e->hp, params);
+  if (e->hp.continuity) params_error(params, "SPH:density", "the continuity equation is not implemented yet; use 'summation'");
+  if (e->hp.xsph > 0.0) params_error(params, "SPH:xsph_epsilon", "XSPH is not implemented yet; set it to 0");
+  if (params_get_bool(params, "Gravity:enabled"))
+    params_error(params, "Gravity:enabled", "self-gravity is not implemented yet");
+  if (params_get_bool(params, "Restarts:enable"))
+    params_error(params, "Restarts:enable", "restart files are not implemented yet");
+
+  e->mats = material_table_from_params(params, &e->us);
+
+  e->time = params_get_real(params, "TimeIntegration:time_begin");
+  e->time_end = params_get_real(params, "TimeIntegration:time_end");
+  e->dt_min = params_get_real(params, "TimeIntegration:dt_min");
+  e->dt_max = params_get_real(params, "TimeIntegration:dt_max");
+  if (e->time_end < e->time)
+    params_error(params, "TimeIntegration:time_end", "time_end (%g) is before time_begin (%g)", e->time_end, e->time);
+  if (e->dt_min > e->dt_max)
+    params_error(params, "TimeIntegration:dt_min", "dt_min (%g) is larger than dt_max (%g)", e->dt_min, e->dt_max);
+
+  /* initial conditions */
+  char icname[PATH_MAX];
+  engine_ic_path(params, icname, sizeof icname);
+  struct ic_info hdr;
+  int nids = 0;
+  int32_t *ids = material_table_ids(e->mats, &nids);
+  ic_read(icname, &e->us, ids, nids, &e->parts, &hdr);
+  free(ids);
+  double box[3] = {hdr.box_size[0], hdr.box_size[1], hdr.box_size[2]};
+  double b[3];
+  const int nb = params_get_real_array(params, "InitialConditions:box_size", b, 3);
+  if (nb == 1) box[0] = box[1] = box[2] = b[0];
+  else if (nb == 3) for (int k = 0; k < 3; k++) box[k] = b[k];
+  else if (nb != 0) params_error(params, "InitialConditions:box_size", "expected 1 or 3 values, got %d", nb);
+  for (int k = 0; k < 3; k++)
+    if (!(box[k] > 0.0)) error_exit("%s: the box size is not positive (%g); set InitialConditions:box_size", icname, box[k]);
+  double shift[3];
+  params_get_real_array(params, "InitialConditions:shift", shift, 3);
+  const double hscale = params_get_real(params, "InitialConditions:smoothing_length_scaling");
+  for (size_t i = 0; i < e->parts.count; i++) {
+    e->parts.x[i] += shift[0];
+    e->parts.y[i] += shift[1];
+    e->parts.z[i] += shift[2];
+    e->parts.h[i] *= hscale;
+    e->parts.vpx[i] = e->parts.vx[i];
+    e->parts.vpy[i] = e->parts.vy[i];
+    e->parts.vpz[i] = e->parts.vz[i];
+    e->parts.up[i] = e->parts.u[i];
+  }
+  engine_guess_h(e);
+  const int periodic = params_get_bool(params, "InitialConditions:periodic");
+  error_log(0, "read %zu particles from %s (box %g x %g x %g, %s)", e->parts.count, icname, box[0], box[1],
+            box[2], periodic ? "periodic" : "open");
+
+  /* outputs */
+  const char *subdir = params_get_string(params, "Snapshots:subdir");
+  snprintf(e->outdir, sizeof e->outdir, "%s", subdir);
+  snprintf(e->basename, sizeof e->basename, "%s", params_get_string(params, "Snapshots:basename"));
+  e->write_acc = params_get_bool(params, "Snapshots:accelerations");
+  e->compression = (int)params_get_int(params, "Snapshots:compression");
+  e->stats_dt = params_get_real(params, "Statistics:delta_time");
+  e->dump_tasks = params_get_int(params, "Scheduler:dump_tasks");
+  engine_init_outputs(e, e->time);
+
+  /* cells and workers */
+  space_init(&e->space, &e->parts, box, periodic, (int)params_get_int(params, "Scheduler:cell_split_size"),
+             (int)params_get_int(params, "Scheduler:max_top_level_cells"));
+  e->space.rebuild_fraction = params_get_real(params, "Scheduler:rebuild_fraction");
+  e->nr_threads = opt->nr_threads > 0 ? opt->nr_threads : runner_nr_cores();
+  const char *gpu = params_get_string(params, "Scheduler:gpu");
+  (void)gpu;
+
+  error_log(0, "Bolide %s (git %s), kernel %s, %d threads, %s", PACKAGE_VERSION, BOLIDE_GIT_HASH,
+            BOLIDE_KERNEL_NAME, e->nr_threads,
+#ifdef HAVE_CUDA
+            "CUDA build (GPU tasks not implemented yet: every task runs on the CPU)"
+#else
+            "CPU-only build: every task runs on the CPU"
+#endif
+  );
+  error_log(1, "configured with: %s", BOLIDE_CONFIGURE_ARGS);
+  error_log(0, "%d material(s); particle memory %zu bytes per particle", e->mats->n, parts_bytes_per_particle());
+
+  if (opt->check_only) {
+    printf("%s: parameters, materials and initial conditions are valid (%zu particles)\n", params_filename(params),
+           e->parts.count);
+    return;
+  }
+
+  engine_mkdir(e->outdir);
+  char path[2048];
+  snprintf(path, sizeof path, "%s/used_parameters.yml", e->outdir);
+  params_write_used(params, path);
+  e->params_text = params_to_string(params);
+  engine_stats_open(e);
+
+  scheduler_init(&e->sched, e->nr_threads);
+  engine_rebuild(e);
+}
+
+/* ------------------------------------------------------------------------ */
+
+void engine_rebuild(struct engine *e) {
+  const size_t removed = space_rebuild(&e->space);
+  e->nr_removed += (long long)removed;
+  engine_make_graph(e);
+}
+
+/** Run the tasks of one phase on every worker. */
+static void engine_run_phase(struct engine *e, int phase) {
+  engine_activate_phase(e, phase);
+  scheduler_run(&e->sched, engine_run_task, e);
+}
+
+/** The next global time step: the smallest particle step, limited by dt_max,
+ *  the next output time and the end of the run. */
+static double engine_next_dt(struct engine *e) {
+  double dt = e->dt_max;
+  for (int c = 0; c < e->space.nr_cells; c++)
+    if (e->space.cells_top[c].count > 0 && e->cell_dt_min[c] < dt) dt = e->cell_dt_min[c];
+  if (dt < e->dt_min)
+    error_exit("time step %g at t = %g is below TimeIntegration:dt_min = %g (run -v for details)", dt, e->time,
+               e->dt_min);
+  if (e->next_out < e->nr_out) {
+    const double to_out = e->out_times[e->next_out] - e->time;
+    if (to_out > 0.0 && dt >= to_out) dt = to_out;
+    else if (to_out > 0.0 && dt > 0.5 * to_out && dt < to_out) dt = 0.5 * to_out; /* no sliver steps */
+  }
+  if (e->time + dt > e->time_end) dt = e->time_end - e->time;
+  return dt;
+}
+
+/** Compute densities, forces and time steps without kicking (t = time_begin). */
+static void engine_first_force(struct engine *e) {
+  e->first_force = 1;
+  e->dt = 0.0;
+  engine_run_phase(e, ENGINE_PHASE_FORCE);
+  e->first_force = 0;
+}
+
+void engine_run(struct engine *e) {
+  const double t_begin = e->time;
+  engine_first_force(e);
+  engine_stats_write(e);
+  engine_snapshot(e);
+  e->wall_start = error_walltime();
+  if (e->opt.max_steps == 0) {
+    error_log(0, "--steps 0: wrote the initial snapshot, stopping");
+    return;
+  }
+  printf("#   step           time             dt      updates    wall[s]     ETA[s]\n");
+  while (e->time < e->time_end && (e->opt.max_steps < 0 || e->step < e->opt.max_steps)) {
+    const double w0 = error_walltime();
+    e->dt = engine_next_dt(e);
+    if (!(e->dt > 0.0)) break;
+    engine_run_phase(e, ENGINE_PHASE_DRIFT);
+    e->time += e->dt;
+    if (e->next_out < e->nr_out && fabs(e->time - e->out_times[e->next_out]) <= 1e-12 * fabs(e->time))
+      e->time = e->out_times[e->next_out];
+    if (atomic_load((_Atomic int *)&e->need_rebuild) || space_should_rebuild(&e->space, e->cell_dx_max)) {
+      atomic_store((_Atomic int *)&e->need_rebuild, 0);
+      engine_rebuild(e);
+    }
+    engine_run_phase(e, ENGINE_PHASE_FORCE);
+    e->step++;
+    e->updates += (long long)e->parts.count;
+    if (e->dump_tasks > 0 && e->step % e->dump_tasks == 0) engine_dump_tasks(e);
+    engine_stats_maybe(e);
+    if (e->next_out < e->nr_out && e->time >= e->out_times[e->next_out]) {
+      engine_snapshot(e);
+      while (e->next_out < e->nr_out && e->out_times[e->next_out] <= e->time) e->next_out++;
+    }
+    const double w1 = error_walltime();
+    const double frac = (e->time - t_begin) / fmax(e->time_end - t_begin, 1e-300);
+    const double eta = frac > 0 ? (w1 - e->wall_start) * (1.0 - frac) / frac : 0.0;
+    printf("%8ld %14.6e %14.6e %12zu %10.4f %10.1f\n", e->step, e->time, e->dt, e->parts.count, w1 - w0, eta);
+    fflush(stdout);
+  }
+  if (e->next_out < e->nr_out && e->out_times[e->nr_out - 1] > e->time) {
+    /* stopped by --steps: keep the last state */
+    engine_snapshot(e);
+  }
+  engine_stats_write(e);
+  const double wall = error_walltime() - e->wall_start;
+  error_log(0, "done: %ld steps to t = %g in %.2f s (%.3g particle updates per second)", e->step, e->time, wall,
+            wall > 0 ? (double)e->updates / wall : 0.0);
+  if (e->nr_removed) error_log(0, "%lld particles left the open box and were removed", e->nr_removed);
+  scheduler_print_timers(&e->sched, stdout);
+}
+
+void engine_clean(struct engine *e) {
+  if (!e->opt.check_only) {
+    engine_graph_clean(e);
+    scheduler_free(&e->sched);
+    space_clean(&e->space);
+  }
+  if (e->stats) fclose(e->stats);
+  free(e->out_times);
+  free(e->cell_dt_min);
+  free(e->cell_dx_max);
+  free(e->params_text);
+  material_table_free(e->mats);
+  parts_free(&e->parts);
+}

@@ -1,0 +1,25 @@
+/* Functions of the engine shared between its files (not a public API). */
+#ifndef BOLIDE_ENGINE_TASKS_H
+#define BOLIDE_ENGINE_TASKS_H
+
+#include "engine.h"
+
+/* engine_graph.c */
+void engine_make_graph(struct engine *e);
+void engine_activate_phase(struct engine *e, int phase);
+void engine_graph_clean(struct engine *e);
+
+/* engine.c */
+void engine_rebuild(struct engine *e);
+
+/* engine_runtask.c: the scheduler's callback */
+void engine_run_task(void *ctx, struct task *t, int thread_id);
+
+/* engine_io.c */
+void engine_stats_open(struct engine *e);
+void engine_stats_write(struct engine *e);
+void engine_stats_maybe(struct engine *e);
+void engine_snapshot(struct engine *e);
+void engine_dump_tasks(struct engine *e);
+
+#endif

@@ -1,0 +1,22 @@
+/* Hydrodynamics settings from the SPH section. */
+#include "hydro_props.h"
+
+#include <math.h>
+
+#include "params.h"
+
+void hydro_props_init(struct hydro_props *hp, const struct params *p) {
+  hp->enabled = params_get_bool(p, "SPH:hydro");
+  hp->eta = params_get_real(p, "SPH:resolution_eta");
+  hp->h_tolerance = params_get_real(p, "SPH:h_tolerance");
+  hp->h_max = params_get_real(p, "SPH:h_max");
+  hp->max_iterations = (int)params_get_int(p, "SPH:max_ghost_iterations");
+  hp->cfl = params_get_real(p, "SPH:CFL_condition");
+  hp->log_max_volume_change = log(params_get_real(p, "SPH:max_volume_change"));
+  hp->alpha = params_get_real(p, "SPH:viscosity_alpha");
+  hp->beta = params_get_real(p, "SPH:viscosity_beta");
+  hp->balsara = params_get_bool(p, "SPH:balsara");
+  hp->alpha_u = params_get_real(p, "SPH:conductivity_alpha");
+  hp->continuity = params_get_enum(p, "SPH:density") == 1;
+  hp->xsph = params_get_real(p, "SPH:xsph_epsilon");
+}
