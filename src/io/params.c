@@ -205,7 +205,9 @@ static int node_is_null(const struct param_node *n) {
 
 /** Words for a node's kind, for error messages. */
 static const char *node_kind_name(const struct param_node *n) {
-  return n->kind == NODE_MAPPING ? "a mapping" : n->kind == NODE_SEQUENCE ? "a sequence" : "a scalar";
+  return n->kind == NODE_MAPPING    ? "a mapping"
+         : n->kind == NODE_SEQUENCE ? "a sequence"
+                                    : "a scalar";
 }
 
 /** State of the copy of one libyaml document into a param_node tree. */
@@ -387,7 +389,8 @@ static int parse_int(const char *t, long *x) {
 
 /** Parse a boolean: true/false, yes/no, on/off, 1/0 (any case). */
 static int parse_bool(const char *t, int *x) {
-  static const char *const yes[] = {"true", "yes", "on", "1"}, *const no[] = {"false", "no", "off", "0"};
+  static const char *const yes[] = {"true", "yes", "on", "1"}, *const no[] = {"false", "no", "off",
+                                                                              "0"};
   for (int i = 0; i < 4; i++) {
     if (strcasecmp(t, yes[i]) == 0) return *x = 1, 1;
     if (strcasecmp(t, no[i]) == 0) return *x = 0, 1;
@@ -412,15 +415,15 @@ static int parse_enum(const char *t, const char *choices) {
 static void range_text(const struct param_spec *s, char *buf, size_t len) {
   int lo = s->min > -PARAM_INF, hi = s->max < PARAM_INF;
   if (lo && hi) {
-    snprintf(buf, len, "in [%g, %g]", s->min, s->max);
+    snprintf(buf, len, "in [%.15g, %.15g]", s->min, s->max);
   } else if (lo) {
     /* a tiny positive bound (1e-300) means "strictly positive" */
     if (s->min > 0 && s->min < 1e-200)
       snprintf(buf, len, "> 0");
     else
-      snprintf(buf, len, ">= %g", s->min);
+      snprintf(buf, len, ">= %.15g", s->min);
   } else if (hi) {
-    snprintf(buf, len, "<= %g", s->max);
+    snprintf(buf, len, "<= %.15g", s->max);
   } else {
     buf[0] = '\0';
   }
@@ -441,8 +444,8 @@ static int parse_array_element(const struct param_spec *s, const struct param_no
                                double *x, char *err, size_t len) {
   if (n->kind != NODE_SCALAR || !parse_real(n->text, x)) {
     snprintf(err, len, "%s: element %d: expected a number, got %s%s%s", s->name, index,
-             n->kind == NODE_SCALAR ? "'" : node_kind_name(n), n->kind == NODE_SCALAR ? n->text : "",
-             n->kind == NODE_SCALAR ? "'" : "");
+             n->kind == NODE_SCALAR ? "'" : node_kind_name(n),
+             n->kind == NODE_SCALAR ? n->text : "", n->kind == NODE_SCALAR ? "'" : "");
     return 0;
   }
   return check_range(s, *x, n->text, err, len);
@@ -481,8 +484,10 @@ static void value_clear(struct param_value *v) {
 static void choices_list(const char *choices, char *buf, size_t len) {
   size_t n = 0;
   for (const char *c = choices; *c && n + 3 < len; c++) {
-    if (*c == '|') buf[n++] = ',', buf[n++] = ' ';
-    else buf[n++] = *c;
+    if (*c == '|')
+      buf[n++] = ',', buf[n++] = ' ';
+    else
+      buf[n++] = *c;
   }
   buf[n] = '\0';
 }
@@ -622,8 +627,7 @@ static void params_apply_override(struct params *p, const char *arg) {
   char name[1024], where[1100], err[1024], hint[160];
   const char *c1 = strchr(arg, ':');
   const char *c2 = c1 ? strchr(c1 + 1, ':') : NULL;
-  if (!c2 || c1 == arg || c2 == c1 + 1)
-    error_exit("-P %s: expected Section:key:value", arg);
+  if (!c2 || c1 == arg || c2 == c1 + 1) error_exit("-P %s: expected Section:key:value", arg);
   snprintf(where, sizeof where, "-P %s", arg);
   snprintf(name, sizeof name, "%.*s", (int)(c2 - arg), arg);
   int i = spec_find(name);
@@ -749,7 +753,8 @@ void params_error(const struct params *p, const char *name, const char *fmt, ...
   va_end(ap);
   int i = spec_find(name);
   const struct param_value *v = i >= 0 ? &p->values[i] : NULL;
-  if (v && v->line > 0 && !v->override) error_exit("%s:%d: %s: %s", p->filename, v->line, name, msg);
+  if (v && v->line > 0 && !v->override)
+    error_exit("%s:%d: %s: %s", p->filename, v->line, name, msg);
   if (v && v->override) error_exit("%s: -P %s: %s", p->filename, v->override, msg);
   error_exit("%s: %s (default value): %s", p->filename, name, msg);
 }
@@ -851,9 +856,9 @@ static void emit(yaml_emitter_t *e, yaml_event_t *ev) {
 /** Emit a scalar, plain when YAML allows it (the emitter quotes otherwise). */
 static void emit_scalar(yaml_emitter_t *e, const char *text, int quoted) {
   yaml_event_t ev;
-  yaml_scalar_event_initialize(&ev, NULL, NULL, (yaml_char_t *)text, (int)strlen(text), 1, 1,
-                               quoted || !text[0] ? YAML_DOUBLE_QUOTED_SCALAR_STYLE
-                                                  : YAML_PLAIN_SCALAR_STYLE);
+  yaml_scalar_event_initialize(
+      &ev, NULL, NULL, (yaml_char_t *)text, (int)strlen(text), 1, 1,
+      quoted || !text[0] ? YAML_DOUBLE_QUOTED_SCALAR_STYLE : YAML_PLAIN_SCALAR_STYLE);
   emit(e, &ev);
 }
 
@@ -1031,8 +1036,9 @@ static const char *reference_value(const struct param_spec *s) {
 /** Write a scalar text for the reference: plain when that is safe, else in
  *  double quotes with '"' and '\' escaped. */
 static void reference_scalar(FILE *f, const char *text) {
-  int plain = text[0] && !strpbrk(text, ":#[]{},&*!|>'\"%@`\\") && !isspace((unsigned char)text[0]) &&
-              !isspace((unsigned char)text[strlen(text) - 1]) && text[0] != '-' && text[0] != '?';
+  int plain = text[0] && !strpbrk(text, ":#[]{},&*!|>'\"%@`\\") &&
+              !isspace((unsigned char)text[0]) && !isspace((unsigned char)text[strlen(text) - 1]) &&
+              text[0] != '-' && text[0] != '?';
   if (plain) {
     fputs(text, f);
     return;
@@ -1045,27 +1051,38 @@ static void reference_scalar(FILE *f, const char *text) {
   fputc('"', f);
 }
 
+/** Write text as "  # " comment lines of at most 88 columns, broken at blanks. */
+static void reference_wrap(FILE *f, const char *text) {
+  const int width = 88 - 4;
+  while (*text) {
+    int n = (int)strlen(text);
+    if (n > width) {
+      n = width;
+      while (n > 0 && text[n] != ' ') n--;
+      if (n == 0) n = (int)strcspn(text, " "); /* one long word */
+    }
+    fprintf(f, "  # %.*s\n", n, text);
+    text += n;
+    while (*text == ' ') text++;
+  }
+}
+
 /** The "# meaning [unit] (type, range; default)" comment of entry s. */
 static void reference_comment(FILE *f, const struct param_spec *s) {
   static const char *const type_name[] = {
-      [PARAM_INT] = "integer", [PARAM_REAL] = "real", [PARAM_BOOL] = "boolean",
-      [PARAM_STRING] = "text", [PARAM_ENUM] = "one of", [PARAM_REAL_ARRAY] = "list of reals",
+      [PARAM_INT] = "integer",    [PARAM_REAL] = "real",   [PARAM_BOOL] = "boolean",
+      [PARAM_STRING] = "text",    [PARAM_ENUM] = "one of", [PARAM_REAL_ARRAY] = "list of reals",
       [PARAM_SECTION] = "section"};
-  char range[96] = "", list[512];
+  char range[96] = "", list[512] = "", unit[128] = "", text[2048];
   if (s->type == PARAM_INT || s->type == PARAM_REAL || s->type == PARAM_REAL_ARRAY)
     range_text(s, range, sizeof range);
-  fprintf(f, "  # %s", s->doc);
-  if (strcmp(s->unit, "-") != 0) fprintf(f, " [%s]", s->unit);
-  fprintf(f, " (%s", type_name[s->type]);
-  if (s->type == PARAM_ENUM) {
-    choices_list(s->choices, list, sizeof list);
-    fprintf(f, " %s", list);
-  }
-  if (range[0]) fprintf(f, " %s", range);
-  if (s->def)
-    fprintf(f, "; default %s)\n", s->def[0] ? s->def : "\"\"");
-  else
-    fprintf(f, "; REQUIRED)\n");
+  if (s->type == PARAM_ENUM) choices_list(s->choices, list, sizeof list);
+  if (strcmp(s->unit, "-") != 0) snprintf(unit, sizeof unit, " [%s]", s->unit);
+  const char *def = !s->def ? NULL : s->def[0] ? s->def : "\"\"";
+  snprintf(text, sizeof text, "%s%s (%s%s%s%s%s; %s%s)", s->doc, unit, type_name[s->type],
+           list[0] ? " " : "", list, range[0] ? " " : "", range, def ? "default " : "REQUIRED",
+           def ? def : "");
+  reference_wrap(f, text);
 }
 
 void params_write_reference(FILE *f) {
@@ -1094,7 +1111,8 @@ void params_write_reference(FILE *f) {
     int len = (int)spec_section_len(s0);
     fprintf(f, "\n");
     if (s0->type == PARAM_SECTION) {
-      fprintf(f, "# %s: %s (optional)\n", s0->name, s0->doc);
+      fprintf(f, "# %s (optional section): see the paragraph on %s at the top of this file.\n",
+              s0->name, s0->name);
       continue;
     }
     fprintf(f, "%.*s:\n", len, s0->name);
