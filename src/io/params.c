@@ -31,7 +31,7 @@ static const struct param_spec params_table[] = {BOLIDE_PARAMS(PARAMS_SPEC_ENTRY
 /** Nesting deeper than this (or a recursive alias) is refused. */
 #define PARAMS_MAX_DEPTH 64
 /** Nodes per file beyond which alias expansion is refused ("billion laughs"). */
-#define PARAMS_MAX_NODES 1000000L
+#define PARAMS_MAX_NODES 100000L
 /** Longest name for which a spelling suggestion is searched. */
 #define PARAMS_MAX_NAME 80
 
@@ -54,31 +54,29 @@ static size_t spec_section_len(const struct param_spec *s) {
   return colon ? (size_t)(colon - s->name) : strlen(s->name);
 }
 
-/** 1 if some table entry belongs to section `sec`. */
-static int section_known(const char *sec) {
-  for (int i = 0; i < PARAMS_N; i++) {
-    size_t len = spec_section_len(&params_table[i]);
-    if (strlen(sec) == len && strncmp(params_table[i].name, sec, len) == 0) return 1;
-  }
-  return 0;
-}
-
-/** 1 if table entry i starts a section (its section differs from those of all
- *  earlier entries): sections are visited in first-appearance order. */
-static int spec_starts_section(int i) {
-  size_t len = spec_section_len(&params_table[i]);
-  for (int j = 0; j < i; j++)
-    if (spec_section_len(&params_table[j]) == len &&
-        strncmp(params_table[j].name, params_table[i].name, len) == 0)
-      return 0;
-  return 1;
+/** 1 if table entry i is in the section named by the first len chars of sec. */
+static int spec_in_section(int i, const char *sec, size_t len) {
+  return spec_section_len(&params_table[i]) == len && strncmp(params_table[i].name, sec, len) == 0;
 }
 
 /** 1 if entries i and j are in the same section. */
 static int spec_same_section(int i, int j) {
-  size_t len = spec_section_len(&params_table[i]);
-  return spec_section_len(&params_table[j]) == len &&
-         strncmp(params_table[i].name, params_table[j].name, len) == 0;
+  return spec_in_section(j, params_table[i].name, spec_section_len(&params_table[i]));
+}
+
+/** 1 if some table entry belongs to section `sec`. */
+static int section_known(const char *sec) {
+  for (int i = 0; i < PARAMS_N; i++)
+    if (spec_in_section(i, sec, strlen(sec))) return 1;
+  return 0;
+}
+
+/** 1 if table entry i is the first of its section: sections are visited in
+ *  the order of their first appearance in the table. */
+static int spec_starts_section(int i) {
+  for (int j = 0; j < i; j++)
+    if (spec_same_section(i, j)) return 0;
+  return 1;
 }
 
 /* ================================================================ errors */
@@ -234,7 +232,7 @@ static void tree_copy_mapping(struct tree_builder *b, yaml_node_t *y, struct par
     yaml_node_t *v = yaml_document_get_node(b->doc, pair->value);
     int line = b->with_lines ? (int)k->start_mark.line + 1 : 0;
     if (k->type != YAML_SCALAR_NODE)
-      fail(b->where, line, "%s%sa key must be a plain scalar, not a collection", path,
+      fail(b->where, line, "%s%sa key must be a scalar, not a collection", path,
            path[0] ? ": " : "");
     const char *key = (const char *)k->data.scalar.value;
     char sub[1024];
@@ -256,8 +254,8 @@ static struct param_node *tree_copy(struct tree_builder *b, yaml_node_t *y, cons
   int line = (int)y->start_mark.line + 1;
   if (depth > PARAMS_MAX_DEPTH || --b->budget < 0)
     fail(b->where, b->with_lines ? line : 0,
-         "more than %d levels of nesting or %ld nodes (a recursive alias?)", PARAMS_MAX_DEPTH,
-         PARAMS_MAX_NODES);
+         "more than %d levels of nesting or %ld values (a recursive or exploding alias?)",
+         PARAMS_MAX_DEPTH, PARAMS_MAX_NODES);
   struct param_node *n = node_new(NODE_SCALAR, line);
   if (y->type == YAML_SCALAR_NODE) {
     n->text = error_malloc(y->data.scalar.length + 1, "parameter text");
