@@ -59,7 +59,8 @@ expect_error_file syntax 7 "YAML syntax error" "flow sequence started at line 6"
 expect_error_file not_mapping 5 "section 'SPH' must be a mapping"
 expect_error_file top_level 2 "must be a mapping of sections"
 expect_error_file two_documents 6 "second YAML document"
-expect_error_file alias_loop 5 "recursive alias"
+expect_error_file alias_loop 5 "recursive or exploding alias"
+expect_error_file alias_bomb 2 "100000 values"
 # a missing required key has no line: the file, the key and its meaning
 expect_error "'$data/params_err_missing.yml'" "params_err_missing.yml: missing required key 'TimeIntegration:time_end'" "(simulation time at which the run stops)"
 # files that cannot be read
