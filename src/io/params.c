@@ -14,6 +14,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <yaml.h>
 
@@ -387,8 +388,8 @@ static int parse_int(const char *t, long *x) {
 
 /** Parse a boolean: true/false, yes/no, on/off, 1/0 (any case). */
 static int parse_bool(const char *t, int *x) {
-  static const char *const yes[] = {"true", "yes", "on", "1"}, *const no[] = {"false", "no", "off",
-                                                                              "0"};
+  static const char *const yes[] = {"true", "yes", "on", "1"};
+  static const char *const no[] = {"false", "no", "off", "0"};
   for (int i = 0; i < 4; i++) {
     if (strcasecmp(t, yes[i]) == 0) return *x = 1, 1;
     if (strcasecmp(t, no[i]) == 0) return *x = 0, 1;
@@ -399,13 +400,13 @@ static int parse_bool(const char *t, int *x) {
 /** Index of t in the '|'-separated choices, or -1. */
 static int parse_enum(const char *t, const char *choices) {
   size_t len = strlen(t);
-  int index = 0;
-  for (const char *c = choices; c; c = strchr(c, '|'), c = c ? c + 1 : NULL, index++) {
-    const char *bar = strchr(c, '|');
-    size_t clen = bar ? (size_t)(bar - c) : strlen(c);
+  const char *c = choices;
+  for (int index = 0;; index++) {
+    size_t clen = strcspn(c, "|");
     if (clen == len && strncmp(c, t, len) == 0) return index;
+    if (!c[clen]) return -1;
+    c += clen + 1;
   }
-  return -1;
 }
 
 /** Text of the range of s: "in [a, b]", ">= a", "> 0", "<= b", or "" when
