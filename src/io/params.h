@@ -35,6 +35,10 @@ struct param_spec {
   const char *doc;     /**< one-line meaning */
 };
 
+/** The table entry of a key ("Section:key", or a PARAM_SECTION name), or
+ *  NULL when Bolide has no such key. */
+const struct param_spec *params_spec(const char *name);
+
 struct params;     /* opaque: the parsed file */
 struct param_node; /* opaque: a node of a free-form section */
 
@@ -62,6 +66,11 @@ const char *params_get_string(const struct params *p, const char *name);
 int params_get_enum(const struct params *p, const char *name);
 /** Fill up to maxn reals, return the count. */
 int params_get_real_array(const struct params *p, const char *name, double *out, int maxn);
+
+/** A STRING key holding a path, made relative to the parameter file's folder
+ *  when it is relative (absolute and empty values are returned unchanged).
+ *  The caller frees the result. */
+char *params_get_path(const struct params *p, const char *name);
 
 /** Stop with "FILE:LINE: KEY: MESSAGE" for a semantic error found by a module
  *  (a value inconsistent with another, say). */
