@@ -53,8 +53,8 @@ int main(int argc, char **argv) {
     if (ic_field_read(&info, k))
       h = fnv1a(h, part_field_array(&p, &part_fields[k]), p.count * part_fields[k].size);
   printf("count %zu\nmass_total %.17g\nchecksum %016llx\nbox %.17g %.17g %.17g\nperiodic %d\n",
-         p.count, mtot, (unsigned long long)h, info.box_size[0], info.box_size[1],
-         info.box_size[2], info.periodic);
+         p.count, mtot, (unsigned long long)h, info.box_size[0], info.box_size[1], info.box_size[2],
+         info.periodic);
   printf("fields");
   for (int k = 0; k < part_nr_fields; k++)
     if (ic_field_read(&info, k)) printf(" %s", part_fields[k].name);

@@ -15,14 +15,14 @@
 
 static int failures = 0;
 
-#define CHECK(cond, ...)                           \
-  do {                                             \
-    if (!(cond)) {                                 \
+#define CHECK(cond, ...)                                   \
+  do {                                                     \
+    if (!(cond)) {                                         \
       fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__); \
-      fprintf(stderr, __VA_ARGS__);                \
-      fprintf(stderr, "\n");                       \
-      failures++;                                  \
-    }                                              \
+      fprintf(stderr, __VA_ARGS__);                        \
+      fprintf(stderr, "\n");                               \
+      failures++;                                          \
+    }                                                      \
   } while (0)
 
 /** xorshift64*: a small reproducible generator. */
@@ -80,8 +80,8 @@ static void compare_raw(const char *path, const struct parts *p, int k) {
                                      : H5T_NATIVE_INT32;
   CHECK(H5Dread(d, mt, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) >= 0, "read %s", name);
   hid_t ft = H5Dget_type(d);
-  CHECK(H5Tget_size(ft) == f->size, "%s stored with %zu bytes, expected %zu", name,
-        H5Tget_size(ft), f->size);
+  CHECK(H5Tget_size(ft) == f->size, "%s stored with %zu bytes, expected %zu", name, H5Tget_size(ft),
+        f->size);
   H5Tclose(ft);
   for (size_t c = 0; c < nc; c++) {
     const char *a = part_field_array(p, &part_fields[k + (int)c]);
@@ -103,20 +103,20 @@ static void roundtrip(const char *path, int compression) {
   fill_random(&p, n);
   struct unit_system si;
   units_init_si(&si);
-  struct snapshot_meta meta = {.time = 0.125,
-                               .box_size = {1.5, 2.5, 3.5},
-                               .periodic = 1,
-                               .compression = compression,
-                               .run_name = "roundtrip",
-                               .params = "MetaData:\n  run_name: roundtrip\nSPH:\n  resolution_eta: 1.2348\n"};
+  struct snapshot_meta meta = {
+      .time = 0.125,
+      .box_size = {1.5, 2.5, 3.5},
+      .periodic = 1,
+      .compression = compression,
+      .run_name = "roundtrip",
+      .params = "MetaData:\n  run_name: roundtrip\nSPH:\n  resolution_eta: 1.2348\n"};
   snapshot_write(path, &meta, &p, &si, 1);
 
   struct ic_info info;
   ic_read(path, &si, NULL, 0, &q, &info);
   CHECK(q.count == n, "count %zu != %zu", q.count, n);
   CHECK(info.time == 0.125 && info.has_time, "time %g", info.time);
-  CHECK(info.box_size[0] == 1.5 && info.box_size[1] == 2.5 && info.box_size[2] == 3.5,
-        "box size");
+  CHECK(info.box_size[0] == 1.5 && info.box_size[1] == 2.5 && info.box_size[2] == 3.5, "box size");
   CHECK(info.periodic == 1, "periodic flag %d", info.periodic);
   int nread = 0;
   for (int k = 0; k < part_nr_fields; k++) {
@@ -163,8 +163,7 @@ static void cgs_to_si(const char *path) {
     for (size_t i = 0; i < n; i++) {
       const double want = cases[c].a[i] * cases[c].factor;
       if (fabs(cases[c].b[i] - want) > 4e-16 * fabs(want)) {
-        CHECK(0, "%s: particle %zu: %.17g, expected %.17g", cases[c].what, i, cases[c].b[i],
-              want);
+        CHECK(0, "%s: particle %zu: %.17g, expected %.17g", cases[c].what, i, cases[c].b[i], want);
         break;
       }
     }

@@ -27,8 +27,8 @@ double units_cgs_factor(const struct unit_system *us, int a, int b, int c) {
   return pow(us->mass_cgs, a) * pow(us->length_cgs, b) * pow(us->time_cgs, c);
 }
 
-double units_conversion_factor(const struct unit_system *from, const struct unit_system *to,
-                               int a, int b, int c) {
+double units_conversion_factor(const struct unit_system *from, const struct unit_system *to, int a,
+                               int b, int c) {
   return units_cgs_factor(from, a, b, c) / units_cgs_factor(to, a, b, c);
 }
 

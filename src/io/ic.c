@@ -91,9 +91,9 @@ static void ic_read_units(struct ic_reader *r, const struct unit_system *interna
   }
   hid_t g = H5Gopen2(r->file, "Units", H5P_DEFAULT);
   if (g < 0) error_exit("%s: cannot open group /Units", r->path);
-  static const char *const names[5] = {
-      "Unit mass in cgs (U_M)", "Unit length in cgs (U_L)", "Unit time in cgs (U_t)",
-      "Unit current in cgs (U_I)", "Unit temperature in cgs (U_T)"};
+  static const char *const names[5] = {"Unit mass in cgs (U_M)", "Unit length in cgs (U_L)",
+                                       "Unit time in cgs (U_t)", "Unit current in cgs (U_I)",
+                                       "Unit temperature in cgs (U_T)"};
   double *dst[5] = {&info->file_units.mass_cgs, &info->file_units.length_cgs,
                     &info->file_units.time_cgs, &info->file_units.current_cgs,
                     &info->file_units.temperature_cgs};
@@ -271,8 +271,8 @@ static void ic_check_unique_ids(const char *path, const struct parts *p) {
           else
             b = j;
         }
-      error_exit("%s: particles %zu and %zu have the same id %lld (ids must be unique)", path, a,
-                 b, (long long)dup);
+      error_exit("%s: particles %zu and %zu have the same id %lld (ids must be unique)", path, a, b,
+                 (long long)dup);
     }
   free(s);
 }

@@ -11,15 +11,15 @@
 
 /** What the file said besides the particles. */
 struct ic_info {
-  double box_size[3];           /**< /Header/BoxSize (internal units; 0 if absent) */
-  int has_box_size;             /**< 1 if /Header/BoxSize was present */
-  int periodic;                 /**< 1 if the file says periodic, 0 if not, -1 if silent */
-  double time;                  /**< /Header/Time (internal units; 0 if absent) */
-  int has_time;                 /**< 1 if /Header/Time was present */
-  int dimension;                /**< /Header/Dimension (3 if absent) */
-  int has_units;                /**< 1 if /Units was present */
+  double box_size[3];            /**< /Header/BoxSize (internal units; 0 if absent) */
+  int has_box_size;              /**< 1 if /Header/BoxSize was present */
+  int periodic;                  /**< 1 if the file says periodic, 0 if not, -1 if silent */
+  double time;                   /**< /Header/Time (internal units; 0 if absent) */
+  int has_time;                  /**< 1 if /Header/Time was present */
+  int dimension;                 /**< /Header/Dimension (3 if absent) */
+  int has_units;                 /**< 1 if /Units was present */
   struct unit_system file_units; /**< the file's units (= internal if absent) */
-  uint64_t fields_read;         /**< bit k set: part_fields[k] came from the file */
+  uint64_t fields_read;          /**< bit k set: part_fields[k] came from the file */
 };
 
 /** Read initial conditions from `path` into p (allocated here with

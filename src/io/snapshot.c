@@ -122,8 +122,7 @@ static void snapshot_units(struct snapshot_writer *w, const char *group,
   H5Gclose(g);
 }
 
-static void snapshot_header(struct snapshot_writer *w, const struct snapshot_meta *meta,
-                            size_t n) {
+static void snapshot_header(struct snapshot_writer *w, const struct snapshot_meta *meta, size_t n) {
   hid_t g = snapshot_group(w, "/Header");
   const long long nl = (long long)(n & 0xffffffffULL), nh = (long long)(n >> 32);
   const long long this_file[6] = {(long long)n, 0, 0, 0, 0, 0};
@@ -243,12 +242,12 @@ int snapshot_field_written(const struct part_field *f, int ic, int write_acc) {
 
 /** HDF5 memory and file types of a field's C type. */
 static hid_t snapshot_mem_type(const struct part_field *f) {
-  return f->type == PART_DOUBLE ? H5T_NATIVE_DOUBLE
+  return f->type == PART_DOUBLE  ? H5T_NATIVE_DOUBLE
          : f->type == PART_INT64 ? H5T_NATIVE_INT64
                                  : H5T_NATIVE_INT32;
 }
 static hid_t snapshot_file_type(const struct part_field *f) {
-  return f->type == PART_DOUBLE ? H5T_IEEE_F64LE
+  return f->type == PART_DOUBLE  ? H5T_IEEE_F64LE
          : f->type == PART_INT64 ? H5T_STD_I64LE
                                  : H5T_STD_I32LE;
 }
@@ -267,10 +266,10 @@ static void snapshot_dataset_attrs(struct snapshot_writer *w, hid_t d, const str
   snapshot_attr_float1(w, d, "U_T exponent", 0.f);
   snapshot_attr_float1(w, d, "a-scale exponent", 0.f);
   snapshot_attr_float1(w, d, "h-scale exponent", 0.f);
-  snapshot_attr_double(w, d, "Conversion factor to CGS (not including cosmological corrections)",
-                       1, &cgs);
-  snapshot_attr_double(w, d, "Conversion factor to physical CGS (including cosmological corrections)",
-                       1, &cgs);
+  snapshot_attr_double(w, d, "Conversion factor to CGS (not including cosmological corrections)", 1,
+                       &cgs);
+  snapshot_attr_double(
+      w, d, "Conversion factor to physical CGS (including cosmological corrections)", 1, &cgs);
   snapshot_attr_string(w, d, "Expression for physical CGS units", expr);
   snapshot_attr_string(w, d, "Description", f->description);
   snapshot_attr_int1(w, d, "Is Compressed", compressed);
@@ -311,11 +310,11 @@ static void snapshot_dataset(struct snapshot_writer *w, hid_t grp, int k, const 
     SNAP_CHECK(w, H5Pset_shuffle(dcpl), what);
     SNAP_CHECK(w, H5Pset_deflate(dcpl, (unsigned)level), what);
   }
-  hid_t d = H5Dcreate2(grp, f->h5name, snapshot_file_type(f), space, H5P_DEFAULT, dcpl,
-                       H5P_DEFAULT);
+  hid_t d =
+      H5Dcreate2(grp, f->h5name, snapshot_file_type(f), space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
   SNAP_CHECK(w, d, what);
-  if (n > 0) SNAP_CHECK(w, H5Dwrite(d, snapshot_mem_type(f), H5S_ALL, H5S_ALL, H5P_DEFAULT, buf),
-                        what);
+  if (n > 0)
+    SNAP_CHECK(w, H5Dwrite(d, snapshot_mem_type(f), H5S_ALL, H5S_ALL, H5P_DEFAULT, buf), what);
   snapshot_dataset_attrs(w, d, f, us, compressed);
   free(buf);
   H5Dclose(d);
@@ -374,7 +373,7 @@ static void snapshot_write_xdmf(const char *h5path, const struct snapshot_meta *
     const struct part_field *fl = &part_fields[k];
     if (fl->comp != 0 || !snapshot_field_written(fl, meta->ic, write_acc)) continue;
     const int geometry = strcmp(fl->h5name, "Coordinates") == 0;
-    const char *kind = fl->ncomp == 1 ? "Scalar"
+    const char *kind = fl->ncomp == 1   ? "Scalar"
                        : fl->ncomp == 3 ? "Vector"
                        : fl->ncomp == 6 ? "Tensor6"
                                         : "Matrix";

@@ -12,14 +12,14 @@
 
 /** What a snapshot records besides the particles. */
 struct snapshot_meta {
-  double time;            /**< simulation time (internal units) */
-  double box_size[3];     /**< box side lengths (internal units) */
-  int periodic;           /**< 1 for a periodic box (/RuntimePars/PeriodicBoundariesOn) */
-  int compression;        /**< gzip level 0-9 of the datasets (Snapshots:compression) */
-  int ic;                 /**< 1: write only the initial-condition fields (PART_IC_*) */
-  const char *run_name;   /**< MetaData:run_name (NULL: "bolide") */
-  const char *params;     /**< used parameters as YAML text (params_to_string); may be NULL */
-  const char *command;    /**< command line that made the file (may be NULL) */
+  double time;             /**< simulation time (internal units) */
+  double box_size[3];      /**< box side lengths (internal units) */
+  int periodic;            /**< 1 for a periodic box (/RuntimePars/PeriodicBoundariesOn) */
+  int compression;         /**< gzip level 0-9 of the datasets (Snapshots:compression) */
+  int ic;                  /**< 1: write only the initial-condition fields (PART_IC_*) */
+  const char *run_name;    /**< MetaData:run_name (NULL: "bolide") */
+  const char *params;      /**< used parameters as YAML text (params_to_string); may be NULL */
+  const char *command;     /**< command line that made the file (may be NULL) */
   int hydro, self_gravity; /**< physics switches recorded in /Policy */
 };
 

@@ -120,8 +120,8 @@ static void icgen_perturb(struct parts *p, const double box[3], double spacing, 
 }
 
 /** Fill the fields common to every uniform region [first, first+n). */
-static void icgen_set_state(struct parts *p, size_t first, size_t n, double m, double h,
-                            double rho, double u, int32_t mat) {
+static void icgen_set_state(struct parts *p, size_t first, size_t n, double m, double h, double rho,
+                            double u, int32_t mat) {
   for (size_t i = first; i < first + n; i++) {
     p->m[i] = m;
     p->h[i] = h;
@@ -172,10 +172,8 @@ void icgen_sod(const struct icgen_opts *o, struct parts *p) {
   icgen_grid_fill(&left, p, 0);
   icgen_grid_fill(&right, p, nl);
   const double gm1 = o->gamma - 1;
-  icgen_set_state(p, 0, nl, m, o->eta * cbrt(vl / (double)nl), rho_l, p_l / (gm1 * rho_l),
-                  o->mat);
-  icgen_set_state(p, nl, nr, m, o->eta * cbrt(vl / (double)nr), rho_r, p_r / (gm1 * rho_r),
-                  o->mat);
+  icgen_set_state(p, 0, nl, m, o->eta * cbrt(vl / (double)nl), rho_l, p_l / (gm1 * rho_l), o->mat);
+  icgen_set_state(p, nl, nr, m, o->eta * cbrt(vl / (double)nr), rho_r, p_r / (gm1 * rho_r), o->mat);
 }
 
 /** Shape of the cubic spline M4 kernel (Monaghan & Lattanzio 1985, eq. 21)

@@ -15,22 +15,22 @@ enum icgen_lattice {
 
 /** Every option of every subcommand (each takes what applies to it). */
 struct icgen_opts {
-  const char *output;          /**< output file */
-  enum icgen_lattice lattice;  /**< --lattice */
-  int n;                       /**< --n: lattice cells (cubic/hcp: particles) along x; 0 = unset */
-  int nx[3];                   /**< --nx NX,NY,NZ (0 = unset) */
-  double size[3];              /**< --size L[,Ly,Lz] */
-  double rho;                  /**< --rho density */
-  double u;                    /**< --u specific internal energy */
-  double perturb;              /**< --perturb: random displacement in units of the spacing */
-  uint64_t seed;               /**< --seed of the displacement */
-  int periodic;                /**< --periodic / --no-periodic */
-  int32_t mat;                 /**< --mat material id */
-  double eta;                  /**< --eta: h = eta x mean spacing */
-  double energy;               /**< sedov: --energy deposited */
-  double radius;               /**< sedov: --radius of the deposit (0: 2 h) */
-  int kernel_weighting;        /**< sedov: --weighting kernel (1) or uniform (0) */
-  double gamma;                /**< sod: adiabatic index used to turn P into u */
+  const char *output;         /**< output file */
+  enum icgen_lattice lattice; /**< --lattice */
+  int n;                      /**< --n: lattice cells (cubic/hcp: particles) along x; 0 = unset */
+  int nx[3];                  /**< --nx NX,NY,NZ (0 = unset) */
+  double size[3];             /**< --size L[,Ly,Lz] */
+  double rho;                 /**< --rho density */
+  double u;                   /**< --u specific internal energy */
+  double perturb;             /**< --perturb: random displacement in units of the spacing */
+  uint64_t seed;              /**< --seed of the displacement */
+  int periodic;               /**< --periodic / --no-periodic */
+  int32_t mat;                /**< --mat material id */
+  double eta;                 /**< --eta: h = eta x mean spacing */
+  double energy;              /**< sedov: --energy deposited */
+  double radius;              /**< sedov: --radius of the deposit (0: 2 h) */
+  int kernel_weighting;       /**< sedov: --weighting kernel (1) or uniform (0) */
+  double gamma;               /**< sod: adiabatic index used to turn P into u */
 };
 
 /** Uniform box (lattice, optionally perturbed).  Fills p; box = side lengths. */
