@@ -51,4 +51,27 @@ python_check=$("$PYTHON" -c "import sys; a=float('$m1'.split()[1]); b=float('$m2
 [ "$python_check" = True ] || { echo "FAIL alias masses $m1 vs $m2"; fail=1; }
 # the alias file has no /Units: one log line says so
 "$dump" "$dir/aliases_no_units.hdf5" | grep -q 'no /Units group' || { echo "FAIL no log line for missing /Units"; fail=1; }
+
+# snapshot_write failures: a missing folder, and a full disk (simulated with a
+# file-size limit; SIGXFSZ ignored so that write() fails with EFBIG).  One
+# line, exit 1, and neither the temporary nor the final file left behind.
+"$BOLIDE_BUILDDIR/bolide-ic" box --n 40 -o "$dir/big.hdf5" >/dev/null || fail=1
+"$dump" "$dir/big.hdf5" --write "$dir/missing/snap.hdf5" >/dev/null 2>"$dir/err"
+rc=$?
+if [ $rc -ne 1 ] || [ "$(wc -l <"$dir/err")" -ne 1 ] ||
+   ! grep -q "^ic_dump: error: $dir/missing/snap.hdf5: cannot create .*No such file or directory" "$dir/err"; then
+  echo "FAIL write into a missing folder: rc=$rc"; cat "$dir/err"; fail=1
+else
+  echo "ok   missing folder: $(cat "$dir/err")"
+fi
+mkdir -p "$dir/full"
+(trap '' XFSZ; ulimit -f 200; "$dump" "$dir/big.hdf5" --write "$dir/full/snap.hdf5" >/dev/null 2>"$dir/err")
+rc=$?
+if [ $rc -ne 1 ] || [ "$(wc -l <"$dir/err")" -ne 1 ] ||
+   ! grep -q "^ic_dump: error: $dir/full/snap.hdf5: cannot write dataset /PartType0/" "$dir/err" ||
+   [ -n "$(ls -A "$dir/full")" ]; then
+  echo "FAIL write on a full disk: rc=$rc, left: $(ls -A "$dir/full")"; cat "$dir/err"; fail=1
+else
+  echo "ok   disk full: $(cat "$dir/err")"
+fi
 exit $fail

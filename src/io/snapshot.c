@@ -34,11 +34,56 @@ struct snapshot_writer {
   hid_t file;       /**< HDF5 file (or H5I_INVALID_HID) */
 };
 
+/** Set when a file could not be closed after a failed write (disk full):
+ *  HDF5 1.10 then crashes in its own exit handler, so the handler below,
+ *  registered after HDF5's and therefore run before it, ends the process
+ *  first.  error_exit has printed the message and removed the temporary
+ *  files by then. */
+static volatile int snapshot_poisoned = 0;
+
+static void snapshot_atexit(void) {
+  if (snapshot_poisoned) {
+    fflush(NULL);
+    _exit(1);
+  }
+}
+
+/** Register snapshot_atexit once, after the HDF5 library has registered its
+ *  own exit handler (at its initialisation). */
+static void snapshot_register_atexit(void) {
+  static int done = 0;
+  if (!done) {
+    H5open();
+    atexit(snapshot_atexit);
+    done = 1;
+  }
+}
+
 /** Give up: close, remove the temporary file, print one line and exit. */
 static void snapshot_fail(struct snapshot_writer *w, const char *what) __attribute__((noreturn));
 static void snapshot_fail(struct snapshot_writer *w, const char *what) {
   const int err = errno;
-  if (w->file >= 0) H5Fclose(w->file);
+  if (w->file >= 0) {
+    /* close what is still open in the file: HDF5's exit handler would
+     * otherwise crash on the objects of a file whose writes failed */
+    const unsigned types = H5F_OBJ_DATASET | H5F_OBJ_GROUP | H5F_OBJ_DATATYPE | H5F_OBJ_ATTR;
+    const ssize_t n = H5Fget_obj_count(w->file, types);
+    if (n > 0) {
+      hid_t *ids = error_malloc((size_t)n * sizeof *ids, "HDF5 object list");
+      const ssize_t m = H5Fget_obj_ids(w->file, types, (size_t)n, ids);
+      for (ssize_t i = 0; i < m; i++) {
+        const H5I_type_t t = H5Iget_type(ids[i]);
+        herr_t rc = 0; /* closing can fail too: nothing more to do then */
+        if (t == H5I_ATTR) rc = H5Aclose(ids[i]);
+        if (t == H5I_DATASET) rc = H5Dclose(ids[i]);
+        if (t == H5I_GROUP) rc = H5Gclose(ids[i]);
+        if (t == H5I_DATATYPE) rc = H5Tclose(ids[i]);
+        (void)rc;
+      }
+      free(ids);
+    }
+    if (H5Fclose(w->file) < 0) snapshot_poisoned = 1;
+  }
   w->file = H5I_INVALID_HID;
   unlink(w->tmp);
   error_unregister_tmpfile(w->tmp);
@@ -415,13 +460,21 @@ void snapshot_write(const char *path, const struct snapshot_meta *meta, const st
   if (meta->compression > 0 && H5Zfilter_avail(H5Z_FILTER_DEFLATE) <= 0)
     error_exit("%s: this HDF5 library has no gzip (deflate) filter", path);
   H5Eset_auto(H5E_DEFAULT, NULL, NULL);
+  snapshot_register_atexit();
 
   /* create the file with open() first: the error message then says why */
   int fd = open(w.tmp, O_WRONLY | O_CREAT | O_TRUNC, 0644);
   if (fd < 0) error_exit("%s: cannot create %s: %s", path, w.tmp, strerror(errno));
   close(fd);
   error_register_tmpfile(w.tmp);
-  w.file = H5Fcreate(w.tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  /* H5F_CLOSE_STRONG: on a failure, closing the file also closes the groups
+   * and datasets still open in it (otherwise HDF5's exit handler trips on
+   * them after a failed write) */
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  SNAP_CHECK(&w, fapl, "the file");
+  SNAP_CHECK(&w, H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG), "the file");
+  w.file = H5Fcreate(w.tmp, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+  H5Pclose(fapl);
   SNAP_CHECK(&w, w.file, "the file");
 
   snapshot_header(&w, meta, p->count);
