@@ -487,6 +487,17 @@ void snapshot_write(const char *path, const struct snapshot_meta *meta, const st
   for (int k = 0; k < part_nr_fields; k++)
     if (part_fields[k].comp == 0 && snapshot_field_written(&part_fields[k], meta->ic, write_acc))
       snapshot_dataset(&w, grp, k, p, us, meta->compression);
+  if (meta->ic) {
+    /* SWIFT reads initial conditions under GADGET's singular names: hard
+     * links make one file loadable by both codes (as woma's files are) */
+    static const char *const alias[][2] = {{"SmoothingLengths", "SmoothingLength"},
+                                           {"InternalEnergies", "InternalEnergy"},
+                                           {"Densities", "Density"}};
+    for (size_t a = 0; a < sizeof alias / sizeof alias[0]; a++)
+      if (H5Lexists(grp, alias[a][0], H5P_DEFAULT) > 0)
+        SNAP_CHECK(&w, H5Lcreate_hard(grp, alias[a][0], grp, alias[a][1], H5P_DEFAULT, H5P_DEFAULT),
+                   alias[a][1]);
+  }
   SNAP_CHECK(&w, H5Gclose(grp), "group /PartType0");
 
   errno = 0;
