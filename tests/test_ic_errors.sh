@@ -32,6 +32,9 @@ expect mismatched_lengths 'dataset /PartType0/Masses has 19 particles but /PartT
 expect missing_dataset 'missing required dataset /PartType0/Masses'
 expect unknown_material 'particle 4 \(id 5\): material id 999 is not a known material' --mat 101,102
 expect wrong_shape 'dataset /PartType0/Velocities has the wrong shape'
+expect id_too_large 'particle 2: ParticleIDs is 9223372036854775813 \(too large\)'
+expect material_out_of_range 'particle 6: MaterialIDs is 1099511627776 \(out of range\)'
+expect material_not_integer 'particle 8: MaterialIDs is 101.5 \(must be an integer\)'
 expect not_hdf5 'not an HDF5 file'
 expect does_not_exist 'cannot open initial conditions: No such file or directory'
 

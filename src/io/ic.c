@@ -183,25 +183,24 @@ static void ic_read_dataset(struct ic_reader *r, hid_t grp, const char *name, in
   const H5T_class_t cls = H5Tget_class(type);
   if (cls != H5T_INTEGER && cls != H5T_FLOAT)
     error_exit("%s: dataset /PartType0/%s is not numeric", r->path, name);
-  /* integer fields from a floating-point dataset: read as double, check integral */
+  /* integer fields from a floating-point dataset: read as double, check
+   * integral; integer datasets are read as 64-bit (unsigned 64-bit ones as
+   * such) and range-checked, since HDF5 clips out-of-range values silently */
   const int as_double = f->type == PART_DOUBLE || cls == H5T_FLOAT;
+  const int as_u64 = !as_double && H5Tget_sign(type) == H5T_SGN_NONE && H5Tget_size(type) >= 8;
   H5Tclose(type);
 
-  double *dbuf = NULL;
-  void *buf;
-  hid_t mtype;
-  if (as_double) {
-    dbuf = error_malloc((n ? n : 1) * nc * sizeof(double), name);
-    buf = dbuf;
-    mtype = H5T_NATIVE_DOUBLE;
-  } else {
-    buf = error_malloc((n ? n : 1) * nc * f->size, name);
-    mtype = f->type == PART_INT64 ? H5T_NATIVE_INT64 : H5T_NATIVE_INT32;
-  }
+  void *buf = error_malloc((n ? n : 1) * nc * 8, name); /* 8 bytes per value in every case */
+  const hid_t mtype = as_double ? H5T_NATIVE_DOUBLE : as_u64 ? H5T_NATIVE_UINT64 : H5T_NATIVE_INT64;
   if (n > 0 && H5Dread(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0)
     error_exit("%s: cannot read dataset /PartType0/%s", r->path, name);
   H5Dclose(d);
 
+  const double *dbuf = buf;
+  const int64_t *ibuf = buf;
+  const uint64_t *ubuf = buf;
+  const int64_t imax = f->type == PART_INT64 ? INT64_MAX : INT32_MAX;
+  const int64_t imin = f->type == PART_INT64 ? INT64_MIN : INT32_MIN;
   for (size_t c = 0; c < nc; c++) {
     const struct part_field *fc = &part_fields[k + (int)c];
     char *dst = part_field_array(p, fc);
@@ -211,20 +210,30 @@ static void ic_read_dataset(struct ic_reader *r, hid_t grp, const char *name, in
         for (size_t i = 0; i < n; i++) a[i] = dbuf[i * nc + c];
       else
         for (size_t i = 0; i < n; i++) a[i] = dbuf[i * nc + c] * factor;
-    } else if (as_double) {
-      for (size_t i = 0; i < n; i++) {
-        const double v = dbuf[i * nc + c];
-        const double lim = f->type == PART_INT64 ? 9.2e18 : 2147483647.0;
-        if (!(v == floor(v)) || fabs(v) > lim)
-          error_exit("%s: particle %zu: %s is %g (must be an integer)", r->path, i, name, v);
-        if (f->type == PART_INT64)
-          ((int64_t *)dst)[i] = (int64_t)v;
-        else
-          ((int32_t *)dst)[i] = (int32_t)v;
+      continue;
+    }
+    for (size_t i = 0; i < n; i++) {
+      int64_t v;
+      const size_t j = i * nc + c;
+      if (as_double) {
+        const double x = dbuf[j];
+        if (!(x == floor(x)) || !(x >= (double)imin && x < -(double)imin))
+          error_exit("%s: particle %zu: %s is %g (must be an integer)", r->path, i, name, x);
+        v = (int64_t)x;
+      } else if (as_u64) {
+        if (ubuf[j] > (uint64_t)imax)
+          error_exit("%s: particle %zu: %s is %llu (too large)", r->path, i, name,
+                     (unsigned long long)ubuf[j]);
+        v = (int64_t)ubuf[j];
+      } else {
+        v = ibuf[j];
       }
-    } else {
-      for (size_t i = 0; i < n; i++)
-        memcpy(dst + i * f->size, (char *)buf + (i * nc + c) * f->size, f->size);
+      if (v < imin || v > imax)
+        error_exit("%s: particle %zu: %s is %lld (out of range)", r->path, i, name, (long long)v);
+      if (f->type == PART_INT64)
+        ((int64_t *)dst)[i] = v;
+      else
+        ((int32_t *)dst)[i] = (int32_t)v;
     }
   }
   free(buf);

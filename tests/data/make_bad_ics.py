@@ -87,6 +87,21 @@ def main():
     d["Velocities"] = d["Velocities"][:, :2]
     write(p("wrong_shape"), d)
 
+    d = good()
+    d["ParticleIDs"] = d["ParticleIDs"].astype(np.uint64)
+    d["ParticleIDs"][2] = np.uint64(2**63 + 5)
+    write(p("id_too_large"), d)
+
+    d = good()
+    d["MaterialIDs"] = d["MaterialIDs"].astype(np.int64)
+    d["MaterialIDs"][6] = 2**40
+    write(p("material_out_of_range"), d)
+
+    d = good()
+    d["MaterialIDs"] = d["MaterialIDs"].astype(np.float64)
+    d["MaterialIDs"][8] = 101.5
+    write(p("material_not_integer"), d)
+
     # another tool's conventions: singular aliases, float32, uint64 ids, no /Units
     d = good()
     alias = {
