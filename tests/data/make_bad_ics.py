@@ -1,0 +1,124 @@
+"""Write small malformed initial-condition files, one per error that ic_read
+must report, plus one valid file.  Usage: make_bad_ics.py OUTDIR
+
+Each file name is CASE.hdf5; tests/test_ic_errors.sh runs the reader on it and
+checks the one-line message."""
+import os
+import sys
+
+import h5py
+import numpy as np
+
+N = 20
+
+
+def good():
+    """Arrays of a valid IC (SI)."""
+    rng = np.random.default_rng(3)
+    return {
+        "Coordinates": rng.random((N, 3)),
+        "Velocities": rng.standard_normal((N, 3)),
+        "Masses": np.full(N, 0.05),
+        "SmoothingLengths": np.full(N, 0.1),
+        "InternalEnergies": np.full(N, 1e3),
+        "Densities": np.full(N, 2700.0),
+        "ParticleIDs": np.arange(1, N + 1, dtype=np.int64),
+        "MaterialIDs": np.full(N, 101, dtype=np.int32),
+    }
+
+
+def write(path, data, units=True, header=True):
+    with h5py.File(path, "w") as f:
+        if header:
+            h = f.create_group("Header")
+            h.attrs["BoxSize"] = [1.0, 1.0, 1.0]
+            n = len(data["Coordinates"]) if "Coordinates" in data else N
+            h.attrs["NumPart_Total"] = [n, 0, 0, 0, 0, 0]
+            h.attrs["NumPart_Total_HighWord"] = [0] * 6
+            h.attrs["Dimension"] = [3]
+        if units:
+            u = f.create_group("Units")
+            u.attrs["Unit mass in cgs (U_M)"] = [1000.0]
+            u.attrs["Unit length in cgs (U_L)"] = [100.0]
+            u.attrs["Unit time in cgs (U_t)"] = [1.0]
+            u.attrs["Unit current in cgs (U_I)"] = [1.0]
+            u.attrs["Unit temperature in cgs (U_T)"] = [1.0]
+        g = f.create_group("PartType0")
+        for k, v in data.items():
+            g.create_dataset(k, data=v)
+
+
+def main():
+    out = sys.argv[1]
+    os.makedirs(out, exist_ok=True)
+    p = lambda name: os.path.join(out, name + ".hdf5")
+
+    write(p("good"), good())
+
+    d = good()
+    d["Coordinates"][7, 1] = np.nan
+    write(p("nan_position"), d)
+
+    d = good()
+    d["Masses"][5] = -1.0
+    write(p("negative_mass"), d)
+
+    d = good()
+    d["SmoothingLengths"][9] = 0.0
+    write(p("zero_h"), d)
+
+    d = good()
+    d["ParticleIDs"][12] = d["ParticleIDs"][3]
+    write(p("duplicate_ids"), d)
+
+    d = good()
+    d["Masses"] = d["Masses"][:-1]
+    write(p("mismatched_lengths"), d)
+
+    d = good()
+    del d["Masses"]
+    write(p("missing_dataset"), d)
+
+    d = good()
+    d["MaterialIDs"][4] = 999
+    write(p("unknown_material"), d)
+
+    d = good()
+    d["Velocities"] = d["Velocities"][:, :2]
+    write(p("wrong_shape"), d)
+
+    d = good()
+    d["ParticleIDs"] = d["ParticleIDs"].astype(np.uint64)
+    d["ParticleIDs"][2] = np.uint64(2**63 + 5)
+    write(p("id_too_large"), d)
+
+    d = good()
+    d["MaterialIDs"] = d["MaterialIDs"].astype(np.int64)
+    d["MaterialIDs"][6] = 2**40
+    write(p("material_out_of_range"), d)
+
+    d = good()
+    d["MaterialIDs"] = d["MaterialIDs"].astype(np.float64)
+    d["MaterialIDs"][8] = 101.5
+    write(p("material_not_integer"), d)
+
+    # another tool's conventions: singular aliases, float32, uint64 ids, no /Units
+    d = good()
+    alias = {
+        "Coordinates": d["Coordinates"],
+        "Velocities": d["Velocities"].astype(np.float32),
+        "Mass": d["Masses"].astype(np.float32),
+        "SmoothingLength": d["SmoothingLengths"].astype(np.float32),
+        "InternalEnergy": d["InternalEnergies"].astype(np.float32),
+        "Density": d["Densities"].astype(np.float32),
+        "ParticleIDs": d["ParticleIDs"].astype(np.uint64),
+        "MaterialID": d["MaterialIDs"].astype(np.int16),
+    }
+    write(p("aliases_no_units"), alias, units=False)
+
+    with open(p("not_hdf5"), "w") as f:
+        f.write("this is not an HDF5 file\n")
+
+
+if __name__ == "__main__":
+    main()
