@@ -30,13 +30,13 @@ struct density_acc {
 };
 
 /** Contribution of neighbour j (mass mj) at separation dx = x_i - x_j,
- *  r2 = |dx|^2, relative velocity dv = v_i - v_j, to particle i of smoothing
- *  length hi.  The caller guarantees r2 < (kernel_gamma hi)^2. */
-BOLIDE_INLINE void density_iact(double r2, const double dx[3], double hi, double mj,
+ *  r2 = |dx|^2, relative velocity dv = v_i - v_j, to particle i of inverse
+ *  smoothing length hi_inv.  The caller guarantees r2 < (kernel_gamma hi)^2. */
+BOLIDE_INLINE void density_iact(double r2, const double dx[3], double hi_inv, double mj,
                                 const double dv[3], struct density_acc *acc) {
   const double r = sqrt(r2);
   double w, dw_dr, dw_dh;
-  kernel_eval_r(r, hi, &w, &dw_dr, &dw_dh);
+  kernel_eval_r(r, hi_inv, &w, &dw_dr, &dw_dh);
   acc->rho += mj * w;
   acc->rho_dh += mj * dw_dh;
   acc->wcount += w;
@@ -53,9 +53,9 @@ BOLIDE_INLINE void density_iact(double r2, const double dx[3], double hi, double
 }
 
 /** The particle's own contribution (r = 0). */
-BOLIDE_INLINE void density_self_term(double hi, double mi, struct density_acc *acc) {
+BOLIDE_INLINE void density_self_term(double hi_inv, double mi, struct density_acc *acc) {
   double w, dw_dr, dw_dh;
-  kernel_eval_r(0.0, hi, &w, &dw_dr, &dw_dh);
+  kernel_eval_r(0.0, hi_inv, &w, &dw_dr, &dw_dh);
   acc->rho += mi * w;
   acc->rho_dh += mi * dw_dh;
   acc->wcount += w;

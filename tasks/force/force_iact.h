@@ -28,7 +28,7 @@
 /** What the force loop reads of one particle. */
 struct force_in {
   double m;       /**< mass */
-  double h;       /**< smoothing length */
+  double h_inv;   /**< inverse smoothing length */
   double rho;     /**< density */
   double P;       /**< pressure */
   double cs;      /**< sound speed */
@@ -54,8 +54,8 @@ BOLIDE_INLINE void force_iact(double r2, const double dx[3], const double dv[3],
   const double r_inv = 1.0 / r;
 
   double wi, wi_dr, wi_dh, wj, wj_dr, wj_dh;
-  kernel_eval_r(r, pi->h, &wi, &wi_dr, &wi_dh);
-  kernel_eval_r(r, pj->h, &wj, &wj_dr, &wj_dh);
+  kernel_eval_r(r, pi->h_inv, &wi, &wi_dr, &wi_dh);
+  kernel_eval_r(r, pj->h_inv, &wj, &wj_dr, &wj_dh);
 
   const double dvdr = dv[0] * dx[0] + dv[1] * dx[1] + dv[2] * dx[2];
 
