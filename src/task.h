@@ -23,11 +23,27 @@
 /* One list of task types and one of subtypes; the enums and the name tables
  * (used by the timers, the task dumps and tools/plot_tasks.py through the
  * dumps) are generated from them (STYLE.md rule 5). */
-#define TASK_TYPES(X)                                                                             \
-  X(none)                                                                                         \
-  X(self) X(pair) X(sub_self) X(sub_pair) X(ghost_in) X(ghost) X(ghost_out) X(extra_ghost)        \
-      X(drift) X(kick1) X(kick2) X(timestep) X(grav_up) X(grav_down) X(grav_long_range) X(damage) \
-          X(implicit) X(test)
+/* clang-format off */
+#define TASK_TYPES(X)                                                        \
+  X(none)            /* unused slot: a task never has it */                  \
+  X(self)            /* interactions within one cell */                      \
+  X(pair)            /* interactions between two neighbouring cells */       \
+  X(sub_self)        /* self task recursing into the cell's progeny */       \
+  X(sub_pair)        /* pair task recursing into the cells' progeny */       \
+  X(ghost_in)        /* implicit: fan-in before the ghost of a cell tree */  \
+  X(ghost)           /* end of the density loop: h iteration, EOS */         \
+  X(ghost_out)       /* implicit: fan-out after the ghost */                 \
+  X(extra_ghost)     /* end of the gradient loop */                          \
+  X(drift)           /* move particles to the current time */                \
+  X(kick1)           /* first half kick */                                   \
+  X(kick2)           /* second half kick */                                  \
+  X(timestep)        /* new time steps */                                    \
+  X(grav_up)         /* multipoles up the tree */                            \
+  X(grav_down)       /* far field down the tree */                           \
+  X(grav_long_range) /* cell-multipole interactions with far cells */        \
+  X(damage)          /* flaw activation and damage growth */                 \
+  X(implicit)        /* no work: only dependencies (fan-in, fan-out) */      \
+  X(test)            /* for the tests of the scheduler */
 
 #define TASK_SUBTYPES(X) X(none) X(density) X(gradient) X(force) X(grav) X(damage)
 
@@ -36,7 +52,7 @@ enum task_type {
 #define TASK_ENUM_(name) task_type_##name,
   TASK_TYPES(TASK_ENUM_)
 #undef TASK_ENUM_
-      task_type_count /**< number of types */
+  task_type_count /**< number of types */
 };
 
 /** The physics a task runs. */
@@ -44,8 +60,9 @@ enum task_subtype {
 #define TASK_ENUM_(name) task_subtype_##name,
   TASK_SUBTYPES(TASK_ENUM_)
 #undef TASK_ENUM_
-      task_subtype_count /**< number of subtypes */
+  task_subtype_count /**< number of subtypes */
 };
+/* clang-format on */
 
 /** Names of the types and subtypes, indexed by the enums. */
 extern const char *const task_type_names[task_type_count];
