@@ -211,7 +211,7 @@ static struct task *scheduler_gettask(struct scheduler *s, int tid, unsigned *se
       }
     }
     if (t) return t;
-    if (atomic_load(&s->nr_remaining) == 0) return NULL;
+    if (atomic_load(&s->nr_remaining) <= 0) return NULL;
     if (spin < SCHEDULER_SPIN) {
       sched_yield();
       continue;

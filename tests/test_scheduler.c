@@ -275,7 +275,7 @@ int main(int argc, char **argv) {
   error_init(argv[0]);
   if (argc == 3 && strcmp(argv[1], "--dump") == 0) return test_dump(argv[2]);
   signal(SIGALRM, test_alarm);
-  alarm(240);
+  alarm(100);
 
   test_cycle();
 
