@@ -197,6 +197,36 @@ static void test_demo_work(void *ctx, struct task *t, int thread_id) {
   for (int i = 0; i < 2000 * (1 + (int)t->subtype); i++) x += i;
 }
 
+#ifdef BOLIDE_DEBUG_CHECKS
+/** Debug checks: a task whose lock is never free must be reported as a
+ *  deadlock (error_bug exits), not hang: run it in a child process. */
+static void test_deadlock_detection(void) {
+  fflush(stdout);
+  fflush(stderr);
+  pid_t pid = fork();
+  if (pid == 0) {
+    if (!freopen("/dev/null", "w", stderr)) _exit(3);
+    struct scheduler s;
+    scheduler_init(&s, 2);
+    s.deadlock_seconds = 0.5;
+    static struct sched_lock lock;
+    sched_lock_init(&lock);
+    sched_lock_try(&lock); /* held by nobody that will ever release it */
+    struct task *a = scheduler_addtask(&s, task_type_test, task_subtype_none, NULL, NULL);
+    struct task *b = scheduler_addtask(&s, task_type_test, task_subtype_none, NULL, NULL);
+    b->locks[0] = &lock;
+    scheduler_addunlock(&s, a, b);
+    scheduler_finalize(&s);
+    scheduler_run(&s, test_demo_work, NULL);
+    _exit(0); /* not reached if the deadlock was found */
+  }
+  int status;
+  waitpid(pid, &status, 0);
+  CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 1, "a deadlock was not detected (status %d)",
+        status);
+}
+#endif
+
 /** --dump FILE: a graph shaped like one SPH step on 32 "cells", 2 threads;
  *  print timers, write the dump, check it has one sane line per task. */
 static int test_dump(const char *path) {
@@ -278,6 +308,9 @@ int main(int argc, char **argv) {
   alarm(100);
 
   test_cycle();
+#ifdef BOLIDE_DEBUG_CHECKS
+  test_deadlock_detection();
+#endif
 
   static const int threads[] = {1, 2, 3, 4, 8, 16};
   unsigned rng = 12345;
@@ -285,7 +318,7 @@ int main(int argc, char **argv) {
   for (size_t k = 0; k < sizeof threads / sizeof threads[0]; k++) {
     struct scheduler s;
     scheduler_init(&s, threads[k]);
-    for (int g = 0; g < 100; g++) {
+    for (int g = 0; g < 250; g++) {
       /* mostly small graphs (many repetitions), now and then a big one */
       const int n = (g % 25 == 24) ? 1000 + test_rand(&rng) % 2000 : 1 + test_rand(&rng) % 200;
       /* first run: everything active, or all skipped, or a random subset */
