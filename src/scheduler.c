@@ -256,8 +256,18 @@ static void scheduler_done(struct scheduler *s, struct task *t) {
   atomic_store(&s->last_progress, task_now_ns());
 #endif
   const int left = atomic_fetch_sub(&s->nr_remaining, 1) - 1;
-  /* a released lock may unblock a queued task anywhere; the end frees all */
-  if (had_locks || left == 0) scheduler_wake(s, 1);
+  /* The end frees everyone.  A released lock may unblock a queued task in
+   * any queue; if every queue is empty there is nothing to unblock.  That
+   * test is safe because lock operations and queue counts are sequentially
+   * consistent: a worker that failed to lock a queued task before our
+   * release saw a count we see too (theory/scheduler.md). */
+  if (left <= 0)
+    scheduler_wake(s, 1);
+  else if (had_locks) {
+    int queued = 0;
+    for (int q = 0; q < s->nr_threads && !queued; q++) queued = atomic_load(&s->queues[q].count);
+    if (queued) scheduler_wake(s, 1);
+  }
 }
 
 void scheduler_work(struct scheduler *s, int tid) {

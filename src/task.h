@@ -79,16 +79,18 @@ static inline void sched_lock_init(struct sched_lock *l) {
   atomic_init(&l->held, 0);
 }
 
-/** Take the lock if it is free; never waits.  1 on success. */
+/** Take the lock if it is free; never waits.  1 on success.  Sequentially
+ *  consistent, like sched_lock_release(): the scheduler's wake-up logic
+ *  (scheduler_done) relies on lock operations and queue counts having one
+ *  total order. */
 static inline int sched_lock_try(struct sched_lock *l) {
   int expected = 0;
-  return atomic_compare_exchange_strong_explicit(&l->held, &expected, 1, memory_order_acquire,
-                                                 memory_order_relaxed);
+  return atomic_compare_exchange_strong(&l->held, &expected, 1);
 }
 
 /** Give the lock back. */
 static inline void sched_lock_release(struct sched_lock *l) {
-  atomic_store_explicit(&l->held, 0, memory_order_release);
+  atomic_store(&l->held, 0);
 }
 
 /** Monotonic wall clock in nanoseconds (task timings). */
