@@ -29,7 +29,11 @@ void scheduler_init(struct scheduler *s, int nr_threads) {
   s->queues = error_malloc(nr_threads * sizeof(struct queue), "task queues");
   for (int i = 0; i < nr_threads; i++) queue_init(&s->queues[i]);
   pthread_mutex_init(&s->sleep_mutex, NULL);
-  pthread_cond_init(&s->sleep_cond, NULL);
+  pthread_condattr_t attr; /* timed waits on the monotonic clock: immune to clock changes */
+  pthread_condattr_init(&attr);
+  pthread_condattr_setclock(&attr, CLOCK_MONOTONIC);
+  pthread_cond_init(&s->sleep_cond, &attr);
+  pthread_condattr_destroy(&attr);
   atomic_init(&s->nr_sleeping, 0);
   atomic_init(&s->epoch, 0);
   atomic_init(&s->nr_remaining, 0);
@@ -222,7 +226,7 @@ static struct task *scheduler_gettask(struct scheduler *s, int tid, unsigned *se
     pthread_mutex_lock(&s->sleep_mutex);
     while (atomic_load(&s->epoch) == epoch && atomic_load(&s->nr_remaining) > 0) {
       struct timespec until;
-      clock_gettime(CLOCK_REALTIME, &until);
+      clock_gettime(CLOCK_MONOTONIC, &until);
       until.tv_nsec += 100000000; /* wake every 0.1 s anyway: robust, and the deadlock check */
       if (until.tv_nsec >= 1000000000) until.tv_sec++, until.tv_nsec -= 1000000000;
       pthread_cond_timedwait(&s->sleep_cond, &s->sleep_mutex, &until);
