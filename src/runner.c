@@ -1,0 +1,149 @@
+/* CPU worker threads: see runner.h. */
+#include "runner.h"
+
+#include <hwloc.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+
+#include "error.h"
+#include "scheduler.h"
+
+/** hwloc state: the topology restricted to the process's CPU set, where each
+ *  thread goes, and the caller's binding before runner_start(). */
+struct runner_pinning {
+  hwloc_topology_t topo;   /**< restricted to the CPUs the process may use */
+  hwloc_obj_type_t target; /**< HWLOC_OBJ_CORE or HWLOC_OBJ_PU */
+  hwloc_bitmap_t saved;    /**< binding of thread 0 before it was pinned */
+};
+
+/** Pinning problems are reported once per process, not once per thread. */
+static atomic_int runner_warned;
+
+static void runner_warn_once(const char *what) {
+  if (atomic_exchange(&runner_warned, 1) == 0)
+    error_warning("could not pin threads to cores (%s); carrying on unpinned", what);
+}
+
+/** Bind the calling thread to target object number `id`. */
+static void runner_pin(struct runner_pinning *p, int id) {
+  hwloc_obj_t obj = hwloc_get_obj_by_type(p->topo, p->target, (unsigned)id);
+  if (!obj || hwloc_set_cpubind(p->topo, obj->cpuset, HWLOC_CPUBIND_THREAD) != 0)
+    runner_warn_once("hwloc_set_cpubind");
+}
+
+/** Decide where threads go; NULL when they stay unpinned. */
+static struct runner_pinning *runner_pinning_new(int nr_threads) {
+  struct runner_pinning *p = error_calloc(1, sizeof *p, "thread pinning");
+  if (hwloc_topology_init(&p->topo) != 0) {
+    free(p);
+    runner_warn_once("hwloc_topology_init");
+    return NULL;
+  }
+  /* only the CPUs this process may run on (taskset, cgroups, batch systems) */
+  unsigned long flags = HWLOC_TOPOLOGY_FLAG_IS_THISSYSTEM;
+#if HWLOC_API_VERSION >= 0x00020100
+  flags |= HWLOC_TOPOLOGY_FLAG_RESTRICT_TO_CPUBINDING | HWLOC_TOPOLOGY_FLAG_DONT_CHANGE_BINDING;
+#endif
+  if (hwloc_topology_set_flags(p->topo, flags) != 0 || hwloc_topology_load(p->topo) != 0) {
+    hwloc_topology_destroy(p->topo);
+    free(p);
+    runner_warn_once("hwloc_topology_load");
+    return NULL;
+  }
+  int nr_cores = hwloc_get_nbobjs_by_type(p->topo, HWLOC_OBJ_CORE);
+  int nr_pus = hwloc_get_nbobjs_by_type(p->topo, HWLOC_OBJ_PU);
+  if (nr_threads <= nr_cores)
+    p->target = HWLOC_OBJ_CORE;
+  else if (nr_threads <= nr_pus)
+    p->target = HWLOC_OBJ_PU;
+  else {
+    /* oversubscribed: pinning would only stack threads; let the OS share */
+    error_log(1, "%d threads on %d hardware threads: not pinned", nr_threads, nr_pus);
+    hwloc_topology_destroy(p->topo);
+    free(p);
+    return NULL;
+  }
+  p->saved = hwloc_bitmap_alloc();
+  if (hwloc_get_cpubind(p->topo, p->saved, HWLOC_CPUBIND_THREAD) != 0) {
+    hwloc_bitmap_free(p->saved);
+    p->saved = NULL;
+  }
+  return p;
+}
+
+/** A worker: wait for a run, work, report, until shutdown. */
+static void *runner_main(void *arg) {
+  struct runner *r = arg;
+  struct scheduler *s = r->s;
+  if (s->pinning) runner_pin(s->pinning, r->id);
+  int gen = 0;
+  for (;;) {
+    pthread_mutex_lock(&s->run_mutex);
+    while (s->run_gen == gen && !s->shutdown) pthread_cond_wait(&s->run_cond, &s->run_mutex);
+    int stop = s->shutdown;
+    gen = s->run_gen;
+    pthread_mutex_unlock(&s->run_mutex);
+    if (stop) break;
+    scheduler_work(s, r->id);
+    pthread_mutex_lock(&s->run_mutex);
+    if (++s->nr_finished == s->nr_threads - 1) pthread_cond_signal(&s->done_cond);
+    pthread_mutex_unlock(&s->run_mutex);
+  }
+  return NULL;
+}
+
+void runner_start(struct scheduler *s) {
+  pthread_mutex_init(&s->run_mutex, NULL);
+  pthread_cond_init(&s->run_cond, NULL);
+  pthread_cond_init(&s->done_cond, NULL);
+  s->run_gen = 0;
+  s->nr_finished = 0;
+  s->shutdown = 0;
+  s->pinning = runner_pinning_new(s->nr_threads);
+  if (s->pinning) runner_pin(s->pinning, 0);
+  s->runners = error_calloc(s->nr_threads, sizeof(struct runner), "runners");
+  for (int i = 1; i < s->nr_threads; i++) {
+    struct runner *r = &s->runners[i];
+    r->id = i;
+    r->s = s;
+    if (pthread_create(&r->thread, NULL, runner_main, r) != 0)
+      error_exit("could not start worker thread %d of %d", i, s->nr_threads);
+  }
+}
+
+void runner_stop(struct scheduler *s) {
+  pthread_mutex_lock(&s->run_mutex);
+  s->shutdown = 1;
+  pthread_cond_broadcast(&s->run_cond);
+  pthread_mutex_unlock(&s->run_mutex);
+  for (int i = 1; i < s->nr_threads; i++) pthread_join(s->runners[i].thread, NULL);
+  free(s->runners);
+  s->runners = NULL;
+  struct runner_pinning *p = s->pinning;
+  if (p) {
+    if (p->saved) {
+      hwloc_set_cpubind(p->topo, p->saved, HWLOC_CPUBIND_THREAD);
+      hwloc_bitmap_free(p->saved);
+    }
+    hwloc_topology_destroy(p->topo);
+    free(p);
+    s->pinning = NULL;
+  }
+  pthread_cond_destroy(&s->run_cond);
+  pthread_cond_destroy(&s->done_cond);
+  pthread_mutex_destroy(&s->run_mutex);
+}
+
+void runner_launch(struct scheduler *s) {
+  pthread_mutex_lock(&s->run_mutex);
+  s->nr_finished = 0;
+  s->run_gen++;
+  pthread_cond_broadcast(&s->run_cond);
+  pthread_mutex_unlock(&s->run_mutex);
+}
+
+void runner_wait(struct scheduler *s) {
+  pthread_mutex_lock(&s->run_mutex);
+  while (s->nr_finished < s->nr_threads - 1) pthread_cond_wait(&s->done_cond, &s->run_mutex);
+  pthread_mutex_unlock(&s->run_mutex);
+}

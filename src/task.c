@@ -1,0 +1,30 @@
+/* Tasks: the name tables generated from TASK_TYPES and TASK_SUBTYPES. */
+#include "task.h"
+
+const char *const task_type_names[task_type_count] = {
+#define TASK_NAME_(name) #name,
+    TASK_TYPES(TASK_NAME_)
+#undef TASK_NAME_
+};
+
+const char *const task_subtype_names[task_subtype_count] = {
+#define TASK_NAME_(name) #name,
+    TASK_SUBTYPES(TASK_NAME_)
+#undef TASK_NAME_
+};
+
+int task_lock(struct task *t) {
+  struct sched_lock *a = t->locks[0], *b = t->locks[1];
+  if (b == a) b = NULL; /* the same resource twice: one lock */
+  if (a && !sched_lock_try(a)) return 0;
+  if (b && !sched_lock_try(b)) {
+    if (a) sched_lock_release(a);
+    return 0;
+  }
+  return 1;
+}
+
+void task_unlock(struct task *t) {
+  if (t->locks[0]) sched_lock_release(t->locks[0]);
+  if (t->locks[1] && t->locks[1] != t->locks[0]) sched_lock_release(t->locks[1]);
+}
