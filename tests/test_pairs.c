@@ -265,7 +265,7 @@ struct config {
   enum distribution dist;
   int periodic;
   size_t n;
-  double h_min, h_max; /**< h log-uniform in [h_min, h_max] (relative to the box) */
+  double H_min, H_max; /**< kernel support H = kernel_gamma h, log-uniform in [H_min, H_max] */
   int split_size;
   int max_top;
 };
@@ -295,7 +295,7 @@ static void run(const struct config *cf, unsigned seed) {
     p.x[i] = x[0];
     p.y[i] = x[1];
     p.z[i] = x[2];
-    p.h[i] = cf->h_min * pow(cf->h_max / cf->h_min, urand());
+    p.h[i] = cf->H_min * pow(cf->H_max / cf->H_min, urand()) / kernel_gamma;
     p.id[i] = (int64_t)i;
     int out = 0;
     for (int k = 0; k < 3; k++)
@@ -369,23 +369,23 @@ static void run(const struct config *cf, unsigned seed) {
 
 int main(int argc, char **argv) {
   error_init(argc > 0 ? argv[0] : "test_pairs");
-  /* h relative to the unit box; H_max = gamma h_max must stay below half the
-   * periodic box (1.825742 * 0.2 = 0.365 < 0.4) */
+  /* supports H relative to the box (1 x 1.3 x 0.8); H_max must stay below
+   * half the periodic box (0.4) */
   const struct config configs[] = {
-      {"uniform", DIST_UNIFORM, 1, 3000, 0.08, 0.08, 8, 64},
-      {"uniform", DIST_UNIFORM, 0, 3000, 0.08, 0.08, 8, 64},
-      {"uniform-varh", DIST_UNIFORM, 1, 3000, 0.01, 0.1, 1, 64},
-      {"uniform-varh", DIST_UNIFORM, 0, 3000, 0.01, 0.1, 32, 64},
-      {"clumps", DIST_CLUMPS, 1, 4000, 0.025, 0.025, 16, 64},
-      {"clumps", DIST_CLUMPS, 0, 4000, 0.025, 0.025, 4, 64},
-      {"clumps-varh", DIST_CLUMPS, 1, 4000, 0.006, 0.06, 8, 64},
-      {"clumps-varh", DIST_CLUMPS, 0, 4000, 0.006, 0.06, 64, 64},
-      {"clumps-varh-top3", DIST_CLUMPS, 1, 2500, 0.006, 0.06, 8, 3},
-      {"no-split", DIST_UNIFORM, 1, 2000, 0.07, 0.07, 100000, 64},
-      {"big-h", DIST_UNIFORM, 1, 2000, 0.05, 0.2, 16, 64},
-      {"big-h", DIST_UNIFORM, 0, 2000, 0.05, 0.2, 16, 64},
-      {"one-cell", DIST_CLUMPS, 1, 2000, 0.1, 0.21, 16, 1},
-      {"two-cells", DIST_UNIFORM, 1, 2000, 0.1, 0.21, 16, 2},
+      {"uniform", DIST_UNIFORM, 1, 3000, 0.146, 0.146, 8, 64},
+      {"uniform", DIST_UNIFORM, 0, 3000, 0.146, 0.146, 8, 64},
+      {"uniform-varh", DIST_UNIFORM, 1, 3000, 0.018, 0.18, 1, 64},
+      {"uniform-varh", DIST_UNIFORM, 0, 3000, 0.018, 0.18, 32, 64},
+      {"clumps", DIST_CLUMPS, 1, 4000, 0.046, 0.046, 16, 64},
+      {"clumps", DIST_CLUMPS, 0, 4000, 0.046, 0.046, 4, 64},
+      {"clumps-varh", DIST_CLUMPS, 1, 4000, 0.011, 0.11, 8, 64},
+      {"clumps-varh", DIST_CLUMPS, 0, 4000, 0.011, 0.11, 64, 64},
+      {"clumps-varh-top3", DIST_CLUMPS, 1, 2500, 0.011, 0.11, 8, 3},
+      {"no-split", DIST_UNIFORM, 1, 2000, 0.128, 0.128, 100000, 64},
+      {"big-h", DIST_UNIFORM, 1, 2000, 0.09, 0.365, 16, 64},
+      {"big-h", DIST_UNIFORM, 0, 2000, 0.09, 0.365, 16, 64},
+      {"one-cell", DIST_CLUMPS, 1, 2000, 0.18, 0.383, 16, 1},
+      {"two-cells", DIST_UNIFORM, 1, 2000, 0.18, 0.383, 16, 2},
   };
   const int nconf = sizeof configs / sizeof configs[0];
   for (int c = 0; c < nconf; c++) run(&configs[c], 1234u + (unsigned)c);
