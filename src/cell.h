@@ -20,6 +20,7 @@
 #include <stddef.h>
 
 #include "inline.h"
+#include "task.h"
 
 struct parts;
 
@@ -43,7 +44,7 @@ struct cell {
   int index;               /**< position of this cell in struct space.cells */
   int top;                 /**< index of the top-level cell this cell descends from */
   int active;              /**< set by the engine: the cell has active particles this step */
-  int lock_pad[4];         /**< placeholder for the scheduler's cell lock (src/scheduler.h) */
+  struct sched_lock lock;  /**< taken by the tasks that write the cell's particles */
   void *tasks[CELL_TASK_SLOTS]; /**< tasks of this cell, filled by the engine */
 };
 
