@@ -8,9 +8,12 @@ line), writes a PNG and prints
     shock_radius measured X analytic Y rel_error Z
     L1 density X      (inside 1.5 R; plain mean over particles, see l1.py)
 
-The measured shock radius is the radius of the peak of the binned mean
-density, refined by a parabola through the peak bin and its two neighbours.
-Its resolution is therefore a fraction of the bin width (printed as
+The measured shock radius is where the binned mean density, going outwards
+from its peak, falls through half-way between the peak and the ambient
+density rho0 (linear interpolation between bin centres): the middle of the
+jump, which for a shock smeared over a few smoothing lengths is less biased
+than the radius of the peak bin itself (the peak sits a bin or more inside
+the front).  Its resolution is a fraction of the bin width (printed as
 "bin_width"); choose --nbins so that a bin holds many particles.  Radii are
 taken from --centre (default: the box centre, BoxSize/2) with the periodic
 minimum image when the header has a BoxSize.
@@ -50,27 +53,30 @@ def parse_args(argv):
     return args
 
 
-def measured_shock_radius(r, rho, rmax, nbins):
-    """Radius of the peak of the binned mean density (parabolic refinement)
-    and the bin width.  Returns (radius, width, centres, means)."""
+def measured_shock_radius(r, rho, rho0, rmax, nbins):
+    """Radius where the binned mean density, outwards from its peak, falls
+    through (peak + rho0)/2 (see module doc); the peak bin's centre when it
+    never does.  Returns (radius, bin width)."""
     edges = np.linspace(0.0, rmax, nbins + 1)
     width = edges[1] - edges[0]
     centres = 0.5 * (edges[1:] + edges[:-1])
     inside = r < rmax
     which = np.clip((r[inside] / width).astype(int), 0, nbins - 1)
     count = np.bincount(which, minlength=nbins)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        mean = np.bincount(which, weights=rho[inside], minlength=nbins) / count
     if not np.any(count > 0):
         raise ValueError("no particle within r < %g of the centre" % rmax)
-    k = int(np.nanargmax(mean))
-    radius = centres[k]
-    if 0 < k < nbins - 1 and count[k - 1] > 0 and count[k + 1] > 0:
-        a, b, c = mean[k - 1], mean[k], mean[k + 1]
-        denom = a - 2.0 * b + c
-        if denom < 0:
-            radius += 0.5 * width * (a - c) / denom
-    return radius, width, centres, mean
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mean = np.bincount(which, weights=rho[inside], minlength=nbins) / count
+    filled = count > 0
+    centres, mean = centres[filled], mean[filled]
+    k = int(np.argmax(mean))
+    level = 0.5 * (mean[k] + rho0)
+    below = np.nonzero(mean[k:] < level)[0]
+    if below.size == 0:
+        return centres[k], width
+    j = k + below[0]
+    f = (mean[j - 1] - level) / (mean[j - 1] - mean[j])
+    return centres[j - 1] + f * (centres[j] - centres[j - 1]), width
 
 
 def main(argv=None):
@@ -103,7 +109,7 @@ def main(argv=None):
     r_an = float(sol.shock_radius(t, args.E, args.rho0))
     rmax = args.rmax if args.rmax is not None else 1.5 * r_an
     try:
-        r_me, width, centres, mean_rho = measured_shock_radius(r, rho, rmax, args.nbins)
+        r_me, width = measured_shock_radius(r, rho, args.rho0, rmax, args.nbins)
     except ValueError as exc:
         common.die("%s: %s" % (args.snapshot, exc))
     print("shock_radius measured %.6g analytic %.6g rel_error %.4g"
