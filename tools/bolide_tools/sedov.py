@@ -9,7 +9,7 @@ The shock is at R(t) = xi0 (E t^2 / rho0)^(1/5) and moves at D = dR/dt =
     rho = rho0 G(lambda),  v = D V(lambda),  P = rho0 D^2 Pi(lambda),
 
 and the Euler equations (spherical, adiabatic) reduce to three ODEs in
-lambda, derived in theory/sedov.md:
+lambda, derived in theory/analytic.md (A8)-(A10):
 
     (V - lambda) G' + G V' + 2 G V / lambda = 0                 (mass)
     (V - lambda) V' + Pi' / G + k V = 0                         (momentum)
