@@ -6,7 +6,9 @@ Plots the radial profiles of density, radial velocity and pressure
 line), writes a PNG and prints
 
     shock_radius measured X analytic Y rel_error Z
-    L1 density X      (inside 1.5 R; plain mean over particles, see l1.py)
+    bin_width W
+    L1 density X      (likewise velocity (radial) and pressure; inside --rmax,
+                       plain mean over particles, see bolide_tools/l1.py)
 
 The measured shock radius is where the binned mean density, going outwards
 from its peak, falls through half-way between the peak and the ambient
@@ -118,7 +120,9 @@ def main(argv=None):
     rho_e, v_e, p_e = sol.profiles(r, t, args.E, args.rho0)
     region = r < rmax
     try:
-        print("L1 density %.6g" % l1.l1_error(rho, rho_e, mask=region))
+        for name, values, exact in (("density", rho, rho_e), ("velocity", v_r, v_e),
+                                    ("pressure", pres, p_e)):
+            print("L1 %s %.6g" % (name, l1.l1_error(values, exact, mask=region)))
     except ValueError as exc:
         common.die("%s: %s" % (args.snapshot, exc))
 

@@ -65,12 +65,10 @@ def main(argv=None):
     args = parse_args(sys.argv[1:] if argv is None else argv)
     field = SHORT_NAMES.get(args.colour, args.colour)
     try:
-        snap = snapshot.load(args.snapshot)
+        snap = snapshot.load(args.snapshot, ["Coordinates", "Masses", field],
+                             optional=["SmoothingLengths"])
     except snapshot.SnapshotError as exc:
         common.die(str(exc))
-    for name in ("Coordinates", "Masses", field):
-        if name not in snap:
-            common.die("%s: no dataset /PartType0/%s" % (args.snapshot, name))
     pos, mass = snap["Coordinates"], snap["Masses"]
     values = np.asarray(snap[field], dtype=float)
     if values.ndim == 2:

@@ -37,12 +37,14 @@ class SnapshotError(Exception):
     the file and what is wrong with it."""
 
 
-def load(path, fields=None):
+def load(path, fields=None, optional=()):
     """Load a snapshot.
 
     path:   HDF5 file name.
     fields: iterable of dataset names to read (Bolide's names); None reads
             every dataset of /PartType0.
+    optional: dataset names read when present and silently skipped when not
+            (with fields given; a large snapshot is then read only in part).
     Returns a dict: one numpy array per dataset (keyed by Bolide's name),
     plus "header" (dict of the /Header attributes, with "Time" as a float and
     "BoxSize" as a length-3 array when present) and "path".
@@ -65,6 +67,7 @@ def load(path, fields=None):
         for name in group.keys():
             available[ALIASES.get(name, name)] = name
         wanted = list(available) if fields is None else list(fields)
+        wanted += [name for name in optional if name in available and name not in wanted]
         data = {}
         for name in wanted:
             if name not in available:
