@@ -51,11 +51,12 @@ def parse_args(argv):
     p.add_argument("--log", action="store_true", help="logarithmic colour scale")
     p.add_argument("--vmin", type=float, help="lower end of the colour scale")
     p.add_argument("--vmax", type=float, help="upper end of the colour scale")
-    p.add_argument("--size", type=float, default=1.0, help="marker size in points^2 (1)")
+    p.add_argument("--size", type=float,
+                   help="marker size in points^2 (default: 2e4 / particles drawn, within 0.3-20)")
     args = p.parse_args(argv)
     if args.slice is not None and args.slice < 0:
         p.error("--slice must be >= 0")
-    if not args.size > 0:
+    if args.size is not None and not args.size > 0:
         p.error("--size must be positive")
     return args
 
@@ -96,6 +97,8 @@ def main(argv=None):
     else:
         order = np.argsort(z)
     x, y, c = pos[order, 0], pos[order, 1], values[order]
+    if args.size is None:
+        args.size = float(np.clip(2e4 / x.size, 0.3, 20.0))
 
     import matplotlib
     matplotlib.use("Agg")
