@@ -128,7 +128,7 @@ def main(argv=None):
         else:
             sc = ax.scatter(x, y, c=c, s=args.size, lw=0, vmin=args.vmin, vmax=args.vmax,
                             cmap="viridis", rasterized=True)
-        fig.colorbar(sc, ax=ax, label=args.colour)
+        fig.colorbar(sc, ax=ax, label=args.colour, shrink=0.8)
     ax.set_aspect("equal")
     ax.set_xlabel("x")
     ax.set_ylabel("y")
