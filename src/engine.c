@@ -1,7 +1,9 @@
+#define _GNU_SOURCE /* sched_getaffinity */
 /* The engine: initialisation and the time-step loop (see engine.h). */
 #include "engine.h"
 
 #include <errno.h>
+#include <sched.h>
 #include <float.h>
 #include <libgen.h>
 #include <limits.h>
@@ -14,6 +16,7 @@
 
 #include "engine_tasks.h"
 #include "error.h"
+#include "hydro_parts.h"
 #include "ic.h"
 #include "kernel.h"
 #include "material.h"
@@ -60,6 +63,17 @@ static void engine_guess_h(struct engine *e) {
   for (size_t i = 0; i < p->count; i++)
     if (!(p->h[i] > 0.0)) p->h[i] = h0;
   error_log(0, "%zu particles had no smoothing length: initial guess h = %g", missing, h0);
+}
+
+/** The number of cores this process may run on (its CPU affinity set). */
+static int engine_nr_cores(void) {
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof set, &set) == 0) {
+    const int n = CPU_COUNT(&set);
+    if (n > 0) return n;
+  }
+  const long n = sysconf(_SC_NPROCESSORS_ONLN);
+  return n > 0 ? (int)n : 1;
 }
 
 /* ------------------------------------------------------------------------ */
@@ -154,7 +168,10 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   if (params_get_bool(params, "Restarts:enable"))
     params_error(params, "Restarts:enable", "restart files are not implemented yet");
 
-  e->mats = material_table_from_params(params, &e->us);
+  e->mats = error_calloc(1, sizeof(struct material_table), "material table");
+  material_table_init(e->mats);
+  material_table_from_params(e->mats, params);
+  material_table_convert_units(e->mats, &e->us);
 
   e->time = params_get_real(params, "TimeIntegration:time_begin");
   e->time_end = params_get_real(params, "TimeIntegration:time_end");
@@ -169,8 +186,9 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   char icname[PATH_MAX];
   engine_ic_path(params, icname, sizeof icname);
   struct ic_info hdr;
-  int nids = 0;
-  int32_t *ids = material_table_ids(e->mats, &nids);
+  const int nids = e->mats->n;
+  int32_t *ids = error_malloc(nids * sizeof(int32_t), "material ids");
+  for (int k = 0; k < nids; k++) ids[k] = e->mats->mats[k].id;
   ic_read(icname, &e->us, ids, nids, &e->parts, &hdr);
   free(ids);
   double box[3] = {hdr.box_size[0], hdr.box_size[1], hdr.box_size[2]};
@@ -212,8 +230,8 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   /* cells and workers */
   space_init(&e->space, &e->parts, box, periodic, (int)params_get_int(params, "Scheduler:cell_split_size"),
              (int)params_get_int(params, "Scheduler:max_top_level_cells"));
-  e->space.rebuild_fraction = params_get_real(params, "Scheduler:rebuild_fraction");
-  e->nr_threads = opt->nr_threads > 0 ? opt->nr_threads : runner_nr_cores();
+  e->space.max_drift_fraction = params_get_real(params, "Scheduler:rebuild_fraction");
+  e->nr_threads = opt->nr_threads > 0 ? opt->nr_threads : engine_nr_cores();
   const char *gpu = params_get_string(params, "Scheduler:gpu");
   (void)gpu;
 
@@ -226,7 +244,8 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
 #endif
   );
   error_log(1, "configured with: %s", BOLIDE_CONFIGURE_ARGS);
-  error_log(0, "%d material(s); particle memory %zu bytes per particle", e->mats->n, parts_bytes_per_particle());
+  material_table_log(e->mats);
+  error_log(0, "particle memory: %zu bytes per particle", parts_bytes_per_particle());
 
   if (opt->check_only) {
     printf("%s: parameters, materials and initial conditions are valid (%zu particles)\n", params_filename(params),
@@ -263,8 +282,8 @@ static void engine_run_phase(struct engine *e, int phase) {
  *  the next output time and the end of the run. */
 static double engine_next_dt(struct engine *e) {
   double dt = e->dt_max;
-  for (int c = 0; c < e->space.nr_cells; c++)
-    if (e->space.cells_top[c].count > 0 && e->cell_dt_min[c] < dt) dt = e->cell_dt_min[c];
+  for (int c = 0; c < e->space.nr_top; c++)
+    if (e->space.cells[c].count > 0 && e->cell_dt_min[c] < dt) dt = e->cell_dt_min[c];
   if (dt < e->dt_min)
     error_exit("time step %g at t = %g is below TimeIntegration:dt_min = %g (run -v for details)", dt, e->time,
                e->dt_min);
@@ -281,6 +300,7 @@ static double engine_next_dt(struct engine *e) {
 static void engine_first_force(struct engine *e) {
   e->first_force = 1;
   e->dt = 0.0;
+  for (size_t i = 0; i < e->parts.count; i++) hydro_density_reset(&e->parts, i);
   engine_run_phase(e, ENGINE_PHASE_FORCE);
   e->first_force = 0;
 }
@@ -304,7 +324,7 @@ void engine_run(struct engine *e) {
     e->time += e->dt;
     if (e->next_out < e->nr_out && fabs(e->time - e->out_times[e->next_out]) <= 1e-12 * fabs(e->time))
       e->time = e->out_times[e->next_out];
-    if (atomic_load((_Atomic int *)&e->need_rebuild) || space_should_rebuild(&e->space, e->cell_dx_max)) {
+    if (atomic_load((_Atomic int *)&e->need_rebuild) || space_should_rebuild(&e->space)) {
       atomic_store((_Atomic int *)&e->need_rebuild, 0);
       engine_rebuild(e);
     }
@@ -339,13 +359,14 @@ void engine_clean(struct engine *e) {
   if (!e->opt.check_only) {
     engine_graph_clean(e);
     scheduler_free(&e->sched);
-    space_clean(&e->space);
+    space_free(&e->space);
   }
   if (e->stats) fclose(e->stats);
   free(e->out_times);
   free(e->cell_dt_min);
   free(e->cell_dx_max);
   free(e->params_text);
-  material_table_free(e->mats);
+  if (e->mats) material_table_free(e->mats);
+  free(e->mats);
   parts_free(&e->parts);
 }

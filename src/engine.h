@@ -7,6 +7,7 @@
 
 #include <stdio.h>
 
+#include "cell.h"
 #include "hydro_props.h"
 #include "part.h"
 #include "scheduler.h"
@@ -51,6 +52,7 @@ struct engine {
   int nr_threads;                 /**< workers in use */
 
   struct engine_cell_tasks *ct;   /**< per top-level cell */
+  int nr_ct;                      /**< number of entries of ct */
   struct task **phase_tasks[2];   /**< tasks of each phase */
   int phase_count[2];             /**< their numbers */
  struct space_pair *pairs;       /**< neighbouring top-level cell pairs (with periodic shifts) */

@@ -47,12 +47,13 @@ static void engine_add_ngb(struct engine_cell_tasks *ct, int cj, const double sh
 /** Free the per-cell task records. */
 static void engine_graph_free(struct engine *e) {
   if (e->ct) {
-    for (int c = 0; c < e->space.nr_cells; c++) {
+    for (int c = 0; c < e->nr_ct; c++) {
       free(e->ct[c].ngb);
       free(e->ct[c].ngb_shift);
     }
     free(e->ct);
     e->ct = NULL;
+    e->nr_ct = 0;
   }
   for (int ph = 0; ph < 2; ph++) {
     free(e->phase_tasks[ph]);
@@ -66,15 +67,18 @@ void engine_make_graph(struct engine *e) {
   struct scheduler *sched = &e->sched;
   engine_graph_free(e);
   scheduler_clear(sched);
-  const int nc = s->nr_cells;
+  const int nc = s->nr_top;
   e->ct = error_calloc(nc, sizeof(struct engine_cell_tasks), "cell tasks");
+  e->nr_ct = nc;
+  free(e->pairs);
+  e->pairs = NULL;
   e->cell_dt_min = error_realloc(e->cell_dt_min, nc * sizeof(double), "cell time steps");
   e->cell_dx_max = error_realloc(e->cell_dx_max, nc * sizeof(double), "cell drifts");
   int cap[2] = {0, 0};
 
   /* per-cell tasks */
   for (int c = 0; c < nc; c++) {
-    struct cell *ci = &s->cells_top[c];
+    struct cell *ci = &s->cells[c];
     struct engine_cell_tasks *ct = &e->ct[c];
     const double zero[3] = {0, 0, 0};
     engine_add_ngb(ct, c, zero);
@@ -101,11 +105,11 @@ void engine_make_graph(struct engine *e) {
 
   /* pair tasks between neighbouring top-level cells */
   struct space_pair *pairs = NULL;
-  const int np = space_get_pairs(s, &pairs);
+  const int np = (int)space_top_pairs(s, &pairs);
   int cap_tp = 0;
   for (int k = 0; k < np; k++) {
     const int a = pairs[k].ci, b = pairs[k].cj;
-    struct cell *ci = &s->cells_top[a], *cj = &s->cells_top[b];
+    struct cell *ci = &s->cells[a], *cj = &s->cells[b];
     double mshift[3];
     for (int d = 0; d < 3; d++) mshift[d] = -pairs[k].shift[d];
     engine_add_ngb(&e->ct[a], b, pairs[k].shift);

@@ -1,0 +1,20 @@
+/* Density loops on the CPU (see density_cpu.c). */
+#ifndef BOLIDE_DENSITY_CPU_H
+#define BOLIDE_DENSITY_CPU_H
+
+#include "cell.h"
+#include "part.h"
+
+/** Density sums between every pair of particles of c (symmetric form). */
+void density_self_cpu(struct parts *p, const struct cell *c);
+/** Density sums between the particles of ci and those of cj (seen at
+ *  x_j + shift), both sides updated. */
+void density_pair_cpu(struct parts *p, const struct cell *ci, const struct cell *cj,
+                      const double shift[3]);
+/** Gather form for the particles of ci whose h has not converged
+ *  (PART_H_CONVERGED clear), from the particles of cj (ci itself when cj ==
+ *  ci and shift is zero). */
+void density_gather_unconverged_cpu(struct parts *p, const struct cell *ci, const struct cell *cj,
+                                    const double shift[3]);
+
+#endif

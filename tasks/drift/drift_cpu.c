@@ -1,0 +1,16 @@
+/* Kick1 + drift of the particles of one cell on the CPU; the density
+ * accumulators are zeroed here, before any density task of the step. */
+#include "drift_cpu.h"
+
+#include "drift.h"
+#include "hydro_parts.h"
+
+void drift_cell_cpu(struct parts *p, struct cell *c, double dt_kick, double dt) {
+  const size_t end = c->offset + c->count;
+  for (size_t i = c->offset; i < end; i++) {
+    kick_part(p, i, dt_kick);
+    drift_part(p, i, dt);
+    hydro_density_reset(p, i);
+  }
+  cell_update_bounds(p, c);
+}

@@ -1,0 +1,43 @@
+/* Force loops on the CPU: the loop skeleton around force_iact.h.  The
+ * symmetric form evaluates the gather interaction for (i, j) and for (j, i):
+ * the pair function combines i and j with commutative operations only, so
+ * the two are exact opposites (force_iact.h) and the result equals the
+ * gather form's (tests/test_hydro_forms.c). */
+#include "force_cpu.h"
+
+#include "hydro_parts.h"
+
+/** The hydro settings of the running loop (the skeleton's interaction macro
+ *  has a fixed signature); thread-local so that tasks can run in parallel. */
+static _Thread_local const struct hydro_props *force_hp;
+
+/** Both sides of one interacting pair. */
+static inline void force_sym(struct parts *p, size_t i, size_t j, double r2, const double dx[3]) {
+  if (r2 <= 0.0) return; /* coincident particles exert no pairwise force */
+  struct force_in in_i, in_j;
+  hydro_force_load(p, i, &in_i);
+  hydro_force_load(p, j, &in_j);
+  const double dv[3] = {p->vpx[i] - p->vpx[j], p->vpy[i] - p->vpy[j], p->vpz[i] - p->vpz[j]};
+  const double mdx[3] = {-dx[0], -dx[1], -dx[2]};
+  const double mdv[3] = {-dv[0], -dv[1], -dv[2]};
+  struct force_acc ai = {{0, 0, 0}, 0, 0, 0}, aj = {{0, 0, 0}, 0, 0, 0};
+  force_iact(r2, dx, dv, &in_i, &in_j, force_hp, &ai);
+  force_iact(r2, mdx, mdv, &in_j, &in_i, force_hp, &aj);
+  hydro_force_add(p, i, &ai);
+  hydro_force_add(p, j, &aj);
+}
+
+#define IACT_LOOP_NAME force
+#define IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj) force_sym(p, i, j, r2, dx)
+#include "iact_loop.h"
+
+void force_self_cpu(struct parts *p, const struct cell *c, const struct hydro_props *hp) {
+  force_hp = hp;
+  loop_force_self(p, c);
+}
+
+void force_pair_cpu(struct parts *p, const struct cell *ci, const struct cell *cj,
+                    const double shift[3], const struct hydro_props *hp) {
+  force_hp = hp;
+  loop_force_pair(p, ci, cj, shift);
+}

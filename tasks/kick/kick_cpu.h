@@ -1,0 +1,15 @@
+/* Second half kick and new time step of a cell on the CPU. */
+#ifndef BOLIDE_KICK_CPU_H
+#define BOLIDE_KICK_CPU_H
+
+#include "cell.h"
+#include "hydro_props.h"
+#include "part.h"
+
+/** Second half kick by dt_kick of every particle of c (velocities and
+ *  energies become those of the end of the step, and the predicted ones
+ *  equal them); returns the smallest new time step of its particles. */
+double kick2_cell_cpu(struct parts *p, const struct cell *c, double dt_kick,
+                      const struct hydro_props *hp);
+
+#endif
