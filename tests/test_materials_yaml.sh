@@ -36,8 +36,8 @@ Materials:
 EOT
 } >"$tmp/run.yml"
 "$prog" "$tmp/run.yml" >"$tmp/out" 2>"$tmp/err" || fail "valid file rejected: $(cat "$tmp/err")"
-grep -qx "0 basalt tillotson 2700 26700000000 8" "$tmp/out" || fail "basalt: $(cat "$tmp/out")"
-grep -qx "101 granite tillotson 2680 18000000000 0" "$tmp/out" || fail "SWIFT id 101: $(cat "$tmp/out")"
+grep -qx "0 basalt tillotson 2700 2.67e+10 8" "$tmp/out" || fail "basalt: $(cat "$tmp/out")"
+grep -qx "101 granite tillotson 2680 1.8e+10 0" "$tmp/out" || fail "SWIFT id 101: $(cat "$tmp/out")"
 grep -qx "7 rubber_inline liquid 1000 800 0" "$tmp/out" || fail "inline: $(cat "$tmp/out")"
 grep -qx "2 ice tillotson 917 9470000000 0" "$tmp/out" || fail "ice: $(cat "$tmp/out")"
 
