@@ -85,9 +85,9 @@ static struct eos_tillotson basalt(void) {
 /** Any EOS through one signature. */
 typedef void (*eos_fn)(const void *p, double rho, double u, double *P, double *c2);
 
-#define WRAP(name)                                                                  \
+#define WRAP(name)                                                                   \
   static void w_##name(const void *p, double rho, double u, double *P, double *c2) { \
-    eos_##name##_eval((const struct eos_##name *)p, rho, u, P, c2);                 \
+    eos_##name##_eval((const struct eos_##name *)p, rho, u, P, c2);                  \
   }
 WRAP(ideal_gas)
 WRAP(isothermal)
@@ -139,8 +139,9 @@ static void check_c2(const char *what, eos_fn f, const void *p, double rho, doub
   f(p, rho, u, &P, &c2);
   const double num = c2_numerical(f, p, rho, u);
   const double rel = fabs(c2 - num) / fabs(num);
-  CHECK(rel <= 1e-6 && c2 > 0.0, "%s: rho %g u %g: P %.6g, c2 analytic %.12g numerical %.12g (rel %.2e)",
-        what, rho, u, P, c2, num, rel);
+  CHECK(rel <= 1e-6 && c2 > 0.0,
+        "%s: rho %g u %g: P %.6g, c2 analytic %.12g numerical %.12g (rel %.2e)", what, rho, u, P,
+        c2, num, rel);
 }
 
 /* ------------------------------------------------------------ Tillotson */
@@ -185,7 +186,8 @@ static void check_continuity(const char *what, const struct eos_tillotson *p, do
   double P[4];
   for (int k = 0; k < 4; k++) {
     const double f = 1.0 + d * (2.0 * k - 3.0); /* -3d, -d, +d, +3d */
-    P[k] = along_rho ? eos_tillotson_pressure(p, rho * f, u) : eos_tillotson_pressure(p, rho, u * f);
+    P[k] =
+        along_rho ? eos_tillotson_pressure(p, rho * f, u) : eos_tillotson_pressure(p, rho, u * f);
   }
   const double jump = fabs(P[2] - P[1]);
   const double slope = fmax(fabs(P[1] - P[0]), fabs(P[3] - P[2]));
@@ -267,7 +269,8 @@ static void round_trip_u(const char *what, eos_fn f, const void *p, const double
     f(p, rho[k], u[k], &P, &c2);
     const double ui = invert_u(f, p, rho[k], P, 0.0, u_hi);
     const double P2 = pressure(f, p, rho[k], ui);
-    CHECK(fabs(P2 - P) <= 1e-9 * fmax(fabs(P), rho[k] * fabs(c2)) && fabs(ui - u[k]) <= 1e-6 * u[k] + 1e-6,
+    CHECK(fabs(P2 - P) <= 1e-9 * fmax(fabs(P), rho[k] * fabs(c2)) &&
+              fabs(ui - u[k]) <= 1e-6 * u[k] + 1e-6,
           "%s round trip: rho %g u %g -> P %.10g -> u %.10g -> P %.10g", what, rho[k], u[k], P, ui,
           P2);
   }
@@ -281,7 +284,8 @@ static void round_trip_rho(const char *what, eos_fn f, const void *p, const doub
     f(p, rho[k], 1e5, &P, &c2);
     const double ri = invert_rho(f, p, 1e5, P, rho_lo, rho_hi);
     const double P2 = pressure(f, p, ri, 1e5);
-    CHECK(fabs(P2 - P) <= 1e-9 * fmax(fabs(P), rho[k] * fabs(c2)) && fabs(ri - rho[k]) <= 1e-9 * rho[k],
+    CHECK(fabs(P2 - P) <= 1e-9 * fmax(fabs(P), rho[k] * fabs(c2)) &&
+              fabs(ri - rho[k]) <= 1e-9 * rho[k],
           "%s round trip: rho %g -> P %.10g -> rho %.12g -> P %.10g", what, rho[k], P, ri, P2);
   }
 }
@@ -312,11 +316,12 @@ static void test_other_eos(void) {
    * rho0 c0^2 mu (1+mu)/(1-(s-1)mu)^2 to O(mu^4): at mu = 1e-3 to ~1e-8 */
   {
     const double mu = 1e-3, rho = mg.rho0 * (1.0 + mu);
-    const double exact = mg.rho0 * mg.c0 * mg.c0 * mu * (1.0 + mu) / pow(1.0 - (mg.s - 1.0) * mu, 2);
+    const double exact =
+        mg.rho0 * mg.c0 * mg.c0 * mu * (1.0 + mu) / pow(1.0 - (mg.s - 1.0) * mu, 2);
     const double eH = exact * mu / (2.0 * mg.rho0 * (1.0 + mu));
     const double P = eos_mie_gruneisen_pressure(&mg, rho, eH);
-    CHECK(fabs(P - exact) <= 1e-7 * exact, "Mie-Grueneisen on its Hugoniot: P %.12g vs P_H %.12g", P,
-          exact);
+    CHECK(fabs(P - exact) <= 1e-7 * exact, "Mie-Grueneisen on its Hugoniot: P %.12g vs P_H %.12g",
+          P, exact);
   }
   /* Gray et al. 2001 rubber: c0 = 852 m/s gives K = rho0 c0^2 */
   {
@@ -341,9 +346,9 @@ static void test_other_eos(void) {
 static void test_tillotson_round_trips(const char *name, const struct eos_tillotson *p) {
   /* P increases with u in every region for these materials (checked here
    * along the bracket by the bisection's own result) */
-  const double rho[] = {1.2 * p->rho0, 0.95 * p->rho0, 0.9 * p->rho0, 0.6 * p->rho0,
-                        0.5 * p->rho0, 2.0 * p->rho0};
-  const double u[] = {1e6, 0.5 * p->Eiv, 0.5 * (p->Eiv + p->Ecv), 0.3 * (p->Eiv + p->Ecv),
+  const double rho[] = {1.2 * p->rho0, 0.95 * p->rho0, 0.9 * p->rho0,
+                        0.6 * p->rho0, 0.5 * p->rho0,  2.0 * p->rho0};
+  const double u[] = {1e6,          0.5 * p->Eiv, 0.5 * (p->Eiv + p->Ecv), 0.3 * (p->Eiv + p->Ecv),
                       2.0 * p->Ecv, 1e8};
   char what[64];
   snprintf(what, sizeof what, "Tillotson %s", name);
@@ -353,8 +358,8 @@ static void test_tillotson_round_trips(const char *name, const struct eos_tillot
 /* ------------------------------------------------------------ tables */
 
 /** Fill a table from Tillotson on [r0, r1] x [u0, u1] (log-spaced). */
-static void table_from_tillotson(struct eos_table *t, const struct eos_tillotson *p, int nr,
-                                 int nu, double r0, double r1, double u0, double u1) {
+static void table_from_tillotson(struct eos_table *t, const struct eos_tillotson *p, int nr, int nu,
+                                 double r0, double r1, double u0, double u1) {
   double *P = malloc(sizeof(double) * nr * nu), *c2 = malloc(sizeof(double) * nr * nu);
   t->rho0 = p->rho0;
   t->n_rho = nr;
@@ -389,9 +394,11 @@ static void test_table(void) {
       const double lr = t.ln_rho_min + i * hr, lu = t.ln_u_min + j * hu;
       const double Pc = eos_tillotson_pressure(&g, exp(lr), exp(lu));
       const double Prr = (eos_tillotson_pressure(&g, exp(lr + hr), exp(lu)) - 2 * Pc +
-                          eos_tillotson_pressure(&g, exp(lr - hr), exp(lu))) / (hr * hr);
+                          eos_tillotson_pressure(&g, exp(lr - hr), exp(lu))) /
+                         (hr * hr);
       const double Puu = (eos_tillotson_pressure(&g, exp(lr), exp(lu + hu)) - 2 * Pc +
-                          eos_tillotson_pressure(&g, exp(lr), exp(lu - hu))) / (hu * hu);
+                          eos_tillotson_pressure(&g, exp(lr), exp(lu - hu))) /
+                         (hu * hu);
       maxrr = fmax(maxrr, fabs(Prr));
       maxuu = fmax(maxuu, fabs(Puu));
       /* error at the centres of the fine sub-cells */
@@ -409,8 +416,10 @@ static void test_table(void) {
         monotone = 0;
     }
   const double bound = 1.1 * (t.dln_rho * t.dln_rho / 8 * maxrr + t.dln_u * t.dln_u / 8 * maxuu);
-  CHECK(maxerr <= bound, "table %dx%d of Tillotson granite: max |P_table - P| = %.4g Pa at (%g, %g) "
-        "<= bound %.4g Pa", nr, nu, maxerr, where_r, where_u, bound);
+  CHECK(maxerr <= bound,
+        "table %dx%d of Tillotson granite: max |P_table - P| = %.4g Pa at (%g, %g) "
+        "<= bound %.4g Pa",
+        nr, nu, maxerr, where_r, where_u, bound);
   int nodes_monotone = 1;
   for (int i = 0; i < nr; i++)
     for (int j = 0; j < nu; j++) {
@@ -470,8 +479,10 @@ static void test_table(void) {
   CHECK(maxd <= 1e-15, "loaded table pressures equal the file (max rel %.2g)", maxd);
   /* centred differences: relative error ~ h^2 |P'''| / (6 P') ~ h^2 with
    * h = dln ~ 0.2 (u) -> a few percent at most */
-  CHECK(maxc <= 0.05, "c^2 differenced at load within 5%% of the analytic one (max rel %.3g, "
-        "dln_u = %.3f)", maxc, t.dln_u);
+  CHECK(maxc <= 0.05,
+        "c^2 differenced at load within 5%% of the analytic one (max rel %.3g, "
+        "dln_u = %.3f)",
+        maxc, t.dln_u);
 
   /* a (rho, T) table of an ideal gas with cv: u = cv T (1 + 0.01 i); the
    * rows are resampled on a common log-u grid.  P = (gamma-1) rho u =
@@ -502,7 +513,8 @@ static void test_table(void) {
     double worst = 0.0;
     for (int k = 0; k < 500; k++) {
       const double rho = 0.1 * pow(100.0, (k * 0.618034) - floor(k * 0.618034));
-      const double lu = tt.ln_u_min + (tt.n_u - 1) * tt.dln_u * ((k * 0.7548777) - floor(k * 0.7548777));
+      const double lu =
+          tt.ln_u_min + (tt.n_u - 1) * tt.dln_u * ((k * 0.7548777) - floor(k * 0.7548777));
       const double u = exp(lu);
       const double P = (gam - 1.0) * rho * u;
       worst = fmax(worst, fabs(eos_table_pressure(&tt, rho, u) - P) / P);

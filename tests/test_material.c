@@ -24,10 +24,10 @@ static int failures = 0, checks = 0;
 static void basalt(struct material *m, int id) {
   char msg[256];
   material_init(m, id, "basalt", EOS_TILLOTSON);
-  const char *keys[] = {"rho0", "A", "B", "E0", "Eiv", "Ecv", "a", "b", "alpha", "beta",
-                        "shear_modulus", "yield_stress"};
-  const double vals[] = {2700, 2.67e10, 2.67e10, 4.87e8, 4.72e6, 1.82e7, 0.5, 1.5, 5, 5,
-                         2.27e10, 3.5e9};
+  const char *keys[] = {"rho0", "A", "B",     "E0",   "Eiv",           "Ecv",
+                        "a",    "b", "alpha", "beta", "shear_modulus", "yield_stress"};
+  const double vals[] = {2700, 2.67e10, 2.67e10, 4.87e8, 4.72e6,  1.82e7,
+                         0.5,  1.5,     5,       5,      2.27e10, 3.5e9};
   for (int k = 0; k < 12; k++)
     CHECK(material_set(m, keys[k], vals[k], msg, sizeof msg) == 0, "set %s: %s", keys[k], msg);
   m->strength = STRENGTH_VON_MISES;

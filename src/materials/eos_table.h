@@ -31,15 +31,15 @@
 /** A tabulated EOS (the list gives rho0; the rest comes from the file). */
 struct eos_table {
   EOS_TABLE_PARAMS(EOS_PARAM_FIELD)
-  int n_rho;           /**< number of density nodes (>= 2) */
-  int n_u;             /**< number of energy nodes (>= 2) */
-  double ln_rho_min;   /**< ln of the first density node */
-  double dln_rho;      /**< spacing of ln rho */
-  double ln_u_min;     /**< ln of the first energy node */
-  double dln_u;        /**< spacing of ln u */
-  const double *P;     /**< pressure at node (i, j): P[i * n_u + j] */
-  const double *c2;    /**< squared sound speed at the nodes */
-  const double *T;     /**< temperature at the nodes, NULL if not given */
+  int n_rho;         /**< number of density nodes (>= 2) */
+  int n_u;           /**< number of energy nodes (>= 2) */
+  double ln_rho_min; /**< ln of the first density node */
+  double dln_rho;    /**< spacing of ln rho */
+  double ln_u_min;   /**< ln of the first energy node */
+  double dln_u;      /**< spacing of ln u */
+  const double *P;   /**< pressure at node (i, j): P[i * n_u + j] */
+  const double *c2;  /**< squared sound speed at the nodes */
+  const double *T;   /**< temperature at the nodes, NULL if not given */
 };
 
 /** Cell index and weight along one axis, clamped to the grid. */

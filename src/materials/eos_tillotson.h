@@ -157,9 +157,9 @@ BOLIDE_INLINE void eos_tillotson_eval(const struct eos_tillotson *p, double rho,
     eos_tillotson_expanded(p, rho, u, &Pe, &dre, &due);
     const double inv = 1.0 / (p->Ecv - p->Eiv);
     const double we = (u - p->Eiv) * inv, wc = (p->Ecv - u) * inv;
-    Pt = we * Pe + wc * Pc;                        /* T3 */
-    dr = we * dre + wc * drc;                      /* d(T3)/drho at constant u */
-    du = we * due + wc * duc + (Pe - Pc) * inv;    /* d(T3)/du at constant rho */
+    Pt = we * Pe + wc * Pc;                     /* T3 */
+    dr = we * dre + wc * drc;                   /* d(T3)/drho at constant u */
+    du = we * due + wc * duc + (Pe - Pc) * inv; /* d(T3)/du at constant rho */
   }
   if (Pt < p->P_min) {
     Pt = p->P_min;

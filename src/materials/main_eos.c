@@ -46,7 +46,8 @@ static double arg_real(const char *opt, const char *s) {
   char *end;
   errno = 0;
   const double v = strtod(s, &end);
-  if (errno || end == s || *end || !isfinite(v)) error_exit("option %s: '%s' is not a number", opt, s);
+  if (errno || end == s || *end || !isfinite(v))
+    error_exit("option %s: '%s' is not a number", opt, s);
   return v;
 }
 
@@ -95,38 +96,77 @@ int main(int argc, char **argv) {
   double rho_min = NAN, rho_max = NAN, u_min = 0.0, u_max = 2e7;
   int nrho = 16, nu = 5, lg = 0, from_stdin = 0;
   const char *png = NULL;
-  enum { O_RHOMIN = 256, O_RHOMAX, O_NRHO, O_UMIN, O_UMAX, O_NU, O_LOG, O_STDIN, O_PLOT, O_KEYS,
-         O_VERSION };
-  static const struct option opts[] = {
-      {"rho-min", required_argument, 0, O_RHOMIN}, {"rho-max", required_argument, 0, O_RHOMAX},
-      {"nrho", required_argument, 0, O_NRHO},      {"u-min", required_argument, 0, O_UMIN},
-      {"u-max", required_argument, 0, O_UMAX},     {"nu", required_argument, 0, O_NU},
-      {"log", no_argument, 0, O_LOG},              {"stdin", no_argument, 0, O_STDIN},
-      {"plot", required_argument, 0, O_PLOT},      {"keys", no_argument, 0, O_KEYS},
-      {"help", no_argument, 0, 'h'},               {"version", no_argument, 0, O_VERSION},
-      {0, 0, 0, 0}};
+  enum {
+    O_RHOMIN = 256,
+    O_RHOMAX,
+    O_NRHO,
+    O_UMIN,
+    O_UMAX,
+    O_NU,
+    O_LOG,
+    O_STDIN,
+    O_PLOT,
+    O_KEYS,
+    O_VERSION
+  };
+  static const struct option opts[] = {{"rho-min", required_argument, 0, O_RHOMIN},
+                                       {"rho-max", required_argument, 0, O_RHOMAX},
+                                       {"nrho", required_argument, 0, O_NRHO},
+                                       {"u-min", required_argument, 0, O_UMIN},
+                                       {"u-max", required_argument, 0, O_UMAX},
+                                       {"nu", required_argument, 0, O_NU},
+                                       {"log", no_argument, 0, O_LOG},
+                                       {"stdin", no_argument, 0, O_STDIN},
+                                       {"plot", required_argument, 0, O_PLOT},
+                                       {"keys", no_argument, 0, O_KEYS},
+                                       {"help", no_argument, 0, 'h'},
+                                       {"version", no_argument, 0, O_VERSION},
+                                       {0, 0, 0, 0}};
   opterr = 0;
   int c;
   while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
     switch (c) {
-      case O_RHOMIN: rho_min = arg_real("--rho-min", optarg); break;
-      case O_RHOMAX: rho_max = arg_real("--rho-max", optarg); break;
-      case O_NRHO: nrho = arg_int("--nrho", optarg); break;
-      case O_UMIN: u_min = arg_real("--u-min", optarg); break;
-      case O_UMAX: u_max = arg_real("--u-max", optarg); break;
-      case O_NU: nu = arg_int("--nu", optarg); break;
-      case O_LOG: lg = 1; break;
-      case O_STDIN: from_stdin = 1; break;
-      case O_PLOT: png = optarg; break;
-      case O_KEYS: material_write_keys(stdout); return 0;
-      case 'h': usage(stdout); return 0;
-      case O_VERSION: printf("bolide-eos %s (%s)\n", PACKAGE_VERSION, BOLIDE_GIT_HASH); return 0;
+      case O_RHOMIN:
+        rho_min = arg_real("--rho-min", optarg);
+        break;
+      case O_RHOMAX:
+        rho_max = arg_real("--rho-max", optarg);
+        break;
+      case O_NRHO:
+        nrho = arg_int("--nrho", optarg);
+        break;
+      case O_UMIN:
+        u_min = arg_real("--u-min", optarg);
+        break;
+      case O_UMAX:
+        u_max = arg_real("--u-max", optarg);
+        break;
+      case O_NU:
+        nu = arg_int("--nu", optarg);
+        break;
+      case O_LOG:
+        lg = 1;
+        break;
+      case O_STDIN:
+        from_stdin = 1;
+        break;
+      case O_PLOT:
+        png = optarg;
+        break;
+      case O_KEYS:
+        material_write_keys(stdout);
+        return 0;
+      case 'h':
+        usage(stdout);
+        return 0;
+      case O_VERSION:
+        printf("bolide-eos %s (%s)\n", PACKAGE_VERSION, BOLIDE_GIT_HASH);
+        return 0;
       default:
         error_exit("unknown or incomplete option '%s' (see --help)", argv[optind - 1]);
     }
   }
-  if (argc - optind != 2)
-    error_exit("expected MATERIALS.yml and a material NAME (see --help)");
+  if (argc - optind != 2) error_exit("expected MATERIALS.yml and a material NAME (see --help)");
   struct material mat;
   material_from_library(&mat, argv[optind], argv[optind + 1], 0);
   if (isnan(rho_min)) rho_min = mat.rho0 > 0.0 ? 0.5 * mat.rho0 : 0.1;
@@ -135,8 +175,9 @@ int main(int argc, char **argv) {
     error_exit("the density range must satisfy 0 < rho-min <= rho-max (got %g, %g)", rho_min,
                rho_max);
   if (!(u_max >= u_min) || (lg && !(u_min > 0.0)))
-    error_exit("the energy range must satisfy u-min <= u-max, with u-min > 0 for --log (got %g, %g)",
-               u_min, u_max);
+    error_exit(
+        "the energy range must satisfy u-min <= u-max, with u-min > 0 for --log (got %g, %g)",
+        u_min, u_max);
   const int with_T = material_has_temperature(&mat);
 
   /* with --plot the table goes to a temporary file as well */

@@ -17,13 +17,13 @@
 /** One key of a material or of an EOS: where it lives in struct material
  *  and what it may be (from the X lists of material.h and eos_*.h). */
 struct material_key {
-  const char *key;          /**< YAML key */
-  size_t offset;            /**< byte offset of the double in struct material */
-  double def;               /**< default; NAN: required or derived */
-  double lo, hi;            /**< allowed range */
-  int lo_open;              /**< 1: lo itself is not allowed */
-  enum material_unit unit;  /**< unit kind */
-  const char *doc;          /**< one-line meaning */
+  const char *key;         /**< YAML key */
+  size_t offset;           /**< byte offset of the double in struct material */
+  double def;              /**< default; NAN: required or derived */
+  double lo, hi;           /**< allowed range */
+  int lo_open;             /**< 1: lo itself is not allowed */
+  enum material_unit unit; /**< unit kind */
+  const char *doc;         /**< one-line meaning */
 };
 
 #define MATERIAL_KEY_OF_MATERIAL(st, field, k, d, l, lopen, h, kind, doc) \
@@ -43,7 +43,8 @@ static const struct material_key *const eos_keys[EOS_COUNT] = {
 #define MATERIAL_EOS_KEYS_PTR(name, NAME, doc) eos_keys_##name,
     MATERIAL_EOS_TYPES(MATERIAL_EOS_KEYS_PTR)};
 static const int eos_nkeys[EOS_COUNT] = {
-#define MATERIAL_EOS_KEYS_N(name, NAME, doc) (int)(sizeof eos_keys_##name / sizeof(struct material_key)),
+#define MATERIAL_EOS_KEYS_N(name, NAME, doc) \
+  (int)(sizeof eos_keys_##name / sizeof(struct material_key)),
     MATERIAL_EOS_TYPES(MATERIAL_EOS_KEYS_N)};
 
 static const char *const eos_names[EOS_COUNT] = {
@@ -159,8 +160,8 @@ static int material_check_keys(const struct material *mat, const struct material
     const double v = material_value(mat, &keys[i]);
     if (isnan(v)) {
       if (!isnan(keys[i].def) || keys == eos_keys[mat->eos_type]) {
-        snprintf(msg, len, "material '%s': key '%s' is required for EOS %s", mat->name,
-                 keys[i].key, material_eos_name(mat->eos_type));
+        snprintf(msg, len, "material '%s': key '%s' is required for EOS %s", mat->name, keys[i].key,
+                 material_eos_name(mat->eos_type));
         return -1;
       }
       continue; /* derived material-level key, not yet filled */
@@ -298,8 +299,7 @@ void material_table_init(struct material_table *t) {
 }
 
 struct material *material_table_add(struct material_table *t, const struct material *mat) {
-  if (material_table_find(t, mat->id))
-    error_exit("material id %d is defined twice", (int)mat->id);
+  if (material_table_find(t, mat->id)) error_exit("material id %d is defined twice", (int)mat->id);
   if (t->n >= MATERIAL_MAX)
     error_exit("too many materials (at most %d; raise MATERIAL_MAX in src/materials/material.h)",
                MATERIAL_MAX);
@@ -404,7 +404,7 @@ static int material_table_numbers(const char *s, double *v, int maxn) {
 /** Check that x[0], x[stride], ... (n values) are log-spaced; returns the
  *  ln of the first and the spacing. */
 static void material_table_axis(const char *file, const char *what, const double *x, int n,
-                                 size_t stride, double *ln0, double *dln) {
+                                size_t stride, double *ln0, double *dln) {
   for (int i = 0; i < n; i++)
     if (!(x[i * stride] > 0.0))
       error_exit("%s: %s node %d is %g: table axes must be positive (log-spaced)", file, what, i,
@@ -445,8 +445,8 @@ void material_eos_table_load(struct eos_table *tab, const char *filename, int fo
   int lineno = 0;
   double v[8];
   if (!material_table_line(f, line, sizeof line, &lineno) ||
-      material_table_numbers(line, v, 2) != 2 || v[0] < 2 || v[1] < 2 || v[0] > 1e5 ||
-      v[1] > 1e5 || v[0] != floor(v[0]) || v[1] != floor(v[1]))
+      material_table_numbers(line, v, 2) != 2 || v[0] < 2 || v[1] < 2 || v[0] > 1e5 || v[1] > 1e5 ||
+      v[0] != floor(v[0]) || v[1] != floor(v[1]))
     error_exit("%s:%d: the first line must be 'N_RHO N_U' (two integers >= 2)", filename, lineno);
   const int nr = (int)v[0], nu = (int)v[1];
   const size_t nn = (size_t)nr * (size_t)nu;
@@ -492,8 +492,8 @@ void material_eos_table_load(struct eos_table *tab, const char *filename, int fo
   if (format == 0) {
     for (int i = 0; i < nr; i++)
       if (memcmp(x + i * nu, x, nu * sizeof(double)) != 0)
-        error_exit("%s: the energy nodes of density block %d differ from the first block",
-                   filename, i + 1);
+        error_exit("%s: the energy nodes of density block %d differ from the first block", filename,
+                   i + 1);
     material_table_axis(filename, "energy", x, nu, 1, &tab->ln_u_min, &tab->dln_u);
   } else {
     /* (rho, T) -> (rho, u): per density row, u(T) must increase; the u grid

@@ -35,15 +35,15 @@ struct unit_system;
 
 /** Kinds of unit of a parameter: the SI unit and the dimension M^a L^b T^c
  *  used to convert it to internal units (temperatures stay in K). */
-#define MATERIAL_UNITS(X)                               \
-  X(NONE, "-", 0, 0, 0)                                 \
-  X(DENSITY, "kg m^-3", 1, -3, 0)                       \
-  X(PRESSURE, "Pa", 1, -1, -2)                          \
-  X(ENERGY, "J kg^-1", 0, 2, -2)                        \
-  X(SPEED, "m s^-1", 0, 1, -1)                          \
-  X(HEAT_CAPACITY, "J kg^-1 K^-1", 0, 2, -2)            \
-  X(PER_VOLUME, "m^-3", 0, -3, 0)                       \
-  X(RATE, "s^-1", 0, 0, -1)                             \
+#define MATERIAL_UNITS(X)                    \
+  X(NONE, "-", 0, 0, 0)                      \
+  X(DENSITY, "kg m^-3", 1, -3, 0)            \
+  X(PRESSURE, "Pa", 1, -1, -2)               \
+  X(ENERGY, "J kg^-1", 0, 2, -2)             \
+  X(SPEED, "m s^-1", 0, 1, -1)               \
+  X(HEAT_CAPACITY, "J kg^-1 K^-1", 0, 2, -2) \
+  X(PER_VOLUME, "m^-3", 0, -3, 0)            \
+  X(RATE, "s^-1", 0, 0, -1)                  \
   X(TEMPERATURE, "K", 0, 0, 0)
 
 /** Unit kinds (MATERIAL_UNIT_DENSITY, ...). */
@@ -83,13 +83,13 @@ union material_eos_params {
 
 /** Strength models (the models themselves come in a later step):
  *  X(name, NAME, "doc"). */
-#define MATERIAL_STRENGTH_TYPES(X)                                                          \
-  X(none, NONE, "fluid: no deviatoric stress")                                              \
-  X(elastic, ELASTIC, "Hooke's law, no yielding")                                           \
+#define MATERIAL_STRENGTH_TYPES(X)                                                            \
+  X(none, NONE, "fluid: no deviatoric stress")                                                \
+  X(elastic, ELASTIC, "Hooke's law, no yielding")                                             \
   X(von_mises, VON_MISES, "von Mises yield stress Y0, reduced to 0 at melt (Benz & Asphaug)") \
-  X(drucker_prager, DRUCKER_PRAGER, "Drucker-Prager: Y = cohesion + friction P, up to Y_M") \
-  X(mohr_coulomb, MOHR_COULOMB, "Mohr-Coulomb: Y = cohesion + friction P")                  \
-  X(collins, COLLINS, "Collins et al. 2004: intact Lundborg + damaged Drucker-Prager")      \
+  X(drucker_prager, DRUCKER_PRAGER, "Drucker-Prager: Y = cohesion + friction P, up to Y_M")   \
+  X(mohr_coulomb, MOHR_COULOMB, "Mohr-Coulomb: Y = cohesion + friction P")                    \
+  X(collins, COLLINS, "Collins et al. 2004: intact Lundborg + damaged Drucker-Prager")        \
   X(johnson_cook, JOHNSON_COOK, "Johnson & Cook 1983: (A + B eps^n)(1 + C ln eps')(1 - T*^m)")
 
 /** Strength model types. */
@@ -151,15 +151,15 @@ enum material_strength_type {
 
 /** One material. */
 struct material {
-  int32_t id;                              /**< material id (MaterialIDs), >= 0 */
-  int32_t swift_id;                        /**< SWIFT planetary id it stands for, -1: none */
-  char name[MATERIAL_NAME_LEN];            /**< name ("basalt") */
-  char reference[MATERIAL_REFERENCE_LEN];  /**< where the parameters come from */
-  enum material_eos_type eos_type;         /**< which member of eos is used */
-  union material_eos_params eos;           /**< the EOS parameters */
-  enum material_strength_type strength;    /**< strength model */
-  double rho0;                             /**< reference density (copied from the EOS) */
-  MATERIAL_PARAMS(EOS_PARAM_FIELD)         /**< the keys of MATERIAL_PARAMS, see there */
+  int32_t id;                             /**< material id (MaterialIDs), >= 0 */
+  int32_t swift_id;                       /**< SWIFT planetary id it stands for, -1: none */
+  char name[MATERIAL_NAME_LEN];           /**< name ("basalt") */
+  char reference[MATERIAL_REFERENCE_LEN]; /**< where the parameters come from */
+  enum material_eos_type eos_type;        /**< which member of eos is used */
+  union material_eos_params eos;          /**< the EOS parameters */
+  enum material_strength_type strength;   /**< strength model */
+  double rho0;                            /**< reference density (copied from the EOS) */
+  MATERIAL_PARAMS(EOS_PARAM_FIELD)        /**< the keys of MATERIAL_PARAMS, see there */
 };
 
 /** The materials of a run. */
@@ -190,8 +190,8 @@ BOLIDE_INLINE void material_eos(const struct material *mat, double rho, double u
   if (rho < mat->density_floor) rho = mat->density_floor;
   if (rho > 0.0) {
     switch (mat->eos_type) {
-#define MATERIAL_EOS_CASE(name, NAME, doc) \
-  case EOS_##NAME:                         \
+#define MATERIAL_EOS_CASE(name, NAME, doc)              \
+  case EOS_##NAME:                                      \
     eos_##name##_eval(&mat->eos.name, rho, u, &p, &c2); \
     break;
       MATERIAL_EOS_TYPES(MATERIAL_EOS_CASE)
@@ -232,8 +232,7 @@ int material_strength_from_name(const char *name);
 
 /** Start a material: id, name, EOS type, every key at its default (NAN where
  *  the key is required). */
-void material_init(struct material *mat, int32_t id, const char *name,
-                   enum material_eos_type type);
+void material_init(struct material *mat, int32_t id, const char *name, enum material_eos_type type);
 
 /** Set a key ("A", "shear_modulus") of the material or of its EOS.  Returns 0,
  *  or -1 with a message "material 'NAME': key 'K' ..." in msg when the key
@@ -274,8 +273,7 @@ void material_table_from_params(struct material_table *t, const struct params *p
 
 /** Read one named material of a library file (examples/materials.yml) into
  *  mat, with the given id (bolide-eos, tests). */
-void material_from_library(struct material *mat, const char *library, const char *name,
-                           int32_t id);
+void material_from_library(struct material *mat, const char *library, const char *name, int32_t id);
 
 /** The default library: $BOLIDE_MATERIALS if set, else the installed
  *  materials.yml, else the source tree's examples/materials.yml. */

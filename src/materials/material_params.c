@@ -26,9 +26,9 @@
 /** Libraries read while building one table (read each file once). */
 #define MATERIAL_MAX_LIBRARIES 8
 struct material_libraries {
-  int n;                                        /**< libraries read */
-  char path[MATERIAL_MAX_LIBRARIES][PATH_MAX];  /**< their paths */
-  struct params *lib[MATERIAL_MAX_LIBRARIES];   /**< their trees */
+  int n;                                       /**< libraries read */
+  char path[MATERIAL_MAX_LIBRARIES][PATH_MAX]; /**< their paths */
+  struct params *lib[MATERIAL_MAX_LIBRARIES];  /**< their trees */
 };
 
 /** Extra state of one material while its keys are applied. */
@@ -69,7 +69,8 @@ static const struct param_node *material_library_root(struct params *lib) {
 static const char *material_text(const struct params *owner, const struct param_node *n,
                                  const struct material *mat, const char *key) {
   const char *s = param_node_text(n);
-  if (!s) param_node_error(owner, n, "material '%s': key '%s' must be a single value", mat->name, key);
+  if (!s)
+    param_node_error(owner, n, "material '%s': key '%s' must be a single value", mat->name, key);
   return s;
 }
 
@@ -84,7 +85,8 @@ static int material_node_eos(const struct params *owner, const struct param_node
     char known[256] = "";
     for (int k = 0; k < EOS_COUNT; k++) {
       strncat(known, k ? "|" : "", sizeof known - strlen(known) - 1);
-      strncat(known, material_eos_name((enum material_eos_type)k), sizeof known - strlen(known) - 1);
+      strncat(known, material_eos_name((enum material_eos_type)k),
+              sizeof known - strlen(known) - 1);
     }
     param_node_error(owner, e, "material '%s': key 'eos' must be one of %s (got '%s')", name, known,
                      s ? s : "?");
@@ -152,8 +154,7 @@ static void material_complete(struct material *mat, struct material_extra *x,
   char msg[512];
   if (mat->eos_type == EOS_TABLE) {
     if (!x->table_file[0])
-      param_node_error(owner, at, "material '%s': key 'file' is required for EOS table",
-                       mat->name);
+      param_node_error(owner, at, "material '%s': key 'file' is required for EOS table", mat->name);
     material_eos_table_load(&mat->eos.table, x->table_file, x->table_format);
   }
   if (material_finalize(mat, msg, sizeof msg)) param_node_error(owner, at, "%s", msg);
@@ -171,8 +172,7 @@ static void material_from_node(struct material *mat, struct material_libraries *
     const char *lt = param_node_text(ln);
     if (!lt) param_node_error(p, ln, "material %ld: key 'library' must be a file name", id);
     material_resolve(params_filename(p), lt, libpath, sizeof libpath);
-  }
-  else
+  } else
     snprintf(libpath, sizeof libpath, "%s", material_default_library());
   const struct param_node *nn = param_node_get(m, "name");
   const char *name = nn ? param_node_text(nn) : NULL;
@@ -242,13 +242,14 @@ void material_table_from_params(struct material_table *t, const struct params *p
     if (end == key || *end || id < 0 || id > INT32_MAX)
       param_node_error(p, m, "Materials: '%s' is not a material id (an integer >= 0)", key);
     if (param_node_kind(m) != 1)
-      param_node_error(p, m, "material %ld must be a mapping (name: ..., or eos: ... and parameters)",
-                       id);
+      param_node_error(
+          p, m, "material %ld must be a mapping (name: ..., or eos: ... and parameters)", id);
     struct material mat;
     material_from_node(&mat, &libs, p, m, id);
     if (material_table_find(t, mat.id))
       param_node_error(p, m, "material id %ld is defined twice", id);
-    if (t->n >= MATERIAL_MAX) param_node_error(p, m, "too many materials (at most %d)", MATERIAL_MAX);
+    if (t->n >= MATERIAL_MAX)
+      param_node_error(p, m, "too many materials (at most %d)", MATERIAL_MAX);
     material_table_add(t, &mat);
   }
   for (int i = 0; i < libs.n; i++) params_free(libs.lib[i]);
