@@ -96,6 +96,7 @@ WRAP(liquid)
 WRAP(murnaghan)
 WRAP(tillotson)
 WRAP(mie_gruneisen)
+WRAP(table)
 
 static double pressure(eos_fn f, const void *p, double rho, double u) {
   double P, c2;
@@ -310,6 +311,25 @@ static void test_other_eos(void) {
   check_c2("Mie-Grueneisen (compression)", w_mie_gruneisen, &mg, 3500.0, 1e6);
   check_c2("Mie-Grueneisen (strong compression)", w_mie_gruneisen, &mg, 5000.0, 3e7);
   check_c2("Mie-Grueneisen (tension)", w_mie_gruneisen, &mg, 2500.0, 1e5);
+  /* Tillotson water with SWIFT's low-density ramp of P_c (eta 0.875..0.925):
+   * the derivative of the ramp factor is part of c^2 */
+  {
+    struct eos_tillotson w = granite();
+    w.rho0 = 998.0;
+    w.a = 0.7;
+    w.b = 0.15;
+    w.A = 2.18e9;
+    w.B = 1.325e10;
+    w.E0 = 7.0e6;
+    w.Eiv = 4.19e5;
+    w.Ecv = 2.69e6;
+    w.alpha = 10.0;
+    w.beta = 5.0;
+    w.eta_min = 0.925;
+    w.eta_zero = 0.875;
+    check_c2("Tillotson water (low-density ramp)", w_tillotson, &w, 0.92 * w.rho0, 4e5);
+    check_c2("Tillotson water (hybrid, ramped P_c)", w_tillotson, &w, 0.9 * w.rho0, 1.5e6);
+  }
 
   /* the Mie-Grueneisen Hugoniot: at u = e_H = P_H mu / (2 rho0 (1 + mu)) the
    * pressure is P_H itself; the cubic P_H agrees with the closed form
@@ -428,6 +448,11 @@ static void test_table(void) {
     }
   CHECK(nodes_monotone, "Tillotson granite nodes are monotone in rho and u (compressed region)");
   CHECK(monotone, "the interpolated table is monotone in rho and u");
+  /* round trips through the table (P increases with u at fixed rho) */
+  {
+    const double rr[] = {1.1 * r0, 2.0 * r0, 2.9 * r0}, ur[] = {3e4, 1e6, 5e7};
+    round_trip_u("table", w_table, &t, rr, ur, 3, u1);
+  }
   /* exact at the nodes */
   CHECK(eos_table_pressure(&t, exp(t.ln_rho_min + 5 * t.dln_rho), exp(t.ln_u_min + 7 * t.dln_u)) ==
                 t.P[5 * nu + 7] ||
