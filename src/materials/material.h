@@ -143,7 +143,7 @@ enum material_strength_type {
 /* clang-format on */
 
 #define MATERIAL_NAME_LEN 48
-#define MATERIAL_REFERENCE_LEN 160
+#define MATERIAL_REFERENCE_LEN 256
 /** Largest number of materials in one run. */
 #define MATERIAL_MAX 32
 /** Ids below this are found by a direct lookup; larger ids by a search. */
