@@ -1,0 +1,597 @@
+/* Materials: keys, checks, the material table, unit conversion and the
+ * loader of tabulated EOS.  See material.h. */
+#include "material.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "error.h"
+#include "units.h"
+
+/* ------------------------------------------------------------ key tables */
+
+/** One key of a material or of an EOS: where it lives in struct material
+ *  and what it may be (from the X lists of material.h and eos_*.h). */
+struct material_key {
+  const char *key;         /**< YAML key */
+  size_t offset;           /**< byte offset of the double in struct material */
+  double def;              /**< default; NAN: required or derived */
+  double lo, hi;           /**< allowed range */
+  int lo_open;             /**< 1: lo itself is not allowed */
+  enum material_unit unit; /**< unit kind */
+  const char *doc;         /**< one-line meaning */
+};
+
+#define MATERIAL_KEY_OF_MATERIAL(st, field, k, d, l, lopen, h, kind, doc) \
+  {k, offsetof(struct material, field), d, l, h, lopen, kind, doc},
+#define MATERIAL_KEY_OF_EOS(st, field, k, d, l, lopen, h, kind, doc) \
+  {k, offsetof(struct material, eos) + offsetof(struct st, field), d, l, h, lopen, kind, doc},
+
+static const struct material_key material_keys[] = {MATERIAL_PARAMS(MATERIAL_KEY_OF_MATERIAL)};
+#define MATERIAL_NKEYS ((int)(sizeof material_keys / sizeof material_keys[0]))
+
+/* one key array per EOS type */
+#define MATERIAL_EOS_KEY_ARRAY(name, NAME, doc) \
+  static const struct material_key eos_keys_##name[] = {EOS_##NAME##_PARAMS(MATERIAL_KEY_OF_EOS)};
+MATERIAL_EOS_TYPES(MATERIAL_EOS_KEY_ARRAY)
+
+static const struct material_key *const eos_keys[EOS_COUNT] = {
+#define MATERIAL_EOS_KEYS_PTR(name, NAME, doc) eos_keys_##name,
+    MATERIAL_EOS_TYPES(MATERIAL_EOS_KEYS_PTR)};
+static const int eos_nkeys[EOS_COUNT] = {
+#define MATERIAL_EOS_KEYS_N(name, NAME, doc) \
+  (int)(sizeof eos_keys_##name / sizeof(struct material_key)),
+    MATERIAL_EOS_TYPES(MATERIAL_EOS_KEYS_N)};
+
+static const char *const eos_names[EOS_COUNT] = {
+#define MATERIAL_EOS_NAME(name, NAME, doc) #name,
+    MATERIAL_EOS_TYPES(MATERIAL_EOS_NAME)};
+static const char *const eos_docs[EOS_COUNT] = {
+#define MATERIAL_EOS_DOC(name, NAME, doc) doc,
+    MATERIAL_EOS_TYPES(MATERIAL_EOS_DOC)};
+static const char *const strength_names[STRENGTH_COUNT] = {
+#define MATERIAL_STRENGTH_NAME(name, NAME, doc) #name,
+    MATERIAL_STRENGTH_TYPES(MATERIAL_STRENGTH_NAME)};
+
+/** SI unit text and dimension of each unit kind. */
+static const struct {
+  const char *si;
+  int a, b, c;
+} material_units[] = {
+#define MATERIAL_UNIT_ROW(name, si, a, b, c) {si, a, b, c},
+    MATERIAL_UNITS(MATERIAL_UNIT_ROW)};
+
+const char *material_eos_name(enum material_eos_type type) {
+  return (int)type >= 0 && type < EOS_COUNT ? eos_names[type] : "unknown";
+}
+
+int material_eos_from_name(const char *name) {
+  for (int k = 0; k < EOS_COUNT; k++)
+    if (strcmp(name, eos_names[k]) == 0) return k;
+  return -1;
+}
+
+const char *material_strength_name(enum material_strength_type type) {
+  return (int)type >= 0 && type < STRENGTH_COUNT ? strength_names[type] : "unknown";
+}
+
+int material_strength_from_name(const char *name) {
+  for (int k = 0; k < STRENGTH_COUNT; k++)
+    if (strcmp(name, strength_names[k]) == 0) return k;
+  return -1;
+}
+
+/** The double a key describes. */
+static double *material_field(struct material *mat, const struct material_key *k) {
+  return (double *)((char *)mat + k->offset);
+}
+static double material_value(const struct material *mat, const struct material_key *k) {
+  return *(const double *)((const char *)mat + k->offset);
+}
+
+/** The key of that name of the material's EOS or of the material, or NULL. */
+static const struct material_key *material_find_key(const struct material *mat, const char *key) {
+  const int t = (int)mat->eos_type;
+  for (int i = 0; i < eos_nkeys[t]; i++)
+    if (strcmp(eos_keys[t][i].key, key) == 0) return &eos_keys[t][i];
+  for (int i = 0; i < MATERIAL_NKEYS; i++)
+    if (strcmp(material_keys[i].key, key) == 0) return &material_keys[i];
+  return NULL;
+}
+
+/** Range check of one value: NULL, or what is wrong ("must be positive"). */
+static const char *material_range(const struct material_key *k, double v, char *buf, size_t len) {
+  if (isnan(v)) return "must be a number";
+  if (isinf(v) && !(v == k->def)) return "must be finite";
+  if (k->lo_open ? !(v > k->lo) : !(v >= k->lo)) {
+    if (k->lo == 0.0) return k->lo_open ? "must be positive" : "must not be negative";
+    if (k->lo == 1.0 && k->lo_open) return "must be larger than 1";
+    snprintf(buf, len, "must be %s %g", k->lo_open ? ">" : ">=", k->lo);
+    return buf;
+  }
+  if (v > k->hi) {
+    snprintf(buf, len, "must be at most %g", k->hi);
+    return buf;
+  }
+  return NULL;
+}
+
+void material_init(struct material *mat, int32_t id, const char *name,
+                   enum material_eos_type type) {
+  memset(mat, 0, sizeof *mat);
+  mat->id = id;
+  mat->swift_id = -1;
+  snprintf(mat->name, sizeof mat->name, "%s", name ? name : "");
+  mat->eos_type = type;
+  mat->strength = STRENGTH_NONE;
+  for (int i = 0; i < MATERIAL_NKEYS; i++)
+    *material_field(mat, &material_keys[i]) = material_keys[i].def;
+  for (int i = 0; i < eos_nkeys[type]; i++)
+    *material_field(mat, &eos_keys[type][i]) = eos_keys[type][i].def;
+}
+
+int material_set(struct material *mat, const char *key, double value, char *msg, size_t len) {
+  const struct material_key *k = material_find_key(mat, key);
+  if (!k) {
+    snprintf(msg, len, "material '%s': unknown key '%s' for EOS %s", mat->name, key,
+             material_eos_name(mat->eos_type));
+    return -1;
+  }
+  char buf[64];
+  const char *bad = material_range(k, value, buf, sizeof buf);
+  if (bad) {
+    snprintf(msg, len, "material '%s': key '%s' %s (got %g)", mat->name, key, bad, value);
+    return -1;
+  }
+  *material_field(mat, k) = value;
+  return 0;
+}
+
+/** Per-key checks of one list: required keys given, values in range.
+ *  Keys whose NAN default means "derived" are skipped while still NAN. */
+static int material_check_keys(const struct material *mat, const struct material_key *keys, int n,
+                               char *msg, size_t len) {
+  char buf[64];
+  for (int i = 0; i < n; i++) {
+    const double v = material_value(mat, &keys[i]);
+    if (isnan(v)) {
+      if (!isnan(keys[i].def) || keys == eos_keys[mat->eos_type]) {
+        snprintf(msg, len, "material '%s': key '%s' is required for EOS %s", mat->name, keys[i].key,
+                 material_eos_name(mat->eos_type));
+        return -1;
+      }
+      continue; /* derived material-level key, not yet filled */
+    }
+    const char *bad = material_range(&keys[i], v, buf, sizeof buf);
+    if (bad) {
+      snprintf(msg, len, "material '%s': key '%s' %s (got %g)", mat->name, keys[i].key, bad, v);
+      return -1;
+    }
+  }
+  return 0;
+}
+
+/** The EOS's own cross-checks (one switch, generated from the list). */
+static const char *material_eos_check(const struct material *mat, const char **key) {
+  switch (mat->eos_type) {
+#define MATERIAL_EOS_CHECK(name, NAME, doc) \
+  case EOS_##NAME:                          \
+    return eos_##name##_check(&mat->eos.name, key);
+    MATERIAL_EOS_TYPES(MATERIAL_EOS_CHECK)
+#undef MATERIAL_EOS_CHECK
+    default:
+      *key = "eos";
+      return "is not a known EOS";
+  }
+}
+
+/** Strength-model requirements (the models come later; their parameters
+ *  are checked now so that a library entry cannot be incomplete). */
+static const char *material_strength_check(const struct material *mat, const char **key) {
+  const enum material_strength_type s = mat->strength;
+  if (s != STRENGTH_NONE && !(mat->shear_modulus > 0.0)) {
+    *key = "shear_modulus";
+    return "must be positive for a material with strength";
+  }
+  if ((s == STRENGTH_VON_MISES || s == STRENGTH_DRUCKER_PRAGER || s == STRENGTH_MOHR_COULOMB ||
+       s == STRENGTH_COLLINS) &&
+      !(mat->yield_stress > 0.0)) {
+    *key = "yield_stress";
+    return "must be positive for this strength model";
+  }
+  if ((s == STRENGTH_DRUCKER_PRAGER || s == STRENGTH_COLLINS) &&
+      !(mat->yield_stress_max >= mat->yield_stress)) {
+    *key = "yield_stress_max";
+    return "must be at least yield_stress for this strength model";
+  }
+  if (s == STRENGTH_JOHNSON_COOK) {
+    if (!(mat->jc_A > 0.0)) {
+      *key = "jc_A";
+      return "must be positive for the Johnson-Cook model";
+    }
+    if (!(mat->T_melt > mat->T_ref)) {
+      *key = "T_melt";
+      return "must be larger than T_ref for the Johnson-Cook model";
+    }
+  }
+  if ((mat->weibull_k > 0.0) != (mat->weibull_m > 0.0)) {
+    *key = mat->weibull_k > 0.0 ? "weibull_m" : "weibull_k";
+    return "must be given together with the other Weibull parameter";
+  }
+  return NULL;
+}
+
+int material_check(const struct material *mat, char *msg, size_t len) {
+  if ((int)mat->eos_type < 0 || mat->eos_type >= EOS_COUNT) {
+    snprintf(msg, len, "material '%s': key 'eos' is not a known EOS", mat->name);
+    return -1;
+  }
+  if (mat->id < 0) {
+    snprintf(msg, len, "material '%s': id %d must not be negative", mat->name, (int)mat->id);
+    return -1;
+  }
+  const int t = (int)mat->eos_type;
+  if (material_check_keys(mat, eos_keys[t], eos_nkeys[t], msg, len)) return -1;
+  if (material_check_keys(mat, material_keys, MATERIAL_NKEYS, msg, len)) return -1;
+  const char *key = NULL, *bad = material_eos_check(mat, &key);
+  if (!bad) bad = material_strength_check(mat, &key);
+  if (bad) {
+    snprintf(msg, len, "material '%s': key '%s' %s", mat->name, key, bad);
+    return -1;
+  }
+  return 0;
+}
+
+/** Reference density of the EOS (every EOS struct has rho0). */
+static double material_eos_rho0(const struct material *mat) {
+  switch (mat->eos_type) {
+#define MATERIAL_EOS_RHO0(name, NAME, doc) \
+  case EOS_##NAME:                         \
+    return mat->eos.name.rho0;
+    MATERIAL_EOS_TYPES(MATERIAL_EOS_RHO0)
+#undef MATERIAL_EOS_RHO0
+    default:
+      return 0.0;
+  }
+}
+
+int material_has_temperature(const struct material *mat) {
+  switch (mat->eos_type) {
+#define MATERIAL_EOS_HAS_T(name, NAME, doc) \
+  case EOS_##NAME:                          \
+    return eos_##name##_has_temperature(&mat->eos.name);
+    MATERIAL_EOS_TYPES(MATERIAL_EOS_HAS_T)
+#undef MATERIAL_EOS_HAS_T
+    default:
+      return 0;
+  }
+}
+
+int material_finalize(struct material *mat, char *msg, size_t len) {
+  if (material_check(mat, msg, len)) return -1;
+  mat->rho0 = material_eos_rho0(mat);
+  if (isnan(mat->cs_min)) {
+    /* Tillotson: c^2 falls to zero and below in tension and in the expanded
+     * states; a floor of 10% of the bulk sound speed sqrt(A/rho0) keeps the
+     * time step and the artificial viscosity finite (SWIFT floors c^2 at
+     * A/rho0 itself, which is more conservative).  Other EOS: no floor. */
+    mat->cs_min = mat->eos_type == EOS_TILLOTSON
+                      ? 0.1 * sqrt(mat->eos.tillotson.A / mat->eos.tillotson.rho0)
+                      : 0.0;
+  }
+  if (isnan(mat->bulk_modulus)) {
+    double P = 0.0, cs = 0.0;
+    if (mat->rho0 > 0.0) material_eos(mat, mat->rho0, 0.0, &P, &cs);
+    mat->bulk_modulus = mat->rho0 * cs * cs;
+  }
+  return material_check(mat, msg, len);
+}
+
+/* ------------------------------------------------------------ the table */
+
+void material_table_init(struct material_table *t) {
+  memset(t, 0, sizeof *t);
+  for (int i = 0; i < MATERIAL_ID_DIRECT; i++) t->index_of_id[i] = -1;
+}
+
+struct material *material_table_add(struct material_table *t, const struct material *mat) {
+  if (material_table_find(t, mat->id)) error_exit("material id %d is defined twice", (int)mat->id);
+  if (t->n >= MATERIAL_MAX)
+    error_exit("too many materials (at most %d; raise MATERIAL_MAX in src/materials/material.h)",
+               MATERIAL_MAX);
+  t->mats[t->n] = *mat;
+  if (mat->id >= 0 && mat->id < MATERIAL_ID_DIRECT) t->index_of_id[mat->id] = (int16_t)t->n;
+  return &t->mats[t->n++];
+}
+
+void material_table_free(struct material_table *t) {
+  for (int k = 0; k < t->n; k++) {
+    struct material *m = &t->mats[k];
+    if (m->eos_type != EOS_TABLE) continue;
+    free((void *)m->eos.table.P);
+    free((void *)m->eos.table.c2);
+    free((void *)m->eos.table.T);
+    m->eos.table.P = m->eos.table.c2 = m->eos.table.T = NULL;
+  }
+  t->n = 0;
+}
+
+void material_table_log(const struct material_table *t) {
+  for (int k = 0; k < t->n; k++) {
+    const struct material *m = &t->mats[k];
+    error_log(0, "material %d '%s': EOS %s, rho0 %g, strength %s%s%s", (int)m->id, m->name,
+              material_eos_name(m->eos_type), m->rho0, material_strength_name(m->strength),
+              m->reference[0] ? "; " : "", m->reference);
+  }
+}
+
+/* ------------------------------------------------------------ units */
+
+/** Factor from SI to the internal system for dimension M^a L^b T^c (written
+ *  here from the unit_system members so as not to depend on units.c). */
+static double material_si_to_internal(const struct unit_system *us, int a, int b, int c) {
+  return pow(1000.0 / us->mass_cgs, a) * pow(100.0 / us->length_cgs, b) *
+         pow(1.0 / us->time_cgs, c);
+}
+
+/** Convert the keys of one list of one material. */
+static void material_convert_keys(struct material *mat, const struct material_key *keys, int n,
+                                  const struct unit_system *us) {
+  for (int i = 0; i < n; i++) {
+    const int u = (int)keys[i].unit;
+    const double f =
+        material_si_to_internal(us, material_units[u].a, material_units[u].b, material_units[u].c);
+    *material_field(mat, &keys[i]) *= f;
+  }
+}
+
+void material_table_convert_units(struct material_table *t, const struct unit_system *us) {
+  const double f_rho = material_si_to_internal(us, 1, -3, 0);
+  const double f_u = material_si_to_internal(us, 0, 2, -2);
+  const double f_P = material_si_to_internal(us, 1, -1, -2);
+  for (int k = 0; k < t->n; k++) {
+    struct material *m = &t->mats[k];
+    const int e = (int)m->eos_type;
+    material_convert_keys(m, eos_keys[e], eos_nkeys[e], us);
+    material_convert_keys(m, material_keys, MATERIAL_NKEYS, us);
+    m->rho0 *= f_rho;
+    if (m->eos_type == EOS_TABLE) {
+      struct eos_table *tab = &m->eos.table;
+      const size_t nn = (size_t)tab->n_rho * (size_t)tab->n_u;
+      double *P = (double *)tab->P, *c2 = (double *)tab->c2;
+      for (size_t i = 0; i < nn; i++) {
+        P[i] *= f_P;
+        c2[i] *= f_u; /* velocity^2 has the dimension of specific energy */
+      }
+      tab->ln_rho_min += log(f_rho);
+      tab->ln_u_min += log(f_u);
+    }
+  }
+}
+
+/* ------------------------------------------------------------ EOS tables */
+
+/** Next non-comment, non-blank line of f into buf; 0 at end of file. */
+static int material_table_line(FILE *f, char *buf, int len, int *lineno) {
+  while (fgets(buf, len, f)) {
+    (*lineno)++;
+    char *s = buf;
+    while (*s == ' ' || *s == '\t') s++;
+    if (*s == '#' || *s == '\n' || *s == '\r' || *s == 0) continue;
+    return 1;
+  }
+  return 0;
+}
+
+/** Parse up to maxn numbers of a line; returns the count. */
+static int material_table_numbers(const char *s, double *v, int maxn) {
+  int n = 0;
+  char *end;
+  while (n < maxn) {
+    const double x = strtod(s, &end);
+    if (end == s) break;
+    v[n++] = x;
+    s = end;
+  }
+  while (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\n') s++;
+  return *s ? -1 : n;
+}
+
+/** Check that x[0], x[stride], ... (n values) are log-spaced; returns the
+ *  ln of the first and the spacing. */
+static void material_table_axis(const char *file, const char *what, const double *x, int n,
+                                size_t stride, double *ln0, double *dln) {
+  for (int i = 0; i < n; i++)
+    if (!(x[i * stride] > 0.0))
+      error_exit("%s: %s node %d is %g: table axes must be positive (log-spaced)", file, what, i,
+                 x[i * stride]);
+  *ln0 = log(x[0]);
+  *dln = (log(x[(n - 1) * stride]) - *ln0) / (n - 1);
+  if (!(*dln > 0.0)) error_exit("%s: %s nodes must increase", file, what);
+  for (int i = 0; i < n; i++) {
+    const double expect = *ln0 + i * *dln;
+    if (fabs(log(x[i * stride]) - expect) > 1e-6 * fmax(1.0, fabs(*dln)))
+      error_exit("%s: %s node %d (%g) is not on the log-spaced grid (expected %g)", file, what, i,
+                 x[i * stride], exp(expect));
+  }
+}
+
+/** c^2 = dP/drho + P/rho^2 dP/du at the nodes by centred (one-sided at the
+ *  edges) differences in ln rho and ln u. */
+static void material_table_sound_speed(struct eos_table *tab, double *c2) {
+  const int nr = tab->n_rho, nu = tab->n_u;
+  for (int i = 0; i < nr; i++) {
+    const int i0 = i > 0 ? i - 1 : 0, i1 = i < nr - 1 ? i + 1 : nr - 1;
+    const double rho = exp(tab->ln_rho_min + i * tab->dln_rho);
+    for (int j = 0; j < nu; j++) {
+      const int j0 = j > 0 ? j - 1 : 0, j1 = j < nu - 1 ? j + 1 : nu - 1;
+      const double u = exp(tab->ln_u_min + j * tab->dln_u);
+      const double P = tab->P[i * nu + j];
+      const double dPdlr = (tab->P[i1 * nu + j] - tab->P[i0 * nu + j]) / ((i1 - i0) * tab->dln_rho);
+      const double dPdlu = (tab->P[i * nu + j1] - tab->P[i * nu + j0]) / ((j1 - j0) * tab->dln_u);
+      c2[i * nu + j] = dPdlr / rho + P / (rho * rho) * dPdlu / u;
+    }
+  }
+}
+
+void material_eos_table_load(struct eos_table *tab, const char *filename, int format) {
+  FILE *f = fopen(filename, "r");
+  if (!f) error_exit("%s: cannot open the EOS table: %s", filename, strerror(errno));
+  char line[1024];
+  int lineno = 0;
+  double v[8];
+  if (!material_table_line(f, line, sizeof line, &lineno) ||
+      material_table_numbers(line, v, 2) != 2 || v[0] < 2 || v[1] < 2 || v[0] > 1e5 || v[1] > 1e5 ||
+      v[0] != floor(v[0]) || v[1] != floor(v[1]))
+    error_exit("%s:%d: the first line must be 'N_RHO N_U' (two integers >= 2)", filename, lineno);
+  const int nr = (int)v[0], nu = (int)v[1];
+  const size_t nn = (size_t)nr * (size_t)nu;
+  /* columns: rho u P [cs] (format 0) or rho T u P [cs] (format 1) */
+  const int ncol = format == 0 ? 3 : 4;
+  double *rho = error_malloc(nn * sizeof(double), "EOS table");
+  double *x = error_malloc(nn * sizeof(double), "EOS table"); /* u or T */
+  double *uu = format == 1 ? error_malloc(nn * sizeof(double), "EOS table") : NULL;
+  double *P = error_malloc(nn * sizeof(double), "EOS table");
+  double *cs = error_malloc(nn * sizeof(double), "EOS table");
+  int has_cs = -1;
+  for (size_t k = 0; k < nn; k++) {
+    if (!material_table_line(f, line, sizeof line, &lineno))
+      error_exit("%s:%d: the table ends after %zu of %zu rows", filename, lineno, k, nn);
+    const int n = material_table_numbers(line, v, 6);
+    if (n != ncol && n != ncol + 1)
+      error_exit("%s:%d: expected %d or %d numbers (%s [cs])", filename, lineno, ncol, ncol + 1,
+                 format == 0 ? "rho u P" : "rho T u P");
+    if (has_cs < 0) has_cs = n == ncol + 1;
+    if (has_cs != (n == ncol + 1))
+      error_exit("%s:%d: every row must have the same number of columns", filename, lineno);
+    rho[k] = v[0];
+    x[k] = v[1];
+    if (format == 1) uu[k] = v[2];
+    P[k] = v[ncol - 1];
+    cs[k] = has_cs ? v[ncol] : 0.0;
+    if (!isfinite(P[k]) || (has_cs && !(cs[k] >= 0.0)))
+      error_exit("%s:%d: pressure must be finite and sound speed >= 0", filename, lineno);
+  }
+  if (material_table_line(f, line, sizeof line, &lineno))
+    error_exit("%s:%d: more rows than N_RHO x N_U = %zu", filename, lineno, nn);
+  fclose(f);
+  /* rows: rho varies slowest; the same rho within a block of n_u rows */
+  for (int i = 0; i < nr; i++)
+    for (int j = 1; j < nu; j++)
+      if (rho[i * nu + j] != rho[i * nu])
+        error_exit("%s: row %d: density %g differs from %g at the start of its block of %d rows",
+                   filename, i * nu + j + 1, rho[i * nu + j], rho[i * nu], nu);
+  tab->n_rho = nr;
+  tab->n_u = nu;
+  material_table_axis(filename, "density", rho, nr, (size_t)nu, &tab->ln_rho_min, &tab->dln_rho);
+  double *T = NULL;
+  if (format == 0) {
+    for (int i = 0; i < nr; i++)
+      if (memcmp(x + i * nu, x, nu * sizeof(double)) != 0)
+        error_exit("%s: the energy nodes of density block %d differ from the first block", filename,
+                   i + 1);
+    material_table_axis(filename, "energy", x, nu, 1, &tab->ln_u_min, &tab->dln_u);
+  } else {
+    /* (rho, T) -> (rho, u): per density row, u(T) must increase; the u grid
+     * is log-spaced over the range every row covers (no extrapolation), and
+     * P, cs and T are linear in ln u between a row's points. */
+    double umin = 0.0, umax = INFINITY;
+    for (int i = 0; i < nr; i++) {
+      for (int j = 1; j < nu; j++)
+        if (!(uu[i * nu + j] > uu[i * nu + j - 1]) || !(x[i * nu + j] > x[i * nu + j - 1]))
+          error_exit("%s: density block %d: T and u must increase along the block", filename,
+                     i + 1);
+      umin = fmax(umin, uu[i * nu]);
+      umax = fmin(umax, uu[i * nu + nu - 1]);
+    }
+    if (!(umin > 0.0) || !(umax > umin))
+      error_exit("%s: the density rows share no positive range of u (%g to %g)", filename, umin,
+                 umax);
+    tab->ln_u_min = log(umin);
+    tab->dln_u = (log(umax) - log(umin)) / (nu - 1);
+    double *P2 = error_malloc(nn * sizeof(double), "EOS table");
+    double *cs2 = error_malloc(nn * sizeof(double), "EOS table");
+    T = error_malloc(nn * sizeof(double), "EOS table");
+    for (int i = 0; i < nr; i++) {
+      int m = 0;
+      for (int j = 0; j < nu; j++) {
+        const double lu = j == nu - 1 ? log(umax) : tab->ln_u_min + j * tab->dln_u;
+        while (m < nu - 2 && log(uu[i * nu + m + 1]) < lu) m++;
+        const double l0 = log(uu[i * nu + m]), l1 = log(uu[i * nu + m + 1]);
+        double w = (lu - l0) / (l1 - l0);
+        w = w < 0.0 ? 0.0 : (w > 1.0 ? 1.0 : w);
+        const size_t a = (size_t)i * nu + m;
+        P2[i * nu + j] = (1 - w) * P[a] + w * P[a + 1];
+        cs2[i * nu + j] = (1 - w) * cs[a] + w * cs[a + 1];
+        T[i * nu + j] = (1 - w) * x[a] + w * x[a + 1];
+      }
+    }
+    free(P);
+    free(cs);
+    P = P2;
+    cs = cs2;
+  }
+  tab->P = P;
+  double *c2 = error_malloc(nn * sizeof(double), "EOS table");
+  if (has_cs)
+    for (size_t k = 0; k < nn; k++) c2[k] = cs[k] * cs[k];
+  else
+    material_table_sound_speed(tab, c2);
+  tab->c2 = c2;
+  tab->T = T;
+  free(cs);
+  free(rho);
+  free(x);
+  free(uu);
+}
+
+/* ------------------------------------------------------------ library */
+
+const char *material_default_library(void) {
+  static char path[PATH_MAX];
+  const char *env = getenv("BOLIDE_MATERIALS");
+  if (env && *env) return env;
+  /* installed: PREFIX/bin/PROGRAM -> PREFIX/share/bolide/materials.yml */
+  char exe[PATH_MAX];
+  const ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 64);
+  if (n > 0) {
+    exe[n] = 0;
+    char *slash = strrchr(exe, '/');
+    if (slash) {
+      strcpy(slash, "/../share/bolide/materials.yml");
+      if (access(exe, R_OK) == 0) {
+        memcpy(path, exe, sizeof path);
+        return path;
+      }
+    }
+  }
+#ifdef BOLIDE_SRCDIR
+  snprintf(path, sizeof path, "%s/examples/materials.yml", BOLIDE_SRCDIR);
+  return path;
+#else
+  return "materials.yml";
+#endif
+}
+
+void material_write_keys(FILE *f) {
+  for (int e = 0; e < EOS_COUNT; e++) {
+    fprintf(f, "# eos: %s -- %s\n", eos_names[e], eos_docs[e]);
+    for (int i = 0; i < eos_nkeys[e]; i++) {
+      const struct material_key *k = &eos_keys[e][i];
+      fprintf(f, "#   %-18s [%s] %s%s\n", k->key, material_units[k->unit].si, k->doc,
+              isnan(k->def) ? " (required)" : "");
+    }
+  }
+  fprintf(f, "# every material:\n");
+  for (int i = 0; i < MATERIAL_NKEYS; i++) {
+    const struct material_key *k = &material_keys[i];
+    fprintf(f, "#   %-18s [%s] %s\n", k->key, material_units[k->unit].si, k->doc);
+  }
+  fprintf(f, "#   strength: ");
+  for (int s = 0; s < STRENGTH_COUNT; s++) fprintf(f, "%s%s", s ? "|" : "", strength_names[s]);
+  fprintf(f, "\n");
+}
