@@ -220,7 +220,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   /* outputs */
   const char *subdir = params_get_string(params, "Snapshots:subdir");
   snprintf(e->outdir, sizeof e->outdir, "%s", subdir);
-  snprintf(e->basename, sizeof e->basename, "%s", params_get_string(params, "Snapshots:basename"));
+  snprintf(e->snap_basename, sizeof e->snap_basename, "%s", params_get_string(params, "Snapshots:basename"));
   e->write_acc = params_get_bool(params, "Snapshots:accelerations");
   e->compression = (int)params_get_int(params, "Snapshots:compression");
   e->stats_dt = params_get_real(params, "Statistics:delta_time");

@@ -72,7 +72,7 @@ struct engine {
   long long nr_removed;           /**< particles that left an open box */
 
   char outdir[1024];              /**< folder of snapshots and statistics */
-  char basename[256];             /**< snapshot prefix */
+  char snap_basename[256];        /**< snapshot prefix */
   double *out_times;              /**< snapshot times */
   int nr_out, next_out;           /**< their count and the next to write */
   int snap_index;                 /**< index of the next snapshot file */

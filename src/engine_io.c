@@ -64,7 +64,7 @@ void engine_stats_maybe(struct engine *e) {
 
 void engine_snapshot(struct engine *e) {
   char path[2048];
-  snprintf(path, sizeof path, "%s/%s_%04d.hdf5", e->outdir, e->basename, e->snap_index);
+  snprintf(path, sizeof path, "%s/%s_%04d.hdf5", e->outdir, e->snap_basename, e->snap_index);
   struct snapshot_meta meta;
   memset(&meta, 0, sizeof meta);
   meta.time = e->time;
