@@ -71,6 +71,21 @@ static void record(const struct parts *p, size_t i, size_t j, double r2, const d
 #define IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, hj) record(p, i, j, r2, dx, hi, hj, 0)
 #include "iact_loop.h"
 
+/** A density sum through the symmetric form: both sides, each with its own h
+ *  (W vanishes beyond the support, so adding both is right). */
+static void rho_sym(struct parts *p, size_t i, size_t j, double r2, double hi, double hj) {
+  const double r = sqrt(r2);
+  p->rho[i] += p->m[j] * kernel_W(r, hi);
+  p->rho[j] += p->m[i] * kernel_W(r, hj);
+}
+
+/* the same skeleton again, included a second time under another name */
+#define IACT_LOOP_NAME rho
+#define IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj) rho_sym(p, i, j, r2, hi, hj)
+#define IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, hj) \
+  ((p)->rho[i] += (p)->m[j] * kernel_W(sqrt(r2), hi))
+#include "iact_loop.h"
+
 static int failures = 0;
 
 #define CHECK(cond, ...)              \
@@ -199,6 +214,57 @@ static void compare(struct space *s, int symmetric, const char *when) {
   free(ref);
 }
 
+/** Density sums rho_i = sum_j m_j W(r_ij, h_i) (j = i included) from the
+ *  symmetric and the gather forms against a brute-force sum: the gather form
+ *  that the GPU uses and the symmetric CPU form give the same result. */
+static void compare_density(struct space *s, const char *when) {
+  struct parts *p = s->parts;
+  const size_t n = p->count;
+  double *ref = error_malloc(n * sizeof *ref + 1, "reference densities");
+  for (size_t i = 0; i < n; i++) {
+    double rho = p->m[i] * kernel_W(0.0, p->h[i]);
+    for (size_t j = 0; j < n; j++) {
+      if (j == i) continue;
+      const double dx = sep(p->x[i], p->x[j], s->dim[0], s->periodic);
+      const double dy = sep(p->y[i], p->y[j], s->dim[1], s->periodic);
+      const double dz = sep(p->z[i], p->z[j], s->dim[2], s->periodic);
+      const double r = sqrt(dx * dx + dy * dy + dz * dz);
+      if (r < kernel_gamma * p->h[i]) rho += p->m[j] * kernel_W(r, p->h[i]);
+    }
+    ref[i] = rho;
+  }
+  struct space_pair *pairs;
+  const size_t npairs = space_top_pairs(s, &pairs);
+  double err[2] = {0.0, 0.0};
+  for (int form = 0; form < 2; form++) {
+    for (size_t i = 0; i < n; i++) p->rho[i] = p->m[i] * kernel_W(0.0, p->h[i]);
+    for (int c = 0; c < s->nr_top; c++) {
+      if (form == 0)
+        loop_rho_self(p, &s->cells[c]);
+      else
+        loop_rho_self_gather(p, &s->cells[c]);
+    }
+    for (size_t k = 0; k < npairs; k++) {
+      const struct cell *ci = &s->cells[pairs[k].ci], *cj = &s->cells[pairs[k].cj];
+      const double back[3] = {-pairs[k].shift[0], -pairs[k].shift[1], -pairs[k].shift[2]};
+      if (form == 0) {
+        loop_rho_pair(p, ci, cj, pairs[k].shift);
+      } else {
+        loop_rho_pair_gather(p, ci, cj, pairs[k].shift);
+        loop_rho_pair_gather(p, cj, ci, back);
+      }
+    }
+    for (size_t i = 0; i < n; i++) err[form] = fmax(err[form], fabs(p->rho[i] / ref[i] - 1.0));
+  }
+  printf(
+      "  density   %-12s max relative difference to brute force: symmetric %.1e, gather "
+      "%.1e\n",
+      when, err[0], err[1]);
+  CHECK(err[0] < 1e-12 && err[1] < 1e-12, "densities differ from brute force (%s)", when);
+  free(pairs);
+  free(ref);
+}
+
 /** Structure of the space: ranges, boxes, h_max, no particle lost. */
 static void check_cells(const struct space *s, size_t n_expected, int64_t id_total) {
   const struct parts *p = s->parts;
@@ -295,6 +361,7 @@ static void run(const struct config *cf, unsigned seed) {
     p.x[i] = x[0];
     p.y[i] = x[1];
     p.z[i] = x[2];
+    p.m[i] = 1.0 + urand();
     p.h[i] = cf->H_min * pow(cf->H_max / cf->H_min, urand()) / kernel_gamma;
     p.id[i] = (int64_t)i;
     int out = 0;
@@ -321,6 +388,7 @@ static void run(const struct config *cf, unsigned seed) {
 
   compare(&s, 1, "at rebuild");
   compare(&s, 0, "at rebuild");
+  compare_density(&s, "at rebuild");
 
   /* drift and grow h without rebuilding, within what the grid allows */
   const double wmin = fmin(s.width[0], fmin(s.width[1], s.width[2]));
@@ -341,6 +409,7 @@ static void run(const struct config *cf, unsigned seed) {
   for (int c = 0; c < s.nr_top; c++) cell_update_bounds(&p, &s.cells[c]);
   compare(&s, 1, "after drift");
   compare(&s, 0, "after drift");
+  compare_density(&s, "after drift");
 
   /* a large drift, then a large h, ask for a rebuild */
   const double x_keep = p.x[0], h_keep = p.h[0];
