@@ -323,7 +323,10 @@ static void check_cells(const struct space *s, size_t n_expected, int64_t id_tot
         (long long)id_total);
 }
 
-enum distribution { DIST_UNIFORM, DIST_CLUMPS };
+/** Particle distributions: uniform; 4 Gaussian clumps over a uniform fifth;
+ *  uniform with 40 particles at each of 50 positions (coincident particles:
+ *  leaves at the deepest level hold more than split_size). */
+enum distribution { DIST_UNIFORM, DIST_CLUMPS, DIST_DUPLICATES };
 
 /** One configuration. */
 struct config {
@@ -358,6 +361,11 @@ static void run(const struct config *cf, unsigned seed) {
       if (!cf->periodic && i % 97 == 0) x[k] = (k == (int)(i % 3)) ? -1e-9 * i - 1e-9 : x[k];
     }
     if (cf->periodic && cf->dist == DIST_UNIFORM && i % 89 == 0) x[0] += 3.0 * L[0]; /* wrap */
+    if (cf->dist == DIST_DUPLICATES && i >= 50) {
+      x[0] = p.x[i % 50];
+      x[1] = p.y[i % 50];
+      x[2] = p.z[i % 50];
+    }
     p.x[i] = x[0];
     p.y[i] = x[1];
     p.z[i] = x[2];
@@ -455,6 +463,8 @@ int main(int argc, char **argv) {
       {"big-h", DIST_UNIFORM, 0, 2000, 0.09, 0.365, 16, 64},
       {"one-cell", DIST_CLUMPS, 1, 2000, 0.18, 0.383, 16, 1},
       {"two-cells", DIST_UNIFORM, 1, 2000, 0.18, 0.383, 16, 2},
+      {"coincident", DIST_DUPLICATES, 1, 2000, 0.05, 0.1, 8, 64},
+      {"coincident", DIST_DUPLICATES, 0, 2000, 0.05, 0.1, 8, 64},
   };
   const int nconf = sizeof configs / sizeof configs[0];
   for (int c = 0; c < nconf; c++) run(&configs[c], 1234u + (unsigned)c);
