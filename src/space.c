@@ -135,7 +135,8 @@ static void space_choose_grid(struct space *s) {
     if (s->periodic && 2.0 * H > s->dim[k])
       error_exit("space: kernel support %g of particle id %lld exceeds half the periodic box (%g)",
                  H, (long long)p->id[i_max], s->dim[k]);
-    const double n = H > 0.0 ? floor(s->dim[k] / (s->cell_stretch * H)) : INFINITY;
+    /* no particles: one cell */
+    const double n = H > 0.0 ? floor(s->dim[k] / (s->cell_stretch * H)) : 1.0;
     int c = n >= s->max_top_level_cells ? s->max_top_level_cells : (int)n;
     if (c < 1) c = 1;
     s->cdim[k] = c;
