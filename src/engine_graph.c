@@ -118,7 +118,8 @@ void engine_make_graph(struct engine *e) {
     struct task *dp = scheduler_addtask(sched, task_type_pair, task_subtype_density, ci, cj);
     struct task *fp = scheduler_addtask(sched, task_type_pair, task_subtype_force, ci, cj);
     dp->locks[0] = fp->locks[0] = &ci->lock;
-    dp->locks[1] = fp->locks[1] = &cj->lock;
+    /* a cell paired with its own periodic image takes its lock once */
+    dp->locks[1] = fp->locks[1] = (a == b) ? NULL : &cj->lock;
     dp->cell_index = fp->cell_index = a;
     engine_task_pair_set(e, dp, k, &cap_tp);
     engine_task_pair_set(e, fp, k, &cap_tp);
