@@ -261,7 +261,6 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   engine_stats_open(e);
 
   scheduler_init(&e->sched, e->nr_threads);
-  engine_rebuild(e);
 }
 
 /* ------------------------------------------------------------------------ */
@@ -307,14 +306,17 @@ static void engine_first_force(struct engine *e) {
 
 void engine_run(struct engine *e) {
   const double t_begin = e->time;
+  if (e->opt.max_steps == 0) {
+    /* the initial conditions as read, in their order, nothing computed */
+    engine_snapshot(e);
+    error_log(0, "--steps 0: wrote the initial conditions as snapshot, stopping");
+    return;
+  }
+  engine_rebuild(e);
   engine_first_force(e);
   engine_stats_write(e);
   engine_snapshot(e);
   e->wall_start = error_walltime();
-  if (e->opt.max_steps == 0) {
-    error_log(0, "--steps 0: wrote the initial snapshot, stopping");
-    return;
-  }
   printf("#   step           time             dt      updates    wall[s]     ETA[s]\n");
   while (e->time < e->time_end && (e->opt.max_steps < 0 || e->step < e->opt.max_steps)) {
     const double w0 = error_walltime();

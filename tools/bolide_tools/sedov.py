@@ -153,6 +153,15 @@ class SedovSolution:
             Pi[core] = self.Pi[0]
         return G, V, Pi
 
+    def moment_coefficient(self, n=200001):
+        """I = int_0^1 (G(lambda) - 1) lambda^3 dlambda: the first radial
+        moment of the excess density, int (rho - rho0) r dV = 4 pi rho0 R^4 I.
+        Mass conservation makes int (G - 1) lambda^2 dlambda = 0, so I < 0
+        measures how far the swept-up mass moved out (theory/analytic.md)."""
+        lam = np.linspace(0.0, 1.0, n)
+        G, _, _ = self.profiles_lambda(lam)
+        return float(np.trapezoid((G - 1.0) * lam ** 3, lam))
+
     def profiles(self, r, t, E=1.0, rho0=1.0):
         """Density, radial velocity and pressure at radius r (array) and
         time t > 0 for explosion energy E in ambient density rho0."""

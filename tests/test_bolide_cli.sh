@@ -1,0 +1,100 @@
+#!/usr/bin/env bash
+# The bolide command line (DESIGN.md "Programs and their contract"): --help
+# and --version exit 0; every bad input gives one line "bolide: error: ..."
+# naming the file or key and a non-zero exit, and leaves no half-written
+# output; --check validates without running; -n 0 turns the initial
+# conditions into a t = 0 snapshot with every field bit-identical, with an
+# XDMF file beside it.
+set -uo pipefail
+B=${BOLIDE_BUILDDIR:?}; S=${BOLIDE_SRCDIR:?}
+work=$(mktemp -d); trap 'chmod -R u+w "$work"; rm -rf "$work"' EXIT
+cd "$work"
+fail=0
+bolide="$B/bolide"
+
+# expect_error DESCRIPTION SUBSTRING COMMAND...: non-zero exit, exactly one
+# stderr line starting with "bolide: error:" and containing SUBSTRING
+expect_error() {
+  local what=$1 sub=$2; shift 2
+  "$@" >out.txt 2>err.txt; local rc=$?
+  local lines; lines=$(wc -l <err.txt)
+  if [ $rc -eq 0 ] || [ "$lines" -ne 1 ] || ! grep -q '^bolide: error: ' err.txt || ! grep -qF -- "$sub" err.txt; then
+    echo "FAIL: $what (exit $rc, $lines stderr lines):"; cat err.txt; fail=1
+  else
+    echo "ok: $what: $(cat err.txt)"
+  fi
+}
+
+"$bolide" --help >/dev/null || { echo "FAIL: --help"; fail=1; }
+"$bolide" --version | grep -q '^bolide ' || { echo "FAIL: --version"; fail=1; }
+
+"$B/bolide-ic" box --n 8 --size 1 --u 1 -o ics.hdf5 >/dev/null
+cat >params.yml <<'YML'
+InitialConditions:
+  file_name: ics.hdf5
+TimeIntegration:
+  time_end: 0.01
+Snapshots:
+  subdir: out
+YML
+expect_error "no parameter file" "no parameter file" "$bolide"
+expect_error "unknown option" "--frobnicate" "$bolide" --frobnicate params.yml
+expect_error "missing parameter file" "nothere.yml" "$bolide" nothere.yml
+expect_error "bad thread count" "--threads" "$bolide" -t zero params.yml
+sed 's/time_end/time_edn/' params.yml >typo.yml
+expect_error "misspelt key" "typo.yml:4" "$bolide" typo.yml
+expect_error "bad -P value" "TimeIntegration:time_end" "$bolide" -P TimeIntegration:time_end:soon params.yml
+sed 's/ics.hdf5/missing.hdf5/' params.yml >noic.yml
+expect_error "missing initial conditions" "missing.hdf5" "$bolide" noic.yml
+
+# an IC with a NaN position and one with a negative mass
+"$PYTHON" - <<'PY'
+import h5py, shutil
+for name, field, value in (("nan.hdf5", "Coordinates", float("nan")), ("neg.hdf5", "Masses", -1.0)):
+    shutil.copy("ics.hdf5", name)
+    with h5py.File(name, "r+") as f:
+        d = f["PartType0/" + field]
+        a = d[...]
+        if a.ndim == 2: a[7, 1] = value
+        else: a[7] = value
+        d[...] = a
+PY
+sed 's/ics.hdf5/nan.hdf5/' params.yml >nan.yml
+expect_error "NaN position" "nan.hdf5" "$bolide" nan.yml
+sed 's/ics.hdf5/neg.hdf5/' params.yml >neg.yml
+expect_error "negative mass" "neg.hdf5" "$bolide" neg.yml
+
+# output folder that cannot be written: error, nothing left behind
+mkdir -p ro && chmod a-w ro
+if [ "$(id -u)" != 0 ]; then
+  expect_error "read-only output folder" "ro" "$bolide" -P Snapshots:subdir:ro/sub params.yml
+fi
+
+# --check validates and runs nothing
+"$bolide" --check params.yml >check.txt 2>&1 || { echo "FAIL: --check"; cat check.txt; fail=1; }
+[ ! -e out ] || { echo "FAIL: --check wrote outputs"; fail=1; }
+
+# -n 0: the IC becomes snapshot 0 bit for bit
+"$bolide" -n 0 params.yml >run0.txt 2>&1 || { echo "FAIL: -n 0"; cat run0.txt; fail=1; }
+[ -f out/snapshot_0000.hdf5 ] && [ -f out/snapshot_0000.xmf ] || { echo "FAIL: no snapshot/XDMF"; fail=1; }
+[ -f out/used_parameters.yml ] || { echo "FAIL: no used_parameters.yml"; fail=1; }
+ls out | grep -q '\.tmp' && { echo "FAIL: temporary files left"; fail=1; }
+"$PYTHON" - <<'PY' || fail=1
+import sys, h5py, numpy as np
+ic = h5py.File("ics.hdf5", "r")["PartType0"]
+sn = h5py.File("out/snapshot_0000.hdf5", "r")["PartType0"]
+bad = 0
+for name in ic:
+    if not isinstance(ic[name], h5py.Dataset) or name not in sn:
+        continue
+    a, b = ic[name][...], sn[name][...]
+    same = a.shape == b.shape and a.tobytes() == b.astype(a.dtype).tobytes()
+    print("%-18s %s" % (name, "bit-identical" if same else "DIFFERENT"))
+    bad += not same
+sys.exit(1 if bad else 0)
+PY
+
+# a short run: steps, statistics, final snapshot
+"$bolide" -t 2 params.yml >run.txt 2>&1 || { echo "FAIL: run"; tail -5 run.txt; fail=1; }
+[ -f out/statistics.txt ] && [ -f out/snapshot_0001.hdf5 ] || { echo "FAIL: run outputs"; ls out; fail=1; }
+exit $fail
