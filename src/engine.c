@@ -225,6 +225,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   e->compression = (int)params_get_int(params, "Snapshots:compression");
   e->stats_dt = params_get_real(params, "Statistics:delta_time");
   e->dump_tasks = params_get_int(params, "Scheduler:dump_tasks");
+  e->cell_task_size = (int)params_get_int(params, "Scheduler:cell_task_size");
   engine_init_outputs(e, e->time);
 
   /* cells and workers */
@@ -271,6 +272,19 @@ void engine_rebuild(struct engine *e) {
   engine_make_graph(e);
 }
 
+/** 1 if the cells or the task graph no longer hold every interaction: the
+ *  space's own criterion, or a kernel support plus twice the largest drift
+ *  beyond the reach of the pair tasks (engine_graph.c). */
+static int engine_should_rebuild(const struct engine *e) {
+  if (space_should_rebuild(&e->space)) return 1;
+  double h_max = 0.0, dx_max = 0.0;
+  for (int t = 0; t < e->nr_tcells; t++) {
+    if (e->tcells[t]->h_max > h_max) h_max = e->tcells[t]->h_max;
+    if (e->tcells[t]->dx_max > dx_max) dx_max = e->tcells[t]->dx_max;
+  }
+  return kernel_gamma * h_max + 2.0 * dx_max > e->reach;
+}
+
 /** Run the tasks of one phase on every worker. */
 static void engine_run_phase(struct engine *e, int phase) {
   engine_activate_phase(e, phase);
@@ -281,8 +295,8 @@ static void engine_run_phase(struct engine *e, int phase) {
  *  the next output time and the end of the run. */
 static double engine_next_dt(struct engine *e) {
   double dt = e->dt_max;
-  for (int c = 0; c < e->space.nr_top; c++)
-    if (e->space.cells[c].count > 0 && e->cell_dt_min[c] < dt) dt = e->cell_dt_min[c];
+  for (int t = 0; t < e->nr_tcells; t++)
+    if (e->cell_dt_min[t] < dt) dt = e->cell_dt_min[t];
   if (dt < e->dt_min)
     error_exit("time step %g at t = %g is below TimeIntegration:dt_min = %g (run -v for details)", dt, e->time,
                e->dt_min);
@@ -326,7 +340,7 @@ void engine_run(struct engine *e) {
     e->time += e->dt;
     if (e->next_out < e->nr_out && fabs(e->time - e->out_times[e->next_out]) <= 1e-12 * fabs(e->time))
       e->time = e->out_times[e->next_out];
-    if (atomic_load((_Atomic int *)&e->need_rebuild) || space_should_rebuild(&e->space)) {
+    if (atomic_load((_Atomic int *)&e->need_rebuild) || engine_should_rebuild(e)) {
       atomic_store((_Atomic int *)&e->need_rebuild, 0);
       engine_rebuild(e);
     }
@@ -366,7 +380,6 @@ void engine_clean(struct engine *e) {
   if (e->stats) fclose(e->stats);
   free(e->out_times);
   free(e->cell_dt_min);
-  free(e->cell_dx_max);
   free(e->params_text);
   if (e->mats) material_table_free(e->mats);
   free(e->mats);
