@@ -244,7 +244,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
             "CPU-only build: every task runs on the CPU"
 #endif
   );
-  error_log(1, "configured with: %s", BOLIDE_CONFIGURE_ARGS);
+  error_log(0, "configured with: %s", BOLIDE_CONFIGURE_ARGS[0] ? BOLIDE_CONFIGURE_ARGS : "(defaults)");
   material_table_log(e->mats);
   error_log(0, "particle memory: %zu bytes per particle", parts_bytes_per_particle());
 
