@@ -88,6 +88,13 @@ struct engine {
   int compression;                /**< gzip level */
   char *params_text;              /**< the parameters in use, for snapshots */
 
+  int restarts;                   /**< Restarts:enable */
+  double restart_dt_wall;         /**< seconds of wall time between restart files */
+  double restart_last_wall;       /**< wall time of the last restart file */
+  char restart_dir[1024];         /**< Restarts:subdir */
+  int restarted;                  /**< 1 when this run resumed from a restart file */
+  double restart_dt_next;         /**< smallest particle time step saved in the restart file */
+
   FILE *stats;                    /**< statistics file */
   double stats_dt, next_stats;    /**< its interval */
   long dump_tasks;                /**< dump a task timeline every this many steps */

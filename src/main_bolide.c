@@ -94,7 +94,6 @@ int main(int argc, char **argv) {
   }
   if (optind >= argc) error_exit("no parameter file given (usage: bolide [OPTIONS] PARAMS.yml; see --help)");
   if (optind + 1 < argc) error_exit("unexpected argument '%s' after the parameter file", argv[optind + 1]);
-  if (opt.restart) error_exit("--restart: restart files are not implemented yet");
 
   struct params *params = params_read(argv[optind], n_overrides, overrides);
   struct engine e;
