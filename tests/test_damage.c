@@ -44,9 +44,12 @@ static void random_rotation(struct flaws_rng *r, double R[3][3]) {
   }
   n = sqrt(n);
   const double a = q[0] / n, b = q[1] / n, c = q[2] / n, d = q[3] / n;
-  R[0][0] = a * a + b * b - c * c - d * d, R[0][1] = 2 * (b * c - a * d), R[0][2] = 2 * (b * d + a * c);
-  R[1][0] = 2 * (b * c + a * d), R[1][1] = a * a - b * b + c * c - d * d, R[1][2] = 2 * (c * d - a * b);
-  R[2][0] = 2 * (b * d - a * c), R[2][1] = 2 * (c * d + a * b), R[2][2] = a * a - b * b - c * c + d * d;
+  R[0][0] = a * a + b * b - c * c - d * d, R[0][1] = 2 * (b * c - a * d),
+  R[0][2] = 2 * (b * d + a * c);
+  R[1][0] = 2 * (b * c + a * d), R[1][1] = a * a - b * b + c * c - d * d,
+  R[1][2] = 2 * (c * d - a * b);
+  R[2][0] = 2 * (b * d - a * c), R[2][1] = 2 * (c * d + a * b),
+  R[2][2] = a * a - b * b - c * c + d * d;
 }
 
 /** a (6 components) = R diag(l) R^T. */
@@ -95,10 +98,10 @@ static void test_eigen(void) {
 
   /* rotated distinct, repeated (double, triple), nearly repeated, with
    * stress-like magnitudes */
-  const double cases[][3] = {{3, -1, 2}, {2, 2, 5}, {-4, 1, 1}, {3, 3, 3},
+  const double cases[][3] = {{3, -1, 2},         {2, 2, 5},      {-4, 1, 1},          {3, 3, 3},
                              {1, 1 + 1e-10, -2}, {0, 0, 1e-300}, {2.5e9, -1e9, 2.5e9}};
-  const char *names[] = {"distinct",         "repeated (2,2,5)",  "repeated (-4,1,1)",
-                         "triple (3,3,3)",   "nearly repeated",   "tiny (0,0,1e-300)",
+  const char *names[] = {"distinct",       "repeated (2,2,5)", "repeated (-4,1,1)",
+                         "triple (3,3,3)", "nearly repeated",  "tiny (0,0,1e-300)",
                          "stresses (Pa)"};
   for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
     double worst_l = 0, worst_r = 0, worst_o = 0;
@@ -143,7 +146,8 @@ static void test_eigen(void) {
     const double tr = a[0] + a[1] + a[2];
     const double det = a[0] * (a[1] * a[2] - a[5] * a[5]) - a[3] * (a[3] * a[2] - a[5] * a[4]) +
                        a[4] * (a[3] * a[5] - a[1] * a[4]);
-    worst_inv = fmax(worst_inv, fabs(lam[0] + lam[1] + lam[2] - tr) + fabs(lam[0] * lam[1] * lam[2] - det));
+    worst_inv =
+        fmax(worst_inv, fabs(lam[0] + lam[1] + lam[2] - tr) + fabs(lam[0] * lam[1] * lam[2] - det));
     double l2[3];
     const int sweeps = damage_sym3_eigen(a, l2, NULL);
     if (sweeps > max_sweeps) max_sweeps = sweeps;
@@ -247,8 +251,12 @@ static void test_bar(void) {
   enum { NF = 60 };
   double eps[NF];
   for (int j = 0; j < NF; j++) eps[j] = flaws_threshold(j + 1, k, m, V);
-  struct bar b = {damage_young_modulus(K, mu), damage_crack_speed(K, mu, rho),
-                  damage_radius(rho * V, rho), 1e4, eps, NF};
+  struct bar b = {damage_young_modulus(K, mu),
+                  damage_crack_speed(K, mu, rho),
+                  damage_radius_volume(rho * V, rho),
+                  1e4,
+                  eps,
+                  NF};
   /* to the time when 40 flaws are active: d^(1/3) rises, is capped,
    * rises again; the limiter is reached */
   const double T = 0.5 * (eps[39] + eps[40]) / b.rate;
@@ -256,7 +264,8 @@ static void test_bar(void) {
   const double run = bar_run(&b, R, T, 1, 0);
   printf("bar: d^(1/3)(T) exact %.12f, steps at activations %.12f\n", exact, run);
   check("bar, steps at activation times: d^(1/3) = exact integral", fabs(run - exact), 1e-9);
-  check("bar: the limiter is reached (d^(1/3) = (40/60)^(1/3))", fabs(exact - cbrt(40.0 / 60)), 1e-12);
+  check("bar: the limiter is reached (d^(1/3) = (40/60)^(1/3))", fabs(exact - cbrt(40.0 / 60)),
+        1e-12);
   /* uniform steps: first-order convergence to the exact value, at a time
    * before the limiter binds (there the error would vanish) */
   const double T2 = 0.5 * (eps[3] + eps[4]) / b.rate;
@@ -271,8 +280,8 @@ static void test_bar(void) {
     err[r] = ex2 - bar_run(&b, R, T2, 0, nsteps);
     if (!(err[r] >= 0 && err[r] <= n2 * b.c_g / b.R_s * T2 / nsteps)) outside++;
   }
-  printf("bar, uniform steps 400/1600/6400: errors %.3e %.3e %.3e (exact %.6f, %d flaws)\n",
-         err[0], err[1], err[2], ex2, (int)n2);
+  printf("bar, uniform steps 400/1600/6400: errors %.3e %.3e %.3e (exact %.6f, %d flaws)\n", err[0],
+         err[1], err[2], ex2, (int)n2);
   check("bar, uniform steps: 0 <= exact - run <= n c_g dt / R_s (violations)", outside, 0);
   check("bar, uniform steps: error shrinks with dt (violations)",
         (err[1] < err[0]) + (err[2] < err[1]) == 2 ? 0 : 1, 0);

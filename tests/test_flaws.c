@@ -98,9 +98,9 @@ static void test_statistics(void) {
       for (size_t i = 0; i < N; i++) {
         const int64_t c = two.offset[i + 1] - two.offset[i];
         if (c < 1) uncovered++;
-        if (brittle[i] && (c != f.offset[i + 1] - f.offset[i] ||
-                           memcmp(two.eps + two.offset[i], f.eps + f.offset[i],
-                                  (size_t)c * sizeof(double)) != 0))
+        if (brittle[i] &&
+            (c != f.offset[i + 1] - f.offset[i] ||
+             memcmp(two.eps + two.offset[i], f.eps + f.offset[i], (size_t)c * sizeof(double)) != 0))
           changed++;
       }
       check("second material: first material's flaws kept (changed)", changed, 0);

@@ -34,7 +34,8 @@ static double uniform(struct flaws_rng *r) {
  *  partition up to renaming iff a[i] -> b[i] is a bijection. */
 static long partition_diff(size_t n, const int64_t *a, const int64_t *b, int64_t na, int64_t nb) {
   if (na != nb) return labs((long)(na - nb)) + 1;
-  int64_t *map = malloc((size_t)(na + 1) * sizeof *map), *inv = malloc((size_t)(na + 1) * sizeof *inv);
+  int64_t *map = malloc((size_t)(na + 1) * sizeof *map),
+          *inv = malloc((size_t)(na + 1) * sizeof *inv);
   for (int64_t g = 0; g <= na; g++) map[g] = inv[g] = -2;
   long bad = 0;
   for (size_t i = 0; i < n; i++) {

@@ -177,18 +177,19 @@ BOLIDE_INLINE double damage_cbrt_max(int32_t n_act, int32_t n_tot) {
   return cbrt((double)n_act / (double)n_tot);
 }
 
-/** Radius of the volume a particle's cracks run through, R_s.  BA95 take the
- *  particle's size; Bolide uses the radius of the sphere of the particle's
- *  volume, R_s = (3 m / (4 pi rho))^(1/3), which does not depend on the
- *  kernel or on the neighbour number (theory/damage.md discusses the
- *  choice; miluphcuda uses the kernel support, a factor ~2-3 larger). */
-BOLIDE_INLINE double damage_radius(double m, double rho) {
+/** Radius of the sphere of a particle's volume, (3 m / (4 pi rho))^(1/3):
+ *  one choice of the crack-growth radius R_s of D4.  Schaefer et al. (2016)
+ *  (miluphcuda) use the kernel support instead, a factor of about 2 to 3
+ *  larger (growth correspondingly slower); the default recommended in
+ *  theory/damage.md is the kernel support, to compare with their Nakamura
+ *  results.  damage_grady_kipp_update takes R_s as an argument. */
+BOLIDE_INLINE double damage_radius_volume(double m, double rho) {
   return rho > 0.0 ? cbrt(3.0 * m / (4.0 * M_PI * rho)) : 0.0;
 }
 
 /** One Grady-Kipp update of a particle over a step dt (see the header).
  *  P, S: undamaged pressure and deviatoric stress (6 components); E: Young's
- *  modulus; c_g: crack speed; R_s: crack-volume radius; eps: the particle's
+ *  modulus; c_g: crack speed; R_s: crack-growth radius (D4); eps: the particle's
  *  n_tot flaw thresholds, ascending.  Updates *dcbrt (d^(1/3)) and *n_act.
  *  Returns the growth rate d(d^(1/3))/dt used in this step (0 when saturated
  *  or not in tension), for the time-step criterion. */
@@ -202,14 +203,14 @@ BOLIDE_INLINE double damage_grady_kipp_update(double P, const double S[6], doubl
   double sigma[6];
   damage_stress(d, P, S, sigma);
   const double smax = damage_sym3_max_eigenvalue(sigma);
-  if (!(smax > 0.0)) return 0.0; /* no tension: no activation, no growth */
+  if (!(smax > 0.0)) return 0.0;                /* no tension: no activation, no growth */
   const double strain = smax / ((1.0 - d) * E); /* D3 */
   const int32_t n_grow = damage_count_below(eps, n_tot, strain);
   if (n_grow > *n_act) *n_act = n_grow;
   const double xmax = damage_cbrt_max(*n_act, n_tot);
   if (n_grow == 0 || x >= xmax) return 0.0;
   const double rate = (double)n_grow * c_g / R_s; /* D4 */
-  x += rate * dt; /* exact: the rate is constant over the step */
+  x += rate * dt;                                 /* exact: the rate is constant over the step */
   *dcbrt = x < xmax ? x : xmax;
   return rate;
 }

@@ -68,8 +68,8 @@ double flaws_volume(size_t n, const double *mass, const double *rho, const unsig
 
 int64_t flaws_generate(size_t n, const unsigned char *brittle, double k, double m, double V,
                        uint64_t seed, const struct flaws *keep, struct flaws *out) {
-  if (keep && keep->n_parts != n) error_bug("flaws_generate: keep has %zu particles, not %zu",
-                                            keep->n_parts, n);
+  if (keep && keep->n_parts != n)
+    error_bug("flaws_generate: keep has %zu particles, not %zu", keep->n_parts, n);
   if (!(k > 0.0) || !(m > 0.0) || !(V > 0.0))
     error_bug("flaws_generate: k = %g, m = %g, V = %g must be positive", k, m, V);
   /* the brittle particles, numbered 0 .. nb-1 */

@@ -26,14 +26,11 @@
 /** Long options without a short form. */
 enum { OPT_MAT = 256, OPT_K, OPT_M, OPT_SEED, OPT_VOLUME, OPT_VERSION };
 
-static const struct option flawsgen_longopts[] = {{"mat", required_argument, NULL, OPT_MAT},
-                                                  {"k", required_argument, NULL, OPT_K},
-                                                  {"m", required_argument, NULL, OPT_M},
-                                                  {"seed", required_argument, NULL, OPT_SEED},
-                                                  {"volume", required_argument, NULL, OPT_VOLUME},
-                                                  {"help", no_argument, NULL, 'h'},
-                                                  {"version", no_argument, NULL, OPT_VERSION},
-                                                  {NULL, 0, NULL, 0}};
+static const struct option flawsgen_longopts[] = {
+    {"mat", required_argument, NULL, OPT_MAT},       {"k", required_argument, NULL, OPT_K},
+    {"m", required_argument, NULL, OPT_M},           {"seed", required_argument, NULL, OPT_SEED},
+    {"volume", required_argument, NULL, OPT_VOLUME}, {"help", no_argument, NULL, 'h'},
+    {"version", no_argument, NULL, OPT_VERSION},     {NULL, 0, NULL, 0}};
 
 /** Print the usage text to f. */
 static void flawsgen_usage(FILE *f) {
@@ -156,14 +153,15 @@ int main(int argc, char **argv) {
   error_register_tmpfile(tmp);
   flawsgen_copy(in, tmp);
   flaws_io_write_file(tmp, &f);
-  if (rename(tmp, outpath) != 0) error_exit("%s: cannot rename %s: %s", outpath, tmp, strerror(errno));
+  if (rename(tmp, outpath) != 0)
+    error_exit("%s: cannot rename %s: %s", outpath, tmp, strerror(errno));
   error_unregister_tmpfile(tmp);
 
   const double eps_min = flaws_threshold(1, k, m, V), eps_max = flaws_threshold(drawn, k, m, V);
-  printf("material %lld: %zu brittle particles, volume %.6g m^3, %lld flaws (%.3f per particle; "
-         "ln N = %.3f), thresholds %.4g to %.4g\n",
-         mat, nb, V, (long long)drawn, (double)drawn / (double)nb, log((double)nb), eps_min,
-         eps_max);
+  printf(
+      "material %lld: %zu brittle particles, volume %.6g m^3, %lld flaws (%.3f per particle; "
+      "ln N = %.3f), thresholds %.4g to %.4g\n",
+      mat, nb, V, (long long)drawn, (double)drawn / (double)nb, log((double)nb), eps_min, eps_max);
   printf("flaws in %s: %lld in all, %.1f MB (%.1f bytes per particle)\n", outpath,
          (long long)f.offset[f.n_parts], flaws_bytes(&f) / 1e6,
          (double)flaws_bytes(&f) / (double)(p.count ? p.count : 1));

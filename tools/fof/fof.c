@@ -151,8 +151,9 @@ int64_t fof_groups(size_t n, const double *x, const double *y, const double *z,
     const int64_t ca[3] = {ka & FOF_MASK, (ka >> FOF_BITS) & FOF_MASK,
                            (ka >> (2 * FOF_BITS)) & FOF_MASK};
     for (int d = 0; d < 27; d++) {
-      const int64_t kb = fof_key((ca[0] + d % 3 - 1) & FOF_MASK, (ca[1] + (d / 3) % 3 - 1) & FOF_MASK,
-                                 (ca[2] + d / 9 - 1) & FOF_MASK);
+      const int64_t kb =
+          fof_key((ca[0] + d % 3 - 1) & FOF_MASK, (ca[1] + (d / 3) % 3 - 1) & FOF_MASK,
+                  (ca[2] + d / 9 - 1) & FOF_MASK);
       size_t s = fof_hash(kb, bits);
       int64_t b = -1;
       while (table[s] >= 0) {

@@ -279,7 +279,8 @@ int main(int argc, char **argv) {
     rs[2 * i + 1] = p.m[i];
   }
   qsort(rs, n, 2 * sizeof *rs, fofmain_cmp_double); /* by radius (first of each pair) */
-  double *rsort = error_malloc(n * sizeof *rsort, "radii"), *mcum = error_malloc(n * sizeof *mcum, "masses");
+  double *rsort = error_malloc(n * sizeof *rsort, "radii"),
+         *mcum = error_malloc(n * sizeof *mcum, "masses");
   for (size_t i = 0; i < n; i++) {
     rsort[i] = rs[2 * i];
     mcum[i] = (i ? mcum[i - 1] : 0.0) + rs[2 * i + 1];
@@ -355,7 +356,8 @@ int main(int argc, char **argv) {
   fprintf(fo, "; damage %s\n", has_damage ? "from /PartType0/Damage" : "absent (0)");
   fprintf(fo, "# linking length %.9g m%s; %lld fragments\n", link_length,
           link_h > 0.0 ? " (from --link-h x median h)" : "", (long long)ng);
-  fprintf(fo, "# total mass %.9g kg, kept %.9g kg; barycentre %.9g %.9g %.9g m, %.9g %.9g %.9g m/s\n",
+  fprintf(fo,
+          "# total mass %.9g kg, kept %.9g kg; barycentre %.9g %.9g %.9g m, %.9g %.9g %.9g m/s\n",
           M, kept_mass, xb[0], xb[1], xb[2], vb[0], vb[1], vb[2]);
   fprintf(fo, "# bound to the barycentre: %.9g kg in fragments, %.9g kg of all particles\n",
           bound_mass, bound_mass_particles);
@@ -368,7 +370,8 @@ int main(int argc, char **argv) {
     fprintf(fo, "%lld %.9e %lld %.9e %.9e %.9e %.9e %.9e %.9e %.6f %.6e %.6e %.6e %d",
             (long long)g + 1, f->mass, (long long)f->count, f->x[0], f->x[1], f->x[2], f->v[0],
             f->v[1], f->v[2], f->damage, f->r, f->vrel, f->vesc, f->bound);
-    for (int k = 0; k < nmat; k++) fprintf(fo, " %.6f", mmat[(size_t)f->index * nmat + k] / f->mass);
+    for (int k = 0; k < nmat; k++)
+      fprintf(fo, " %.6f", mmat[(size_t)f->index * nmat + k] / f->mass);
     fprintf(fo, "\n");
   }
   if (out) {
