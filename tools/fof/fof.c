@@ -67,12 +67,11 @@ static inline int64_t fof_key(int64_t a, int64_t b, int64_t c) {
   return a | (b << FOF_BITS) | (c << (2 * FOF_BITS));
 }
 
-/** Sort (key, index) pairs by key: LSD radix sort, 16 bits a pass. */
-static void fof_sort(size_t n, int64_t *key, int64_t *idx) {
+void fof_radix_sort(size_t n, int64_t *key, int64_t *idx) {
   int64_t *k2 = error_malloc((n ? n : 1) * sizeof *k2, "fof sort");
   int64_t *i2 = error_malloc((n ? n : 1) * sizeof *i2, "fof sort");
   size_t *count = error_malloc(65537 * sizeof *count, "fof sort");
-  for (int shift = 0; shift < 3 * FOF_BITS; shift += 16) {
+  for (int shift = 0; shift < 64; shift += 16) {
     memset(count, 0, 65537 * sizeof *count);
     for (size_t i = 0; i < n; i++) count[((key[i] >> shift) & 0xffff) + 1]++;
     for (int b = 0; b < 65536; b++) count[b + 1] += count[b];
@@ -89,20 +88,11 @@ static void fof_sort(size_t n, int64_t *key, int64_t *idx) {
   free(count);
 }
 
-/** Hash of a cell key into a table of 2^bits slots (Fibonacci hashing). */
-static inline size_t fof_hash(int64_t key, int bits) {
-  return (size_t)(((uint64_t)key * 0x9e3779b97f4a7c15ULL) >> (64 - bits));
-}
-
 int64_t fof_groups(size_t n, const double *x, const double *y, const double *z,
                    const unsigned char *keep, double L, int64_t *group) {
   if (!(L > 0.0) || !isfinite(L)) error_bug("fof_groups: linking length %g", L);
   int64_t *parent = error_malloc((n ? n : 1) * sizeof *parent, "fof parents");
-  int64_t *size = error_malloc((n ? n : 1) * sizeof *size, "fof sizes");
-  for (size_t i = 0; i < n; i++) {
-    parent[i] = (int64_t)i;
-    size[i] = 1;
-  }
+  for (size_t i = 0; i < n; i++) parent[i] = (int64_t)i;
   /* the kept particles, their cells, sorted by cell */
   double lo[3] = {INFINITY, INFINITY, INFINITY};
   size_t m = 0;
@@ -123,64 +113,87 @@ int64_t fof_groups(size_t n, const double *x, const double *y, const double *z,
                      fof_cell(z[i] - lo[2], invL));
     idx[m++] = (int64_t)i;
   }
-  fof_sort(m, key, idx);
+  fof_radix_sort(m, key, idx);
 
-  /* occupied cells: start of each in the sorted list, and a hash table */
+  /* occupied cells: start of each in the sorted list, their keys */
   size_t nc = 0;
   for (size_t i = 0; i < m; i++) nc += i == 0 || key[i] != key[i - 1];
   size_t *start = error_malloc((nc + 1) * sizeof *start, "fof cells");
+  int64_t *ckey = error_malloc((nc ? nc : 1) * sizeof *ckey, "fof cells");
   nc = 0;
   for (size_t i = 0; i < m; i++)
-    if (i == 0 || key[i] != key[i - 1]) start[nc++] = i;
+    if (i == 0 || key[i] != key[i - 1]) {
+      ckey[nc] = key[i];
+      start[nc++] = i;
+    }
   start[nc] = m;
-  int bits = 1;
-  while (((size_t)1 << bits) < 2 * nc) bits++;
-  const size_t cap = (size_t)1 << bits;
-  int64_t *table = error_malloc(cap * sizeof *table, "fof hash");
-  for (size_t s = 0; s < cap; s++) table[s] = -1;
-  for (size_t c = 0; c < nc; c++) {
-    size_t s = fof_hash(key[start[c]], bits);
-    while (table[s] >= 0) s = (s + 1) & (cap - 1);
-    table[s] = (int64_t)c;
-  }
 
-  /* each pair of neighbouring cells once: (A, B) with B >= A */
+  /* each pair of neighbouring cells once: (A, B) with key B >= key A.  The
+   * cells are sorted by key, and for a fixed offset the key of the
+   * neighbour grows with A (except where coordinates wrap), so one cursor
+   * per offset finds the neighbours in a single sweep; a wrapped target
+   * falls back to binary search. */
+  size_t cursor[27] = {0};
   const double L2 = L * L;
+  /* positions and union-find in cell order: the pair loop then reads
+   * memory sequentially instead of jumping through idx */
+  double *xs = error_malloc((m ? m : 1) * 3 * sizeof *xs, "fof positions");
+  int64_t *sp = error_malloc((m ? m : 1) * sizeof *sp, "fof parents");
+  int64_t *ssize = error_malloc((m ? m : 1) * sizeof *ssize, "fof sizes");
+  for (size_t p = 0; p < m; p++) {
+    xs[3 * p] = x[idx[p]], xs[3 * p + 1] = y[idx[p]], xs[3 * p + 2] = z[idx[p]];
+    sp[p] = (int64_t)p;
+    ssize[p] = 1;
+  }
   for (size_t a = 0; a < nc; a++) {
-    const int64_t ka = key[start[a]];
+    const int64_t ka = ckey[a];
     const int64_t ca[3] = {ka & FOF_MASK, (ka >> FOF_BITS) & FOF_MASK,
                            (ka >> (2 * FOF_BITS)) & FOF_MASK};
     for (int d = 0; d < 27; d++) {
       const int64_t kb =
           fof_key((ca[0] + d % 3 - 1) & FOF_MASK, (ca[1] + (d / 3) % 3 - 1) & FOF_MASK,
                   (ca[2] + d / 9 - 1) & FOF_MASK);
-      size_t s = fof_hash(kb, bits);
+      if (kb < ka) continue; /* that pair is done from the other side */
       int64_t b = -1;
-      while (table[s] >= 0) {
-        if (key[start[table[s]]] == kb) {
-          b = table[s];
-          break;
+      if (kb == ka) {
+        b = (int64_t)a;
+      } else if (cursor[d] > 0 && ckey[cursor[d] - 1] >= kb) {
+        size_t s_lo = a, s_hi = nc; /* the target went backwards: search */
+        while (s_lo < s_hi) {
+          const size_t mid = s_lo + (s_hi - s_lo) / 2;
+          if (ckey[mid] < kb)
+            s_lo = mid + 1;
+          else
+            s_hi = mid;
         }
-        s = (s + 1) & (cap - 1);
+        if (s_lo < nc && ckey[s_lo] == kb) b = (int64_t)s_lo;
+      } else {
+        size_t c = cursor[d];
+        while (c < nc && ckey[c] < kb) c++;
+        cursor[d] = c;
+        if (c < nc && ckey[c] == kb) b = (int64_t)c;
       }
-      if (b < (int64_t)a) continue;
+      if (b < 0) continue;
       for (size_t p = start[a]; p < start[a + 1]; p++) {
-        const int64_t i = idx[p];
         const size_t q0 = b == (int64_t)a ? p + 1 : start[b];
         for (size_t q = q0; q < start[b + 1]; q++) {
-          const int64_t j = idx[q];
-          const double dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
-          if (dx * dx + dy * dy + dz * dz < L2) fof_union(parent, size, i, j);
+          const double dx = xs[3 * p] - xs[3 * q], dy = xs[3 * p + 1] - xs[3 * q + 1],
+                       dz = xs[3 * p + 2] - xs[3 * q + 2];
+          if (dx * dx + dy * dy + dz * dz < L2) fof_union(sp, ssize, (int64_t)p, (int64_t)q);
         }
       }
     }
   }
+  /* back to particle order: every particle points at its set's root */
+  for (size_t p = 0; p < m; p++) parent[idx[p]] = idx[fof_find(sp, (int64_t)p)];
+  free(xs);
+  free(sp);
+  free(ssize);
   const int64_t ng = fof_label(n, keep, parent, group);
-  free(table);
+  free(ckey);
   free(start);
   free(key);
   free(idx);
-  free(size);
   free(parent);
   return ng;
 }

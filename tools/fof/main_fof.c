@@ -70,6 +70,7 @@ static void fofmain_usage(FILE *f) {
           "  --spectrum FILE        cumulative mass spectrum N(>=m) as text\n"
           "  --plot PNG             plot the spectrum (runs tools/plot_fragments.py with\n"
           "                         $PYTHON, default python3; needs --out)\n"
+          "  -v                     log the phases and their times\n"
           "  -h, --help             this help\n"
           "  --version              version\n");
 }
@@ -176,7 +177,7 @@ int main(int argc, char **argv) {
   long long min_count = 1;
   const char *out = NULL, *spectrum = NULL, *plot = NULL;
   int c;
-  while ((c = getopt_long(argc, argv, "ho:", fofmain_longopts, NULL)) != -1) {
+  while ((c = getopt_long(argc, argv, "hvo:", fofmain_longopts, NULL)) != -1) {
     switch (c) {
       case OPT_LINK_LENGTH:
         link_length = fofmain_number("link-length", optarg, 0);
@@ -198,6 +199,9 @@ int main(int argc, char **argv) {
         break;
       case OPT_PLOT:
         plot = optarg;
+        break;
+      case 'v':
+        error_verbosity++;
         break;
       case 'h':
         fofmain_usage(stdout);
@@ -250,7 +254,9 @@ int main(int argc, char **argv) {
   }
 
   int64_t *group = error_malloc(n * sizeof *group, "groups");
+  error_log(1, "linking %zu particles, L = %g", nkeep, link_length);
   const int64_t ng = fof_groups(n, p.x, p.y, p.z, keep, link_length, group);
+  error_log(1, "%lld groups", (long long)ng);
 
   /* materials present */
   int32_t mats[FOF_MAX_MAT];
@@ -272,20 +278,24 @@ int main(int argc, char **argv) {
     vb[0] += p.m[i] * p.vx[i], vb[1] += p.m[i] * p.vy[i], vb[2] += p.m[i] * p.vz[i];
   }
   for (int d = 0; d < 3; d++) xb[d] /= M, vb[d] /= M;
-  double *rs = error_malloc(n * 2 * sizeof *rs, "radii");
+  /* particles sorted by distance from the barycentre (radix sort of the
+   * bit patterns of r >= 0), and the enclosed mass before each */
+  int64_t *rkey = error_malloc(n * sizeof *rkey, "radii");
+  int64_t *rord = error_malloc(n * sizeof *rord, "radii");
   for (size_t i = 0; i < n; i++) {
     const double dx = p.x[i] - xb[0], dy = p.y[i] - xb[1], dz = p.z[i] - xb[2];
-    rs[2 * i] = sqrt(dx * dx + dy * dy + dz * dz);
-    rs[2 * i + 1] = p.m[i];
+    const double r = sqrt(dx * dx + dy * dy + dz * dz);
+    memcpy(&rkey[i], &r, sizeof r);
+    rord[i] = (int64_t)i;
   }
-  qsort(rs, n, 2 * sizeof *rs, fofmain_cmp_double); /* by radius (first of each pair) */
-  double *rsort = error_malloc(n * sizeof *rsort, "radii"),
-         *mcum = error_malloc(n * sizeof *mcum, "masses");
+  fof_radix_sort(n, rkey, rord);
+  double *rsort = error_malloc(n * sizeof *rsort, "radii");
+  double *mcum = error_malloc(n * sizeof *mcum, "masses");
   for (size_t i = 0; i < n; i++) {
-    rsort[i] = rs[2 * i];
-    mcum[i] = (i ? mcum[i - 1] : 0.0) + rs[2 * i + 1];
+    memcpy(&rsort[i], &rkey[i], sizeof rsort[i]);
+    mcum[i] = (i ? mcum[i - 1] : 0.0) + p.m[rord[i]];
   }
-  free(rs);
+  free(rkey);
   const double G = units_G(&si);
 
   /* fragments */
@@ -311,14 +321,17 @@ int main(int argc, char **argv) {
     for (int d = 0; d < 3; d++) f->x[d] /= f->mass, f->v[d] /= f->mass;
     f->damage /= f->mass;
   }
+  /* particles in order of r: M(<r) is the mass before them (ties in r
+   * counted as enclosed in sorted order, a negligible difference) */
   double bound_mass_particles = 0.0;
-  for (size_t i = 0; i < n; i++) {
-    const double dx = p.x[i] - xb[0], dy = p.y[i] - xb[1], dz = p.z[i] - xb[2];
-    const double r = sqrt(dx * dx + dy * dy + dz * dz);
+  for (size_t k = 0; k < n; k++) {
+    const size_t i = (size_t)rord[k];
+    const double r = rsort[k];
     const double dvx = p.vx[i] - vb[0], dvy = p.vy[i] - vb[1], dvz = p.vz[i] - vb[2];
     const double v2 = dvx * dvx + dvy * dvy + dvz * dvz;
-    if (r == 0.0 || v2 < 2.0 * G * fofmain_enclosed(rsort, mcum, n, r) / r)
-      bound_mass_particles += p.m[i];
+    if (r == 0.0 || v2 < 2.0 * G * (k ? mcum[k - 1] : 0.0) / r) bound_mass_particles += p.m[i];
+  }
+  for (size_t i = 0; i < n; i++) {
     const int64_t g = group[i];
     if (g < 0) continue;
     const double ex = p.x[i] - fr[g].x[0], ey = p.y[i] - fr[g].x[1], ez = p.z[i] - fr[g].x[2];
@@ -337,6 +350,7 @@ int main(int argc, char **argv) {
     if (f->bound) bound_mass += f->mass;
   }
   qsort(fr, (size_t)ng, sizeof *fr, fofmain_cmp_frag);
+  error_log(1, "fragment properties and escape test done");
 
   /* the table */
   char tmp[4096] = "";
@@ -406,6 +420,7 @@ int main(int argc, char **argv) {
   free(fr);
   free(mmat);
   free(rsort);
+  free(rord);
   free(mcum);
   free(group);
   free(keep);
