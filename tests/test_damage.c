@@ -377,8 +377,41 @@ static void test_timestep(void) {
   check("timestep: d grows by f (1 - d) in the step", fabs((d1 - 0.2) - f * 0.8), 1e-14);
 }
 
+/** The per-particle wrapper against the direct call. */
+static void test_wrapper(void) {
+  struct material mat;
+  char msg[256];
+  material_init(&mat, 3, "basalt", EOS_MURNAGHAN);
+  material_set(&mat, "rho0", 2700, msg, sizeof msg);
+  material_set(&mat, "K0", 26.7e9, msg, sizeof msg);
+  material_set(&mat, "n", 5.5, msg, sizeof msg);
+  material_set(&mat, "shear_modulus", 22.7e9, msg, sizeof msg);
+  material_set(&mat, "bulk_modulus", 26.7e9, msg, sizeof msg);
+  material_set(&mat, "weibull_k", 5e34, msg, sizeof msg);
+  material_set(&mat, "weibull_m", 8, msg, sizeof msg);
+  const int ok = material_finalize(&mat, msg, sizeof msg) == 0;
+  if (!ok) printf("material: %s\n", msg);
+  const double eps[6] = {9e9, 1e-5, 2e-5, 4e-5, 8e-5, 9e9}; /* slice [1, 5) */
+  const double S[6] = {1e6, -5e5, -5e5, 2e5, 0, 1e5};
+  double x1 = 0.1, x2 = 0.1, d = 0;
+  int32_t a1 = 1, a2 = 1;
+  const double r1 =
+      damage_update_particle(&mat, 2650, 2e-3, -3e6, S, eps, 1, 4, 1e-8, &x1, &a1, &d);
+  const double r2 = damage_grady_kipp_update(-3e6, S, damage_young_modulus(26.7e9, 22.7e9),
+                                             damage_crack_speed(26.7e9, 22.7e9, 2650), 2e-3,
+                                             eps + 1, 4, 1e-8, &x2, &a2);
+  check("wrapper = direct update (and d = dcbrt^3)",
+        ok && r1 > 0 ? fabs(x1 - x2) + fabs(r1 - r2) / r2 + (a1 != a2) + fabs(d - x1 * x1 * x1) : 1,
+        0);
+  mat.weibull_k = 0;
+  x1 = 0.1;
+  damage_update_particle(&mat, 2650, 2e-3, -3e6, S, eps, 1, 4, 1e-8, &x1, &a1, &d);
+  check("wrapper: no Weibull parameters, no damage", fabs(x1 - 0.1), 0);
+}
+
 int main(void) {
   test_eigen();
+  test_wrapper();
   test_moduli();
   test_bar();
   test_monotone();

@@ -21,6 +21,7 @@
 #include "damage/flaws.h"
 #include "error.h"
 #include "flaws_io.h"
+#include "material.h"
 
 static int failures = 0;
 
@@ -258,9 +259,67 @@ static void test_io(void) {
   unlink(path);
 }
 
+/** Start-up generation for a table of materials = one call per material. */
+static void test_materials(void) {
+  enum { N = 3000 };
+  static int32_t mat[N];
+  static double mass[N], rho[N];
+  for (int i = 0; i < N; i++) {
+    mat[i] = i % 3 == 0 ? 0 : i % 3 == 1 ? 4 : 9;
+    mass[i] = 1e-3 * (1 + (i % 7));
+    rho[i] = i % 11 == 0 ? 0.0 : 2000 + i % 5; /* some without density */
+  }
+  struct material_table t;
+  material_table_init(&t);
+  struct material m;
+  char msg[256];
+  const int32_t ids[3] = {0, 4, 9};
+  const double wk[3] = {5e34, 0, 1e40}, wm[3] = {8, 0, 9.1};
+  int ok = 1;
+  for (int k = 0; k < 3; k++) {
+    material_init(&m, ids[k], k == 0 ? "basalt" : k == 1 ? "water" : "ice", EOS_LIQUID);
+    material_set(&m, "rho0", 2500, msg, sizeof msg);
+    material_set(&m, "c0", 3000, msg, sizeof msg);
+    if (wk[k] > 0) {
+      material_set(&m, "weibull_k", wk[k], msg, sizeof msg);
+      material_set(&m, "weibull_m", wm[k], msg, sizeof msg);
+    }
+    ok &= material_finalize(&m, msg, sizeof msg) == 0;
+    if (!ok) printf("material: %s\n", msg);
+    material_table_add(&t, &m);
+  }
+  struct flaws f, a, b;
+  const int64_t total = flaws_generate_materials(N, mat, mass, rho, &t, 77, &f);
+  /* the same by hand: material 0 then material 9 */
+  static unsigned char s0[N], s9[N];
+  double V0 = 0, V9 = 0;
+  for (int i = 0; i < N; i++) {
+    s0[i] = mat[i] == 0, s9[i] = mat[i] == 9;
+    const double r = rho[i] > 0 ? rho[i] : 2500;
+    if (s0[i]) V0 += mass[i] / r;
+    if (s9[i]) V9 += mass[i] / r;
+  }
+  flaws_generate(N, s0, 5e34, 8, V0, 77 + 0, NULL, &a);
+  flaws_generate(N, s9, 1e40, 9.1, V9, 77 + 9, &a, &b);
+  long water = 0;
+  for (int i = 0; i < N; i++) water += mat[i] == 4 && f.offset[i + 1] != f.offset[i];
+  check("materials: = one flaws_generate per brittle material",
+        ok && total == b.offset[N] && memcmp(f.offset, b.offset, (N + 1) * sizeof *f.offset) == 0 &&
+                memcmp(f.eps, b.eps, (size_t)total * sizeof *f.eps) == 0
+            ? 0
+            : 1,
+        0);
+  check("materials: non-brittle material has no flaws (count)", water, 0);
+  flaws_free(&f);
+  flaws_free(&a);
+  flaws_free(&b);
+  material_table_free(&t);
+}
+
 int main(int argc, char **argv) {
   (void)argc;
   error_init(argv[0]);
+  test_materials();
   test_rng();
   test_statistics();
   test_io();

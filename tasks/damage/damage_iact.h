@@ -26,6 +26,7 @@
 #include <stdint.h>
 
 #include "inline.h"
+#include "material.h"
 
 /** Components of a symmetric 3x3 tensor stored as 6 numbers. */
 enum damage_sym_comp {
@@ -212,6 +213,28 @@ BOLIDE_INLINE double damage_grady_kipp_update(double P, const double S[6], doubl
   const double rate = (double)n_grow * c_g / R_s; /* D4 */
   x += rate * dt;                                 /* exact: the rate is constant over the step */
   *dcbrt = x < xmax ? x : xmax;
+  return rate;
+}
+
+/** The damage task's work for one particle of material mat: the update of
+ *  damage_grady_kipp_update with E and c_g from the material's bulk and
+ *  shear moduli and the particle's density, and R_s = H (the kernel
+ *  support, theory/damage.md D4).  eps_all: the flat threshold array;
+ *  first, n_tot: the particle's slice.  Updates *dcbrt, *n_act and *d
+ *  (= dcbrt^3, the damage the force loop uses); returns the growth rate for
+ *  damage_timestep.  Materials without Weibull parameters (weibull_k = 0)
+ *  or without shear modulus take no damage. */
+BOLIDE_INLINE double damage_update_particle(const struct material *mat, double rho, double H,
+                                            double P, const double S[6],
+                                            const double *BOLIDE_RESTRICT eps_all, int64_t first,
+                                            int32_t n_tot, double dt, double *dcbrt, int32_t *n_act,
+                                            double *d) {
+  if (!(mat->weibull_k > 0.0) || !(mat->shear_modulus > 0.0)) return 0.0;
+  const double K = mat->bulk_modulus, mu = mat->shear_modulus;
+  const double rate =
+      damage_grady_kipp_update(P, S, damage_young_modulus(K, mu), damage_crack_speed(K, mu, rho), H,
+                               eps_all + first, n_tot, dt, dcbrt, n_act);
+  *d = *dcbrt * *dcbrt * *dcbrt;
   return rate;
 }
 

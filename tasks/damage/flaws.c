@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "error.h"
+#include "material.h"
 
 /** splitmix64 step (Steele, Lea & Flood 2014): seeds xoshiro's state. */
 static uint64_t flaws_splitmix64(uint64_t *x) {
@@ -120,6 +121,34 @@ int64_t flaws_generate(size_t n, const unsigned char *brittle, double k, double 
   free(count);
   free(which);
   return drawn;
+}
+
+int64_t flaws_generate_materials(size_t n, const int32_t *mat, const double *mass,
+                                 const double *rho, const struct material_table *t, uint64_t seed,
+                                 struct flaws *out) {
+  out->n_parts = n;
+  out->offset = error_calloc(n + 1, sizeof *out->offset, "flaws: offsets");
+  out->eps = error_malloc(sizeof *out->eps, "flaws: thresholds");
+  unsigned char *sel = error_malloc(n ? n : 1, "flaws: selection");
+  for (int k = 0; k < t->n; k++) {
+    const struct material *m = &t->mats[k];
+    if (!(m->weibull_k > 0.0)) continue;
+    double V = 0.0;
+    size_t nb = 0;
+    for (size_t i = 0; i < n; i++) {
+      sel[i] = mat[i] == m->id;
+      if (!sel[i]) continue;
+      nb++;
+      V += mass[i] / (rho[i] > 0.0 ? rho[i] : m->rho0);
+    }
+    if (nb == 0) continue;
+    struct flaws next;
+    flaws_generate(n, sel, m->weibull_k, m->weibull_m, V, seed + (uint64_t)m->id, out, &next);
+    flaws_free(out);
+    *out = next;
+  }
+  free(sel);
+  return out->offset[n];
 }
 
 int flaws_check(const struct flaws *f, char *msg, size_t len) {

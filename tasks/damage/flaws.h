@@ -58,6 +58,19 @@ double flaws_volume(size_t n, const double *mass, const double *rho, const unsig
 int64_t flaws_generate(size_t n, const unsigned char *brittle, double k, double m, double V,
                        uint64_t seed, const struct flaws *keep, struct flaws *out);
 
+struct material_table;
+
+/** Flaws for every brittle material of table t (weibull_k > 0), for
+ *  start-up from a recorded seed when the initial conditions have none: one
+ *  flaws_generate per material, in table order, with V the sum of m/rho of
+ *  its particles (rho0 of the material where rho <= 0) and the seed
+ *  seed + material id, so that adding a material leaves the others' flaws
+ *  unchanged.  Fills out (every particle zero flaws if no material is
+ *  brittle); returns the total number of flaws. */
+int64_t flaws_generate_materials(size_t n, const int32_t *mat, const double *mass,
+                                 const double *rho, const struct material_table *t, uint64_t seed,
+                                 struct flaws *out);
+
 /** Check the layout: offsets start at 0 and never decrease, thresholds are
  *  finite, non-negative and ascending within each particle.  Returns 0, or
  *  -1 with the first problem in msg. */
