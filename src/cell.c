@@ -1,0 +1,30 @@
+/* Cells: bookkeeping of cell bounds between rebuilds (see cell.h). */
+#include "cell.h"
+
+#include <math.h>
+
+#include "part.h"
+
+void cell_update_bounds(const struct parts *p, struct cell *c) {
+  if (c->split) {
+    c->h_max = 0.0;
+    c->dx_max = 0.0;
+    for (int q = 0; q < 8; q++) {
+      struct cell *child = c->progeny[q];
+      if (!child) continue;
+      cell_update_bounds(p, child);
+      if (child->h_max > c->h_max) c->h_max = child->h_max;
+      if (child->dx_max > c->dx_max) c->dx_max = child->dx_max;
+    }
+    return;
+  }
+  double h_max = 0.0, d2_max = 0.0;
+  for (size_t i = c->offset; i < c->offset + c->count; i++) {
+    const double dx = p->x[i] - p->x0[i], dy = p->y[i] - p->y0[i], dz = p->z[i] - p->z0[i];
+    const double d2 = dx * dx + dy * dy + dz * dz;
+    if (d2 > d2_max) d2_max = d2;
+    if (p->h[i] > h_max) h_max = p->h[i];
+  }
+  c->h_max = h_max;
+  c->dx_max = sqrt(d2_max);
+}

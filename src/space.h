@@ -1,0 +1,101 @@
+/* The space: the simulation box, its top-level grid of cells and the octree
+ * below each top-level cell, over particles sorted so that every cell owns
+ * one contiguous index range (DESIGN.md, "Data layout").
+ *
+ * space_rebuild() wraps (periodic box) or removes (open box) particles,
+ * chooses the top-level grid so that every interacting pair of particles is
+ * in the same or in neighbouring top-level cells, sorts the particles by
+ * top-level cell and then by octant down to split_size particles per leaf,
+ * and fills each cell's range, h_max and bounding box.  space_top_pairs()
+ * lists the pairs of top-level cells that can interact, with the periodic
+ * shift of each: the engine makes one pair task per entry and one self task
+ * per non-empty top-level cell.
+ *
+ * Interactions: particles i and j interact when r_ij < H_i (gather form) or
+ * r_ij < max(H_i, H_j) (symmetric form), with H = kernel_gamma * h and, in a
+ * periodic box, r_ij the minimum-image distance (unique: the box must be at
+ * least 2 H_max wide in every periodic direction). */
+#ifndef BOLIDE_SPACE_H
+#define BOLIDE_SPACE_H
+
+#include <stddef.h>
+
+#include "cell.h"
+
+struct parts;
+
+/** Default deepest octree level below a top-level cell (a leaf may hold more
+ *  than split_size particles only if they are this close together). */
+#define SPACE_MAX_DEPTH 30
+
+/** The box, its cells and the particles they index. */
+struct space {
+  double dim[3];             /**< box size; the box is [0, dim) in every direction */
+  int periodic;              /**< 1: periodic box (positions wrapped); 0: open box */
+  int cdim[3];               /**< top-level grid: number of cells per direction */
+  double width[3];           /**< edge lengths of a top-level cell, dim / cdim */
+  double iwidth[3];          /**< 1 / width */
+  struct cell *cells;        /**< all cells: top-level ones first (grid order), then octree cells */
+  int *progeny_index;        /**< 8 per cell: index in cells of each octant, -1 where empty */
+  int nr_top;                /**< number of top-level cells, cdim[0] * cdim[1] * cdim[2] */
+  int nr_cells;              /**< number of cells in use (top-level and octree) */
+  int cells_capacity;        /**< allocated length of cells (and of progeny_index / 8) */
+  struct parts *parts;       /**< the particles (owned by the caller) */
+  int split_size;            /**< a cell with more particles than this is split */
+  int max_top_level_cells;   /**< at most this many top-level cells per direction */
+  int max_depth;             /**< deepest octree level (SPACE_MAX_DEPTH) */
+  double cell_stretch;       /**< top-level width >= cell_stretch * kernel_gamma * h_max at rebuild,
+                                  the margin for h to grow before the next rebuild (1.1) */
+  double max_drift_fraction; /**< rebuild when a particle drifted more than this fraction of a
+                                  top-level cell width (0.25) */
+  double h_max;              /**< largest smoothing length at the last rebuild */
+  size_t nr_removed;         /**< particles removed from an open box since space_init */
+  int nr_rebuilds;           /**< number of calls of space_rebuild */
+  size_t *sort_index;        /**< work array of the rebuild (capacity sort_capacity) */
+  size_t sort_capacity;      /**< allocated length of sort_index */
+};
+
+/** One pair of top-level cells that can interact: the particles of cj are
+ *  seen from ci at x_j + shift (the periodic image; 0 in an open box). */
+struct space_pair {
+  int ci, cj;      /**< indices of the two top-level cells in space.cells */
+  double shift[3]; /**< added to the positions of cj's particles */
+};
+
+/** Set up a space over the particles parts (not yet sorted: call
+ *  space_rebuild).  box: the box size; periodic: 1 or 0; split_size: most
+ *  particles in a leaf; max_top_level_cells: most top-level cells per
+ *  direction.  Bad values stop with a one-line error. */
+void space_init(struct space *s, struct parts *parts, const double box[3], int periodic,
+                int split_size, int max_top_level_cells);
+
+/** Free the cells and work arrays (not the particles). */
+void space_free(struct space *s);
+
+/** Rebuild: wrap positions into the periodic box or remove the particles
+ *  outside the open box (each id logged, never silently lost), choose the
+ *  top-level grid, sort the particles (every cell one contiguous range),
+ *  build the octrees, store x0 = x and compute every cell's h_max and
+ *  bounding box.  Returns the number of particles removed by this call.
+ *  A non-finite position or smoothing length, or (periodic box) a kernel
+ *  support larger than half the box, stops with a one-line error naming the
+ *  particle. */
+size_t space_rebuild(struct space *s);
+
+/** 1 if the cells no longer hold every interaction among neighbours or are
+ *  too stale: some particle moved more than max_drift_fraction of a cell
+ *  width since the rebuild, or kernel_gamma * h_max + 2 * (largest drift)
+ *  exceeds a top-level cell width (or half a periodic box); else 0. */
+int space_should_rebuild(const struct space *s);
+
+/** Index in s->cells of top-level cell (i, j, k). */
+static inline int space_top_index(const struct space *s, int i, int j, int k) {
+  return (i * s->cdim[1] + j) * s->cdim[2] + k;
+}
+
+/** The pairs of non-empty top-level cells that can interact (neighbours
+ *  within one cell, periodic images included), each once, with the shift
+ *  of cj.  *pairs is allocated here (free() it); returns their number. */
+size_t space_top_pairs(const struct space *s, struct space_pair **pairs);
+
+#endif

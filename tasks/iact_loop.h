@@ -1,0 +1,270 @@
+/* The interaction-loop skeleton, written once for every task family
+ * (STYLE.md, "three layers": pair function, loop skeleton, task).
+ *
+ * A task family includes this header after naming its interaction:
+ *
+ *   #define IACT_LOOP_NAME density
+ *   #define IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj)    density_iact(p, i, j, r2, dx, hi, hj)
+ *   #define IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, hj) density_iact_gather(p, i, j, r2, dx, hi, hj)
+ *   #define IACT_LOOP_ACTIVE(p, i) ((p)->flags[i] & PART_ACTIVE)      (optional)
+ *   #include "iact_loop.h"
+ *
+ * which defines, for the macros given:
+ *   IACT_LOOP_SYM (symmetric form: updates i and j; called once per pair with
+ *   r < max(H_i, H_j), H = kernel_gamma * h):
+ *     static void loop_density_self(struct parts *p, const struct cell *c);
+ *     static void loop_density_pair(struct parts *p, const struct cell *ci,
+ *                                   const struct cell *cj, const double shift[3]);
+ *   IACT_LOOP_NONSYM (gather form: updates i only; called for every ordered
+ *   (i, j), i != j, with r < H_i; the form the GPU and the ghost's smoothing
+ *   length iteration use):
+ *     static void loop_density_self_gather(struct parts *p, const struct cell *c);
+ *     static void loop_density_pair_gather(struct parts *p, const struct cell *ci,
+ *                                          const struct cell *cj, const double shift[3]);
+ *   The gather pair updates the particles of ci from those of cj only: a pair
+ *   task calls it twice, (ci, cj, shift) and (cj, ci, -shift).  (ci == cj is
+ *   allowed only with a non-zero shift, as in a box of one periodic cell.)  Particles i
+ *   for which IACT_LOOP_ACTIVE(p, i) is false are skipped (default: none).
+ *
+ * Arguments of the interaction macros: p the particles, i and j indices into
+ * them, r2 = |dx|^2, dx (const double[3]) = (x_i - x_j) - shift: the
+ * separation from the image of j at x_j + shift, hi and hj the smoothing
+ * lengths.  In a pair, i always belongs to ci and j to cj.
+ *
+ * The pair loops recurse into the octrees, pruning every pair of sub-cells
+ * whose bounding boxes (grown by the cells' dx_max) are farther apart than
+ * the largest kernel support involved (kernel_gamma * h_max); at leaves they
+ * loop over both ranges.  A cell may be paired with its own periodic image
+ * (ci == cj, shift != 0: a box of one or two top-level cells); then every
+ * ordered (i, j) is visited, which counts each interaction once.  The
+ * macros are undefined at the end, so the header can be included again. */
+#include <math.h>
+
+#include "cell.h"
+#include "kernel.h"
+#include "part.h"
+
+#ifndef IACT_LOOP_NAME
+#error "define IACT_LOOP_NAME before including iact_loop.h"
+#endif
+#if !defined(IACT_LOOP_SYM) && !defined(IACT_LOOP_NONSYM)
+#error "define IACT_LOOP_SYM and/or IACT_LOOP_NONSYM before including iact_loop.h"
+#endif
+#ifndef IACT_LOOP_ACTIVE
+#define IACT_LOOP_ACTIVE(p, i) 1
+#endif
+
+#define IACT_LOOP_PASTE2(a, b, c) a##b##c
+#define IACT_LOOP_PASTE(a, b, c) IACT_LOOP_PASTE2(a, b, c)
+/** loop_<NAME><suffix> */
+#define IACT_LOOP_FN(suffix) IACT_LOOP_PASTE(loop_, IACT_LOOP_NAME, suffix)
+
+#ifndef BOLIDE_IACT_LOOP_COMMON
+#define BOLIDE_IACT_LOOP_COMMON
+/** The zero shift of pairs inside one cell. */
+static const double iact_loop_no_shift[3] = {0.0, 0.0, 0.0};
+
+/** Square of the pruning radius R for cells ci and cj (shift applied to cj),
+ *  widened by a relative 1e-10 and by 1e-13 of the coordinates' magnitude:
+ *  the bounding-box distance and the particles' distances are rounded
+ *  differently, and pruning must never drop a pair that the leaf test keeps. */
+__attribute__((unused)) static double iact_loop_prune_r2(double R, const struct cell *ci,
+                                                         const struct cell *cj,
+                                                         const double shift[3]) {
+  double scale = 0.0;
+  for (int k = 0; k < 3; k++)
+    scale += fabs(ci->loc[k]) + ci->width[k] + fabs(cj->loc[k]) + cj->width[k] + fabs(shift[k]);
+  const double Rs = R * (1.0 + 1e-10) + 1e-13 * scale;
+  return Rs * Rs;
+}
+#endif
+
+/* ------------------------------------------------------------ symmetric form */
+#ifdef IACT_LOOP_SYM
+
+/** Leaf pair, symmetric: every i of ci with every j of cj (at x_j + shift). */
+__attribute__((unused)) static void IACT_LOOP_FN(_pair_leaf)(struct parts *p, const struct cell *ci,
+                                                             const struct cell *cj,
+                                                             const double shift[3]) {
+  const double *BOLIDE_RESTRICT x = p->x, *BOLIDE_RESTRICT y = p->y, *BOLIDE_RESTRICT z = p->z;
+  const double *BOLIDE_RESTRICT h = p->h;
+  const double Hj_max = kernel_gamma * cj->h_max;
+  const size_t jbeg = cj->offset, jend = cj->offset + cj->count;
+  for (size_t i = ci->offset; i < ci->offset + ci->count; i++) {
+    const double xi[3] = {x[i], y[i], z[i]}, hi = h[i], Hi = kernel_gamma * hi;
+    const double Hi2 = Hi * Hi;
+    const double R = (Hi > Hj_max ? Hi : Hj_max) + cj->dx_max;
+    if (cell_point_dist2(cj, xi, shift) > iact_loop_prune_r2(R, ci, cj, shift)) continue;
+    for (size_t j = jbeg; j < jend; j++) {
+      const double dx[3] = {(xi[0] - x[j]) - shift[0], (xi[1] - y[j]) - shift[1],
+                            (xi[2] - z[j]) - shift[2]};
+      const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+      const double hj = h[j], Hj = kernel_gamma * hj;
+      if (r2 < Hi2 || r2 < Hj * Hj) {
+        IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj);
+      }
+    }
+  }
+}
+
+/** Leaf self, symmetric: every pair i < j of c once. */
+__attribute__((unused)) static void IACT_LOOP_FN(_self_leaf)(struct parts *p,
+                                                             const struct cell *c) {
+  const double *BOLIDE_RESTRICT x = p->x, *BOLIDE_RESTRICT y = p->y, *BOLIDE_RESTRICT z = p->z;
+  const double *BOLIDE_RESTRICT h = p->h;
+  const size_t end = c->offset + c->count;
+  for (size_t i = c->offset; i < end; i++) {
+    const double xi[3] = {x[i], y[i], z[i]}, hi = h[i], Hi = kernel_gamma * hi;
+    const double Hi2 = Hi * Hi;
+    for (size_t j = i + 1; j < end; j++) {
+      const double dx[3] = {xi[0] - x[j], xi[1] - y[j], xi[2] - z[j]};
+      const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+      const double hj = h[j], Hj = kernel_gamma * hj;
+      if (r2 < Hi2 || r2 < Hj * Hj) {
+        IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj);
+      }
+    }
+  }
+}
+
+/** Pair of cells, symmetric: recurse into the octrees, prune by bounding box
+ *  against max(H_max of ci, H_max of cj) + the drifts, loop at the leaves. */
+__attribute__((unused)) static void IACT_LOOP_FN(_pair)(struct parts *p, const struct cell *ci,
+                                                        const struct cell *cj,
+                                                        const double shift[3]) {
+  if (ci->count == 0 || cj->count == 0) return;
+  const double h_max = ci->h_max > cj->h_max ? ci->h_max : cj->h_max;
+  const double R = kernel_gamma * h_max + ci->dx_max + cj->dx_max;
+  if (cell_bbox_dist2(ci, cj, shift) > iact_loop_prune_r2(R, ci, cj, shift)) return;
+  if (ci->split && cj->split) {
+    for (int a = 0; a < 8; a++)
+      if (ci->progeny[a])
+        for (int b = 0; b < 8; b++)
+          if (cj->progeny[b]) IACT_LOOP_FN(_pair)(p, ci->progeny[a], cj->progeny[b], shift);
+  } else if (ci->split) {
+    for (int a = 0; a < 8; a++)
+      if (ci->progeny[a]) IACT_LOOP_FN(_pair)(p, ci->progeny[a], cj, shift);
+  } else if (cj->split) {
+    for (int b = 0; b < 8; b++)
+      if (cj->progeny[b]) IACT_LOOP_FN(_pair)(p, ci, cj->progeny[b], shift);
+  } else {
+    IACT_LOOP_FN(_pair_leaf)(p, ci, cj, shift);
+  }
+}
+
+/** One cell with itself, symmetric: each pair of its particles once. */
+__attribute__((unused)) static void IACT_LOOP_FN(_self)(struct parts *p, const struct cell *c) {
+  if (c->count < 2) return;
+  if (!c->split) {
+    IACT_LOOP_FN(_self_leaf)(p, c);
+    return;
+  }
+  for (int a = 0; a < 8; a++) {
+    if (!c->progeny[a]) continue;
+    IACT_LOOP_FN(_self)(p, c->progeny[a]);
+    for (int b = a + 1; b < 8; b++)
+      if (c->progeny[b]) IACT_LOOP_FN(_pair)(p, c->progeny[a], c->progeny[b], iact_loop_no_shift);
+  }
+}
+
+#endif /* IACT_LOOP_SYM */
+
+/* ------------------------------------------------------------ gather form */
+#ifdef IACT_LOOP_NONSYM
+
+/** Leaf pair, gather: every active i of ci from every j of cj with r < H_i. */
+__attribute__((unused)) static void IACT_LOOP_FN(_pair_gather_leaf)(struct parts *p,
+                                                                    const struct cell *ci,
+                                                                    const struct cell *cj,
+                                                                    const double shift[3]) {
+  const double *BOLIDE_RESTRICT x = p->x, *BOLIDE_RESTRICT y = p->y, *BOLIDE_RESTRICT z = p->z;
+  const double *BOLIDE_RESTRICT h = p->h;
+  const size_t jbeg = cj->offset, jend = cj->offset + cj->count;
+  for (size_t i = ci->offset; i < ci->offset + ci->count; i++) {
+    if (!(IACT_LOOP_ACTIVE(p, i))) continue;
+    const double xi[3] = {x[i], y[i], z[i]}, hi = h[i], Hi = kernel_gamma * hi;
+    const double Hi2 = Hi * Hi;
+    if (cell_point_dist2(cj, xi, shift) > iact_loop_prune_r2(Hi + cj->dx_max, ci, cj, shift))
+      continue;
+    for (size_t j = jbeg; j < jend; j++) {
+      const double dx[3] = {(xi[0] - x[j]) - shift[0], (xi[1] - y[j]) - shift[1],
+                            (xi[2] - z[j]) - shift[2]};
+      const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+      if (r2 < Hi2) {
+        IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, h[j]);
+      }
+    }
+  }
+}
+
+/** Leaf self, gather: every active i of c from every other j of c. */
+__attribute__((unused)) static void IACT_LOOP_FN(_self_gather_leaf)(struct parts *p,
+                                                                    const struct cell *c) {
+  const double *BOLIDE_RESTRICT x = p->x, *BOLIDE_RESTRICT y = p->y, *BOLIDE_RESTRICT z = p->z;
+  const double *BOLIDE_RESTRICT h = p->h;
+  const size_t beg = c->offset, end = c->offset + c->count;
+  for (size_t i = beg; i < end; i++) {
+    if (!(IACT_LOOP_ACTIVE(p, i))) continue;
+    const double xi[3] = {x[i], y[i], z[i]}, hi = h[i], Hi = kernel_gamma * hi;
+    const double Hi2 = Hi * Hi;
+    for (size_t j = beg; j < end; j++) {
+      const double dx[3] = {xi[0] - x[j], xi[1] - y[j], xi[2] - z[j]};
+      const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+      if (r2 < Hi2 && j != i) {
+        IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, h[j]);
+      }
+    }
+  }
+}
+
+/** Pair of cells, gather: the particles of ci from those of cj; recurse into
+ *  the octrees, pruning by bounding box against H_max of ci + the drifts. */
+__attribute__((unused)) static void IACT_LOOP_FN(_pair_gather)(struct parts *p,
+                                                               const struct cell *ci,
+                                                               const struct cell *cj,
+                                                               const double shift[3]) {
+  if (ci->count == 0 || cj->count == 0) return;
+  const double R = kernel_gamma * ci->h_max + ci->dx_max + cj->dx_max;
+  if (cell_bbox_dist2(ci, cj, shift) > iact_loop_prune_r2(R, ci, cj, shift)) return;
+  if (ci->split && cj->split) {
+    for (int a = 0; a < 8; a++)
+      if (ci->progeny[a])
+        for (int b = 0; b < 8; b++)
+          if (cj->progeny[b]) IACT_LOOP_FN(_pair_gather)(p, ci->progeny[a], cj->progeny[b], shift);
+  } else if (ci->split) {
+    for (int a = 0; a < 8; a++)
+      if (ci->progeny[a]) IACT_LOOP_FN(_pair_gather)(p, ci->progeny[a], cj, shift);
+  } else if (cj->split) {
+    for (int b = 0; b < 8; b++)
+      if (cj->progeny[b]) IACT_LOOP_FN(_pair_gather)(p, ci, cj->progeny[b], shift);
+  } else {
+    IACT_LOOP_FN(_pair_gather_leaf)(p, ci, cj, shift);
+  }
+}
+
+/** One cell with itself, gather: every i of c from every other j of c. */
+__attribute__((unused)) static void IACT_LOOP_FN(_self_gather)(struct parts *p,
+                                                               const struct cell *c) {
+  if (c->count < 2) return;
+  if (!c->split) {
+    IACT_LOOP_FN(_self_gather_leaf)(p, c);
+    return;
+  }
+  for (int a = 0; a < 8; a++) {
+    if (!c->progeny[a]) continue;
+    IACT_LOOP_FN(_self_gather)(p, c->progeny[a]);
+    for (int b = 0; b < 8; b++)
+      if (b != a && c->progeny[b])
+        IACT_LOOP_FN(_pair_gather)(p, c->progeny[a], c->progeny[b], iact_loop_no_shift);
+  }
+}
+
+#endif /* IACT_LOOP_NONSYM */
+
+#undef IACT_LOOP_FN
+#undef IACT_LOOP_PASTE
+#undef IACT_LOOP_PASTE2
+#undef IACT_LOOP_NAME
+#undef IACT_LOOP_SYM
+#undef IACT_LOOP_NONSYM
+#undef IACT_LOOP_ACTIVE
