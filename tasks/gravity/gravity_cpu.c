@@ -9,8 +9,6 @@
 #include "cell.h"
 #include "error.h"
 #include "part.h"
-#include "params.h"
-#include "units.h"
 
 void gravity_props_set(struct gravity_props *gp, double G, double theta, double eps,
                        int softening, int order) {
@@ -33,21 +31,6 @@ void gravity_props_set(struct gravity_props *gp, double G, double theta, double 
   }
 }
 
-void gravity_props_init(struct gravity_props *gp, const struct params *params,
-                        const struct unit_system *us) {
-  double eps = params_get_real(params, "Gravity:softening");
-  if (eps == 0.0) eps = params_get_real(params, "Gravity:max_physical_baryon_softening");
-  /* choices "spline|plummer" in the order of enum gravity_softening */
-  const int kind = params_get_enum(params, "Gravity:softening_kernel");
-  gravity_props_set(gp, units_G(us), params_get_real(params, "Gravity:theta_cr"), eps, kind,
-                    (int)params_get_int(params, "Gravity:multipole_order"));
-  gp->enabled = params_get_bool(params, "Gravity:enabled");
-  gp->direct = params_get_bool(params, "Gravity:direct");
-  gp->eta = params_get_real(params, "Gravity:eta");
-  if (gp->enabled && eps == 0.0)
-    error_warning("Gravity:softening is 0: close pairs of particles will see a singular force");
-}
-
 void gravity_check_space(const struct gravity_props *gp, int periodic) {
   if (gp->enabled && periodic)
     error_exit("Gravity:enabled: self-gravity needs an open box (InitialConditions:periodic: "
@@ -64,18 +47,20 @@ struct gravity_cell *gravity_cells_reserve(struct gravity_cell *gc, int *capacit
 /* ------------------------------------------------------------------ up */
 
 /** Multipole of c from its particles (leaf) or its progeny (split cell). */
-static void up_rec(const struct parts *p, const struct cell *c, struct gravity_cell *gc,
+static void up_rec(struct parts *p, const struct cell *c, struct gravity_cell *gc,
                    int order) {
   struct gravity_cell *g = gc + c->index;
   struct gravity_multipole *mp = &g->mp;
   gravity_field_zero(&g->field);
   gravity_multipole_zero(mp);
   mp->r_max = 0.0;
+  g->a_min = 0.0;
   for (int k = 0; k < 3; k++) mp->com[k] = c->loc[k] + 0.5 * c->width[k];
   if (c->count == 0) return;
 
   double mass = 0.0, s[3] = {0.0, 0.0, 0.0};
   if (c->split) {
+    double a_min = HUGE_VAL;
     for (int q = 0; q < 8; q++) {
       const struct cell *cp = c->progeny[q];
       if (cp == NULL || cp->count == 0) continue;
@@ -83,14 +68,23 @@ static void up_rec(const struct parts *p, const struct cell *c, struct gravity_c
       const struct gravity_multipole *mq = &gc[cp->index].mp;
       mass += mq->M[0];
       for (int k = 0; k < 3; k++) s[k] += mq->M[0] * mq->com[k];
+      if (gc[cp->index].a_min < a_min) a_min = gc[cp->index].a_min;
     }
+    g->a_min = a_min;
   } else {
+    /* |ga| of the previous pass (0 for a particle never computed: then the
+     * cell's a_min is 0, "unknown"), then a fresh start of the sums. */
+    double a2_min = HUGE_VAL;
     for (size_t i = c->offset; i < c->offset + c->count; i++) {
       mass += p->m[i];
       s[0] += p->m[i] * p->x[i];
       s[1] += p->m[i] * p->y[i];
       s[2] += p->m[i] * p->z[i];
+      const double a2 = p->gax[i] * p->gax[i] + p->gay[i] * p->gay[i] + p->gaz[i] * p->gaz[i];
+      if (a2 < a2_min) a2_min = a2;
+      p->gax[i] = p->gay[i] = p->gaz[i] = p->pot[i] = 0.0;
     }
+    g->a_min = sqrt(a2_min);
   }
   /* A massless cell keeps its box centre as expansion centre. */
   if (mass > 0.0)
@@ -119,7 +113,7 @@ static void up_rec(const struct parts *p, const struct cell *c, struct gravity_c
   }
 }
 
-void gravity_up(const struct parts *p, const struct cell *c, struct gravity_cell *gc,
+void gravity_up(struct parts *p, const struct cell *c, struct gravity_cell *gc,
                 const struct gravity_props *gp) {
   up_rec(p, c, gc, gp->order);
 }
@@ -142,14 +136,14 @@ static void p2p_self(struct parts *p, const struct cell *c, const struct gravity
       a[1] -= gj * wacc * dx[1];
       a[2] -= gj * wacc * dx[2];
       p->pot[j] -= gi * wpot;
-      p->ax[j] += gi * wacc * dx[0];
-      p->ay[j] += gi * wacc * dx[1];
-      p->az[j] += gi * wacc * dx[2];
+      p->gax[j] += gi * wacc * dx[0];
+      p->gay[j] += gi * wacc * dx[1];
+      p->gaz[j] += gi * wacc * dx[2];
     }
     p->pot[i] += pot;
-    p->ax[i] += a[0];
-    p->ay[i] += a[1];
-    p->az[i] += a[2];
+    p->gax[i] += a[0];
+    p->gay[i] += a[1];
+    p->gaz[i] += a[2];
   }
 }
 
@@ -173,19 +167,31 @@ static void p2p_pair(struct parts *p, const struct cell *a, const struct cell *b
       acc[2] -= gj * wacc * dx[2];
       if (symmetric) {
         p->pot[j] -= gi * wpot;
-        p->ax[j] += gi * wacc * dx[0];
-        p->ay[j] += gi * wacc * dx[1];
-        p->az[j] += gi * wacc * dx[2];
+        p->gax[j] += gi * wacc * dx[0];
+        p->gay[j] += gi * wacc * dx[1];
+        p->gaz[j] += gi * wacc * dx[2];
       }
     }
     p->pot[i] += pot;
-    p->ax[i] += acc[0];
-    p->ay[i] += acc[1];
-    p->az[i] += acc[2];
+    p->gax[i] += acc[0];
+    p->gay[i] += acc[1];
+    p->gaz[i] += acc[2];
   }
 }
 
 /* ------------------------------------------------------------------ walks */
+
+/** Acceptance of the interaction between cells a and b, the same in both
+ *  directions (mutual interactions conserve momentum): the geometric
+ *  criterion and, where the previous pass gave a scale, the adaptive one
+ *  for a and for b. */
+static int accept(const struct gravity_cell *a, const struct gravity_cell *b, double r2,
+                  const struct gravity_props *gp) {
+  if (!gravity_mac(a->mp.r_max, b->mp.r_max, r2, gp->theta, gp->h_support)) return 0;
+  const double rs = a->mp.r_max + b->mp.r_max;
+  return gravity_mac_adaptive(gp->G, b->mp.M[0], rs, r2, gp->order, gp->epsilon_fmm, a->a_min) &&
+         gravity_mac_adaptive(gp->G, a->mp.M[0], rs, r2, gp->order, gp->epsilon_fmm, b->a_min);
+}
 
 /** Which of a and b to open: the one with the larger radius among those
  *  that have progeny (Dehnen 2002, sec. 3.2).  Returns 0 for a, 1 for b. */
@@ -205,13 +211,17 @@ static void walk_pair(struct parts *p, const struct cell *a, const struct cell *
   const double R[3] = {gb->mp.com[0] - ga->mp.com[0], gb->mp.com[1] - ga->mp.com[1],
                        gb->mp.com[2] - ga->mp.com[2]};
   const double r2 = R[0] * R[0] + R[1] * R[1] + R[2] * R[2];
-  if (gravity_mac(ga->mp.r_max, gb->mp.r_max, r2, gp->theta, gp->h_support)) {
+  if (accept(ga, gb, r2, gp)) {
     double D[GRAVITY_ND];
-    gravity_derivatives(R, gp->eps2_expansion, gp->order, D);
-    if (symmetric)
+    if (symmetric) {
+      gravity_derivatives(R, gp->eps2_expansion, gp->order, D);
       gravity_m2l_sym(&ga->field, &gb->field, &ga->mp, &gb->mp, D, gp->order);
-    else
+    } else {
+      /* target a, source b: the tensor at z_a - z_b */
+      const double Rab[3] = {-R[0], -R[1], -R[2]};
+      gravity_derivatives(Rab, gp->eps2_expansion, gp->order, D);
       gravity_m2l(&ga->field, &gb->mp, D, gp->order);
+    }
     return;
   }
   if (!a->split && !b->split) {
@@ -299,9 +309,12 @@ static void down_rec(struct parts *p, const struct cell *c, struct gravity_cell 
     double pot = 0.0, a[3] = {0.0, 0.0, 0.0};
     gravity_l2p(&g->field, s, gp->order, gp->G, &pot, a);
     p->pot[i] += pot;
-    p->ax[i] += a[0];
-    p->ay[i] += a[1];
-    p->az[i] += a[2];
+    p->gax[i] += a[0];
+    p->gay[i] += a[1];
+    p->gaz[i] += a[2];
+    p->ax[i] += p->gax[i];
+    p->ay[i] += p->gay[i];
+    p->az[i] += p->gaz[i];
   }
 }
 
@@ -347,14 +360,21 @@ static void *direct_gather(void *arg) {
       gravity_p2p(dx, r2, p->m[j], job->G, job->eps, job->softening, &pot, a);
     }
     p->pot[i] += pot;
-    p->ax[i] += a[0];
-    p->ay[i] += a[1];
-    p->az[i] += a[2];
+    p->gax[i] += a[0];
+    p->gay[i] += a[1];
+    p->gaz[i] += a[2];
   }
   return NULL;
 }
 
+static void direct_threads(struct parts *p, double G, double eps, int softening, int nthreads);
+
 void gravity_direct(struct parts *p, double G, double eps, int softening, int nthreads) {
+  const size_t n = p->count;
+  memset(p->gax, 0, n * sizeof(double));
+  memset(p->gay, 0, n * sizeof(double));
+  memset(p->gaz, 0, n * sizeof(double));
+  memset(p->pot, 0, n * sizeof(double));
   if (nthreads <= 1) {
     /* Symmetric: each pair once. */
     struct gravity_props gp;
@@ -364,8 +384,18 @@ void gravity_direct(struct parts *p, double G, double eps, int softening, int nt
     all.offset = 0;
     all.count = p->count;
     p2p_self(p, &all, &gp);
-    return;
+  } else {
+    direct_threads(p, G, eps, softening, nthreads);
   }
+  for (size_t i = 0; i < n; i++) {
+    p->ax[i] += p->gax[i];
+    p->ay[i] += p->gay[i];
+    p->az[i] += p->gaz[i];
+  }
+}
+
+/** Gather-form direct summation over nthreads POSIX threads. */
+static void direct_threads(struct parts *p, double G, double eps, int softening, int nthreads) {
   pthread_t tid[64];
   struct direct_job job[64];
   if (nthreads > 64) nthreads = 64;

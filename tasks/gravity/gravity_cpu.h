@@ -25,8 +25,11 @@
  * struct cell, in an array of struct gravity_cell indexed by cell->index
  * (the cell's position in struct space.cells); struct cell is unchanged.
  *
- * Every routine ADDS to ax, ay, az and pot: zero them before the first
- * force task of a step.  Gravity in a periodic box (Ewald sums) is not
+ * Particle fields: gravity owns pot and the accumulators gax, gay, gaz
+ * (src/part.h): gravity_up zeroes them for its cell, the interactions add
+ * to them, gravity_down completes them and ADDS ga to ax, ay, az (which the
+ * engine zeroes before the step's force tasks, as for hydrodynamics).  |ga|
+ * stays until the next gravity_up: the scale of the adaptive criterion.  Gravity in a periodic box (Ewald sums) is not
  * implemented: gravity_check_space refuses it. */
 #ifndef BOLIDE_GRAVITY_CPU_H
 #define BOLIDE_GRAVITY_CPU_H
@@ -40,6 +43,9 @@ struct parts;
 struct params;
 struct unit_system;
 
+/** Default of Gravity:epsilon_fmm (the same value as in src/io/param_list.h). */
+#define GRAVITY_EPSILON_FMM_DEFAULT 1e-3
+
 /** Parameters of self-gravity (section Gravity of the parameter file). */
 struct gravity_props {
   int enabled;      /**< Gravity:enabled */
@@ -50,6 +56,7 @@ struct gravity_props {
   int softening;    /**< enum gravity_softening (Gravity:softening_kernel) */
   int order;        /**< expansion order p (Gravity:multipole_order), 1..GRAVITY_ORDER_MAX */
   double eta;       /**< Gravity:eta, time-step factor: dt = sqrt(2 eta eps / |a|) */
+  double epsilon_fmm; /**< Gravity:epsilon_fmm, tolerance of the adaptive criterion (0: off) */
   double h_support; /**< distance beyond which the pair force is Newtonian (3 eps for the
                          spline, 0 for Plummer whose expansions are softened) */
   double eps2_expansion; /**< softening squared inside the expansions (eps^2 for Plummer, else 0) */
@@ -59,6 +66,7 @@ struct gravity_props {
 struct gravity_cell {
   struct gravity_multipole mp; /**< multipole about the centre of mass (gravity_up) */
   struct gravity_field field;  /**< local expansion about mp.com (interactions, gravity_down) */
+  double a_min; /**< smallest |ga| of the cell's particles at the previous pass (0: unknown) */
 };
 
 /** Fill gp from the Gravity section of params; G from the unit system. */
@@ -79,8 +87,10 @@ void gravity_check_space(const struct gravity_props *gp, int periodic);
 struct gravity_cell *gravity_cells_reserve(struct gravity_cell *gc, int *capacity, int n);
 
 /** P2M at the leaves of c's octree and M2M up to c; also zeroes the field
- *  tensors of c's octree (a new step's expansions start from 0). */
-void gravity_up(const struct parts *p, const struct cell *c, struct gravity_cell *gc,
+ *  tensors of c's octree (a new step's expansions start from 0), records
+ *  each cell's a_min from |ga| and zeroes ga and pot of c's particles.
+ *  Writes c's particles' ga and pot only. */
+void gravity_up(struct parts *p, const struct cell *c, struct gravity_cell *gc,
                 const struct gravity_props *gp);
 
 /** Interactions within ci (ci == cj) or between ci and cj (a near pair):
@@ -94,7 +104,8 @@ void gravity_interact_cells(struct parts *p, const struct cell *ci, const struct
 void gravity_long_range(struct parts *p, const struct cell *ci, const struct cell *tops,
                         int nr_top, struct gravity_cell *gc, const struct gravity_props *gp);
 
-/** L2L down c's octree and L2P to its particles (adds to ax, ay, az, pot). */
+/** L2L down c's octree and L2P to its particles (into ga and pot), then
+ *  ax += ga for c's particles. */
 void gravity_down(struct parts *p, const struct cell *c, const struct gravity_cell *gc,
                   const struct gravity_props *gp);
 
@@ -111,8 +122,8 @@ void gravity_tree_all(struct parts *p, const struct cell *tops, int nr_top,
                       struct gravity_cell *gc, const struct gravity_props *gp);
 
 /** Exact O(N^2) summation over all pairs (Gravity:direct, and the reference
- *  of the tests): adds to ax, ay, az, pot.  nthreads > 1 splits the work
- *  over POSIX threads. */
+ *  of the tests): sets ga and pot, adds ga to ax, ay, az.  nthreads > 1
+ *  splits the work over POSIX threads (gather form). */
 void gravity_direct(struct parts *p, double G, double eps, int softening, int nthreads);
 
 /** Potential energy 1/2 sum_i m_i pot_i (pot from a complete gravity pass). */

@@ -386,4 +386,31 @@ BOLIDE_INLINE int gravity_mac(double r_max_a, double r_max_b, double r2, double 
   return gap * gap < r2;
 }
 
+/** Error-based (adaptive) acceptance, one direction (Dehnen 2014, Comput.
+ *  Astrophys. Cosmol. 1, 1; SWIFT's epsilon_fmm, Schaller et al. 2024): the
+ *  truncated terms of the acceleration that cell B (mass m_b) exerts on
+ *  cell A are estimated as (G13)
+ *    E = G m_b (r_max_a + r_max_b)^p / R^(p+2)
+ *  and the interaction is accepted when E < eps_fmm * a_min, a_min the
+ *  smallest gravitational acceleration of A's particles at the previous
+ *  pass.  a_min <= 0 (not known yet) or eps_fmm <= 0 accepts: the geometric
+ *  criterion then decides alone. */
+BOLIDE_INLINE int gravity_mac_adaptive(double G, double m_b, double r_sum, double r2, int p,
+                                       double eps_fmm, double a_min) {
+  if (eps_fmm <= 0.0 || a_min <= 0.0) return 1;
+  double num = G * m_b, den = r2;
+  for (int k = 0; k < p; k++) num *= r_sum;
+  for (int k = 0; k < p; k += 2) den *= (k + 1 < p) ? r2 : sqrt(r2);
+  return num < eps_fmm * a_min * den;
+}
+
+/** Gravitational time step (Power et al. 2003, MNRAS 338, 14, eq. 20, in
+ *  SWIFT's form): dt = sqrt(2 eta eps / |a|) for softening eps and
+ *  acceleration a; 1e300 when a = 0. */
+BOLIDE_INLINE double gravity_timestep(const double a[3], double eps, double eta) {
+  const double a2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+  if (a2 <= 0.0) return 1e300;
+  return sqrt(2.0 * eta * eps / sqrt(a2));
+}
+
 #endif
