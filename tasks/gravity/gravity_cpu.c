@@ -193,17 +193,79 @@ static int accept(const struct gravity_cell *a, const struct gravity_cell *b, do
          gravity_mac_adaptive(gp->G, a->mp.M[0], rs, r2, gp->order, gp->epsilon_fmm, b->a_min);
 }
 
-/** Which of a and b to open: the one with the larger radius among those
- *  that have progeny (Dehnen 2002, sec. 3.2).  Returns 0 for a, 1 for b. */
-static int open_which(const struct cell *a, const struct cell *b, const struct gravity_cell *gc) {
-  if (!a->split) return 1;
-  if (!b->split) return 0;
-  return gc[b->index].mp.r_max > gc[a->index].mp.r_max;
+/** Particle i (in a cell of scale a_min_i) with every particle of leaf b;
+ *  upd_i / upd_b: which side receives. */
+static void p2p_point_leaf(struct parts *p, size_t i, const struct cell *b, int upd_i, int upd_b,
+                           const struct gravity_props *gp) {
+  double pot = 0.0, acc[3] = {0.0, 0.0, 0.0};
+  const double gi = gp->G * p->m[i];
+  for (size_t j = b->offset; j < b->offset + b->count; j++) {
+    const double dx[3] = {p->x[i] - p->x[j], p->y[i] - p->y[j], p->z[i] - p->z[j]};
+    const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+    double wpot, wacc;
+    gravity_softened_kernel(r2, gp->eps, gp->softening, &wpot, &wacc);
+    const double gj = gp->G * p->m[j];
+    pot -= gj * wpot;
+    acc[0] -= gj * wacc * dx[0];
+    acc[1] -= gj * wacc * dx[1];
+    acc[2] -= gj * wacc * dx[2];
+    if (upd_b) {
+      p->pot[j] -= gi * wpot;
+      p->gax[j] += gi * wacc * dx[0];
+      p->gay[j] += gi * wacc * dx[1];
+      p->gaz[j] += gi * wacc * dx[2];
+    }
+  }
+  if (upd_i) {
+    p->pot[i] += pot;
+    p->gax[i] += acc[0];
+    p->gay[i] += acc[1];
+    p->gaz[i] += acc[2];
+  }
 }
 
-/** Dual-tree walk between disjoint cells a and b: M2L where the criterion
- *  accepts, P2P between leaves, else open one of them.  symmetric: both
- *  cells receive (pair task), else only a (long-range task). */
+/** Particle i (its leaf's a_min is a_min_i) against the tree of b: the
+ *  mutual point-cell interaction (gravity_m2p_p2l) where the criterion
+ *  accepts (point radius 0), else open b, P2P at b's leaves.  Used when a
+ *  leaf too large to be opened meets smaller cells: its particles then see
+ *  those cells one by one, instead of through one local expansion as large
+ *  as the leaf, whose truncation errors would add up coherently over many
+ *  small sources. */
+static void walk_point(struct parts *p, size_t i, double a_min_i, const struct cell *b, int upd_i,
+                       int upd_b, struct gravity_cell *gc, const struct gravity_props *gp) {
+  if (b->count == 0) return;
+  struct gravity_cell *gb = gc + b->index;
+  const double R[3] = {gb->mp.com[0] - p->x[i], gb->mp.com[1] - p->y[i], gb->mp.com[2] - p->z[i]};
+  const double r2 = R[0] * R[0] + R[1] * R[1] + R[2] * R[2];
+  const double rb = gb->mp.r_max;
+  if (gravity_mac(0.0, rb, r2, gp->theta, gp->h_support) &&
+      gravity_mac_adaptive(gp->G, gb->mp.M[0], rb, r2, gp->order, gp->epsilon_fmm, a_min_i) &&
+      gravity_mac_adaptive(gp->G, p->m[i], rb, r2, gp->order, gp->epsilon_fmm, gb->a_min)) {
+    double D[GRAVITY_ND], pot = 0.0, a[3] = {0.0, 0.0, 0.0};
+    gravity_derivatives(R, gp->eps2_expansion, gp->order, D);
+    gravity_m2p_p2l(p->m[i], &gb->mp, upd_b ? &gb->field : NULL, D, gp->order, gp->G, &pot, a);
+    if (upd_i) {
+      p->pot[i] += pot;
+      p->gax[i] += a[0];
+      p->gay[i] += a[1];
+      p->gaz[i] += a[2];
+    }
+    return;
+  }
+  if (!b->split) {
+    p2p_point_leaf(p, i, b, upd_i, upd_b, gp);
+    return;
+  }
+  for (int q = 0; q < 8; q++)
+    if (b->progeny[q]) walk_point(p, i, a_min_i, b->progeny[q], upd_i, upd_b, gc, gp);
+}
+
+/** Dual-tree walk between disjoint cells a and b (Dehnen 2002, sec. 3):
+ *  M2L where the criterion accepts, P2P between leaves, else open the
+ *  larger cell; when the larger is a leaf, its particles walk the other
+ *  cell one by one (walk_point).  symmetric: both cells receive (pair
+ *  task), else only a (long-range task).  The decisions are symmetric in a
+ *  and b, so the walk from b's side pairs the same interactions (momentum). */
 static void walk_pair(struct parts *p, const struct cell *a, const struct cell *b, int symmetric,
                       struct gravity_cell *gc, const struct gravity_props *gp) {
   if (a->count == 0 || b->count == 0) return;
@@ -228,13 +290,27 @@ static void walk_pair(struct parts *p, const struct cell *a, const struct cell *
     p2p_pair(p, a, b, symmetric, gp);
     return;
   }
-  if (open_which(a, b, gc) == 0) {
-    for (int q = 0; q < 8; q++)
-      if (a->progeny[q]) walk_pair(p, a->progeny[q], b, symmetric, gc, gp);
-  } else {
-    for (int q = 0; q < 8; q++)
-      if (b->progeny[q]) walk_pair(p, a, b->progeny[q], symmetric, gc, gp);
+  /* the larger cell (ties: a), as in Dehnen 2002 */
+  const int a_larger = ga->mp.r_max >= gb->mp.r_max;
+  const struct cell *big = a_larger ? a : b, *small = a_larger ? b : a;
+  if (big->split) {
+    for (int q = 0; q < 8; q++) {
+      const struct cell *c = big->progeny[q];
+      if (c == NULL) continue;
+      if (a_larger)
+        walk_pair(p, c, b, symmetric, gc, gp);
+      else
+        walk_pair(p, a, c, symmetric, gc, gp);
+    }
+    return;
   }
+  /* big is a leaf, small is split: big's particles one by one.  Receivers:
+   * both (symmetric), else a only (a is big: the points; b is big: the
+   * cells of a). */
+  const int upd_point = symmetric || a_larger, upd_cells = symmetric || !a_larger;
+  const double a_min_big = gc[big->index].a_min;
+  for (size_t i = big->offset; i < big->offset + big->count; i++)
+    walk_point(p, i, a_min_big, small, upd_point, upd_cells, gc, gp);
 }
 
 /** All interactions within c: self of every progeny and every pair of them. */

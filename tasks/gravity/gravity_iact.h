@@ -326,6 +326,37 @@ BOLIDE_INLINE void gravity_m2p(const struct gravity_multipole *BOLIDE_RESTRICT m
   a[2] += G * az;
 }
 
+/** Mutual interaction of a point mass m at x with a cell B (multipole mb
+ *  about z_B): M2L (G6, G6') with the point as the other cell, a multipole
+ *  of mass m and no higher moments.  D = gravity_derivatives(z_B - x) to
+ *  order >= p.  The point receives (G14)
+ *    phi = -G sum_{|n| <= p} M_n D_n,  a_i = -G sum_{|n| <= p-1} M_n D_{n+e_i}
+ *  (M2P truncated as M2L truncates, so that the pair conserves momentum) and,
+ *  when fb is not NULL, B's field receives F_k -= m D_k (P2L). */
+BOLIDE_INLINE void gravity_m2p_p2l(double m, const struct gravity_multipole *BOLIDE_RESTRICT mb,
+                                   struct gravity_field *BOLIDE_RESTRICT fb,
+                                   const double *BOLIDE_RESTRICT D, int p, double G,
+                                   double *BOLIDE_RESTRICT pot, double *BOLIDE_RESTRICT a) {
+  double phi = 0.0, ax = 0.0, ay = 0.0, az = 0.0;
+  int i = 0;
+  for (int n = 0; n <= p; n++)
+    for (int nx = n; nx >= 0; nx--)
+      for (int ny = n - nx; ny >= 0; ny--, i++) {
+        const int nz = n - nx - ny;
+        phi += mb->M[i] * D[i];
+        if (n < p) {
+          ax += mb->M[i] * D[gravity_index(nx + 1, ny, nz)];
+          ay += mb->M[i] * D[gravity_index(nx, ny + 1, nz)];
+          az += mb->M[i] * D[gravity_index(nx, ny, nz + 1)];
+        }
+        if (fb) fb->F[i] -= m * D[i];
+      }
+  *pot -= G * phi;
+  a[0] -= G * ax;
+  a[1] -= G * ay;
+  a[2] -= G * az;
+}
+
 /** Softened pair kernel: for separation r^2 and softening eps (Plummer
  *  equivalent), the potential is -G m * (*wpot) and the acceleration of i
  *  -G m * (*wacc) * (x_i - x_j).  Newtonian: wpot = 1/r, wacc = 1/r^3.
