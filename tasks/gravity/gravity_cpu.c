@@ -10,8 +10,8 @@
 #include "error.h"
 #include "part.h"
 
-void gravity_props_set(struct gravity_props *gp, double G, double theta, double eps,
-                       int softening, int order) {
+void gravity_props_set(struct gravity_props *gp, double G, double theta, double eps, int softening,
+                       int order) {
   if (order < 1 || order > GRAVITY_ORDER_MAX)
     error_exit("gravity: expansion order %d outside 1..%d", order, GRAVITY_ORDER_MAX);
   memset(gp, 0, sizeof *gp);
@@ -33,8 +33,9 @@ void gravity_props_set(struct gravity_props *gp, double G, double theta, double 
 
 void gravity_check_space(const struct gravity_props *gp, int periodic) {
   if (gp->enabled && periodic)
-    error_exit("Gravity:enabled: self-gravity needs an open box (InitialConditions:periodic: "
-               "false); periodic gravity is not implemented");
+    error_exit(
+        "Gravity:enabled: self-gravity needs an open box (InitialConditions:periodic: "
+        "false); periodic gravity is not implemented");
 }
 
 struct gravity_cell *gravity_cells_reserve(struct gravity_cell *gc, int *capacity, int n) {
@@ -47,8 +48,7 @@ struct gravity_cell *gravity_cells_reserve(struct gravity_cell *gc, int *capacit
 /* ------------------------------------------------------------------ up */
 
 /** Multipole of c from its particles (leaf) or its progeny (split cell). */
-static void up_rec(struct parts *p, const struct cell *c, struct gravity_cell *gc,
-                   int order) {
+static void up_rec(struct parts *p, const struct cell *c, struct gravity_cell *gc, int order) {
   struct gravity_cell *g = gc + c->index;
   struct gravity_multipole *mp = &g->mp;
   gravity_field_zero(&g->field);
@@ -351,8 +351,8 @@ int gravity_top_pair_is_near(const struct cell *ci, const struct cell *cj,
   return !gravity_mac(sqrt(ri2), sqrt(rj2), d2, gp->theta, gp->h_support);
 }
 
-void gravity_long_range(struct parts *p, const struct cell *ci, const struct cell *tops,
-                        int nr_top, struct gravity_cell *gc, const struct gravity_props *gp) {
+void gravity_long_range(struct parts *p, const struct cell *ci, const struct cell *tops, int nr_top,
+                        struct gravity_cell *gc, const struct gravity_props *gp) {
   if (ci->count == 0) return;
   for (int j = 0; j < nr_top; j++) {
     const struct cell *cj = tops + j;
@@ -400,8 +400,8 @@ void gravity_down(struct parts *p, const struct cell *c, const struct gravity_ce
   down_rec(p, c, (struct gravity_cell *)gc, gp);
 }
 
-void gravity_tree_all(struct parts *p, const struct cell *tops, int nr_top,
-                      struct gravity_cell *gc, const struct gravity_props *gp) {
+void gravity_tree_all(struct parts *p, const struct cell *tops, int nr_top, struct gravity_cell *gc,
+                      const struct gravity_props *gp) {
   for (int i = 0; i < nr_top; i++) gravity_up(p, tops + i, gc, gp);
   for (int i = 0; i < nr_top; i++) {
     gravity_interact_cells(p, tops + i, tops + i, gc, gp);

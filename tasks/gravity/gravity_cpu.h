@@ -29,8 +29,8 @@
  * (src/part.h): gravity_up zeroes them for its cell, the interactions add
  * to them, gravity_down completes them and ADDS ga to ax, ay, az (which the
  * engine zeroes before the step's force tasks, as for hydrodynamics).  |ga|
- * stays until the next gravity_up: the scale of the adaptive criterion.  Gravity in a periodic box (Ewald sums) is not
- * implemented: gravity_check_space refuses it. */
+ * stays until the next gravity_up: the scale of the adaptive criterion.  Gravity in a periodic box
+ * (Ewald sums) is not implemented: gravity_check_space refuses it. */
 #ifndef BOLIDE_GRAVITY_CPU_H
 #define BOLIDE_GRAVITY_CPU_H
 
@@ -44,21 +44,21 @@ struct params;
 struct unit_system;
 
 /** Default of Gravity:epsilon_fmm (the same value as in src/io/param_list.h). */
-#define GRAVITY_EPSILON_FMM_DEFAULT 1e-3
+#define GRAVITY_EPSILON_FMM_DEFAULT 1e-4
 
 /** Parameters of self-gravity (section Gravity of the parameter file). */
 struct gravity_props {
-  int enabled;      /**< Gravity:enabled */
-  int direct;       /**< Gravity:direct: exact O(N^2) summation instead of the tree */
-  double G;         /**< gravitational constant in internal units */
-  double theta;     /**< Gravity:theta_cr, opening angle of the acceptance criterion */
-  double eps;       /**< Plummer-equivalent softening length (Gravity:softening) */
-  int softening;    /**< enum gravity_softening (Gravity:softening_kernel) */
-  int order;        /**< expansion order p (Gravity:multipole_order), 1..GRAVITY_ORDER_MAX */
-  double eta;       /**< Gravity:eta, time-step factor: dt = sqrt(2 eta eps / |a|) */
-  double epsilon_fmm; /**< Gravity:epsilon_fmm, tolerance of the adaptive criterion (0: off) */
-  double h_support; /**< distance beyond which the pair force is Newtonian (3 eps for the
-                         spline, 0 for Plummer whose expansions are softened) */
+  int enabled;           /**< Gravity:enabled */
+  int direct;            /**< Gravity:direct: exact O(N^2) summation instead of the tree */
+  double G;              /**< gravitational constant in internal units */
+  double theta;          /**< Gravity:theta_cr, opening angle of the acceptance criterion */
+  double eps;            /**< Plummer-equivalent softening length (Gravity:softening) */
+  int softening;         /**< enum gravity_softening (Gravity:softening_kernel) */
+  int order;             /**< expansion order p (Gravity:multipole_order), 1..GRAVITY_ORDER_MAX */
+  double eta;            /**< Gravity:eta, time-step factor: dt = sqrt(2 eta eps / |a|) */
+  double epsilon_fmm;    /**< Gravity:epsilon_fmm, tolerance of the adaptive criterion (0: off) */
+  double h_support;      /**< distance beyond which the pair force is Newtonian (3 eps for the
+                              spline, 0 for Plummer whose expansions are softened) */
   double eps2_expansion; /**< softening squared inside the expansions (eps^2 for Plummer, else 0) */
 };
 
@@ -76,8 +76,8 @@ void gravity_props_init(struct gravity_props *gp, const struct params *params,
 /** Fill gp directly (tests, tools): softening eps with kernel `softening`,
  *  opening angle theta, expansion order p.  Out-of-range p stops with an
  *  error line. */
-void gravity_props_set(struct gravity_props *gp, double G, double theta, double eps,
-                       int softening, int order);
+void gravity_props_set(struct gravity_props *gp, double G, double theta, double eps, int softening,
+                       int order);
 
 /** Stop with a one-line error if gravity cannot run in this box (periodic). */
 void gravity_check_space(const struct gravity_props *gp, int periodic);
@@ -101,8 +101,8 @@ void gravity_interact_cells(struct parts *p, const struct cell *ci, const struct
 /** Long-range interactions of top-level cell ci: every non-empty cell of
  *  tops[0..nr_top) other than ci that is not near ci acts on ci (one-way
  *  walk: M2L at the top when the criterion accepts).  Writes ci only. */
-void gravity_long_range(struct parts *p, const struct cell *ci, const struct cell *tops,
-                        int nr_top, struct gravity_cell *gc, const struct gravity_props *gp);
+void gravity_long_range(struct parts *p, const struct cell *ci, const struct cell *tops, int nr_top,
+                        struct gravity_cell *gc, const struct gravity_props *gp);
 
 /** L2L down c's octree and L2P to its particles (into ga and pot), then
  *  ax += ga for c's particles. */
@@ -118,8 +118,8 @@ int gravity_top_pair_is_near(const struct cell *ci, const struct cell *cj,
 /** The whole tree method without tasks, in the order the task graph runs
  *  it: up for every top-level cell, self and near pairs, long range, down.
  *  For tests and a serial fallback. */
-void gravity_tree_all(struct parts *p, const struct cell *tops, int nr_top,
-                      struct gravity_cell *gc, const struct gravity_props *gp);
+void gravity_tree_all(struct parts *p, const struct cell *tops, int nr_top, struct gravity_cell *gc,
+                      const struct gravity_props *gp);
 
 /** Exact O(N^2) summation over all pairs (Gravity:direct, and the reference
  *  of the tests): sets ga and pot, adds ga to ax, ay, az.  nthreads > 1
