@@ -6,6 +6,8 @@
  *   - M2L + L2P between two clusters against direct summation: potential
  *     error below ((a+b)/R)^(p+1), acceleration below 2 ((a+b)/R)^p (relative;
  *     the acceleration is the derivative of a degree-p local polynomial);
+ *   - the mutual point-cell form (M2P + P2L) against direct summation, and
+ *     its momentum balance;
  *   - L2L is exact (a polynomial re-expanded), M2L in both directions at
  *     once equals two one-way M2Ls;
  *   - the derivative tensor against finite differences, Newtonian and
@@ -223,6 +225,59 @@ static void test_m2l_l2p(double eps2) {
   }
 }
 
+/** Mutual point-cell interaction (M2P + P2L) against direct summation, and
+ *  its momentum balance: m a_point + sum_j m_j a_j = 0 to rounding. */
+static void test_m2p_p2l(void) {
+  enum { NB = 120 };
+  double xb[3 * NB], mb[NB], cb[3] = {0.4, -0.3, 0.2};
+  cluster(NB, cb, 0.5, xb, mb);
+  const double x[3] = {-2.0, 1.0, 0.5}, m = 0.7;
+  double prev_acc = 1e300;
+  for (int p = 1; p <= GRAVITY_ORDER_MAX; p++) {
+    struct gravity_multipole mp;
+    make_multipole(xb, mb, 0, NB, p, &mp);
+    const double R[3] = {mp.com[0] - x[0], mp.com[1] - x[1], mp.com[2] - x[2]};
+    const double theta = mp.r_max / norm3(R);
+    double D[GRAVITY_ND], pot = 0.0, a[3] = {0, 0, 0}, pd, ad[3];
+    gravity_derivatives(R, 0.0, p, D);
+    struct gravity_field f;
+    gravity_field_zero(&f);
+    gravity_m2p_p2l(m, &mp, &f, D, p, 1.0, &pot, a);
+    direct_at(x, xb, mb, NB, 0.0, &pd, ad);
+    const double da[3] = {a[0] - ad[0], a[1] - ad[1], a[2] - ad[2]};
+    const double eacc = norm3(da) / norm3(ad), epot = fabs(pot - pd) / fabs(pd);
+    /* B's particles from the point, through the local expansion */
+    double P[3] = {m * a[0], m * a[1], m * a[2]}, scale = m * norm3(a), eb = 0.0;
+    for (int j = 0; j < NB; j++) {
+      const double *y = xb + 3 * j;
+      const double s[3] = {y[0] - mp.com[0], y[1] - mp.com[1], y[2] - mp.com[2]};
+      double pl = 0.0, al[3] = {0, 0, 0}, pj, aj[3];
+      gravity_l2p(&f, s, p, 1.0, &pl, al);
+      direct_at(y, x, &m, 1, 0.0, &pj, aj);
+      const double dj[3] = {al[0] - aj[0], al[1] - aj[1], al[2] - aj[2]};
+      eb = fmax(eb, norm3(dj) / norm3(aj));
+      for (int k = 0; k < 3; k++) P[k] += mb[j] * al[k];
+    }
+    char what[96];
+    snprintf(what, sizeof what, "M2P (mutual form) potential, p=%d < theta^(p+1)", p);
+    check(epot < pow(theta, p + 1), what, epot, pow(theta, p + 1));
+    /* acceleration to order p-1, as M2L (the dipole about the centre of
+     * mass vanishes: p = 1 and 2 give the same acceleration) */
+    snprintf(what, sizeof what, "M2P (mutual form) acceleration, p=%d < 2 theta^p", p);
+    check(eacc < 2 * pow(theta, p) && eacc <= prev_acc, what, eacc, 2 * pow(theta, p));
+    /* A point source's expansion about z_B, evaluated r from z_B: the
+     * Legendre series of 1/|R - r| with terms r^l / R^(l+1), whose gradients
+     * are at most (l+1) r^l / R^(l+2); the omitted l > p sum to at most
+     * (p+1) theta^p / (1 - theta) relative to the monopole force. */
+    const double bound = (p + 1) * pow(theta, p) / (1.0 - theta);
+    snprintf(what, sizeof what, "P2L + L2P acceleration, p=%d < (p+1) theta^p/(1-theta)", p);
+    check(eb < bound, what, eb, bound);
+    snprintf(what, sizeof what, "point-cell momentum balance, p=%d", p);
+    check(norm3(P) / scale < 1e-13, what, norm3(P) / scale, 1e-13);
+    prev_acc = eacc;
+  }
+}
+
 /** Derivative tensor against central finite differences of the order below. */
 static void test_derivatives(double eps2) {
   const int q = GRAVITY_ORDER_MAX + 1;
@@ -283,6 +338,7 @@ int main(void) {
   test_m2p();
   test_m2l_l2p(0.0);
   test_m2l_l2p(0.25);
+  test_m2p_p2l();
   test_derivatives(0.0);
   test_derivatives(0.3);
   test_spline();
