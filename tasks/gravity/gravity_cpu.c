@@ -260,7 +260,7 @@ static void walk_point(struct parts *p, size_t i, double a_min_i, const struct c
     if (b->progeny[q]) walk_point(p, i, a_min_i, b->progeny[q], upd_i, upd_b, gc, gp);
 }
 
-/** Dual-tree walk between disjoint cells a and b (Dehnen 2002, sec. 3):
+/** Dual-tree walk between disjoint cells a and b (Dehnen 2002):
  *  M2L where the criterion accepts, P2P between leaves, else open the
  *  larger cell; when the larger is a leaf, its particles walk the other
  *  cell one by one (walk_point).  symmetric: both cells receive (pair

@@ -402,7 +402,7 @@ BOLIDE_INLINE void gravity_p2p(const double dx[3], double r2, double mj, double 
   a[2] -= gm * wacc * dx[2];
 }
 
-/** Geometric multipole acceptance criterion (Dehnen 2002, eq. 11 with
+/** Geometric multipole acceptance criterion (Dehnen 2002, with
  *  constant theta): cells A and B with centres r2 = |z_A - z_B|^2 apart and
  *  radii r_max_a, r_max_b interact through multipoles when
  *    r_max_a + r_max_b < theta |z_A - z_B|
@@ -435,7 +435,7 @@ BOLIDE_INLINE int gravity_mac_adaptive(double G, double m_b, double r_sum, doubl
   return num < eps_fmm * a_min * den;
 }
 
-/** Gravitational time step (Power et al. 2003, MNRAS 338, 14, eq. 20, in
+/** Gravitational time step (Power et al. 2003, MNRAS 338, 14, in
  *  SWIFT's form): dt = sqrt(2 eta eps / |a|) for softening eps and
  *  acceleration a; 1e300 when a = 0. */
 BOLIDE_INLINE double gravity_timestep(const double a[3], double eps, double eta) {
