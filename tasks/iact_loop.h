@@ -61,6 +61,9 @@
 
 #ifndef BOLIDE_IACT_LOOP_COMMON
 #define BOLIDE_IACT_LOOP_COMMON
+/** Particles of cj taken at a time by a leaf pair (a stack list of indices). */
+#define IACT_LOOP_BLOCK 512
+
 /** The zero shift of pairs inside one cell. */
 static const double iact_loop_no_shift[3] = {0.0, 0.0, 0.0};
 
@@ -82,26 +85,42 @@ __attribute__((unused)) static double iact_loop_prune_r2(double R, const struct 
 /* ------------------------------------------------------------ symmetric form */
 #ifdef IACT_LOOP_SYM
 
-/** Leaf pair, symmetric: every i of ci with every j of cj (at x_j + shift). */
+/** Leaf pair, symmetric: every i of ci with every j of cj (at x_j + shift).
+ *  cj is taken in blocks; each block is first reduced to the particles that
+ *  can reach ci's bounding box (grown by ci's drift), then every i that can
+ *  reach cj's box loops over that short list. */
 __attribute__((unused)) static void IACT_LOOP_FN(_pair_leaf)(struct parts *p, const struct cell *ci,
                                                              const struct cell *cj,
                                                              const double shift[3]) {
   const double *BOLIDE_RESTRICT x = p->x, *BOLIDE_RESTRICT y = p->y, *BOLIDE_RESTRICT z = p->z;
   const double *BOLIDE_RESTRICT h = p->h;
-  const double Hj_max = kernel_gamma * cj->h_max;
-  const size_t jbeg = cj->offset, jend = cj->offset + cj->count;
-  for (size_t i = ci->offset; i < ci->offset + ci->count; i++) {
-    const double xi[3] = {x[i], y[i], z[i]}, hi = h[i], Hi = kernel_gamma * hi;
-    const double Hi2 = Hi * Hi;
-    const double R = (Hi > Hj_max ? Hi : Hj_max) + cj->dx_max;
-    if (cell_point_dist2(cj, xi, shift) > iact_loop_prune_r2(R, ci, cj, shift)) continue;
-    for (size_t j = jbeg; j < jend; j++) {
-      const double dx[3] = {(xi[0] - x[j]) - shift[0], (xi[1] - y[j]) - shift[1],
-                            (xi[2] - z[j]) - shift[2]};
-      const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-      const double hj = h[j], Hj = kernel_gamma * hj;
-      if (r2 < Hi2 || r2 < Hj * Hj) {
-        IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj);
+  const double Hi_max = kernel_gamma * ci->h_max, Hj_max = kernel_gamma * cj->h_max;
+  const double back[3] = {-shift[0], -shift[1], -shift[2]};
+  const size_t iend = ci->offset + ci->count, jend = cj->offset + cj->count;
+  size_t list[IACT_LOOP_BLOCK];
+  for (size_t j0 = cj->offset; j0 < jend; j0 += IACT_LOOP_BLOCK) {
+    const size_t j1 = jend - j0 > IACT_LOOP_BLOCK ? j0 + IACT_LOOP_BLOCK : jend;
+    size_t nj = 0;
+    for (size_t j = j0; j < j1; j++) {
+      const double xj[3] = {x[j], y[j], z[j]}, Hj = kernel_gamma * h[j];
+      const double R = (Hj > Hi_max ? Hj : Hi_max) + ci->dx_max;
+      if (cell_point_dist2(ci, xj, back) <= iact_loop_prune_r2(R, ci, cj, shift)) list[nj++] = j;
+    }
+    if (nj == 0) continue;
+    for (size_t i = ci->offset; i < iend; i++) {
+      const double xi[3] = {x[i], y[i], z[i]}, hi = h[i], Hi = kernel_gamma * hi;
+      const double Hi2 = Hi * Hi;
+      const double R = (Hi > Hj_max ? Hi : Hj_max) + cj->dx_max;
+      if (cell_point_dist2(cj, xi, shift) > iact_loop_prune_r2(R, ci, cj, shift)) continue;
+      for (size_t k = 0; k < nj; k++) {
+        const size_t j = list[k];
+        const double dx[3] = {(xi[0] - x[j]) - shift[0], (xi[1] - y[j]) - shift[1],
+                              (xi[2] - z[j]) - shift[2]};
+        const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+        const double hj = h[j], Hj = kernel_gamma * hj;
+        if (r2 < Hi2 || r2 < Hj * Hj) {
+          IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj);
+        }
       }
     }
   }
@@ -172,26 +191,40 @@ __attribute__((unused)) static void IACT_LOOP_FN(_self)(struct parts *p, const s
 /* ------------------------------------------------------------ gather form */
 #ifdef IACT_LOOP_NONSYM
 
-/** Leaf pair, gather: every active i of ci from every j of cj with r < H_i. */
+/** Leaf pair, gather: every active i of ci from every j of cj with r < H_i
+ *  (cj in blocks reduced to the particles that can reach ci, as above). */
 __attribute__((unused)) static void IACT_LOOP_FN(_pair_gather_leaf)(struct parts *p,
                                                                     const struct cell *ci,
                                                                     const struct cell *cj,
                                                                     const double shift[3]) {
   const double *BOLIDE_RESTRICT x = p->x, *BOLIDE_RESTRICT y = p->y, *BOLIDE_RESTRICT z = p->z;
   const double *BOLIDE_RESTRICT h = p->h;
-  const size_t jbeg = cj->offset, jend = cj->offset + cj->count;
-  for (size_t i = ci->offset; i < ci->offset + ci->count; i++) {
-    if (!(IACT_LOOP_ACTIVE(p, i))) continue;
-    const double xi[3] = {x[i], y[i], z[i]}, hi = h[i], Hi = kernel_gamma * hi;
-    const double Hi2 = Hi * Hi;
-    if (cell_point_dist2(cj, xi, shift) > iact_loop_prune_r2(Hi + cj->dx_max, ci, cj, shift))
-      continue;
-    for (size_t j = jbeg; j < jend; j++) {
-      const double dx[3] = {(xi[0] - x[j]) - shift[0], (xi[1] - y[j]) - shift[1],
-                            (xi[2] - z[j]) - shift[2]};
-      const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-      if (r2 < Hi2) {
-        IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, h[j]);
+  const double back[3] = {-shift[0], -shift[1], -shift[2]};
+  const double reach2 = iact_loop_prune_r2(kernel_gamma * ci->h_max + ci->dx_max, ci, cj, shift);
+  const size_t iend = ci->offset + ci->count, jend = cj->offset + cj->count;
+  size_t list[IACT_LOOP_BLOCK];
+  for (size_t j0 = cj->offset; j0 < jend; j0 += IACT_LOOP_BLOCK) {
+    const size_t j1 = jend - j0 > IACT_LOOP_BLOCK ? j0 + IACT_LOOP_BLOCK : jend;
+    size_t nj = 0;
+    for (size_t j = j0; j < j1; j++) {
+      const double xj[3] = {x[j], y[j], z[j]};
+      if (cell_point_dist2(ci, xj, back) <= reach2) list[nj++] = j;
+    }
+    if (nj == 0) continue;
+    for (size_t i = ci->offset; i < iend; i++) {
+      if (!(IACT_LOOP_ACTIVE(p, i))) continue;
+      const double xi[3] = {x[i], y[i], z[i]}, hi = h[i], Hi = kernel_gamma * hi;
+      const double Hi2 = Hi * Hi;
+      if (cell_point_dist2(cj, xi, shift) > iact_loop_prune_r2(Hi + cj->dx_max, ci, cj, shift))
+        continue;
+      for (size_t k = 0; k < nj; k++) {
+        const size_t j = list[k];
+        const double dx[3] = {(xi[0] - x[j]) - shift[0], (xi[1] - y[j]) - shift[1],
+                              (xi[2] - z[j]) - shift[2]};
+        const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+        if (r2 < Hi2) {
+          IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, h[j]);
+        }
       }
     }
   }
