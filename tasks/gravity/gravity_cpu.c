@@ -394,10 +394,9 @@ static void down_rec(struct parts *p, const struct cell *c, struct gravity_cell 
   }
 }
 
-void gravity_down(struct parts *p, const struct cell *c, const struct gravity_cell *gc,
+void gravity_down(struct parts *p, const struct cell *c, struct gravity_cell *gc,
                   const struct gravity_props *gp) {
-  /* L2L writes the progeny's fields: the array is shared, the cells are c's. */
-  down_rec(p, c, (struct gravity_cell *)gc, gp);
+  down_rec(p, c, gc, gp);
 }
 
 void gravity_tree_all(struct parts *p, const struct cell *tops, int nr_top, struct gravity_cell *gc,

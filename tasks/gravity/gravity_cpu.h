@@ -106,7 +106,7 @@ void gravity_long_range(struct parts *p, const struct cell *ci, const struct cel
 
 /** L2L down c's octree and L2P to its particles (into ga and pot), then
  *  ax += ga for c's particles. */
-void gravity_down(struct parts *p, const struct cell *c, const struct gravity_cell *gc,
+void gravity_down(struct parts *p, const struct cell *c, struct gravity_cell *gc,
                   const struct gravity_props *gp);
 
 /** 1 if top-level cells ci and cj should interact in a pair task: their
