@@ -102,9 +102,9 @@ static void make_set(struct parts *p, int kind, size_t n) {
 
 /** Zero accelerations and potentials. */
 static void zero_acc(struct parts *p) {
-  memset(p->ax, 0, p->count * sizeof(double));
-  memset(p->ay, 0, p->count * sizeof(double));
-  memset(p->az, 0, p->count * sizeof(double));
+  memset(p->gax, 0, p->count * sizeof(double));
+  memset(p->gay, 0, p->count * sizeof(double));
+  memset(p->gaz, 0, p->count * sizeof(double));
   memset(p->pot, 0, p->count * sizeof(double));
 }
 
@@ -132,14 +132,14 @@ static struct errors measure(const struct parts *p, const struct reference *ref)
   double P[3] = {0, 0, 0}, A = 0.0;
   for (size_t i = 0; i < n; i++) {
     const size_t k = (size_t)p->id[i];
-    const double d[3] = {p->ax[i] - ref->ax[k], p->ay[i] - ref->ay[k], p->az[i] - ref->az[k]};
+    const double d[3] = {p->gax[i] - ref->ax[k], p->gay[i] - ref->ay[k], p->gaz[i] - ref->az[k]};
     const double a =
         sqrt(ref->ax[k] * ref->ax[k] + ref->ay[k] * ref->ay[k] + ref->az[k] * ref->az[k]);
     e[i] = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / a;
-    P[0] += p->m[i] * p->ax[i];
-    P[1] += p->m[i] * p->ay[i];
-    P[2] += p->m[i] * p->az[i];
-    A += p->m[i] * sqrt(p->ax[i] * p->ax[i] + p->ay[i] * p->ay[i] + p->az[i] * p->az[i]);
+    P[0] += p->m[i] * p->gax[i];
+    P[1] += p->m[i] * p->gay[i];
+    P[2] += p->m[i] * p->gaz[i];
+    A += p->m[i] * sqrt(p->gax[i] * p->gax[i] + p->gay[i] * p->gay[i] + p->gaz[i] * p->gaz[i]);
   }
   qsort(e, n, sizeof *e, cmp_double);
   struct errors r;
@@ -190,9 +190,9 @@ static void reference_make(struct parts *p, double eps, int softening, int nthre
   ref->pot = error_malloc(n * sizeof(double), "ref");
   for (size_t i = 0; i < n; i++) {
     const size_t k = (size_t)p->id[i];
-    ref->ax[k] = p->ax[i];
-    ref->ay[k] = p->ay[i];
-    ref->az[k] = p->az[i];
+    ref->ax[k] = p->gax[i];
+    ref->ay[k] = p->gay[i];
+    ref->az[k] = p->gaz[i];
     ref->pot[k] = p->pot[i];
   }
   ref->epot = gravity_potential_energy(p);

@@ -388,9 +388,6 @@ static void down_rec(struct parts *p, const struct cell *c, struct gravity_cell 
     p->gax[i] += a[0];
     p->gay[i] += a[1];
     p->gaz[i] += a[2];
-    p->ax[i] += p->gax[i];
-    p->ay[i] += p->gay[i];
-    p->az[i] += p->gaz[i];
   }
 }
 
@@ -463,9 +460,6 @@ void gravity_direct(struct parts *p, double G, double eps, int softening, int nt
     direct_threads(p, G, eps, softening, nthreads);
   }
   for (size_t i = 0; i < n; i++) {
-    p->ax[i] += p->gax[i];
-    p->ay[i] += p->gay[i];
-    p->az[i] += p->gaz[i];
   }
 }
 

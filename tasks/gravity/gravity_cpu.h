@@ -27,9 +27,10 @@
  *
  * Particle fields: gravity owns pot and the accumulators gax, gay, gaz
  * (src/part.h): gravity_up zeroes them for its cell, the interactions add
- * to them, gravity_down completes them and ADDS ga to ax, ay, az (which the
- * engine zeroes before the step's force tasks, as for hydrodynamics).  |ga|
- * stays until the next gravity_up: the scale of the adaptive criterion.  Gravity in a periodic box
+ * to them, gravity_down completes them; the engine's kick adds ga to the
+ * hydrodynamic acceleration ax, ay, az (gravity and hydro tasks then never
+ * write the same field and need no common lock).  |ga| stays until the next
+ * gravity_up: the scale of the adaptive criterion.  Gravity in a periodic box
  * (Ewald sums) is not implemented: gravity_check_space refuses it. */
 #ifndef BOLIDE_GRAVITY_CPU_H
 #define BOLIDE_GRAVITY_CPU_H
@@ -105,7 +106,7 @@ void gravity_long_range(struct parts *p, const struct cell *ci, const struct cel
                         struct gravity_cell *gc, const struct gravity_props *gp);
 
 /** L2L down c's octree and L2P to its particles (into ga and pot), then
- *  ax += ga for c's particles. */
+ *  the particles' ga and pot. */
 void gravity_down(struct parts *p, const struct cell *c, struct gravity_cell *gc,
                   const struct gravity_props *gp);
 
@@ -122,7 +123,7 @@ void gravity_tree_all(struct parts *p, const struct cell *tops, int nr_top, stru
                       const struct gravity_props *gp);
 
 /** Exact O(N^2) summation over all pairs (Gravity:direct, and the reference
- *  of the tests): sets ga and pot, adds ga to ax, ay, az.  nthreads > 1
+ *  of the tests): sets ga and pot.  nthreads > 1
  *  splits the work over POSIX threads (gather form). */
 void gravity_direct(struct parts *p, double G, double eps, int softening, int nthreads);
 
