@@ -16,6 +16,7 @@
 
 #include "engine_tasks.h"
 #include "error.h"
+#include "drift/drift.h"
 #include "hydro_parts.h"
 #include "ic.h"
 #include "kernel.h"
@@ -161,8 +162,6 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   e->opt = *opt;
   units_init_from_params(&e->us, params);
   hydro_props_init(&e->hp, params);
-  if (e->hp.continuity) params_error(params, "SPH:density", "the continuity equation is not implemented yet; use 'summation'");
-  if (e->hp.xsph > 0.0) params_error(params, "SPH:xsph_epsilon", "XSPH is not implemented yet; set it to 0");
   if (params_get_bool(params, "Gravity:enabled"))
     params_error(params, "Gravity:enabled", "self-gravity is not implemented yet");
   if (params_get_bool(params, "Restarts:enable"))
@@ -172,6 +171,9 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   material_table_init(e->mats);
   material_table_from_params(e->mats, params);
   material_table_convert_units(e->mats, &e->us);
+  /* solids: the gradient tasks and stress terms run only when a material has strength */
+  for (int k = 0; k < e->mats->n; k++)
+    if (e->mats->mats[k].strength != STRENGTH_NONE) e->hp.solids = 1;
 
   e->time = params_get_real(params, "TimeIntegration:time_begin");
   e->time_end = params_get_real(params, "TimeIntegration:time_end");
@@ -211,6 +213,9 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     e->parts.vpy[i] = e->parts.vy[i];
     e->parts.vpz[i] = e->parts.vz[i];
     e->parts.up[i] = e->parts.u[i];
+    /* continuity density from the ICs' Densities (0: from the first summation) */
+    e->parts.rho_full[i] = e->parts.rho_fp[i] = e->parts.rho[i];
+    kick_sync_predicted(&e->parts, i);
   }
   engine_guess_h(e);
   const int periodic = params_get_bool(params, "InitialConditions:periodic");
@@ -245,6 +250,10 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   );
   error_log(1, "configured with: %s", BOLIDE_CONFIGURE_ARGS);
   material_table_log(e->mats);
+  if (e->hp.solids)
+    error_log(0, "solids: gradient tasks on (correction tensor %s, %s momentum form, artificial stress eps %g n %g)",
+              e->hp.gradient_correction ? "on" : "off",
+              e->hp.momentum_form == HYDRO_MOMENTUM_SYMMETRIC ? "symmetric" : "standard", e->hp.as_eps, e->hp.as_n);
   error_log(0, "particle memory: %zu bytes per particle", parts_bytes_per_particle());
 
   if (opt->check_only) {

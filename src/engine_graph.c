@@ -5,6 +5,12 @@
  *   density(c,c'), density(c) -> ghost(c)           phase FORCE
  *   ghost(c), ghost(c') -> force(c,c') -> kick2(c)
  *
+ * and with solids (a material with strength: e->hp.solids) the gradient
+ * loop sits between the ghost and the force:
+ *
+ *   ghost(c), ghost(c') -> gradient(c,c') -> extra_ghost(c), extra_ghost(c')
+ *   extra_ghost(c), extra_ghost(c') -> force(c,c')
+ *
  * Pair tasks lock the cells they write (try-locks in the scheduler); the
  * ghost of a cell waits for every density task touching it, so that the h
  * iteration of a cell reads final neighbour positions and writes only its
@@ -97,10 +103,23 @@ void engine_make_graph(struct engine *e) {
     ds->locks[0] = fs->locks[0] = &ci->lock;
     ds->cell_index = fs->cell_index = ct->ghost->cell_index = ct->kick2->cell_index = c;
     scheduler_addunlock(sched, ds, ct->ghost);
-    scheduler_addunlock(sched, ct->ghost, fs);
     scheduler_addunlock(sched, fs, ct->kick2);
     engine_phase_add(e, ENGINE_PHASE_FORCE, ds, cap);
     engine_phase_add(e, ENGINE_PHASE_FORCE, fs, cap);
+    if (e->hp.solids) {
+      /* ghost(c) -> gradient(c) -> extra_ghost(c) -> force(c) */
+      ct->extra_ghost = scheduler_addtask(sched, task_type_extra_ghost, task_subtype_none, ci, NULL);
+      struct task *gs = scheduler_addtask(sched, task_type_self, task_subtype_gradient, ci, NULL);
+      gs->locks[0] = &ci->lock;
+      gs->cell_index = ct->extra_ghost->cell_index = c;
+      scheduler_addunlock(sched, ct->ghost, gs);
+      scheduler_addunlock(sched, gs, ct->extra_ghost);
+      scheduler_addunlock(sched, ct->extra_ghost, fs);
+      engine_phase_add(e, ENGINE_PHASE_FORCE, gs, cap);
+      engine_phase_add(e, ENGINE_PHASE_FORCE, ct->extra_ghost, cap);
+    } else {
+      scheduler_addunlock(sched, ct->ghost, fs);
+    }
   }
 
   /* pair tasks between neighbouring top-level cells */
@@ -123,15 +142,32 @@ void engine_make_graph(struct engine *e) {
     dp->cell_index = fp->cell_index = a;
     engine_task_pair_set(e, dp, k, &cap_tp);
     engine_task_pair_set(e, fp, k, &cap_tp);
-    /* density(ci,cj) -> ghost(ci), ghost(cj) -> force(ci,cj) -> kick2(ci), kick2(cj) */
+    /* density(ci,cj) -> ghost(ci), ghost(cj);  force(ci,cj) -> kick2(ci), kick2(cj) */
     scheduler_addunlock(sched, dp, e->ct[a].ghost);
     scheduler_addunlock(sched, dp, e->ct[b].ghost);
-    scheduler_addunlock(sched, e->ct[a].ghost, fp);
-    scheduler_addunlock(sched, e->ct[b].ghost, fp);
     scheduler_addunlock(sched, fp, e->ct[a].kick2);
     scheduler_addunlock(sched, fp, e->ct[b].kick2);
     engine_phase_add(e, ENGINE_PHASE_FORCE, dp, cap);
     engine_phase_add(e, ENGINE_PHASE_FORCE, fp, cap);
+    if (e->hp.solids) {
+      /* ghost(ci), ghost(cj) -> gradient(ci,cj) -> extra_ghost(ci), extra_ghost(cj) -> force(ci,cj) */
+      struct task *gp = scheduler_addtask(sched, task_type_pair, task_subtype_gradient, ci, cj);
+      gp->locks[0] = &ci->lock;
+      gp->locks[1] = (a == b) ? NULL : &cj->lock;
+      gp->cell_index = a;
+      engine_task_pair_set(e, gp, k, &cap_tp);
+      scheduler_addunlock(sched, e->ct[a].ghost, gp);
+      scheduler_addunlock(sched, e->ct[b].ghost, gp);
+      scheduler_addunlock(sched, gp, e->ct[a].extra_ghost);
+      scheduler_addunlock(sched, gp, e->ct[b].extra_ghost);
+      scheduler_addunlock(sched, e->ct[a].extra_ghost, fp);
+      scheduler_addunlock(sched, e->ct[b].extra_ghost, fp);
+      engine_phase_add(e, ENGINE_PHASE_FORCE, gp, cap);
+    } else {
+      /* ghost(ci), ghost(cj) -> force(ci,cj) */
+      scheduler_addunlock(sched, e->ct[a].ghost, fp);
+      scheduler_addunlock(sched, e->ct[b].ghost, fp);
+    }
   }
   e->pairs = pairs;
   e->nr_pairs = np;

@@ -7,6 +7,7 @@
 #include "error.h"
 #include "force/force_cpu.h"
 #include "ghost/ghost_cpu.h"
+#include "gradient/gradient_cpu.h"
 #include "kernel.h"
 #include "kick/kick_cpu.h"
 
@@ -41,12 +42,14 @@ void engine_run_task(void *ctx, struct task *t, int thread_id) {
   (void)thread_id;
   switch (t->type) {
     case task_type_drift:
-      drift_cell_cpu(p, ci, 0.5 * e->dt, e->dt);
+      drift_cell_cpu(p, ci, 0.5 * e->dt, e->dt, e->hp.xsph);
       break;
     case task_type_self:
       /* the accumulators were zeroed by the drift (density) and the ghost (force) */
       if (t->subtype == task_subtype_density)
         density_self_cpu(p, ci);
+      else if (t->subtype == task_subtype_gradient)
+        gradient_self_cpu(p, ci);
       else if (t->subtype == task_subtype_force)
         force_self_cpu(p, ci, &e->hp);
       break;
@@ -54,12 +57,17 @@ void engine_run_task(void *ctx, struct task *t, int thread_id) {
       const double *shift = e->pairs[e->task_pair[t->id]].shift;
       if (t->subtype == task_subtype_density)
         density_pair_cpu(p, ci, cj, shift);
+      else if (t->subtype == task_subtype_gradient)
+        gradient_pair_cpu(p, ci, cj, shift);
       else if (t->subtype == task_subtype_force)
         force_pair_cpu(p, ci, cj, shift, &e->hp);
       break;
     }
     case task_type_ghost:
       engine_ghost(e, t->cell_index);
+      break;
+    case task_type_extra_ghost:
+      extra_ghost_cell_cpu(p, ci, &e->hp, e->mats);
       break;
     case task_type_kick2:
       e->cell_dt_min[t->cell_index] = kick2_cell_cpu(p, ci, e->first_force ? 0.0 : 0.5 * e->dt, &e->hp);
