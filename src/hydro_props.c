@@ -25,7 +25,7 @@ void hydro_props_init(struct hydro_props *hp, const struct params *p) {
   hp->gradient_correction = params_get_bool(p, "SPH:velocity_gradient_correction");
   hp->as_eps = params_get_real(p, "SPH:artificial_stress_epsilon");
   hp->as_n = params_get_real(p, "SPH:artificial_stress_n");
-  /* the kernel at the mean particle spacing dp = h / eta (Monaghan 2000, eq. 4.5) */
+  /* the kernel at the mean particle spacing dp = h / eta (Monaghan 2000, Sec. 4) */
   hp->as_wdp_inv = 1.0 / kernel_W(1.0 / hp->eta, 1.0);
   hp->max_rel_change = params_get_real(p, "SPH:max_relative_change");
 }

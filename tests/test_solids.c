@@ -44,7 +44,8 @@ static void make_table(struct material_table *t, enum material_strength_type st)
   struct material m;
   char msg[256];
   material_init(&m, 0, "test", EOS_LIQUID);
-  if (material_set(&m, "rho0", 1.0, msg, sizeof msg) || material_set(&m, "c0", 1.0, msg, sizeof msg) ||
+  if (material_set(&m, "rho0", 1.0, msg, sizeof msg) ||
+      material_set(&m, "c0", 1.0, msg, sizeof msg) ||
       material_set(&m, "shear_modulus", 0.22, msg, sizeof msg))
     error_exit("%s", msg);
   m.strength = st;
@@ -77,7 +78,8 @@ static void test_gradient(void) {
   for (size_t i = 0; i < n; i++) {
     const double x[3] = {p.x[i], p.y[i], p.z[i]};
     double v[3];
-    for (int a = 0; a < 3; a++) v[a] = b[a] + A[3 * a] * x[0] + A[3 * a + 1] * x[1] + A[3 * a + 2] * x[2];
+    for (int a = 0; a < 3; a++)
+      v[a] = b[a] + A[3 * a] * x[0] + A[3 * a + 1] * x[1] + A[3 * a + 2] * x[2];
     p.vpx[i] = v[0], p.vpy[i] = v[1], p.vpz[i] = v[2];
   }
   struct space_pair *pairs;
@@ -140,8 +142,10 @@ static void test_gradient(void) {
       gradient_apply(G, Minv, gv);
       for (int k = 0; k < 9; k++) {
         const double e = fabs(gv[k] - A[k]) / Anorm;
-        if (pass == 0) err_c = fmax(err_c, e);
-        else err_u = fmax(err_u, e);
+        if (pass == 0)
+          err_c = fmax(err_c, e);
+        else
+          err_u = fmax(err_u, e);
       }
     }
   }
@@ -158,7 +162,8 @@ static void test_gradient(void) {
     for (int k = 0; k < 6; k++) err_ds = fmax(err_ds, fabs(got[k] - want[k]) / (0.22 * Anorm));
   }
   check_le("linear field, corrected gradient: max |gv - A| / max|A|", err_c, 1e-10);
-  printf("  %-62s %.3e (for comparison)\n", "linear field, uncorrected gradient: max |gv - A| / max|A|", err_u);
+  printf("  %-62s %.3e (for comparison)\n",
+         "linear field, uncorrected gradient: max |gv - A| / max|A|", err_u);
   check_le("linear field, extra ghost: Hooke dS/dt = 2 mu dev(e) exactly", err_ds, 1e-10);
   if (!(err_u > 1e-3)) {
     printf("  FAIL: the uncorrected gradient should be visibly wrong at the free surface\n");
@@ -184,7 +189,8 @@ static void test_jaumann_spin(void) {
   const double S0[6] = {1.0, 0.3, -0.2, -0.4, 0.5, -0.6};
   double dS[6];
   gradient_stress_rate(gv, S, 0.22, dS);
-  double sds = 0.5 * (S[0] * dS[0] + S[3] * dS[3] + S[5] * dS[5]) + S[1] * dS[1] + S[2] * dS[2] + S[4] * dS[4];
+  double sds = 0.5 * (S[0] * dS[0] + S[3] * dS[3] + S[5] * dS[5]) + S[1] * dS[1] + S[2] * dS[2] +
+               S[4] * dS[4];
   printf("Jaumann rate under rigid spin:\n");
   check_le("|S:dS/dt| / (|S| |dS/dt|)", fabs(2 * sds) / (norm6(S) * norm6(dS)), 1e-14);
   const int nsteps = 2000;
@@ -212,8 +218,9 @@ static void test_jaumann_spin(void) {
 static void test_yield(void) {
   printf("yield surfaces and the radial return:\n");
   unsigned long long s = 3;
-  const enum material_strength_type models[] = {STRENGTH_VON_MISES, STRENGTH_DRUCKER_PRAGER, STRENGTH_MOHR_COULOMB,
-                                                STRENGTH_COLLINS, STRENGTH_JOHNSON_COOK};
+  const enum material_strength_type models[] = {STRENGTH_VON_MISES, STRENGTH_DRUCKER_PRAGER,
+                                                STRENGTH_MOHR_COULOMB, STRENGTH_COLLINS,
+                                                STRENGTH_JOHNSON_COOK};
   double worst = 0.0, moved = 0.0;
   int nret = 0;
   for (size_t mi = 0; mi < sizeof models / sizeof models[0]; mi++) {
@@ -230,8 +237,8 @@ static void test_yield(void) {
     m.jc_A = 1.0, m.jc_B = 0.5, m.jc_C = 0.02, m.jc_m = 1.0, m.jc_n = 0.3;
     m.jc_strain_rate_ref = 1.0, m.T_ref = 300.0, m.T_melt = 1000.0, m.specific_heat = 100.0;
     for (int trial = 0; trial < 2000; trial++) {
-      const struct strength_state st = {4.0 * urand(&s) - 1.0, 1.0, 30000.0 * urand(&s), urand(&s),
-                                        10.0 * urand(&s), urand(&s)};
+      const struct strength_state st = {
+          4.0 * urand(&s) - 1.0, 1.0, 30000.0 * urand(&s), urand(&s), 10.0 * urand(&s), urand(&s)};
       const double Y = strength_yield(&m, &st);
       double S[6];
       for (int k = 0; k < 6; k++) S[k] = 4.0 * urand(&s) - 2.0;
@@ -263,13 +270,20 @@ static void test_yield(void) {
   e = fmax(e, fabs(strength_mohr_coulomb_yield(1.0, 1.2, 0.0, 10.0) - 13.0));
   /* Collins: Y_i(0) = Y0, Y_i -> Y_M as P -> infinity, slope mu_i at P = 0 */
   e = fmax(e, fabs(strength_collins_yield(1.0, 1.2, 3.0, 0.1, 0.6, 0.0, 0.0) - 1.0));
-  e = fmax(e, fabs(strength_collins_yield(1.0, 1.2, 3.0, 0.1, 0.6, 1e12, 0.0) - 3.0) / 1e-9 * 1e-12);
-  e = fmax(e, fabs((strength_collins_yield(1.0, 1.2, 3.0, 0.1, 0.6, 1e-7, 0.0) - 1.0) / 1e-7 - 1.2) * 1e-6);
+  e = fmax(e,
+           fabs(strength_collins_yield(1.0, 1.2, 3.0, 0.1, 0.6, 1e12, 0.0) - 3.0) / 1e-9 * 1e-12);
+  e = fmax(
+      e,
+      fabs((strength_collins_yield(1.0, 1.2, 3.0, 0.1, 0.6, 1e-7, 0.0) - 1.0) / 1e-7 - 1.2) * 1e-6);
   e = fmax(e, fabs(strength_collins_yield(1.0, 1.2, 3.0, 0.1, 0.6, 1.0, 1.0) - 0.7));
   /* Johnson-Cook: at T_melt no strength; at T_ref, rate_ref, eps_p = 1: A + B */
-  e = fmax(e, fabs(strength_johnson_cook_yield(1.0, 0.5, 0.02, 1.0, 0.3, 1.0, 300, 1000, 1.0, 1.0, 300) - 1.5));
-  e = fmax(e, fabs(strength_johnson_cook_yield(1.0, 0.5, 0.02, 1.0, 0.3, 1.0, 300, 1000, 1.0, 1.0, 1000)));
-  e = fmax(e, fabs(strength_johnson_cook_yield(1.0, 0.0, 0.02, 1.0, 0.3, 1.0, 300, 1000, 0.0, exp(1.0), 300) -
+  e = fmax(
+      e, fabs(strength_johnson_cook_yield(1.0, 0.5, 0.02, 1.0, 0.3, 1.0, 300, 1000, 1.0, 1.0, 300) -
+              1.5));
+  e = fmax(e, fabs(strength_johnson_cook_yield(1.0, 0.5, 0.02, 1.0, 0.3, 1.0, 300, 1000, 1.0, 1.0,
+                                               1000)));
+  e = fmax(e, fabs(strength_johnson_cook_yield(1.0, 0.0, 0.02, 1.0, 0.3, 1.0, 300, 1000, 0.0,
+                                               exp(1.0), 300) -
                    1.02));
   check_le("yield curves at known points (DP, MC, Collins, JC)", e, 1e-12);
 }
@@ -283,7 +297,8 @@ static void test_artificial_stress(void) {
   const double Rz[9] = {c, -s, 0, s, c, 0, 0, 0, 1}, Rx[9] = {1, 0, 0, 0, c2, -s2, 0, s2, c2};
   double Q[9];
   for (int a = 0; a < 3; a++)
-    for (int b = 0; b < 3; b++) Q[3 * a + b] = Rz[3 * a] * Rx[b] + Rz[3 * a + 1] * Rx[3 + b] + Rz[3 * a + 2] * Rx[6 + b];
+    for (int b = 0; b < 3; b++)
+      Q[3 * a + b] = Rz[3 * a] * Rx[b] + Rz[3 * a + 1] * Rx[3 + b] + Rz[3 * a + 2] * Rx[6 + b];
   const double lam[3] = {2.0, -1.0, 0.5}, rl[3] = {-0.2 * 2.0 / 4.0, 0.0, -0.2 * 0.5 / 4.0};
   static const int ia[6] = {0, 0, 0, 1, 1, 2}, ib[6] = {0, 1, 2, 1, 2, 2};
   double sig[6], want[6];

@@ -1,7 +1,7 @@
 /* Strength: the yield stress of a material (one switch on the strength
  * model, each model in its own file strength_*.h) and the J2 radial return
  * that brings the deviatoric stress back onto the yield surface (Wilkins
- * 1964; Benz & Asphaug 1994, Sec. 2; Schaefer et al. 2016, eq. 12).
+ * 1964; Benz & Asphaug 1994, Sec. 2; Schaefer et al. 2016, Sec. 2.3; theory/solids.md eq. S7).
  * Shared by CPU and GPU.  theory/solids.md, "Plasticity". */
 #ifndef BOLIDE_STRENGTH_H
 #define BOLIDE_STRENGTH_H
@@ -57,12 +57,14 @@ BOLIDE_INLINE double strength_yield(const struct material *mat, const struct str
       return melt * strength_mohr_coulomb_yield(mat->yield_stress, mat->friction_intact,
                                                 mat->yield_stress_max, st->P);
     case STRENGTH_COLLINS:
-      return melt * strength_collins_yield(mat->yield_stress, mat->friction_intact, mat->yield_stress_max,
-                                           mat->cohesion_damaged, mat->friction_damaged, st->P, st->damage);
+      return melt * strength_collins_yield(mat->yield_stress, mat->friction_intact,
+                                           mat->yield_stress_max, mat->cohesion_damaged,
+                                           mat->friction_damaged, st->P, st->damage);
     case STRENGTH_JOHNSON_COOK:
       return strength_johnson_cook_yield(mat->jc_A, mat->jc_B, mat->jc_C, mat->jc_m, mat->jc_n,
-                                         mat->jc_strain_rate_ref, mat->T_ref, mat->T_melt, st->eps_p,
-                                         st->eps_rate, strength_temperature(mat, st->rho, st->u));
+                                         mat->jc_strain_rate_ref, mat->T_ref, mat->T_melt,
+                                         st->eps_p, st->eps_rate,
+                                         strength_temperature(mat, st->rho, st->u));
     default:
       return 0.0;
   }

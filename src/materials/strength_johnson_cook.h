@@ -13,8 +13,8 @@
 
 /** Flow stress for plastic strain eps_p, strain rate eps_rate, temperature T. */
 BOLIDE_INLINE double strength_johnson_cook_yield(double A, double B, double C, double m, double n,
-                                                 double rate0, double T_ref, double T_melt, double eps_p,
-                                                 double eps_rate, double T) {
+                                                 double rate0, double T_ref, double T_melt,
+                                                 double eps_p, double eps_rate, double T) {
   const double hard = A + (eps_p > 0.0 ? B * pow(eps_p, n) : 0.0);
   const double x = eps_rate / rate0;
   const double rate = x > 1.0 ? 1.0 + C * log(x) : 1.0;

@@ -1,7 +1,7 @@
 /* Mohr-Coulomb strength in its J2 (Drucker-Prager-cone) form: Y = c + mu P
  * with the cohesion c and the coefficient of internal friction mu = tan(phi),
  * without the von Mises cap of Drucker-Prager unless Y_M > 0, never negative
- * (Coulomb 1776; Collins et al. 2004, eq. 3 for the damaged material;
+ * (Coulomb 1776; Collins et al. 2004, damaged material;
  * Schaefer et al. 2016, Sec. 2.3). */
 #ifndef BOLIDE_STRENGTH_MOHR_COULOMB_H
 #define BOLIDE_STRENGTH_MOHR_COULOMB_H

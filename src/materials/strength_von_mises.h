@@ -1,6 +1,6 @@
 /* von Mises strength: a constant yield stress Y0, reduced linearly to zero as
  * the specific internal energy approaches the melt energy (Benz & Asphaug
- * 1994, Sec. 2; Schaefer et al. 2016, eq. 13).  theory/solids.md, "Yield". */
+ * 1994, Sec. 2; Schaefer et al. 2016, Sec. 2.3).  theory/solids.md, "Yield". */
 #ifndef BOLIDE_STRENGTH_VON_MISES_H
 #define BOLIDE_STRENGTH_VON_MISES_H
 

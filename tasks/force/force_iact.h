@@ -16,14 +16,14 @@
  * deviatoric stress S adds to the momentum and energy equations
  *   standard:  dv_i^a/dt += sum_j m_j (S_i^{ab}/rho_i^2 d_b W(h_i) + S_j^{ab}/rho_j^2 d_b W(h_j))
  *              du_i/dt   -= sum_j m_j S_i^{ab}/rho_i^2 v_ij^a d_b W(h_i)
- *              (Gray et al. 2001, eqs. 2.5-2.6; Benz & Asphaug 1994, eqs. 4-5)
+ *              (Gray et al. 2001, Sec. 3; Benz & Asphaug 1994, Sec. 2)
  *   symmetric: (sigma_i + sigma_j)/(rho_i rho_j) with the mean kernel
- *              gradient, pressure included (Monaghan 1992, eq. 3.6 form;
- *              Schaefer et al. 2016, eq. 19 variant)
+ *              gradient, pressure included (Monaghan 1992, Sec. 3;
+ *              Schaefer et al. 2016, Sec. 3)
  * plus the artificial stress m_j f_ij^n (R_i + R_j) . grad W with
- * f_ij = W(r, h_ij) / W(dp, h_ij) (Monaghan 2000, eq. 4.4; Gray et al. 2001,
- * eq. 4.5) and its energy term, and the XSPH sum
- *   xsph_i = sum_j m_j / rho_ij (v_j - v_i) W_ij   (Monaghan 1989, eq. 2.7).
+ * f_ij = W(r, h_ij) / W(dp, h_ij) (Monaghan 2000, Sec. 4; Gray et al. 2001,
+ * Sec. 4) and its energy term, and the XSPH sum
+ *   xsph_i = sum_j m_j / rho_ij (v_j - v_i) W_ij   (Monaghan 1989).
  *
  * Every expression combines i and j terms with commutative operations only,
  * so that the gather form evaluated for (i, j) and for (j, i) gives forces
@@ -133,7 +133,7 @@ BOLIDE_INLINE void force_iact(double r2, const double dx[3], const double dv[3],
     }
     double du_s = -(dv[0] * Si_dx[0] + dv[1] * Si_dx[1] + dv[2] * Si_dx[2]) * ci;
     if (hp->as_eps > 0.0) {
-      /* artificial stress (Monaghan 2000, eq. 4.4) with f = W(r)/W(dp) */
+      /* artificial stress (Monaghan 2000, Sec. 4) with f = W(r)/W(dp) */
       const double h_ij = 0.5 * (pi->h + pj->h);
       double w_ij, w_ij_dr, w_ij_dh;
       kernel_eval_r(r, 1.0 / h_ij, &w_ij, &w_ij_dr, &w_ij_dh);

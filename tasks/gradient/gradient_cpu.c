@@ -42,14 +42,14 @@ void gradient_gather_cpu(struct parts *p, const struct cell *ci, const struct ce
 }
 
 /** Read the six components of a symmetric tensor field into T. */
-#define GRADIENT_GET6(T, p, pre, i)                                              \
-  do {                                                                           \
+#define GRADIENT_GET6(T, p, pre, i)                                               \
+  do {                                                                            \
     (T)[0] = (p)->pre##xx[i], (T)[1] = (p)->pre##xy[i], (T)[2] = (p)->pre##xz[i]; \
     (T)[3] = (p)->pre##yy[i], (T)[4] = (p)->pre##yz[i], (T)[5] = (p)->pre##zz[i]; \
   } while (0)
 /** Write T into the six components of a symmetric tensor field. */
-#define GRADIENT_PUT6(T, p, pre, i)                                              \
-  do {                                                                           \
+#define GRADIENT_PUT6(T, p, pre, i)                                               \
+  do {                                                                            \
     (p)->pre##xx[i] = (T)[0], (p)->pre##xy[i] = (T)[1], (p)->pre##xz[i] = (T)[2]; \
     (p)->pre##yy[i] = (T)[3], (p)->pre##yz[i] = (T)[4], (p)->pre##zz[i] = (T)[5]; \
   } while (0)

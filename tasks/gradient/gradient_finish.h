@@ -41,13 +41,14 @@ BOLIDE_INLINE void gradient_apply(const double G[9], const double Minv[9], doubl
       gv[3 * a + b] = G[3 * a] * Minv[b] + G[3 * a + 1] * Minv[3 + b] + G[3 * a + 2] * Minv[6 + b];
 }
 
-/** Hooke's law with the Jaumann rate (Gray et al. 2001, eq. 2.7; Benz &
- *  Asphaug 1994, eq. 6; Schaefer et al. 2016, eq. 8):
+/** Hooke's law with the Jaumann rate (theory/solids.md eq. S5; Gray et al. 2001,
+ *  Sec. 2; Benz & Asphaug 1994, Sec. 2; Schaefer et al. 2016, Sec. 2.2):
  *    dS/dt = 2 mu (e - tr(e)/3 I) + Omega S - S Omega
  *  with e = (gv + gv^T)/2 and Omega = (gv - gv^T)/2, gv^{ab} = dv^a/dx^b.
  *  S and dS are symmetric (xx xy xz yy yz zz).  Returns the equivalent
  *  strain rate sqrt(2/3 e':e'). */
-BOLIDE_INLINE double gradient_stress_rate(const double gv[9], const double S[6], double mu, double dS[6]) {
+BOLIDE_INLINE double gradient_stress_rate(const double gv[9], const double S[6], double mu,
+                                          double dS[6]) {
   double e[9], W[9], Sf[9];
   for (int a = 0; a < 3; a++)
     for (int b = 0; b < 3; b++) {
@@ -108,7 +109,7 @@ BOLIDE_INLINE void gradient_eigen_sym(const double A6[6], double lam[3], double 
 }
 
 /** Artificial stress R/rho^2 of a particle with total stress sigma = -P I + S
- *  (Monaghan 2000, eqs. 4.1-4.3; Gray et al. 2001, eqs. 4.1-4.4): in the
+ *  (theory/solids.md eq. S10; Monaghan 2000, Sec. 4; Gray et al. 2001, Sec. 4): in the
  *  principal frame R'^{aa} = -eps sigma'^{aa} / rho^2 where sigma'^{aa} > 0
  *  (tension), 0 otherwise; rotated back to the simulation frame. */
 BOLIDE_INLINE void gradient_artificial_stress(const double S[6], double P, double rho, double eps,
@@ -121,7 +122,8 @@ BOLIDE_INLINE void gradient_artificial_stress(const double S[6], double P, doubl
   static const int ia[6] = {0, 0, 0, 1, 1, 2}, ib[6] = {0, 1, 2, 1, 2, 2};
   for (int k = 0; k < 6; k++) {
     const int a = ia[k], b = ib[k];
-    R[k] = Q[3 * a] * r[0] * Q[3 * b] + Q[3 * a + 1] * r[1] * Q[3 * b + 1] + Q[3 * a + 2] * r[2] * Q[3 * b + 2];
+    R[k] = Q[3 * a] * r[0] * Q[3 * b] + Q[3 * a + 1] * r[1] * Q[3 * b + 1] +
+           Q[3 * a + 2] * r[2] * Q[3 * b + 2];
   }
 }
 
