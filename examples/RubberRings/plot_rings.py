@@ -2,8 +2,10 @@
 """Plot the colliding rubber rings with and without artificial stress and
 print what they show: for each run and snapshot, the mean x velocity of the
 left ring (positive while approaching, negative after a bounce) and the
-number of fragments (friends-of-friends with linking length 1.5 dx: 2 for
-two intact rings, more after fracture).
+number of pieces of each ring (friends-of-friends with linking length
+1.5 dx within each ring: 1 + 1 for two intact rings, more after fracture),
+and the fraction of particles whose nearest neighbour is closer than
+0.5 dx (pairing, the mark of the tensile instability).
 
 Usage: plot_rings.py [--dx 0.0025] [--out rings.png] DIR_WITH_AS DIR_WITHOUT"""
 import argparse
@@ -35,7 +37,7 @@ def fragments(pos, link):
 
 def read(path):
     with h5py.File(path, "r") as f:
-        t = float(f["Header"].attrs["Time"])
+        t = float(np.ravel(f["Header"].attrs["Time"])[0])
         p = f["PartType0"]
         ids = p["ParticleIDs"][:]
         o = np.argsort(ids)
@@ -58,14 +60,17 @@ def main():
     for row, (d, run) in enumerate(zip(a.dirs, runs)):
         n1 = len(run[0][1]) // 2
         print(f"{d}:")
-        print("      t[ms]   <vx> left ring [m/s]   fragments   largest fraction   max sqrt(3 J2) [MPa]")
+        print("      t[ms]   <vx> left ring [m/s]   pieces L+R   paired fraction   max sqrt(3 J2) [MPa]")
         for k, (t, x, v, S) in enumerate(run):
-            nfr, big = fragments(x, 1.5 * a.dx)
+            nl, _ = fragments(x[:n1], 1.5 * a.dx)
+            nr, _ = fragments(x[n1:], 1.5 * a.dx)
+            dnn = cKDTree(x).query(x, k=2)[0][:, 1]
+            paired = np.mean(dnn < 0.5 * a.dx)
             seq = 0.0
             if S is not None:
                 J2 = 0.5 * (S[:, 0] ** 2 + S[:, 3] ** 2 + S[:, 5] ** 2) + S[:, 1] ** 2 + S[:, 2] ** 2 + S[:, 4] ** 2
                 seq = np.sqrt(3 * J2).max() / 1e6
-            print(f"  {t * 1e3:9.3f}   {v[:n1, 0].mean():20.2f}   {nfr:9d}   {big:16.3f}   {seq:12.2f}")
+            print(f"  {t * 1e3:9.3f}   {v[:n1, 0].mean():20.2f}   {nl:5d}+{nr:<5d}   {paired:15.3f}   {seq:12.2f}")
             ax = axes[row, k]
             ax.scatter(x[:, 0], x[:, 1], s=0.3, c=np.r_[np.zeros(n1), np.ones(len(x) - n1)], cmap="coolwarm")
             ax.set_aspect("equal")
