@@ -1,7 +1,7 @@
 /* Strength: the yield stress of a material (one switch on the strength
  * model, each model in its own file strength_*.h) and the J2 radial return
  * that brings the deviatoric stress back onto the yield surface (Wilkins
- * 1964; Benz & Asphaug 1994, Sec. 2; Schaefer et al. 2016, Sec. 2.3; theory/solids.md eq. S7).
+ * 1964; Benz & Asphaug 1994, Sec. 2; Schaefer et al. 2016, Sec. 2.3; theory/solids.md eq. E7).
  * Shared by CPU and GPU.  theory/solids.md, "Plasticity". */
 #ifndef BOLIDE_STRENGTH_H
 #define BOLIDE_STRENGTH_H

@@ -48,7 +48,7 @@ BOLIDE_INLINE void kick_sync_predicted(struct parts *BOLIDE_RESTRICT p, size_t i
  *  computation are predicted to the end of the step; h follows the
  *  velocity divergence (dh/dt = h div v / 3) as a first guess for the
  *  iteration.  With XSPH (xsph > 0) positions move with v + xsph * sum
- *  m_j/rho_ij (v_j - v_i) W_ij (Monaghan 1989; theory/solids.md eq. S12), the sum from the
+ *  m_j/rho_ij (v_j - v_i) W_ij (Monaghan 1989; theory/sph.md eq. S15), the sum from the
  *  last force loop. */
 BOLIDE_INLINE void drift_part(struct parts *BOLIDE_RESTRICT p, size_t i, double dt, double xsph) {
   p->x[i] += (p->vx[i] + xsph * p->xsphx[i]) * dt;

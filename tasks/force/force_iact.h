@@ -12,7 +12,7 @@
  *   drho_i/dt = sum_j m_j v_ij . x_ij / r dW_ij(h_i)
  * with Pi_ij = -alpha/2 (B_i + B_j)/2... (see force_iact below), dW = dW/dr.
  *
- * Solids (hp->solids; theory/solids.md, eqs. S8-S12): sigma = -P I + S, the
+ * Solids (hp->solids; theory/solids.md, eqs. E8-E12): sigma = -P I + S, the
  * deviatoric stress S adds to the momentum and energy equations
  *   standard:  dv_i^a/dt += sum_j m_j (S_i^{ab}/rho_i^2 d_b W(h_i) + S_j^{ab}/rho_j^2 d_b W(h_j))
  *              du_i/dt   -= sum_j m_j S_i^{ab}/rho_i^2 v_ij^a d_b W(h_i)

@@ -41,7 +41,7 @@ BOLIDE_INLINE void gradient_apply(const double G[9], const double Minv[9], doubl
       gv[3 * a + b] = G[3 * a] * Minv[b] + G[3 * a + 1] * Minv[3 + b] + G[3 * a + 2] * Minv[6 + b];
 }
 
-/** Hooke's law with the Jaumann rate (theory/solids.md eq. S5; Gray et al. 2001,
+/** Hooke's law with the Jaumann rate (theory/solids.md eq. E5; Gray et al. 2001,
  *  Sec. 2; Benz & Asphaug 1994, Sec. 2; Schaefer et al. 2016, Sec. 2.2):
  *    dS/dt = 2 mu (e - tr(e)/3 I) + Omega S - S Omega
  *  with e = (gv + gv^T)/2 and Omega = (gv - gv^T)/2, gv^{ab} = dv^a/dx^b.
@@ -109,7 +109,7 @@ BOLIDE_INLINE void gradient_eigen_sym(const double A6[6], double lam[3], double 
 }
 
 /** Artificial stress R/rho^2 of a particle with total stress sigma = -P I + S
- *  (theory/solids.md eq. S10; Monaghan 2000, Sec. 4; Gray et al. 2001, Sec. 4): in the
+ *  (theory/solids.md eq. E10; Monaghan 2000, Sec. 4; Gray et al. 2001, Sec. 4): in the
  *  principal frame R'^{aa} = -eps sigma'^{aa} / rho^2 where sigma'^{aa} > 0
  *  (tension), 0 otherwise; rotated back to the simulation frame. */
 BOLIDE_INLINE void gradient_artificial_stress(const double S[6], double P, double rho, double eps,

@@ -3,7 +3,7 @@
  * kernels; the symmetric CPU loop calls it for i and for j.
  *
  * With V_j = m_j / rho_j and grad_i W_ij = dW/dr (x_i - x_j) / r at h_i
- * (theory/solids.md, eqs. S1-S3; Randles & Libersky 1996, Sec. 3;
+ * (theory/solids.md, eqs. E1-E3; Randles & Libersky 1996, Sec. 3;
  * Schaefer et al. 2016, Sec. 3):
  *   M_i^{ab} = sum_j V_j (x_j - x_i)^a d_b W_ij        (symmetric)
  *   G_i^{ab} = sum_j V_j (v_j - v_i)^a d_b W_ij
