@@ -40,7 +40,7 @@ def main():
     one = ring(a.dx, a.thickness)
     # centres 2 R_OUT + dx apart: the rings start one lattice spacing apart
     xc = R_OUT + 0.5 * a.dx
-    box = np.array([0.3, 0.2, 0.1])
+    box = np.array([0.6, 0.2, 0.1])  # room for the rebound: no particle leaves the open box by 4 ms
     pos = np.concatenate([one + [-xc, 0, 0], one + [xc, 0, 0]]) + 0.5 * box
     n1 = len(one)
     vel = np.zeros_like(pos)

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Colliding rubber rings (Gray, Monaghan & Swift 2001): with and without
 # artificial stress.  Usage: ./run.sh [DX]  (lattice spacing in m; default
-# 0.0025: 2848 particles, about 3 minutes per run on 2 cores)
+# 0.0025: 2848 particles, about 5 minutes per run on 2 cores)
 set -euo pipefail
 cd "$(dirname "$0")"
 top=../..
