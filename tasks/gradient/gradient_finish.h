@@ -58,7 +58,7 @@ BOLIDE_INLINE double gradient_stress_rate(const double gv[9], const double S[6],
   Sf[0] = S[0], Sf[1] = Sf[3] = S[1], Sf[2] = Sf[6] = S[2];
   Sf[4] = S[3], Sf[5] = Sf[7] = S[4], Sf[8] = S[5];
   const double tr3 = (e[0] + e[4] + e[8]) / 3.0;
-  static const int ia[6] = {0, 0, 0, 1, 1, 2}, ib[6] = {0, 1, 2, 1, 2, 2};
+  const int ia[6] = {0, 0, 0, 1, 1, 2}, ib[6] = {0, 1, 2, 1, 2, 2}; /* no statics: device code */
   double ee = 0.0;
   for (int k = 0; k < 6; k++) {
     const int a = ia[k], b = ib[k];
@@ -119,7 +119,7 @@ BOLIDE_INLINE void gradient_artificial_stress(const double S[6], double P, doubl
   gradient_eigen_sym(sig, lam, Q);
   double r[3];
   for (int k = 0; k < 3; k++) r[k] = lam[k] > 0.0 ? -eps * lam[k] / (rho * rho) : 0.0;
-  static const int ia[6] = {0, 0, 0, 1, 1, 2}, ib[6] = {0, 1, 2, 1, 2, 2};
+  const int ia[6] = {0, 0, 0, 1, 1, 2}, ib[6] = {0, 1, 2, 1, 2, 2}; /* no statics: device code */
   for (int k = 0; k < 6; k++) {
     const int a = ia[k], b = ib[k];
     R[k] = Q[3 * a] * r[0] * Q[3 * b] + Q[3 * a + 1] * r[1] * Q[3 * b + 1] +
