@@ -16,6 +16,7 @@
 
 #include "engine_tasks.h"
 #include "error.h"
+#include "drift/drift.h"
 #include "hydro_parts.h"
 #include "ic.h"
 #include "kernel.h"
@@ -186,6 +187,9 @@ static void engine_read_ics(struct engine *e, char *icname, size_t len, double b
     e->parts.vpy[i] = e->parts.vy[i];
     e->parts.vpz[i] = e->parts.vz[i];
     e->parts.up[i] = e->parts.u[i];
+    /* continuity density from the ICs' Densities (0: from the first summation) */
+    e->parts.rho_full[i] = e->parts.rho_fp[i] = e->parts.rho[i];
+    kick_sync_predicted(&e->parts, i);
   }
 }
 
@@ -197,8 +201,6 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   e->opt = *opt;
   units_init_from_params(&e->us, params);
   hydro_props_init(&e->hp, params);
-  if (e->hp.continuity) params_error(params, "SPH:density", "the continuity equation is not implemented yet; use 'summation'");
-  if (e->hp.xsph > 0.0) params_error(params, "SPH:xsph_epsilon", "XSPH is not implemented yet; set it to 0");
   gravity_props_init(&e->gp, params, &e->us);
   if (!e->gp.enabled && !e->hp.enabled)
     params_error(params, "SPH:hydro", "neither hydrodynamics nor self-gravity is switched on");
@@ -210,6 +212,9 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   material_table_init(e->mats);
   material_table_from_params(e->mats, params);
   material_table_convert_units(e->mats, &e->us);
+  /* solids: the gradient tasks and stress terms run only when a material has strength */
+  for (int k = 0; k < e->mats->n; k++)
+    if (e->mats->mats[k].strength != STRENGTH_NONE) e->hp.solids = 1;
 
   e->time = params_get_real(params, "TimeIntegration:time_begin");
   e->time_end = params_get_real(params, "TimeIntegration:time_end");
@@ -279,6 +284,14 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   );
   error_log(0, "configured with: %s", BOLIDE_CONFIGURE_ARGS[0] ? BOLIDE_CONFIGURE_ARGS : "(defaults)");
   material_table_log(e->mats);
+  if (e->hp.solids)
+    error_log(0, "solids: gradient tasks on (correction tensor %s, %s momentum form, artificial stress eps %g n %g)",
+              e->hp.gradient_correction ? "on" : "off",
+              e->hp.momentum_form == HYDRO_MOMENTUM_SYMMETRIC ? "symmetric" : "standard", e->hp.as_eps, e->hp.as_n);
+  if (e->hp.solids)
+    error_log(0, "solids: gradient tasks on (correction tensor %s, %s momentum form, artificial stress eps %g n %g)",
+              e->hp.gradient_correction ? "on" : "off",
+              e->hp.momentum_form == HYDRO_MOMENTUM_SYMMETRIC ? "symmetric" : "standard", e->hp.as_eps, e->hp.as_n);
   error_log(0, "particle memory: %zu bytes per particle", parts_bytes_per_particle());
 
   if (opt->check_only) {

@@ -1,6 +1,7 @@
 /* The engine: the time-step loop.  Each step: kick and drift the cells,
  * rebuild the cells and the task graph when particles have moved too far,
- * run the density -> ghost -> force -> kick/time-step graph, write
+ * run the density -> ghost [-> gradient -> extra_ghost] -> force ->
+ * kick/time-step graph (the bracket only with solids), write
  * statistics and snapshots. */
 #ifndef BOLIDE_ENGINE_H
 #define BOLIDE_ENGINE_H
@@ -31,6 +32,7 @@ struct engine_options {
 struct engine_cell_tasks {
   struct task *drift;    /**< kick1 + drift of the cell */
   struct task *ghost;    /**< h iteration and equation of state */
+  struct task *extra_ghost; /**< end of the gradient loop (solids only, else NULL) */
   struct task *kick2;    /**< second half kick and new time step */
   int nr_ngb;            /**< number of neighbouring task cells (itself included) */
   int *ngb;              /**< their numbers in engine.tcells */

@@ -16,7 +16,11 @@
  *
  * The ghost of a task cell waits for every density task touching it: its h
  * iteration then reads final neighbour positions and writes only its own
- * particles.
+ * particles.  With solids (a material with strength: e->hp.solids) the
+ * gradient loop sits between the ghost and the force:
+ *
+ *   ghost(t), ghost(t') -> gradient(t,t') -> extra_ghost(t), extra_ghost(t')
+ *   extra_ghost(t), extra_ghost(t') -> force(t,t')
  *
  * Self-gravity works on the top-level cells (gravity_cpu.h):
  *
@@ -191,15 +195,32 @@ static void engine_make_pair_tasks(struct engine *e, int a, int b, const double 
   for (int d = 0; d < 3; d++) mshift[d] = -shift[d];
   engine_add_ngb(&e->ct[a], b, shift);
   engine_add_ngb(&e->ct[b], a, mshift);
-  /* density(a,b) -> ghost(a), ghost(b) -> force(a,b) -> kick2(a), kick2(b) */
+  /* density(a,b) -> ghost(a), ghost(b);  force(a,b) -> kick2(a), kick2(b) */
   scheduler_addunlock(sched, dp, e->ct[a].ghost);
   scheduler_addunlock(sched, dp, e->ct[b].ghost);
-  scheduler_addunlock(sched, e->ct[a].ghost, fp);
-  scheduler_addunlock(sched, e->ct[b].ghost, fp);
   scheduler_addunlock(sched, fp, e->ct[a].kick2);
   scheduler_addunlock(sched, fp, e->ct[b].kick2);
   engine_phase_add(e, ENGINE_PHASE_FORCE, dp, cap);
   engine_phase_add(e, ENGINE_PHASE_FORCE, fp, cap);
+  if (e->hp.solids) {
+    /* ghost(a), ghost(b) -> gradient(a,b) -> extra_ghost(a), extra_ghost(b) -> force(a,b) */
+    struct task *gp = scheduler_addtask(sched, task_type_pair, task_subtype_gradient, ci, cj);
+    gp->locks[0] = &ci->lock;
+    gp->locks[1] = (a == b) ? NULL : &cj->lock;
+    gp->cell_index = a;
+    engine_task_pair_set(e, gp, k, &cap[3]);
+    scheduler_addunlock(sched, e->ct[a].ghost, gp);
+    scheduler_addunlock(sched, e->ct[b].ghost, gp);
+    scheduler_addunlock(sched, gp, e->ct[a].extra_ghost);
+    scheduler_addunlock(sched, gp, e->ct[b].extra_ghost);
+    scheduler_addunlock(sched, e->ct[a].extra_ghost, fp);
+    scheduler_addunlock(sched, e->ct[b].extra_ghost, fp);
+    engine_phase_add(e, ENGINE_PHASE_FORCE, gp, cap);
+  } else {
+    /* ghost(a), ghost(b) -> force(a,b) */
+    scheduler_addunlock(sched, e->ct[a].ghost, fp);
+    scheduler_addunlock(sched, e->ct[b].ghost, fp);
+  }
 }
 
 void engine_make_graph(struct engine *e) {
@@ -240,11 +261,25 @@ void engine_make_graph(struct engine *e) {
     ds->locks[0] = fs->locks[0] = &c->lock;
     ds->cell_index = fs->cell_index = t;
     scheduler_addunlock(sched, ds, ct->ghost);
-    scheduler_addunlock(sched, ct->ghost, fs);
     scheduler_addunlock(sched, fs, ct->kick2);
     engine_phase_add(e, ENGINE_PHASE_FORCE, ds, cap);
     engine_phase_add(e, ENGINE_PHASE_FORCE, ct->ghost, cap);
     engine_phase_add(e, ENGINE_PHASE_FORCE, fs, cap);
+    if (e->hp.solids) {
+      /* ghost(t) -> gradient(t) -> extra_ghost(t) -> force(t) */
+      ct->extra_ghost = scheduler_addtask(sched, task_type_extra_ghost, task_subtype_none, c, NULL);
+      struct task *gs = scheduler_addtask(sched, task_type_self, task_subtype_gradient, c, NULL);
+      gs->locks[0] = &c->lock;
+      gs->cell_index = ct->extra_ghost->cell_index = t;
+      scheduler_addunlock(sched, ct->ghost, gs);
+      scheduler_addunlock(sched, gs, ct->extra_ghost);
+      scheduler_addunlock(sched, ct->extra_ghost, fs);
+      engine_phase_add(e, ENGINE_PHASE_FORCE, gs, cap);
+      engine_phase_add(e, ENGINE_PHASE_FORCE, ct->extra_ghost, cap);
+    } else {
+      /* ghost(t) -> force(t) */
+      scheduler_addunlock(sched, ct->ghost, fs);
+    }
   }
 
   /* the reach of an interaction until the next rebuild (see the top comment) */

@@ -7,6 +7,7 @@
 #include "error.h"
 #include "force/force_cpu.h"
 #include "ghost/ghost_cpu.h"
+#include "gradient/gradient_cpu.h"
 #include "kernel.h"
 #include "kick/kick_cpu.h"
 
@@ -70,7 +71,7 @@ void engine_run_task(void *ctx, struct task *t, int thread_id) {
   (void)thread_id;
   switch (t->type) {
     case task_type_drift:
-      drift_cell_cpu(p, ci, 0.5 * e->dt, e->dt);
+      drift_cell_cpu(p, ci, 0.5 * e->dt, e->dt, e->hp.xsph);
       break;
     case task_type_self:
       /* the accumulators were zeroed by the drift (density) and the ghost (force) */
@@ -78,6 +79,8 @@ void engine_run_task(void *ctx, struct task *t, int thread_id) {
         gravity_interact_cells(p, ci, ci, e->gcells, &e->gp);
       else if (t->subtype == task_subtype_density)
         density_self_cpu(p, ci);
+      else if (t->subtype == task_subtype_gradient)
+        gradient_self_cpu(p, ci);
       else if (t->subtype == task_subtype_force)
         force_self_cpu(p, ci, &e->hp);
       break;
@@ -90,12 +93,17 @@ void engine_run_task(void *ctx, struct task *t, int thread_id) {
       /* the pair list holds task cells; ci, cj are those cells */
       if (t->subtype == task_subtype_density)
         density_pair_cpu(p, ci, cj, shift);
+      else if (t->subtype == task_subtype_gradient)
+        gradient_pair_cpu(p, ci, cj, shift);
       else if (t->subtype == task_subtype_force)
         force_pair_cpu(p, ci, cj, shift, &e->hp);
       break;
     }
     case task_type_ghost:
       engine_ghost(e, t->cell_index);
+      break;
+    case task_type_extra_ghost:
+      extra_ghost_cell_cpu(p, ci, &e->hp, e->mats);
       break;
     case task_type_kick2:
       engine_kick2(e, t->cell_index);

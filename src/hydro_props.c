@@ -3,6 +3,7 @@
 
 #include <math.h>
 
+#include "kernel.h"
 #include "params.h"
 
 void hydro_props_init(struct hydro_props *hp, const struct params *p) {
@@ -19,4 +20,12 @@ void hydro_props_init(struct hydro_props *hp, const struct params *p) {
   hp->alpha_u = params_get_real(p, "SPH:conductivity_alpha");
   hp->continuity = params_get_enum(p, "SPH:density") == 1;
   hp->xsph = params_get_real(p, "SPH:xsph_epsilon");
+  hp->solids = 0; /* set by the engine from the materials */
+  hp->momentum_form = params_get_enum(p, "SPH:momentum_form");
+  hp->gradient_correction = params_get_bool(p, "SPH:velocity_gradient_correction");
+  hp->as_eps = params_get_real(p, "SPH:artificial_stress_epsilon");
+  hp->as_n = params_get_real(p, "SPH:artificial_stress_n");
+  /* the kernel at the mean particle spacing dp = h / eta (Monaghan 2000, Sec. 4) */
+  hp->as_wdp_inv = 1.0 / kernel_W(1.0 / hp->eta, 1.0);
+  hp->max_rel_change = params_get_real(p, "SPH:max_relative_change");
 }

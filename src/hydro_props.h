@@ -20,6 +20,19 @@ struct hydro_props {
   double alpha_u;       /**< artificial conduction (Price 2008), 0 = off */
   int continuity;       /**< 1: density from the continuity equation */
   double xsph;          /**< XSPH epsilon (Monaghan 1989), 0 = off */
+  int solids;           /**< 1 when a material has strength: gradient tasks and stress terms run */
+  int momentum_form;    /**< HYDRO_MOMENTUM_STANDARD or HYDRO_MOMENTUM_SYMMETRIC */
+  int gradient_correction; /**< 1: linear-consistency correction of the velocity gradient */
+  double as_eps;        /**< artificial stress epsilon_s (Monaghan 2000), 0 = off */
+  double as_n;          /**< artificial stress exponent n */
+  double as_wdp_inv;    /**< 1 / W(dp, h = 1) with dp = h / eta, the mean particle spacing */
+  double max_rel_change;/**< time-step limit on relative changes of rho, u, S per step (0 = off) */
+};
+
+/** Forms of the momentum equation (SPH:momentum_form). */
+enum hydro_momentum_form {
+  HYDRO_MOMENTUM_STANDARD = 0,  /**< sigma_i/rho_i^2 + sigma_j/rho_j^2 (Gray et al. 2001) */
+  HYDRO_MOMENTUM_SYMMETRIC = 1, /**< (sigma_i + sigma_j)/(rho_i rho_j) (Monaghan 1992) */
 };
 
 /** Read the SPH section. */

@@ -55,6 +55,19 @@ enum part_flags {
   X(double,  balsara, NULL,           0, 1, 0,  0,  0, 0, "Balsara switch")                       \
   X(double,  f_gradh, NULL,           0, 1, 0,  0,  0, 0, "grad-h correction factor")             \
   X(int32_t, mat, "MaterialIDs",      0, 1, 0,  0,  0, PART_IC_OPT | PART_SNAP, "material id")    \
+  /* hot, solids: predicted deviatoric stress (xx, xy, xz, yy, yz, zz) and artificial stress */    \
+  X(double,  Spxx, NULL,              0, 6, 1, -1, -2, 0, "predicted deviatoric stress xx")       \
+  X(double,  Spxy, NULL,              1, 6, 1, -1, -2, 0, "predicted deviatoric stress xy")       \
+  X(double,  Spxz, NULL,              2, 6, 1, -1, -2, 0, "predicted deviatoric stress xz")       \
+  X(double,  Spyy, NULL,              3, 6, 1, -1, -2, 0, "predicted deviatoric stress yy")       \
+  X(double,  Spyz, NULL,              4, 6, 1, -1, -2, 0, "predicted deviatoric stress yz")       \
+  X(double,  Spzz, NULL,              5, 6, 1, -1, -2, 0, "predicted deviatoric stress zz")       \
+  X(double,  Rxx,  NULL,              0, 6, -1, 5, -2, 0, "artificial stress R/rho^2 xx (Monaghan 2000)") \
+  X(double,  Rxy,  NULL,              1, 6, -1, 5, -2, 0, "artificial stress R/rho^2 xy")         \
+  X(double,  Rxz,  NULL,              2, 6, -1, 5, -2, 0, "artificial stress R/rho^2 xz")         \
+  X(double,  Ryy,  NULL,              3, 6, -1, 5, -2, 0, "artificial stress R/rho^2 yy")         \
+  X(double,  Ryz,  NULL,              4, 6, -1, 5, -2, 0, "artificial stress R/rho^2 yz")         \
+  X(double,  Rzz,  NULL,              5, 6, -1, 5, -2, 0, "artificial stress R/rho^2 zz")         \
   /* density loop accumulators */                                                                 \
   X(double,  wcount,    NULL,         0, 1, 0,  0,  0, 0, "kernel-weighted neighbour count")      \
   X(double,  wcount_dh, NULL,         0, 1, 0, -1,  0, 0, "d wcount / dh")                        \
@@ -63,6 +76,23 @@ enum part_flags {
   X(double,  curl_vx,   NULL,         0, 3, 0,  0, -1, 0, "velocity curl")                        \
   X(double,  curl_vy,   NULL,         1, 3, 0,  0, -1, 0, "velocity curl")                        \
   X(double,  curl_vz,   NULL,         2, 3, 0,  0, -1, 0, "velocity curl")                        \
+  /* gradient loop accumulators (solids): M = sum V_j (x_j - x_i) (x) grad W (symmetric) and      \
+   * G = sum V_j (v_j - v_i) (x) grad W; after the extra ghost gv holds dv^a/dx^b */              \
+  X(double,  gmxx, NULL,              0, 6, 0,  0,  0, 0, "correction-tensor sum xx")             \
+  X(double,  gmxy, NULL,              1, 6, 0,  0,  0, 0, "correction-tensor sum xy")             \
+  X(double,  gmxz, NULL,              2, 6, 0,  0,  0, 0, "correction-tensor sum xz")             \
+  X(double,  gmyy, NULL,              3, 6, 0,  0,  0, 0, "correction-tensor sum yy")             \
+  X(double,  gmyz, NULL,              4, 6, 0,  0,  0, 0, "correction-tensor sum yz")             \
+  X(double,  gmzz, NULL,              5, 6, 0,  0,  0, 0, "correction-tensor sum zz")             \
+  X(double,  gvxx, NULL,              0, 9, 0,  0, -1, 0, "velocity gradient dvx/dx")             \
+  X(double,  gvxy, NULL,              1, 9, 0,  0, -1, 0, "velocity gradient dvx/dy")             \
+  X(double,  gvxz, NULL,              2, 9, 0,  0, -1, 0, "velocity gradient dvx/dz")             \
+  X(double,  gvyx, NULL,              3, 9, 0,  0, -1, 0, "velocity gradient dvy/dx")             \
+  X(double,  gvyy, NULL,              4, 9, 0,  0, -1, 0, "velocity gradient dvy/dy")             \
+  X(double,  gvyz, NULL,              5, 9, 0,  0, -1, 0, "velocity gradient dvy/dz")             \
+  X(double,  gvzx, NULL,              6, 9, 0,  0, -1, 0, "velocity gradient dvz/dx")             \
+  X(double,  gvzy, NULL,              7, 9, 0,  0, -1, 0, "velocity gradient dvz/dy")             \
+  X(double,  gvzz, NULL,              8, 9, 0,  0, -1, 0, "velocity gradient dvz/dz")             \
   /* force loop accumulators */                                                                   \
   X(double,  ax,  "Accelerations",    0, 3, 0,  1, -2, PART_SNAP_ACC, "acceleration")             \
   X(double,  ay,  "Accelerations",    1, 3, 0,  1, -2, PART_SNAP_ACC, "acceleration")             \
@@ -71,14 +101,32 @@ enum part_flags {
   X(double,  drho_dt, NULL,           0, 1, 1, -3, -1, 0, "rate of change of density")           \
   X(double,  v_sig,  NULL,            0, 1, 0,  1, -1, 0, "maximum signal velocity")              \
   X(double,  pot,  "Potentials",      0, 1, 0,  2, -2, PART_SNAP_ACC, "gravitational potential")  \
-  X(double,  gax, NULL,               0, 3, 0,  1, -2, 0, "gravitational acceleration (gravity tasks' accumulator, added to ax by gravity_down; kept as the scale of the next adaptive opening criterion)") \
+  X(double,  gax, NULL,               0, 3, 0,  1, -2, 0, "gravitational acceleration (gravity tasks' accumulator, added to ax by the kick; kept as the scale of the next adaptive opening criterion)") \
   X(double,  gay, NULL,               1, 3, 0,  1, -2, 0, "gravitational acceleration") \
   X(double,  gaz, NULL,               2, 3, 0,  1, -2, 0, "gravitational acceleration") \
+  X(double,  xsphx, NULL,             0, 3, 0,  1, -1, 0, "XSPH velocity correction (Monaghan 1989)") \
+  X(double,  xsphy, NULL,             1, 3, 0,  1, -1, 0, "XSPH velocity correction")            \
+  X(double,  xsphz, NULL,             2, 3, 0,  1, -1, 0, "XSPH velocity correction")            \
   /* cold: integrated state, bookkeeping */                                                       \
   X(double,  vx,  "Velocities",       0, 3, 0,  1, -1, PART_IC_REQ | PART_SNAP, "velocity")       \
   X(double,  vy,  "Velocities",       1, 3, 0,  1, -1, PART_IC_REQ | PART_SNAP, "velocity")       \
   X(double,  vz,  "Velocities",       2, 3, 0,  1, -1, PART_IC_REQ | PART_SNAP, "velocity")       \
   X(double,  u,   "InternalEnergies", 0, 1, 0,  2, -2, PART_IC_OPT | PART_SNAP, "specific internal energy") \
+  X(double,  Sxx, "DeviatoricStress", 0, 6, 1, -1, -2, PART_IC_OPT | PART_SNAP, "deviatoric stress xx (components xx xy xz yy yz zz)") \
+  X(double,  Sxy, "DeviatoricStress", 1, 6, 1, -1, -2, PART_IC_OPT | PART_SNAP, "deviatoric stress xy") \
+  X(double,  Sxz, "DeviatoricStress", 2, 6, 1, -1, -2, PART_IC_OPT | PART_SNAP, "deviatoric stress xz") \
+  X(double,  Syy, "DeviatoricStress", 3, 6, 1, -1, -2, PART_IC_OPT | PART_SNAP, "deviatoric stress yy") \
+  X(double,  Syz, "DeviatoricStress", 4, 6, 1, -1, -2, PART_IC_OPT | PART_SNAP, "deviatoric stress yz") \
+  X(double,  Szz, "DeviatoricStress", 5, 6, 1, -1, -2, PART_IC_OPT | PART_SNAP, "deviatoric stress zz") \
+  X(double,  dSxx, NULL,              0, 6, 1, -1, -3, 0, "dS/dt xx (Hooke + Jaumann)")          \
+  X(double,  dSxy, NULL,              1, 6, 1, -1, -3, 0, "dS/dt xy")                            \
+  X(double,  dSxz, NULL,              2, 6, 1, -1, -3, 0, "dS/dt xz")                            \
+  X(double,  dSyy, NULL,              3, 6, 1, -1, -3, 0, "dS/dt yy")                            \
+  X(double,  dSyz, NULL,              4, 6, 1, -1, -3, 0, "dS/dt yz")                            \
+  X(double,  dSzz, NULL,              5, 6, 1, -1, -3, 0, "dS/dt zz")                            \
+  X(double,  eps_p, "PlasticStrains", 0, 1, 0,  0,  0, PART_IC_OPT | PART_SNAP, "accumulated equivalent plastic strain") \
+  X(double,  rho_full, NULL,          0, 1, 1, -3,  0, 0, "density integrated by the continuity equation") \
+  X(double,  rho_fp, NULL,            0, 1, 1, -3,  0, 0, "predicted continuity density")        \
   X(double,  h_lo, NULL,              0, 1, 0,  1,  0, 0, "lower bracket of the h iteration")     \
   X(double,  h_hi, NULL,              0, 1, 0,  1,  0, 0, "upper bracket of the h iteration")     \
   X(double,  x0,  NULL,               0, 3, 0,  1,  0, 0, "position at the last rebuild")         \

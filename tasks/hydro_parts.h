@@ -6,6 +6,7 @@
 
 #include "density/density_iact.h"
 #include "force/force_iact.h"
+#include "gradient/gradient_iact.h"
 #include "inline.h"
 #include "part.h"
 
@@ -37,6 +38,43 @@ BOLIDE_INLINE void hydro_density_gather(struct parts *BOLIDE_RESTRICT p, size_t 
   hydro_density_add(p, i, &a);
 }
 
+/** Zero the gradient accumulators of particle i. */
+BOLIDE_INLINE void hydro_gradient_reset(struct parts *BOLIDE_RESTRICT p, size_t i) {
+  p->gmxx[i] = p->gmxy[i] = p->gmxz[i] = p->gmyy[i] = p->gmyz[i] = p->gmzz[i] = 0.0;
+  p->gvxx[i] = p->gvxy[i] = p->gvxz[i] = 0.0;
+  p->gvyx[i] = p->gvyy[i] = p->gvyz[i] = 0.0;
+  p->gvzx[i] = p->gvzy[i] = p->gvzz[i] = 0.0;
+}
+
+/** Add a gradient accumulator to particle i. */
+BOLIDE_INLINE void hydro_gradient_add(struct parts *BOLIDE_RESTRICT p, size_t i,
+                                      const struct gradient_acc *a) {
+  p->gmxx[i] += a->M[0];
+  p->gmxy[i] += a->M[1];
+  p->gmxz[i] += a->M[2];
+  p->gmyy[i] += a->M[3];
+  p->gmyz[i] += a->M[4];
+  p->gmzz[i] += a->M[5];
+  p->gvxx[i] += a->G[0];
+  p->gvxy[i] += a->G[1];
+  p->gvxz[i] += a->G[2];
+  p->gvyx[i] += a->G[3];
+  p->gvyy[i] += a->G[4];
+  p->gvyz[i] += a->G[5];
+  p->gvzx[i] += a->G[6];
+  p->gvzy[i] += a->G[7];
+  p->gvzz[i] += a->G[8];
+}
+
+/** The contribution of j to i's gradient sums (gather form), dx = x_i - x_j. */
+BOLIDE_INLINE void hydro_gradient_gather(struct parts *BOLIDE_RESTRICT p, size_t i, size_t j,
+                                         double r2, const double dx[3], double hi_inv) {
+  struct gradient_acc a = {{0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 0, 0, 0, 0}};
+  const double dv[3] = {p->vpx[i] - p->vpx[j], p->vpy[i] - p->vpy[j], p->vpz[i] - p->vpz[j]};
+  gradient_iact(r2, dx, hi_inv, p->m[j] / p->rho[j], dv, &a);
+  hydro_gradient_add(p, i, &a);
+}
+
 /** Load what the force loop reads of particle i. */
 BOLIDE_INLINE void hydro_force_load(const struct parts *BOLIDE_RESTRICT p, size_t i,
                                     struct force_in *in) {
@@ -48,6 +86,19 @@ BOLIDE_INLINE void hydro_force_load(const struct parts *BOLIDE_RESTRICT p, size_
   in->u = p->up[i];
   in->f = p->f_gradh[i];
   in->balsara = p->balsara[i];
+  in->h = p->h[i];
+  in->S[0] = p->Spxx[i];
+  in->S[1] = p->Spxy[i];
+  in->S[2] = p->Spxz[i];
+  in->S[3] = p->Spyy[i];
+  in->S[4] = p->Spyz[i];
+  in->S[5] = p->Spzz[i];
+  in->R[0] = p->Rxx[i];
+  in->R[1] = p->Rxy[i];
+  in->R[2] = p->Rxz[i];
+  in->R[3] = p->Ryy[i];
+  in->R[4] = p->Ryz[i];
+  in->R[5] = p->Rzz[i];
 }
 
 /** Zero the force accumulators of particle i (v_sig starts at the sound speed
@@ -56,6 +107,7 @@ BOLIDE_INLINE void hydro_force_reset(struct parts *BOLIDE_RESTRICT p, size_t i) 
   p->ax[i] = p->ay[i] = p->az[i] = 0.0;
   p->du_dt[i] = p->drho_dt[i] = 0.0;
   p->v_sig[i] = 2.0 * p->cs[i];
+  p->xsphx[i] = p->xsphy[i] = p->xsphz[i] = 0.0;
 }
 
 /** Add a force accumulator to particle i. */
@@ -67,6 +119,9 @@ BOLIDE_INLINE void hydro_force_add(struct parts *BOLIDE_RESTRICT p, size_t i,
   p->du_dt[i] += a->du_dt;
   p->drho_dt[i] += a->drho_dt;
   if (a->v_sig > p->v_sig[i]) p->v_sig[i] = a->v_sig;
+  p->xsphx[i] += a->xsph[0];
+  p->xsphy[i] += a->xsph[1];
+  p->xsphz[i] += a->xsph[2];
 }
 
 #endif

@@ -29,7 +29,16 @@ static void sep(const struct parts *p, size_t i, size_t j, const double box[3], 
   }
 }
 
-static int check(int periodic, size_t n, unsigned long long seed) {
+/** One configuration of the force loop. */
+struct forms_case {
+  const char *name; /**< printed */
+  int solids;       /**< deviatoric stress terms on, with random S */
+  int form;         /**< HYDRO_MOMENTUM_* */
+  double as_eps;    /**< artificial stress (random R) */
+  double xsph;      /**< XSPH sums */
+};
+
+static int check(int periodic, size_t n, unsigned long long seed, const struct forms_case *fc) {
   unsigned long long s = seed;
   struct parts p;
   parts_alloc(&p, n);
@@ -87,6 +96,12 @@ static int check(int periodic, size_t n, unsigned long long seed) {
 
   /* a pressure field and the force loops */
   struct hydro_props hp = {.alpha = 1.5, .beta = 3.0, .alpha_u = 1.0, .balsara = 1};
+  hp.solids = fc->solids;
+  hp.momentum_form = fc->form;
+  hp.as_eps = fc->as_eps;
+  hp.as_n = 4.0;
+  hp.as_wdp_inv = 1.0 / kernel_W(1.0 / 1.2348, 1.0);
+  hp.xsph = fc->xsph;
   for (size_t i = 0; i < n; i++) {
     p.rho[i] += p.m[i] * kernel_W(0.0, p.h[i]);
     p.up[i] = 1.0 + urand(&s);
@@ -94,6 +109,14 @@ static int check(int periodic, size_t n, unsigned long long seed) {
     p.cs[i] = sqrt((5.0 / 3.0) * p.P[i] / p.rho[i]);
     p.f_gradh[i] = 0.8 + 0.4 * urand(&s);
     p.balsara[i] = urand(&s);
+    if (fc->solids) {
+      p.Spxx[i] = urand(&s) - 0.5, p.Spxy[i] = urand(&s) - 0.5, p.Spxz[i] = urand(&s) - 0.5;
+      p.Spyy[i] = urand(&s) - 0.5, p.Spyz[i] = urand(&s) - 0.5, p.Spzz[i] = -p.Spxx[i] - p.Spyy[i];
+    }
+    if (fc->as_eps > 0.0) {
+      p.Rxx[i] = -urand(&s), p.Rxy[i] = 0.1 * urand(&s), p.Rxz[i] = 0.1 * urand(&s);
+      p.Ryy[i] = -urand(&s), p.Ryz[i] = 0.1 * urand(&s), p.Rzz[i] = -urand(&s);
+    }
     hydro_force_reset(&p, i);
   }
   for (int c = 0; c < sp.nr_top; c++) force_self_cpu(&p, &sp.cells[c], &hp);
@@ -102,7 +125,8 @@ static int check(int periodic, size_t n, unsigned long long seed) {
   worst = 0.0;
   double mom[3] = {0, 0, 0}, mom_abs = 0.0, edot = 0.0, edot_abs = 0.0;
   for (size_t i = 0; i < n; i++) {
-    struct force_acc a = {{0, 0, 0}, 0, 0, 0};
+    struct force_acc a;
+    force_acc_zero(&a);
     struct force_in in_i, in_j;
     hydro_force_load(&p, i, &in_i);
     for (size_t j = 0; j < n; j++) {
@@ -124,6 +148,10 @@ static int check(int periodic, size_t n, unsigned long long seed) {
     }
     const double e = fabs(p.du_dt[i] - a.du_dt) / (fabs(a.du_dt) + amag * p.h[i]);
     if (e > worst) worst = e;
+    const double xs[3] = {p.xsphx[i], p.xsphy[i], p.xsphz[i]};
+    const double xsn = fabs(a.xsph[0]) + fabs(a.xsph[1]) + fabs(a.xsph[2]) + 1e-300;
+    for (int k = 0; k < 3; k++)
+      if (fabs(xs[k] - a.xsph[k]) / xsn > worst) worst = fabs(xs[k] - a.xsph[k]) / xsn;
     mom[0] += p.m[i] * p.ax[i];
     mom[1] += p.m[i] * p.ay[i];
     mom[2] += p.m[i] * p.az[i];
@@ -133,7 +161,7 @@ static int check(int periodic, size_t n, unsigned long long seed) {
     edot_abs += p.m[i] * (fabs(p.du_dt[i]) + amag);
   }
   const double mom_rel = sqrt(mom[0] * mom[0] + mom[1] * mom[1] + mom[2] * mom[2]) / mom_abs;
-  printf("  force, symmetric vs gather: worst relative difference %.3e\n", worst);
+  printf("  force [%s], symmetric vs gather: worst relative difference %.3e\n", fc->name, worst);
   printf("  |sum m a| / sum m |a| = %.3e, |dE/dt| / sum m (|a| + |du/dt|) = %.3e\n", mom_rel,
          fabs(edot) / edot_abs);
   if (worst > 1e-12) fail = 1;
@@ -149,8 +177,15 @@ int main(int argc, char **argv) {
   (void)argc;
   error_init(argv[0]);
   int fail = 0;
-  fail |= check(1, 3000, 1);
-  fail |= check(0, 3000, 2);
+  const struct forms_case cases[] = {
+      {"hydro", 0, HYDRO_MOMENTUM_STANDARD, 0.0, 0.0},
+      {"solid, standard form, artificial stress, XSPH", 1, HYDRO_MOMENTUM_STANDARD, 0.2, 0.5},
+      {"solid, symmetric form, artificial stress", 1, HYDRO_MOMENTUM_SYMMETRIC, 0.2, 0.0},
+  };
+  for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+    fail |= check(1, 3000, 1 + 2 * k, &cases[k]);
+    fail |= check(0, 3000, 2 + 2 * k, &cases[k]);
+  }
   printf("%s\n", fail ? "FAIL" : "PASS");
   return fail;
 }

@@ -333,7 +333,7 @@ void ic_read(const char *path, const struct unit_system *internal, const int32_t
   struct ic_info info_local;
   struct ic_info *info = info_out ? info_out : &info_local;
   memset(info, 0, sizeof *info);
-  if (part_nr_fields > 64) error_bug("ic_info.fields_read holds at most 64 fields");
+  if (part_nr_fields > IC_MAX_FIELDS) error_bug("ic_info.fields_read holds at most %d fields", IC_MAX_FIELDS);
   H5Eset_auto(H5E_DEFAULT, NULL, NULL);
 
   FILE *probe = fopen(path, "rb");
@@ -356,7 +356,7 @@ void ic_read(const char *path, const struct unit_system *internal, const int32_t
   if (grp < 0) error_exit("%s: cannot open group /PartType0", path);
 
   /* pass 1: find the datasets, check presence and lengths */
-  const char *found[64] = {NULL};
+  const char *found[IC_MAX_FIELDS] = {NULL};
   const char *first = NULL;
   size_t n = 0;
   for (int k = 0; k < part_nr_fields; k++) {
@@ -391,7 +391,7 @@ void ic_read(const char *path, const struct unit_system *internal, const int32_t
             ? units_conversion_factor(&info->file_units, internal, f->uM, f->uL, f->uT)
             : 1.0;
     ic_read_dataset(&r, grp, found[k], k, p, factor);
-    for (int c = 0; c < f->ncomp; c++) info->fields_read |= 1ULL << (k + c);
+    for (int c = 0; c < f->ncomp; c++) info->fields_read[(k + c) / 64] |= 1ULL << ((k + c) % 64);
   }
   H5Gclose(grp);
   H5Fclose(r.file);

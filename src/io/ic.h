@@ -9,6 +9,9 @@
 #include "part.h"
 #include "units.h"
 
+/** Largest number of particle fields the ICs reader tracks (part_fields). */
+#define IC_MAX_FIELDS 256
+
 /** What the file said besides the particles. */
 struct ic_info {
   double box_size[3];            /**< /Header/BoxSize (internal units; 0 if absent) */
@@ -19,7 +22,7 @@ struct ic_info {
   int dimension;                 /**< /Header/Dimension (3 if absent) */
   int has_units;                 /**< 1 if /Units was present */
   struct unit_system file_units; /**< the file's units (= internal if absent) */
-  uint64_t fields_read;          /**< bit k set: part_fields[k] came from the file */
+  uint64_t fields_read[IC_MAX_FIELDS / 64]; /**< bit k set: part_fields[k] came from the file */
 };
 
 /** Read initial conditions from `path` into p (allocated here with
@@ -35,7 +38,7 @@ void ic_read(const char *path, const struct unit_system *internal, const int32_t
 
 /** 1 if part_fields[k] was read according to info. */
 static inline int ic_field_read(const struct ic_info *info, int k) {
-  return k < 64 && ((info->fields_read >> k) & 1);
+  return k >= 0 && k < IC_MAX_FIELDS && ((info->fields_read[k / 64] >> (k % 64)) & 1);
 }
 
 #endif

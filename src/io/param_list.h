@@ -58,6 +58,11 @@
   X("SPH:conductivity_alpha", PARAM_REAL, "0", 0, 10, NULL, "-", "artificial conduction of internal energy (Price 2008); 0 switches it off") \
   X("SPH:density", PARAM_ENUM, "summation", 0, 0, "summation|continuity", "-", "density from kernel summation or from the continuity equation") \
   X("SPH:xsph_epsilon", PARAM_REAL, "0", 0, 1, NULL, "-", "XSPH velocity smoothing factor (0: off)") \
+  X("SPH:momentum_form", PARAM_ENUM, "standard", 0, 0, "standard|symmetric", "-", "momentum equation: sigma_i/rho_i^2 + sigma_j/rho_j^2 (standard, Gray et al. 2001) or (sigma_i + sigma_j)/(rho_i rho_j) (symmetric)") \
+  X("SPH:velocity_gradient_correction", PARAM_BOOL, "true", 0, 0, NULL, "-", "linear-consistency correction tensor on the velocity gradient of solids (Randles & Libersky 1996)") \
+  X("SPH:artificial_stress_epsilon", PARAM_REAL, "0", 0, 1, NULL, "-", "artificial stress factor epsilon_s against the tensile instability (Monaghan 2000; 0: off)") \
+  X("SPH:artificial_stress_n", PARAM_REAL, "4", 1, 20, NULL, "-", "artificial stress exponent n (Monaghan 2000)") \
+  X("SPH:max_relative_change", PARAM_REAL, "0", 0, 1, NULL, "-", "time-step limit: largest relative change of density, energy and deviatoric stress in one step (0: off)") \
   X("SPH:minimal_temperature", PARAM_REAL, "0", 0, PARAM_INF, NULL, "K", "accepted for SWIFT compatibility; has no effect") \
   X("SPH:hydro", PARAM_BOOL, "true", 0, 0, NULL, "-", "compute hydrodynamics (false: gravity-only run)") \
   X("SPH:gamma", PARAM_REAL, "1.6666666666666667", 1.0001, 10, NULL, "-", "adiabatic index of the default ideal-gas material (id 0) when no Materials section is given") \

@@ -217,6 +217,10 @@ static const char *material_strength_check(const struct material *mat, const cha
       *key = "T_melt";
       return "must be larger than T_ref for the Johnson-Cook model";
     }
+    if (!(mat->specific_heat > 0.0) && !material_has_temperature(mat)) {
+      *key = "specific_heat";
+      return "must be positive for the Johnson-Cook model when the EOS defines no temperature";
+    }
   }
   if ((mat->weibull_k > 0.0) != (mat->weibull_m > 0.0)) {
     *key = mat->weibull_k > 0.0 ? "weibull_m" : "weibull_k";

@@ -81,7 +81,7 @@ union material_eos_params {
 #undef MATERIAL_EOS_MEMBER
 };
 
-/** Strength models (the models themselves come in a later step):
+/** Strength models (yield functions in strength_*.h, dispatch in strength.h):
  *  X(name, NAME, "doc"). */
 #define MATERIAL_STRENGTH_TYPES(X)                                                            \
   X(none, NONE, "fluid: no deviatoric stress")                                                \
@@ -137,6 +137,8 @@ enum material_strength_type {
     "reference (room) temperature of Johnson-Cook")                                                    \
   X(material, T_melt, "T_melt", 0.0, 0.0, 0, INFINITY, MATERIAL_UNIT_TEMPERATURE,                      \
     "melting temperature (0: none)")                                                                   \
+  X(material, specific_heat, "specific_heat", 0.0, 0.0, 0, INFINITY, MATERIAL_UNIT_HEAT_CAPACITY,      \
+    "specific heat c_v for T = T_ref + u / c_v (Johnson-Cook; 0: the EOS's temperature)")              \
   X(material, weibull_k, "weibull_k", 0.0, 0.0, 0, INFINITY, MATERIAL_UNIT_PER_VOLUME,                 \
     "Weibull k of the flaw distribution (0: no brittle damage)")                                       \
   X(material, weibull_m, "weibull_m", 0.0, 0.0, 0, 100.0, MATERIAL_UNIT_NONE, "Weibull m")

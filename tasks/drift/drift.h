@@ -10,25 +10,59 @@
 
 /** Half kick of particle i by dt_kick: v += a dt, u += du/dt dt (u kept
  *  non-negative: an energy that would go negative is halved instead, as
- *  SWIFT's planetary scheme does). */
+ *  SWIFT's planetary scheme does); the deviatoric stress and the continuity
+ *  density are integrated like u (theory/solids.md, "Time integration"). */
 BOLIDE_INLINE void kick_part(struct parts *BOLIDE_RESTRICT p, size_t i, double dt_kick) {
   p->vx[i] += p->ax[i] * dt_kick;
   p->vy[i] += p->ay[i] * dt_kick;
   p->vz[i] += p->az[i] * dt_kick;
   const double u1 = p->u[i] + p->du_dt[i] * dt_kick;
   p->u[i] = (u1 >= 0.0) ? u1 : 0.5 * p->u[i];
+  p->Sxx[i] += p->dSxx[i] * dt_kick;
+  p->Sxy[i] += p->dSxy[i] * dt_kick;
+  p->Sxz[i] += p->dSxz[i] * dt_kick;
+  p->Syy[i] += p->dSyy[i] * dt_kick;
+  p->Syz[i] += p->dSyz[i] * dt_kick;
+  p->Szz[i] += p->dSzz[i] * dt_kick;
+  const double r1 = p->rho_full[i] + p->drho_dt[i] * dt_kick;
+  p->rho_full[i] = (r1 > 0.0) ? r1 : 0.5 * p->rho_full[i];
+}
+
+/** After the second kick the predicted values are the integrated ones. */
+BOLIDE_INLINE void kick_sync_predicted(struct parts *BOLIDE_RESTRICT p, size_t i) {
+  p->vpx[i] = p->vx[i];
+  p->vpy[i] = p->vy[i];
+  p->vpz[i] = p->vz[i];
+  p->up[i] = p->u[i];
+  p->Spxx[i] = p->Sxx[i];
+  p->Spxy[i] = p->Sxy[i];
+  p->Spxz[i] = p->Sxz[i];
+  p->Spyy[i] = p->Syy[i];
+  p->Spyz[i] = p->Syz[i];
+  p->Spzz[i] = p->Szz[i];
+  p->rho_fp[i] = p->rho_full[i];
 }
 
 /** Drift of particle i by dt after its first half kick: positions move with
  *  the half-step velocity; the velocity and energy used by the next force
  *  computation are predicted to the end of the step; h follows the
  *  velocity divergence (dh/dt = h div v / 3) as a first guess for the
- *  iteration. */
-BOLIDE_INLINE void drift_part(struct parts *BOLIDE_RESTRICT p, size_t i, double dt) {
-  p->x[i] += p->vx[i] * dt;
-  p->y[i] += p->vy[i] * dt;
-  p->z[i] += p->vz[i] * dt;
+ *  iteration.  With XSPH (xsph > 0) positions move with v + xsph * sum
+ *  m_j/rho_ij (v_j - v_i) W_ij (Monaghan 1989; theory/sph.md eq. S15), the sum from the
+ *  last force loop. */
+BOLIDE_INLINE void drift_part(struct parts *BOLIDE_RESTRICT p, size_t i, double dt, double xsph) {
+  p->x[i] += (p->vx[i] + xsph * p->xsphx[i]) * dt;
+  p->y[i] += (p->vy[i] + xsph * p->xsphy[i]) * dt;
+  p->z[i] += (p->vz[i] + xsph * p->xsphz[i]) * dt;
   const double half = 0.5 * dt;
+  p->Spxx[i] = p->Sxx[i] + p->dSxx[i] * half;
+  p->Spxy[i] = p->Sxy[i] + p->dSxy[i] * half;
+  p->Spxz[i] = p->Sxz[i] + p->dSxz[i] * half;
+  p->Spyy[i] = p->Syy[i] + p->dSyy[i] * half;
+  p->Spyz[i] = p->Syz[i] + p->dSyz[i] * half;
+  p->Spzz[i] = p->Szz[i] + p->dSzz[i] * half;
+  const double rp = p->rho_full[i] + p->drho_dt[i] * half;
+  p->rho_fp[i] = (rp > 0.0) ? rp : 0.5 * p->rho_full[i];
   p->vpx[i] = p->vx[i] + p->ax[i] * half;
   p->vpy[i] = p->vy[i] + p->ay[i] * half;
   p->vpz[i] = p->vz[i] + p->az[i] * half;

@@ -20,7 +20,9 @@ BOLIDE_ALWAYS_INLINE void force_sym(struct parts *p, size_t i, size_t j, double 
   const double dv[3] = {p->vpx[i] - p->vpx[j], p->vpy[i] - p->vpy[j], p->vpz[i] - p->vpz[j]};
   const double mdx[3] = {-dx[0], -dx[1], -dx[2]};
   const double mdv[3] = {-dv[0], -dv[1], -dv[2]};
-  struct force_acc ai = {{0, 0, 0}, 0, 0, 0}, aj = {{0, 0, 0}, 0, 0, 0};
+  struct force_acc ai, aj;
+  force_acc_zero(&ai);
+  force_acc_zero(&aj);
   force_iact(r2, dx, dv, &in_i, &in_j, force_hp, &ai);
   force_iact(r2, mdx, mdv, &in_j, &in_i, force_hp, &aj);
   hydro_force_add(p, i, &ai);

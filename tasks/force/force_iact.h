@@ -12,6 +12,19 @@
  *   drho_i/dt = sum_j m_j v_ij . x_ij / r dW_ij(h_i)
  * with Pi_ij = -alpha/2 (B_i + B_j)/2... (see force_iact below), dW = dW/dr.
  *
+ * Solids (hp->solids; theory/solids.md, eqs. E8-E12): sigma = -P I + S, the
+ * deviatoric stress S adds to the momentum and energy equations
+ *   standard:  dv_i^a/dt += sum_j m_j (S_i^{ab}/rho_i^2 d_b W(h_i) + S_j^{ab}/rho_j^2 d_b W(h_j))
+ *              du_i/dt   -= sum_j m_j S_i^{ab}/rho_i^2 v_ij^a d_b W(h_i)
+ *              (Gray et al. 2001, Sec. 3; Benz & Asphaug 1994, Sec. 2)
+ *   symmetric: (sigma_i + sigma_j)/(rho_i rho_j) with the mean kernel
+ *              gradient, pressure included (Monaghan 1992, Sec. 3;
+ *              Schaefer et al. 2016, Sec. 3)
+ * plus the artificial stress m_j f_ij^n (R_i + R_j) . grad W with
+ * f_ij = W(r, h_ij) / W(dp, h_ij) (Monaghan 2000, Sec. 4; Gray et al. 2001,
+ * Sec. 4) and its energy term, and the XSPH sum
+ *   xsph_i = sum_j m_j / rho_ij (v_j - v_i) W_ij   (Monaghan 1989).
+ *
  * Every expression combines i and j terms with commutative operations only,
  * so that the gather form evaluated for (i, j) and for (j, i) gives forces
  * that are exact negatives of each other: momentum is conserved to round-off
@@ -35,6 +48,9 @@ struct force_in {
   double u;       /**< specific internal energy (conduction) */
   double f;       /**< grad-h factor f = 1 / (1 + h/(3 rho) drho/dh) */
   double balsara; /**< Balsara switch value (1 when the switch is off) */
+  double h;       /**< smoothing length (artificial stress) */
+  double S[6];    /**< predicted deviatoric stress (xx xy xz yy yz zz), 0 for fluids */
+  double R[6];    /**< artificial stress R / rho^2 (Monaghan 2000), 0 when off */
 };
 
 /** Accumulators of the force loop for one particle. */
@@ -43,7 +59,22 @@ struct force_acc {
   double du_dt;   /**< rate of change of specific internal energy */
   double drho_dt; /**< rate of change of density (continuity equation) */
   double v_sig;   /**< largest signal velocity met */
+  double xsph[3]; /**< XSPH sum m_j/rho_ij (v_j - v_i) W_ij (Monaghan 1989) */
 };
+
+/** Zero force accumulators. */
+BOLIDE_INLINE void force_acc_zero(struct force_acc *a) {
+  a->a[0] = a->a[1] = a->a[2] = 0.0;
+  a->du_dt = a->drho_dt = a->v_sig = 0.0;
+  a->xsph[0] = a->xsph[1] = a->xsph[2] = 0.0;
+}
+
+/** y = T x for a symmetric tensor T (xx xy xz yy yz zz). */
+BOLIDE_INLINE void force_sym_dot(const double T[6], const double x[3], double y[3]) {
+  y[0] = T[0] * x[0] + T[1] * x[1] + T[2] * x[2];
+  y[1] = T[1] * x[0] + T[3] * x[1] + T[4] * x[2];
+  y[2] = T[2] * x[0] + T[4] * x[1] + T[5] * x[2];
+}
 
 /** Contribution of j to i.  dx = x_i - x_j, dv = v_i - v_j, r2 = |dx|^2 > 0,
  *  and r < max(H_i, H_j).  hp: viscosity and conduction constants. */
@@ -66,18 +97,72 @@ BOLIDE_INLINE void force_iact(double r2, const double dx[3], const double dv[3],
   const double visc = -0.25 * hp->alpha * v_sig * mu_ij * (pi->balsara + pj->balsara) / rho_ij;
   const double w_mean_dr = 0.5 * (wi_dr + wj_dr);
 
-  /* pressure terms with grad-h corrections (Springel & Hernquist 2002) */
-  const double Pi_rho2 = pi->f * pi->P / (pi->rho * pi->rho);
-  const double Pj_rho2 = pj->f * pj->P / (pj->rho * pj->rho);
-  const double acc_term = (Pi_rho2 * wi_dr + Pj_rho2 * wj_dr + visc * w_mean_dr) * r_inv;
+  double acc_term, du;
+  if (hp->momentum_form == HYDRO_MOMENTUM_SYMMETRIC) {
+    /* (P_i + P_j) / (rho_i rho_j) with the mean kernel gradient */
+    const double rr_inv = 1.0 / (pi->rho * pj->rho);
+    acc_term = ((pi->P + pj->P) * rr_inv + visc) * w_mean_dr * r_inv;
+    du = (pi->P * rr_inv + 0.5 * visc) * w_mean_dr * dvdr * r_inv;
+  } else {
+    /* pressure terms with grad-h corrections (Springel & Hernquist 2002) */
+    const double Pi_rho2 = pi->f * pi->P / (pi->rho * pi->rho);
+    const double Pj_rho2 = pj->f * pj->P / (pj->rho * pj->rho);
+    acc_term = (Pi_rho2 * wi_dr + Pj_rho2 * wj_dr + visc * w_mean_dr) * r_inv;
+    /* energy: PdV work of i plus half the viscous heating */
+    du = (Pi_rho2 * wi_dr + 0.5 * visc * w_mean_dr) * dvdr * r_inv;
+  }
 
   acc->a[0] -= pj->m * acc_term * dx[0];
   acc->a[1] -= pj->m * acc_term * dx[1];
   acc->a[2] -= pj->m * acc_term * dx[2];
-
-  /* energy: PdV work of i plus half the viscous heating */
-  const double du = (Pi_rho2 * wi_dr + 0.5 * visc * w_mean_dr) * dvdr * r_inv;
   acc->du_dt += pj->m * du;
+
+  if (hp->solids) {
+    /* deviatoric stress: S.dx of each side, combined commutatively */
+    double Si_dx[3], Sj_dx[3], t[3];
+    force_sym_dot(pi->S, dx, Si_dx);
+    force_sym_dot(pj->S, dx, Sj_dx);
+    double ci;
+    if (hp->momentum_form == HYDRO_MOMENTUM_SYMMETRIC) {
+      ci = w_mean_dr * r_inv / (pi->rho * pj->rho);
+      for (int k = 0; k < 3; k++) t[k] = (Si_dx[k] + Sj_dx[k]) * ci;
+    } else {
+      ci = wi_dr * r_inv / (pi->rho * pi->rho);
+      const double cj = wj_dr * r_inv / (pj->rho * pj->rho);
+      for (int k = 0; k < 3; k++) t[k] = Si_dx[k] * ci + Sj_dx[k] * cj;
+    }
+    double du_s = -(dv[0] * Si_dx[0] + dv[1] * Si_dx[1] + dv[2] * Si_dx[2]) * ci;
+    if (hp->as_eps > 0.0) {
+      /* artificial stress (Monaghan 2000, Sec. 4) with f = W(r)/W(dp) */
+      const double h_ij = 0.5 * (pi->h + pj->h);
+      double w_ij, w_ij_dr, w_ij_dh;
+      kernel_eval_r(r, 1.0 / h_ij, &w_ij, &w_ij_dr, &w_ij_dh);
+      const double fr = w_ij * h_ij * h_ij * h_ij * hp->as_wdp_inv;
+      const double cr = pow(fr, hp->as_n) * w_mean_dr * r_inv;
+      double Ri_dx[3], Rj_dx[3];
+      force_sym_dot(pi->R, dx, Ri_dx);
+      force_sym_dot(pj->R, dx, Rj_dx);
+      double dvR = 0.0;
+      for (int k = 0; k < 3; k++) {
+        const double rs = (Ri_dx[k] + Rj_dx[k]) * cr;
+        t[k] += rs;
+        dvR += dv[k] * rs;
+      }
+      du_s -= 0.5 * dvR;
+    }
+    acc->a[0] += pj->m * t[0];
+    acc->a[1] += pj->m * t[1];
+    acc->a[2] += pj->m * t[2];
+    acc->du_dt += pj->m * du_s;
+  }
+
+  if (hp->xsph > 0.0) {
+    /* XSPH (Monaghan 1989): mean of the two kernels and densities */
+    const double c = pj->m * 0.5 * (wi + wj) / rho_ij;
+    acc->xsph[0] -= c * dv[0];
+    acc->xsph[1] -= c * dv[1];
+    acc->xsph[2] -= c * dv[2];
+  }
 
   /* artificial conduction (Price 2008, eq. 28) with v_sig^u = sqrt(|dP|/rho_ij) */
   if (hp->alpha_u > 0.0) {

@@ -50,9 +50,16 @@ static void ghost_finish(struct parts *p, size_t i, const struct hydro_props *hp
   p->curl_vx[i] *= rho_inv;
   p->curl_vy[i] *= rho_inv;
   p->curl_vz[i] *= rho_inv;
+  /* continuity equation: the summed density served the h iteration and the
+   * grad-h factor; the EOS and the force loop use the integrated density
+   * (started from the summation where the initial conditions had none) */
+  if (hp->continuity) {
+    if (!(p->rho_full[i] > 0.0)) p->rho_full[i] = p->rho_fp[i] = rho;
+    p->rho[i] = p->rho_fp[i];
+  }
   const struct material *mat = material_table_find(mats, p->mat[i]);
   double P, cs;
-  material_eos(mat, rho, p->up[i], &P, &cs);
+  material_eos(mat, p->rho[i], p->up[i], &P, &cs);
   p->P[i] = P;
   p->cs[i] = cs;
   const double curl = sqrt(p->curl_vx[i] * p->curl_vx[i] + p->curl_vy[i] * p->curl_vy[i] +
@@ -60,6 +67,7 @@ static void ghost_finish(struct parts *p, size_t i, const struct hydro_props *hp
   p->balsara[i] = hp->balsara ? ghost_balsara(p->div_v[i], curl, cs, h) : 1.0;
   /* zero the force sums here: every force task of the cell runs after its ghost */
   hydro_force_reset(p, i);
+  if (hp->solids) hydro_gradient_reset(p, i);
 }
 
 int ghost_cell_cpu(struct parts *p, struct cell *c, const struct ghost_ngbs *ngbs,

@@ -28,4 +28,32 @@ BOLIDE_INLINE double timestep_hydro(const struct hydro_props *hp, double h, doub
   return dt;
 }
 
+/** Norm sqrt(T:T) of a symmetric tensor (xx xy xz yy yz zz). */
+BOLIDE_INLINE double timestep_sym_norm(const double T[6]) {
+  return sqrt(T[0] * T[0] + T[3] * T[3] + T[5] * T[5] + 2.0 * (T[1] * T[1] + T[2] * T[2] + T[4] * T[4]));
+}
+
+/** Limits on the relative change of density, energy and deviatoric stress in
+ *  one step, dt = f (|q| + q_min) / |dq/dt| with f = SPH:max_relative_change
+ *  (Schaefer et al. 2016, Sec. 3.5 and miluphcuda's scheme): q_min = 0 for
+ *  rho, 1e-2 c_s^2 for u, 1e-3 rho c_s^2 (a thousandth of the bulk modulus)
+ *  for |S|, so that quantities starting at zero do not stall the run. */
+BOLIDE_INLINE double timestep_relative_change(const struct hydro_props *hp, double rho, double drho_dt,
+                                              double u, double du_dt, double cs, const double S[6],
+                                              const double dS[6]) {
+  const double f = hp->max_rel_change;
+  double dt = 1e300;
+  if (drho_dt != 0.0 && rho > 0.0) dt = f * rho / fabs(drho_dt);
+  if (du_dt != 0.0) {
+    const double d = f * (fabs(u) + 1e-2 * cs * cs) / fabs(du_dt);
+    if (d < dt) dt = d;
+  }
+  const double nds = timestep_sym_norm(dS);
+  if (nds > 0.0) {
+    const double d = f * (timestep_sym_norm(S) + 1e-3 * rho * cs * cs) / nds;
+    if (d < dt) dt = d;
+  }
+  return dt;
+}
+
 #endif

@@ -1,0 +1,71 @@
+#!/usr/bin/env python3
+"""Initial conditions of the colliding rubber rings (Gray, Monaghan & Swift
+2001, CMAME 190, 6641, Sec. 5.3; ../../shared VALIDATION.md): two rings of
+inner radius 3 cm and outer radius 4 cm, here short tubes of a given
+thickness in z (the paper is 2D), on a cubic lattice of spacing dx, moving
+towards each other at +-0.059 c0 (c0 = 852 m/s), rho = rho0 = 1010 kg/m^3,
+material id 0 (the `rubber` entry of examples/materials.yml).
+
+Usage: make_ic.py [--dx 0.0025] [--thickness 0.01] [-o rings.hdf5]
+(SI units; an example input, not part of bolide-ic)."""
+import argparse
+
+import h5py
+import numpy as np
+
+RHO0 = 1010.0
+C0 = 852.0
+R_IN, R_OUT = 0.03, 0.04
+
+
+def ring(dx, thickness):
+    n = int(np.ceil(R_OUT / dx)) + 1
+    g = (np.arange(-n, n + 1)) * dx
+    nz = max(1, int(round(thickness / dx)))
+    gz = (np.arange(nz) - 0.5 * (nz - 1)) * dx
+    x, y, z = np.meshgrid(g, g, gz, indexing="ij")
+    pos = np.stack([x.ravel(), y.ravel(), z.ravel()], axis=1)
+    r = np.hypot(pos[:, 0], pos[:, 1])
+    return pos[(r >= R_IN) & (r < R_OUT)]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--dx", type=float, default=0.0025, help="lattice spacing [m]")
+    ap.add_argument("--thickness", type=float, default=0.01, help="ring thickness in z [m]")
+    ap.add_argument("--speed", type=float, default=0.059, help="speed of each ring in units of c0")
+    ap.add_argument("--eta", type=float, default=1.2348, help="h = eta dx")
+    ap.add_argument("-o", "--output", default="rings.hdf5")
+    a = ap.parse_args()
+    one = ring(a.dx, a.thickness)
+    # centres 2 R_OUT + dx apart: the rings start one lattice spacing apart
+    xc = R_OUT + 0.5 * a.dx
+    box = np.array([0.6, 0.2, 0.1])  # room for the rebound: no particle leaves the open box by 4 ms
+    pos = np.concatenate([one + [-xc, 0, 0], one + [xc, 0, 0]]) + 0.5 * box
+    n1 = len(one)
+    vel = np.zeros_like(pos)
+    vel[:n1, 0] = a.speed * C0
+    vel[n1:, 0] = -a.speed * C0
+    N = len(pos)
+    with h5py.File(a.output + ".tmp", "w") as f:
+        h = f.create_group("Header")
+        h.attrs["BoxSize"] = box
+        h.attrs["NumPart_Total"] = [N, 0, 0, 0, 0, 0]
+        h.attrs["Dimension"] = 3
+        p = f.create_group("PartType0")
+        p["Coordinates"] = pos
+        p["Velocities"] = vel
+        p["Masses"] = np.full(N, RHO0 * a.dx**3)
+        p["SmoothingLengths"] = np.full(N, a.eta * a.dx)
+        p["InternalEnergies"] = np.zeros(N)
+        p["Densities"] = np.full(N, RHO0)
+        p["ParticleIDs"] = np.arange(1, N + 1)
+        p["MaterialIDs"] = np.zeros(N, dtype=np.int32)
+    import os
+
+    os.replace(a.output + ".tmp", a.output)
+    print(f"{a.output}: {N} particles ({n1} per ring), dx = {a.dx} m, ring speed {a.speed * C0:.1f} m/s")
+
+
+if __name__ == "__main__":
+    main()
