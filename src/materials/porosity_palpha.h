@@ -40,6 +40,15 @@
  * alpha never increases, and the caller keeps 1 <= alpha <= alpha_0
  * (porosity_clamp_alpha).
  *
+ * Return to the curve (PA10): the rate PA6 only follows the curve; a state
+ * above it (a shock that crosses p_e within one step, alpha_0 > alpha_e)
+ * stays above it.  After each update the caller tests
+ * porosity_palpha_above_curve and, if so, solves alpha = alpha_cc(P_s(alpha
+ * rho, u)/alpha) at fixed rho, u with porosity_palpha_return_step (a
+ * bracketed Newton iteration, the return mapping of plasticity).  The rate
+ * alone lags the curve by one step's elastic pressure rise, |alpha_cc'| K_s
+ * dt |div v| (first order); the return alone is exact on the curve.
+ *
  * Sound speed (JBM08 sect. 2.4; PA8): c = c_matrix(rho_s, u) h(alpha), h
  * linear in alpha from 1 at alpha = 1 to c_e/c_s at alpha_e (constant above);
  * without c_e/c_s, h = 1: at fixed alpha the porous EOS has exactly the
@@ -173,9 +182,11 @@ BOLIDE_INLINE int porosity_palpha_above_curve(const struct porosity_palpha *p, d
  *  alpha_e to alpha - 1 within a window of alpha of width about (p_s -
  *  p_e)/K_s, where plain Newton steps overshoot: the bracket is narrowed at
  *  every step and a step that leaves it is replaced by bisection.  P_s and
- *  dPs_drho_s at (alpha rho, u) from the caller.  Returns the next iterate;
- *  the caller re-evaluates the matrix EOS and repeats until *hi - *lo or
- *  the step falls below its tolerance (theory/porosity.md). */
+ *  dPs_drho_s at (alpha rho, u) from the caller.  Returns the next iterate,
+ *  alpha itself once converged (Newton step below 1e-14 alpha); the caller
+ *  re-evaluates the matrix EOS and repeats until the iterate stops changing
+ *  or *hi - *lo < 1e-14 *hi (then *lo), typically 2-10 times and at most
+ *  about 50 (theory/porosity.md). */
 BOLIDE_INLINE double porosity_palpha_return_step(const struct porosity_palpha *p, double rho,
                                                  double alpha, double P_s, double dPs_drho_s,
                                                  double *lo, double *hi) {
@@ -189,7 +200,10 @@ BOLIDE_INLINE double porosity_palpha_return_step(const struct porosity_palpha *p
   double df = 1.0 - porosity_palpha_crush_slope(p, P) * (rho * dPs_drho_s - P) / alpha;
   if (!(df >= 1.0)) df = 1.0; /* softening matrix: the plain step alpha_cc(P) */
   const double a = alpha - f / df;
-  return a > *lo && a < *hi ? a : 0.5 * (*lo + *hi);
+  if (fabs(a - alpha) <= 1e-14 * alpha) return alpha;    /* converged */
+  if (a > *lo && a < *hi) return a;                      /* Newton */
+  if (a <= 1.0 && *lo == 1.0 && alpha > 1.0) return 1.0; /* try full compaction */
+  return 0.5 * (*lo + *hi);                              /* bisection */
 }
 
 #endif
