@@ -28,8 +28,10 @@
 #include "eos_murnaghan.h"
 #include "eos_tillotson.h"
 #include "error.h"
+#include "material.h"
 #include "params.h"
 #include "porosity.h"
+#include "units.h"
 
 static int failures = 0;
 
@@ -521,6 +523,46 @@ static void test_params(void) {
   check_true("YAML porosity: sub-mapping read (model, p_t, n1, derived alpha_e)",
              por.model == POROSITY_PALPHA && por.palpha.p_t == 2e7 && por.palpha.n1 == 12 &&
                  por.palpha.alpha_e == 2.0 && porosity_alpha_0(&por) == 2.0);
+  /* through the material library: the porosity: key of a material entry */
+  char lib[] = "/tmp/test_porosity_lib_XXXXXX";
+  const int fl = mkstemp(lib);
+  FILE *g = fl >= 0 ? fdopen(fl, "w") : NULL;
+  if (!g) {
+    check_true("temporary library file", 0);
+    return;
+  }
+  fprintf(g,
+          "porous_rock:\n  eos: murnaghan\n  rho0: 2700\n  K0: 2e10\n  n: 4\n"
+          "  porosity: {model: epsalpha, alpha_0: 1.5, eps_e: -1e-4, eps_x: -0.2, kappa: 0.98}\n"
+          "solid_rock:\n  eos: murnaghan\n  rho0: 2700\n  K0: 2e10\n  n: 4\n"
+          "crushable:\n  eos: murnaghan\n  rho0: 2700\n  K0: 2e10\n  n: 4\n"
+          "  porosity: {model: palpha, alpha_0: 2, p_e: 1e6, p_s: 2e8, c_s: 3000, c_e: 2000}\n");
+  fclose(g);
+  struct material_table t;
+  material_table_init(&t);
+  struct material mat;
+  material_from_library(&mat, lib, "porous_rock", 0);
+  material_table_add(&t, &mat);
+  material_from_library(&mat, lib, "solid_rock", 1);
+  material_table_add(&t, &mat);
+  material_from_library(&mat, lib, "crushable", 2);
+  material_table_add(&t, &mat);
+  unlink(lib);
+  check_true("library: porosity of each material (epsalpha, none, palpha)",
+             t.mats[0].porosity.model == POROSITY_EPSALPHA &&
+                 t.mats[0].porosity.epsalpha.alpha_0 == 1.5 &&
+                 t.mats[1].porosity.model == POROSITY_NONE &&
+                 porosity_alpha_0(&t.mats[1].porosity) == 1.0 &&
+                 t.mats[2].porosity.model == POROSITY_PALPHA);
+  struct unit_system cgs;
+  units_init_cgs(&cgs);
+  material_table_convert_units(&t, &cgs);
+  const struct porosity_palpha *pc = &t.mats[2].porosity.palpha;
+  check("units: p_e, p_s in barye and c_s, c_e in cm/s (relative)",
+        fabs(pc->p_e / 1e7 - 1) + fabs(pc->p_s / 2e9 - 1) + fabs(pc->c_s / 3e5 - 1) +
+            fabs(pc->c_e / 2e5 - 1) + fabs(t.mats[0].porosity.epsalpha.kappa / 0.98 - 1),
+        1e-14);
+  material_table_free(&t);
 }
 
 int main(int argc, char **argv) {
