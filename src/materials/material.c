@@ -362,6 +362,7 @@ void material_table_convert_units(struct material_table *t, const struct unit_sy
     const int e = (int)m->eos_type;
     material_convert_keys(m, eos_keys[e], eos_nkeys[e], us);
     material_convert_keys(m, material_keys, MATERIAL_NKEYS, us);
+    porosity_convert_units(&m->porosity, us);
     m->rho0 *= f_rho;
     if (m->eos_type == EOS_TABLE) {
       struct eos_table *tab = &m->eos.table;
@@ -598,4 +599,5 @@ void material_write_keys(FILE *f) {
   fprintf(f, "#   strength: ");
   for (int s = 0; s < STRENGTH_COUNT; s++) fprintf(f, "%s%s", s ? "|" : "", strength_names[s]);
   fprintf(f, "\n");
+  porosity_write_keys(f);
 }

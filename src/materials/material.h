@@ -29,6 +29,7 @@
 #include "eos_tillotson.h"
 #include "eos_mie_gruneisen.h"
 #include "eos_table.h"
+#include "porosity.h"
 
 struct params;
 struct unit_system;
@@ -160,6 +161,7 @@ struct material {
   enum material_eos_type eos_type;        /**< which member of eos is used */
   union material_eos_params eos;          /**< the EOS parameters */
   enum material_strength_type strength;   /**< strength model */
+  struct porosity porosity;               /**< porosity model (porosity.h; none by default) */
   double rho0;                            /**< reference density (copied from the EOS) */
   MATERIAL_PARAMS(EOS_PARAM_FIELD)        /**< the keys of MATERIAL_PARAMS, see there */
 };

@@ -128,6 +128,8 @@ static void material_apply(struct material *mat, struct material_extra *x,
                          mat->name, known, s);
       }
       mat->strength = (enum material_strength_type)st;
+    } else if (strcmp(key, "porosity") == 0) {
+      porosity_from_node(&mat->porosity, mat->name, owner, v); /* theory/porosity.md */
     } else if (mat->eos_type == EOS_TABLE && strcmp(key, "file") == 0) {
       material_resolve(params_filename(owner), material_text(owner, v, mat, key), x->table_file,
                        sizeof x->table_file);
