@@ -151,8 +151,7 @@ struct icp_state {
 /** u at density rho and target pressure P in the current layer. */
 static double icp_state_u(const struct icp_state *st, double rho, double P) {
   const struct icp_layer *l = st->l;
-  if (l->trho == ICP_TRHO_ADIABATIC)
-    /* trapezoidal du = P / rho^2 drho from the previous point */
+  if (l->trho == ICP_TRHO_ADIABATIC) /* trapezoidal du = P / rho^2 drho from the previous point */
     return st->u + 0.5 * (st->P / (st->rho * st->rho) + P / (rho * rho)) * (rho - st->rho);
   return icp_u_rho_T(l, rho, st->K * pow(rho, l->alpha));
 }
@@ -277,7 +276,8 @@ void icp_profile_make(struct icp_spec *s, struct icp_profile *prof, double G) {
   memset(prof, 0, sizeof *prof);
   prof->n = n;
   double **arr[] = {&prof->r, &prof->m, &prof->rho, &prof->P, &prof->T, &prof->u};
-  for (size_t a = 0; a < sizeof arr / sizeof arr[0]; a++) *arr[a] = error_malloc(n * sizeof(double), "planet profile");
+  for (size_t a = 0; a < sizeof arr / sizeof arr[0]; a++)
+    *arr[a] = error_malloc(n * sizeof(double), "planet profile");
   prof->layer = error_malloc(n * sizeof(int), "planet profile");
   prof->n_layers = s->n_layers;
   const double left = icp_integrate(s, R, M, G, prof);

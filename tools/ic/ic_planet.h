@@ -36,13 +36,13 @@ struct icp_layer {
 
 /** What the planet is made from (command line or body specification). */
 struct icp_spec {
-  int n_layers;                          /**< layers, centre outward */
+  int n_layers;                           /**< layers, centre outward */
   struct icp_layer layer[ICP_MAX_LAYERS]; /**< the layers */
-  double M;                              /**< total mass (mass mode), 0: unknown */
-  double R;                              /**< outer radius (radius mode), 0: unknown */
-  double P_s;                            /**< surface pressure */
-  double T_s;                            /**< surface temperature */
-  int n_prof;                            /**< radial steps of the profile */
+  double M;                               /**< total mass (mass mode), 0: unknown */
+  double R;                               /**< outer radius (radius mode), 0: unknown */
+  double P_s;                             /**< surface pressure */
+  double T_s;                             /**< surface temperature */
+  int n_prof;                             /**< radial steps of the profile */
 };
 
 /** Radial profile, centre (index 0, r = 0) outward. */

@@ -17,25 +17,25 @@
 
 /** Everything one body (a planet, a uniform sphere or a file) needs. */
 struct body {
-  const char *what;                          /**< "planet", "target", "impactor" (messages) */
-  int kind;                                  /**< 0 planet, 1 uniform sphere, 2 file */
-  struct icp_spec spec;                      /**< layers, mass or radius, surface P and T */
+  const char *what;                              /**< "planet", "target", "impactor" (messages) */
+  int kind;                                      /**< 0 planet, 1 uniform sphere, 2 file */
+  struct icp_spec spec;                          /**< layers, mass or radius, surface P and T */
   char names[ICP_MAX_LAYERS][MATERIAL_NAME_LEN]; /**< material names, centre outward */
   int n_names, n_frac, n_radii, n_trho, n_ids;   /**< how many of each list were given */
-  const char *trho[ICP_MAX_LAYERS];          /**< T-rho relations as given */
-  char trho_buf[ICP_MAX_LAYERS][64];         /**< storage of trho */
-  int32_t mat_ids[ICP_MAX_LAYERS];           /**< --mat-ids */
-  const char *library;                       /**< material library */
-  const char *file;                          /**< kind 2: the HDF5 file */
-  const char *profile;                       /**< profile table to write, NULL: none */
-  double n;                                  /**< particles */
-  double eta;                                /**< h = eta (m/rho)^(1/3) */
-  double rho, u, T;                          /**< sphere: density, energy or temperature */
-  double radius_given;                       /**< file: radius override */
-  uint64_t seed;                             /**< random rotations */
+  const char *trho[ICP_MAX_LAYERS];              /**< T-rho relations as given */
+  char trho_buf[ICP_MAX_LAYERS][64];             /**< storage of trho */
+  int32_t mat_ids[ICP_MAX_LAYERS];               /**< --mat-ids */
+  const char *library;                           /**< material library */
+  const char *file;                              /**< kind 2: the HDF5 file */
+  const char *profile;                           /**< profile table to write, NULL: none */
+  double n;                                      /**< particles */
+  double eta;                                    /**< h = eta (m/rho)^(1/3) */
+  double rho, u, T;                              /**< sphere: density, energy or temperature */
+  double radius_given;                           /**< file: radius override */
+  uint64_t seed;                                 /**< random rotations */
   /* results */
-  struct parts p;     /**< the particles, centred on their centre of mass */
-  double M, R;        /**< mass and radius */
+  struct parts p; /**< the particles, centred on their centre of mass */
+  double M, R;    /**< mass and radius */
 };
 
 /** Parse a number; stops with "WHAT: KEY: ..." on bad input. */
@@ -69,7 +69,8 @@ static void body_set(struct body *b, const char *key, const char *val) {
   char items[ICP_MAX_LAYERS][64];
   if (!strcmp(key, "materials") || !strcmp(key, "material")) {
     b->n_names = body_list(b, key, val, items);
-    for (int k = 0; k < b->n_names; k++) snprintf(b->names[k], MATERIAL_NAME_LEN, "%.47s", items[k]);
+    for (int k = 0; k < b->n_names; k++)
+      snprintf(b->names[k], MATERIAL_NAME_LEN, "%.47s", items[k]);
   } else if (!strcmp(key, "mass-fractions")) {
     b->n_frac = body_list(b, key, val, items);
     for (int k = 0; k < b->n_frac; k++) b->spec.layer[k].mass_frac = body_real(b, key, items[k], 0);
@@ -78,7 +79,8 @@ static void body_set(struct body *b, const char *key, const char *val) {
     for (int k = 0; k < b->n_radii; k++) b->spec.layer[k].r_out = body_real(b, key, items[k], 0);
   } else if (!strcmp(key, "T-rho")) {
     b->n_trho = body_list(b, key, val, items);
-    for (int k = 0; k < b->n_trho; k++) memcpy(b->trho_buf[k], items[k], 64), b->trho[k] = b->trho_buf[k];
+    for (int k = 0; k < b->n_trho; k++)
+      memcpy(b->trho_buf[k], items[k], 64), b->trho[k] = b->trho_buf[k];
   } else if (!strcmp(key, "mat-ids")) {
     b->n_ids = body_list(b, key, val, items);
     for (int k = 0; k < b->n_ids; k++) b->mat_ids[k] = (int32_t)body_real(b, key, items[k], 0);
@@ -184,7 +186,8 @@ static void body_make(struct body *b, int64_t first_id, int verbose) {
     if (s->n_layers != 1) error_exit("%s: a uniform sphere has one material", b->what);
     const struct material *mat = &s->layer[0].mat;
     const double rho = b->rho > 0 ? b->rho : mat->rho0;
-    if ((s->M > 0) == (s->R > 0)) error_exit("%s: give the mass or the radius of the sphere", b->what);
+    if ((s->M > 0) == (s->R > 0))
+      error_exit("%s: give the mass or the radius of the sphere", b->what);
     const double R = s->R > 0 ? s->R : cbrt(3 * s->M / (4 * M_PI * rho));
     double u = b->u;
     if (u < 0) {
@@ -221,45 +224,59 @@ static void body_write(const char *path, const struct parts *p, int argc, char *
     ext = fmax(ext, fmax(fabs(p->x[i]), fmax(fabs(p->y[i]), fabs(p->z[i]))));
   struct unit_system si;
   units_init_si(&si);
-  struct snapshot_meta meta = {.time = 0, .periodic = 0, .ic = 1, .run_name = run,
-                               .command = command, .hydro = 1, .self_gravity = 1};
+  struct snapshot_meta meta = {.time = 0,
+                               .periodic = 0,
+                               .ic = 1,
+                               .run_name = run,
+                               .command = command,
+                               .hydro = 1,
+                               .self_gravity = 1};
   for (int d = 0; d < 3; d++) meta.box_size[d] = 4 * ext;
   snapshot_write(path, &meta, p, &si, 0);
 }
 
 static void planet_usage(FILE *f) {
-  fprintf(f,
-          "Usage: bolide-ic planet [options]\n"
-          "Layered planet in hydrostatic equilibrium on stretched equal-area shells\n"
-          "(Kegerreis et al. 2019).  Lists are comma-separated, centre outward.  SI units.\n"
-          "  -o, --output FILE        particles (default planet.hdf5)\n"
-          "  --materials A,B          layer materials from the library (e.g. iron,granite)\n"
-          "  --mass M                 total mass (the radius is found), or\n"
-          "  --radius R               total radius (the mass is found)\n"
-          "  --mass-fractions F,G     layer mass fractions (with --mass; sum 1)\n"
-          "  --layer-radii R1,R       outer radius of each layer (with --radius)\n"
-          "  --P-surface P            surface pressure (default 1e5)\n"
-          "  --T-surface T            surface temperature (default 300)\n"
-          "  --T-rho REL[,REL]        isothermal (default), adiabatic or power=ALPHA (T ~ rho^ALPHA)\n"
-          "  --n N                    particles (default 1e5; 0: profile only)\n"
-          "  --n-prof N               radial steps of the profile (default 10000)\n"
-          "  --profile FILE           write the profile table (r m rho P T u layer)\n"
-          "  --mat-ids I,J            material ids (default: the library's swift_id)\n"
-          "  --eta ETA                h = ETA (m/rho)^(1/3) (default 1.2348)\n"
-          "  --seed S                 seed of the shell rotations (default 1)\n"
-          "  --library FILE           material library (default: materials.yml)\n");
+  fprintf(
+      f,
+      "Usage: bolide-ic planet [options]\n"
+      "Layered planet in hydrostatic equilibrium on stretched equal-area shells\n"
+      "(Kegerreis et al. 2019).  Lists are comma-separated, centre outward.  SI units.\n"
+      "  -o, --output FILE        particles (default planet.hdf5)\n"
+      "  --materials A,B          layer materials from the library (e.g. iron,granite)\n"
+      "  --mass M                 total mass (the radius is found), or\n"
+      "  --radius R               total radius (the mass is found)\n"
+      "  --mass-fractions F,G     layer mass fractions (with --mass; sum 1)\n"
+      "  --layer-radii R1,R       outer radius of each layer (with --radius)\n"
+      "  --P-surface P            surface pressure (default 1e5)\n"
+      "  --T-surface T            surface temperature (default 300)\n"
+      "  --T-rho REL[,REL]        isothermal (default), adiabatic or power=ALPHA (T ~ rho^ALPHA)\n"
+      "  --n N                    particles (default 1e5; 0: profile only)\n"
+      "  --n-prof N               radial steps of the profile (default 10000)\n"
+      "  --profile FILE           write the profile table (r m rho P T u layer)\n"
+      "  --mat-ids I,J            material ids (default: the library's swift_id)\n"
+      "  --eta ETA                h = ETA (m/rho)^(1/3) (default 1.2348)\n"
+      "  --seed S                 seed of the shell rotations (default 1)\n"
+      "  --library FILE           material library (default: materials.yml)\n");
 }
 
-static const struct option planet_longopts[] = {
-    {"output", required_argument, NULL, 'o'}, {"materials", required_argument, NULL, 0},
-    {"mass", required_argument, NULL, 0},     {"radius", required_argument, NULL, 0},
-    {"mass-fractions", required_argument, NULL, 0}, {"layer-radii", required_argument, NULL, 0},
-    {"P-surface", required_argument, NULL, 0}, {"T-surface", required_argument, NULL, 0},
-    {"T-rho", required_argument, NULL, 0},    {"n", required_argument, NULL, 0},
-    {"n-prof", required_argument, NULL, 0},   {"profile", required_argument, NULL, 0},
-    {"mat-ids", required_argument, NULL, 0},  {"eta", required_argument, NULL, 0},
-    {"seed", required_argument, NULL, 0},     {"library", required_argument, NULL, 0},
-    {"help", no_argument, NULL, 'h'},         {NULL, 0, NULL, 0}};
+static const struct option planet_longopts[] = {{"output", required_argument, NULL, 'o'},
+                                                {"materials", required_argument, NULL, 0},
+                                                {"mass", required_argument, NULL, 0},
+                                                {"radius", required_argument, NULL, 0},
+                                                {"mass-fractions", required_argument, NULL, 0},
+                                                {"layer-radii", required_argument, NULL, 0},
+                                                {"P-surface", required_argument, NULL, 0},
+                                                {"T-surface", required_argument, NULL, 0},
+                                                {"T-rho", required_argument, NULL, 0},
+                                                {"n", required_argument, NULL, 0},
+                                                {"n-prof", required_argument, NULL, 0},
+                                                {"profile", required_argument, NULL, 0},
+                                                {"mat-ids", required_argument, NULL, 0},
+                                                {"eta", required_argument, NULL, 0},
+                                                {"seed", required_argument, NULL, 0},
+                                                {"library", required_argument, NULL, 0},
+                                                {"help", no_argument, NULL, 'h'},
+                                                {NULL, 0, NULL, 0}};
 
 int icgen_planet_main(int argc, char **argv) {
   struct body b;
@@ -336,13 +353,18 @@ static void impact_usage(FILE *f) {
           "moves along +x; the orbit lies in the x-y plane.\n");
 }
 
-static const struct option impact_longopts[] = {
-    {"output", required_argument, NULL, 'o'},    {"target", required_argument, NULL, 1},
-    {"impactor", required_argument, NULL, 2},    {"v-contact", required_argument, NULL, 3},
-    {"v-over-vesc", required_argument, NULL, 4}, {"angle", required_argument, NULL, 5},
-    {"b", required_argument, NULL, 6},           {"separation", required_argument, NULL, 7},
-    {"time", required_argument, NULL, 8},        {"impactor-mat-offset", required_argument, NULL, 9},
-    {"help", no_argument, NULL, 'h'},            {NULL, 0, NULL, 0}};
+static const struct option impact_longopts[] = {{"output", required_argument, NULL, 'o'},
+                                                {"target", required_argument, NULL, 1},
+                                                {"impactor", required_argument, NULL, 2},
+                                                {"v-contact", required_argument, NULL, 3},
+                                                {"v-over-vesc", required_argument, NULL, 4},
+                                                {"angle", required_argument, NULL, 5},
+                                                {"b", required_argument, NULL, 6},
+                                                {"separation", required_argument, NULL, 7},
+                                                {"time", required_argument, NULL, 8},
+                                                {"impactor-mat-offset", required_argument, NULL, 9},
+                                                {"help", no_argument, NULL, 'h'},
+                                                {NULL, 0, NULL, 0}};
 
 int icgen_impact_main(int argc, char **argv) {
   struct body t, im;

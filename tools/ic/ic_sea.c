@@ -75,7 +75,8 @@ void ic_sea_shell(int N, double *x, double *y, double *z, uint64_t *rng) {
          {0.5773502691896258, -0.5773502691896258, -0.5773502691896258},
          {-0.5773502691896258, 0.5773502691896258, -0.5773502691896258},
          {-0.5773502691896258, -0.5773502691896258, 0.5773502691896258}}};
-    for (int i = 0; i < N; i++) x[i] = pts[N - 1][i][0], y[i] = pts[N - 1][i][1], z[i] = pts[N - 1][i][2];
+    for (int i = 0; i < N; i++)
+      x[i] = pts[N - 1][i][0], y[i] = pts[N - 1][i][1], z[i] = pts[N - 1][i][2];
     sea_rotate(N, x, y, z, rng);
     return;
   }
@@ -108,7 +109,8 @@ void ic_sea_shell(int N, double *x, double *y, double *z, uint64_t *rng) {
       for (int c = 0; c < 32 && prev_m > 0; c++) {
         const double o = (c + 0.5) / 32 * 2 * M_PI / m;
         double g = INFINITY;
-        for (int q = 0; q < m && g > best; q++) g = fmin(g, sea_lon_gap(o + 2 * M_PI * q / m, prev_off, prev_m));
+        for (int q = 0; q < m && g > best; q++)
+          g = fmin(g, sea_lon_gap(o + 2 * M_PI * q / m, prev_off, prev_m));
         if (g > best) best = g, off = o;
       }
       for (int q = 0; q < m; q++, i++) {
@@ -176,7 +178,8 @@ static double sea_invert(const struct icp_profile *p, const double *s, double ta
 void ic_sea_planet(const struct icp_profile *prof, const int32_t *mat_id, size_t N, double eta,
                    uint64_t seed, int64_t first_id, struct parts *p, int verbose) {
   const size_t n = prof->n;
-  struct sea_cum c = {error_malloc(n * sizeof(double), "planet profile"), error_malloc(n * sizeof(double), "planet profile"),
+  struct sea_cum c = {error_malloc(n * sizeof(double), "planet profile"),
+                      error_malloc(n * sizeof(double), "planet profile"),
                       error_malloc(n * sizeof(double), "planet profile")};
   c.m[0] = c.rm[0] = c.s[0] = 0;
   for (size_t j = 1; j < n; j++) {
@@ -190,13 +193,18 @@ void ic_sea_planet(const struct icp_profile *prof, const int32_t *mat_id, size_t
     c.rm[j] = c.rm[j - 1] + 2 * M_PI * dr * (r0 * r0 * r0 * rho0 + r1 * r1 * r1 * rho1);
     c.s[j] = c.s[j - 1] + 0.5 * dr * (cbrt(rho0) + cbrt(rho1));
   }
-  const double M = c.m[n - 1];
+  /* the trapezoids differ from the profile's own (explicit) integration by
+   * O(dr): scale so that the particles carry exactly the profile's mass */
+  const double scale = prof->M / c.m[n - 1];
+  for (size_t j = 0; j < n; j++) c.m[j] *= scale, c.rm[j] *= scale;
+  const double M = prof->M;
   const double mp = M / (double)N;
   uint64_t rng = seed * 0x2545f4914f6cdd1dULL + 12345;
   parts_alloc(p, 0);
   parts_reserve(p, N + N / 10 + 64);
   double carry = 0;
-  double *sx = error_malloc((N + 64) * sizeof(double), "planet profile"), *sy = error_malloc((N + 64) * sizeof(double), "planet profile"),
+  double *sx = error_malloc((N + 64) * sizeof(double), "planet profile"),
+         *sy = error_malloc((N + 64) * sizeof(double), "planet profile"),
          *sz = error_malloc((N + 64) * sizeof(double), "planet profile");
   /* central tetrahedron: the sphere holding 4 mean particle masses */
   double r_in = sea_interp(prof, c.s, 0); /* 0 */
@@ -265,8 +273,8 @@ void ic_sea_planet(const struct icp_profile *prof, const int32_t *mat_id, size_t
       n_shells++;
     }
     if (verbose)
-      printf("  layer %d: %d shells, %d particles, r %.6g .. %.6g m\n", k, ns + (k == 0), layer_count,
-             r_lo, r_out);
+      printf("  layer %d: %d shells, %d particles, r %.6g .. %.6g m\n", k, ns + (k == 0),
+             layer_count, r_lo, r_out);
   }
   p->count = count;
   free(sx), free(sy), free(sz);

@@ -187,7 +187,8 @@ int main(int argc, char **argv) {
                   : strcmp(sub, "sod") == 0   ? CMD_SOD
                   : strcmp(sub, "sedov") == 0 ? CMD_SEDOV
                                               : 0;
-  if (!cmd) error_exit("unknown subcommand '%s' (box, sod, sedov, planet or impact; see --help)", sub);
+  if (!cmd)
+    error_exit("unknown subcommand '%s' (box, sod, sedov, planet or impact; see --help)", sub);
 
   struct icgen_opts o = {.lattice = ICGEN_CUBIC,
                          .n = cmd == CMD_SOD ? 64 : 32,
