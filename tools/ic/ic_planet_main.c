@@ -31,6 +31,7 @@ struct body {
   double n;                                      /**< particles */
   double eta;                                    /**< h = eta (m/rho)^(1/3) */
   double rho, u, T;                              /**< sphere: density, energy or temperature */
+  int T_given;                                   /**< sphere: u from T (else u = 0) */
   double radius_given;                           /**< file: radius override */
   uint64_t seed;                                 /**< random rotations */
   /* results */
@@ -92,6 +93,7 @@ static void body_set(struct body *b, const char *key, const char *val) {
     b->spec.P_s = body_real(b, key, val, 0);
   } else if (!strcmp(key, "T-surface") || !strcmp(key, "T")) {
     b->spec.T_s = b->T = body_real(b, key, val, 0);
+    b->T_given = 1;
   } else if (!strcmp(key, "n")) {
     b->n = body_real(b, key, val, 0);
   } else if (!strcmp(key, "n-prof")) {
@@ -192,7 +194,7 @@ static void body_make(struct body *b, int64_t first_id, int verbose) {
     double u = b->u;
     if (u < 0) {
       icp_spec_prepare(s, b->what);
-      u = material_has_temperature(mat) ? icp_u_rho_T(&s->layer[0], rho, b->T) : 0;
+      u = b->T_given && material_has_temperature(mat) ? icp_u_rho_T(&s->layer[0], rho, b->T) : 0;
     }
     icp_profile_uniform(&prof, mat, R, rho, u, 10000);
   } else {
