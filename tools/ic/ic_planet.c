@@ -28,15 +28,15 @@ double ic_rng_uniform(uint64_t *s) {
   return (double)(ic_rng_next(s) >> 11) / 9007199254740992.0;
 }
 
-int icp_parse_trho(const char *s, struct icp_layer *l) {
+int ic_planet_parse_trho(const char *s, struct ic_planet_layer *l) {
   char *end;
   if (strcmp(s, "isothermal") == 0) {
-    l->trho = ICP_TRHO_POWER;
+    l->trho = IC_PLANET_TRHO_POWER;
     l->alpha = 0;
   } else if (strcmp(s, "adiabatic") == 0) {
-    l->trho = ICP_TRHO_ADIABATIC;
+    l->trho = IC_PLANET_TRHO_ADIABATIC;
   } else if (strncmp(s, "power=", 6) == 0) {
-    l->trho = ICP_TRHO_POWER;
+    l->trho = IC_PLANET_TRHO_POWER;
     l->alpha = strtod(s + 6, &end);
     if (end == s + 6 || *end || !isfinite(l->alpha)) return -1;
   } else {
@@ -46,7 +46,7 @@ int icp_parse_trho(const char *s, struct icp_layer *l) {
 }
 
 /** Pressure of material mat at (rho, u). */
-static double icp_P(const struct material *mat, double rho, double u) {
+static double ic_planet_P(const struct material *mat, double rho, double u) {
   double P, cs;
   material_eos(mat, rho, u, &P, &cs);
   return P;
@@ -56,7 +56,7 @@ static double icp_P(const struct material *mat, double rho, double u) {
  *  rho^2 from u(rho0) = 0 (the isentrope through the reference state;
  *  Ruiz-Bonilla et al. 2021, Sect. 2.3), by Heun steps on a uniform grid
  *  from 0.05 to 30 rho0, both ways from rho0. */
-static void icp_cold_table(struct icp_layer *l) {
+static void ic_planet_cold_table(struct ic_planet_layer *l) {
   const struct material *mat = &l->mat;
   const double rho0 = mat->rho0;
   l->cold_n = 60000;
@@ -71,8 +71,8 @@ static void icp_cold_table(struct icp_layer *l) {
     for (; k >= 0 && k < l->cold_n; k += dir) {
       const double rho1 = l->cold_lo + k * l->cold_drho;
       const double d = rho1 - rho;
-      const double f0 = icp_P(mat, rho, u) / (rho * rho);
-      const double f1 = icp_P(mat, rho1, u + d * f0) / (rho1 * rho1);
+      const double f0 = ic_planet_P(mat, rho, u) / (rho * rho);
+      const double f1 = ic_planet_P(mat, rho1, u + d * f0) / (rho1 * rho1);
       u += 0.5 * d * (f0 + f1);
       rho = rho1;
       l->u_cold[k] = u;
@@ -81,7 +81,7 @@ static void icp_cold_table(struct icp_layer *l) {
 }
 
 /** Cold energy at rho (linear interpolation, linear extrapolation). */
-static double icp_u_cold(const struct icp_layer *l, double rho) {
+static double ic_planet_u_cold(const struct ic_planet_layer *l, double rho) {
   double x = (rho - l->cold_lo) / l->cold_drho;
   int k = (int)floor(x);
   if (k < 0) k = 0;
@@ -90,9 +90,9 @@ static double icp_u_cold(const struct icp_layer *l, double rho) {
   return l->u_cold[k] + x * (l->u_cold[k + 1] - l->u_cold[k]);
 }
 
-double icp_u_rho_T(const struct icp_layer *l, double rho, double T) {
+double ic_planet_u_rho_T(const struct ic_planet_layer *l, double rho, double T) {
   const struct material *mat = &l->mat;
-  if (l->u_cold) return icp_u_cold(l, rho) + mat->eos.tillotson.cv * T;
+  if (l->u_cold) return ic_planet_u_cold(l, rho) + mat->eos.tillotson.cv * T;
   if (!material_has_temperature(mat)) return 0.0;
   /* invert T(rho, u), increasing in u, by bracketing and bisection */
   double lo = 0.0, hi = 1e3;
@@ -107,18 +107,18 @@ double icp_u_rho_T(const struct icp_layer *l, double rho, double T) {
   return 0.5 * (lo + hi);
 }
 
-double icp_T_rho_u(const struct icp_layer *l, double rho, double u) {
-  if (l->u_cold) return (u - icp_u_cold(l, rho)) / l->mat.eos.tillotson.cv;
+double ic_planet_T_rho_u(const struct ic_planet_layer *l, double rho, double u) {
+  if (l->u_cold) return (u - ic_planet_u_cold(l, rho)) / l->mat.eos.tillotson.cv;
   return material_temperature(&l->mat, rho, u);
 }
 
-void icp_spec_prepare(struct icp_spec *s, const char *what) {
+void ic_planet_spec_prepare(struct ic_planet_spec *s, const char *what) {
   if (s->n_layers < 1) error_exit("%s: no layer materials given", what);
   if (!(s->M > 0) && !(s->R > 0)) error_exit("%s: give the total mass or the radius", what);
   if (s->M > 0 && s->R > 0) error_exit("%s: give the total mass or the radius, not both", what);
   double fsum = 0;
   for (int k = 0; k < s->n_layers; k++) {
-    struct icp_layer *l = &s->layer[k];
+    struct ic_planet_layer *l = &s->layer[k];
     fsum += l->mass_frac;
     if (s->M > 0 && s->n_layers > 1 && !(l->mass_frac > 0))
       error_exit("%s: a planet of given mass needs a mass fraction per layer", what);
@@ -129,7 +129,7 @@ void icp_spec_prepare(struct icp_spec *s, const char *what) {
     if (l->mat.eos_type == EOS_TILLOTSON) {
       if (!(l->mat.eos.tillotson.cv > 0))
         error_exit("%s: Tillotson material '%s' needs cv for temperatures", what, l->mat.name);
-      if (!l->u_cold) icp_cold_table(l);
+      if (!l->u_cold) ic_planet_cold_table(l);
     }
   }
   if (s->M > 0 && s->n_layers > 1 && fabs(fsum - 1) > 1e-6)
@@ -142,59 +142,60 @@ void icp_spec_prepare(struct icp_spec *s, const char *what) {
 }
 
 /** State of the inward integration in one layer. */
-struct icp_state {
-  const struct icp_layer *l; /**< current layer */
-  double K;                  /**< power law: T = K rho^alpha */
-  double rho, u, P;          /**< previous point (adiabatic step) */
+struct ic_planet_state {
+  const struct ic_planet_layer *l; /**< current layer */
+  double K;                        /**< power law: T = K rho^alpha */
+  double rho, u, P;                /**< previous point (adiabatic step) */
 };
 
 /** u at density rho and target pressure P in the current layer. */
-static double icp_state_u(const struct icp_state *st, double rho, double P) {
-  const struct icp_layer *l = st->l;
-  if (l->trho == ICP_TRHO_ADIABATIC) /* trapezoidal du = P / rho^2 drho from the previous point */
+static double ic_planet_state_u(const struct ic_planet_state *st, double rho, double P) {
+  const struct ic_planet_layer *l = st->l;
+  if (l->trho ==
+      IC_PLANET_TRHO_ADIABATIC) /* trapezoidal du = P / rho^2 drho from the previous point */
     return st->u + 0.5 * (st->P / (st->rho * st->rho) + P / (rho * rho)) * (rho - st->rho);
-  return icp_u_rho_T(l, rho, st->K * pow(rho, l->alpha));
+  return ic_planet_u_rho_T(l, rho, st->K * pow(rho, l->alpha));
 }
 
 /** Density at pressure P: bracket from rho_guess geometrically, then bisect. */
-static double icp_solve_rho(const struct icp_state *st, double P, double rho_guess) {
+static double ic_planet_solve_rho(const struct ic_planet_state *st, double P, double rho_guess) {
   const struct material *mat = &st->l->mat;
-#define ICP_F(r) (icp_P(mat, (r), icp_state_u(st, (r), P)) - P)
+#define IC_PLANET_F(r) (ic_planet_P(mat, (r), ic_planet_state_u(st, (r), P)) - P)
   double lo = rho_guess, hi = rho_guess;
-  if (ICP_F(rho_guess) < 0) {
-    for (int i = 0; i < 400 && ICP_F(hi) < 0; i++) lo = hi, hi *= 1.05;
+  if (IC_PLANET_F(rho_guess) < 0) {
+    for (int i = 0; i < 400 && IC_PLANET_F(hi) < 0; i++) lo = hi, hi *= 1.05;
   } else {
-    for (int i = 0; i < 400 && ICP_F(lo) >= 0; i++) hi = lo, lo /= 1.05;
+    for (int i = 0; i < 400 && IC_PLANET_F(lo) >= 0; i++) hi = lo, lo /= 1.05;
   }
   for (int i = 0; i < 100 && hi - lo > 1e-13 * hi; i++) {
     const double mid = 0.5 * (lo + hi);
-    if (ICP_F(mid) < 0)
+    if (IC_PLANET_F(mid) < 0)
       lo = mid;
     else
       hi = mid;
   }
-#undef ICP_F
+#undef IC_PLANET_F
   return 0.5 * (lo + hi);
 }
 
 /** Start layer k at pressure P and temperature T (continuous across the
  *  boundary); returns the density at the top of the layer. */
-static double icp_state_enter(struct icp_state *st, const struct icp_spec *s, int k, double P,
-                              double T, double rho_guess) {
+static double ic_planet_state_enter(struct ic_planet_state *st, const struct ic_planet_spec *s,
+                                    int k, double P, double T, double rho_guess) {
   st->l = &s->layer[k];
   /* the density at (P, T): isothermal relation for the first solve */
   st->K = T;
-  const enum icp_trho trho = st->l->trho;
+  const enum ic_planet_trho trho = st->l->trho;
   const double alpha = st->l->alpha;
   st->l = &s->layer[k];
-  struct icp_layer tmp = *st->l;
-  tmp.trho = ICP_TRHO_POWER;
+  struct ic_planet_layer tmp = *st->l;
+  tmp.trho = IC_PLANET_TRHO_POWER;
   tmp.alpha = 0;
-  struct icp_state iso = {.l = &tmp, .K = T};
-  const double rho = icp_solve_rho(&iso, P, rho_guess > 0 ? rho_guess : st->l->mat.rho0);
-  st->K = trho == ICP_TRHO_POWER ? T / pow(rho, alpha) : 0;
+  struct ic_planet_state iso = {.l = &tmp, .K = T};
+  const double rho = ic_planet_solve_rho(&iso, P, rho_guess > 0 ? rho_guess : st->l->mat.rho0);
+  st->K = trho == IC_PLANET_TRHO_POWER ? T / pow(rho, alpha) : 0;
   st->rho = rho;
-  st->u = icp_u_rho_T(st->l, rho, T);
+  st->u = ic_planet_u_rho_T(st->l, rho, T);
   st->P = P;
   return rho;
 }
@@ -203,23 +204,23 @@ static double icp_state_enter(struct icp_state *st, const struct icp_spec *s, in
  *  points, surface first) when prof is not NULL; returns the mass left at
  *  the centre, or minus the radius where the mass ran out (scaled to be
  *  negative). */
-static double icp_integrate(const struct icp_spec *s, double R, double M, double G,
-                            struct icp_profile *prof) {
+static double ic_planet_integrate(const struct ic_planet_spec *s, double R, double M, double G,
+                                  struct ic_planet_profile *prof) {
   const int n = s->n_prof;
   const double dr = R / n;
   /* layer boundaries: enclosed masses (mass mode) or radii */
-  double m_in[ICP_MAX_LAYERS];
+  double m_in[IC_PLANET_MAX_LAYERS];
   double acc = 0;
   for (int k = 0; k < s->n_layers; k++) m_in[k] = acc * M, acc += s->layer[k].mass_frac;
   const int mass_mode = s->M > 0;
   int k = s->n_layers - 1;
-  struct icp_state st;
+  struct ic_planet_state st;
   double r = R, m = M, P = s->P_s, T = s->T_s;
-  double rho = icp_state_enter(&st, s, k, P, T, 0), u = st.u;
+  double rho = ic_planet_state_enter(&st, s, k, P, T, 0), u = st.u;
   for (int i = 0;; i++) {
     if (prof) {
       prof->r[i] = r, prof->m[i] = m, prof->rho[i] = rho, prof->P[i] = P, prof->u[i] = u;
-      prof->T[i] = icp_T_rho_u(st.l, rho, u);
+      prof->T[i] = ic_planet_T_rho_u(st.l, rho, u);
       prof->layer[i] = k;
     }
     if (i == n) break;
@@ -229,20 +230,20 @@ static double icp_integrate(const struct icp_spec *s, double R, double M, double
     if (m1 <= 0 && i < n - 1) return -r1 / R;
     /* entering the next layer inward? */
     while (k > 0 && (mass_mode ? m1 < m_in[k] : r1 < s->layer[k - 1].r_out)) {
-      T = icp_T_rho_u(st.l, rho, u);
+      T = ic_planet_T_rho_u(st.l, rho, u);
       k--;
       if (prof) prof->r_layer[k] = r1;
-      rho = icp_state_enter(&st, s, k, P1, T, 0);
+      rho = ic_planet_state_enter(&st, s, k, P1, T, 0);
     }
-    const double rho1 = icp_solve_rho(&st, P1, rho);
-    u = icp_state_u(&st, rho1, P1);
+    const double rho1 = ic_planet_solve_rho(&st, P1, rho);
+    u = ic_planet_state_u(&st, rho1, P1);
     st.rho = rho1, st.u = u, st.P = P1;
     r = r1, m = m1, P = P1, rho = rho1;
   }
   return m / M;
 }
 
-void icp_profile_make(struct icp_spec *s, struct icp_profile *prof, double G) {
+void ic_planet_profile_make(struct ic_planet_spec *s, struct ic_planet_profile *prof, double G) {
   const int mass_mode = s->M > 0;
   double rho_max = 0, rho_min = INFINITY;
   for (int k = 0; k < s->n_layers; k++) {
@@ -261,8 +262,8 @@ void icp_profile_make(struct icp_spec *s, struct icp_profile *prof, double G) {
   /* bisection: mass left at the centre means R too small (M too large) */
   for (int it = 0; it < 100 && hi - lo > 1e-10 * hi; it++) {
     const double mid = 0.5 * (lo + hi);
-    const double left =
-        mass_mode ? icp_integrate(s, mid, M, G, NULL) : icp_integrate(s, R, mid, G, NULL);
+    const double left = mass_mode ? ic_planet_integrate(s, mid, M, G, NULL)
+                                  : ic_planet_integrate(s, R, mid, G, NULL);
     if ((left > 0) == mass_mode)
       lo = mid;
     else
@@ -280,7 +281,7 @@ void icp_profile_make(struct icp_spec *s, struct icp_profile *prof, double G) {
     *arr[a] = error_malloc(n * sizeof(double), "planet profile");
   prof->layer = error_malloc(n * sizeof(int), "planet profile");
   prof->n_layers = s->n_layers;
-  const double left = icp_integrate(s, R, M, G, prof);
+  const double left = ic_planet_integrate(s, R, M, G, prof);
   if (left < 0 || left > 1e-3)
     error_exit("planet: the profile did not converge (mass left at the centre %g of the total)",
                left);
@@ -300,8 +301,8 @@ void icp_profile_make(struct icp_spec *s, struct icp_profile *prof, double G) {
   s->R = R, s->M = M;
 }
 
-void icp_profile_uniform(struct icp_profile *prof, const struct material *mat, double R, double rho,
-                         double u, int n) {
+void ic_planet_profile_uniform(struct ic_planet_profile *prof, const struct material *mat, double R,
+                               double rho, double u, int n) {
   memset(prof, 0, sizeof *prof);
   prof->n = (size_t)n + 1;
   double **arr[] = {&prof->r, &prof->m, &prof->rho, &prof->P, &prof->T, &prof->u};
@@ -314,7 +315,7 @@ void icp_profile_uniform(struct icp_profile *prof, const struct material *mat, d
     prof->m[i] = 4.0 / 3.0 * M_PI * r * r * r * rho;
     prof->rho[i] = rho;
     prof->u[i] = u;
-    prof->P[i] = icp_P(mat, rho, u);
+    prof->P[i] = ic_planet_P(mat, rho, u);
     prof->T[i] = material_temperature(mat, rho, u);
     prof->layer[i] = 0;
   }
@@ -324,7 +325,7 @@ void icp_profile_uniform(struct icp_profile *prof, const struct material *mat, d
   prof->r_layer[0] = R;
 }
 
-void icp_profile_write(const struct icp_profile *prof, const char *path) {
+void ic_planet_profile_write(const struct ic_planet_profile *prof, const char *path) {
   char tmp[4096];
   snprintf(tmp, sizeof tmp, "%s.tmp", path);
   FILE *f = fopen(tmp, "w");
@@ -339,12 +340,12 @@ void icp_profile_write(const struct icp_profile *prof, const char *path) {
   }
 }
 
-void icp_profile_free(struct icp_profile *prof) {
+void ic_planet_profile_free(struct ic_planet_profile *prof) {
   free(prof->r), free(prof->m), free(prof->rho), free(prof->P), free(prof->T), free(prof->u);
   free(prof->layer);
   memset(prof, 0, sizeof *prof);
 }
 
-void icp_spec_free(struct icp_spec *s) {
+void ic_planet_spec_free(struct ic_planet_spec *s) {
   for (int k = 0; k < s->n_layers; k++) free(s->layer[k].u_cold), s->layer[k].u_cold = NULL;
 }

@@ -17,23 +17,23 @@
 
 /** Everything one body (a planet, a uniform sphere or a file) needs. */
 struct body {
-  const char *what;                              /**< "planet", "target", "impactor" (messages) */
-  int kind;                                      /**< 0 planet, 1 uniform sphere, 2 file */
-  struct icp_spec spec;                          /**< layers, mass or radius, surface P and T */
-  char names[ICP_MAX_LAYERS][MATERIAL_NAME_LEN]; /**< material names, centre outward */
-  int n_names, n_frac, n_radii, n_trho, n_ids;   /**< how many of each list were given */
-  const char *trho[ICP_MAX_LAYERS];              /**< T-rho relations as given */
-  char trho_buf[ICP_MAX_LAYERS][64];             /**< storage of trho */
-  int32_t mat_ids[ICP_MAX_LAYERS];               /**< --mat-ids */
-  const char *library;                           /**< material library */
-  const char *file;                              /**< kind 2: the HDF5 file */
-  const char *profile;                           /**< profile table to write, NULL: none */
-  double n;                                      /**< particles */
-  double eta;                                    /**< h = eta (m/rho)^(1/3) */
-  double rho, u, T;                              /**< sphere: density, energy or temperature */
-  int T_given;                                   /**< sphere: u from T (else u = 0) */
-  double radius_given;                           /**< file: radius override */
-  uint64_t seed;                                 /**< random rotations */
+  const char *what;           /**< "planet", "target", "impactor" (messages) */
+  int kind;                   /**< 0 planet, 1 uniform sphere, 2 file */
+  struct ic_planet_spec spec; /**< layers, mass or radius, surface P and T */
+  char names[IC_PLANET_MAX_LAYERS][MATERIAL_NAME_LEN]; /**< material names, centre outward */
+  int n_names, n_frac, n_radii, n_trho, n_ids;         /**< how many of each list were given */
+  const char *trho[IC_PLANET_MAX_LAYERS];              /**< T-rho relations as given */
+  char trho_buf[IC_PLANET_MAX_LAYERS][64];             /**< storage of trho */
+  int32_t mat_ids[IC_PLANET_MAX_LAYERS];               /**< --mat-ids */
+  const char *library;                                 /**< material library */
+  const char *file;                                    /**< kind 2: the HDF5 file */
+  const char *profile;                                 /**< profile table to write, NULL: none */
+  double n;                                            /**< particles */
+  double eta;                                          /**< h = eta (m/rho)^(1/3) */
+  double rho, u, T;    /**< sphere: density, energy or temperature */
+  int T_given;         /**< sphere: u from T (else u = 0) */
+  double radius_given; /**< file: radius override */
+  uint64_t seed;       /**< random rotations */
   /* results */
   struct parts p; /**< the particles, centred on their centre of mass */
   double M, R;    /**< mass and radius */
@@ -48,12 +48,13 @@ static double body_real(const struct body *b, const char *key, const char *s, do
   return v;
 }
 
-/** Split a list "a,b,c" or "a:b:c" into at most ICP_MAX_LAYERS items. */
+/** Split a list "a,b,c" or "a:b:c" into at most IC_PLANET_MAX_LAYERS items. */
 static int body_list(const struct body *b, const char *key, const char *s, char out[][64]) {
   int n = 0;
   const char *c = s;
   while (*c) {
-    if (n == ICP_MAX_LAYERS) error_exit("%s: %s: at most %d layers", b->what, key, ICP_MAX_LAYERS);
+    if (n == IC_PLANET_MAX_LAYERS)
+      error_exit("%s: %s: at most %d layers", b->what, key, IC_PLANET_MAX_LAYERS);
     size_t len = strcspn(c, ",:");
     if (len == 0 || len >= 64) error_exit("%s: %s: bad list '%s'", b->what, key, s);
     memcpy(out[n], c, len);
@@ -67,7 +68,7 @@ static int body_list(const struct body *b, const char *key, const char *s, char 
 
 /** Set one key of a body (the long option names of `planet`). */
 static void body_set(struct body *b, const char *key, const char *val) {
-  char items[ICP_MAX_LAYERS][64];
+  char items[IC_PLANET_MAX_LAYERS][64];
   if (!strcmp(key, "materials") || !strcmp(key, "material")) {
     b->n_names = body_list(b, key, val, items);
     for (int k = 0; k < b->n_names; k++)
@@ -162,7 +163,7 @@ static void body_make(struct body *b, int64_t first_id, int verbose) {
   }
   if (b->n_names < 1) error_exit("%s: no materials given", b->what);
   if (!b->library) b->library = material_default_library();
-  struct icp_spec *s = &b->spec;
+  struct ic_planet_spec *s = &b->spec;
   s->n_layers = b->n_names;
   if (b->n_frac && b->n_frac != s->n_layers)
     error_exit("%s: %d mass fractions for %d layers", b->what, b->n_frac, s->n_layers);
@@ -174,16 +175,16 @@ static void body_make(struct body *b, int64_t first_id, int verbose) {
     error_exit("%s: %d T-rho relations for %d layers", b->what, b->n_trho, s->n_layers);
   if (b->n_radii && !(s->R > 0)) s->R = s->layer[s->n_layers - 1].r_out;
   for (int k = 0; k < s->n_layers; k++) {
-    struct icp_layer *l = &s->layer[k];
+    struct ic_planet_layer *l = &s->layer[k];
     material_from_library(&l->mat, b->library, b->names[k], 0);
     l->mat.id = b->n_ids ? b->mat_ids[k] : l->mat.swift_id >= 0 ? l->mat.swift_id : k;
     b->mat_ids[k] = l->mat.id;
     const char *rel = b->n_trho ? b->trho[b->n_trho > 1 ? k : 0] : "isothermal";
-    if (icp_parse_trho(rel, l) != 0)
+    if (ic_planet_parse_trho(rel, l) != 0)
       error_exit("%s: T-rho: expected isothermal, adiabatic or power=ALPHA, got '%s'", b->what,
                  rel);
   }
-  struct icp_profile prof;
+  struct ic_planet_profile prof;
   if (b->kind == 1) {
     if (s->n_layers != 1) error_exit("%s: a uniform sphere has one material", b->what);
     const struct material *mat = &s->layer[0].mat;
@@ -193,24 +194,25 @@ static void body_make(struct body *b, int64_t first_id, int verbose) {
     const double R = s->R > 0 ? s->R : cbrt(3 * s->M / (4 * M_PI * rho));
     double u = b->u;
     if (u < 0) {
-      icp_spec_prepare(s, b->what);
-      u = b->T_given && material_has_temperature(mat) ? icp_u_rho_T(&s->layer[0], rho, b->T) : 0;
+      ic_planet_spec_prepare(s, b->what);
+      u = b->T_given && material_has_temperature(mat) ? ic_planet_u_rho_T(&s->layer[0], rho, b->T)
+                                                      : 0;
     }
-    icp_profile_uniform(&prof, mat, R, rho, u, 10000);
+    ic_planet_profile_uniform(&prof, mat, R, rho, u, 10000);
   } else {
-    icp_spec_prepare(s, b->what);
-    icp_profile_make(s, &prof, units_G(&si));
+    ic_planet_spec_prepare(s, b->what);
+    ic_planet_profile_make(s, &prof, units_G(&si));
   }
   b->M = prof.M, b->R = prof.R;
   if (verbose)
     printf("%s: M = %.8e kg, R = %.8e m, %d layer(s), central rho %.6g kg/m^3, P %.6g Pa\n",
            b->what, prof.M, prof.R, prof.n_layers, prof.rho[0], prof.P[0]);
-  if (b->profile) icp_profile_write(&prof, b->profile);
+  if (b->profile) ic_planet_profile_write(&prof, b->profile);
   if (b->n >= 4)
     ic_sea_planet(&prof, b->mat_ids, (size_t)llround(b->n), b->eta, b->seed, first_id, &b->p,
                   verbose);
-  icp_profile_free(&prof);
-  icp_spec_free(s);
+  ic_planet_profile_free(&prof);
+  ic_planet_spec_free(s);
 }
 
 /** Write p with snapshot_write in IC mode; box = 4 x the extent. */

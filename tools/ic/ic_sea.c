@@ -127,7 +127,7 @@ void ic_sea_shell(int N, double *x, double *y, double *z, uint64_t *rng) {
 }
 
 /** Index j of the profile segment [r_j, r_j+1] holding r. */
-static size_t sea_seg(const struct icp_profile *p, double r) {
+static size_t sea_seg(const struct ic_planet_profile *p, double r) {
   size_t lo = 0, hi = p->n - 1;
   while (hi - lo > 1) {
     const size_t mid = (lo + hi) / 2;
@@ -140,7 +140,7 @@ static size_t sea_seg(const struct icp_profile *p, double r) {
 }
 
 /** Value of array v at radius r inside layer k (never across a jump). */
-static double sea_at(const struct icp_profile *p, const double *v, double r, int k) {
+static double sea_at(const struct ic_planet_profile *p, const double *v, double r, int k) {
   const size_t j = sea_seg(p, r);
   if (p->layer[j] != k) return v[j + 1];
   if (p->layer[j + 1] != k) return v[j];
@@ -155,14 +155,14 @@ struct sea_cum {
   double *m, *rm, *s;
 };
 
-static double sea_interp(const struct icp_profile *p, const double *v, double r) {
+static double sea_interp(const struct ic_planet_profile *p, const double *v, double r) {
   const size_t j = sea_seg(p, r);
   const double t = (r - p->r[j]) / (p->r[j + 1] - p->r[j]);
   return v[j] + t * (v[j + 1] - v[j]);
 }
 
 /** Radius where the cumulative s reaches target. */
-static double sea_invert(const struct icp_profile *p, const double *s, double target) {
+static double sea_invert(const struct ic_planet_profile *p, const double *s, double target) {
   size_t lo = 0, hi = p->n - 1;
   while (hi - lo > 1) {
     const size_t mid = (lo + hi) / 2;
@@ -175,8 +175,8 @@ static double sea_invert(const struct icp_profile *p, const double *s, double ta
   return p->r[lo] + t * (p->r[hi] - p->r[lo]);
 }
 
-void ic_sea_planet(const struct icp_profile *prof, const int32_t *mat_id, size_t N, double eta,
-                   uint64_t seed, int64_t first_id, struct parts *p, int verbose) {
+void ic_sea_planet(const struct ic_planet_profile *prof, const int32_t *mat_id, size_t N,
+                   double eta, uint64_t seed, int64_t first_id, struct parts *p, int verbose) {
   const size_t n = prof->n;
   struct sea_cum c = {error_malloc(n * sizeof(double), "planet profile"),
                       error_malloc(n * sizeof(double), "planet profile"),
