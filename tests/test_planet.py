@@ -46,8 +46,11 @@ def run(*args):
 
 
 def read(path):
+    """Particles of a file, positions relative to the box centre."""
     with h5py.File(path, "r") as f:
-        return {k: f["PartType0"][k][:] for k in f["PartType0"]}
+        d = {k: f["PartType0"][k][:] for k in f["PartType0"]}
+        d["Coordinates"] = d["Coordinates"] - 0.5 * f["Header"].attrs["BoxSize"]
+    return d
 
 
 LIB = """granite:
@@ -105,6 +108,8 @@ with tempfile.TemporaryDirectory() as tmp:
     x = d["Coordinates"]
     N = len(d["Masses"])
     check(N == 20000, f"particle count {N} (20000 requested)")
+    com = (d["Masses"][:, None] * x).sum(0) / d["Masses"].sum()
+    check(np.abs(com).max() < 1e-6 * R, f"centre of mass at the box centre ({com} m off)")
     check(abs(d["Masses"].sum() / M_E - 1) < 1e-9, f"total mass {d['Masses'].sum():.10e} kg")
     check(d["Masses"].std() / d["Masses"].mean() < 0.01, "particle masses equal within 1 %")
     check(len(np.unique(d["ParticleIDs"])) == N, "unique particle ids")

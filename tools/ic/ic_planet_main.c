@@ -215,9 +215,10 @@ static void body_make(struct body *b, int64_t first_id, int verbose) {
   ic_planet_spec_free(s);
 }
 
-/** Write p with snapshot_write in IC mode; box = 4 x the extent. */
-static void body_write(const char *path, const struct parts *p, int argc, char **argv,
-                       const char *run) {
+/** Write p with snapshot_write in IC mode: box of side 4 x the largest
+ *  coordinate, positions shifted by half the box (the centre of mass at the
+ *  box centre). */
+static void body_write(const char *path, struct parts *p, int argc, char **argv, const char *run) {
   char command[4096] = "bolide-ic";
   for (int a = 0; a < argc; a++) {
     strncat(command, " ", sizeof command - strlen(command) - 1);
@@ -236,6 +237,8 @@ static void body_write(const char *path, const struct parts *p, int argc, char *
                                .hydro = 1,
                                .self_gravity = 1};
   for (int d = 0; d < 3; d++) meta.box_size[d] = 4 * ext;
+  /* the engine's open box is [0, L]^3: centre of mass at the box centre */
+  for (size_t i = 0; i < p->count; i++) p->x[i] += 2 * ext, p->y[i] += 2 * ext, p->z[i] += 2 * ext;
   snapshot_write(path, &meta, p, &si, 0);
 }
 
@@ -354,7 +357,8 @@ static void impact_usage(FILE *f) {
           "  --time T                time before contact at the start\n"
           "  --impactor-mat-offset K add K to the impactor's material ids (default 0)\n"
           "Particle ids: target 1..Nt, impactor Nt+1..Nt+Ni.  At contact the impactor\n"
-          "moves along +x; the orbit lies in the x-y plane.\n");
+          "moves along +x; the orbit lies in the x-y plane.  The centre of mass is at\n"
+          "the centre of the box (/Header/BoxSize, 4 x the largest coordinate).\n");
 }
 
 static const struct option impact_longopts[] = {{"output", required_argument, NULL, 'o'},
