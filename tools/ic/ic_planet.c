@@ -126,6 +126,11 @@ void ic_planet_spec_prepare(struct ic_planet_spec *s, const char *what) {
       error_exit("%s: a planet of given radius needs a radius per layer", what);
     if (k > 0 && s->R > 0 && l->r_out <= s->layer[k - 1].r_out)
       error_exit("%s: layer radii must increase outward", what);
+    if (!(l->mat.rho0 > 0))
+      error_exit(
+          "%s: material '%s' has no reference density (a gas?): the profile needs one to "
+          "bracket the radius",
+          what, l->mat.name);
     if (l->mat.eos_type == EOS_TILLOTSON) {
       if (!(l->mat.eos.tillotson.cv > 0))
         error_exit("%s: Tillotson material '%s' needs cv for temperatures", what, l->mat.name);
@@ -282,7 +287,7 @@ void ic_planet_profile_make(struct ic_planet_spec *s, struct ic_planet_profile *
   prof->layer = error_malloc(n * sizeof(int), "planet profile");
   prof->n_layers = s->n_layers;
   const double left = ic_planet_integrate(s, R, M, G, prof);
-  if (left < 0 || left > 1e-3)
+  if (!(left >= 0 && left <= 1e-3) || !isfinite(R) || !isfinite(M))
     error_exit("planet: the profile did not converge (mass left at the centre %g of the total)",
                left);
   /* centre first */

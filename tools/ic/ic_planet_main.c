@@ -173,6 +173,11 @@ static void body_make(struct body *b, int64_t first_id, int verbose) {
     error_exit("%s: %d material ids for %d layers", b->what, b->n_ids, s->n_layers);
   if (b->n_trho > 1 && b->n_trho != s->n_layers)
     error_exit("%s: %d T-rho relations for %d layers", b->what, b->n_trho, s->n_layers);
+  if (b->n_radii && s->M > 0)
+    error_exit("%s: layer radii go with the radius, not the mass", b->what);
+  if (b->n_frac && s->R > 0)
+    error_exit("%s: mass fractions go with the mass, not the radius", b->what);
+  if (b->n > 0 && b->n < 4) error_exit("%s: n: at least 4 particles (or 0: profile only)", b->what);
   if (b->n_radii && !(s->R > 0)) s->R = s->layer[s->n_layers - 1].r_out;
   for (int k = 0; k < s->n_layers; k++) {
     struct ic_planet_layer *l = &s->layer[k];
