@@ -19,7 +19,7 @@ def w_cubic(q):
     return NORM * (a**3 - 4.0 * b**3)
 
 
-def density(pos, mass, eta=1.2348, k=120):
+def density(pos, mass, eta=1.2348, k=100):
     """SPH density and smoothing length of every particle (k nearest
     neighbours searched; k must exceed the neighbours inside the kernel)."""
     tree = cKDTree(pos)
@@ -27,7 +27,7 @@ def density(pos, mass, eta=1.2348, k=120):
     dist, idx = tree.query(pos, k)
     lo = np.full(len(pos), 1e-300)
     hi = dist[:, -1] / GAMMA
-    for _ in range(40):
+    for _ in range(32):
         h = 0.5 * (lo + hi)
         H = GAMMA * h
         n = (w_cubic(dist / H[:, None])).sum(axis=1) / H**3
