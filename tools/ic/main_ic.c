@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "error.h"
+#include "ic_impact.h"
 #include "ic_tools.h"
 #include "snapshot.h"
 #include "units.h"
@@ -100,6 +101,8 @@ static void icgen_usage(FILE *f) {
       "  sod     3-D Sod shock tube: rho 1 | 0.125, P 1 | 0.1 along x, periodic,\n"
       "          interfaces at x = 0 and x = Lx/2, equal particle masses\n"
       "  sedov   Sedov-Taylor blast: energy E deposited near the centre of a box\n"
+      "  planet  layered planet in hydrostatic equilibrium, SEA shells (planet --help)\n"
+      "  impact  two bodies on a collision course (impact --help)\n"
       "\n"
       "Options (subcommands they apply to in brackets):\n"
       "  -o, --output FILE     output file (default: SUBCOMMAND.hdf5)\n"
@@ -168,7 +171,7 @@ static long icgen_parse_int(const char *opt, const char *s, long min, long max) 
 
 int main(int argc, char **argv) {
   error_init(argv[0]);
-  if (argc < 2) error_exit("missing subcommand (box, sod or sedov; see --help)");
+  if (argc < 2) error_exit("missing subcommand (box, sod, sedov, planet or impact; see --help)");
   if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
     icgen_usage(stdout);
     return 0;
@@ -178,11 +181,14 @@ int main(int argc, char **argv) {
     return 0;
   }
   const char *sub = argv[1];
+  if (strcmp(sub, "planet") == 0) return icgen_planet_main(argc - 1, argv + 1);
+  if (strcmp(sub, "impact") == 0) return icgen_impact_main(argc - 1, argv + 1);
   const int cmd = strcmp(sub, "box") == 0     ? CMD_BOX
                   : strcmp(sub, "sod") == 0   ? CMD_SOD
                   : strcmp(sub, "sedov") == 0 ? CMD_SEDOV
                                               : 0;
-  if (!cmd) error_exit("unknown subcommand '%s' (box, sod or sedov; see --help)", sub);
+  if (!cmd)
+    error_exit("unknown subcommand '%s' (box, sod, sedov, planet or impact; see --help)", sub);
 
   struct icgen_opts o = {.lattice = ICGEN_CUBIC,
                          .n = cmd == CMD_SOD ? 64 : 32,
