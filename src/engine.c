@@ -22,6 +22,9 @@
 #include "material.h"
 #include "params.h"
 #include "version.h"
+#ifdef HAVE_CUDA
+#include "gpu/gpu_engine.h"
+#endif
 
 /* ------------------------------------------------------------------------ */
 /* initial conditions                                                        */
@@ -232,13 +235,10 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
              (int)params_get_int(params, "Scheduler:max_top_level_cells"));
   e->space.max_drift_fraction = params_get_real(params, "Scheduler:rebuild_fraction");
   e->nr_threads = opt->nr_threads > 0 ? opt->nr_threads : engine_nr_cores();
-  const char *gpu = params_get_string(params, "Scheduler:gpu");
-  (void)gpu;
-
   error_log(0, "Bolide %s (git %s), kernel %s, %d threads, %s", PACKAGE_VERSION, BOLIDE_GIT_HASH,
             BOLIDE_KERNEL_NAME, e->nr_threads,
 #ifdef HAVE_CUDA
-            "CUDA build (GPU tasks not implemented yet: every task runs on the CPU)"
+            "CUDA build"
 #else
             "CPU-only build: every task runs on the CPU"
 #endif
@@ -261,6 +261,9 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   engine_stats_open(e);
 
   scheduler_init(&e->sched, e->nr_threads);
+#ifdef HAVE_CUDA
+  gpu_engine_init(e);
+#endif
 }
 
 /* ------------------------------------------------------------------------ */
@@ -273,6 +276,12 @@ void engine_rebuild(struct engine *e) {
 
 /** Run the tasks of one phase on every worker. */
 static void engine_run_phase(struct engine *e, int phase) {
+#ifdef HAVE_CUDA
+  if (phase == ENGINE_PHASE_FORCE && e->gpu) {
+    gpu_engine_force(e);
+    return;
+  }
+#endif
   engine_activate_phase(e, phase);
   scheduler_run(&e->sched, engine_run_task, e);
 }
@@ -355,9 +364,15 @@ void engine_run(struct engine *e) {
             wall > 0 ? (double)e->updates / wall : 0.0);
   if (e->nr_removed) error_log(0, "%lld particles left the open box and were removed", e->nr_removed);
   scheduler_print_timers(&e->sched, stdout);
+#ifdef HAVE_CUDA
+  gpu_engine_print(e, stdout);
+#endif
 }
 
 void engine_clean(struct engine *e) {
+#ifdef HAVE_CUDA
+  gpu_engine_free(e);
+#endif
   if (!e->opt.check_only) {
     engine_graph_clean(e);
     scheduler_free(&e->sched);

@@ -12,7 +12,7 @@
 
 /** The largest kernel support the top-level cells of the current rebuild
  *  allow (space_should_rebuild's criterion). */
-static double engine_H_limit(const struct engine *e) {
+double engine_H_limit(const struct engine *e) {
   const struct space *s = &e->space;
   double w = s->width[0];
   for (int k = 1; k < 3; k++)

@@ -1,0 +1,56 @@
+/* The engine's side of the GPU runner: the scheduling policy
+ * (Scheduler:gpu, --gpu/--no-gpu), the leaf cells and their neighbour lists
+ * built from the space for each FORCE phase, and the phase itself. */
+#ifndef BOLIDE_GPU_ENGINE_H
+#define BOLIDE_GPU_ENGINE_H
+
+#include "engine.h"
+#include "gpu.h"
+
+/** Host-side leaf cells and neighbour lists, grown and reused between steps. */
+struct gpu_cells {
+  int n, cap;          /**< leaves and allocated length */
+  size_t *offset;      /**< first particle of each leaf */
+  int *count;          /**< particles of each leaf */
+  int *top;            /**< top-level cell of each leaf */
+  double *h_cap;       /**< the cells' cap on h of each leaf (its top-level cell's) */
+  double *h_list_cap;  /**< largest h the lists cover */
+  int *ngb_start;      /**< n + 1 */
+  int nr_ngb, ngb_cap; /**< list entries and allocated length */
+  int *ngb_leaf;       /**< neighbouring leaf of each entry */
+  double *ngb_shift;   /**< 3 per entry */
+  int *leaf_of_cell;   /**< leaf number of each cell of the space (-1: not a leaf) */
+  int cells_cap;       /**< allocated length of leaf_of_cell */
+  double growth;       /**< lists cover h up to growth * the leaf's h_max */
+};
+
+/** Build the leaves of space s and, for each, the leaves of the neighbouring
+ *  top-level cells of ct (with their shifts) whose bounding boxes come
+ *  within growth * kernel_gamma * max(h_max) plus both drifts.
+ *  top_h_cap[c]: the largest h top-level cell c allows. */
+void gpu_cells_build(struct gpu_cells *gc, const struct space *s,
+                     const struct engine_cell_tasks *ct, const double *top_h_cap, double growth);
+/** Free the arrays of gc. */
+void gpu_cells_free(struct gpu_cells *gc);
+
+/** Run one FORCE phase on the GPU g over the cells of s (neighbours ct):
+ *  build the lists, run, and when some h outgrows them rebuild them wider
+ *  and run again.  top_dt_min[c]: the smallest new time step of top-level
+ *  cell c.  Returns 1 if a smoothing length was capped by the cells (the
+ *  space must be rebuilt), else 0. */
+int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct space *s,
+                    const struct engine_cell_tasks *ct, const double *top_h_cap,
+                    const struct hydro_props *hp, const struct material_table *mats, double dt_kick,
+                    double *top_dt_min);
+
+/** Choose where tasks run from Scheduler:gpu and --gpu/--no-gpu, set
+ *  e->gpu when the FORCE phase goes to a device, and say so in one line. */
+void gpu_engine_init(struct engine *e);
+/** The FORCE phase of the engine on its GPU. */
+void gpu_engine_force(struct engine *e);
+/** Print the GPU's timers. */
+void gpu_engine_print(const struct engine *e, FILE *f);
+/** Free the GPU state of the engine. */
+void gpu_engine_free(struct engine *e);
+
+#endif
