@@ -21,6 +21,7 @@
 #include "kernel.h"
 #include "material.h"
 #include "params.h"
+#include "restart.h"
 #include "version.h"
 #ifdef HAVE_CUDA
 #include "gpu/gpu_engine.h"
@@ -156,45 +157,19 @@ static void engine_mkdir(const char *dir) {
   if (mkdir(tmp, 0755) && errno != EEXIST) error_exit("%s: cannot create folder: %s", tmp, strerror(errno));
 }
 
-/* ------------------------------------------------------------------------ */
-
-void engine_init(struct engine *e, const struct params *params, const struct engine_options *opt) {
-  memset(e, 0, sizeof *e);
-  e->params = params;
-  e->opt = *opt;
-  units_init_from_params(&e->us, params);
-  hydro_props_init(&e->hp, params);
-  if (e->hp.continuity) params_error(params, "SPH:density", "the continuity equation is not implemented yet; use 'summation'");
-  if (e->hp.xsph > 0.0) params_error(params, "SPH:xsph_epsilon", "XSPH is not implemented yet; set it to 0");
-  if (params_get_bool(params, "Gravity:enabled"))
-    params_error(params, "Gravity:enabled", "self-gravity is not implemented yet");
-  if (params_get_bool(params, "Restarts:enable"))
-    params_error(params, "Restarts:enable", "restart files are not implemented yet");
-
-  e->mats = error_calloc(1, sizeof(struct material_table), "material table");
-  material_table_init(e->mats);
-  material_table_from_params(e->mats, params);
-  material_table_convert_units(e->mats, &e->us);
-
-  e->time = params_get_real(params, "TimeIntegration:time_begin");
-  e->time_end = params_get_real(params, "TimeIntegration:time_end");
-  e->dt_min = params_get_real(params, "TimeIntegration:dt_min");
-  e->dt_max = params_get_real(params, "TimeIntegration:dt_max");
-  if (e->time_end < e->time)
-    params_error(params, "TimeIntegration:time_end", "time_end (%g) is before time_begin (%g)", e->time_end, e->time);
-  if (e->dt_min > e->dt_max)
-    params_error(params, "TimeIntegration:dt_min", "dt_min (%g) is larger than dt_max (%g)", e->dt_min, e->dt_max);
-
-  /* initial conditions */
-  char icname[PATH_MAX];
-  engine_ic_path(params, icname, sizeof icname);
+/** Read the initial conditions named by the parameters into e->parts, with
+ *  the box size (from the file or InitialConditions:box_size), the shift and
+ *  the smoothing-length scaling applied. */
+static void engine_read_ics(struct engine *e, char *icname, size_t len, double box[3]) {
+  const struct params *params = e->params;
+  engine_ic_path(params, icname, len);
   struct ic_info hdr;
   const int nids = e->mats->n;
   int32_t *ids = error_malloc(nids * sizeof(int32_t), "material ids");
   for (int k = 0; k < nids; k++) ids[k] = e->mats->mats[k].id;
   ic_read(icname, &e->us, ids, nids, &e->parts, &hdr);
   free(ids);
-  double box[3] = {hdr.box_size[0], hdr.box_size[1], hdr.box_size[2]};
+  for (int k = 0; k < 3; k++) box[k] = hdr.box_size[k];
   double b[3];
   const int nb = params_get_real_array(params, "InitialConditions:box_size", b, 3);
   if (nb == 1) box[0] = box[1] = box[2] = b[0];
@@ -215,8 +190,59 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     e->parts.vpz[i] = e->parts.vz[i];
     e->parts.up[i] = e->parts.u[i];
   }
+}
+
+/* ------------------------------------------------------------------------ */
+
+void engine_init(struct engine *e, const struct params *params, const struct engine_options *opt) {
+  memset(e, 0, sizeof *e);
+  e->params = params;
+  e->opt = *opt;
+  units_init_from_params(&e->us, params);
+  hydro_props_init(&e->hp, params);
+  if (e->hp.continuity) params_error(params, "SPH:density", "the continuity equation is not implemented yet; use 'summation'");
+  if (e->hp.xsph > 0.0) params_error(params, "SPH:xsph_epsilon", "XSPH is not implemented yet; set it to 0");
+  if (params_get_bool(params, "Gravity:enabled"))
+    params_error(params, "Gravity:enabled", "self-gravity is not implemented yet");
+  e->restarts = params_get_bool(params, "Restarts:enable");
+  e->restart_dt_wall = 3600.0 * params_get_real(params, "Restarts:delta_hours");
+  snprintf(e->restart_dir, sizeof e->restart_dir, "%s", params_get_string(params, "Restarts:subdir"));
+
+  e->mats = error_calloc(1, sizeof(struct material_table), "material table");
+  material_table_init(e->mats);
+  material_table_from_params(e->mats, params);
+  material_table_convert_units(e->mats, &e->us);
+
+  e->time = params_get_real(params, "TimeIntegration:time_begin");
+  e->time_end = params_get_real(params, "TimeIntegration:time_end");
+  e->dt_min = params_get_real(params, "TimeIntegration:dt_min");
+  e->dt_max = params_get_real(params, "TimeIntegration:dt_max");
+  if (e->time_end < e->time)
+    params_error(params, "TimeIntegration:time_end", "time_end (%g) is before time_begin (%g)", e->time_end, e->time);
+  if (e->dt_min > e->dt_max)
+    params_error(params, "TimeIntegration:dt_min", "dt_min (%g) is larger than dt_max (%g)", e->dt_min, e->dt_max);
+
+  double box[3];
+  int periodic = params_get_bool(params, "InitialConditions:periodic");
+  char icname[PATH_MAX];
+  struct restart_state rs;
+  if (opt->restart) {
+    restart_read(e->restart_dir, &rs, &e->parts);
+    snprintf(icname, sizeof icname, "%s/restart.bin", e->restart_dir);
+    for (int k = 0; k < 3; k++) box[k] = rs.box[k];
+    periodic = (int)rs.periodic;
+    e->time = rs.time;
+    e->dt = rs.dt;
+    e->step = rs.step;
+    e->updates = rs.updates;
+    e->nr_removed = rs.nr_removed;
+    e->snap_index = (int)rs.snap_index;
+    e->restart_dt_next = rs.dt_next;
+    e->restarted = 1;
+  } else {
+    engine_read_ics(e, icname, sizeof icname, box);
+  }
   engine_guess_h(e);
-  const int periodic = params_get_bool(params, "InitialConditions:periodic");
   error_log(0, "read %zu particles from %s (box %g x %g x %g, %s)", e->parts.count, icname, box[0], box[1],
             box[2], periodic ? "periodic" : "open");
 
@@ -228,7 +254,12 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   e->compression = (int)params_get_int(params, "Snapshots:compression");
   e->stats_dt = params_get_real(params, "Statistics:delta_time");
   e->dump_tasks = params_get_int(params, "Scheduler:dump_tasks");
+  e->cell_task_size = (int)params_get_int(params, "Scheduler:cell_task_size");
   engine_init_outputs(e, e->time);
+  if (e->restarted) {
+    e->next_out = (int)rs.next_out;
+    e->next_stats = rs.next_stats;
+  }
 
   /* cells and workers */
   space_init(&e->space, &e->parts, box, periodic, (int)params_get_int(params, "Scheduler:cell_split_size"),
@@ -243,7 +274,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
             "CPU-only build: every task runs on the CPU"
 #endif
   );
-  error_log(1, "configured with: %s", BOLIDE_CONFIGURE_ARGS);
+  error_log(0, "configured with: %s", BOLIDE_CONFIGURE_ARGS[0] ? BOLIDE_CONFIGURE_ARGS : "(defaults)");
   material_table_log(e->mats);
   error_log(0, "particle memory: %zu bytes per particle", parts_bytes_per_particle());
 
@@ -274,6 +305,42 @@ void engine_rebuild(struct engine *e) {
   engine_make_graph(e);
 }
 
+/** 1 if the cells or the task graph no longer hold every interaction: the
+ *  space's own criterion, or a kernel support plus twice the largest drift
+ *  beyond the reach of the pair tasks (engine_graph.c). */
+static int engine_should_rebuild(const struct engine *e) {
+  if (space_should_rebuild(&e->space)) return 1;
+  double h_max = 0.0, dx_max = 0.0;
+  for (int t = 0; t < e->nr_tcells; t++) {
+    if (e->tcells[t]->h_max > h_max) h_max = e->tcells[t]->h_max;
+    if (e->tcells[t]->dx_max > dx_max) dx_max = e->tcells[t]->dx_max;
+  }
+  return kernel_gamma * h_max + 2.0 * dx_max > e->reach;
+}
+
+/** Save the state for --restart. */
+static void engine_write_restart(struct engine *e) {
+  struct restart_state st;
+  memset(&st, 0, sizeof st);
+  st.time = e->time;
+  st.dt = e->dt;
+  st.dt_next = e->dt_max;
+  for (int t = 0; t < e->nr_tcells; t++)
+    if (e->cell_dt_min[t] < st.dt_next) st.dt_next = e->cell_dt_min[t];
+  st.step = e->step;
+  st.updates = e->updates;
+  st.nr_removed = e->nr_removed;
+  st.snap_index = e->snap_index;
+  st.next_out = e->next_out;
+  st.next_stats = e->next_stats;
+  for (int k = 0; k < 3; k++) st.box[k] = e->space.dim[k];
+  st.periodic = e->space.periodic;
+  engine_mkdir(e->restart_dir);
+  restart_write(e->restart_dir, &st, &e->parts);
+  e->restart_last_wall = error_walltime();
+  error_log(0, "restart file %s/restart.bin at step %ld, t = %g", e->restart_dir, e->step, e->time);
+}
+
 /** Run the tasks of one phase on every worker. */
 static void engine_run_phase(struct engine *e, int phase) {
 #ifdef HAVE_CUDA
@@ -290,8 +357,8 @@ static void engine_run_phase(struct engine *e, int phase) {
  *  the next output time and the end of the run. */
 static double engine_next_dt(struct engine *e) {
   double dt = e->dt_max;
-  for (int c = 0; c < e->space.nr_top; c++)
-    if (e->space.cells[c].count > 0 && e->cell_dt_min[c] < dt) dt = e->cell_dt_min[c];
+  for (int t = 0; t < e->nr_tcells; t++)
+    if (e->cell_dt_min[t] < dt) dt = e->cell_dt_min[t];
   if (dt < e->dt_min)
     error_exit("time step %g at t = %g is below TimeIntegration:dt_min = %g (run -v for details)", dt, e->time,
                e->dt_min);
@@ -322,10 +389,19 @@ void engine_run(struct engine *e) {
     return;
   }
   engine_rebuild(e);
-  engine_first_force(e);
-  engine_stats_write(e);
-  engine_snapshot(e);
+  if (!e->restarted) {
+    engine_first_force(e);
+    engine_stats_write(e);
+    engine_snapshot(e);
+  } else {
+    /* every force, rate and time step of the end of the last step is in the
+     * restart file: recomputing them now would use corrected instead of
+     * predicted velocities and change the run */
+    for (int t = 0; t < e->nr_tcells; t++) e->cell_dt_min[t] = e->restart_dt_next;
+    error_log(0, "resumed from %s/restart.bin at step %ld, t = %g", e->restart_dir, e->step, e->time);
+  }
   e->wall_start = error_walltime();
+  e->restart_last_wall = e->wall_start;
   printf("#   step           time             dt      updates    wall[s]     ETA[s]\n");
   while (e->time < e->time_end && (e->opt.max_steps < 0 || e->step < e->opt.max_steps)) {
     const double w0 = error_walltime();
@@ -335,7 +411,7 @@ void engine_run(struct engine *e) {
     e->time += e->dt;
     if (e->next_out < e->nr_out && fabs(e->time - e->out_times[e->next_out]) <= 1e-12 * fabs(e->time))
       e->time = e->out_times[e->next_out];
-    if (atomic_load((_Atomic int *)&e->need_rebuild) || space_should_rebuild(&e->space)) {
+    if (atomic_load((_Atomic int *)&e->need_rebuild) || engine_should_rebuild(e)) {
       atomic_store((_Atomic int *)&e->need_rebuild, 0);
       engine_rebuild(e);
     }
@@ -353,12 +429,14 @@ void engine_run(struct engine *e) {
     const double eta = frac > 0 ? (w1 - e->wall_start) * (1.0 - frac) / frac : 0.0;
     printf("%8ld %14.6e %14.6e %12zu %10.4f %10.1f\n", e->step, e->time, e->dt, e->parts.count, w1 - w0, eta);
     fflush(stdout);
+    if (e->restarts && w1 - e->restart_last_wall >= e->restart_dt_wall) engine_write_restart(e);
   }
-  if (e->next_out < e->nr_out && e->out_times[e->nr_out - 1] > e->time) {
-    /* stopped by --steps: keep the last state */
+  if (!e->restarts && e->next_out < e->nr_out && e->out_times[e->nr_out - 1] > e->time) {
+    /* stopped by --steps without restart files: keep the last state */
     engine_snapshot(e);
   }
   engine_stats_write(e);
+  if (e->restarts) engine_write_restart(e);
   const double wall = error_walltime() - e->wall_start;
   error_log(0, "done: %ld steps to t = %g in %.2f s (%.3g particle updates per second)", e->step, e->time, wall,
             wall > 0 ? (double)e->updates / wall : 0.0);
@@ -381,7 +459,6 @@ void engine_clean(struct engine *e) {
   if (e->stats) fclose(e->stats);
   free(e->out_times);
   free(e->cell_dt_min);
-  free(e->cell_dx_max);
   free(e->params_text);
   if (e->mats) material_table_free(e->mats);
   free(e->mats);

@@ -27,15 +27,20 @@ struct engine_options {
   int restart;     /**< resume from a restart file */
 };
 
-/** Tasks of one top-level cell (the graph is built on these cells). */
+/** Tasks of one task cell (engine_graph.c: the graph is built on these). */
 struct engine_cell_tasks {
   struct task *drift;    /**< kick1 + drift of the cell */
   struct task *ghost;    /**< h iteration and equation of state */
   struct task *kick2;    /**< second half kick and new time step */
-  int nr_ngb;            /**< number of neighbouring top-level cells (itself included) */
-  int *ngb;              /**< their indices */
+  int nr_ngb;            /**< number of neighbouring task cells (itself included) */
+  int *ngb;              /**< their numbers in engine.tcells */
   double (*ngb_shift)[3];/**< periodic shift to add to the neighbour's positions */
 };
+
+/** Pair tasks join task cells closer than this many times the largest kernel
+ *  support at the rebuild: the margin for h to grow and particles to move
+ *  before the next rebuild. */
+#define ENGINE_REACH_FACTOR 1.5
 
 /** Phases of a step: which tasks a scheduler_run activates. */
 enum engine_phase { ENGINE_PHASE_DRIFT = 0, ENGINE_PHASE_FORCE = 1 };
@@ -52,15 +57,18 @@ struct engine {
   struct scheduler sched;         /**< tasks and workers */
   int nr_threads;                 /**< workers in use */
 
-  struct engine_cell_tasks *ct;   /**< per top-level cell */
+  struct cell **tcells;           /**< the task cells (engine_graph.c) */
+  int nr_tcells;                  /**< their number */
+  int cell_task_size;             /**< Scheduler:cell_task_size */
+  double reach;                   /**< task cells closer than this have pair tasks */
+  struct engine_cell_tasks *ct;   /**< per task cell */
   int nr_ct;                      /**< number of entries of ct */
   struct task **phase_tasks[2];   /**< tasks of each phase */
   int phase_count[2];             /**< their numbers */
- struct space_pair *pairs;       /**< neighbouring top-level cell pairs (with periodic shifts) */
+  struct space_pair *pairs;       /**< pairs of task cells (numbers in tcells, periodic shift) */
   int nr_pairs;                   /**< their number */
   int *task_pair;                 /**< pair number of each pair task, by task id */
-  double *cell_dt_min;            /**< smallest new time step per top-level cell */
-  double *cell_dx_max;            /**< largest drift since rebuild per top-level cell */
+  double *cell_dt_min;            /**< smallest new time step per task cell */
   int need_rebuild;               /**< set by tasks (atomic): h outgrew the cells */
   int first_force;                /**< 1 while computing the initial forces */
 
@@ -80,6 +88,13 @@ struct engine {
   int write_acc;                  /**< Snapshots:accelerations */
   int compression;                /**< gzip level */
   char *params_text;              /**< the parameters in use, for snapshots */
+
+  int restarts;                   /**< Restarts:enable */
+  double restart_dt_wall;         /**< seconds of wall time between restart files */
+  double restart_last_wall;       /**< wall time of the last restart file */
+  char restart_dir[1024];         /**< Restarts:subdir */
+  int restarted;                  /**< 1 when this run resumed from a restart file */
+  double restart_dt_next;         /**< smallest particle time step saved in the restart file */
 
   FILE *stats;                    /**< statistics file */
   double stats_dt, next_stats;    /**< its interval */

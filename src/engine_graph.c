@@ -1,22 +1,31 @@
-/* The task graph of the engine, built on the top-level cells after every
- * rebuild:
+/* The task graph of the engine, built after every rebuild.
  *
- *   drift(c)                                        phase DRIFT
- *   density(c,c'), density(c) -> ghost(c)           phase FORCE
- *   ghost(c), ghost(c') -> force(c,c') -> kick2(c)
+ * Tasks work on *task cells*: each top-level cell's octree is cut where a
+ * cell holds at most Scheduler:cell_task_size particles, so that a large
+ * top-level cell gives many tasks and the workers stay busy.  Task cells
+ * partition the particles, so a lock per task cell is exact.  A pair task
+ * joins two task cells whose bounding boxes (at the rebuild) are closer than
+ * the reach R = min(top-level cell width, ENGINE_REACH_FACTOR x the largest
+ * kernel support at the rebuild); the engine rebuilds before any particle
+ * pair could interact beyond it (H_max + 2 dx_max > R, engine_should_rebuild),
+ * and the ghost caps h there.
  *
- * Pair tasks lock the cells they write (try-locks in the scheduler); the
- * ghost of a cell waits for every density task touching it, so that the h
- * iteration of a cell reads final neighbour positions and writes only its
- * own particles. */
+ *   drift(t)                                                phase DRIFT
+ *   density(t), density(t,t') -> ghost(t)                   phase FORCE
+ *   ghost(t), ghost(t') -> force(t,t') -> kick2(t), kick2(t')
+ *
+ * The ghost of a task cell waits for every density task touching it: its h
+ * iteration then reads final neighbour positions and writes only its own
+ * particles. */
 #include "engine.h"
 
 #include <stdlib.h>
 #include <string.h>
 
 #include "error.h"
+#include "kernel.h"
 
-/** Remember t as part of phase ph. */
+/** Growable list of tasks. */
 static void engine_phase_add(struct engine *e, int ph, struct task *t, int *cap) {
   if (e->phase_count[ph] == cap[ph]) {
     cap[ph] = cap[ph] ? 2 * cap[ph] : 1024;
@@ -35,16 +44,44 @@ static void engine_task_pair_set(struct engine *e, const struct task *t, int k, 
   e->task_pair[t->id] = k;
 }
 
-/** Record cj (with shift) as a neighbour of ci. */
-static void engine_add_ngb(struct engine_cell_tasks *ct, int cj, const double shift[3]) {
+/** Record task cell b (with shift) as a neighbour of task cell a. */
+static void engine_add_ngb(struct engine_cell_tasks *ct, int b, const double shift[3]) {
   ct->ngb = error_realloc(ct->ngb, (ct->nr_ngb + 1) * sizeof(int), "cell neighbours");
   ct->ngb_shift = error_realloc(ct->ngb_shift, (ct->nr_ngb + 1) * sizeof(double[3]), "cell neighbours");
-  ct->ngb[ct->nr_ngb] = cj;
+  ct->ngb[ct->nr_ngb] = b;
   for (int k = 0; k < 3; k++) ct->ngb_shift[ct->nr_ngb][k] = shift[k];
   ct->nr_ngb++;
 }
 
-/** Free the per-cell task records. */
+/** Append a pair of task cells to e->pairs. */
+static int engine_add_pair(struct engine *e, int a, int b, const double shift[3], int *cap) {
+  if (e->nr_pairs == *cap) {
+    *cap = *cap ? 2 * *cap : 1024;
+    e->pairs = error_realloc(e->pairs, *cap * sizeof(struct space_pair), "task cell pairs");
+  }
+  struct space_pair *q = &e->pairs[e->nr_pairs];
+  q->ci = a;
+  q->cj = b;
+  for (int k = 0; k < 3; k++) q->shift[k] = shift[k];
+  return e->nr_pairs++;
+}
+
+/** Collect the task cells below c: c itself if small enough or a leaf. */
+static void engine_collect_tcells(struct engine *e, struct cell *c, int max_count, int *cap) {
+  if (c->count == 0) return;
+  if (c->split && (int)c->count > max_count) {
+    for (int q = 0; q < 8; q++)
+      if (c->progeny[q]) engine_collect_tcells(e, c->progeny[q], max_count, cap);
+    return;
+  }
+  if (e->nr_tcells == *cap) {
+    *cap = *cap ? 2 * *cap : 1024;
+    e->tcells = error_realloc(e->tcells, *cap * sizeof(struct cell *), "task cells");
+  }
+  e->tcells[e->nr_tcells++] = c;
+}
+
+/** Free the per-task-cell records. */
 static void engine_graph_free(struct engine *e) {
   if (e->ct) {
     for (int c = 0; c < e->nr_ct; c++) {
@@ -60,6 +97,40 @@ static void engine_graph_free(struct engine *e) {
     e->phase_tasks[ph] = NULL;
     e->phase_count[ph] = 0;
   }
+  free(e->pairs);
+  e->pairs = NULL;
+  e->nr_pairs = 0;
+  free(e->tcells);
+  e->tcells = NULL;
+  e->nr_tcells = 0;
+}
+
+/** The tasks of a pair of task cells a, b (b seen at x + shift). */
+static void engine_make_pair_tasks(struct engine *e, int a, int b, const double shift[3], int *cap) {
+  struct scheduler *sched = &e->sched;
+  struct cell *ci = e->tcells[a], *cj = e->tcells[b];
+  const int k = engine_add_pair(e, a, b, shift, &cap[2]);
+  struct task *dp = scheduler_addtask(sched, task_type_pair, task_subtype_density, ci, cj);
+  struct task *fp = scheduler_addtask(sched, task_type_pair, task_subtype_force, ci, cj);
+  dp->locks[0] = fp->locks[0] = &ci->lock;
+  /* a cell paired with its own periodic image takes its lock once */
+  dp->locks[1] = fp->locks[1] = (a == b) ? NULL : &cj->lock;
+  dp->cell_index = fp->cell_index = a;
+  engine_task_pair_set(e, dp, k, &cap[3]);
+  engine_task_pair_set(e, fp, k, &cap[3]);
+  double mshift[3];
+  for (int d = 0; d < 3; d++) mshift[d] = -shift[d];
+  engine_add_ngb(&e->ct[a], b, shift);
+  engine_add_ngb(&e->ct[b], a, mshift);
+  /* density(a,b) -> ghost(a), ghost(b) -> force(a,b) -> kick2(a), kick2(b) */
+  scheduler_addunlock(sched, dp, e->ct[a].ghost);
+  scheduler_addunlock(sched, dp, e->ct[b].ghost);
+  scheduler_addunlock(sched, e->ct[a].ghost, fp);
+  scheduler_addunlock(sched, e->ct[b].ghost, fp);
+  scheduler_addunlock(sched, fp, e->ct[a].kick2);
+  scheduler_addunlock(sched, fp, e->ct[b].kick2);
+  engine_phase_add(e, ENGINE_PHASE_FORCE, dp, cap);
+  engine_phase_add(e, ENGINE_PHASE_FORCE, fp, cap);
 }
 
 void engine_make_graph(struct engine *e) {
@@ -67,76 +138,77 @@ void engine_make_graph(struct engine *e) {
   struct scheduler *sched = &e->sched;
   engine_graph_free(e);
   scheduler_clear(sched);
-  const int nc = s->nr_top;
-  e->ct = error_calloc(nc, sizeof(struct engine_cell_tasks), "cell tasks");
-  e->nr_ct = nc;
-  free(e->pairs);
-  e->pairs = NULL;
-  e->cell_dt_min = error_realloc(e->cell_dt_min, nc * sizeof(double), "cell time steps");
-  e->cell_dx_max = error_realloc(e->cell_dx_max, nc * sizeof(double), "cell drifts");
-  int cap[2] = {0, 0};
+  /* cap: phase lists (2), pairs, task->pair map */
+  int cap[4] = {0, 0, 0, 0}, cap_tc = 0;
 
-  /* per-cell tasks */
-  for (int c = 0; c < nc; c++) {
-    struct cell *ci = &s->cells[c];
-    struct engine_cell_tasks *ct = &e->ct[c];
+  /* task cells, top-level cell by top-level cell; first[c]..first[c+1] are c's */
+  int *first = error_malloc((s->nr_top + 1) * sizeof(int), "task cell index");
+  for (int c = 0; c < s->nr_top; c++) {
+    first[c] = e->nr_tcells;
+    engine_collect_tcells(e, &s->cells[c], e->cell_task_size, &cap_tc);
+  }
+  first[s->nr_top] = e->nr_tcells;
+  const int nt = e->nr_tcells;
+  e->ct = error_calloc(nt ? nt : 1, sizeof(struct engine_cell_tasks), "cell tasks");
+  e->nr_ct = nt;
+  e->cell_dt_min = error_realloc(e->cell_dt_min, (nt ? nt : 1) * sizeof(double), "cell time steps");
+
+  /* tasks of each task cell: drift(t);  density(t) -> ghost(t) -> force(t) -> kick2(t) */
+  for (int t = 0; t < nt; t++) {
+    struct cell *c = e->tcells[t];
+    struct engine_cell_tasks *ct = &e->ct[t];
     const double zero[3] = {0, 0, 0};
-    engine_add_ngb(ct, c, zero);
-    ct->drift = scheduler_addtask(sched, task_type_drift, task_subtype_none, ci, NULL);
-    ct->drift->cell_index = c;
-    engine_phase_add(e, ENGINE_PHASE_DRIFT, ct->drift, cap);
-    if (ci->count == 0) continue;
-    ct->ghost = scheduler_addtask(sched, task_type_ghost, task_subtype_none, ci, NULL);
-    ct->kick2 = scheduler_addtask(sched, task_type_kick2, task_subtype_none, ci, NULL);
-    engine_phase_add(e, ENGINE_PHASE_FORCE, ct->ghost, cap);
-    engine_phase_add(e, ENGINE_PHASE_FORCE, ct->kick2, cap);
-
-    /* density(c) -> ghost(c);  ghost(c) -> force(c) -> kick2(c) */
-    struct task *ds = scheduler_addtask(sched, task_type_self, task_subtype_density, ci, NULL);
-    struct task *fs = scheduler_addtask(sched, task_type_self, task_subtype_force, ci, NULL);
-    ds->locks[0] = fs->locks[0] = &ci->lock;
-    ds->cell_index = fs->cell_index = ct->ghost->cell_index = ct->kick2->cell_index = c;
+    engine_add_ngb(ct, t, zero);
+    ct->drift = scheduler_addtask(sched, task_type_drift, task_subtype_none, c, NULL);
+    ct->ghost = scheduler_addtask(sched, task_type_ghost, task_subtype_none, c, NULL);
+    ct->kick2 = scheduler_addtask(sched, task_type_kick2, task_subtype_none, c, NULL);
+    struct task *ds = scheduler_addtask(sched, task_type_self, task_subtype_density, c, NULL);
+    struct task *fs = scheduler_addtask(sched, task_type_self, task_subtype_force, c, NULL);
+    ds->locks[0] = fs->locks[0] = &c->lock;
+    ct->drift->cell_index = ct->ghost->cell_index = ct->kick2->cell_index = t;
+    ds->cell_index = fs->cell_index = t;
     scheduler_addunlock(sched, ds, ct->ghost);
     scheduler_addunlock(sched, ct->ghost, fs);
     scheduler_addunlock(sched, fs, ct->kick2);
+    engine_phase_add(e, ENGINE_PHASE_DRIFT, ct->drift, cap);
     engine_phase_add(e, ENGINE_PHASE_FORCE, ds, cap);
+    engine_phase_add(e, ENGINE_PHASE_FORCE, ct->ghost, cap);
     engine_phase_add(e, ENGINE_PHASE_FORCE, fs, cap);
+    engine_phase_add(e, ENGINE_PHASE_FORCE, ct->kick2, cap);
   }
 
-  /* pair tasks between neighbouring top-level cells */
-  struct space_pair *pairs = NULL;
-  const int np = (int)space_top_pairs(s, &pairs);
-  int cap_tp = 0;
-  for (int k = 0; k < np; k++) {
-    const int a = pairs[k].ci, b = pairs[k].cj;
-    struct cell *ci = &s->cells[a], *cj = &s->cells[b];
-    double mshift[3];
-    for (int d = 0; d < 3; d++) mshift[d] = -pairs[k].shift[d];
-    engine_add_ngb(&e->ct[a], b, pairs[k].shift);
-    engine_add_ngb(&e->ct[b], a, mshift);
-    if (ci->count == 0 || cj->count == 0) continue;
-    struct task *dp = scheduler_addtask(sched, task_type_pair, task_subtype_density, ci, cj);
-    struct task *fp = scheduler_addtask(sched, task_type_pair, task_subtype_force, ci, cj);
-    dp->locks[0] = fp->locks[0] = &ci->lock;
-    /* a cell paired with its own periodic image takes its lock once */
-    dp->locks[1] = fp->locks[1] = (a == b) ? NULL : &cj->lock;
-    dp->cell_index = fp->cell_index = a;
-    engine_task_pair_set(e, dp, k, &cap_tp);
-    engine_task_pair_set(e, fp, k, &cap_tp);
-    /* density(ci,cj) -> ghost(ci), ghost(cj) -> force(ci,cj) -> kick2(ci), kick2(cj) */
-    scheduler_addunlock(sched, dp, e->ct[a].ghost);
-    scheduler_addunlock(sched, dp, e->ct[b].ghost);
-    scheduler_addunlock(sched, e->ct[a].ghost, fp);
-    scheduler_addunlock(sched, e->ct[b].ghost, fp);
-    scheduler_addunlock(sched, fp, e->ct[a].kick2);
-    scheduler_addunlock(sched, fp, e->ct[b].kick2);
-    engine_phase_add(e, ENGINE_PHASE_FORCE, dp, cap);
-    engine_phase_add(e, ENGINE_PHASE_FORCE, fp, cap);
+  /* the reach of an interaction until the next rebuild (see the top comment) */
+  double reach = s->width[0];
+  for (int k = 1; k < 3; k++)
+    if (s->width[k] < reach) reach = s->width[k];
+  if (ENGINE_REACH_FACTOR * kernel_gamma * s->h_max < reach) reach = ENGINE_REACH_FACTOR * kernel_gamma * s->h_max;
+  e->reach = reach;
+  const double reach2 = reach * reach;
+  const double zero[3] = {0, 0, 0};
+
+  /* pairs of task cells inside one top-level cell */
+  for (int c = 0; c < s->nr_top; c++)
+    for (int a = first[c]; a < first[c + 1]; a++)
+      for (int b = a + 1; b < first[c + 1]; b++)
+        if (cell_bbox_dist2(e->tcells[a], e->tcells[b], zero) < reach2)
+          engine_make_pair_tasks(e, a, b, zero, cap);
+
+  /* pairs of task cells in neighbouring top-level cells (or a cell and its
+   * periodic image: then every ordered pair, a == b included) */
+  struct space_pair *top = NULL;
+  const size_t ntop = space_top_pairs(s, &top);
+  for (size_t k = 0; k < ntop; k++) {
+    const int ci = top[k].ci, cj = top[k].cj;
+    for (int a = first[ci]; a < first[ci + 1]; a++)
+      for (int b = first[cj]; b < first[cj + 1]; b++)
+        if (cell_bbox_dist2(e->tcells[a], e->tcells[b], top[k].shift) < reach2)
+          engine_make_pair_tasks(e, a, b, top[k].shift, cap);
   }
-  e->pairs = pairs;
-  e->nr_pairs = np;
+  free(top);
+  free(first);
   scheduler_finalize(sched);
-  error_log(1, "task graph: %d cells, %d pairs, %d tasks", nc, np, sched->nr_tasks);
+  error_log(1, "task graph: %d top-level cells, %d task cells, %d pairs, %d tasks", s->nr_top, nt,
+            e->nr_pairs, sched->nr_tasks);
 }
 
 void engine_activate_phase(struct engine *e, int phase) {
@@ -147,8 +219,6 @@ void engine_activate_phase(struct engine *e, int phase) {
 
 void engine_graph_clean(struct engine *e) {
   engine_graph_free(e);
-  free(e->pairs);
-  e->pairs = NULL;
   free(e->task_pair);
   e->task_pair = NULL;
 }

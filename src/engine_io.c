@@ -17,8 +17,13 @@
 void engine_stats_open(struct engine *e) {
   char path[2048];
   snprintf(path, sizeof path, "%s/%s.txt", e->outdir, params_get_string(e->params, "Statistics:energy_file_name"));
-  e->stats = fopen(path, "w");
+  /* a resumed run appends to the file of the run it continues */
+  e->stats = fopen(path, e->restarted ? "a" : "w");
   if (!e->stats) error_exit("%s: cannot create the statistics file", path);
+  if (e->restarted) {
+    fprintf(e->stats, "# resumed from a restart file at step %ld\n", e->step);
+    return;
+  }
   fprintf(e->stats, "# Bolide %s statistics, internal units (mass %g g, length %g cm, time %g s)\n", PACKAGE_VERSION,
           e->us.mass_cgs, e->us.length_cgs, e->us.time_cgs);
   fprintf(e->stats, "#");

@@ -10,27 +10,29 @@
 #include "kernel.h"
 #include "kick/kick_cpu.h"
 
-/** The largest kernel support the top-level cells of the current rebuild
- *  allow (space_should_rebuild's criterion). */
+/** The largest kernel support the current cells and task graph allow. */
 double engine_H_limit(const struct engine *e) {
   const struct space *s = &e->space;
-  double w = s->width[0];
-  for (int k = 1; k < 3; k++)
-    if (s->width[k] < w) w = s->width[k];
+  double w = e->reach;
   if (s->periodic)
     for (int k = 0; k < 3; k++)
       if (0.5 * s->dim[k] < w) w = 0.5 * s->dim[k];
   return w;
 }
 
-/** The ghost task of top-level cell number c. */
-static void engine_ghost(struct engine *e, int c) {
-  struct engine_cell_tasks *ct = &e->ct[c];
+/** The ghost task of task cell number t. */
+static void engine_ghost(struct engine *e, int t) {
+  struct engine_cell_tasks *ct = &e->ct[t];
   struct cell *cells[ct->nr_ngb > 0 ? ct->nr_ngb : 1];
-  for (int k = 0; k < ct->nr_ngb; k++) cells[k] = &e->space.cells[ct->ngb[k]];
+  double dx_max = 0.0;
+  for (int k = 0; k < ct->nr_ngb; k++) {
+    cells[k] = e->tcells[ct->ngb[k]];
+    if (cells[k]->dx_max > dx_max) dx_max = cells[k]->dx_max;
+  }
   struct ghost_ngbs ngbs = {ct->nr_ngb, cells, (const double(*)[3])ct->ngb_shift};
-  const double H_limit = engine_H_limit(e) - 2.0 * e->space.cells[c].dx_max;
-  if (ghost_cell_cpu(&e->parts, &e->space.cells[c], &ngbs, &e->hp, e->mats, H_limit))
+  /* a pair (i, j) is found while H_i + |dx_i| + |dx_j| stays below the reach */
+  const double H_limit = engine_H_limit(e) - 2.0 * dx_max;
+  if (ghost_cell_cpu(&e->parts, e->tcells[t], &ngbs, &e->hp, e->mats, H_limit))
     atomic_store((_Atomic int *)&e->need_rebuild, 1);
 }
 
@@ -52,6 +54,7 @@ void engine_run_task(void *ctx, struct task *t, int thread_id) {
       break;
     case task_type_pair: {
       const double *shift = e->pairs[e->task_pair[t->id]].shift;
+      /* the pair list holds task cells; ci, cj are those cells */
       if (t->subtype == task_subtype_density)
         density_pair_cpu(p, ci, cj, shift);
       else if (t->subtype == task_subtype_force)

@@ -17,6 +17,21 @@
 #define BOLIDE_RESTRICT restrict
 #endif
 
+/* The pair functions sit in the innermost loops: inline them always (GCC
+ * otherwise keeps some out of line when they are used in several loops). */
+#if defined(__CUDACC__)
 #define BOLIDE_INLINE static inline BOLIDE_HD
+#elif defined(__GNUC__)
+#define BOLIDE_INLINE static inline __attribute__((always_inline))
+#else
+#define BOLIDE_INLINE static inline
+#endif
+
+/** For CPU-only helpers of the innermost loops. */
+#if defined(__GNUC__)
+#define BOLIDE_ALWAYS_INLINE static inline __attribute__((always_inline))
+#else
+#define BOLIDE_ALWAYS_INLINE static inline
+#endif
 
 #endif

@@ -85,16 +85,15 @@ int main(int argc, char **argv) {
       case OPT_GPU: opt.use_gpu = 2; break;
       case OPT_NO_GPU: opt.use_gpu = 0; break;
       case OPT_RESTART: opt.restart = 1; break;
-      case OPT_REFERENCE: params_write_reference(stdout); return 0;
-      case 'h': usage(stdout); return 0;
-      case 'V': version(); return 0;
+      case OPT_REFERENCE: params_write_reference(stdout); free(overrides); return 0;
+      case 'h': usage(stdout); free(overrides); return 0;
+      case 'V': version(); free(overrides); return 0;
       case ':': error_exit("option %s needs a value (see --help)", argv[optind - 1]);
       default: error_exit("unknown option '%s' (see --help)", argv[optind - 1]);
     }
   }
   if (optind >= argc) error_exit("no parameter file given (usage: bolide [OPTIONS] PARAMS.yml; see --help)");
   if (optind + 1 < argc) error_exit("unexpected argument '%s' after the parameter file", argv[optind + 1]);
-  if (opt.restart) error_exit("--restart: restart files are not implemented yet");
 
   struct params *params = params_read(argv[optind], n_overrides, overrides);
   struct engine e;

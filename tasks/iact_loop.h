@@ -26,6 +26,12 @@
  *   allowed only with a non-zero shift, as in a box of one periodic cell.)  Particles i
  *   for which IACT_LOOP_ACTIVE(p, i) is false are skipped (default: none).
  *
+ * Optional: IACT_LOOP_ACC_BEGIN(p, i) and IACT_LOOP_ACC_END(p, i) open and
+ * close the inner loop over j of every leaf loop, so that the interaction
+ * macros can sum particle i's terms in local variables (registers) and
+ * store them once, instead of updating the arrays for every pair (the arrays
+ * may alias, so the compiler cannot keep them in registers by itself).
+ *
  * Arguments of the interaction macros: p the particles, i and j indices into
  * them, r2 = |dx|^2, dx (const double[3]) = (x_i - x_j) - shift: the
  * separation from the image of j at x_j + shift, hi and hj the smoothing
@@ -52,6 +58,12 @@
 #endif
 #ifndef IACT_LOOP_ACTIVE
 #define IACT_LOOP_ACTIVE(p, i) 1
+#endif
+#ifndef IACT_LOOP_ACC_BEGIN
+#define IACT_LOOP_ACC_BEGIN(p, i)
+#endif
+#ifndef IACT_LOOP_ACC_END
+#define IACT_LOOP_ACC_END(p, i)
 #endif
 
 #define IACT_LOOP_PASTE2(a, b, c) a##b##c
@@ -112,6 +124,7 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair_leaf)(struct parts *p, co
       const double Hi2 = Hi * Hi;
       const double R = (Hi > Hj_max ? Hi : Hj_max) + cj->dx_max;
       if (cell_point_dist2(cj, xi, shift) > iact_loop_prune_r2(R, ci, cj, shift)) continue;
+      IACT_LOOP_ACC_BEGIN(p, i);
       for (size_t k = 0; k < nj; k++) {
         const size_t j = list[k];
         const double dx[3] = {(xi[0] - x[j]) - shift[0], (xi[1] - y[j]) - shift[1],
@@ -122,6 +135,7 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair_leaf)(struct parts *p, co
           IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj);
         }
       }
+      IACT_LOOP_ACC_END(p, i);
     }
   }
 }
@@ -135,6 +149,7 @@ __attribute__((unused)) static void IACT_LOOP_FN(_self_leaf)(struct parts *p,
   for (size_t i = c->offset; i < end; i++) {
     const double xi[3] = {x[i], y[i], z[i]}, hi = h[i], Hi = kernel_gamma * hi;
     const double Hi2 = Hi * Hi;
+    IACT_LOOP_ACC_BEGIN(p, i);
     for (size_t j = i + 1; j < end; j++) {
       const double dx[3] = {xi[0] - x[j], xi[1] - y[j], xi[2] - z[j]};
       const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
@@ -143,6 +158,7 @@ __attribute__((unused)) static void IACT_LOOP_FN(_self_leaf)(struct parts *p,
         IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj);
       }
     }
+    IACT_LOOP_ACC_END(p, i);
   }
 }
 
@@ -217,6 +233,7 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair_gather_leaf)(struct parts
       const double Hi2 = Hi * Hi;
       if (cell_point_dist2(cj, xi, shift) > iact_loop_prune_r2(Hi + cj->dx_max, ci, cj, shift))
         continue;
+      IACT_LOOP_ACC_BEGIN(p, i);
       for (size_t k = 0; k < nj; k++) {
         const size_t j = list[k];
         const double dx[3] = {(xi[0] - x[j]) - shift[0], (xi[1] - y[j]) - shift[1],
@@ -226,6 +243,7 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair_gather_leaf)(struct parts
           IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, h[j]);
         }
       }
+      IACT_LOOP_ACC_END(p, i);
     }
   }
 }
@@ -240,6 +258,7 @@ __attribute__((unused)) static void IACT_LOOP_FN(_self_gather_leaf)(struct parts
     if (!(IACT_LOOP_ACTIVE(p, i))) continue;
     const double xi[3] = {x[i], y[i], z[i]}, hi = h[i], Hi = kernel_gamma * hi;
     const double Hi2 = Hi * Hi;
+    IACT_LOOP_ACC_BEGIN(p, i);
     for (size_t j = beg; j < end; j++) {
       const double dx[3] = {xi[0] - x[j], xi[1] - y[j], xi[2] - z[j]};
       const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
@@ -247,6 +266,7 @@ __attribute__((unused)) static void IACT_LOOP_FN(_self_gather_leaf)(struct parts
         IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, h[j]);
       }
     }
+    IACT_LOOP_ACC_END(p, i);
   }
 }
 
@@ -301,3 +321,5 @@ __attribute__((unused)) static void IACT_LOOP_FN(_self_gather)(struct parts *p,
 #undef IACT_LOOP_SYM
 #undef IACT_LOOP_NONSYM
 #undef IACT_LOOP_ACTIVE
+#undef IACT_LOOP_ACC_BEGIN
+#undef IACT_LOOP_ACC_END

@@ -125,6 +125,9 @@ static int run_case(struct gpu *g, int periodic, int side, int granite, unsigned
   space_init(&sp, &p, box, periodic, 64, 4);
   space_rebuild(&sp);
   struct engine_cell_tasks *ct = make_ngbs(&sp);
+  /* the top-level cells serve as task cells */
+  struct cell **tcells = malloc(sp.nr_top * sizeof(struct cell *));
+  for (int c = 0; c < sp.nr_top; c++) tcells[c] = &sp.cells[c];
   struct space_pair *pairs;
   const size_t np = space_top_pairs(&sp, &pairs);
   double H_limit = sp.width[0];
@@ -171,8 +174,8 @@ static int run_case(struct gpu *g, int periodic, int side, int granite, unsigned
   struct gpu_cells gc;
   memset(&gc, 0, sizeof gc);
   t0 = error_walltime();
-  const int capped_gpu =
-      gpu_cells_force(g, &gc, &q, &sp, ct, top_h_cap, &hp, &mats, dt_kick, dt_gpu);
+  const int capped_gpu = gpu_cells_force(g, &gc, &q, &sp, tcells, sp.nr_top, ct, top_h_cap, &hp,
+                                         &mats, dt_kick, dt_gpu);
   const double t_gpu = error_walltime() - t0;
 
   /* compare */
@@ -235,6 +238,7 @@ static int run_case(struct gpu *g, int periodic, int side, int granite, unsigned
   free(ct);
   free(pairs);
   free(top_h_cap);
+  free(tcells);
   free(dt_cpu);
   free(dt_gpu);
   space_free(&sp);

@@ -14,8 +14,8 @@
 struct gpu_engine {
   struct gpu *gpu;        /**< the device */
   struct gpu_cells cells; /**< leaves and lists */
-  double *top_h_cap;      /**< cap on h per top-level cell */
-  int nr_top;             /**< its length */
+  double *tc_h_cap;       /**< cap on h per task cell */
+  int nr_tc;              /**< its length */
 };
 
 /** Grow the per-leaf arrays to n. */
@@ -80,24 +80,26 @@ static void gpu_cells_walk(struct gpu_cells *gc, const struct cell *cl, const st
   gpu_cells_add(gc, gc->leaf_of_cell[node->index], shift);
 }
 
-/** Fill the neighbour lists of the leaves below c (ct: its top-level cell's neighbours). */
-static void gpu_cells_lists(struct gpu_cells *gc, const struct space *s, const struct cell *c,
+/** Fill the neighbour lists of the leaves below c (ct: its task cell's
+ *  neighbours, numbers in tcells). */
+static void gpu_cells_lists(struct gpu_cells *gc, struct cell *const *tcells, const struct cell *c,
                             const struct engine_cell_tasks *ct, double growth) {
   if (c->count == 0) return;
   if (c->split) {
     for (int k = 0; k < 8; k++)
-      if (c->progeny[k]) gpu_cells_lists(gc, s, c->progeny[k], ct, growth);
+      if (c->progeny[k]) gpu_cells_lists(gc, tcells, c->progeny[k], ct, growth);
     return;
   }
   const int l = gc->leaf_of_cell[c->index];
   gc->ngb_start[l] = gc->nr_ngb;
   gc->h_list_cap[l] = growth * c->h_max;
   for (int k = 0; k < ct->nr_ngb; k++)
-    gpu_cells_walk(gc, c, &s->cells[ct->ngb[k]], ct->ngb_shift[k], growth);
+    gpu_cells_walk(gc, c, tcells[ct->ngb[k]], ct->ngb_shift[k], growth);
 }
 
-void gpu_cells_build(struct gpu_cells *gc, const struct space *s,
-                     const struct engine_cell_tasks *ct, const double *top_h_cap, double growth) {
+void gpu_cells_build(struct gpu_cells *gc, const struct space *s, struct cell *const *tcells,
+                     int nr, const struct engine_cell_tasks *ct, const double *tc_h_cap,
+                     double growth) {
   if (s->nr_cells > gc->cells_cap) {
     gc->cells_cap = s->nr_cells + s->nr_cells / 2;
     gc->leaf_of_cell = error_realloc(gc->leaf_of_cell, gc->cells_cap * sizeof(int), "GPU leaves");
@@ -105,10 +107,10 @@ void gpu_cells_build(struct gpu_cells *gc, const struct space *s,
   for (int k = 0; k < s->nr_cells; k++) gc->leaf_of_cell[k] = -1;
   gc->n = 0;
   gc->nr_ngb = 0;
-  for (int c = 0; c < s->nr_top; c++) gpu_cells_collect(gc, &s->cells[c], c);
-  for (int c = 0; c < s->nr_top; c++) gpu_cells_lists(gc, s, &s->cells[c], &ct[c], growth);
+  for (int t = 0; t < nr; t++) gpu_cells_collect(gc, tcells[t], t);
+  for (int t = 0; t < nr; t++) gpu_cells_lists(gc, tcells, tcells[t], &ct[t], growth);
   gc->ngb_start[gc->n] = gc->nr_ngb;
-  for (int l = 0; l < gc->n; l++) gc->h_cap[l] = top_h_cap[gc->top[l]];
+  for (int l = 0; l < gc->n; l++) gc->h_cap[l] = tc_h_cap[gc->top[l]];
   gc->growth = growth;
 }
 
@@ -126,16 +128,16 @@ void gpu_cells_free(struct gpu_cells *gc) {
 }
 
 int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct space *s,
-                    const struct engine_cell_tasks *ct, const double *top_h_cap,
-                    const struct hydro_props *hp, const struct material_table *mats, double dt_kick,
-                    double *top_dt_min) {
+                    struct cell *const *tcells, int nr, const struct engine_cell_tasks *ct,
+                    const double *tc_h_cap, const struct hydro_props *hp,
+                    const struct material_table *mats, double dt_kick, double *tc_dt_min) {
   /* lists a quarter wider than the current h_max, widened when h outgrows them */
   double growth = gc->growth > 1.25 ? 0.9 * gc->growth : 1.25;
   if (growth < 1.25) growth = 1.25;
   struct gpu_force_out out;
   double *leaf_dt = NULL;
   for (int attempt = 0;; attempt++) {
-    gpu_cells_build(gc, s, ct, top_h_cap, growth);
+    gpu_cells_build(gc, s, tcells, nr, ct, tc_h_cap, growth);
     leaf_dt = error_realloc(leaf_dt, (gc->n + 1) * sizeof(double), "GPU leaf time steps");
     const struct gpu_leaves lv = {gc->n,        gc->offset,     gc->count,
                                   gc->h_cap,    gc->h_list_cap, gc->ngb_start,
@@ -150,9 +152,9 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
     error_log(2, "GPU: smoothing lengths outgrew the neighbour lists; widening them to %.2f h_max",
               growth);
   }
-  for (int c = 0; c < s->nr_top; c++) top_dt_min[c] = 1e300;
+  for (int t = 0; t < nr; t++) tc_dt_min[t] = 1e300;
   for (int l = 0; l < gc->n; l++)
-    if (leaf_dt[l] < top_dt_min[gc->top[l]]) top_dt_min[gc->top[l]] = leaf_dt[l];
+    if (leaf_dt[l] < tc_dt_min[gc->top[l]]) tc_dt_min[gc->top[l]] = leaf_dt[l];
   free(leaf_dt);
   /* h changed: the CPU's pruning and the rebuild test read the cells' bounds */
   for (int c = 0; c < s->nr_top; c++) cell_update_bounds(p, &s->cells[c]);
@@ -194,17 +196,22 @@ void gpu_engine_init(struct engine *e) {
 
 void gpu_engine_force(struct engine *e) {
   struct gpu_engine *ge = e->gpu;
-  struct space *s = &e->space;
-  if (s->nr_top > ge->nr_top) {
-    ge->top_h_cap = error_realloc(ge->top_h_cap, s->nr_top * sizeof(double), "GPU caps");
-    ge->nr_top = s->nr_top;
+  if (e->nr_tcells > ge->nr_tc) {
+    ge->tc_h_cap = error_realloc(ge->tc_h_cap, e->nr_tcells * sizeof(double), "GPU caps");
+    ge->nr_tc = e->nr_tcells;
   }
+  /* the caps of the CPU ghost (engine_runtask.c): a pair is found while
+   * H_i + |dx_i| + |dx_j| stays below the reach of the task graph */
   const double H_limit = engine_H_limit(e);
-  for (int c = 0; c < s->nr_top; c++)
-    ge->top_h_cap[c] = (H_limit - 2.0 * s->cells[c].dx_max) / kernel_gamma;
+  for (int t = 0; t < e->nr_tcells; t++) {
+    double dx_max = 0.0;
+    for (int k = 0; k < e->ct[t].nr_ngb; k++)
+      if (e->tcells[e->ct[t].ngb[k]]->dx_max > dx_max) dx_max = e->tcells[e->ct[t].ngb[k]]->dx_max;
+    ge->tc_h_cap[t] = (H_limit - 2.0 * dx_max) / kernel_gamma;
+  }
   const double dt_kick = e->first_force ? 0.0 : 0.5 * e->dt;
-  if (gpu_cells_force(ge->gpu, &ge->cells, &e->parts, s, e->ct, ge->top_h_cap, &e->hp, e->mats,
-                      dt_kick, e->cell_dt_min))
+  if (gpu_cells_force(ge->gpu, &ge->cells, &e->parts, &e->space, e->tcells, e->nr_tcells, e->ct,
+                      ge->tc_h_cap, &e->hp, e->mats, dt_kick, e->cell_dt_min))
     e->need_rebuild = 1;
 }
 
@@ -217,7 +224,7 @@ void gpu_engine_free(struct engine *e) {
   if (!ge) return;
   gpu_free(ge->gpu);
   gpu_cells_free(&ge->cells);
-  free(ge->top_h_cap);
+  free(ge->tc_h_cap);
   free(ge);
   e->gpu = NULL;
 }

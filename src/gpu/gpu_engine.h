@@ -12,8 +12,8 @@ struct gpu_cells {
   int n, cap;          /**< leaves and allocated length */
   size_t *offset;      /**< first particle of each leaf */
   int *count;          /**< particles of each leaf */
-  int *top;            /**< top-level cell of each leaf */
-  double *h_cap;       /**< the cells' cap on h of each leaf (its top-level cell's) */
+  int *top;            /**< task cell of each leaf */
+  double *h_cap;       /**< the cells' cap on h of each leaf (its task cell's) */
   double *h_list_cap;  /**< largest h the lists cover */
   int *ngb_start;      /**< n + 1 */
   int nr_ngb, ngb_cap; /**< list entries and allocated length */
@@ -24,24 +24,26 @@ struct gpu_cells {
   double growth;       /**< lists cover h up to growth * the leaf's h_max */
 };
 
-/** Build the leaves of space s and, for each, the leaves of the neighbouring
- *  top-level cells of ct (with their shifts) whose bounding boxes come
- *  within growth * kernel_gamma * max(h_max) plus both drifts.
- *  top_h_cap[c]: the largest h top-level cell c allows. */
-void gpu_cells_build(struct gpu_cells *gc, const struct space *s,
-                     const struct engine_cell_tasks *ct, const double *top_h_cap, double growth);
+/** Build the leaves below the task cells tcells[0..nr) (the engine's, or the
+ *  top-level cells) and, for each leaf, the leaves of the neighbouring task
+ *  cells ct[t] (numbers in tcells, with their shifts) whose bounding boxes
+ *  come within growth * kernel_gamma * max(h_max) plus both drifts.
+ *  tc_h_cap[t]: the largest h task cell t allows. */
+void gpu_cells_build(struct gpu_cells *gc, const struct space *s, struct cell *const *tcells,
+                     int nr, const struct engine_cell_tasks *ct, const double *tc_h_cap,
+                     double growth);
 /** Free the arrays of gc. */
 void gpu_cells_free(struct gpu_cells *gc);
 
-/** Run one FORCE phase on the GPU g over the cells of s (neighbours ct):
- *  build the lists, run, and when some h outgrows them rebuild them wider
- *  and run again.  top_dt_min[c]: the smallest new time step of top-level
- *  cell c.  Returns 1 if a smoothing length was capped by the cells (the
- *  space must be rebuilt), else 0. */
+/** Run one FORCE phase on the GPU g over the task cells tcells[0..nr) of s
+ *  (neighbours ct): build the lists, run, and when some h outgrows them
+ *  rebuild them wider and run again.  tc_dt_min[t]: the smallest new time
+ *  step of task cell t.  Returns 1 if a smoothing length was capped by the
+ *  cells (the space must be rebuilt), else 0. */
 int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct space *s,
-                    const struct engine_cell_tasks *ct, const double *top_h_cap,
-                    const struct hydro_props *hp, const struct material_table *mats, double dt_kick,
-                    double *top_dt_min);
+                    struct cell *const *tcells, int nr, const struct engine_cell_tasks *ct,
+                    const double *tc_h_cap, const struct hydro_props *hp,
+                    const struct material_table *mats, double dt_kick, double *tc_dt_min);
 
 /** Choose where tasks run from Scheduler:gpu and --gpu/--no-gpu, set
  *  e->gpu when the FORCE phase goes to a device, and say so in one line. */

@@ -135,12 +135,14 @@ static long long ic_read_header(struct ic_reader *r, struct ic_info *info) {
       if (dim != 3) error_exit("%s: /Header/Dimension is %lld (Bolide is 3-D)", r->path, dim);
       info->dimension = (int)dim;
     }
-    long long tot[6] = {0}, high[6] = {0};
-    if (ic_attr_llongs(r, g, "/Header", "NumPart_Total", tot, 6)) {
-      ic_attr_llongs(r, g, "/Header", "NumPart_Total_HighWord", high, 6);
+    /* 6 particle types in GADGET files, 7 in current SWIFT ones: accept up to 16 */
+    long long tot[16] = {0}, high[16] = {0};
+    const int ntypes = ic_attr_llongs(r, g, "/Header", "NumPart_Total", tot, 16);
+    if (ntypes) {
+      ic_attr_llongs(r, g, "/Header", "NumPart_Total_HighWord", high, 16);
       /* SWIFT's convention: N = HighWord * 2^32 + Total */
       count = (long long)((unsigned long long)high[0] << 32) + tot[0];
-      for (int t2 = 1; t2 < 6; t2++)
+      for (int t2 = 1; t2 < ntypes; t2++)
         if (tot[t2] != 0 || high[t2] != 0)
           error_log(0, "%s: particles of type %d are ignored (only PartType0 is read)", r->path,
                     t2);

@@ -74,6 +74,7 @@
   X("Gravity:comoving_baryon_softening", PARAM_REAL, "0", 0, PARAM_INF, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
                                                                                                          \
   X("Scheduler:cell_split_size", PARAM_INT, "400", 8, 1000000, NULL, "-", "largest number of particles in a leaf cell") \
+  X("Scheduler:cell_task_size", PARAM_INT, "1000", 8, 100000000, NULL, "-", "tasks work on octree cells of at most this many particles (smaller: more, finer tasks)") \
   X("Scheduler:max_top_level_cells", PARAM_INT, "16", 1, 1024, NULL, "-", "largest number of top-level cells along one side") \
   X("Scheduler:tasks_per_cell", PARAM_REAL, "0", 0, PARAM_INF, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
   X("Scheduler:dump_tasks", PARAM_INT, "0", 0, PARAM_INF, NULL, "-", "write a task timeline (thread, start, end, type, cell) every this many steps (0: never)") \

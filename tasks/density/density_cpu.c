@@ -1,24 +1,45 @@
 /* Density loops on the CPU: the loop skeleton (tasks/iact_loop.h) around
  * the pair interaction of density_iact.h, symmetric form for the self and
- * pair tasks, gather form for the h iteration of the ghost. */
+ * pair tasks, gather form for the h iteration of the ghost.  Particle i's
+ * sums are kept in a local accumulator over its inner loop. */
 #include "density_cpu.h"
 
 #include "hydro_parts.h"
 
-/** Symmetric form: i gets j's contribution if r < H_i, j gets i's if r < H_j. */
-static inline void density_sym(struct parts *p, size_t i, size_t j, double r2, const double dx[3],
-                               double hi, double hj) {
+/** Symmetric form: i (local accumulator acc_i, inverse smoothing length
+ *  hi_inv, velocity vi) gets j's contribution if r < H_i; j gets i's, in the
+ *  arrays, if r < H_j. */
+BOLIDE_ALWAYS_INLINE void density_sym(struct parts *p, size_t i, size_t j, double r2, const double dx[3],
+                               double hi, double hi_inv, double hj, const double vi[3],
+                               struct density_acc *acc_i) {
   const double Hi = kernel_gamma * hi, Hj = kernel_gamma * hj;
-  if (r2 < Hi * Hi) hydro_density_gather(p, i, j, r2, dx, 1.0 / hi);
+  const double dv[3] = {vi[0] - p->vpx[j], vi[1] - p->vpy[j], vi[2] - p->vpz[j]};
+  if (r2 < Hi * Hi) density_iact(r2, dx, hi_inv, p->m[j], dv, acc_i);
   if (r2 < Hj * Hj) {
+    struct density_acc a = {0, 0, 0, 0, 0, {0, 0, 0}};
     const double mdx[3] = {-dx[0], -dx[1], -dx[2]};
-    hydro_density_gather(p, j, i, r2, mdx, 1.0 / hj);
+    const double mdv[3] = {-dv[0], -dv[1], -dv[2]};
+    density_iact(r2, mdx, 1.0 / hj, p->m[i], mdv, &a);
+    hydro_density_add(p, j, &a);
   }
 }
 
+/** Gather form into the local accumulator of i. */
+BOLIDE_ALWAYS_INLINE void density_gather(const struct parts *p, size_t j, double r2, const double dx[3],
+                                  double hi_inv, const double vi[3], struct density_acc *acc_i) {
+  const double dv[3] = {vi[0] - p->vpx[j], vi[1] - p->vpy[j], vi[2] - p->vpz[j]};
+  density_iact(r2, dx, hi_inv, p->m[j], dv, acc_i);
+}
+
 #define IACT_LOOP_NAME density
-#define IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj) density_sym(p, i, j, r2, dx, hi, hj)
-#define IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, hj) hydro_density_gather(p, i, j, r2, dx, 1.0 / (hi))
+#define IACT_LOOP_ACC_BEGIN(p, i)                                      \
+  struct density_acc acc_i = {0, 0, 0, 0, 0, {0, 0, 0}};              \
+  const double vi[3] = {(p)->vpx[i], (p)->vpy[i], (p)->vpz[i]};       \
+  const double hi_inv = 1.0 / (p)->h[i]
+#define IACT_LOOP_ACC_END(p, i) hydro_density_add(p, i, &acc_i)
+#define IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj) \
+  density_sym(p, i, j, r2, dx, hi, hi_inv, hj, vi, &acc_i)
+#define IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, hj) density_gather(p, j, r2, dx, hi_inv, vi, &acc_i)
 #define IACT_LOOP_ACTIVE(p, i) (!((p)->flags[i] & PART_H_CONVERGED))
 #include "iact_loop.h"
 

@@ -1,0 +1,105 @@
+/* Restart files (see restart.h).  Layout: a magic line, the number of
+ * fields, each field's name and element size, the state struct, the particle
+ * count, then every field array in the order of part_fields[]. */
+#include "restart.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "error.h"
+
+#define RESTART_MAGIC "BOLIDE-RESTART-1\n"
+
+/** fwrite that stops with one line on failure. */
+static void restart_put(FILE *f, const void *buf, size_t size, size_t n, const char *path) {
+  if (n && fwrite(buf, size, n, f) != n) {
+    const int err = errno;
+    fclose(f);
+    error_exit("%s: cannot write the restart file: %s", path, strerror(err ? err : EIO));
+  }
+}
+
+/** fread that stops with one line on a short read. */
+static void restart_get(FILE *f, void *buf, size_t size, size_t n, const char *path) {
+  if (n && fread(buf, size, n, f) != n) {
+    fclose(f);
+    error_exit("%s: truncated or unreadable restart file", path);
+  }
+}
+
+void restart_write(const char *dir, const struct restart_state *st, const struct parts *p) {
+  char path[2048], tmp[2100], prev[2100];
+  snprintf(path, sizeof path, "%s/restart.bin", dir);
+  snprintf(tmp, sizeof tmp, "%s.tmp", path);
+  snprintf(prev, sizeof prev, "%s/restart.prev.bin", dir);
+  error_register_tmpfile(tmp);
+  FILE *f = fopen(tmp, "wb");
+  if (!f) error_exit("%s: cannot create the restart file: %s", tmp, strerror(errno));
+  restart_put(f, RESTART_MAGIC, 1, strlen(RESTART_MAGIC), tmp);
+  const int32_t nf = part_nr_fields;
+  restart_put(f, &nf, sizeof nf, 1, tmp);
+  for (int k = 0; k < part_nr_fields; k++) {
+    char name[32] = {0};
+    snprintf(name, sizeof name, "%s", part_fields[k].name);
+    const int32_t size = (int32_t)part_fields[k].size;
+    restart_put(f, name, 1, sizeof name, tmp);
+    restart_put(f, &size, sizeof size, 1, tmp);
+  }
+  restart_put(f, st, sizeof *st, 1, tmp);
+  const uint64_t n = p->count;
+  restart_put(f, &n, sizeof n, 1, tmp);
+  for (int k = 0; k < part_nr_fields; k++)
+    restart_put(f, part_field_array(p, &part_fields[k]), part_fields[k].size, p->count, tmp);
+  if (fflush(f) || fsync(fileno(f))) {
+    const int err = errno;
+    fclose(f);
+    error_exit("%s: cannot write the restart file: %s", tmp, strerror(err));
+  }
+  if (fclose(f)) error_exit("%s: cannot close the restart file: %s", tmp, strerror(errno));
+  /* keep the previous file until the new one is complete */
+  if (access(path, F_OK) == 0 && rename(path, prev))
+    error_exit("%s: cannot rename to %s: %s", path, prev, strerror(errno));
+  if (rename(tmp, path)) error_exit("%s: cannot rename to %s: %s", tmp, path, strerror(errno));
+  error_unregister_tmpfile(tmp);
+}
+
+void restart_read(const char *dir, struct restart_state *st, struct parts *p) {
+  char path[2048];
+  snprintf(path, sizeof path, "%s/restart.bin", dir);
+  FILE *f = fopen(path, "rb");
+  if (!f) error_exit("%s: cannot open the restart file: %s", path, strerror(errno));
+  char magic[sizeof RESTART_MAGIC] = {0};
+  restart_get(f, magic, 1, strlen(RESTART_MAGIC), path);
+  if (memcmp(magic, RESTART_MAGIC, strlen(RESTART_MAGIC))) {
+    fclose(f);
+    error_exit("%s: not a Bolide restart file", path);
+  }
+  int32_t nf;
+  restart_get(f, &nf, sizeof nf, 1, path);
+  if (nf != part_nr_fields) {
+    fclose(f);
+    error_exit("%s: written by a build with %d particle fields, this one has %d", path, nf, part_nr_fields);
+  }
+  for (int k = 0; k < nf; k++) {
+    char name[32];
+    int32_t size;
+    restart_get(f, name, 1, sizeof name, path);
+    restart_get(f, &size, sizeof size, 1, path);
+    name[31] = '\0';
+    if (strcmp(name, part_fields[k].name) || (size_t)size != part_fields[k].size) {
+      fclose(f);
+      error_exit("%s: particle field %d is '%s' (%d bytes) in the file, '%s' in this build", path, k, name,
+                 (int)size, part_fields[k].name);
+    }
+  }
+  restart_get(f, st, sizeof *st, 1, path);
+  uint64_t n;
+  restart_get(f, &n, sizeof n, 1, path);
+  parts_alloc(p, (size_t)n);
+  for (int k = 0; k < part_nr_fields; k++)
+    restart_get(f, part_field_array(p, &part_fields[k]), part_fields[k].size, p->count, path);
+  fclose(f);
+}
