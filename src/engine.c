@@ -300,6 +300,10 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
 /* ------------------------------------------------------------------------ */
 
 void engine_rebuild(struct engine *e) {
+#ifdef HAVE_CUDA
+  gpu_engine_to_host(e);
+  gpu_engine_host_modified(e);
+#endif
   const size_t removed = space_rebuild(&e->space);
   e->nr_removed += (long long)removed;
   engine_make_graph(e);
@@ -320,6 +324,9 @@ static int engine_should_rebuild(const struct engine *e) {
 
 /** Save the state for --restart. */
 static void engine_write_restart(struct engine *e) {
+#ifdef HAVE_CUDA
+  gpu_engine_to_host(e);
+#endif
   struct restart_state st;
   memset(&st, 0, sizeof st);
   st.time = e->time;
@@ -344,8 +351,11 @@ static void engine_write_restart(struct engine *e) {
 /** Run the tasks of one phase on every worker. */
 static void engine_run_phase(struct engine *e, int phase) {
 #ifdef HAVE_CUDA
-  if (phase == ENGINE_PHASE_FORCE && e->gpu) {
-    gpu_engine_force(e);
+  if (e->gpu) {
+    if (phase == ENGINE_PHASE_FORCE)
+      gpu_engine_force(e);
+    else
+      gpu_engine_drift(e);
     return;
   }
 #endif

@@ -175,7 +175,7 @@ static int run_case(struct gpu *g, int periodic, int side, int granite, unsigned
   memset(&gc, 0, sizeof gc);
   t0 = error_walltime();
   const int capped_gpu = gpu_cells_force(g, &gc, &q, &sp, tcells, sp.nr_top, ct, top_h_cap, &hp,
-                                         &mats, dt_kick, dt_gpu);
+                                         &mats, dt_kick, 0, dt_gpu);
   const double t_gpu = error_walltime() - t0;
 
   /* compare */

@@ -44,13 +44,16 @@ static const char *const gpu_stage_names[GPU_T_N] = {"upload", "density", "ghost
                                                      "force",  "kick2",   "download"};
 
 struct gpu {
-  int device;                         /**< CUDA device number */
-  char name[512];                     /**< description for the log */
-  cudaStream_t stream[2];             /**< 0: fields and kernels; 1: cell data */
-  cudaEvent_t ev[GPU_T_N + 1];        /**< stage boundaries of the last phase */
-  cudaEvent_t cells_ready;            /**< stream 1 finished its upload */
-  struct parts dev;                   /**< device arrays of every particle field */
-  size_t capacity;                    /**< their length */
+  int device;                  /**< CUDA device number */
+  char name[512];              /**< description for the log */
+  cudaStream_t stream[2];      /**< 0: fields and kernels; 1: cell data */
+  cudaEvent_t ev[GPU_T_N + 1]; /**< stage boundaries of the last phase */
+  cudaEvent_t cells_ready;     /**< stream 1 finished its upload */
+  cudaEvent_t ev_drift[2];     /**< around the last drift */
+  double t_drift;              /**< accumulated milliseconds of drifts (with the copy back) */
+  long drifts;                 /**< drifts run */
+  struct parts dev;            /**< device arrays of every particle field */
+  size_t capacity;             /**< their length */
   int in[GPU_NR_IN], out[GPU_NR_OUT]; /**< indices in part_fields */
   void *cell_dev, *cell_host;         /**< device buffer and pinned staging of the leaf data */
   double *leaf_dt;                    /**< smallest time step of each leaf (in cell_dev) */
@@ -116,6 +119,7 @@ extern "C" struct gpu *gpu_init(char *why, size_t len) {
     gpu_check(cudaStreamCreateWithFlags(&g->stream[k], cudaStreamNonBlocking));
   for (int k = 0; k <= GPU_T_N; k++) gpu_check(cudaEventCreate(&g->ev[k]));
   gpu_check(cudaEventCreateWithFlags(&g->cells_ready, cudaEventDisableTiming));
+  for (int k = 0; k < 2; k++) gpu_check(cudaEventCreate(&g->ev_drift[k]));
   for (int k = 0; k < GPU_NR_IN; k++) g->in[k] = gpu_field_index(gpu_fields_in[k]);
   for (int k = 0; k < GPU_NR_OUT; k++) g->out[k] = gpu_field_index(gpu_fields_out[k]);
   g->counters_dev = (int *)gpu_alloc(GPU_NR_COUNTERS * sizeof(int), "counters");
@@ -225,14 +229,17 @@ static void gpu_read_counters(struct gpu *g) {
 
 extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu_leaves *lv,
                                 const struct hydro_props *hp, const struct material_table *mats,
-                                double dt_kick, double *leaf_dt_min, struct gpu_force_out *out) {
+                                double dt_kick, double *leaf_dt_min, int resident,
+                                struct gpu_force_out *out) {
   cudaStream_t s = g->stream[0];
   memset(out, 0, sizeof *out);
+  if (resident && (p->count != g->dev.count || !g->dev.x))
+    error_bug("GPU particle arrays are not resident");
   gpu_reserve(g, p->count);
   g->dev.count = p->count;
   gpu_check(cudaEventRecord(g->ev[0], s));
   const struct gpu_leaves_dev dv = gpu_upload_cells(g, lv);
-  gpu_copy_fields(g, p, g->in, GPU_NR_IN, 1);
+  if (!resident) gpu_copy_fields(g, p, g->in, GPU_NR_IN, 1);
   memcpy(g->mats_host, mats, sizeof *mats);
   gpu_check(cudaMemcpyAsync(g->mats_dev, g->mats_host, sizeof *mats, cudaMemcpyHostToDevice, s));
   gpu_check(cudaMemsetAsync(g->counters_dev, 0, GPU_NR_COUNTERS * sizeof(int), s));
@@ -276,7 +283,7 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
   double *leaf_dt = g->leaf_dt;
   kick2_gpu_launch(s, g->dev, dv, *hp, dt_kick, leaf_dt);
   gpu_check(cudaEventRecord(g->ev[5], s));
-  gpu_copy_fields(g, p, g->out, GPU_NR_OUT, 0);
+  if (!resident) gpu_copy_fields(g, p, g->out, GPU_NR_OUT, 0);
   gpu_check(cudaMemcpyAsync(leaf_dt_min, leaf_dt, (size_t)lv->n * sizeof(double),
                             cudaMemcpyDeviceToHost, s));
   gpu_check(cudaEventRecord(g->ev[6], s));
@@ -289,11 +296,51 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
   g->calls++;
 }
 
+extern "C" void gpu_upload_all(struct gpu *g, const struct parts *p) {
+  gpu_reserve(g, p->count);
+  g->dev.count = p->count;
+  for (int f = 0; f < part_nr_fields; f++) {
+    const size_t bytes = p->count * part_fields[f].size;
+    gpu_check(cudaMemcpyAsync(*gpu_field_slot(&g->dev, f), *gpu_field_slot((struct parts *)p, f),
+                              bytes, cudaMemcpyHostToDevice, g->stream[0]));
+    g->bytes_h2d += (double)bytes;
+  }
+  gpu_check(cudaStreamSynchronize(g->stream[0]));
+}
+
+extern "C" void gpu_download_all(struct gpu *g, struct parts *p) {
+  if (p->count != g->dev.count) error_bug("GPU and host particle counts differ");
+  for (int f = 0; f < part_nr_fields; f++) {
+    const size_t bytes = p->count * part_fields[f].size;
+    gpu_check(cudaMemcpyAsync(*gpu_field_slot(p, f), *gpu_field_slot(&g->dev, f), bytes,
+                              cudaMemcpyDeviceToHost, g->stream[0]));
+    g->bytes_d2h += (double)bytes;
+  }
+  gpu_check(cudaStreamSynchronize(g->stream[0]));
+}
+
+extern "C" void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt) {
+  if (p->count != g->dev.count) error_bug("GPU and host particle counts differ");
+  cudaStream_t s = g->stream[0];
+  gpu_check(cudaEventRecord(g->ev_drift[0], s));
+  drift_gpu_launch(s, g->dev, dt_kick, dt);
+  const int idx[4] = {gpu_field_index("x"), gpu_field_index("y"), gpu_field_index("z"),
+                      gpu_field_index("h")};
+  gpu_copy_fields(g, p, idx, 4, 0);
+  gpu_check(cudaEventRecord(g->ev_drift[1], s));
+  gpu_check(cudaStreamSynchronize(s));
+  float ms = 0.0f;
+  gpu_check(cudaEventElapsedTime(&ms, g->ev_drift[0], g->ev_drift[1]));
+  g->t_drift += ms;
+  g->drifts++;
+}
+
 extern "C" void gpu_print_timers(const struct gpu *g, FILE *f) {
   if (g->calls == 0) return;
   fprintf(f, "GPU (%s), %ld force phases, ms per phase:", g->name, g->calls);
   for (int k = 0; k < GPU_T_N; k++) fprintf(f, " %s %.3f", gpu_stage_names[k], g->t[k] / g->calls);
-  fprintf(f, "; bus %.1f MB up, %.1f MB down per phase\n", g->bytes_h2d / g->calls / 1e6,
+  if (g->drifts) fprintf(f, " drift(+x,h back) %.3f", g->t_drift / g->drifts);
+  fprintf(f, "; bus %.1f MB up, %.1f MB down per step\n", g->bytes_h2d / g->calls / 1e6,
           g->bytes_d2h / g->calls / 1e6);
 }
 
@@ -316,6 +363,7 @@ extern "C" void gpu_free(struct gpu *g) {
   gpu_check(cudaFreeHost(g->mats_host));
   for (int k = 0; k <= GPU_T_N; k++) gpu_check(cudaEventDestroy(g->ev[k]));
   gpu_check(cudaEventDestroy(g->cells_ready));
+  for (int k = 0; k < 2; k++) gpu_check(cudaEventDestroy(g->ev_drift[k]));
   for (int k = 0; k < 2; k++) gpu_check(cudaStreamDestroy(g->stream[k]));
   free(g);
 }

@@ -56,15 +56,25 @@ const char *gpu_name(const struct gpu *g);
 /** 1 if every material of mats can be evaluated on the device, else 0 with
  *  the reason in why (tabulated EOS: host pointers). */
 int gpu_supports(const struct material_table *mats, char *why, size_t len);
-/** Run the FORCE phase on the particles p: copy what the loops read to the
- *  device, density, h iteration (repeating the density sums of unconverged
- *  particles), equation of state, forces, second half kick by dt_kick and
- *  new time steps; copy the results back.  leaf_dt_min[L]: smallest new
- *  time step of leaf L.  A particle whose h does not converge in
+/** Run the FORCE phase on the particles p: density, h iteration (repeating
+ *  the density sums of unconverged particles), equation of state, forces,
+ *  second half kick by dt_kick and new time steps.  resident = 0: copy what
+ *  the loops read to the device first and the results back after;
+ *  resident = 1: the device arrays are current (gpu_upload_all), nothing
+ *  but the leaf time steps comes back.  leaf_dt_min[L]: smallest new time
+ *  step of leaf L.  A particle whose h does not converge in
  *  hp->max_iterations stops the run with an error. */
 void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu_leaves *lv,
                      const struct hydro_props *hp, const struct material_table *mats,
-                     double dt_kick, double *leaf_dt_min, struct gpu_force_out *out);
+                     double dt_kick, double *leaf_dt_min, int resident, struct gpu_force_out *out);
+/** Copy every particle field to the device (after a rebuild or a restart). */
+void gpu_upload_all(struct gpu *g, const struct parts *p);
+/** Copy every particle field back to the host (outputs, rebuilds). */
+void gpu_download_all(struct gpu *g, struct parts *p);
+/** First half kick by dt_kick and drift by dt of the resident particles;
+ *  copy back the positions and smoothing lengths (what the CPU needs to
+ *  decide on a rebuild and to build the neighbour lists). */
+void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt);
 /** Print the accumulated time of each stage. */
 void gpu_print_timers(const struct gpu *g, FILE *f);
 /** Bytes copied host -> device and device -> host so far. */

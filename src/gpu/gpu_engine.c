@@ -14,6 +14,8 @@
 struct gpu_engine {
   struct gpu *gpu;        /**< the device */
   struct gpu_cells cells; /**< leaves and lists */
+  int dev_valid;          /**< the device holds the current particles */
+  int host_stale;         /**< the device has changed them since the last copy back */
   double *tc_h_cap;       /**< cap on h per task cell */
   int nr_tc;              /**< its length */
 };
@@ -130,7 +132,8 @@ void gpu_cells_free(struct gpu_cells *gc) {
 int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct space *s,
                     struct cell *const *tcells, int nr, const struct engine_cell_tasks *ct,
                     const double *tc_h_cap, const struct hydro_props *hp,
-                    const struct material_table *mats, double dt_kick, double *tc_dt_min) {
+                    const struct material_table *mats, double dt_kick, int resident,
+                    double *tc_dt_min) {
   /* lists a quarter wider than the current h_max, widened when h outgrows them */
   double growth = gc->growth > 1.25 ? 0.9 * gc->growth : 1.25;
   if (growth < 1.25) growth = 1.25;
@@ -142,7 +145,7 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
     const struct gpu_leaves lv = {gc->n,        gc->offset,     gc->count,
                                   gc->h_cap,    gc->h_list_cap, gc->ngb_start,
                                   gc->ngb_leaf, gc->ngb_shift,  gc->nr_ngb};
-    gpu_force_phase(g, p, &lv, hp, mats, dt_kick, leaf_dt, &out);
+    gpu_force_phase(g, p, &lv, hp, mats, dt_kick, leaf_dt, resident, &out);
     if (!out.overflow) break;
     if (attempt > 30)
       error_bug("GPU neighbour lists did not cover the smoothing lengths after %d widenings",
@@ -156,8 +159,10 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
   for (int l = 0; l < gc->n; l++)
     if (leaf_dt[l] < tc_dt_min[gc->top[l]]) tc_dt_min[gc->top[l]] = leaf_dt[l];
   free(leaf_dt);
-  /* h changed: the CPU's pruning and the rebuild test read the cells' bounds */
-  for (int c = 0; c < s->nr_top; c++) cell_update_bounds(p, &s->cells[c]);
+  /* h changed: the CPU's pruning and the rebuild test read the cells' bounds
+   * (resident particles: the next drift brings h back) */
+  if (!resident)
+    for (int c = 0; c < s->nr_top; c++) cell_update_bounds(p, &s->cells[c]);
   return out.capped;
 }
 
@@ -210,9 +215,37 @@ void gpu_engine_force(struct engine *e) {
     ge->tc_h_cap[t] = (H_limit - 2.0 * dx_max) / kernel_gamma;
   }
   const double dt_kick = e->first_force ? 0.0 : 0.5 * e->dt;
+  if (!ge->dev_valid) {
+    gpu_upload_all(ge->gpu, &e->parts);
+    ge->dev_valid = 1;
+  }
+  ge->host_stale = 1;
   if (gpu_cells_force(ge->gpu, &ge->cells, &e->parts, &e->space, e->tcells, e->nr_tcells, e->ct,
-                      ge->tc_h_cap, &e->hp, e->mats, dt_kick, e->cell_dt_min))
+                      ge->tc_h_cap, &e->hp, e->mats, dt_kick, 1, e->cell_dt_min))
     e->need_rebuild = 1;
+}
+
+void gpu_engine_drift(struct engine *e) {
+  struct gpu_engine *ge = e->gpu;
+  if (!ge->dev_valid) {
+    gpu_upload_all(ge->gpu, &e->parts);
+    ge->dev_valid = 1;
+  }
+  gpu_drift(ge->gpu, &e->parts, 0.5 * e->dt, e->dt);
+  ge->host_stale = 1;
+  /* positions and h are back: the bounds the rebuild test and the lists read */
+  for (int c = 0; c < e->space.nr_top; c++) cell_update_bounds(&e->parts, &e->space.cells[c]);
+}
+
+void gpu_engine_to_host(struct engine *e) {
+  struct gpu_engine *ge = e->gpu;
+  if (!ge || !ge->host_stale) return;
+  gpu_download_all(ge->gpu, &e->parts);
+  ge->host_stale = 0;
+}
+
+void gpu_engine_host_modified(struct engine *e) {
+  if (e->gpu) e->gpu->dev_valid = 0;
 }
 
 void gpu_engine_print(const struct engine *e, FILE *f) {

@@ -38,18 +38,27 @@ void gpu_cells_free(struct gpu_cells *gc);
 /** Run one FORCE phase on the GPU g over the task cells tcells[0..nr) of s
  *  (neighbours ct): build the lists, run, and when some h outgrows them
  *  rebuild them wider and run again.  tc_dt_min[t]: the smallest new time
- *  step of task cell t.  Returns 1 if a smoothing length was capped by the
- *  cells (the space must be rebuilt), else 0. */
+ *  step of task cell t.  resident: as gpu_force_phase.  Returns 1 if a smoothing length was capped
+ * by the cells (the space must be rebuilt), else 0. */
 int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct space *s,
                     struct cell *const *tcells, int nr, const struct engine_cell_tasks *ct,
                     const double *tc_h_cap, const struct hydro_props *hp,
-                    const struct material_table *mats, double dt_kick, double *tc_dt_min);
+                    const struct material_table *mats, double dt_kick, int resident,
+                    double *tc_dt_min);
 
 /** Choose where tasks run from Scheduler:gpu and --gpu/--no-gpu, set
  *  e->gpu when the FORCE phase goes to a device, and say so in one line. */
 void gpu_engine_init(struct engine *e);
 /** The FORCE phase of the engine on its GPU. */
 void gpu_engine_force(struct engine *e);
+/** The DRIFT phase on the GPU: kick1 and drift of the resident particles;
+ *  positions and h come back, the cells' bounds are updated. */
+void gpu_engine_drift(struct engine *e);
+/** Copy the particles back when the device has changed them (before
+ *  statistics, snapshots, restart files and rebuilds). */
+void gpu_engine_to_host(struct engine *e);
+/** The host changed the particles (rebuild, restart): upload before the next phase. */
+void gpu_engine_host_modified(struct engine *e);
 /** Print the GPU's timers. */
 void gpu_engine_print(const struct engine *e, FILE *f);
 /** Free the GPU state of the engine. */

@@ -47,6 +47,8 @@ void ghost_gpu_finish_launch(cudaStream_t s, struct parts p, struct gpu_leaves_d
 /** Forces, gather form with r < max(H_i, H_j) (tasks/force/force_gpu.cu). */
 void force_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
                       struct hydro_props hp);
+/** First half kick and drift of every particle (tasks/drift/drift_gpu.cu). */
+void drift_gpu_launch(cudaStream_t s, struct parts p, double dt_kick, double dt);
 /** Second half kick and time step; leaf_dt[L] the smallest of leaf L (tasks/kick/kick_gpu.cu). */
 void kick2_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
                       struct hydro_props hp, double dt_kick, double *leaf_dt);

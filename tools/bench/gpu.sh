@@ -62,6 +62,8 @@ TimeIntegration:
 Snapshots:
   subdir: out
   delta_time: 1e30
+Statistics:
+  delta_time: 1e30
 $mats
 SPH:
   resolution_eta: 1.2348
