@@ -64,6 +64,9 @@ struct gpu {
   double t[GPU_T_N];                  /**< accumulated milliseconds per stage */
   long calls;                         /**< FORCE phases run */
   double bytes_h2d, bytes_d2h;        /**< traffic over the bus */
+  long full_up, full_down;            /**< copies of every field (rebuilds, outputs) */
+  void *pinned[64];                   /**< host arrays registered as pinned memory, by field */
+  size_t pinned_bytes;                /**< bytes per field registered */
 };
 
 void gpu_check_fail(cudaError_t err, const char *what, const char *file, int line) {
@@ -192,6 +195,10 @@ static struct gpu_leaves_dev gpu_upload_cells(struct gpu *g, const struct gpu_le
   g->bytes_h2d += (double)off[7];
   struct gpu_leaves_dev dv;
   dv.n = lv->n;
+  /* a warp per 32 particles of the mean leaf, so few threads idle */
+  const double mean =
+      lv->n ? (double)(lv->offset[lv->n - 1] + lv->count[lv->n - 1] - lv->offset[0]) / lv->n : 0.0;
+  dv.block = mean <= 40.0 ? 32 : (mean <= 96.0 ? 64 : GPU_BLOCK);
   dv.offset = (const size_t *)(d + off[0]);
   dv.count = (const int *)(d + off[1]);
   dv.h_cap = (const double *)(d + off[2]);
@@ -296,7 +303,36 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
   g->calls++;
 }
 
+/** Register the particle arrays of p as pinned (page-locked) memory, so
+ *  that copies run at the bus's full rate and asynchronously; again when
+ *  the arrays moved (parts_reserve). */
+static void gpu_pin(struct gpu *g, const struct parts *p) {
+  if (part_nr_fields > 64) error_bug("too many particle fields to pin");
+  int same = g->pinned_bytes == p->capacity;
+  for (int f = 0; f < part_nr_fields && same; f++)
+    same = g->pinned[f] == *gpu_field_slot((struct parts *)p, f);
+  if (same) return;
+  gpu_unpin(g);
+  for (int f = 0; f < part_nr_fields; f++) {
+    void *a = *gpu_field_slot((struct parts *)p, f);
+    gpu_check(cudaHostRegister(a, p->capacity * part_fields[f].size, cudaHostRegisterDefault));
+    g->pinned[f] = a;
+  }
+  g->pinned_bytes = p->capacity;
+}
+
+extern "C" void gpu_unpin(struct gpu *g) {
+  for (int f = 0; f < part_nr_fields; f++)
+    if (g->pinned[f]) {
+      gpu_check(cudaHostUnregister(g->pinned[f]));
+      g->pinned[f] = NULL;
+    }
+  g->pinned_bytes = 0;
+}
+
 extern "C" void gpu_upload_all(struct gpu *g, const struct parts *p) {
+  gpu_pin(g, p);
+  g->full_up++;
   gpu_reserve(g, p->count);
   g->dev.count = p->count;
   for (int f = 0; f < part_nr_fields; f++) {
@@ -310,6 +346,8 @@ extern "C" void gpu_upload_all(struct gpu *g, const struct parts *p) {
 
 extern "C" void gpu_download_all(struct gpu *g, struct parts *p) {
   if (p->count != g->dev.count) error_bug("GPU and host particle counts differ");
+  gpu_pin(g, p);
+  g->full_down++;
   for (int f = 0; f < part_nr_fields; f++) {
     const size_t bytes = p->count * part_fields[f].size;
     gpu_check(cudaMemcpyAsync(*gpu_field_slot(p, f), *gpu_field_slot(&g->dev, f), bytes,
@@ -321,6 +359,7 @@ extern "C" void gpu_download_all(struct gpu *g, struct parts *p) {
 
 extern "C" void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt) {
   if (p->count != g->dev.count) error_bug("GPU and host particle counts differ");
+  gpu_pin(g, p);
   cudaStream_t s = g->stream[0];
   gpu_check(cudaEventRecord(g->ev_drift[0], s));
   drift_gpu_launch(s, g->dev, dt_kick, dt);
@@ -340,6 +379,7 @@ extern "C" void gpu_print_timers(const struct gpu *g, FILE *f) {
   fprintf(f, "GPU (%s), %ld force phases, ms per phase:", g->name, g->calls);
   for (int k = 0; k < GPU_T_N; k++) fprintf(f, " %s %.3f", gpu_stage_names[k], g->t[k] / g->calls);
   if (g->drifts) fprintf(f, " drift(+x,h back) %.3f", g->t_drift / g->drifts);
+  fprintf(f, "; %ld full uploads, %ld full downloads", g->full_up, g->full_down);
   fprintf(f, "; bus %.1f MB up, %.1f MB down per step\n", g->bytes_h2d / g->calls / 1e6,
           g->bytes_d2h / g->calls / 1e6);
 }
@@ -351,6 +391,7 @@ extern "C" void gpu_bytes_moved(const struct gpu *g, double *h2d, double *d2h) {
 
 extern "C" void gpu_free(struct gpu *g) {
   if (!g) return;
+  gpu_unpin(g);
   for (int k = 0; k < part_nr_fields; k++) {
     void **slot = gpu_field_slot(&g->dev, k);
     if (*slot) gpu_check(cudaFree(*slot));

@@ -75,6 +75,8 @@ void gpu_download_all(struct gpu *g, struct parts *p);
  *  copy back the positions and smoothing lengths (what the CPU needs to
  *  decide on a rebuild and to build the neighbour lists). */
 void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt);
+/** Unregister the pinned particle arrays (before they are freed). */
+void gpu_unpin(struct gpu *g);
 /** Print the accumulated time of each stage. */
 void gpu_print_timers(const struct gpu *g, FILE *f);
 /** Bytes copied host -> device and device -> host so far. */

@@ -16,6 +16,8 @@ struct gpu_engine {
   struct gpu_cells cells; /**< leaves and lists */
   int dev_valid;          /**< the device holds the current particles */
   int host_stale;         /**< the device has changed them since the last copy back */
+  double t_bounds;        /**< host seconds updating cell bounds after drifts */
+  long steps;             /**< FORCE phases run */
   double *tc_h_cap;       /**< cap on h per task cell */
   int nr_tc;              /**< its length */
 };
@@ -140,7 +142,9 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
   struct gpu_force_out out;
   double *leaf_dt = NULL;
   for (int attempt = 0;; attempt++) {
+    const double w0 = error_walltime();
     gpu_cells_build(gc, s, tcells, nr, ct, tc_h_cap, growth);
+    gc->t_build += error_walltime() - w0;
     leaf_dt = error_realloc(leaf_dt, (gc->n + 1) * sizeof(double), "GPU leaf time steps");
     const struct gpu_leaves lv = {gc->n,        gc->offset,     gc->count,
                                   gc->h_cap,    gc->h_list_cap, gc->ngb_start,
@@ -195,7 +199,9 @@ void gpu_engine_init(struct engine *e) {
   struct gpu_engine *ge = error_calloc(1, sizeof *ge, "GPU state");
   ge->gpu = g;
   e->gpu = ge;
-  error_log(0, "GPU %s: density, ghost, force and kick2 of every cell run on it; drift on the CPU",
+  error_log(0,
+            "GPU %s: drift, density, ghost, force and kick2 of every cell run on it, the particles "
+            "stay on it between steps",
             gpu_name(g));
 }
 
@@ -234,7 +240,10 @@ void gpu_engine_drift(struct engine *e) {
   gpu_drift(ge->gpu, &e->parts, 0.5 * e->dt, e->dt);
   ge->host_stale = 1;
   /* positions and h are back: the bounds the rebuild test and the lists read */
+  const double w0 = error_walltime();
   for (int c = 0; c < e->space.nr_top; c++) cell_update_bounds(&e->parts, &e->space.cells[c]);
+  ge->t_bounds += error_walltime() - w0;
+  ge->steps++;
 }
 
 void gpu_engine_to_host(struct engine *e) {
@@ -249,12 +258,18 @@ void gpu_engine_host_modified(struct engine *e) {
 }
 
 void gpu_engine_print(const struct engine *e, FILE *f) {
-  if (e->gpu) gpu_print_timers(e->gpu->gpu, f);
+  const struct gpu_engine *ge = e->gpu;
+  if (!ge) return;
+  gpu_print_timers(ge->gpu, f);
+  if (ge->steps)
+    fprintf(f, "GPU host side, ms per step: neighbour lists %.3f, cell bounds %.3f\n",
+            1e3 * ge->cells.t_build / ge->steps, 1e3 * ge->t_bounds / ge->steps);
 }
 
 void gpu_engine_free(struct engine *e) {
   struct gpu_engine *ge = e->gpu;
   if (!ge) return;
+  gpu_unpin(ge->gpu);
   gpu_free(ge->gpu);
   gpu_cells_free(&ge->cells);
   free(ge->tc_h_cap);

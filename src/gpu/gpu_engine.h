@@ -22,6 +22,7 @@ struct gpu_cells {
   int *leaf_of_cell;   /**< leaf number of each cell of the space (-1: not a leaf) */
   int cells_cap;       /**< allocated length of leaf_of_cell */
   double growth;       /**< lists cover h up to growth * the leaf's h_max */
+  double t_build;      /**< host seconds spent in gpu_cells_build */
 };
 
 /** Build the leaves below the task cells tcells[0..nr) (the engine's, or the

@@ -11,14 +11,16 @@
 
 struct material_table;
 
-/** Threads per block: one block per leaf cell, its threads over the leaf's
- *  particles; every thread of a warp reads the same neighbour j at a time
- *  (a broadcast load). */
+/** Most threads per block.  The leaf kernels run one block per leaf cell,
+ *  its threads over the leaf's particles (32, 64 or 128 of them, from the
+ *  mean leaf size, struct gpu_leaves_dev.block); every thread of a warp
+ *  reads the same neighbour j at a time (a broadcast load). */
 #define GPU_BLOCK 128
 
 /** The leaves and their neighbour lists in device memory (struct gpu_leaves). */
 struct gpu_leaves_dev {
   int n;                    /**< number of leaves */
+  int block;                /**< threads per block of the leaf kernels (<= GPU_BLOCK) */
   const size_t *offset;     /**< first particle of each leaf */
   const int *count;         /**< particles of each leaf */
   const double *h_cap;      /**< the top-level cells' cap on h */

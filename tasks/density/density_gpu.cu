@@ -45,6 +45,6 @@ __global__ void density_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, int
 void density_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
                         int only_unconverged) {
   if (lv.n == 0) return;
-  density_gpu_kernel<<<lv.n, GPU_BLOCK, 0, s>>>(p, lv, only_unconverged);
+  density_gpu_kernel<<<lv.n, lv.block, 0, s>>>(p, lv, only_unconverged);
   gpu_check_launch(density_gpu_kernel);
 }

@@ -47,6 +47,6 @@ __global__ void force_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, struc
 void force_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
                       struct hydro_props hp) {
   if (lv.n == 0) return;
-  force_gpu_kernel<<<lv.n, GPU_BLOCK, 0, s>>>(p, lv, hp);
+  force_gpu_kernel<<<lv.n, lv.block, 0, s>>>(p, lv, hp);
   gpu_check_launch(force_gpu_kernel);
 }

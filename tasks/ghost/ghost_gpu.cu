@@ -53,20 +53,20 @@ __global__ void ghost_gpu_finish_kernel(struct parts p, struct gpu_leaves_dev lv
 void ghost_gpu_start_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
                             struct hydro_props hp, int *counters) {
   if (lv.n == 0) return;
-  ghost_gpu_start_kernel<<<lv.n, GPU_BLOCK, 0, s>>>(p, lv, hp, counters);
+  ghost_gpu_start_kernel<<<lv.n, lv.block, 0, s>>>(p, lv, hp, counters);
   gpu_check_launch(ghost_gpu_start_kernel);
 }
 
 void ghost_gpu_step_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
                            struct hydro_props hp, int *counters) {
   if (lv.n == 0) return;
-  ghost_gpu_step_kernel<<<lv.n, GPU_BLOCK, 0, s>>>(p, lv, hp, counters);
+  ghost_gpu_step_kernel<<<lv.n, lv.block, 0, s>>>(p, lv, hp, counters);
   gpu_check_launch(ghost_gpu_step_kernel);
 }
 
 void ghost_gpu_finish_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
                              struct hydro_props hp, const struct material_table *mats) {
   if (lv.n == 0) return;
-  ghost_gpu_finish_kernel<<<lv.n, GPU_BLOCK, 0, s>>>(p, lv, hp, mats);
+  ghost_gpu_finish_kernel<<<lv.n, lv.block, 0, s>>>(p, lv, hp, mats);
   gpu_check_launch(ghost_gpu_finish_kernel);
 }

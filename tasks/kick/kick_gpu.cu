@@ -28,6 +28,6 @@ __global__ void kick2_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, struc
 void kick2_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
                       struct hydro_props hp, double dt_kick, double *leaf_dt) {
   if (lv.n == 0) return;
-  kick2_gpu_kernel<<<lv.n, GPU_BLOCK, 0, s>>>(p, lv, hp, dt_kick, leaf_dt);
+  kick2_gpu_kernel<<<lv.n, lv.block, 0, s>>>(p, lv, hp, dt_kick, leaf_dt);
   gpu_check_launch(kick2_gpu_kernel);
 }

@@ -6,7 +6,9 @@
 # (each run's mean step).  Prints one table (markdown) and the GPU's stage
 # times of the last GPU run of each case.
 #
-# Usage: tools/bench/gpu.sh [-n "1e5 1e6"] [-p "box sedov impact"] [-r 3] [-s 4]
+# Usage: tools/bench/gpu.sh [-n "1e5 1e6"] [-p "box sedov impact"] [-r 3] [-s 4] [-g "GPU ARGS"]
+#   -g  extra bolide arguments for the GPU runs only, e.g.
+#       "-P Scheduler:cell_split_size:64" (smaller leaves: shorter GPU loops)
 # Env:   BOLIDE_BUILD (build folder), BOLIDE_BENCH_IC (make_impact_ic.py),
 #        PYTHON (with numpy and h5py, for the impact IC)
 set -euo pipefail
@@ -14,9 +16,10 @@ top="$(cd "$(dirname "$0")/../.." && pwd)"
 build=${BOLIDE_BUILD:-$top/_build}
 python=${PYTHON:-python3}
 gen=${BOLIDE_BENCH_IC:-$top/../shared/bench/make_impact_ic.py}
-sizes="1e5 1e6"; problems="box sedov impact"; repeat=3; steps=4
-while getopts "n:p:r:s:" o; do
-  case $o in n) sizes=$OPTARG ;; p) problems=$OPTARG ;; r) repeat=$OPTARG ;; s) steps=$OPTARG ;; *) exit 2 ;; esac
+sizes="1e5 1e6"; problems="box sedov impact"; repeat=3; steps=4; gpu_args=""
+while getopts "n:p:r:s:g:" o; do
+  case $o in n) sizes=$OPTARG ;; p) problems=$OPTARG ;; r) repeat=$OPTARG ;; s) steps=$OPTARG ;;
+             g) gpu_args=$OPTARG ;; *) exit 2 ;; esac
 done
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
@@ -25,7 +28,7 @@ printf "# %s on %s (%s, %d cores); GPU: %s\n" "$("$build/bolide" --version | hea
   "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')" "$ncpu" \
   "$(nvidia-smi --query-gpu=name --format=csv,noheader 2>/dev/null | head -1)"
 printf "# median of %d runs of %d steps, every particle active, hydro only\n" "$repeat" "$steps"
-printf "| problem | N | CPU %d threads s/step | GPU s/step | speed-up |\n|---|---|---|---|---|\n" "$ncpu"
+printf "| problem | N | CPU %d threads s/step | GPU %s s/step | speed-up |\n|---|---|---|---|---|\n" "$ncpu" "$gpu_args"
 stages=""
 
 # run FLAG: median over the repeats of the mean wall time per step
@@ -75,8 +78,8 @@ YML
     N=$(awk '/read [0-9]+ particles/ {for (k = 1; k <= NF; k++) if ($k == "read") print $(k + 1)}' \
         <("$build/bolide" --check p.yml 2>&1 || true) | head -1)
     cpu=$(run --no-gpu)
-    gpu=$(run --gpu)
-    stages="$stages$prob $N: $(grep -m1 '^GPU (' run.log | sed 's/^GPU ([^)]*), //')"$'\n'
+    gpu=$(run "--gpu $gpu_args")
+    stages="$stages$prob $N: $(grep -m1 '^GPU (' run.log | sed 's/^GPU ([^)]*), //'); $(grep -m1 '^GPU host' run.log)"$'\n'
     printf "| %s | %s | %.4f | %.4f | %.1f |\n" "$prob" "$N" "$cpu" "$gpu" "$(awk -v a=$cpu -v b=$gpu 'BEGIN {print a / b}')"
   done
 done
