@@ -173,6 +173,7 @@ static int run_case(struct gpu *g, int periodic, int side, int granite, unsigned
   for (int c = 0; c < sp.nr_top; c++) cell_update_bounds(&q, &sp.cells[c]);
   struct gpu_cells gc;
   memset(&gc, 0, sizeof gc);
+  gc.nr_threads = 3; /* the threaded list build */
   t0 = error_walltime();
   const int capped_gpu = gpu_cells_force(g, &gc, &q, &sp, tcells, sp.nr_top, ct, top_h_cap, &hp,
                                          &mats, dt_kick, 0, dt_gpu);

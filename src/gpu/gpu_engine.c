@@ -2,6 +2,7 @@
 #include "gpu_engine.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -34,19 +35,6 @@ static void gpu_cells_reserve(struct gpu_cells *gc, int n) {
   gc->ngb_start = error_realloc(gc->ngb_start, (gc->cap + 1) * sizeof(int), "GPU leaves");
 }
 
-/** Append one list entry. */
-static void gpu_cells_add(struct gpu_cells *gc, int leaf, const double shift[3]) {
-  if (gc->nr_ngb == gc->ngb_cap) {
-    gc->ngb_cap = gc->ngb_cap ? 2 * gc->ngb_cap : 4096;
-    gc->ngb_leaf = error_realloc(gc->ngb_leaf, gc->ngb_cap * sizeof(int), "GPU neighbour lists");
-    gc->ngb_shift = error_realloc(gc->ngb_shift, 3 * (size_t)gc->ngb_cap * sizeof(double),
-                                  "GPU neighbour lists");
-  }
-  gc->ngb_leaf[gc->nr_ngb] = leaf;
-  for (int k = 0; k < 3; k++) gc->ngb_shift[3 * (size_t)gc->nr_ngb + k] = shift[k];
-  gc->nr_ngb++;
-}
-
 /** Number the non-empty leaves below c. */
 static void gpu_cells_collect(struct gpu_cells *gc, const struct cell *c, int top) {
   if (c->count == 0) return;
@@ -63,59 +51,185 @@ static void gpu_cells_collect(struct gpu_cells *gc, const struct cell *c, int to
   gc->n++;
 }
 
-/** Add the leaves below node that leaf l (cell cl) can reach at shift. */
-static void gpu_cells_walk(struct gpu_cells *gc, const struct cell *cl, const struct cell *node,
-                           const double shift[3], double growth) {
-  if (node->count == 0) return;
-  const double hm = cl->h_max > node->h_max ? cl->h_max : node->h_max;
-  const double R = growth * kernel_gamma * hm + cl->dx_max + node->dx_max;
-  /* widened as the CPU loops' pruning (iact_loop.h): never drop a pair the
-   * particle test keeps */
-  double scale = 0.0;
-  for (int k = 0; k < 3; k++)
-    scale += fabs(cl->loc[k]) + cl->width[k] + fabs(node->loc[k]) + node->width[k] + fabs(shift[k]);
-  const double Rs = R * (1.0 + 1e-10) + 1e-13 * scale;
-  if (cell_bbox_dist2(cl, node, shift) > Rs * Rs) return;
-  if (node->split) {
-    for (int k = 0; k < 8; k++)
-      if (node->progeny[k]) gpu_cells_walk(gc, cl, node->progeny[k], shift, growth);
-    return;
+/** One worker of the list build: the task cells [t0, t1), whose leaves are
+ *  the contiguous range [l0, l1), and the entries it found. */
+struct gpu_cells_job {
+  struct gpu_cells *gc;               /**< leaves (read only here) */
+  struct cell *const *tcells;         /**< the task cells */
+  const struct engine_cell_tasks *ct; /**< their neighbours */
+  double growth;                      /**< reach factor */
+  int t0, t1, l0, l1;                 /**< task cells and leaves of this worker */
+  int n, cap;                         /**< entries found and allocated */
+  int *li, *lj;                       /**< leaf pairs: lj is a neighbour of li */
+  double *shift;                      /**< 3 per entry */
+  int *count;                         /**< entries per leaf of [l0, l1) */
+  int *leaf;                          /**< the entries sorted by li: neighbouring leaf */
+  double *sshift;                     /**< and its shift */
+};
+
+/** Record that leaf lj (at shift) is a neighbour of leaf li. */
+static void gpu_cells_job_add(struct gpu_cells_job *jb, int li, int lj, const double shift[3]) {
+  if (jb->n == jb->cap) {
+    jb->cap = jb->cap ? 2 * jb->cap : 4096;
+    jb->li = error_realloc(jb->li, jb->cap * sizeof(int), "GPU neighbour lists");
+    jb->lj = error_realloc(jb->lj, jb->cap * sizeof(int), "GPU neighbour lists");
+    jb->shift =
+        error_realloc(jb->shift, 3 * (size_t)jb->cap * sizeof(double), "GPU neighbour lists");
   }
-  gpu_cells_add(gc, gc->leaf_of_cell[node->index], shift);
+  jb->li[jb->n] = li;
+  jb->lj[jb->n] = lj;
+  for (int k = 0; k < 3; k++) jb->shift[3 * (size_t)jb->n + k] = shift[k];
+  jb->n++;
 }
 
-/** Fill the neighbour lists of the leaves below c (ct: its task cell's
- *  neighbours, numbers in tcells). */
-static void gpu_cells_lists(struct gpu_cells *gc, struct cell *const *tcells, const struct cell *c,
-                            const struct engine_cell_tasks *ct, double growth) {
+/** Dual walk of the trees below ci and cj (cj at shift): every pair of
+ *  leaves whose bounding boxes come within growth * kernel_gamma * the
+ *  larger h_max plus both drifts, pruning whole sub-trees on both sides
+ *  (the test of the CPU loops, iact_loop.h, with the lists' margin). */
+static void gpu_cells_walk(struct gpu_cells_job *jb, const struct cell *ci, const struct cell *cj,
+                           const double shift[3]) {
+  if (ci->count == 0 || cj->count == 0) return;
+  const double hm = ci->h_max > cj->h_max ? ci->h_max : cj->h_max;
+  const double R = jb->growth * kernel_gamma * hm + ci->dx_max + cj->dx_max;
+  /* widened as the CPU loops' pruning: never drop a pair the particle test keeps */
+  double scale = 0.0;
+  for (int k = 0; k < 3; k++)
+    scale += fabs(ci->loc[k]) + ci->width[k] + fabs(cj->loc[k]) + cj->width[k] + fabs(shift[k]);
+  const double Rs = R * (1.0 + 1e-10) + 1e-13 * scale;
+  if (cell_bbox_dist2(ci, cj, shift) > Rs * Rs) return;
+  if (ci->split && (!cj->split || ci->count >= cj->count)) {
+    for (int k = 0; k < 8; k++)
+      if (ci->progeny[k]) gpu_cells_walk(jb, ci->progeny[k], cj, shift);
+  } else if (cj->split) {
+    for (int k = 0; k < 8; k++)
+      if (cj->progeny[k]) gpu_cells_walk(jb, ci, cj->progeny[k], shift);
+  } else {
+    gpu_cells_job_add(jb, jb->gc->leaf_of_cell[ci->index], jb->gc->leaf_of_cell[cj->index], shift);
+  }
+}
+
+/** Set h_list_cap of the leaves below c. */
+static void gpu_cells_caps(struct gpu_cells *gc, const struct cell *c, double growth) {
   if (c->count == 0) return;
   if (c->split) {
     for (int k = 0; k < 8; k++)
-      if (c->progeny[k]) gpu_cells_lists(gc, tcells, c->progeny[k], ct, growth);
+      if (c->progeny[k]) gpu_cells_caps(gc, c->progeny[k], growth);
     return;
   }
-  const int l = gc->leaf_of_cell[c->index];
-  gc->ngb_start[l] = gc->nr_ngb;
-  gc->h_list_cap[l] = growth * c->h_max;
-  for (int k = 0; k < ct->nr_ngb; k++)
-    gpu_cells_walk(gc, c, tcells[ct->ngb[k]], ct->ngb_shift[k], growth);
+  gc->h_list_cap[gc->leaf_of_cell[c->index]] = growth * c->h_max;
+}
+
+/** Thread body: walk the task cells of the job, then sort its entries by
+ *  leaf (counting sort over its leaf range). */
+static void *gpu_cells_job_run(void *arg) {
+  struct gpu_cells_job *jb = arg;
+  jb->n = 0;
+  for (int t = jb->t0; t < jb->t1; t++) {
+    const struct engine_cell_tasks *ct = &jb->ct[t];
+    gpu_cells_caps(jb->gc, jb->tcells[t], jb->growth);
+    for (int k = 0; k < ct->nr_ngb; k++)
+      gpu_cells_walk(jb, jb->tcells[t], jb->tcells[ct->ngb[k]], ct->ngb_shift[k]);
+  }
+  const int nl = jb->l1 - jb->l0;
+  jb->count = error_realloc(jb->count, (nl + 1) * sizeof(int), "GPU neighbour lists");
+  jb->leaf = error_realloc(jb->leaf, (jb->n + 1) * sizeof(int), "GPU neighbour lists");
+  jb->sshift =
+      error_realloc(jb->sshift, 3 * ((size_t)jb->n + 1) * sizeof(double), "GPU neighbour lists");
+  int *pos = error_calloc(nl + 1, sizeof(int), "GPU neighbour lists");
+  for (int e = 0; e < jb->n; e++) pos[jb->li[e] - jb->l0 + 1]++;
+  for (int l = 0; l < nl; l++) {
+    jb->count[l] = pos[l + 1];
+    pos[l + 1] += pos[l];
+  }
+  for (int e = 0; e < jb->n; e++) {
+    const int q = pos[jb->li[e] - jb->l0]++;
+    jb->leaf[q] = jb->lj[e];
+    for (int k = 0; k < 3; k++) jb->sshift[3 * (size_t)q + k] = jb->shift[3 * (size_t)e + k];
+  }
+  free(pos);
+  return NULL;
+}
+
+/** Free the buffers of a job. */
+static void gpu_cells_job_free(struct gpu_cells_job *jb) {
+  free(jb->li);
+  free(jb->lj);
+  free(jb->shift);
+  free(jb->count);
+  free(jb->leaf);
+  free(jb->sshift);
 }
 
 void gpu_cells_build(struct gpu_cells *gc, const struct space *s, struct cell *const *tcells,
                      int nr, const struct engine_cell_tasks *ct, const double *tc_h_cap,
-                     double growth) {
+                     double growth, int nr_threads) {
   if (s->nr_cells > gc->cells_cap) {
     gc->cells_cap = s->nr_cells + s->nr_cells / 2;
     gc->leaf_of_cell = error_realloc(gc->leaf_of_cell, gc->cells_cap * sizeof(int), "GPU leaves");
   }
   for (int k = 0; k < s->nr_cells; k++) gc->leaf_of_cell[k] = -1;
   gc->n = 0;
-  gc->nr_ngb = 0;
-  for (int t = 0; t < nr; t++) gpu_cells_collect(gc, tcells[t], t);
-  for (int t = 0; t < nr; t++) gpu_cells_lists(gc, tcells, tcells[t], &ct[t], growth);
-  gc->ngb_start[gc->n] = gc->nr_ngb;
+  int *first_leaf = error_malloc((nr + 1) * sizeof(int), "GPU leaves");
+  for (int t = 0; t < nr; t++) {
+    first_leaf[t] = gc->n;
+    gpu_cells_collect(gc, tcells[t], t);
+  }
+  first_leaf[nr] = gc->n;
+  gpu_cells_reserve(gc, gc->n + 1);
+
+  /* workers over contiguous ranges of task cells, so that each one's leaves
+   * are contiguous too and the lists join by concatenation */
+  int nt = nr_threads < 1 ? 1 : nr_threads;
+  if (nt > nr) nt = nr > 0 ? nr : 1;
+  struct gpu_cells_job *jobs = error_calloc(nt, sizeof *jobs, "GPU list jobs");
+  pthread_t *tid = error_malloc(nt * sizeof(pthread_t), "GPU list threads");
+  for (int w = 0; w < nt; w++) {
+    struct gpu_cells_job *jb = &jobs[w];
+    jb->gc = gc;
+    jb->tcells = tcells;
+    jb->ct = ct;
+    jb->growth = growth;
+    /* split by leaves, a proxy for the work */
+    jb->t0 = w == 0 ? 0 : jobs[w - 1].t1;
+    const long target = (long)gc->n * (w + 1) / nt;
+    int t = jb->t0;
+    while (t < nr && (w == nt - 1 || first_leaf[t] < target)) t++;
+    jb->t1 = t;
+    jb->l0 = first_leaf[jb->t0];
+    jb->l1 = first_leaf[jb->t1];
+    if (w > 0 && pthread_create(&tid[w], NULL, gpu_cells_job_run, jb))
+      error_exit("cannot start a thread to build the GPU neighbour lists");
+  }
+  gpu_cells_job_run(&jobs[0]);
+  for (int w = 1; w < nt; w++) pthread_join(tid[w], NULL);
+
+  int total = 0;
+  for (int w = 0; w < nt; w++) total += jobs[w].n;
+  if (total > gc->ngb_cap) {
+    gc->ngb_cap = total + total / 4 + 1024;
+    gc->ngb_leaf = error_realloc(gc->ngb_leaf, gc->ngb_cap * sizeof(int), "GPU neighbour lists");
+    gc->ngb_shift = error_realloc(gc->ngb_shift, 3 * (size_t)gc->ngb_cap * sizeof(double),
+                                  "GPU neighbour lists");
+  }
+  int at = 0;
+  for (int w = 0; w < nt; w++) {
+    const struct gpu_cells_job *jb = &jobs[w];
+    for (int l = jb->l0; l < jb->l1; l++) {
+      gc->ngb_start[l] = at;
+      at += jb->count[l - jb->l0];
+    }
+    memcpy(gc->ngb_leaf + (at - jb->n), jb->leaf, jb->n * sizeof(int));
+    memcpy(gc->ngb_shift + 3 * (size_t)(at - jb->n), jb->sshift,
+           3 * (size_t)jb->n * sizeof(double));
+    gpu_cells_job_free(&jobs[w]);
+  }
+  gc->nr_ngb = total;
+  gc->ngb_start[gc->n] = total;
   for (int l = 0; l < gc->n; l++) gc->h_cap[l] = tc_h_cap[gc->top[l]];
   gc->growth = growth;
+  free(jobs);
+  free(tid);
+  free(first_leaf);
 }
 
 void gpu_cells_free(struct gpu_cells *gc) {
@@ -143,7 +257,7 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
   double *leaf_dt = NULL;
   for (int attempt = 0;; attempt++) {
     const double w0 = error_walltime();
-    gpu_cells_build(gc, s, tcells, nr, ct, tc_h_cap, growth);
+    gpu_cells_build(gc, s, tcells, nr, ct, tc_h_cap, growth, gc->nr_threads);
     gc->t_build += error_walltime() - w0;
     leaf_dt = error_realloc(leaf_dt, (gc->n + 1) * sizeof(double), "GPU leaf time steps");
     const struct gpu_leaves lv = {gc->n,        gc->offset,     gc->count,
@@ -221,6 +335,7 @@ void gpu_engine_force(struct engine *e) {
     ge->tc_h_cap[t] = (H_limit - 2.0 * dx_max) / kernel_gamma;
   }
   const double dt_kick = e->first_force ? 0.0 : 0.5 * e->dt;
+  ge->cells.nr_threads = e->nr_threads;
   if (!ge->dev_valid) {
     gpu_upload_all(ge->gpu, &e->parts);
     ge->dev_valid = 1;
@@ -229,6 +344,38 @@ void gpu_engine_force(struct engine *e) {
   if (gpu_cells_force(ge->gpu, &ge->cells, &e->parts, &e->space, e->tcells, e->nr_tcells, e->ct,
                       ge->tc_h_cap, &e->hp, e->mats, dt_kick, 1, e->cell_dt_min))
     e->need_rebuild = 1;
+}
+
+/** A range of top-level cells whose bounds one thread updates. */
+struct gpu_bounds_job {
+  struct engine *e; /**< the engine */
+  int c0, c1;       /**< top-level cells [c0, c1) */
+};
+
+/** Thread body of gpu_engine_bounds. */
+static void *gpu_bounds_run(void *arg) {
+  struct gpu_bounds_job *jb = arg;
+  for (int c = jb->c0; c < jb->c1; c++) cell_update_bounds(&jb->e->parts, &jb->e->space.cells[c]);
+  return NULL;
+}
+
+/** cell_update_bounds of every top-level cell, on the engine's threads. */
+static void gpu_engine_bounds(struct engine *e) {
+  const int nc = e->space.nr_top;
+  int nt = e->nr_threads < 1 ? 1 : e->nr_threads;
+  if (nt > nc) nt = nc > 0 ? nc : 1;
+  struct gpu_bounds_job jobs[256];
+  pthread_t tid[256];
+  if (nt > 256) nt = 256;
+  for (int w = 0; w < nt; w++) {
+    jobs[w].e = e;
+    jobs[w].c0 = (int)((long)nc * w / nt);
+    jobs[w].c1 = (int)((long)nc * (w + 1) / nt);
+    if (w > 0 && pthread_create(&tid[w], NULL, gpu_bounds_run, &jobs[w]))
+      error_exit("cannot start a thread to update the cell bounds");
+  }
+  gpu_bounds_run(&jobs[0]);
+  for (int w = 1; w < nt; w++) pthread_join(tid[w], NULL);
 }
 
 void gpu_engine_drift(struct engine *e) {
@@ -241,7 +388,7 @@ void gpu_engine_drift(struct engine *e) {
   ge->host_stale = 1;
   /* positions and h are back: the bounds the rebuild test and the lists read */
   const double w0 = error_walltime();
-  for (int c = 0; c < e->space.nr_top; c++) cell_update_bounds(&e->parts, &e->space.cells[c]);
+  gpu_engine_bounds(e);
   ge->t_bounds += error_walltime() - w0;
   ge->steps++;
 }

@@ -23,16 +23,18 @@ struct gpu_cells {
   int cells_cap;       /**< allocated length of leaf_of_cell */
   double growth;       /**< lists cover h up to growth * the leaf's h_max */
   double t_build;      /**< host seconds spent in gpu_cells_build */
+  int nr_threads;      /**< host threads building the lists (0: 1) */
 };
 
 /** Build the leaves below the task cells tcells[0..nr) (the engine's, or the
  *  top-level cells) and, for each leaf, the leaves of the neighbouring task
  *  cells ct[t] (numbers in tcells, with their shifts) whose bounding boxes
  *  come within growth * kernel_gamma * max(h_max) plus both drifts.
- *  tc_h_cap[t]: the largest h task cell t allows. */
+ *  tc_h_cap[t]: the largest h task cell t allows.  nr_threads host threads
+ *  walk the trees (a dual walk per pair of task cells). */
 void gpu_cells_build(struct gpu_cells *gc, const struct space *s, struct cell *const *tcells,
                      int nr, const struct engine_cell_tasks *ct, const double *tc_h_cap,
-                     double growth);
+                     double growth, int nr_threads);
 /** Free the arrays of gc. */
 void gpu_cells_free(struct gpu_cells *gc);
 
