@@ -179,10 +179,19 @@ void gpu_cells_build(struct gpu_cells *gc, const struct space *s, struct cell *c
 
   /* workers over contiguous ranges of task cells, so that each one's leaves
    * are contiguous too and the lists join by concatenation */
+  /* a thread per 4096 leaves at most: starting threads costs more than a small walk */
   int nt = nr_threads < 1 ? 1 : nr_threads;
+  if (nt > 1 + gc->n / 4096) nt = 1 + gc->n / 4096;
   if (nt > nr) nt = nr > 0 ? nr : 1;
-  struct gpu_cells_job *jobs = error_calloc(nt, sizeof *jobs, "GPU list jobs");
-  pthread_t *tid = error_malloc(nt * sizeof(pthread_t), "GPU list threads");
+  if (nt > gc->nr_jobs) {
+    /* the jobs and their buffers are kept between calls */
+    gc->jobs = error_realloc(gc->jobs, nt * sizeof(struct gpu_cells_job), "GPU list jobs");
+    memset(gc->jobs + gc->nr_jobs, 0, (nt - gc->nr_jobs) * sizeof(struct gpu_cells_job));
+    gc->nr_jobs = nt;
+  }
+  struct gpu_cells_job *jobs = gc->jobs;
+  pthread_t tid[256];
+  if (nt > 256) nt = 256;
   for (int w = 0; w < nt; w++) {
     struct gpu_cells_job *jb = &jobs[w];
     jb->gc = gc;
@@ -221,18 +230,17 @@ void gpu_cells_build(struct gpu_cells *gc, const struct space *s, struct cell *c
     memcpy(gc->ngb_leaf + (at - jb->n), jb->leaf, jb->n * sizeof(int));
     memcpy(gc->ngb_shift + 3 * (size_t)(at - jb->n), jb->sshift,
            3 * (size_t)jb->n * sizeof(double));
-    gpu_cells_job_free(&jobs[w]);
   }
   gc->nr_ngb = total;
   gc->ngb_start[gc->n] = total;
   for (int l = 0; l < gc->n; l++) gc->h_cap[l] = tc_h_cap[gc->top[l]];
   gc->growth = growth;
-  free(jobs);
-  free(tid);
   free(first_leaf);
 }
 
 void gpu_cells_free(struct gpu_cells *gc) {
+  for (int w = 0; w < gc->nr_jobs; w++) gpu_cells_job_free(&gc->jobs[w]);
+  free(gc->jobs);
   free(gc->offset);
   free(gc->count);
   free(gc->top);
@@ -251,7 +259,7 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
                     const struct material_table *mats, double dt_kick, int resident,
                     double *tc_dt_min) {
   /* lists a quarter wider than the current h_max, widened when h outgrows them */
-  double growth = gc->growth > 1.25 ? 0.9 * gc->growth : 1.25;
+  double growth = gc->growth > 1.25 ? 0.97 * gc->growth : 1.25;
   if (growth < 1.25) growth = 1.25;
   struct gpu_force_out out;
   double *leaf_dt = NULL;
@@ -270,6 +278,7 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
                 attempt);
     for (int c = 0; c < s->nr_top; c++) cell_update_bounds(p, &s->cells[c]);
     growth *= 1.5;
+    gc->widenings++;
     error_log(2, "GPU: smoothing lengths outgrew the neighbour lists; widening them to %.2f h_max",
               growth);
   }
@@ -409,8 +418,10 @@ void gpu_engine_print(const struct engine *e, FILE *f) {
   if (!ge) return;
   gpu_print_timers(ge->gpu, f);
   if (ge->steps)
-    fprintf(f, "GPU host side, ms per step: neighbour lists %.3f, cell bounds %.3f\n",
-            1e3 * ge->cells.t_build / ge->steps, 1e3 * ge->t_bounds / ge->steps);
+    fprintf(
+        f,
+        "GPU host side, ms per step: neighbour lists %.3f, cell bounds %.3f; %ld list widenings\n",
+        1e3 * ge->cells.t_build / ge->steps, 1e3 * ge->t_bounds / ge->steps, ge->cells.widenings);
 }
 
 void gpu_engine_free(struct engine *e) {
