@@ -33,6 +33,8 @@ static void gpu_cells_reserve(struct gpu_cells *gc, int n) {
   gc->h_cap = error_realloc(gc->h_cap, gc->cap * sizeof(double), "GPU leaves");
   gc->h_list_cap = error_realloc(gc->h_list_cap, gc->cap * sizeof(double), "GPU leaves");
   gc->ngb_start = error_realloc(gc->ngb_start, (gc->cap + 1) * sizeof(int), "GPU leaves");
+  gc->leaf_cell = error_realloc(gc->leaf_cell, gc->cap * sizeof(struct cell *), "GPU leaves");
+  gc->dx_allow = error_realloc(gc->dx_allow, gc->cap * sizeof(double), "GPU leaves");
 }
 
 /** Number the non-empty leaves below c. */
@@ -48,8 +50,14 @@ static void gpu_cells_collect(struct gpu_cells *gc, const struct cell *c, int to
   gc->offset[gc->n] = c->offset;
   gc->count[gc->n] = (int)c->count;
   gc->top[gc->n] = top;
+  gc->leaf_cell[gc->n] = c;
   gc->n++;
 }
+
+/** Fraction of its kernel support a leaf may drift after the lists were
+ *  built before they are built again: a margin in the lists' reach that lets
+ *  most steps reuse them. */
+#define GPU_LIST_SLACK 0.1
 
 /** One worker of the list build: the task cells [t0, t1), whose leaves are
  *  the contiguous range [l0, l1), and the entries it found. */
@@ -90,7 +98,10 @@ static void gpu_cells_walk(struct gpu_cells_job *jb, const struct cell *ci, cons
                            const double shift[3]) {
   if (ci->count == 0 || cj->count == 0) return;
   const double hm = ci->h_max > cj->h_max ? ci->h_max : cj->h_max;
-  const double R = jb->growth * kernel_gamma * hm + ci->dx_max + cj->dx_max;
+  /* each side may drift GPU_LIST_SLACK kernel supports further before the
+   * lists must be built again (gpu_cells_valid) */
+  const double R = jb->growth * kernel_gamma * hm + ci->dx_max + cj->dx_max +
+                   GPU_LIST_SLACK * kernel_gamma * (ci->h_max + cj->h_max);
   /* widened as the CPU loops' pruning: never drop a pair the particle test keeps */
   double scale = 0.0;
   for (int k = 0; k < 3; k++)
@@ -116,7 +127,9 @@ static void gpu_cells_caps(struct gpu_cells *gc, const struct cell *c, double gr
       if (c->progeny[k]) gpu_cells_caps(gc, c->progeny[k], growth);
     return;
   }
-  gc->h_list_cap[gc->leaf_of_cell[c->index]] = growth * c->h_max;
+  const int l = gc->leaf_of_cell[c->index];
+  gc->h_list_cap[l] = growth * c->h_max;
+  gc->dx_allow[l] = c->dx_max + GPU_LIST_SLACK * kernel_gamma * c->h_max;
 }
 
 /** Thread body: walk the task cells of the job, then sort its entries by
@@ -250,7 +263,23 @@ void gpu_cells_free(struct gpu_cells *gc) {
   free(gc->ngb_leaf);
   free(gc->ngb_shift);
   free(gc->leaf_of_cell);
+  free(gc->leaf_cell);
+  free(gc->dx_allow);
   memset(gc, 0, sizeof *gc);
+}
+
+/** 1 if the lists built last still hold every pair: same cells, no leaf
+ *  drifted past its allowance, no leaf's h beyond the lists' cap (h grown
+ *  during the h iteration is caught on the device: overflow). */
+static int gpu_cells_valid(const struct gpu_cells *gc, const struct space *s,
+                           struct cell *const *tcells, int nr) {
+  if (gc->n == 0 || gc->built_rebuild != s->nr_rebuilds || gc->built_tcells != tcells ||
+      gc->built_nr != nr)
+    return 0;
+  for (int l = 0; l < gc->n; l++)
+    if (gc->leaf_cell[l]->dx_max > gc->dx_allow[l] || gc->leaf_cell[l]->h_max > gc->h_list_cap[l])
+      return 0;
+  return 1;
 }
 
 int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct space *s,
@@ -264,9 +293,18 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
   struct gpu_force_out out;
   double *leaf_dt = NULL;
   for (int attempt = 0;; attempt++) {
-    const double w0 = error_walltime();
-    gpu_cells_build(gc, s, tcells, nr, ct, tc_h_cap, growth, gc->nr_threads);
-    gc->t_build += error_walltime() - w0;
+    if (attempt > 0 || !gpu_cells_valid(gc, s, tcells, nr)) {
+      const double w0 = error_walltime();
+      gpu_cells_build(gc, s, tcells, nr, ct, tc_h_cap, growth, gc->nr_threads);
+      gc->t_build += error_walltime() - w0;
+      gc->builds++;
+      gc->built_rebuild = s->nr_rebuilds;
+      gc->built_tcells = tcells;
+      gc->built_nr = nr;
+    } else {
+      /* same leaves and lists; only the cells' caps moved */
+      for (int l = 0; l < gc->n; l++) gc->h_cap[l] = tc_h_cap[gc->top[l]];
+    }
     leaf_dt = error_realloc(leaf_dt, (gc->n + 1) * sizeof(double), "GPU leaf time steps");
     const struct gpu_leaves lv = {gc->n,        gc->offset,     gc->count,
                                   gc->h_cap,    gc->h_list_cap, gc->ngb_start,
@@ -418,10 +456,11 @@ void gpu_engine_print(const struct engine *e, FILE *f) {
   if (!ge) return;
   gpu_print_timers(ge->gpu, f);
   if (ge->steps)
-    fprintf(
-        f,
-        "GPU host side, ms per step: neighbour lists %.3f, cell bounds %.3f; %ld list widenings\n",
-        1e3 * ge->cells.t_build / ge->steps, 1e3 * ge->t_bounds / ge->steps, ge->cells.widenings);
+    fprintf(f,
+            "GPU host side, ms per step: neighbour lists %.3f (built %ld times, widened %ld), cell "
+            "bounds %.3f\n",
+            1e3 * ge->cells.t_build / ge->steps, ge->cells.builds, ge->cells.widenings,
+            1e3 * ge->t_bounds / ge->steps);
 }
 
 void gpu_engine_free(struct engine *e) {
