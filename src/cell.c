@@ -28,3 +28,20 @@ void cell_update_bounds(const struct parts *p, struct cell *c) {
   c->h_max = h_max;
   c->dx_max = sqrt(d2_max);
 }
+
+void cell_update_h_max(const struct parts *p, struct cell *c) {
+  if (c->split) {
+    c->h_max = 0.0;
+    for (int q = 0; q < 8; q++) {
+      struct cell *child = c->progeny[q];
+      if (!child) continue;
+      cell_update_h_max(p, child);
+      if (child->h_max > c->h_max) c->h_max = child->h_max;
+    }
+    return;
+  }
+  double h_max = 0.0;
+  for (size_t i = c->offset; i < c->offset + c->count; i++)
+    if (p->h[i] > h_max) h_max = p->h[i];
+  c->h_max = h_max;
+}

@@ -53,6 +53,10 @@ struct cell {
  *  bounding boxes stay those of the rebuild, dx_max accounting for motion. */
 void cell_update_bounds(const struct parts *p, struct cell *c);
 
+/** Recompute only h_max of c and its progeny (the ghost, after changing h:
+ *  positions, and so dx_max, do not change while other tasks read them). */
+void cell_update_h_max(const struct parts *p, struct cell *c);
+
 /** Squared distance between the bounding box of ci and that of cj shifted by
  *  shift (0 where they overlap): the positions at rebuild. */
 BOLIDE_INLINE double cell_bbox_dist2(const struct cell *ci, const struct cell *cj,

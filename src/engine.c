@@ -202,8 +202,9 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   hydro_props_init(&e->hp, params);
   if (e->hp.continuity) params_error(params, "SPH:density", "the continuity equation is not implemented yet; use 'summation'");
   if (e->hp.xsph > 0.0) params_error(params, "SPH:xsph_epsilon", "XSPH is not implemented yet; set it to 0");
-  if (params_get_bool(params, "Gravity:enabled"))
-    params_error(params, "Gravity:enabled", "self-gravity is not implemented yet");
+  gravity_props_init(&e->gp, params, &e->us);
+  if (!e->gp.enabled && !e->hp.enabled)
+    params_error(params, "SPH:hydro", "neither hydrodynamics nor self-gravity is switched on");
   e->restarts = params_get_bool(params, "Restarts:enable");
   e->restart_dt_wall = 3600.0 * params_get_real(params, "Restarts:delta_hours");
   snprintf(e->restart_dir, sizeof e->restart_dir, "%s", params_get_string(params, "Restarts:subdir"));
@@ -243,6 +244,8 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     engine_read_ics(e, icname, sizeof icname, box);
   }
   engine_guess_h(e);
+  if (e->gp.enabled && periodic)
+    params_error(params, "InitialConditions:periodic", "self-gravity in a periodic box is not implemented");
   error_log(0, "read %zu particles from %s (box %g x %g x %g, %s)", e->parts.count, icname, box[0], box[1],
             box[2], periodic ? "periodic" : "open");
 
@@ -469,6 +472,7 @@ void engine_clean(struct engine *e) {
   if (e->stats) fclose(e->stats);
   free(e->out_times);
   free(e->cell_dt_min);
+  free(e->gcells);
   free(e->params_text);
   if (e->mats) material_table_free(e->mats);
   free(e->mats);

@@ -8,6 +8,7 @@
 #include <stdio.h>
 
 #include "cell.h"
+#include "gravity/gravity_cpu.h"
 #include "hydro_props.h"
 #include "part.h"
 #include "scheduler.h"
@@ -61,6 +62,12 @@ struct engine {
   int nr_tcells;                  /**< their number */
   int cell_task_size;             /**< Scheduler:cell_task_size */
   double reach;                   /**< task cells closer than this have pair tasks */
+  struct gravity_props gp;        /**< self-gravity settings (gp.enabled) */
+  struct gravity_cell *gcells;    /**< gravity data of every cell, by cell index */
+  int gcells_cap;                 /**< its allocated length */
+  struct sched_lock *glocks;      /**< per top-level cell: taken by gravity tasks writing it */
+  struct task **grav_down;        /**< per top-level cell: its gravity_down task (or NULL) */
+  int *tcell_top;                 /**< top-level cell of each task cell */
   struct engine_cell_tasks *ct;   /**< per task cell */
   int nr_ct;                      /**< number of entries of ct */
   struct task **phase_tasks[2];   /**< tasks of each phase */

@@ -16,7 +16,17 @@
  *
  * The ghost of a task cell waits for every density task touching it: its h
  * iteration then reads final neighbour positions and writes only its own
- * particles. */
+ * particles.
+ *
+ * Self-gravity works on the top-level cells (gravity_cpu.h):
+ *
+ *   grav_up(c) -> grav(c,c'), grav(c) -> grav_down(c)       near pairs
+ *   grav_up(all) -> grav_long_range(c) -> grav_down(c)      far field
+ *   grav_down(c) -> kick2(t) for the task cells t of c
+ *
+ * Gravity tasks write the gravity accumulators and take a gravity lock per
+ * top-level cell; hydro tasks write other fields, so the two families run
+ * side by side.  The kick adds the gravitational acceleration. */
 #include "engine.h"
 
 #include <stdlib.h>
@@ -103,6 +113,65 @@ static void engine_graph_free(struct engine *e) {
   free(e->tcells);
   e->tcells = NULL;
   e->nr_tcells = 0;
+  free(e->tcell_top);
+  e->tcell_top = NULL;
+  free(e->grav_down);
+  e->grav_down = NULL;
+  free(e->glocks);
+  e->glocks = NULL;
+}
+
+/** The gravity tasks of the top-level cells (see the top comment). */
+static void engine_make_gravity_tasks(struct engine *e, const int *first, int *cap) {
+  struct space *s = &e->space;
+  struct scheduler *sched = &e->sched;
+  const int nt = s->nr_top;
+  e->gcells = gravity_cells_reserve(e->gcells, &e->gcells_cap, s->cells_capacity);
+  e->glocks = error_calloc(nt, sizeof(struct sched_lock), "gravity locks");
+  e->grav_down = error_calloc(nt, sizeof(struct task *), "gravity tasks");
+  struct task **up = error_calloc(nt, sizeof(struct task *), "gravity tasks");
+  struct task *all_up = scheduler_addtask(sched, task_type_implicit, task_subtype_grav, NULL, NULL);
+  engine_phase_add(e, ENGINE_PHASE_FORCE, all_up, cap);
+  for (int c = 0; c < nt; c++) {
+    if (s->cells[c].count == 0) continue;
+    struct cell *ci = &s->cells[c];
+    sched_lock_init(&e->glocks[c]);
+    up[c] = scheduler_addtask(sched, task_type_grav_up, task_subtype_grav, ci, NULL);
+    struct task *self = scheduler_addtask(sched, task_type_self, task_subtype_grav, ci, ci);
+    struct task *lr = scheduler_addtask(sched, task_type_grav_long_range, task_subtype_grav, ci, NULL);
+    e->grav_down[c] = scheduler_addtask(sched, task_type_grav_down, task_subtype_grav, ci, NULL);
+    up[c]->cell_index = self->cell_index = lr->cell_index = e->grav_down[c]->cell_index = c;
+    up[c]->locks[0] = self->locks[0] = lr->locks[0] = e->grav_down[c]->locks[0] = &e->glocks[c];
+    /* grav_up(c) -> all_up -> long_range(c);  grav_up(c) -> self(c) -> grav_down(c) */
+    scheduler_addunlock(sched, up[c], all_up);
+    scheduler_addunlock(sched, all_up, lr);
+    scheduler_addunlock(sched, up[c], self);
+    scheduler_addunlock(sched, self, e->grav_down[c]);
+    scheduler_addunlock(sched, lr, e->grav_down[c]);
+    /* grav_down(c) -> kick2(t) for the task cells of c */
+    for (int t = first[c]; t < first[c + 1]; t++) scheduler_addunlock(sched, e->grav_down[c], e->ct[t].kick2);
+    engine_phase_add(e, ENGINE_PHASE_FORCE, up[c], cap);
+    engine_phase_add(e, ENGINE_PHASE_FORCE, self, cap);
+    engine_phase_add(e, ENGINE_PHASE_FORCE, lr, cap);
+    engine_phase_add(e, ENGINE_PHASE_FORCE, e->grav_down[c], cap);
+  }
+  /* near pairs of top-level cells: grav_up(c), grav_up(c') -> grav(c,c') -> grav_down(c), grav_down(c') */
+  for (int a = 0; a < nt; a++) {
+    if (!up[a]) continue;
+    for (int b = a + 1; b < nt; b++) {
+      if (!up[b] || !gravity_top_pair_is_near(&s->cells[a], &s->cells[b], &e->gp)) continue;
+      struct task *pt = scheduler_addtask(sched, task_type_pair, task_subtype_grav, &s->cells[a], &s->cells[b]);
+      pt->cell_index = a;
+      pt->locks[0] = &e->glocks[a];
+      pt->locks[1] = &e->glocks[b];
+      scheduler_addunlock(sched, up[a], pt);
+      scheduler_addunlock(sched, up[b], pt);
+      scheduler_addunlock(sched, pt, e->grav_down[a]);
+      scheduler_addunlock(sched, pt, e->grav_down[b]);
+      engine_phase_add(e, ENGINE_PHASE_FORCE, pt, cap);
+    }
+  }
+  free(up);
 }
 
 /** The tasks of a pair of task cells a, b (b seen at x + shift). */
@@ -162,19 +231,20 @@ void engine_make_graph(struct engine *e) {
     ct->drift = scheduler_addtask(sched, task_type_drift, task_subtype_none, c, NULL);
     ct->ghost = scheduler_addtask(sched, task_type_ghost, task_subtype_none, c, NULL);
     ct->kick2 = scheduler_addtask(sched, task_type_kick2, task_subtype_none, c, NULL);
+    ct->drift->cell_index = ct->ghost->cell_index = ct->kick2->cell_index = t;
+    engine_phase_add(e, ENGINE_PHASE_DRIFT, ct->drift, cap);
+    engine_phase_add(e, ENGINE_PHASE_FORCE, ct->kick2, cap);
+    if (!e->hp.enabled) continue; /* gravity-only run: no hydro tasks */
     struct task *ds = scheduler_addtask(sched, task_type_self, task_subtype_density, c, NULL);
     struct task *fs = scheduler_addtask(sched, task_type_self, task_subtype_force, c, NULL);
     ds->locks[0] = fs->locks[0] = &c->lock;
-    ct->drift->cell_index = ct->ghost->cell_index = ct->kick2->cell_index = t;
     ds->cell_index = fs->cell_index = t;
     scheduler_addunlock(sched, ds, ct->ghost);
     scheduler_addunlock(sched, ct->ghost, fs);
     scheduler_addunlock(sched, fs, ct->kick2);
-    engine_phase_add(e, ENGINE_PHASE_DRIFT, ct->drift, cap);
     engine_phase_add(e, ENGINE_PHASE_FORCE, ds, cap);
     engine_phase_add(e, ENGINE_PHASE_FORCE, ct->ghost, cap);
     engine_phase_add(e, ENGINE_PHASE_FORCE, fs, cap);
-    engine_phase_add(e, ENGINE_PHASE_FORCE, ct->kick2, cap);
   }
 
   /* the reach of an interaction until the next rebuild (see the top comment) */
@@ -185,6 +255,23 @@ void engine_make_graph(struct engine *e) {
   e->reach = reach;
   const double reach2 = reach * reach;
   const double zero[3] = {0, 0, 0};
+
+  e->tcell_top = error_malloc((nt ? nt : 1) * sizeof(int), "task cell tops");
+  for (int c = 0; c < s->nr_top; c++)
+    for (int t = first[c]; t < first[c + 1]; t++) e->tcell_top[t] = c;
+  if (e->gp.enabled && e->gp.direct) {
+    /* Gravity:direct: one task of exact summation -> every kick2 */
+    struct task *d = scheduler_addtask(sched, task_type_grav_long_range, task_subtype_grav, NULL, NULL);
+    for (int t = 0; t < nt; t++) scheduler_addunlock(sched, d, e->ct[t].kick2);
+    engine_phase_add(e, ENGINE_PHASE_FORCE, d, cap);
+  } else if (e->gp.enabled) {
+    engine_make_gravity_tasks(e, first, cap);
+  }
+  if (!e->hp.enabled) {
+    free(first);
+    scheduler_finalize(sched);
+    return;
+  }
 
   /* pairs of task cells inside one top-level cell */
   for (int c = 0; c < s->nr_top; c++)

@@ -58,7 +58,7 @@ void engine_stats_write(struct engine *e) {
     ekin += 0.5 * m * (vx * vx + vy * vy + vz * vz);
     eint += m * p->u[i];
   }
-  const double epot = 0.0;
+  const double epot = e->gp.enabled ? gravity_potential_energy(p) : 0.0;
   fprintf(e->stats, "%ld %.12e %.6e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %zu %lld\n",
           e->step, e->time, e->dt, mass, px, py, pz, Lx, Ly, Lz, ekin, eint, epot, ekin + eint + epot, p->count,
           e->nr_removed);
@@ -87,6 +87,7 @@ void engine_snapshot(struct engine *e) {
   meta.run_name = params_get_string(e->params, "MetaData:run_name");
   meta.params = e->params_text;
   meta.hydro = e->hp.enabled;
+  meta.self_gravity = e->gp.enabled;
   meta.compression = e->compression;
   snapshot_write(path, &meta, &e->parts, &e->us, e->write_acc);
   error_log(0, "snapshot %s at t = %g", path, e->time);

@@ -36,6 +36,33 @@ static void engine_ghost(struct engine *e, int t) {
     atomic_store((_Atomic int *)&e->need_rebuild, 1);
 }
 
+/** Second half kick and new time step of task cell number t: the
+ *  gravitational acceleration joins the hydrodynamic one here (the two
+ *  families accumulate apart, engine_graph.c), and the gravitational
+ *  time-step criterion joins the hydrodynamic ones. */
+static void engine_kick2(struct engine *e, int t) {
+  struct parts *p = &e->parts;
+  const struct cell *c = e->tcells[t];
+  const size_t end = c->offset + c->count;
+  if (e->gp.enabled) {
+    for (size_t i = c->offset; i < end; i++) {
+      if (!e->hp.enabled) p->ax[i] = p->ay[i] = p->az[i] = 0.0;
+      p->ax[i] += p->gax[i];
+      p->ay[i] += p->gay[i];
+      p->az[i] += p->gaz[i];
+    }
+  }
+  double dt = kick2_cell_cpu(p, c, e->first_force ? 0.0 : 0.5 * e->dt, &e->hp);
+  if (!e->hp.enabled) dt = 1e300;
+  if (e->gp.enabled && e->gp.eps > 0.0)
+    for (size_t i = c->offset; i < end; i++) {
+      const double ga[3] = {p->gax[i], p->gay[i], p->gaz[i]};
+      const double dtg = gravity_timestep(ga, e->gp.eps, e->gp.eta);
+      if (dtg < dt) dt = dtg;
+    }
+  e->cell_dt_min[t] = dt;
+}
+
 void engine_run_task(void *ctx, struct task *t, int thread_id) {
   struct engine *e = ctx;
   struct parts *p = &e->parts;
@@ -47,12 +74,18 @@ void engine_run_task(void *ctx, struct task *t, int thread_id) {
       break;
     case task_type_self:
       /* the accumulators were zeroed by the drift (density) and the ghost (force) */
-      if (t->subtype == task_subtype_density)
+      if (t->subtype == task_subtype_grav)
+        gravity_interact_cells(p, ci, ci, e->gcells, &e->gp);
+      else if (t->subtype == task_subtype_density)
         density_self_cpu(p, ci);
       else if (t->subtype == task_subtype_force)
         force_self_cpu(p, ci, &e->hp);
       break;
     case task_type_pair: {
+      if (t->subtype == task_subtype_grav) {
+        gravity_interact_cells(p, ci, cj, e->gcells, &e->gp);
+        break;
+      }
       const double *shift = e->pairs[e->task_pair[t->id]].shift;
       /* the pair list holds task cells; ci, cj are those cells */
       if (t->subtype == task_subtype_density)
@@ -65,7 +98,21 @@ void engine_run_task(void *ctx, struct task *t, int thread_id) {
       engine_ghost(e, t->cell_index);
       break;
     case task_type_kick2:
-      e->cell_dt_min[t->cell_index] = kick2_cell_cpu(p, ci, e->first_force ? 0.0 : 0.5 * e->dt, &e->hp);
+      engine_kick2(e, t->cell_index);
+      break;
+    case task_type_grav_up:
+      gravity_up(p, ci, e->gcells, &e->gp);
+      break;
+    case task_type_grav_long_range:
+      if (ci)
+        gravity_long_range(p, ci, e->space.cells, e->space.nr_top, e->gcells, &e->gp);
+      else /* Gravity:direct: exact summation in one task */
+        gravity_direct(p, e->gp.G, e->gp.eps, e->gp.softening, 1);
+      break;
+    case task_type_grav_down:
+      gravity_down(p, ci, e->gcells, &e->gp);
+      break;
+    case task_type_implicit:
       break;
     default:
       error_bug("the engine has no work for task type %s", task_type_names[t->type]);

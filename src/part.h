@@ -71,6 +71,9 @@ enum part_flags {
   X(double,  drho_dt, NULL,           0, 1, 1, -3, -1, 0, "rate of change of density")           \
   X(double,  v_sig,  NULL,            0, 1, 0,  1, -1, 0, "maximum signal velocity")              \
   X(double,  pot,  "Potentials",      0, 1, 0,  2, -2, PART_SNAP_ACC, "gravitational potential")  \
+  X(double,  gax, NULL,               0, 3, 0,  1, -2, 0, "gravitational acceleration (gravity tasks' accumulator, added to ax by gravity_down; kept as the scale of the next adaptive opening criterion)") \
+  X(double,  gay, NULL,               1, 3, 0,  1, -2, 0, "gravitational acceleration") \
+  X(double,  gaz, NULL,               2, 3, 0,  1, -2, 0, "gravitational acceleration") \
   /* cold: integrated state, bookkeeping */                                                       \
   X(double,  vx,  "Velocities",       0, 3, 0,  1, -1, PART_IC_REQ | PART_SNAP, "velocity")       \
   X(double,  vy,  "Velocities",       1, 3, 0,  1, -1, PART_IC_REQ | PART_SNAP, "velocity")       \

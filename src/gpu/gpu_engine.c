@@ -345,6 +345,18 @@ void gpu_engine_init(struct engine *e) {
     return;
   }
   char why[256];
+  if (e->gp.enabled || !e->hp.enabled) {
+    /* the GPU runs the hydrodynamic phase as a whole: gravity tasks have no
+     * GPU implementation yet */
+    if (required)
+      error_exit(
+          "a GPU was required (%s) but %s", e->opt.use_gpu == 2 ? "--gpu" : "Scheduler:gpu: all",
+          e->gp.enabled ? "self-gravity has no GPU implementation yet" : "hydrodynamics is off");
+    error_log(
+        0, "GPU not used (%s): every task runs on the CPU",
+        e->gp.enabled ? "self-gravity has no GPU implementation yet" : "hydrodynamics is off");
+    return;
+  }
   struct gpu *g = gpu_init(why, sizeof why);
   if (g && !gpu_supports(e->mats, why, sizeof why)) {
     gpu_free(g);

@@ -39,9 +39,8 @@ int ghost_cell_cpu(struct parts *p, struct cell *c, const struct ghost_ngbs *ngb
     /* redo the sums of the particles still iterating, with their new h */
     for (size_t i = beg; i < end; i++)
       if (!(p->flags[i] & PART_H_CONVERGED)) hydro_density_reset(p, i);
-    cell_update_bounds(p, c);
-    for (int k = 0; k < ngbs->n; k++)
-      density_gather_unconverged_cpu(p, c, ngbs->cells[k], ngbs->shift[k]);
+    cell_update_h_max(p, c);
+    for (int k = 0; k < ngbs->n; k++) density_gather_unconverged_cpu(p, c, ngbs->cells[k], ngbs->shift[k]);
     left = 0;
     for (size_t i = beg; i < end; i++) {
       if (p->flags[i] & PART_H_CONVERGED) continue;
@@ -50,7 +49,7 @@ int ghost_cell_cpu(struct parts *p, struct cell *c, const struct ghost_ngbs *ngb
       left += !(p->flags[i] & PART_H_CONVERGED);
     }
   }
-  cell_update_bounds(p, c);
+  cell_update_h_max(p, c);
   for (size_t i = beg; i < end; i++) ghost_part_finish(p, i, hp, mats);
   return capped;
 }

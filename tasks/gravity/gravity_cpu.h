@@ -1,0 +1,133 @@
+/* Self-gravity on the CPU: the cell-level routines that gravity tasks call.
+ *
+ * The fast multipole method of tasks/gravity/gravity_iact.h over the cell
+ * octrees of src/space.h (theory/gravity.md):
+ *
+ *   gravity_up          per top-level cell: P2M at the leaves, M2M up     (grav_up)
+ *   gravity_interact_cells  per top-level self (ci == cj) and per near pair:
+ *                       symmetric dual-tree walk, M2L where the opening
+ *                       criterion accepts, P2P between leaves            (self/pair, grav)
+ *   gravity_long_range  per top-level cell: one-way walk against every
+ *                       top-level cell that is not its near pair         (grav_long_range)
+ *   gravity_down        per top-level cell: L2L down, L2P to particles   (grav_down)
+ *
+ * Dependencies: up(every cell) -> interact, long_range -> down(cell).
+ * Conflicts: a self task and a long-range task write ci only (its field
+ * tensors and its particles' ax, ay, az, pot); a pair task writes ci and cj.
+ * Every task only reads the positions, masses and multipoles of other cells.
+ *
+ * Which top-level pairs are "near" (pair tasks) is gravity_top_pair_is_near,
+ * a geometric test on the cells' boxes meant for building the graph once per
+ * rebuild; any choice is correct (a long-range task walks into a far cell
+ * when the opening criterion refuses it), it only moves work between tasks.
+ *
+ * Gravity data (multipoles, field tensors) are cold data kept apart from
+ * struct cell, in an array of struct gravity_cell indexed by cell->index
+ * (the cell's position in struct space.cells); struct cell is unchanged.
+ *
+ * Particle fields: gravity owns pot and the accumulators gax, gay, gaz
+ * (src/part.h): gravity_up zeroes them for its cell, the interactions add
+ * to them, gravity_down completes them; the engine's kick adds ga to the
+ * hydrodynamic acceleration ax, ay, az (gravity and hydro tasks then never
+ * write the same field and need no common lock).  |ga| stays until the next
+ * gravity_up: the scale of the adaptive criterion.  Gravity in a periodic box
+ * (Ewald sums) is not implemented: gravity_check_space refuses it. */
+#ifndef BOLIDE_GRAVITY_CPU_H
+#define BOLIDE_GRAVITY_CPU_H
+
+#include <stddef.h>
+
+#include "gravity/gravity_iact.h"
+
+struct cell;
+struct parts;
+struct params;
+struct unit_system;
+
+/** Default of Gravity:epsilon_fmm (the same value as in src/io/param_list.h). */
+#define GRAVITY_EPSILON_FMM_DEFAULT 1e-4
+
+/** Parameters of self-gravity (section Gravity of the parameter file). */
+struct gravity_props {
+  int enabled;           /**< Gravity:enabled */
+  int direct;            /**< Gravity:direct: exact O(N^2) summation instead of the tree */
+  double G;              /**< gravitational constant in internal units */
+  double theta;          /**< Gravity:theta_cr, opening angle of the acceptance criterion */
+  double eps;            /**< Plummer-equivalent softening length (Gravity:softening) */
+  int softening;         /**< enum gravity_softening (Gravity:softening_kernel) */
+  int order;             /**< expansion order p (Gravity:multipole_order), 1..GRAVITY_ORDER_MAX */
+  double eta;            /**< Gravity:eta, time-step factor: dt = sqrt(2 eta eps / |a|) */
+  double epsilon_fmm;    /**< Gravity:epsilon_fmm, tolerance of the adaptive criterion (0: off) */
+  double h_support;      /**< distance beyond which the pair force is Newtonian (3 eps for the
+                              spline, 0 for Plummer whose expansions are softened) */
+  double eps2_expansion; /**< softening squared inside the expansions (eps^2 for Plummer, else 0) */
+};
+
+/** Gravity data of one cell (cold: only gravity tasks read them). */
+struct gravity_cell {
+  struct gravity_multipole mp; /**< multipole about the centre of mass (gravity_up) */
+  struct gravity_field field;  /**< local expansion about mp.com (interactions, gravity_down) */
+  double a_min; /**< smallest |ga| of the cell's particles at the previous pass (0: unknown) */
+};
+
+/** Fill gp from the Gravity section of params; G from the unit system. */
+void gravity_props_init(struct gravity_props *gp, const struct params *params,
+                        const struct unit_system *us);
+
+/** Fill gp directly (tests, tools): softening eps with kernel `softening`,
+ *  opening angle theta, expansion order p.  Out-of-range p stops with an
+ *  error line. */
+void gravity_props_set(struct gravity_props *gp, double G, double theta, double eps, int softening,
+                       int order);
+
+/** Stop with a one-line error if gravity cannot run in this box (periodic). */
+void gravity_check_space(const struct gravity_props *gp, int periodic);
+
+/** Grow the per-cell gravity array to at least n cells (after a rebuild:
+ *  n = space.cells_capacity).  Returns the (possibly moved) array. */
+struct gravity_cell *gravity_cells_reserve(struct gravity_cell *gc, int *capacity, int n);
+
+/** P2M at the leaves of c's octree and M2M up to c; also zeroes the field
+ *  tensors of c's octree (a new step's expansions start from 0), records
+ *  each cell's a_min from |ga| and zeroes ga and pot of c's particles.
+ *  Writes c's particles' ga and pot only. */
+void gravity_up(struct parts *p, const struct cell *c, struct gravity_cell *gc,
+                const struct gravity_props *gp);
+
+/** Interactions within ci (ci == cj) or between ci and cj (a near pair):
+ *  symmetric dual-tree walk; writes both cells. */
+void gravity_interact_cells(struct parts *p, const struct cell *ci, const struct cell *cj,
+                            struct gravity_cell *gc, const struct gravity_props *gp);
+
+/** Long-range interactions of top-level cell ci: every non-empty cell of
+ *  tops[0..nr_top) other than ci that is not near ci acts on ci (one-way
+ *  walk: M2L at the top when the criterion accepts).  Writes ci only. */
+void gravity_long_range(struct parts *p, const struct cell *ci, const struct cell *tops, int nr_top,
+                        struct gravity_cell *gc, const struct gravity_props *gp);
+
+/** L2L down c's octree and L2P to its particles (into ga and pot), then
+ *  the particles' ga and pot. */
+void gravity_down(struct parts *p, const struct cell *c, struct gravity_cell *gc,
+                  const struct gravity_props *gp);
+
+/** 1 if top-level cells ci and cj should interact in a pair task: their
+ *  boxes fail the opening criterion (radius: half-diagonal of the particles'
+ *  bounding box grown by dx_max; distance between box centres). */
+int gravity_top_pair_is_near(const struct cell *ci, const struct cell *cj,
+                             const struct gravity_props *gp);
+
+/** The whole tree method without tasks, in the order the task graph runs
+ *  it: up for every top-level cell, self and near pairs, long range, down.
+ *  For tests and a serial fallback. */
+void gravity_tree_all(struct parts *p, const struct cell *tops, int nr_top, struct gravity_cell *gc,
+                      const struct gravity_props *gp);
+
+/** Exact O(N^2) summation over all pairs (Gravity:direct, and the reference
+ *  of the tests): sets ga and pot.  nthreads > 1
+ *  splits the work over POSIX threads (gather form). */
+void gravity_direct(struct parts *p, double G, double eps, int softening, int nthreads);
+
+/** Potential energy 1/2 sum_i m_i pot_i (pot from a complete gravity pass). */
+double gravity_potential_energy(const struct parts *p);
+
+#endif

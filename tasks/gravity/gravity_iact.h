@@ -1,0 +1,447 @@
+/* Self-gravity: the Cartesian fast multipole method, written once.
+ *
+ * These inline functions are the physics of every gravity task: the CPU walk
+ * (tasks/gravity/gravity_cpu.c) and, later, the CUDA kernels call them.  They
+ * compile as C11 and as CUDA C++ (no tables in global memory, no VLAs).
+ * theory/gravity.md derives every formula; the equation numbers (G1)...(G14)
+ * below refer to it.
+ *
+ * Method (Greengard & Rokhlin 1987 for the idea; Dehnen 2000, ApJ 536, L39
+ * and Dehnen 2002, JCP 179, 27 for the Cartesian form):
+ *   - a cell's multipole moments about its centre of mass z_A,
+ *       M_n = sum_j m_j (x_j - z_A)^n / n!                        (G1)
+ *     for multi-indices n = (nx, ny, nz), |n| = nx + ny + nz <= p;
+ *   - its potential at x, with R = x - z_A,
+ *       phi(x) = -G sum_n (-1)^|n| M_n D_n(R),  D_n = d^n (1/|R|) (G3)
+ *   - the local expansion ("field tensor") of a cell B about z_B,
+ *       phi(z_B + s) = G sum_k F_k s^k / k!                       (G5)
+ *     accumulated from cells A by M2L:
+ *       F_k += - sum_{|n| <= p - |k|} (-1)^|n| M^A_n D_{n+k}(z_B - z_A) (G6)
+ *   - the shift operators M2M (G2) and L2L (G7), and the evaluation L2P (G8).
+ * The expansion order p (1 <= p <= GRAVITY_ORDER_MAX) is a run-time argument;
+ * arrays are sized for GRAVITY_ORDER_MAX.  Potential and acceleration are
+ * both carried: the potential is exact to order p, the acceleration to order
+ * p - 1 in the local expansion (it is a derivative of (G5)).
+ *
+ * Multi-indices are stored in graded order: all of order 0, then order 1
+ * (x, y, z), order 2 (xx, xy, xz, yy, yz, zz), ...; gravity_index() maps
+ * (nx, ny, nz) to the position without a table.
+ *
+ * Softening (theory/gravity.md, "Softening"):
+ *   GRAVITY_SOFTENING_SPLINE (default): the potential of a Wendland C2 mass
+ *     distribution of compact support H = 3 eps (Wendland 1995; used by
+ *     SWIFT, Schaller et al. 2024, MNRAS 530, 2378), exactly Newtonian for
+ *     r >= H, with the same central potential -G m / eps as a Plummer sphere
+ *     of softening eps.  Multipoles are used only between cells further than
+ *     H apart, so the expansions stay those of 1/r.
+ *   GRAVITY_SOFTENING_PLUMMER: phi = -G m / sqrt(r^2 + eps^2) (Plummer 1911;
+ *     Aarseth 1963).  It is never Newtonian, so the expansions use the
+ *     derivatives of the softened 1/sqrt(R^2 + eps^2) (same formula (G4) with
+ *     r^2 -> r^2 + eps^2): far field and near field stay consistent. */
+#ifndef BOLIDE_GRAVITY_IACT_H
+#define BOLIDE_GRAVITY_IACT_H
+
+#include <math.h>
+
+#include "inline.h"
+
+/** Highest expansion order the arrays hold (p = 5: 56 coefficients). */
+#define GRAVITY_ORDER_MAX 5
+/** Default expansion order (theory/gravity.md, "Accuracy"). */
+#define GRAVITY_ORDER_DEFAULT 4
+/** Number of multi-indices n with |n| <= p. */
+#define GRAVITY_NCOMP(p) (((p) + 1) * ((p) + 2) * ((p) + 3) / 6)
+/** Coefficients of a multipole or field tensor of the highest order. */
+#define GRAVITY_NM GRAVITY_NCOMP(GRAVITY_ORDER_MAX)
+/** Derivative tensors go one order higher (M2P needs D_{n + e_i}). */
+#define GRAVITY_ND GRAVITY_NCOMP(GRAVITY_ORDER_MAX + 1)
+/** Support of the spline softening kernel in units of the Plummer-equivalent
+ *  softening: H = 3 eps gives the central potential -G m / eps. */
+#define GRAVITY_SPLINE_H_OVER_EPS 3.0
+
+/** Softening kernels of the particle-particle interaction. */
+enum gravity_softening {
+  GRAVITY_SOFTENING_SPLINE = 0,  /**< Wendland C2, compact support 3 eps (default) */
+  GRAVITY_SOFTENING_PLUMMER = 1, /**< Plummer sphere, 1/sqrt(r^2 + eps^2) */
+};
+
+/** Multipole of one cell about its centre of mass. */
+struct gravity_multipole {
+  double M[GRAVITY_NM]; /**< moments (G1); M[0] is the mass, M[1..3] vanish (centre of mass) */
+  double com[3];        /**< centre of mass z_A (expansion centre) */
+  double r_max;         /**< radius about com enclosing every particle of the cell */
+};
+
+/** Local expansion (field tensor) of one cell about its centre of mass. */
+struct gravity_field {
+  double F[GRAVITY_NM]; /**< coefficients of (G5), without the factor G */
+};
+
+/** Position of multi-index (nx, ny, nz) in graded order. */
+BOLIDE_INLINE int gravity_index(int nx, int ny, int nz) {
+  const int n = nx + ny + nz;
+  const int j = ny + nz;
+  return n * (n + 1) * (n + 2) / 6 + j * (j + 1) / 2 + nz;
+}
+
+/** k! for 0 <= k <= 12 (exact in double). */
+BOLIDE_INLINE double gravity_factorial(int k) {
+  double f = 1.0;
+  for (int i = 2; i <= k; i++) f *= i;
+  return f;
+}
+
+/** (-1)^k. */
+BOLIDE_INLINE double gravity_sign(int k) {
+  return (k & 1) ? -1.0 : 1.0;
+}
+
+/** Scaled powers t^k / k! for k = 0..q (q <= GRAVITY_ORDER_MAX + 1). */
+BOLIDE_INLINE void gravity_scaled_powers(double t, int q, double *BOLIDE_RESTRICT out) {
+  out[0] = 1.0;
+  for (int k = 1; k <= q; k++) out[k] = out[k - 1] * t / k;
+}
+
+/** Zero every coefficient of a multipole (com and r_max untouched). */
+BOLIDE_INLINE void gravity_multipole_zero(struct gravity_multipole *mp) {
+  for (int i = 0; i < GRAVITY_NM; i++) mp->M[i] = 0.0;
+}
+
+/** Zero a field tensor. */
+BOLIDE_INLINE void gravity_field_zero(struct gravity_field *f) {
+  for (int i = 0; i < GRAVITY_NM; i++) f->F[i] = 0.0;
+}
+
+/** P2M: add particle of mass m at offset d = x - com from the expansion
+ *  centre to the moments up to order p (G1). */
+BOLIDE_INLINE void gravity_p2m(struct gravity_multipole *mp, const double d[3], double m, int p) {
+  double px[GRAVITY_ORDER_MAX + 2], py[GRAVITY_ORDER_MAX + 2], pz[GRAVITY_ORDER_MAX + 2];
+  gravity_scaled_powers(d[0], p, px);
+  gravity_scaled_powers(d[1], p, py);
+  gravity_scaled_powers(d[2], p, pz);
+  int i = 0;
+  for (int n = 0; n <= p; n++)
+    for (int nx = n; nx >= 0; nx--)
+      for (int ny = n - nx; ny >= 0; ny--, i++) mp->M[i] += m * px[nx] * py[ny] * pz[n - nx - ny];
+}
+
+/** M2M: add the moments of a child, expanded about its centre, to those of
+ *  the parent about the parent's centre; t = child com - parent com (G2):
+ *    M'_n = sum_{k <= n} M_k t^(n-k) / (n-k)!  */
+BOLIDE_INLINE void gravity_m2m(struct gravity_multipole *BOLIDE_RESTRICT parent,
+                               const struct gravity_multipole *BOLIDE_RESTRICT child,
+                               const double t[3], int p) {
+  double px[GRAVITY_ORDER_MAX + 2], py[GRAVITY_ORDER_MAX + 2], pz[GRAVITY_ORDER_MAX + 2];
+  gravity_scaled_powers(t[0], p, px);
+  gravity_scaled_powers(t[1], p, py);
+  gravity_scaled_powers(t[2], p, pz);
+  int i = 0;
+  for (int n = 0; n <= p; n++)
+    for (int nx = n; nx >= 0; nx--)
+      for (int ny = n - nx; ny >= 0; ny--, i++) {
+        const int nz = n - nx - ny;
+        double s = 0.0;
+        for (int kx = 0; kx <= nx; kx++)
+          for (int ky = 0; ky <= ny; ky++)
+            for (int kz = 0; kz <= nz; kz++)
+              s += child->M[gravity_index(kx, ky, kz)] * px[nx - kx] * py[ny - ky] * pz[nz - kz];
+        parent->M[i] += s;
+      }
+}
+
+/** Derivatives D_n(R) = d^n f(|R|) for |n| <= q of f = 1/sqrt(|R|^2 + eps2)
+ *  (eps2 = 0: Newtonian 1/r; eps2 = eps^2: Plummer-softened).  For a radial
+ *  function f(u), u = r^2/2, (G4):
+ *    D_n = sum_{2k <= n} n! / (2^|k| k! (n-2k)!) R^(n-2k) f^(|n|-|k|)(u)
+ *  with f^(m) = (-1)^m (2m-1)!! (r^2 + eps2)^(-(2m+1)/2).  D has
+ *  GRAVITY_NCOMP(q) entries, q <= GRAVITY_ORDER_MAX + 1. */
+BOLIDE_INLINE void gravity_derivatives(const double R[3], double eps2, int q,
+                                       double *BOLIDE_RESTRICT D) {
+  const double r2 = R[0] * R[0] + R[1] * R[1] + R[2] * R[2] + eps2;
+  const double inv_r2 = 1.0 / r2;
+  double fm[GRAVITY_ORDER_MAX + 2]; /* f^(m) */
+  double xp[GRAVITY_ORDER_MAX + 2], yp[GRAVITY_ORDER_MAX + 2], zp[GRAVITY_ORDER_MAX + 2];
+  double fact[GRAVITY_ORDER_MAX + 2];
+  fm[0] = sqrt(inv_r2);
+  xp[0] = yp[0] = zp[0] = fact[0] = 1.0;
+  for (int m = 1; m <= q; m++) {
+    fm[m] = -(2 * m - 1) * fm[m - 1] * inv_r2;
+    xp[m] = xp[m - 1] * R[0];
+    yp[m] = yp[m - 1] * R[1];
+    zp[m] = zp[m - 1] * R[2];
+    fact[m] = fact[m - 1] * m;
+  }
+  int i = 0;
+  for (int n = 0; n <= q; n++)
+    for (int nx = n; nx >= 0; nx--)
+      for (int ny = n - nx; ny >= 0; ny--, i++) {
+        const int nz = n - nx - ny;
+        double s = 0.0;
+        for (int kx = 0; 2 * kx <= nx; kx++) {
+          const double cx = xp[nx - 2 * kx] / (fact[kx] * fact[nx - 2 * kx] * (double)(1 << kx));
+          for (int ky = 0; 2 * ky <= ny; ky++) {
+            const double cy = yp[ny - 2 * ky] / (fact[ky] * fact[ny - 2 * ky] * (double)(1 << ky));
+            for (int kz = 0; 2 * kz <= nz; kz++) {
+              const double cz =
+                  zp[nz - 2 * kz] / (fact[kz] * fact[nz - 2 * kz] * (double)(1 << kz));
+              s += cx * cy * cz * fm[n - kx - ky - kz];
+            }
+          }
+        }
+        D[i] = s * fact[nx] * fact[ny] * fact[nz];
+      }
+}
+
+/** M2L, one direction: add to the field tensor of B the contribution of the
+ *  multipole of A; D = gravity_derivatives(z_B - z_A) to order >= p (G6). */
+BOLIDE_INLINE void gravity_m2l(struct gravity_field *BOLIDE_RESTRICT fb,
+                               const struct gravity_multipole *BOLIDE_RESTRICT ma,
+                               const double *BOLIDE_RESTRICT D, int p) {
+  int i = 0;
+  for (int k = 0; k <= p; k++)
+    for (int kx = k; kx >= 0; kx--)
+      for (int ky = k - kx; ky >= 0; ky--, i++) {
+        const int kz = k - kx - ky;
+        double s = 0.0;
+        int j = 0;
+        for (int n = 0; n <= p - k; n++) {
+          const double sg = gravity_sign(n);
+          for (int nx = n; nx >= 0; nx--)
+            for (int ny = n - nx; ny >= 0; ny--, j++)
+              s += sg * ma->M[j] * D[gravity_index(nx + kx, ny + ky, n - nx - ny + kz)];
+        }
+        fb->F[i] -= s;
+      }
+}
+
+/** M2L, both directions at once (the symmetric pair interaction): with
+ *  D = D(z_B - z_A), D_n(-R) = (-1)^|n| D_n(R) gives A's field from the same
+ *  tensor (G6'). */
+BOLIDE_INLINE void gravity_m2l_sym(struct gravity_field *BOLIDE_RESTRICT fa,
+                                   struct gravity_field *BOLIDE_RESTRICT fb,
+                                   const struct gravity_multipole *BOLIDE_RESTRICT ma,
+                                   const struct gravity_multipole *BOLIDE_RESTRICT mb,
+                                   const double *BOLIDE_RESTRICT D, int p) {
+  int i = 0;
+  for (int k = 0; k <= p; k++)
+    for (int kx = k; kx >= 0; kx--)
+      for (int ky = k - kx; ky >= 0; ky--, i++) {
+        const int kz = k - kx - ky;
+        double sa = 0.0, sb = 0.0;
+        int j = 0;
+        for (int n = 0; n <= p - k; n++) {
+          const double sg = gravity_sign(n);
+          for (int nx = n; nx >= 0; nx--)
+            for (int ny = n - nx; ny >= 0; ny--, j++) {
+              const double d = D[gravity_index(nx + kx, ny + ky, n - nx - ny + kz)];
+              sb += sg * ma->M[j] * d;
+              sa += mb->M[j] * d;
+            }
+        }
+        fb->F[i] -= sb;
+        fa->F[i] -= gravity_sign(k) * sa;
+      }
+}
+
+/** L2L: add the parent's local expansion, re-expanded about the child's
+ *  centre, to the child's; t = child com - parent com (G7):
+ *    F'_m = sum_{k >= m, |k| <= p} F_k t^(k-m) / (k-m)!  */
+BOLIDE_INLINE void gravity_l2l(struct gravity_field *BOLIDE_RESTRICT child,
+                               const struct gravity_field *BOLIDE_RESTRICT parent,
+                               const double t[3], int p) {
+  double px[GRAVITY_ORDER_MAX + 2], py[GRAVITY_ORDER_MAX + 2], pz[GRAVITY_ORDER_MAX + 2];
+  gravity_scaled_powers(t[0], p, px);
+  gravity_scaled_powers(t[1], p, py);
+  gravity_scaled_powers(t[2], p, pz);
+  int i = 0;
+  for (int m = 0; m <= p; m++)
+    for (int mx = m; mx >= 0; mx--)
+      for (int my = m - mx; my >= 0; my--, i++) {
+        const int mz = m - mx - my;
+        double s = 0.0;
+        for (int kx = mx; kx <= p; kx++)
+          for (int ky = my; kx + ky <= p; ky++)
+            for (int kz = mz; kx + ky + kz <= p; kz++)
+              s += parent->F[gravity_index(kx, ky, kz)] * px[kx - mx] * py[ky - my] * pz[kz - mz];
+        child->F[i] += s;
+      }
+}
+
+/** L2P: evaluate a local expansion at offset s from its centre (G8):
+ *    phi = G sum_k F_k s^k/k!,  a_i = -G sum_{|k| <= p-1} F_{k+e_i} s^k/k!
+ *  adding to *pot and a[3]. */
+BOLIDE_INLINE void gravity_l2p(const struct gravity_field *BOLIDE_RESTRICT f, const double s[3],
+                               int p, double G, double *BOLIDE_RESTRICT pot,
+                               double *BOLIDE_RESTRICT a) {
+  double px[GRAVITY_ORDER_MAX + 2], py[GRAVITY_ORDER_MAX + 2], pz[GRAVITY_ORDER_MAX + 2];
+  gravity_scaled_powers(s[0], p, px);
+  gravity_scaled_powers(s[1], p, py);
+  gravity_scaled_powers(s[2], p, pz);
+  double phi = 0.0, ax = 0.0, ay = 0.0, az = 0.0;
+  int i = 0;
+  for (int k = 0; k <= p; k++)
+    for (int kx = k; kx >= 0; kx--)
+      for (int ky = k - kx; ky >= 0; ky--, i++) {
+        const int kz = k - kx - ky;
+        const double w = px[kx] * py[ky] * pz[kz];
+        phi += f->F[i] * w;
+        if (k < p) {
+          ax += f->F[gravity_index(kx + 1, ky, kz)] * w;
+          ay += f->F[gravity_index(kx, ky + 1, kz)] * w;
+          az += f->F[gravity_index(kx, ky, kz + 1)] * w;
+        }
+      }
+  *pot += G * phi;
+  a[0] -= G * ax;
+  a[1] -= G * ay;
+  a[2] -= G * az;
+}
+
+/** M2P (Barnes & Hut 1986 style, to order p): potential and acceleration at
+ *  R = x - com from a multipole, from (G3) and its gradient (G9):
+ *    a_i = G sum_n (-1)^|n| M_n D_{n+e_i}(R).
+ *  eps2 as in gravity_derivatives.  Adds to *pot and a[3]. */
+BOLIDE_INLINE void gravity_m2p(const struct gravity_multipole *BOLIDE_RESTRICT mp,
+                               const double R[3], double eps2, int p, double G,
+                               double *BOLIDE_RESTRICT pot, double *BOLIDE_RESTRICT a) {
+  double D[GRAVITY_ND];
+  gravity_derivatives(R, eps2, p + 1, D);
+  double phi = 0.0, ax = 0.0, ay = 0.0, az = 0.0;
+  int i = 0;
+  for (int n = 0; n <= p; n++) {
+    const double sg = gravity_sign(n);
+    for (int nx = n; nx >= 0; nx--)
+      for (int ny = n - nx; ny >= 0; ny--, i++) {
+        const int nz = n - nx - ny;
+        const double m = sg * mp->M[i];
+        phi += m * D[i];
+        ax += m * D[gravity_index(nx + 1, ny, nz)];
+        ay += m * D[gravity_index(nx, ny + 1, nz)];
+        az += m * D[gravity_index(nx, ny, nz + 1)];
+      }
+  }
+  *pot -= G * phi;
+  a[0] += G * ax;
+  a[1] += G * ay;
+  a[2] += G * az;
+}
+
+/** Mutual interaction of a point mass m at x with a cell B (multipole mb
+ *  about z_B): M2L (G6, G6') with the point as the other cell, a multipole
+ *  of mass m and no higher moments.  D = gravity_derivatives(z_B - x) to
+ *  order >= p.  The point receives (G14)
+ *    phi = -G sum_{|n| <= p} M_n D_n,  a_i = -G sum_{|n| <= p-1} M_n D_{n+e_i}
+ *  (M2P truncated as M2L truncates, so that the pair conserves momentum) and,
+ *  when fb is not NULL, B's field receives F_k -= m D_k (P2L). */
+BOLIDE_INLINE void gravity_m2p_p2l(double m, const struct gravity_multipole *BOLIDE_RESTRICT mb,
+                                   struct gravity_field *BOLIDE_RESTRICT fb,
+                                   const double *BOLIDE_RESTRICT D, int p, double G,
+                                   double *BOLIDE_RESTRICT pot, double *BOLIDE_RESTRICT a) {
+  double phi = 0.0, ax = 0.0, ay = 0.0, az = 0.0;
+  int i = 0;
+  for (int n = 0; n <= p; n++)
+    for (int nx = n; nx >= 0; nx--)
+      for (int ny = n - nx; ny >= 0; ny--, i++) {
+        const int nz = n - nx - ny;
+        phi += mb->M[i] * D[i];
+        if (n < p) {
+          ax += mb->M[i] * D[gravity_index(nx + 1, ny, nz)];
+          ay += mb->M[i] * D[gravity_index(nx, ny + 1, nz)];
+          az += mb->M[i] * D[gravity_index(nx, ny, nz + 1)];
+        }
+        if (fb) fb->F[i] -= m * D[i];
+      }
+  *pot -= G * phi;
+  a[0] -= G * ax;
+  a[1] -= G * ay;
+  a[2] -= G * az;
+}
+
+/** Softened pair kernel: for separation r^2 and softening eps (Plummer
+ *  equivalent), the potential is -G m * (*wpot) and the acceleration of i
+ *  -G m * (*wacc) * (x_i - x_j).  Newtonian: wpot = 1/r, wacc = 1/r^3.
+ *  Spline (G10, G11), u = r/H, H = 3 eps, for u < 1:
+ *    wpot = (3 - 7u^2 + 21u^4 - 28u^5 + 15u^6 - 3u^7) / H
+ *    wacc = (14 - 84u^2 + 140u^3 - 90u^4 + 21u^5) / H^3
+ *  Plummer (G12): wpot = (r^2+eps^2)^(-1/2), wacc = (r^2+eps^2)^(-3/2).
+ *  r2 must be > 0 unless eps > 0. */
+BOLIDE_INLINE void gravity_softened_kernel(double r2, double eps, int softening,
+                                           double *BOLIDE_RESTRICT wpot,
+                                           double *BOLIDE_RESTRICT wacc) {
+  if (softening == (int)GRAVITY_SOFTENING_PLUMMER) {
+    const double q = 1.0 / sqrt(r2 + eps * eps);
+    *wpot = q;
+    *wacc = q * q * q;
+    return;
+  }
+  const double H = GRAVITY_SPLINE_H_OVER_EPS * eps;
+  if (r2 >= H * H) {
+    const double q = 1.0 / sqrt(r2);
+    *wpot = q;
+    *wacc = q * q * q;
+    return;
+  }
+  const double inv_H = 1.0 / H;
+  const double u = sqrt(r2) * inv_H;
+  const double u2 = u * u;
+  *wpot = inv_H * (3.0 + u2 * (-7.0 + u2 * (21.0 + u * (-28.0 + u * (15.0 - 3.0 * u)))));
+  *wacc = inv_H * inv_H * inv_H * (14.0 + u2 * (-84.0 + u * (140.0 + u * (-90.0 + 21.0 * u))));
+}
+
+/** P2P: potential and acceleration of particle i from particle j of mass mj
+ *  at dx = x_i - x_j, r2 = |dx|^2, with softening; adds to *pot and a[3]. */
+BOLIDE_INLINE void gravity_p2p(const double dx[3], double r2, double mj, double G, double eps,
+                               int softening, double *BOLIDE_RESTRICT pot,
+                               double *BOLIDE_RESTRICT a) {
+  double wpot, wacc;
+  gravity_softened_kernel(r2, eps, softening, &wpot, &wacc);
+  const double gm = G * mj;
+  *pot -= gm * wpot;
+  a[0] -= gm * wacc * dx[0];
+  a[1] -= gm * wacc * dx[1];
+  a[2] -= gm * wacc * dx[2];
+}
+
+/** Geometric multipole acceptance criterion (Dehnen 2002, with
+ *  constant theta): cells A and B with centres r2 = |z_A - z_B|^2 apart and
+ *  radii r_max_a, r_max_b interact through multipoles when
+ *    r_max_a + r_max_b < theta |z_A - z_B|
+ *  and, for the spline softening, every particle pair is further apart than
+ *  the kernel support h_support (r - r_max_a - r_max_b > h_support), so the
+ *  expansions of 1/r hold (pass h_support = 0 for Plummer). */
+BOLIDE_INLINE int gravity_mac(double r_max_a, double r_max_b, double r2, double theta,
+                              double h_support) {
+  const double rs = r_max_a + r_max_b;
+  if (rs * rs >= theta * theta * r2) return 0;
+  const double gap = rs + h_support;
+  return gap * gap < r2;
+}
+
+/** Error-based (adaptive) acceptance, one direction (Dehnen 2014, Comput.
+ *  Astrophys. Cosmol. 1, 1; SWIFT's epsilon_fmm, Schaller et al. 2024): the
+ *  truncated terms of the acceleration that cell B (mass m_b) exerts on
+ *  cell A are estimated as (G13)
+ *    E = G m_b (r_max_a + r_max_b)^p / R^(p+2)
+ *  and the interaction is accepted when E < eps_fmm * a_min, a_min the
+ *  smallest gravitational acceleration of A's particles at the previous
+ *  pass.  a_min <= 0 (not known yet) or eps_fmm <= 0 accepts: the geometric
+ *  criterion then decides alone. */
+BOLIDE_INLINE int gravity_mac_adaptive(double G, double m_b, double r_sum, double r2, int p,
+                                       double eps_fmm, double a_min) {
+  if (eps_fmm <= 0.0 || a_min <= 0.0) return 1;
+  double num = G * m_b, den = r2;
+  for (int k = 0; k < p; k++) num *= r_sum;
+  for (int k = 0; k < p; k += 2) den *= (k + 1 < p) ? r2 : sqrt(r2);
+  return num < eps_fmm * a_min * den;
+}
+
+/** Gravitational time step (Power et al. 2003, MNRAS 338, 14, in
+ *  SWIFT's form): dt = sqrt(2 eta eps / |a|) for softening eps and
+ *  acceleration a; 1e300 when a = 0. */
+BOLIDE_INLINE double gravity_timestep(const double a[3], double eps, double eta) {
+  const double a2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+  if (a2 <= 0.0) return 1e300;
+  return sqrt(2.0 * eta * eps / sqrt(a2));
+}
+
+#endif

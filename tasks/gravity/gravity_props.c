@@ -1,0 +1,25 @@
+/* Gravity parameters from the parameter file (section Gravity).  Apart from
+ * gravity_cpu.c so that programs and tests that set the parameters directly
+ * (gravity_props_set) do not link the parameter parser. */
+#include <math.h>
+
+#include "error.h"
+#include "gravity/gravity_cpu.h"
+#include "params.h"
+#include "units.h"
+
+void gravity_props_init(struct gravity_props *gp, const struct params *params,
+                        const struct unit_system *us) {
+  double eps = params_get_real(params, "Gravity:softening");
+  if (eps == 0.0) eps = params_get_real(params, "Gravity:max_physical_baryon_softening");
+  /* choices "spline|plummer" in the order of enum gravity_softening */
+  const int kind = params_get_enum(params, "Gravity:softening_kernel");
+  gravity_props_set(gp, units_G(us), params_get_real(params, "Gravity:theta_cr"), eps, kind,
+                    (int)params_get_int(params, "Gravity:multipole_order"));
+  gp->enabled = params_get_bool(params, "Gravity:enabled");
+  gp->direct = params_get_bool(params, "Gravity:direct");
+  gp->eta = params_get_real(params, "Gravity:eta");
+  gp->epsilon_fmm = params_get_real(params, "Gravity:epsilon_fmm");
+  if (gp->enabled && eps == 0.0)
+    error_warning("Gravity:softening is 0: close pairs of particles will see a singular force");
+}

@@ -1,0 +1,430 @@
+/* bolide-fof: friends-of-friends fragments of a snapshot.
+ *
+ *   bolide-fof SNAPSHOT [--link-length L | --link-h F] [--min-damage-drop D]
+ *              [--min-count C] [--out FRAGMENTS.txt] [--spectrum SPECTRUM.txt]
+ *              [--plot SPECTRUM.png]
+ *
+ * Per fragment (sorted by mass, largest first): mass, particle count, centre
+ * of mass and its velocity, mass-weighted mean damage (/PartType0/Damage, 0
+ * if absent), the mass fraction of each material, and an escape test
+ * against the barycentre of the whole snapshot (theory/damage.md, "Fragments"):
+ * a fragment at distance r from the barycentre, moving at v relative to it,
+ * is bound when v < v_esc(r) = sqrt(2 G M(<r) / r), M(<r) the mass of all
+ * particles within r; a fragment whose own extent contains the barycentre
+ * is the central body and bound.  Values in SI. */
+#include <errno.h>
+#include <getopt.h>
+#include <hdf5.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "error.h"
+#include "fof.h"
+#include "ic.h"
+#include "units.h"
+#include "version.h"
+
+/** Most distinct materials reported as columns. */
+#define FOF_MAX_MAT 64
+
+/** Long options without a short form. */
+enum {
+  OPT_LINK_LENGTH = 256,
+  OPT_LINK_H,
+  OPT_DROP,
+  OPT_MIN_COUNT,
+  OPT_SPECTRUM,
+  OPT_PLOT,
+  OPT_VERSION
+};
+
+static const struct option fofmain_longopts[] = {
+    {"link-length", required_argument, NULL, OPT_LINK_LENGTH},
+    {"link-h", required_argument, NULL, OPT_LINK_H},
+    {"min-damage-drop", required_argument, NULL, OPT_DROP},
+    {"min-count", required_argument, NULL, OPT_MIN_COUNT},
+    {"out", required_argument, NULL, 'o'},
+    {"spectrum", required_argument, NULL, OPT_SPECTRUM},
+    {"plot", required_argument, NULL, OPT_PLOT},
+    {"help", no_argument, NULL, 'h'},
+    {"version", no_argument, NULL, OPT_VERSION},
+    {NULL, 0, NULL, 0}};
+
+/** Print the usage text to f. */
+static void fofmain_usage(FILE *f) {
+  fprintf(f,
+          "Usage: bolide-fof SNAPSHOT.hdf5 [options]\n"
+          "Friends-of-friends fragments: mass, count, position, velocity, damage,\n"
+          "material fractions, boundness; cumulative mass spectrum.\n\n"
+          "  --link-length L        linking length in m\n"
+          "  --link-h F             linking length F x the median smoothing length\n"
+          "                         (default: --link-h 1)\n"
+          "  --min-damage-drop D    leave out particles with damage >= D (Nakamura\n"
+          "                         analysis; default: keep all)\n"
+          "  --min-count C          list fragments of at least C particles (default 1)\n"
+          "  -o, --out FILE         fragment table (default: standard output)\n"
+          "  --spectrum FILE        cumulative mass spectrum N(>=m) as text\n"
+          "  --plot PNG             plot the spectrum (runs tools/plot_fragments.py with\n"
+          "                         $PYTHON, default python3; needs --out)\n"
+          "  -v                     log the phases and their times\n"
+          "  -h, --help             this help\n"
+          "  --version              version\n");
+}
+
+/** Parse a number for option `name`; positive unless zero_ok. */
+static double fofmain_number(const char *name, const char *s, int zero_ok) {
+  char *end;
+  errno = 0;
+  const double v = strtod(s, &end);
+  if (end == s || *end || errno || !isfinite(v) || v < 0.0 || (!zero_ok && v == 0.0))
+    error_exit("option --%s: '%s' is not a %s number", name, s,
+               zero_ok ? "non-negative" : "positive");
+  return v;
+}
+
+/** /PartType0/Damage of the snapshot (n values) into d; 0 if absent. */
+static int fofmain_read_damage(const char *path, size_t n, double *d) {
+  H5Eset_auto(H5E_DEFAULT, NULL, NULL);
+  hid_t file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (file < 0) error_exit("%s: cannot open as HDF5", path);
+  int found = 0;
+  if (H5Lexists(file, "PartType0", H5P_DEFAULT) > 0 &&
+      H5Lexists(file, "PartType0/Damage", H5P_DEFAULT) > 0) {
+    hid_t ds = H5Dopen2(file, "PartType0/Damage", H5P_DEFAULT);
+    hid_t sp = ds >= 0 ? H5Dget_space(ds) : -1;
+    if (sp < 0 || H5Sget_simple_extent_npoints(sp) != (hssize_t)n)
+      error_exit("%s: /PartType0/Damage does not have one value per particle (%zu)", path, n);
+    if (n > 0 && H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, d) < 0)
+      error_exit("%s: cannot read /PartType0/Damage", path);
+    for (size_t i = 0; i < n; i++)
+      if (!(d[i] >= 0.0 && d[i] <= 1.0))
+        error_exit("%s: particle %zu: damage %g (must be in [0, 1])", path, i, d[i]);
+    H5Sclose(sp);
+    H5Dclose(ds);
+    found = 1;
+  }
+  H5Fclose(file);
+  return found;
+}
+
+/** Compare doubles (qsort). */
+static int fofmain_cmp_double(const void *a, const void *b) {
+  const double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/** One fragment. */
+struct fofmain_frag {
+  double mass;    /**< total mass */
+  int64_t count;  /**< particles */
+  double x[3];    /**< centre of mass */
+  double v[3];    /**< centre-of-mass velocity */
+  double damage;  /**< mass-weighted mean damage */
+  double extent;  /**< largest distance of a member from the centre of mass */
+  double r, vrel; /**< distance and speed relative to the barycentre */
+  double vesc;    /**< escape speed at r from the enclosed mass */
+  int bound;      /**< 1 if bound to the barycentre */
+  int64_t index;  /**< group number before sorting */
+};
+
+/** Sort fragments by mass, largest first (ties: lower group number first). */
+static int fofmain_cmp_frag(const void *a, const void *b) {
+  const struct fofmain_frag *p = a, *q = b;
+  if (p->mass != q->mass) return p->mass < q->mass ? 1 : -1;
+  return (p->index > q->index) - (p->index < q->index);
+}
+
+/** Enclosed mass M(<r) from the sorted radii rs (n) and mass prefix sums. */
+static double fofmain_enclosed(const double *rs, const double *mcum, size_t n, double r) {
+  size_t lo = 0, hi = n; /* first index with rs >= r */
+  while (lo < hi) {
+    const size_t mid = lo + (hi - lo) / 2;
+    if (rs[mid] < r)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return lo ? mcum[lo - 1] : 0.0;
+}
+
+/** Run the plotting script on the fragment table. */
+static void fofmain_plot(const char *table, const char *png) {
+  const char *py = getenv("PYTHON");
+  if (!py || !*py) py = "python3";
+  char script[4096];
+  const char *tools = getenv("BOLIDE_TOOLS_DIR");
+  snprintf(script, sizeof script, "%s/plot_fragments.py", tools ? tools : BOLIDE_SRCDIR "/tools");
+  fflush(NULL);
+  const pid_t pid = fork();
+  if (pid < 0) error_exit("cannot start %s: %s", py, strerror(errno));
+  if (pid == 0) {
+    execlp(py, py, script, table, "-o", png, (char *)NULL);
+    fprintf(stderr, "%s: error: cannot run %s: %s\n", error_progname, py, strerror(errno));
+    _exit(127);
+  }
+  int status;
+  if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    error_exit("%s: plotting failed (%s %s)", png, py, script);
+}
+
+int main(int argc, char **argv) {
+  error_init(argv[0]);
+  double link_length = 0.0, link_h = 0.0, drop = INFINITY;
+  long long min_count = 1;
+  const char *out = NULL, *spectrum = NULL, *plot = NULL;
+  int c;
+  while ((c = getopt_long(argc, argv, "hvo:", fofmain_longopts, NULL)) != -1) {
+    switch (c) {
+      case OPT_LINK_LENGTH:
+        link_length = fofmain_number("link-length", optarg, 0);
+        break;
+      case OPT_LINK_H:
+        link_h = fofmain_number("link-h", optarg, 0);
+        break;
+      case OPT_DROP:
+        drop = fofmain_number("min-damage-drop", optarg, 1);
+        break;
+      case OPT_MIN_COUNT:
+        min_count = (long long)fofmain_number("min-count", optarg, 0);
+        break;
+      case 'o':
+        out = optarg;
+        break;
+      case OPT_SPECTRUM:
+        spectrum = optarg;
+        break;
+      case OPT_PLOT:
+        plot = optarg;
+        break;
+      case 'v':
+        error_verbosity++;
+        break;
+      case 'h':
+        fofmain_usage(stdout);
+        return 0;
+      case OPT_VERSION:
+        printf("bolide-fof (Bolide) %s\n", PACKAGE_VERSION);
+        return 0;
+      default:
+        error_exit("unknown option (see --help)");
+    }
+  }
+  if (argc - optind != 1) error_exit("expected one SNAPSHOT.hdf5 (see --help)");
+  if (link_length > 0.0 && link_h > 0.0) error_exit("give --link-length or --link-h, not both");
+  if (plot && !out) error_exit("--plot needs --out FILE (the table it plots)");
+  if (link_length == 0.0 && link_h == 0.0) link_h = 1.0;
+  const char *path = argv[optind];
+
+  struct unit_system si;
+  units_init_si(&si);
+  struct parts p;
+  struct ic_info info;
+  ic_read(path, &si, NULL, 0, &p, &info);
+  const size_t n = p.count;
+  if (n == 0) error_exit("%s: no particles", path);
+  double *dmg = error_calloc(n, sizeof *dmg, "damage");
+  const int has_damage = fofmain_read_damage(path, n, dmg);
+  if (!has_damage && isfinite(drop))
+    error_warning("%s: no /PartType0/Damage: --min-damage-drop keeps every particle", path);
+
+  unsigned char *keep = error_malloc(n, "kept particles");
+  size_t nkeep = 0;
+  for (size_t i = 0; i < n; i++) {
+    keep[i] = !(dmg[i] >= drop);
+    nkeep += keep[i];
+  }
+  if (link_h > 0.0) {
+    int kh = -1;
+    for (int k = 0; k < part_nr_fields; k++)
+      if (strcmp(part_fields[k].name, "h") == 0) kh = k;
+    if (kh < 0 || !ic_field_read(&info, kh))
+      error_exit("%s: no SmoothingLengths: give --link-length", path);
+    double *hs = error_malloc(n * sizeof *hs, "smoothing lengths");
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++)
+      if (keep[i]) hs[m++] = p.h[i];
+    if (m == 0) error_exit("%s: every particle is dropped (damage >= %g)", path, drop);
+    qsort(hs, m, sizeof *hs, fofmain_cmp_double);
+    link_length = link_h * hs[m / 2];
+    free(hs);
+  }
+
+  int64_t *group = error_malloc(n * sizeof *group, "groups");
+  error_log(1, "linking %zu particles, L = %g", nkeep, link_length);
+  const int64_t ng = fof_groups(n, p.x, p.y, p.z, keep, link_length, group);
+  error_log(1, "%lld groups", (long long)ng);
+
+  /* materials present */
+  int32_t mats[FOF_MAX_MAT];
+  int nmat = 0;
+  for (size_t i = 0; i < n; i++) {
+    int k = 0;
+    while (k < nmat && mats[k] != p.mat[i]) k++;
+    if (k == nmat) {
+      if (nmat == FOF_MAX_MAT) error_exit("%s: more than %d materials", path, FOF_MAX_MAT);
+      mats[nmat++] = p.mat[i];
+    }
+  }
+
+  /* barycentre and enclosed mass of the whole snapshot */
+  double M = 0.0, xb[3] = {0, 0, 0}, vb[3] = {0, 0, 0};
+  for (size_t i = 0; i < n; i++) {
+    M += p.m[i];
+    xb[0] += p.m[i] * p.x[i], xb[1] += p.m[i] * p.y[i], xb[2] += p.m[i] * p.z[i];
+    vb[0] += p.m[i] * p.vx[i], vb[1] += p.m[i] * p.vy[i], vb[2] += p.m[i] * p.vz[i];
+  }
+  for (int d = 0; d < 3; d++) xb[d] /= M, vb[d] /= M;
+  /* particles sorted by distance from the barycentre (radix sort of the
+   * bit patterns of r >= 0), and the enclosed mass before each */
+  int64_t *rkey = error_malloc(n * sizeof *rkey, "radii");
+  int64_t *rord = error_malloc(n * sizeof *rord, "radii");
+  for (size_t i = 0; i < n; i++) {
+    const double dx = p.x[i] - xb[0], dy = p.y[i] - xb[1], dz = p.z[i] - xb[2];
+    const double r = sqrt(dx * dx + dy * dy + dz * dz);
+    memcpy(&rkey[i], &r, sizeof r);
+    rord[i] = (int64_t)i;
+  }
+  fof_radix_sort(n, rkey, rord);
+  double *rsort = error_malloc(n * sizeof *rsort, "radii");
+  double *mcum = error_malloc(n * sizeof *mcum, "masses");
+  for (size_t i = 0; i < n; i++) {
+    memcpy(&rsort[i], &rkey[i], sizeof rsort[i]);
+    mcum[i] = (i ? mcum[i - 1] : 0.0) + p.m[rord[i]];
+  }
+  free(rkey);
+  const double G = units_G(&si);
+
+  /* fragments */
+  struct fofmain_frag *fr = error_calloc(ng ? (size_t)ng : 1, sizeof *fr, "fragments");
+  double *mmat = error_calloc((ng ? (size_t)ng : 1) * (size_t)nmat, sizeof *mmat, "fractions");
+  for (size_t i = 0; i < n; i++) {
+    const int64_t g = group[i];
+    if (g < 0) continue;
+    struct fofmain_frag *f = &fr[g];
+    const double mi = p.m[i];
+    f->mass += mi;
+    f->count++;
+    f->x[0] += mi * p.x[i], f->x[1] += mi * p.y[i], f->x[2] += mi * p.z[i];
+    f->v[0] += mi * p.vx[i], f->v[1] += mi * p.vy[i], f->v[2] += mi * p.vz[i];
+    f->damage += mi * dmg[i];
+    int k = 0;
+    while (mats[k] != p.mat[i]) k++;
+    mmat[(size_t)g * nmat + k] += mi;
+  }
+  for (int64_t g = 0; g < ng; g++) {
+    struct fofmain_frag *f = &fr[g];
+    f->index = g;
+    for (int d = 0; d < 3; d++) f->x[d] /= f->mass, f->v[d] /= f->mass;
+    f->damage /= f->mass;
+  }
+  /* particles in order of r: M(<r) is the mass before them (ties in r
+   * counted as enclosed in sorted order, a negligible difference) */
+  double bound_mass_particles = 0.0;
+  for (size_t k = 0; k < n; k++) {
+    const size_t i = (size_t)rord[k];
+    const double r = rsort[k];
+    const double dvx = p.vx[i] - vb[0], dvy = p.vy[i] - vb[1], dvz = p.vz[i] - vb[2];
+    const double v2 = dvx * dvx + dvy * dvy + dvz * dvz;
+    if (r == 0.0 || v2 < 2.0 * G * (k ? mcum[k - 1] : 0.0) / r) bound_mass_particles += p.m[i];
+  }
+  for (size_t i = 0; i < n; i++) {
+    const int64_t g = group[i];
+    if (g < 0) continue;
+    const double ex = p.x[i] - fr[g].x[0], ey = p.y[i] - fr[g].x[1], ez = p.z[i] - fr[g].x[2];
+    const double e = sqrt(ex * ex + ey * ey + ez * ez);
+    if (e > fr[g].extent) fr[g].extent = e;
+  }
+  double bound_mass = 0.0;
+  for (int64_t g = 0; g < ng; g++) {
+    struct fofmain_frag *f = &fr[g];
+    double dx[3], dv[3];
+    for (int d = 0; d < 3; d++) dx[d] = f->x[d] - xb[d], dv[d] = f->v[d] - vb[d];
+    f->r = sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]);
+    f->vrel = sqrt(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2]);
+    f->vesc = f->r > 0.0 ? sqrt(2.0 * G * fofmain_enclosed(rsort, mcum, n, f->r) / f->r) : INFINITY;
+    f->bound = f->r <= f->extent || f->vrel < f->vesc;
+    if (f->bound) bound_mass += f->mass;
+  }
+  qsort(fr, (size_t)ng, sizeof *fr, fofmain_cmp_frag);
+  error_log(1, "fragment properties and escape test done");
+
+  /* the table */
+  char tmp[4096] = "";
+  FILE *fo = stdout;
+  if (out) {
+    snprintf(tmp, sizeof tmp, "%s.tmp", out);
+    fo = fopen(tmp, "w");
+    if (!fo) error_exit("%s: cannot create: %s", tmp, strerror(errno));
+    error_register_tmpfile(tmp);
+  }
+  double kept_mass = 0.0;
+  for (size_t i = 0; i < n; i++)
+    if (keep[i]) kept_mass += p.m[i];
+  fprintf(fo, "# bolide-fof %s: %s\n", PACKAGE_VERSION, path);
+  fprintf(fo, "# time %.9g s; %zu particles, %zu kept", info.time, n, nkeep);
+  if (isfinite(drop)) fprintf(fo, " (damage < %g)", drop);
+  fprintf(fo, "; damage %s\n", has_damage ? "from /PartType0/Damage" : "absent (0)");
+  fprintf(fo, "# linking length %.9g m%s; %lld fragments\n", link_length,
+          link_h > 0.0 ? " (from --link-h x median h)" : "", (long long)ng);
+  fprintf(fo,
+          "# total mass %.9g kg, kept %.9g kg; barycentre %.9g %.9g %.9g m, %.9g %.9g %.9g m/s\n",
+          M, kept_mass, xb[0], xb[1], xb[2], vb[0], vb[1], vb[2]);
+  fprintf(fo, "# bound to the barycentre: %.9g kg in fragments, %.9g kg of all particles\n",
+          bound_mass, bound_mass_particles);
+  fprintf(fo, "# rank mass count x y z vx vy vz damage r v_rel v_esc bound");
+  for (int k = 0; k < nmat; k++) fprintf(fo, " frac_mat%d", (int)mats[k]);
+  fprintf(fo, "\n");
+  for (int64_t g = 0; g < ng; g++) {
+    const struct fofmain_frag *f = &fr[g];
+    if (f->count < min_count) continue;
+    fprintf(fo, "%lld %.9e %lld %.9e %.9e %.9e %.9e %.9e %.9e %.6f %.6e %.6e %.6e %d",
+            (long long)g + 1, f->mass, (long long)f->count, f->x[0], f->x[1], f->x[2], f->v[0],
+            f->v[1], f->v[2], f->damage, f->r, f->vrel, f->vesc, f->bound);
+    for (int k = 0; k < nmat; k++)
+      fprintf(fo, " %.6f", mmat[(size_t)f->index * nmat + k] / f->mass);
+    fprintf(fo, "\n");
+  }
+  if (out) {
+    if (fflush(fo) != 0 || ferror(fo) || fclose(fo) != 0)
+      error_exit("%s: write failed: %s", tmp, strerror(errno));
+    if (rename(tmp, out) != 0) error_exit("%s: cannot rename %s: %s", out, tmp, strerror(errno));
+    error_unregister_tmpfile(tmp);
+  }
+
+  if (spectrum) {
+    char stmp[4096];
+    snprintf(stmp, sizeof stmp, "%s.tmp", spectrum);
+    FILE *fs = fopen(stmp, "w");
+    if (!fs) error_exit("%s: cannot create: %s", stmp, strerror(errno));
+    error_register_tmpfile(stmp);
+    fprintf(fs, "# cumulative mass spectrum of %s: N(>=m), mass in fragments >= m\n", path);
+    fprintf(fs, "# mass m/M_total N_ge cum_mass_fraction\n");
+    double cum = 0.0;
+    for (int64_t g = 0; g < ng; g++) {
+      cum += fr[g].mass;
+      /* one line per distinct mass: the count of all fragments >= m */
+      if (g + 1 < ng && fr[g + 1].mass == fr[g].mass) continue;
+      fprintf(fs, "%.9e %.9e %lld %.9e\n", fr[g].mass, fr[g].mass / M, (long long)g + 1, cum / M);
+    }
+    if (fflush(fs) != 0 || ferror(fs) || fclose(fs) != 0)
+      error_exit("%s: write failed: %s", stmp, strerror(errno));
+    if (rename(stmp, spectrum) != 0) error_exit("%s: cannot rename: %s", spectrum, strerror(errno));
+    error_unregister_tmpfile(stmp);
+  }
+  if (plot) fofmain_plot(out, plot);
+
+  free(fr);
+  free(mmat);
+  free(rsort);
+  free(rord);
+  free(mcum);
+  free(group);
+  free(keep);
+  free(dmg);
+  parts_free(&p);
+  return 0;
+}
