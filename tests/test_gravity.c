@@ -100,11 +100,10 @@ static void make_set(struct parts *p, int kind, size_t n) {
   }
 }
 
-/** Zero accelerations and potentials. */
+/** Zero the potentials.  The gravitational accelerations ga stay: gravity_up
+ *  reads them as the scale of the adaptive criterion (the previous pass) and
+ *  zeroes them itself; gravity_direct overwrites them. */
 static void zero_acc(struct parts *p) {
-  memset(p->gax, 0, p->count * sizeof(double));
-  memset(p->gay, 0, p->count * sizeof(double));
-  memset(p->gaz, 0, p->count * sizeof(double));
   memset(p->pot, 0, p->count * sizeof(double));
 }
 
