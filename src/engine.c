@@ -24,6 +24,9 @@
 #include "params.h"
 #include "restart.h"
 #include "version.h"
+#ifdef HAVE_CUDA
+#include "gpu/gpu_engine.h"
+#endif
 
 /* ------------------------------------------------------------------------ */
 /* initial conditions                                                        */
@@ -271,13 +274,10 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
              (int)params_get_int(params, "Scheduler:max_top_level_cells"));
   e->space.max_drift_fraction = params_get_real(params, "Scheduler:rebuild_fraction");
   e->nr_threads = opt->nr_threads > 0 ? opt->nr_threads : engine_nr_cores();
-  const char *gpu = params_get_string(params, "Scheduler:gpu");
-  (void)gpu;
-
   error_log(0, "Bolide %s (git %s), kernel %s, %d threads, %s", PACKAGE_VERSION, BOLIDE_GIT_HASH,
             BOLIDE_KERNEL_NAME, e->nr_threads,
 #ifdef HAVE_CUDA
-            "CUDA build (GPU tasks not implemented yet: every task runs on the CPU)"
+            "CUDA build"
 #else
             "CPU-only build: every task runs on the CPU"
 #endif
@@ -308,11 +308,18 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   engine_stats_open(e);
 
   scheduler_init(&e->sched, e->nr_threads);
+#ifdef HAVE_CUDA
+  gpu_engine_init(e);
+#endif
 }
 
 /* ------------------------------------------------------------------------ */
 
 void engine_rebuild(struct engine *e) {
+#ifdef HAVE_CUDA
+  gpu_engine_to_host(e);
+  gpu_engine_host_modified(e);
+#endif
   const size_t removed = space_rebuild(&e->space);
   e->nr_removed += (long long)removed;
   engine_make_graph(e);
@@ -333,6 +340,9 @@ static int engine_should_rebuild(const struct engine *e) {
 
 /** Save the state for --restart. */
 static void engine_write_restart(struct engine *e) {
+#ifdef HAVE_CUDA
+  gpu_engine_to_host(e);
+#endif
   struct restart_state st;
   memset(&st, 0, sizeof st);
   st.time = e->time;
@@ -356,6 +366,15 @@ static void engine_write_restart(struct engine *e) {
 
 /** Run the tasks of one phase on every worker. */
 static void engine_run_phase(struct engine *e, int phase) {
+#ifdef HAVE_CUDA
+  if (e->gpu) {
+    if (phase == ENGINE_PHASE_FORCE)
+      gpu_engine_force(e);
+    else
+      gpu_engine_drift(e);
+    return;
+  }
+#endif
   engine_activate_phase(e, phase);
   scheduler_run(&e->sched, engine_run_task, e);
 }
@@ -449,9 +468,15 @@ void engine_run(struct engine *e) {
             wall > 0 ? (double)e->updates / wall : 0.0);
   if (e->nr_removed) error_log(0, "%lld particles left the open box and were removed", e->nr_removed);
   scheduler_print_timers(&e->sched, stdout);
+#ifdef HAVE_CUDA
+  gpu_engine_print(e, stdout);
+#endif
 }
 
 void engine_clean(struct engine *e) {
+#ifdef HAVE_CUDA
+  gpu_engine_free(e);
+#endif
   if (!e->opt.check_only) {
     engine_graph_clean(e);
     scheduler_free(&e->sched);

@@ -18,6 +18,7 @@
 
 struct params;
 struct material_table;
+struct gpu_engine;
 
 /** Command-line choices that shape the run. */
 struct engine_options {
@@ -108,6 +109,7 @@ struct engine {
   double stats_dt, next_stats;    /**< its interval */
   long dump_tasks;                /**< dump a task timeline every this many steps */
   double wall_start;              /**< wall time at the first step */
+  struct gpu_engine *gpu;         /**< the GPU runner (src/gpu/gpu_engine.h), NULL: CPU only */
 };
 
 /** Read everything (units, materials, initial conditions), build the cells,

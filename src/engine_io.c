@@ -8,6 +8,9 @@
 #include "params.h"
 #include "snapshot.h"
 #include "version.h"
+#ifdef HAVE_CUDA
+#include "gpu/gpu_engine.h"
+#endif
 
 /** Columns of the statistics file: one list for the header and the rows. */
 #define ENGINE_STATS_COLUMNS(X)                                                    \
@@ -36,6 +39,9 @@ void engine_stats_open(struct engine *e) {
 }
 
 void engine_stats_write(struct engine *e) {
+#ifdef HAVE_CUDA
+  gpu_engine_to_host(e); /* the particles may be resident on the GPU */
+#endif
   const struct parts *p = &e->parts;
   double mass = 0, px = 0, py = 0, pz = 0, Lx = 0, Ly = 0, Lz = 0, ekin = 0, eint = 0;
   for (size_t i = 0; i < p->count; i++) {
@@ -68,6 +74,9 @@ void engine_stats_maybe(struct engine *e) {
 }
 
 void engine_snapshot(struct engine *e) {
+#ifdef HAVE_CUDA
+  gpu_engine_to_host(e);
+#endif
   char path[2048];
   snprintf(path, sizeof path, "%s/%s_%04d.hdf5", e->outdir, e->snap_basename, e->snap_index);
   struct snapshot_meta meta;

@@ -12,7 +12,7 @@
 #include "kick/kick_cpu.h"
 
 /** The largest kernel support the current cells and task graph allow. */
-static double engine_H_limit(const struct engine *e) {
+double engine_H_limit(const struct engine *e) {
   const struct space *s = &e->space;
   double w = e->reach;
   if (s->periodic)

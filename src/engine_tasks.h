@@ -13,6 +13,7 @@ void engine_graph_clean(struct engine *e);
 void engine_rebuild(struct engine *e);
 
 /* engine_runtask.c: the scheduler's callback */
+double engine_H_limit(const struct engine *e);
 void engine_run_task(void *ctx, struct task *t, int thread_id);
 
 /* engine_io.c */

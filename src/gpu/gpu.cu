@@ -1,0 +1,410 @@
+/* The GPU runner (gpu.h): device set-up, memory that is allocated once and
+ * grown, two streams, pinned staging for the per-phase cell data, and the
+ * FORCE phase as a sequence of batched kernels over every leaf cell.
+ *
+ * Stream 0 carries the particle fields and the kernels; stream 1 uploads the
+ * leaves and their neighbour lists at the same time, and stream 0 waits for
+ * it on an event before the first kernel.  The host waits only where it must
+ * read something: the counter of particles still iterating h after each
+ * round of the ghost, and the results at the end of the phase. */
+#include <stdlib.h>
+#include <string.h>
+
+extern "C" {
+#include "error.h"
+#include "part.h"
+}
+#include "gpu.h"
+#include "gpu_kernels.h"
+#include "material.h"
+
+/** Fields the FORCE phase reads (copied to the device before it). */
+static const char *const gpu_fields_in[] = {"x",  "y",   "z",  "vpx", "vpy", "vpz", "m",    "h",
+                                            "up", "mat", "vx", "vy",  "vz",  "u",   "flags"};
+/** Fields the FORCE phase writes (copied back after it). */
+static const char *const gpu_fields_out[] = {
+    "h",       "rho", "rho_dh", "wcount",  "wcount_dh", "div_v", "curl_vx", "curl_vy",
+    "curl_vz", "P",   "cs",     "balsara", "f_gradh",   "flags", "h_lo",    "h_hi",
+    "ax",      "ay",  "az",     "du_dt",   "drho_dt",   "v_sig", "vx",      "vy",
+    "vz",      "u",   "vpx",    "vpy",     "vpz",       "up"};
+#define GPU_NR_IN ((int)(sizeof gpu_fields_in / sizeof gpu_fields_in[0]))
+#define GPU_NR_OUT ((int)(sizeof gpu_fields_out / sizeof gpu_fields_out[0]))
+
+/** Stages timed with events. */
+enum gpu_stage {
+  GPU_T_UPLOAD,
+  GPU_T_DENSITY,
+  GPU_T_GHOST,
+  GPU_T_FORCE,
+  GPU_T_KICK,
+  GPU_T_DOWNLOAD,
+  GPU_T_N
+};
+static const char *const gpu_stage_names[GPU_T_N] = {"upload", "density", "ghost",
+                                                     "force",  "kick2",   "download"};
+
+struct gpu {
+  int device;                  /**< CUDA device number */
+  char name[512];              /**< description for the log */
+  cudaStream_t stream[2];      /**< 0: fields and kernels; 1: cell data */
+  cudaEvent_t ev[GPU_T_N + 1]; /**< stage boundaries of the last phase */
+  cudaEvent_t cells_ready;     /**< stream 1 finished its upload */
+  cudaEvent_t ev_drift[2];     /**< around the last drift */
+  double t_drift;              /**< accumulated milliseconds of drifts (with the copy back) */
+  long drifts;                 /**< drifts run */
+  struct parts dev;            /**< device arrays of every particle field */
+  size_t capacity;             /**< their length */
+  int in[GPU_NR_IN], out[GPU_NR_OUT]; /**< indices in part_fields */
+  void *cell_dev, *cell_host;         /**< device buffer and pinned staging of the leaf data */
+  double *leaf_dt;                    /**< smallest time step of each leaf (in cell_dev) */
+  size_t cell_bytes;                  /**< their size */
+  int *counters_dev, *counters_host;  /**< h-iteration counters (host side pinned) */
+  struct material_table *mats_dev;    /**< the material table on the device */
+  struct material_table *mats_host;   /**< pinned staging of it */
+  double t[GPU_T_N];                  /**< accumulated milliseconds per stage */
+  long calls;                         /**< FORCE phases run */
+  double bytes_h2d, bytes_d2h;        /**< traffic over the bus */
+  long full_up, full_down;            /**< copies of every field (rebuilds, outputs) */
+  void *pinned[64];                   /**< host arrays registered as pinned memory, by field */
+  size_t pinned_bytes;                /**< bytes per field registered */
+};
+
+void gpu_check_fail(cudaError_t err, const char *what, const char *file, int line) {
+  error_exit("CUDA call %s failed at %s:%d: %s", what, file, line, cudaGetErrorString(err));
+}
+
+/** cudaMalloc that reports, when the device is full, what was needed and
+ *  what is free. */
+static void *gpu_alloc(size_t bytes, const char *what) {
+  void *ptr = NULL;
+  if (bytes == 0) bytes = 8;
+  const cudaError_t err = cudaMalloc(&ptr, bytes);
+  if (err == cudaErrorMemoryAllocation) {
+    size_t free_b = 0, total_b = 0;
+    cudaGetLastError();
+    cudaMemGetInfo(&free_b, &total_b);
+    error_exit("GPU out of memory allocating %s: needed %.1f MiB, %.1f MiB free of %.1f MiB", what,
+               bytes / 1048576.0, free_b / 1048576.0, total_b / 1048576.0);
+  }
+  gpu_check(err);
+  return ptr;
+}
+
+/** Index of the field called name in part_fields. */
+static int gpu_field_index(const char *name) {
+  for (int k = 0; k < part_nr_fields; k++)
+    if (strcmp(part_fields[k].name, name) == 0) return k;
+  error_bug("no particle field %s", name);
+}
+
+/** Address of the array pointer of field k in the struct parts s. */
+static void **gpu_field_slot(struct parts *s, int k) {
+  return (void **)((char *)s + part_fields[k].offset);
+}
+
+extern "C" struct gpu *gpu_init(char *why, size_t len) {
+  int n = 0;
+  const cudaError_t err = cudaGetDeviceCount(&n);
+  if (err != cudaSuccess || n == 0) {
+    snprintf(why, len, "%s", err != cudaSuccess ? cudaGetErrorString(err) : "no CUDA device");
+    cudaGetLastError();
+    return NULL;
+  }
+  struct gpu *g = (struct gpu *)error_calloc(1, sizeof(struct gpu), "GPU state");
+  g->device = 0;
+  gpu_check(cudaSetDevice(g->device));
+  cudaDeviceProp prop;
+  gpu_check(cudaGetDeviceProperties(&prop, g->device));
+  snprintf(g->name, sizeof g->name, "%.256s (%d SMs, %.1f GiB, compute capability %d.%d)",
+           prop.name, prop.multiProcessorCount, prop.totalGlobalMem / 1073741824.0, prop.major,
+           prop.minor);
+  for (int k = 0; k < 2; k++)
+    gpu_check(cudaStreamCreateWithFlags(&g->stream[k], cudaStreamNonBlocking));
+  for (int k = 0; k <= GPU_T_N; k++) gpu_check(cudaEventCreate(&g->ev[k]));
+  gpu_check(cudaEventCreateWithFlags(&g->cells_ready, cudaEventDisableTiming));
+  for (int k = 0; k < 2; k++) gpu_check(cudaEventCreate(&g->ev_drift[k]));
+  for (int k = 0; k < GPU_NR_IN; k++) g->in[k] = gpu_field_index(gpu_fields_in[k]);
+  for (int k = 0; k < GPU_NR_OUT; k++) g->out[k] = gpu_field_index(gpu_fields_out[k]);
+  g->counters_dev = (int *)gpu_alloc(GPU_NR_COUNTERS * sizeof(int), "counters");
+  gpu_check(cudaMallocHost((void **)&g->counters_host, GPU_NR_COUNTERS * sizeof(int)));
+  g->mats_dev = (struct material_table *)gpu_alloc(sizeof(struct material_table), "material table");
+  gpu_check(cudaMallocHost((void **)&g->mats_host, sizeof(struct material_table)));
+  return g;
+}
+
+extern "C" const char *gpu_name(const struct gpu *g) {
+  return g->name;
+}
+
+extern "C" int gpu_supports(const struct material_table *mats, char *why, size_t len) {
+  for (int k = 0; k < mats->n; k++)
+    if (mats->mats[k].eos_type == EOS_TABLE) {
+      snprintf(why, len, "material %s has a tabulated EOS, not on the GPU yet", mats->mats[k].name);
+      return 0;
+    }
+  return 1;
+}
+
+/** Grow the device particle arrays to at least n (contents are not kept:
+ *  every phase uploads what it reads). */
+static void gpu_reserve(struct gpu *g, size_t n) {
+  if (n <= g->capacity) return;
+  const size_t cap = n + n / 4 + 1024;
+  for (int k = 0; k < part_nr_fields; k++) {
+    void **slot = gpu_field_slot(&g->dev, k);
+    if (*slot) gpu_check(cudaFree(*slot));
+    char what[128];
+    snprintf(what, sizeof what, "particle field %s (%zu particles)", part_fields[k].name, cap);
+    *slot = gpu_alloc(cap * part_fields[k].size, what);
+  }
+  g->capacity = cap;
+  g->dev.capacity = cap;
+}
+
+/** Round up to a multiple of 16 bytes. */
+static size_t gpu_align(size_t b) {
+  return (b + 15) & ~(size_t)15;
+}
+
+/** Pack the leaf data into pinned memory, upload it on stream 1 and return
+ *  the device view. */
+static struct gpu_leaves_dev gpu_upload_cells(struct gpu *g, const struct gpu_leaves *lv) {
+  const size_t n = (size_t)lv->n, nn = (size_t)lv->nr_ngb;
+  const size_t sz[8] = {n * sizeof(size_t),      n * sizeof(int),       n * sizeof(double),
+                        n * sizeof(double),      (n + 1) * sizeof(int), nn * sizeof(int),
+                        3 * nn * sizeof(double), n * sizeof(double)};
+  size_t off[8], total = 0;
+  for (int k = 0; k < 8; k++) {
+    off[k] = total;
+    total += gpu_align(sz[k]);
+  }
+  if (total > g->cell_bytes) {
+    if (g->cell_dev) gpu_check(cudaFree(g->cell_dev));
+    if (g->cell_host) gpu_check(cudaFreeHost(g->cell_host));
+    g->cell_bytes = total + total / 2;
+    g->cell_dev = gpu_alloc(g->cell_bytes, "leaf cells and neighbour lists");
+    gpu_check(cudaMallocHost(&g->cell_host, g->cell_bytes));
+  }
+  char *h = (char *)g->cell_host, *d = (char *)g->cell_dev;
+  const void *src[7] = {lv->offset,    lv->count,    lv->h_cap,    lv->h_list_cap,
+                        lv->ngb_start, lv->ngb_leaf, lv->ngb_shift};
+  for (int k = 0; k < 7; k++)
+    if (sz[k]) memcpy(h + off[k], src[k], sz[k]);
+  gpu_check(cudaMemcpyAsync(d, h, off[7], cudaMemcpyHostToDevice, g->stream[1]));
+  gpu_check(cudaEventRecord(g->cells_ready, g->stream[1]));
+  g->bytes_h2d += (double)off[7];
+  struct gpu_leaves_dev dv;
+  dv.n = lv->n;
+  /* a warp per 32 particles of the mean leaf, so few threads idle */
+  const double mean =
+      lv->n ? (double)(lv->offset[lv->n - 1] + lv->count[lv->n - 1] - lv->offset[0]) / lv->n : 0.0;
+  dv.block = mean <= 40.0 ? 32 : (mean <= 96.0 ? 64 : GPU_BLOCK);
+  dv.offset = (const size_t *)(d + off[0]);
+  dv.count = (const int *)(d + off[1]);
+  dv.h_cap = (const double *)(d + off[2]);
+  dv.h_list_cap = (const double *)(d + off[3]);
+  dv.ngb_start = (const int *)(d + off[4]);
+  dv.ngb_leaf = (const int *)(d + off[5]);
+  dv.ngb_shift = (const double *)(d + off[6]);
+  g->leaf_dt = (double *)(d + off[7]);
+  return dv;
+}
+
+/** Copy fields idx[0..n) of particles [0, count) between host and device on stream s. */
+static void gpu_copy_fields(struct gpu *g, struct parts *p, const int *idx, int n, int to_device) {
+  for (int k = 0; k < n; k++) {
+    const int f = idx[k];
+    void *hp = *gpu_field_slot(p, f), *dp = *gpu_field_slot(&g->dev, f);
+    const size_t bytes = p->count * part_fields[f].size;
+    if (to_device)
+      gpu_check(cudaMemcpyAsync(dp, hp, bytes, cudaMemcpyHostToDevice, g->stream[0]));
+    else
+      gpu_check(cudaMemcpyAsync(hp, dp, bytes, cudaMemcpyDeviceToHost, g->stream[0]));
+    if (to_device)
+      g->bytes_h2d += (double)bytes;
+    else
+      g->bytes_d2h += (double)bytes;
+  }
+}
+
+/** Read the counters of the h iteration (waits for stream 0). */
+static void gpu_read_counters(struct gpu *g) {
+  gpu_check(cudaMemcpyAsync(g->counters_host, g->counters_dev, GPU_NR_COUNTERS * sizeof(int),
+                            cudaMemcpyDeviceToHost, g->stream[0]));
+  gpu_check(cudaStreamSynchronize(g->stream[0]));
+}
+
+extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu_leaves *lv,
+                                const struct hydro_props *hp, const struct material_table *mats,
+                                double dt_kick, double *leaf_dt_min, int resident,
+                                struct gpu_force_out *out) {
+  cudaStream_t s = g->stream[0];
+  memset(out, 0, sizeof *out);
+  if (resident && (p->count != g->dev.count || !g->dev.x))
+    error_bug("GPU particle arrays are not resident");
+  gpu_reserve(g, p->count);
+  g->dev.count = p->count;
+  gpu_check(cudaEventRecord(g->ev[0], s));
+  const struct gpu_leaves_dev dv = gpu_upload_cells(g, lv);
+  if (!resident) gpu_copy_fields(g, p, g->in, GPU_NR_IN, 1);
+  memcpy(g->mats_host, mats, sizeof *mats);
+  gpu_check(cudaMemcpyAsync(g->mats_dev, g->mats_host, sizeof *mats, cudaMemcpyHostToDevice, s));
+  gpu_check(cudaMemsetAsync(g->counters_dev, 0, GPU_NR_COUNTERS * sizeof(int), s));
+  gpu_check(cudaStreamWaitEvent(s, g->cells_ready, 0));
+  gpu_check(cudaEventRecord(g->ev[1], s));
+
+  /* density of every particle, then the h iteration: density again for the
+   * particles still iterating until none is left (ghost_cpu.c's loop) */
+  density_gpu_launch(s, g->dev, dv, 0);
+  gpu_check(cudaEventRecord(g->ev[2], s));
+  ghost_gpu_start_launch(s, g->dev, dv, *hp, g->counters_dev);
+  gpu_read_counters(g);
+  int iter = 1;
+  while (g->counters_host[GPU_LEFT] > 0 && !g->counters_host[GPU_OVERFLOW]) {
+    if (iter > hp->max_iterations)
+      error_exit(
+          "the smoothing lengths of %d particles did not converge in %d iterations on the GPU; "
+          "raise "
+          "SPH:max_ghost_iterations or check the initial conditions",
+          g->counters_host[GPU_LEFT], hp->max_iterations);
+    gpu_check(cudaMemsetAsync(g->counters_dev + GPU_LEFT, 0, sizeof(int), s));
+    density_gpu_launch(s, g->dev, dv, 1);
+    ghost_gpu_step_launch(s, g->dev, dv, *hp, g->counters_dev);
+    gpu_read_counters(g);
+    iter++;
+  }
+  out->iterations = iter;
+  out->capped = g->counters_host[GPU_CAPPED];
+  if (g->counters_host[GPU_OVERFLOW]) {
+    /* the lists were too short for the new h: hand h back for new lists */
+    out->overflow = 1;
+    const int ih = gpu_field_index("h");
+    gpu_copy_fields(g, p, &ih, 1, 0);
+    gpu_check(cudaStreamSynchronize(s));
+    return;
+  }
+  ghost_gpu_finish_launch(s, g->dev, dv, *hp, g->mats_dev);
+  gpu_check(cudaEventRecord(g->ev[3], s));
+  force_gpu_launch(s, g->dev, dv, *hp);
+  gpu_check(cudaEventRecord(g->ev[4], s));
+  double *leaf_dt = g->leaf_dt;
+  kick2_gpu_launch(s, g->dev, dv, *hp, dt_kick, leaf_dt);
+  gpu_check(cudaEventRecord(g->ev[5], s));
+  if (!resident) gpu_copy_fields(g, p, g->out, GPU_NR_OUT, 0);
+  gpu_check(cudaMemcpyAsync(leaf_dt_min, leaf_dt, (size_t)lv->n * sizeof(double),
+                            cudaMemcpyDeviceToHost, s));
+  gpu_check(cudaEventRecord(g->ev[6], s));
+  gpu_check(cudaStreamSynchronize(s));
+  for (int k = 0; k < GPU_T_N; k++) {
+    float ms = 0.0f;
+    gpu_check(cudaEventElapsedTime(&ms, g->ev[k], g->ev[k + 1]));
+    g->t[k] += ms;
+  }
+  g->calls++;
+}
+
+/** Register the particle arrays of p as pinned (page-locked) memory, so
+ *  that copies run at the bus's full rate and asynchronously; again when
+ *  the arrays moved (parts_reserve). */
+static void gpu_pin(struct gpu *g, const struct parts *p) {
+  if (part_nr_fields > 64) error_bug("too many particle fields to pin");
+  int same = g->pinned_bytes == p->capacity;
+  for (int f = 0; f < part_nr_fields && same; f++)
+    same = g->pinned[f] == *gpu_field_slot((struct parts *)p, f);
+  if (same) return;
+  gpu_unpin(g);
+  for (int f = 0; f < part_nr_fields; f++) {
+    void *a = *gpu_field_slot((struct parts *)p, f);
+    gpu_check(cudaHostRegister(a, p->capacity * part_fields[f].size, cudaHostRegisterDefault));
+    g->pinned[f] = a;
+  }
+  g->pinned_bytes = p->capacity;
+}
+
+extern "C" void gpu_unpin(struct gpu *g) {
+  for (int f = 0; f < part_nr_fields; f++)
+    if (g->pinned[f]) {
+      gpu_check(cudaHostUnregister(g->pinned[f]));
+      g->pinned[f] = NULL;
+    }
+  g->pinned_bytes = 0;
+}
+
+extern "C" void gpu_upload_all(struct gpu *g, const struct parts *p) {
+  gpu_pin(g, p);
+  g->full_up++;
+  gpu_reserve(g, p->count);
+  g->dev.count = p->count;
+  for (int f = 0; f < part_nr_fields; f++) {
+    const size_t bytes = p->count * part_fields[f].size;
+    gpu_check(cudaMemcpyAsync(*gpu_field_slot(&g->dev, f), *gpu_field_slot((struct parts *)p, f),
+                              bytes, cudaMemcpyHostToDevice, g->stream[0]));
+    g->bytes_h2d += (double)bytes;
+  }
+  gpu_check(cudaStreamSynchronize(g->stream[0]));
+}
+
+extern "C" void gpu_download_all(struct gpu *g, struct parts *p) {
+  if (p->count != g->dev.count) error_bug("GPU and host particle counts differ");
+  gpu_pin(g, p);
+  g->full_down++;
+  for (int f = 0; f < part_nr_fields; f++) {
+    const size_t bytes = p->count * part_fields[f].size;
+    gpu_check(cudaMemcpyAsync(*gpu_field_slot(p, f), *gpu_field_slot(&g->dev, f), bytes,
+                              cudaMemcpyDeviceToHost, g->stream[0]));
+    g->bytes_d2h += (double)bytes;
+  }
+  gpu_check(cudaStreamSynchronize(g->stream[0]));
+}
+
+extern "C" void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt) {
+  if (p->count != g->dev.count) error_bug("GPU and host particle counts differ");
+  gpu_pin(g, p);
+  cudaStream_t s = g->stream[0];
+  gpu_check(cudaEventRecord(g->ev_drift[0], s));
+  drift_gpu_launch(s, g->dev, dt_kick, dt);
+  const int idx[4] = {gpu_field_index("x"), gpu_field_index("y"), gpu_field_index("z"),
+                      gpu_field_index("h")};
+  gpu_copy_fields(g, p, idx, 4, 0);
+  gpu_check(cudaEventRecord(g->ev_drift[1], s));
+  gpu_check(cudaStreamSynchronize(s));
+  float ms = 0.0f;
+  gpu_check(cudaEventElapsedTime(&ms, g->ev_drift[0], g->ev_drift[1]));
+  g->t_drift += ms;
+  g->drifts++;
+}
+
+extern "C" void gpu_print_timers(const struct gpu *g, FILE *f) {
+  if (g->calls == 0) return;
+  fprintf(f, "GPU (%s), %ld force phases, ms per phase:", g->name, g->calls);
+  for (int k = 0; k < GPU_T_N; k++) fprintf(f, " %s %.3f", gpu_stage_names[k], g->t[k] / g->calls);
+  if (g->drifts) fprintf(f, " drift(+x,h back) %.3f", g->t_drift / g->drifts);
+  fprintf(f, "; %ld full uploads, %ld full downloads", g->full_up, g->full_down);
+  fprintf(f, "; bus %.1f MB up, %.1f MB down per step\n", g->bytes_h2d / g->calls / 1e6,
+          g->bytes_d2h / g->calls / 1e6);
+}
+
+extern "C" void gpu_bytes_moved(const struct gpu *g, double *h2d, double *d2h) {
+  *h2d = g->bytes_h2d;
+  *d2h = g->bytes_d2h;
+}
+
+extern "C" void gpu_free(struct gpu *g) {
+  if (!g) return;
+  gpu_unpin(g);
+  for (int k = 0; k < part_nr_fields; k++) {
+    void **slot = gpu_field_slot(&g->dev, k);
+    if (*slot) gpu_check(cudaFree(*slot));
+  }
+  if (g->cell_dev) gpu_check(cudaFree(g->cell_dev));
+  if (g->cell_host) gpu_check(cudaFreeHost(g->cell_host));
+  gpu_check(cudaFree(g->counters_dev));
+  gpu_check(cudaFreeHost(g->counters_host));
+  gpu_check(cudaFree(g->mats_dev));
+  gpu_check(cudaFreeHost(g->mats_host));
+  for (int k = 0; k <= GPU_T_N; k++) gpu_check(cudaEventDestroy(g->ev[k]));
+  gpu_check(cudaEventDestroy(g->cells_ready));
+  for (int k = 0; k < 2; k++) gpu_check(cudaEventDestroy(g->ev_drift[k]));
+  for (int k = 0; k < 2; k++) gpu_check(cudaStreamDestroy(g->stream[k]));
+  free(g);
+}

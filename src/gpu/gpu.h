@@ -1,0 +1,91 @@
+/* The GPU runner: one CUDA device holding the particle arrays and running
+ * the FORCE phase of a step (density -> ghost -> force -> kick2/time step)
+ * as batched kernels over every leaf cell (DESIGN.md, "CPU and GPU").
+ *
+ * The interface is C; the implementation (src/gpu/gpu.cu and the kernels
+ * in tasks/<name>/<name>_gpu.cu) is CUDA C++ calling the same inline pair
+ * functions and material models as the CPU loops.  Device memory is
+ * allocated once and grown, never per step; every CUDA call is checked
+ * (gpu_check.h).  Built only when configure finds nvcc (HAVE_CUDA). */
+#ifndef BOLIDE_GPU_H
+#define BOLIDE_GPU_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "hydro_props.h"
+#include "part.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+struct material_table;
+/** A device with its streams, buffers and timers (opaque). */
+struct gpu;
+
+/** The batch of one FORCE phase, as host arrays: the leaf cells (each one
+ *  contiguous particle range) and, for each leaf, the leaves (with periodic
+ *  shifts) that its particles can interact with. */
+struct gpu_leaves {
+  int n;                    /**< number of leaves */
+  const size_t *offset;     /**< first particle of each leaf */
+  const int *count;         /**< particles of each leaf */
+  const double *h_cap;      /**< largest h the top-level cells allow (capped: rebuild) */
+  const double *h_list_cap; /**< largest h the neighbour lists below cover */
+  const int
+      *ngb_start;      /**< n + 1 entries: leaf L's neighbours are [ngb_start[L], ngb_start[L+1]) */
+  const int *ngb_leaf; /**< neighbouring leaf of each entry (the leaf itself included) */
+  const double *ngb_shift; /**< 3 per entry: added to the neighbour's positions */
+  int nr_ngb;              /**< number of entries */
+};
+
+/** What a FORCE phase reports besides the particle fields. */
+struct gpu_force_out {
+  int capped;     /**< some h hit the top-level cells' cap: rebuild */
+  int overflow;   /**< some h outgrew h_list_cap: rebuild the lists and call again
+                       (h was copied back, everything else is unchanged) */
+  int iterations; /**< rounds of the h iteration */
+};
+
+/** Find a CUDA device (cudaGetDeviceCount) and set it up; NULL when there
+ *  is none, with the reason in why. */
+struct gpu *gpu_init(char *why, size_t len);
+/** "NVIDIA H100 80GB HBM3 (132 SMs, 79.1 GiB)" */
+const char *gpu_name(const struct gpu *g);
+/** 1 if every material of mats can be evaluated on the device, else 0 with
+ *  the reason in why (tabulated EOS: host pointers). */
+int gpu_supports(const struct material_table *mats, char *why, size_t len);
+/** Run the FORCE phase on the particles p: density, h iteration (repeating
+ *  the density sums of unconverged particles), equation of state, forces,
+ *  second half kick by dt_kick and new time steps.  resident = 0: copy what
+ *  the loops read to the device first and the results back after;
+ *  resident = 1: the device arrays are current (gpu_upload_all), nothing
+ *  but the leaf time steps comes back.  leaf_dt_min[L]: smallest new time
+ *  step of leaf L.  A particle whose h does not converge in
+ *  hp->max_iterations stops the run with an error. */
+void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu_leaves *lv,
+                     const struct hydro_props *hp, const struct material_table *mats,
+                     double dt_kick, double *leaf_dt_min, int resident, struct gpu_force_out *out);
+/** Copy every particle field to the device (after a rebuild or a restart). */
+void gpu_upload_all(struct gpu *g, const struct parts *p);
+/** Copy every particle field back to the host (outputs, rebuilds). */
+void gpu_download_all(struct gpu *g, struct parts *p);
+/** First half kick by dt_kick and drift by dt of the resident particles;
+ *  copy back the positions and smoothing lengths (what the CPU needs to
+ *  decide on a rebuild and to build the neighbour lists). */
+void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt);
+/** Unregister the pinned particle arrays (before they are freed). */
+void gpu_unpin(struct gpu *g);
+/** Print the accumulated time of each stage. */
+void gpu_print_timers(const struct gpu *g, FILE *f);
+/** Bytes copied host -> device and device -> host so far. */
+void gpu_bytes_moved(const struct gpu *g, double *h2d, double *d2h);
+/** Free everything. */
+void gpu_free(struct gpu *g);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,491 @@
+/* The engine's side of the GPU runner (gpu_engine.h). */
+#include "gpu_engine.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "engine_tasks.h"
+#include "error.h"
+#include "kernel.h"
+#include "params.h"
+
+/** The engine's GPU state. */
+struct gpu_engine {
+  struct gpu *gpu;        /**< the device */
+  struct gpu_cells cells; /**< leaves and lists */
+  int dev_valid;          /**< the device holds the current particles */
+  int host_stale;         /**< the device has changed them since the last copy back */
+  double t_bounds;        /**< host seconds updating cell bounds after drifts */
+  long steps;             /**< FORCE phases run */
+  double *tc_h_cap;       /**< cap on h per task cell */
+  int nr_tc;              /**< its length */
+};
+
+/** Grow the per-leaf arrays to n. */
+static void gpu_cells_reserve(struct gpu_cells *gc, int n) {
+  if (n <= gc->cap) return;
+  gc->cap = n + n / 2 + 16;
+  gc->offset = error_realloc(gc->offset, gc->cap * sizeof(size_t), "GPU leaves");
+  gc->count = error_realloc(gc->count, gc->cap * sizeof(int), "GPU leaves");
+  gc->top = error_realloc(gc->top, gc->cap * sizeof(int), "GPU leaves");
+  gc->h_cap = error_realloc(gc->h_cap, gc->cap * sizeof(double), "GPU leaves");
+  gc->h_list_cap = error_realloc(gc->h_list_cap, gc->cap * sizeof(double), "GPU leaves");
+  gc->ngb_start = error_realloc(gc->ngb_start, (gc->cap + 1) * sizeof(int), "GPU leaves");
+  gc->leaf_cell = error_realloc(gc->leaf_cell, gc->cap * sizeof(struct cell *), "GPU leaves");
+  gc->dx_allow = error_realloc(gc->dx_allow, gc->cap * sizeof(double), "GPU leaves");
+}
+
+/** Number the non-empty leaves below c. */
+static void gpu_cells_collect(struct gpu_cells *gc, const struct cell *c, int top) {
+  if (c->count == 0) return;
+  if (c->split) {
+    for (int k = 0; k < 8; k++)
+      if (c->progeny[k]) gpu_cells_collect(gc, c->progeny[k], top);
+    return;
+  }
+  gpu_cells_reserve(gc, gc->n + 1);
+  gc->leaf_of_cell[c->index] = gc->n;
+  gc->offset[gc->n] = c->offset;
+  gc->count[gc->n] = (int)c->count;
+  gc->top[gc->n] = top;
+  gc->leaf_cell[gc->n] = c;
+  gc->n++;
+}
+
+/** Fraction of its kernel support a leaf may drift after the lists were
+ *  built before they are built again: a margin in the lists' reach that lets
+ *  most steps reuse them. */
+#define GPU_LIST_SLACK 0.1
+
+/** One worker of the list build: the task cells [t0, t1), whose leaves are
+ *  the contiguous range [l0, l1), and the entries it found. */
+struct gpu_cells_job {
+  struct gpu_cells *gc;               /**< leaves (read only here) */
+  struct cell *const *tcells;         /**< the task cells */
+  const struct engine_cell_tasks *ct; /**< their neighbours */
+  double growth;                      /**< reach factor */
+  int t0, t1, l0, l1;                 /**< task cells and leaves of this worker */
+  int n, cap;                         /**< entries found and allocated */
+  int *li, *lj;                       /**< leaf pairs: lj is a neighbour of li */
+  double *shift;                      /**< 3 per entry */
+  int *count;                         /**< entries per leaf of [l0, l1) */
+  int *leaf;                          /**< the entries sorted by li: neighbouring leaf */
+  double *sshift;                     /**< and its shift */
+};
+
+/** Record that leaf lj (at shift) is a neighbour of leaf li. */
+static void gpu_cells_job_add(struct gpu_cells_job *jb, int li, int lj, const double shift[3]) {
+  if (jb->n == jb->cap) {
+    jb->cap = jb->cap ? 2 * jb->cap : 4096;
+    jb->li = error_realloc(jb->li, jb->cap * sizeof(int), "GPU neighbour lists");
+    jb->lj = error_realloc(jb->lj, jb->cap * sizeof(int), "GPU neighbour lists");
+    jb->shift =
+        error_realloc(jb->shift, 3 * (size_t)jb->cap * sizeof(double), "GPU neighbour lists");
+  }
+  jb->li[jb->n] = li;
+  jb->lj[jb->n] = lj;
+  for (int k = 0; k < 3; k++) jb->shift[3 * (size_t)jb->n + k] = shift[k];
+  jb->n++;
+}
+
+/** Dual walk of the trees below ci and cj (cj at shift): every pair of
+ *  leaves whose bounding boxes come within growth * kernel_gamma * the
+ *  larger h_max plus both drifts, pruning whole sub-trees on both sides
+ *  (the test of the CPU loops, iact_loop.h, with the lists' margin). */
+static void gpu_cells_walk(struct gpu_cells_job *jb, const struct cell *ci, const struct cell *cj,
+                           const double shift[3]) {
+  if (ci->count == 0 || cj->count == 0) return;
+  const double hm = ci->h_max > cj->h_max ? ci->h_max : cj->h_max;
+  /* each side may drift GPU_LIST_SLACK kernel supports further before the
+   * lists must be built again (gpu_cells_valid) */
+  const double R = jb->growth * kernel_gamma * hm + ci->dx_max + cj->dx_max +
+                   GPU_LIST_SLACK * kernel_gamma * (ci->h_max + cj->h_max);
+  /* widened as the CPU loops' pruning: never drop a pair the particle test keeps */
+  double scale = 0.0;
+  for (int k = 0; k < 3; k++)
+    scale += fabs(ci->loc[k]) + ci->width[k] + fabs(cj->loc[k]) + cj->width[k] + fabs(shift[k]);
+  const double Rs = R * (1.0 + 1e-10) + 1e-13 * scale;
+  if (cell_bbox_dist2(ci, cj, shift) > Rs * Rs) return;
+  if (ci->split && (!cj->split || ci->count >= cj->count)) {
+    for (int k = 0; k < 8; k++)
+      if (ci->progeny[k]) gpu_cells_walk(jb, ci->progeny[k], cj, shift);
+  } else if (cj->split) {
+    for (int k = 0; k < 8; k++)
+      if (cj->progeny[k]) gpu_cells_walk(jb, ci, cj->progeny[k], shift);
+  } else {
+    gpu_cells_job_add(jb, jb->gc->leaf_of_cell[ci->index], jb->gc->leaf_of_cell[cj->index], shift);
+  }
+}
+
+/** Set h_list_cap of the leaves below c. */
+static void gpu_cells_caps(struct gpu_cells *gc, const struct cell *c, double growth) {
+  if (c->count == 0) return;
+  if (c->split) {
+    for (int k = 0; k < 8; k++)
+      if (c->progeny[k]) gpu_cells_caps(gc, c->progeny[k], growth);
+    return;
+  }
+  const int l = gc->leaf_of_cell[c->index];
+  gc->h_list_cap[l] = growth * c->h_max;
+  gc->dx_allow[l] = c->dx_max + GPU_LIST_SLACK * kernel_gamma * c->h_max;
+}
+
+/** Thread body: walk the task cells of the job, then sort its entries by
+ *  leaf (counting sort over its leaf range). */
+static void *gpu_cells_job_run(void *arg) {
+  struct gpu_cells_job *jb = arg;
+  jb->n = 0;
+  for (int t = jb->t0; t < jb->t1; t++) {
+    const struct engine_cell_tasks *ct = &jb->ct[t];
+    gpu_cells_caps(jb->gc, jb->tcells[t], jb->growth);
+    for (int k = 0; k < ct->nr_ngb; k++)
+      gpu_cells_walk(jb, jb->tcells[t], jb->tcells[ct->ngb[k]], ct->ngb_shift[k]);
+  }
+  const int nl = jb->l1 - jb->l0;
+  jb->count = error_realloc(jb->count, (nl + 1) * sizeof(int), "GPU neighbour lists");
+  jb->leaf = error_realloc(jb->leaf, (jb->n + 1) * sizeof(int), "GPU neighbour lists");
+  jb->sshift =
+      error_realloc(jb->sshift, 3 * ((size_t)jb->n + 1) * sizeof(double), "GPU neighbour lists");
+  int *pos = error_calloc(nl + 1, sizeof(int), "GPU neighbour lists");
+  for (int e = 0; e < jb->n; e++) pos[jb->li[e] - jb->l0 + 1]++;
+  for (int l = 0; l < nl; l++) {
+    jb->count[l] = pos[l + 1];
+    pos[l + 1] += pos[l];
+  }
+  for (int e = 0; e < jb->n; e++) {
+    const int q = pos[jb->li[e] - jb->l0]++;
+    jb->leaf[q] = jb->lj[e];
+    for (int k = 0; k < 3; k++) jb->sshift[3 * (size_t)q + k] = jb->shift[3 * (size_t)e + k];
+  }
+  free(pos);
+  return NULL;
+}
+
+/** Free the buffers of a job. */
+static void gpu_cells_job_free(struct gpu_cells_job *jb) {
+  free(jb->li);
+  free(jb->lj);
+  free(jb->shift);
+  free(jb->count);
+  free(jb->leaf);
+  free(jb->sshift);
+}
+
+void gpu_cells_build(struct gpu_cells *gc, const struct space *s, struct cell *const *tcells,
+                     int nr, const struct engine_cell_tasks *ct, const double *tc_h_cap,
+                     double growth, int nr_threads) {
+  if (s->nr_cells > gc->cells_cap) {
+    gc->cells_cap = s->nr_cells + s->nr_cells / 2;
+    gc->leaf_of_cell = error_realloc(gc->leaf_of_cell, gc->cells_cap * sizeof(int), "GPU leaves");
+  }
+  for (int k = 0; k < s->nr_cells; k++) gc->leaf_of_cell[k] = -1;
+  gc->n = 0;
+  int *first_leaf = error_malloc((nr + 1) * sizeof(int), "GPU leaves");
+  for (int t = 0; t < nr; t++) {
+    first_leaf[t] = gc->n;
+    gpu_cells_collect(gc, tcells[t], t);
+  }
+  first_leaf[nr] = gc->n;
+  gpu_cells_reserve(gc, gc->n + 1);
+
+  /* workers over contiguous ranges of task cells, so that each one's leaves
+   * are contiguous too and the lists join by concatenation */
+  /* a thread per 4096 leaves at most: starting threads costs more than a small walk */
+  int nt = nr_threads < 1 ? 1 : nr_threads;
+  if (nt > 1 + gc->n / 4096) nt = 1 + gc->n / 4096;
+  if (nt > nr) nt = nr > 0 ? nr : 1;
+  if (nt > gc->nr_jobs) {
+    /* the jobs and their buffers are kept between calls */
+    gc->jobs = error_realloc(gc->jobs, nt * sizeof(struct gpu_cells_job), "GPU list jobs");
+    memset(gc->jobs + gc->nr_jobs, 0, (nt - gc->nr_jobs) * sizeof(struct gpu_cells_job));
+    gc->nr_jobs = nt;
+  }
+  struct gpu_cells_job *jobs = gc->jobs;
+  pthread_t tid[256];
+  if (nt > 256) nt = 256;
+  for (int w = 0; w < nt; w++) {
+    struct gpu_cells_job *jb = &jobs[w];
+    jb->gc = gc;
+    jb->tcells = tcells;
+    jb->ct = ct;
+    jb->growth = growth;
+    /* split by leaves, a proxy for the work */
+    jb->t0 = w == 0 ? 0 : jobs[w - 1].t1;
+    const long target = (long)gc->n * (w + 1) / nt;
+    int t = jb->t0;
+    while (t < nr && (w == nt - 1 || first_leaf[t] < target)) t++;
+    jb->t1 = t;
+    jb->l0 = first_leaf[jb->t0];
+    jb->l1 = first_leaf[jb->t1];
+    if (w > 0 && pthread_create(&tid[w], NULL, gpu_cells_job_run, jb))
+      error_exit("cannot start a thread to build the GPU neighbour lists");
+  }
+  gpu_cells_job_run(&jobs[0]);
+  for (int w = 1; w < nt; w++) pthread_join(tid[w], NULL);
+
+  int total = 0;
+  for (int w = 0; w < nt; w++) total += jobs[w].n;
+  if (total > gc->ngb_cap) {
+    gc->ngb_cap = total + total / 4 + 1024;
+    gc->ngb_leaf = error_realloc(gc->ngb_leaf, gc->ngb_cap * sizeof(int), "GPU neighbour lists");
+    gc->ngb_shift = error_realloc(gc->ngb_shift, 3 * (size_t)gc->ngb_cap * sizeof(double),
+                                  "GPU neighbour lists");
+  }
+  int at = 0;
+  for (int w = 0; w < nt; w++) {
+    const struct gpu_cells_job *jb = &jobs[w];
+    for (int l = jb->l0; l < jb->l1; l++) {
+      gc->ngb_start[l] = at;
+      at += jb->count[l - jb->l0];
+    }
+    memcpy(gc->ngb_leaf + (at - jb->n), jb->leaf, jb->n * sizeof(int));
+    memcpy(gc->ngb_shift + 3 * (size_t)(at - jb->n), jb->sshift,
+           3 * (size_t)jb->n * sizeof(double));
+  }
+  gc->nr_ngb = total;
+  gc->ngb_start[gc->n] = total;
+  for (int l = 0; l < gc->n; l++) gc->h_cap[l] = tc_h_cap[gc->top[l]];
+  gc->growth = growth;
+  free(first_leaf);
+}
+
+void gpu_cells_free(struct gpu_cells *gc) {
+  for (int w = 0; w < gc->nr_jobs; w++) gpu_cells_job_free(&gc->jobs[w]);
+  free(gc->jobs);
+  free(gc->offset);
+  free(gc->count);
+  free(gc->top);
+  free(gc->h_cap);
+  free(gc->h_list_cap);
+  free(gc->ngb_start);
+  free(gc->ngb_leaf);
+  free(gc->ngb_shift);
+  free(gc->leaf_of_cell);
+  free(gc->leaf_cell);
+  free(gc->dx_allow);
+  memset(gc, 0, sizeof *gc);
+}
+
+/** 1 if the lists built last still hold every pair: same cells, no leaf
+ *  drifted past its allowance, no leaf's h beyond the lists' cap (h grown
+ *  during the h iteration is caught on the device: overflow). */
+static int gpu_cells_valid(const struct gpu_cells *gc, const struct space *s,
+                           struct cell *const *tcells, int nr) {
+  if (gc->n == 0 || gc->built_rebuild != s->nr_rebuilds || gc->built_tcells != tcells ||
+      gc->built_nr != nr)
+    return 0;
+  for (int l = 0; l < gc->n; l++)
+    if (gc->leaf_cell[l]->dx_max > gc->dx_allow[l] || gc->leaf_cell[l]->h_max > gc->h_list_cap[l])
+      return 0;
+  return 1;
+}
+
+int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct space *s,
+                    struct cell *const *tcells, int nr, const struct engine_cell_tasks *ct,
+                    const double *tc_h_cap, const struct hydro_props *hp,
+                    const struct material_table *mats, double dt_kick, int resident,
+                    double *tc_dt_min) {
+  /* lists a quarter wider than the current h_max, widened when h outgrows them */
+  double growth = gc->growth > 1.25 ? 0.97 * gc->growth : 1.25;
+  if (growth < 1.25) growth = 1.25;
+  struct gpu_force_out out;
+  double *leaf_dt = NULL;
+  for (int attempt = 0;; attempt++) {
+    if (attempt > 0 || !gpu_cells_valid(gc, s, tcells, nr)) {
+      const double w0 = error_walltime();
+      gpu_cells_build(gc, s, tcells, nr, ct, tc_h_cap, growth, gc->nr_threads);
+      gc->t_build += error_walltime() - w0;
+      gc->builds++;
+      gc->built_rebuild = s->nr_rebuilds;
+      gc->built_tcells = tcells;
+      gc->built_nr = nr;
+    } else {
+      /* same leaves and lists; only the cells' caps moved */
+      for (int l = 0; l < gc->n; l++) gc->h_cap[l] = tc_h_cap[gc->top[l]];
+    }
+    leaf_dt = error_realloc(leaf_dt, (gc->n + 1) * sizeof(double), "GPU leaf time steps");
+    const struct gpu_leaves lv = {gc->n,        gc->offset,     gc->count,
+                                  gc->h_cap,    gc->h_list_cap, gc->ngb_start,
+                                  gc->ngb_leaf, gc->ngb_shift,  gc->nr_ngb};
+    gpu_force_phase(g, p, &lv, hp, mats, dt_kick, leaf_dt, resident, &out);
+    if (!out.overflow) break;
+    if (attempt > 30)
+      error_bug("GPU neighbour lists did not cover the smoothing lengths after %d widenings",
+                attempt);
+    for (int c = 0; c < s->nr_top; c++) cell_update_bounds(p, &s->cells[c]);
+    growth *= 1.5;
+    gc->widenings++;
+    error_log(2, "GPU: smoothing lengths outgrew the neighbour lists; widening them to %.2f h_max",
+              growth);
+  }
+  for (int t = 0; t < nr; t++) tc_dt_min[t] = 1e300;
+  for (int l = 0; l < gc->n; l++)
+    if (leaf_dt[l] < tc_dt_min[gc->top[l]]) tc_dt_min[gc->top[l]] = leaf_dt[l];
+  free(leaf_dt);
+  /* h changed: the CPU's pruning and the rebuild test read the cells' bounds
+   * (resident particles: the next drift brings h back) */
+  if (!resident)
+    for (int c = 0; c < s->nr_top; c++) cell_update_bounds(p, &s->cells[c]);
+  return out.capped;
+}
+
+void gpu_engine_init(struct engine *e) {
+  const char *policy = params_get_string(e->params, "Scheduler:gpu");
+  if (strcmp(policy, "auto") && strcmp(policy, "all") && strcmp(policy, "off"))
+    params_error(e->params, "Scheduler:gpu",
+                 "expected auto, off or all, got '%s' (lists of task families are "
+                 "not implemented yet)",
+                 policy);
+  const int required = e->opt.use_gpu == 2 || strcmp(policy, "all") == 0;
+  if (e->opt.use_gpu == 0 || strcmp(policy, "off") == 0) {
+    error_log(0, "GPU off (%s): every task runs on the CPU",
+              e->opt.use_gpu == 0 ? "--no-gpu" : "Scheduler:gpu: off");
+    return;
+  }
+  char why[256];
+  /* the GPU runs the hydrodynamic phase as a whole: gravity, the gradient
+   * loop of solids, XSPH and the continuity equation have no GPU
+   * implementation yet */
+  const char *unsupported = e->gp.enabled      ? "self-gravity has no GPU implementation yet"
+                            : !e->hp.enabled   ? "hydrodynamics is off"
+                            : e->hp.solids     ? "material strength has no GPU implementation yet"
+                            : e->hp.xsph > 0.0 ? "XSPH has no GPU implementation yet"
+                            : e->hp.continuity ? "the continuity equation has no GPU implementation yet"
+                                               : NULL;
+  if (unsupported) {
+    if (required)
+      error_exit("a GPU was required (%s) but %s", e->opt.use_gpu == 2 ? "--gpu" : "Scheduler:gpu: all",
+                 unsupported);
+    error_log(0, "GPU not used (%s): every task runs on the CPU", unsupported);
+    return;
+  }
+  struct gpu *g = gpu_init(why, sizeof why);
+  if (g && !gpu_supports(e->mats, why, sizeof why)) {
+    gpu_free(g);
+    g = NULL;
+  }
+  if (!g) {
+    if (required)
+      error_exit("a GPU was required (%s) but cannot be used: %s",
+                 e->opt.use_gpu == 2 ? "--gpu" : "Scheduler:gpu: all", why);
+    error_log(0, "no GPU (%s): every task runs on the CPU", why);
+    return;
+  }
+  struct gpu_engine *ge = error_calloc(1, sizeof *ge, "GPU state");
+  ge->gpu = g;
+  e->gpu = ge;
+  error_log(0,
+            "GPU %s: drift, density, ghost, force and kick2 of every cell run on it, the particles "
+            "stay on it between steps",
+            gpu_name(g));
+}
+
+void gpu_engine_force(struct engine *e) {
+  struct gpu_engine *ge = e->gpu;
+  if (e->nr_tcells > ge->nr_tc) {
+    ge->tc_h_cap = error_realloc(ge->tc_h_cap, e->nr_tcells * sizeof(double), "GPU caps");
+    ge->nr_tc = e->nr_tcells;
+  }
+  /* the caps of the CPU ghost (engine_runtask.c): a pair is found while
+   * H_i + |dx_i| + |dx_j| stays below the reach of the task graph */
+  const double H_limit = engine_H_limit(e);
+  for (int t = 0; t < e->nr_tcells; t++) {
+    double dx_max = 0.0;
+    for (int k = 0; k < e->ct[t].nr_ngb; k++)
+      if (e->tcells[e->ct[t].ngb[k]]->dx_max > dx_max) dx_max = e->tcells[e->ct[t].ngb[k]]->dx_max;
+    ge->tc_h_cap[t] = (H_limit - 2.0 * dx_max) / kernel_gamma;
+  }
+  const double dt_kick = e->first_force ? 0.0 : 0.5 * e->dt;
+  ge->cells.nr_threads = e->nr_threads;
+  if (!ge->dev_valid) {
+    gpu_upload_all(ge->gpu, &e->parts);
+    ge->dev_valid = 1;
+  }
+  ge->host_stale = 1;
+  if (gpu_cells_force(ge->gpu, &ge->cells, &e->parts, &e->space, e->tcells, e->nr_tcells, e->ct,
+                      ge->tc_h_cap, &e->hp, e->mats, dt_kick, 1, e->cell_dt_min))
+    e->need_rebuild = 1;
+}
+
+/** A range of top-level cells whose bounds one thread updates. */
+struct gpu_bounds_job {
+  struct engine *e; /**< the engine */
+  int c0, c1;       /**< top-level cells [c0, c1) */
+};
+
+/** Thread body of gpu_engine_bounds. */
+static void *gpu_bounds_run(void *arg) {
+  struct gpu_bounds_job *jb = arg;
+  for (int c = jb->c0; c < jb->c1; c++) cell_update_bounds(&jb->e->parts, &jb->e->space.cells[c]);
+  return NULL;
+}
+
+/** cell_update_bounds of every top-level cell, on the engine's threads. */
+static void gpu_engine_bounds(struct engine *e) {
+  const int nc = e->space.nr_top;
+  int nt = e->nr_threads < 1 ? 1 : e->nr_threads;
+  if (nt > nc) nt = nc > 0 ? nc : 1;
+  struct gpu_bounds_job jobs[256];
+  pthread_t tid[256];
+  if (nt > 256) nt = 256;
+  for (int w = 0; w < nt; w++) {
+    jobs[w].e = e;
+    jobs[w].c0 = (int)((long)nc * w / nt);
+    jobs[w].c1 = (int)((long)nc * (w + 1) / nt);
+    if (w > 0 && pthread_create(&tid[w], NULL, gpu_bounds_run, &jobs[w]))
+      error_exit("cannot start a thread to update the cell bounds");
+  }
+  gpu_bounds_run(&jobs[0]);
+  for (int w = 1; w < nt; w++) pthread_join(tid[w], NULL);
+}
+
+void gpu_engine_drift(struct engine *e) {
+  struct gpu_engine *ge = e->gpu;
+  if (!ge->dev_valid) {
+    gpu_upload_all(ge->gpu, &e->parts);
+    ge->dev_valid = 1;
+  }
+  gpu_drift(ge->gpu, &e->parts, 0.5 * e->dt, e->dt);
+  ge->host_stale = 1;
+  /* positions and h are back: the bounds the rebuild test and the lists read */
+  const double w0 = error_walltime();
+  gpu_engine_bounds(e);
+  ge->t_bounds += error_walltime() - w0;
+  ge->steps++;
+}
+
+void gpu_engine_to_host(struct engine *e) {
+  struct gpu_engine *ge = e->gpu;
+  if (!ge || !ge->host_stale) return;
+  gpu_download_all(ge->gpu, &e->parts);
+  ge->host_stale = 0;
+}
+
+void gpu_engine_host_modified(struct engine *e) {
+  if (e->gpu) e->gpu->dev_valid = 0;
+}
+
+void gpu_engine_print(const struct engine *e, FILE *f) {
+  const struct gpu_engine *ge = e->gpu;
+  if (!ge) return;
+  gpu_print_timers(ge->gpu, f);
+  if (ge->steps)
+    fprintf(f,
+            "GPU host side, ms per step: neighbour lists %.3f (built %ld times, widened %ld), cell "
+            "bounds %.3f\n",
+            1e3 * ge->cells.t_build / ge->steps, ge->cells.builds, ge->cells.widenings,
+            1e3 * ge->t_bounds / ge->steps);
+}
+
+void gpu_engine_free(struct engine *e) {
+  struct gpu_engine *ge = e->gpu;
+  if (!ge) return;
+  gpu_unpin(ge->gpu);
+  gpu_free(ge->gpu);
+  gpu_cells_free(&ge->cells);
+  free(ge->tc_h_cap);
+  free(ge);
+  e->gpu = NULL;
+}

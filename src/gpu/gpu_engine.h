@@ -1,0 +1,81 @@
+/* The engine's side of the GPU runner: the scheduling policy
+ * (Scheduler:gpu, --gpu/--no-gpu), the leaf cells and their neighbour lists
+ * built from the space for each FORCE phase, and the phase itself. */
+#ifndef BOLIDE_GPU_ENGINE_H
+#define BOLIDE_GPU_ENGINE_H
+
+#include "engine.h"
+#include "gpu.h"
+
+struct gpu_cells_job;
+
+/** Host-side leaf cells and neighbour lists, grown and reused between steps. */
+struct gpu_cells {
+  int n, cap;                       /**< leaves and allocated length */
+  size_t *offset;                   /**< first particle of each leaf */
+  int *count;                       /**< particles of each leaf */
+  int *top;                         /**< task cell of each leaf */
+  double *h_cap;                    /**< the cells' cap on h of each leaf (its task cell's) */
+  double *h_list_cap;               /**< largest h the lists cover */
+  int *ngb_start;                   /**< n + 1 */
+  int nr_ngb, ngb_cap;              /**< list entries and allocated length */
+  int *ngb_leaf;                    /**< neighbouring leaf of each entry */
+  double *ngb_shift;                /**< 3 per entry */
+  int *leaf_of_cell;                /**< leaf number of each cell of the space (-1: not a leaf) */
+  int cells_cap;                    /**< allocated length of leaf_of_cell */
+  double growth;                    /**< lists cover h up to growth * the leaf's h_max */
+  double t_build;                   /**< host seconds spent in gpu_cells_build */
+  int nr_threads;                   /**< host threads building the lists (0: 1) */
+  struct gpu_cells_job *jobs;       /**< workers of the list build, kept between calls */
+  int nr_jobs;                      /**< their number */
+  long widenings;                   /**< times h outgrew the lists (phase run again) */
+  long builds;                      /**< times the lists were built */
+  const struct cell **leaf_cell;    /**< the cell of each leaf */
+  double *dx_allow;                 /**< drift of each leaf up to which the lists hold */
+  int built_rebuild;                /**< space.nr_rebuilds when the lists were built */
+  struct cell *const *built_tcells; /**< the task cells they were built on */
+  int built_nr;                     /**< their number */
+};
+
+/** Build the leaves below the task cells tcells[0..nr) (the engine's, or the
+ *  top-level cells) and, for each leaf, the leaves of the neighbouring task
+ *  cells ct[t] (numbers in tcells, with their shifts) whose bounding boxes
+ *  come within growth * kernel_gamma * max(h_max) plus both drifts.
+ *  tc_h_cap[t]: the largest h task cell t allows.  nr_threads host threads
+ *  walk the trees (a dual walk per pair of task cells). */
+void gpu_cells_build(struct gpu_cells *gc, const struct space *s, struct cell *const *tcells,
+                     int nr, const struct engine_cell_tasks *ct, const double *tc_h_cap,
+                     double growth, int nr_threads);
+/** Free the arrays of gc. */
+void gpu_cells_free(struct gpu_cells *gc);
+
+/** Run one FORCE phase on the GPU g over the task cells tcells[0..nr) of s
+ *  (neighbours ct): build the lists, run, and when some h outgrows them
+ *  rebuild them wider and run again.  tc_dt_min[t]: the smallest new time
+ *  step of task cell t.  resident: as gpu_force_phase.  Returns 1 if a smoothing length was capped
+ * by the cells (the space must be rebuilt), else 0. */
+int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct space *s,
+                    struct cell *const *tcells, int nr, const struct engine_cell_tasks *ct,
+                    const double *tc_h_cap, const struct hydro_props *hp,
+                    const struct material_table *mats, double dt_kick, int resident,
+                    double *tc_dt_min);
+
+/** Choose where tasks run from Scheduler:gpu and --gpu/--no-gpu, set
+ *  e->gpu when the FORCE phase goes to a device, and say so in one line. */
+void gpu_engine_init(struct engine *e);
+/** The FORCE phase of the engine on its GPU. */
+void gpu_engine_force(struct engine *e);
+/** The DRIFT phase on the GPU: kick1 and drift of the resident particles;
+ *  positions and h come back, the cells' bounds are updated. */
+void gpu_engine_drift(struct engine *e);
+/** Copy the particles back when the device has changed them (before
+ *  statistics, snapshots, restart files and rebuilds). */
+void gpu_engine_to_host(struct engine *e);
+/** The host changed the particles (rebuild, restart): upload before the next phase. */
+void gpu_engine_host_modified(struct engine *e);
+/** Print the GPU's timers. */
+void gpu_engine_print(const struct engine *e, FILE *f);
+/** Free the GPU state of the engine. */
+void gpu_engine_free(struct engine *e);
+
+#endif

@@ -1,0 +1,58 @@
+/* Internal interface between the GPU runner (src/gpu/gpu.cu) and the
+ * kernels of the task families (tasks/<name>/<name>_gpu.cu).  CUDA C++ only. */
+#ifndef BOLIDE_GPU_KERNELS_H
+#define BOLIDE_GPU_KERNELS_H
+
+#include <cuda_runtime.h>
+
+#include "gpu_check.h"
+#include "hydro_props.h"
+#include "part.h"
+
+struct material_table;
+
+/** Most threads per block.  The leaf kernels run one block per leaf cell,
+ *  its threads over the leaf's particles (32, 64 or 128 of them, from the
+ *  mean leaf size, struct gpu_leaves_dev.block); every thread of a warp
+ *  reads the same neighbour j at a time (a broadcast load). */
+#define GPU_BLOCK 128
+
+/** The leaves and their neighbour lists in device memory (struct gpu_leaves). */
+struct gpu_leaves_dev {
+  int n;                    /**< number of leaves */
+  int block;                /**< threads per block of the leaf kernels (<= GPU_BLOCK) */
+  const size_t *offset;     /**< first particle of each leaf */
+  const int *count;         /**< particles of each leaf */
+  const double *h_cap;      /**< the top-level cells' cap on h */
+  const double *h_list_cap; /**< largest h the lists cover */
+  const int *ngb_start;     /**< n + 1 */
+  const int *ngb_leaf;      /**< neighbouring leaf of each entry */
+  const double *ngb_shift;  /**< 3 per entry */
+};
+
+/** Counters of the h iteration in device memory. */
+enum gpu_counter { GPU_LEFT = 0, GPU_CAPPED = 1, GPU_OVERFLOW = 2, GPU_NR_COUNTERS = 4 };
+
+/** Density sums of every particle (or of those without PART_H_CONVERGED),
+ *  gathered from the leaves' neighbour lists (tasks/density/density_gpu.cu). */
+void density_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
+                        int only_unconverged);
+/** First step of the h iteration for every particle (tasks/ghost/ghost_gpu.cu). */
+void ghost_gpu_start_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
+                            struct hydro_props hp, int *counters);
+/** Next step for the particles still iterating. */
+void ghost_gpu_step_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
+                           struct hydro_props hp, int *counters);
+/** Grad-h factor, EOS, Balsara switch, force sums zeroed. */
+void ghost_gpu_finish_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
+                             struct hydro_props hp, const struct material_table *mats);
+/** Forces, gather form with r < max(H_i, H_j) (tasks/force/force_gpu.cu). */
+void force_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
+                      struct hydro_props hp);
+/** First half kick and drift of every particle (tasks/drift/drift_gpu.cu). */
+void drift_gpu_launch(cudaStream_t s, struct parts p, double dt_kick, double dt);
+/** Second half kick and time step; leaf_dt[L] the smallest of leaf L (tasks/kick/kick_gpu.cu). */
+void kick2_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
+                      struct hydro_props hp, double dt_kick, double *leaf_dt);
+
+#endif

@@ -1,0 +1,21 @@
+/* First half kick and drift on the GPU, one thread per particle, with
+ * kick_part and drift_part (drift.h), the functions the CPU drift task
+ * calls.  The density sums need no zeroing here: the density kernel writes
+ * them whole. */
+#include "drift.h"
+#include "gpu_kernels.h"
+
+/** See drift_gpu_launch. */
+__global__ void drift_gpu_kernel(struct parts p, double dt_kick, double dt) {
+  const size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= p.count) return;
+  kick_part(&p, i, dt_kick);
+  drift_part(&p, i, dt, 0.0); /* no XSPH on the GPU: gpu_engine_init keeps such runs on the CPU */
+}
+
+void drift_gpu_launch(cudaStream_t s, struct parts p, double dt_kick, double dt) {
+  if (p.count == 0) return;
+  const unsigned nb = (unsigned)((p.count + GPU_BLOCK - 1) / GPU_BLOCK);
+  drift_gpu_kernel<<<nb, GPU_BLOCK, 0, s>>>(p, dt_kick, dt);
+  gpu_check_launch(drift_gpu_kernel);
+}

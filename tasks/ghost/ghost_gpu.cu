@@ -1,0 +1,72 @@
+/* The ghost on the GPU: the smoothing-length iteration and the equation of
+ * state for every particle, with the per-particle functions of ghost_part.h
+ * that the CPU ghost calls.  The runner (src/gpu/gpu.cu) alternates
+ * ghost_gpu_step with density_gpu (unconverged particles only) until no
+ * particle is left, reading the counters in between. */
+#include "ghost_part.h"
+#include "gpu_kernels.h"
+
+/** One step for particle i of leaf L; counts what the runner must know. */
+__device__ static void ghost_gpu_one(struct parts *p, size_t i, int L,
+                                     const struct gpu_leaves_dev *lv, const struct hydro_props *hp,
+                                     int *counters) {
+  ghost_part_add_self(p, i);
+  if (ghost_part_step(p, i, hp, lv->h_cap[L])) atomicOr(&counters[GPU_CAPPED], 1);
+  if (!(p->flags[i] & PART_H_CONVERGED)) atomicAdd(&counters[GPU_LEFT], 1);
+  /* the neighbour lists reach only so far: outgrowing them means new lists */
+  if (p->h[i] > lv->h_list_cap[L]) atomicOr(&counters[GPU_OVERFLOW], 1);
+}
+
+/** See ghost_gpu_start_launch. */
+__global__ void ghost_gpu_start_kernel(struct parts p, struct gpu_leaves_dev lv,
+                                       struct hydro_props hp, int *counters) {
+  const int L = blockIdx.x;
+  const size_t beg = lv.offset[L];
+  for (int t = threadIdx.x; t < lv.count[L]; t += blockDim.x) {
+    const size_t i = beg + (size_t)t;
+    ghost_part_start(&p, i);
+    ghost_gpu_one(&p, i, L, &lv, &hp, counters);
+  }
+}
+
+/** See ghost_gpu_step_launch. */
+__global__ void ghost_gpu_step_kernel(struct parts p, struct gpu_leaves_dev lv,
+                                      struct hydro_props hp, int *counters) {
+  const int L = blockIdx.x;
+  const size_t beg = lv.offset[L];
+  for (int t = threadIdx.x; t < lv.count[L]; t += blockDim.x) {
+    const size_t i = beg + (size_t)t;
+    if (p.flags[i] & PART_H_CONVERGED) continue;
+    ghost_gpu_one(&p, i, L, &lv, &hp, counters);
+  }
+}
+
+/** See ghost_gpu_finish_launch. */
+__global__ void ghost_gpu_finish_kernel(struct parts p, struct gpu_leaves_dev lv,
+                                        struct hydro_props hp, const struct material_table *mats) {
+  const int L = blockIdx.x;
+  const size_t beg = lv.offset[L];
+  for (int t = threadIdx.x; t < lv.count[L]; t += blockDim.x)
+    ghost_part_finish(&p, beg + (size_t)t, &hp, mats);
+}
+
+void ghost_gpu_start_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
+                            struct hydro_props hp, int *counters) {
+  if (lv.n == 0) return;
+  ghost_gpu_start_kernel<<<lv.n, lv.block, 0, s>>>(p, lv, hp, counters);
+  gpu_check_launch(ghost_gpu_start_kernel);
+}
+
+void ghost_gpu_step_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
+                           struct hydro_props hp, int *counters) {
+  if (lv.n == 0) return;
+  ghost_gpu_step_kernel<<<lv.n, lv.block, 0, s>>>(p, lv, hp, counters);
+  gpu_check_launch(ghost_gpu_step_kernel);
+}
+
+void ghost_gpu_finish_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
+                             struct hydro_props hp, const struct material_table *mats) {
+  if (lv.n == 0) return;
+  ghost_gpu_finish_kernel<<<lv.n, lv.block, 0, s>>>(p, lv, hp, mats);
+  gpu_check_launch(ghost_gpu_finish_kernel);
+}

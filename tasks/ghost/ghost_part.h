@@ -1,0 +1,86 @@
+/* The ghost's work on one particle, shared by the CPU task (ghost_cpu.c) and
+ * the CUDA kernels (ghost_gpu.cu): add the self term, take one step of the
+ * smoothing-length iteration, and finish the density-derived quantities and
+ * the equation of state.  Physics written once (STYLE.md rule 3). */
+#ifndef BOLIDE_GHOST_PART_H
+#define BOLIDE_GHOST_PART_H
+
+#include <math.h>
+
+#include "ghost_iact.h"
+#include "hydro_parts.h"
+#include "hydro_props.h"
+#include "inline.h"
+#include "material.h"
+#include "part.h"
+
+/** Add particle i's own contribution to its density sums. */
+BOLIDE_INLINE void ghost_part_add_self(struct parts *BOLIDE_RESTRICT p, size_t i) {
+  struct density_acc a = {0, 0, 0, 0, 0, {0, 0, 0}};
+  density_self_term(1.0 / p->h[i], p->m[i], &a);
+  hydro_density_add(p, i, &a);
+}
+
+/** Start the iteration of particle i: clear its converged bit and bracket. */
+BOLIDE_INLINE void ghost_part_start(struct parts *BOLIDE_RESTRICT p, size_t i) {
+  p->flags[i] &= ~PART_H_CONVERGED;
+  p->h_lo[i] = 0.0;
+  p->h_hi[i] = 1e300;
+}
+
+/** One iteration step for particle i (its sums complete, self term
+ *  included); sets PART_H_CONVERGED when done, else stores the new h.
+ *  h_cap: the largest h the cells allow.  Returns 1 if the particle was
+ *  capped at h_cap below SPH:h_max (the cells must be rebuilt). */
+BOLIDE_INLINE int ghost_part_step(struct parts *BOLIDE_RESTRICT p, size_t i,
+                                  const struct hydro_props *hp, double h_cap) {
+  double h = p->h[i];
+  const double hmax = hp->h_max < h_cap ? hp->h_max : h_cap;
+  const int r = ghost_h_iterate(&h, &p->h_lo[i], &p->h_hi[i], p->wcount[i], p->wcount_dh[i],
+                                hp->eta, hp->h_tolerance, hmax);
+  int capped = 0;
+  if (r == GHOST_H_CONVERGED) {
+    p->flags[i] |= PART_H_CONVERGED;
+    if (h >= h_cap && h_cap < hp->h_max) capped = 1;
+    /* keep the h the sums were computed with */
+  } else {
+    p->h[i] = h;
+  }
+  return capped;
+}
+
+/** Density-derived quantities and the equation of state of particle i
+ *  (grad-h factor, Springel & Hernquist 2002 eq. 8; div v and curl v
+ *  normalised by rho; Balsara 1995 switch); zeroes its force sums. */
+BOLIDE_INLINE void ghost_part_finish(struct parts *BOLIDE_RESTRICT p, size_t i,
+                                     const struct hydro_props *hp,
+                                     const struct material_table *mats) {
+  const double rho = p->rho[i];
+  const double h = p->h[i];
+  p->f_gradh[i] = 1.0 / (1.0 + h * p->rho_dh[i] / (3.0 * rho));
+  const double rho_inv = 1.0 / rho;
+  p->div_v[i] *= rho_inv;
+  p->curl_vx[i] *= rho_inv;
+  p->curl_vy[i] *= rho_inv;
+  p->curl_vz[i] *= rho_inv;
+  /* continuity equation: the summed density served the h iteration and the
+   * grad-h factor; the EOS and the force loop use the integrated density
+   * (started from the summation where the initial conditions had none) */
+  if (hp->continuity) {
+    if (!(p->rho_full[i] > 0.0)) p->rho_full[i] = p->rho_fp[i] = rho;
+    p->rho[i] = p->rho_fp[i];
+  }
+  const struct material *mat = material_table_find(mats, p->mat[i]);
+  double P, cs;
+  material_eos(mat, p->rho[i], p->up[i], &P, &cs);
+  p->P[i] = P;
+  p->cs[i] = cs;
+  const double curl = sqrt(p->curl_vx[i] * p->curl_vx[i] + p->curl_vy[i] * p->curl_vy[i] +
+                           p->curl_vz[i] * p->curl_vz[i]);
+  p->balsara[i] = hp->balsara ? ghost_balsara(p->div_v[i], curl, cs, h) : 1.0;
+  /* zero the force sums here: every force task of the cell runs after its ghost */
+  hydro_force_reset(p, i);
+  if (hp->solids) hydro_gradient_reset(p, i);
+}
+
+#endif

@@ -1,0 +1,33 @@
+/* Second half kick and new time step on the GPU, with kick2_part (kick.h),
+ * the function the CPU task calls; each block reduces the smallest time
+ * step of its leaf. */
+#include "gpu_kernels.h"
+#include "kick.h"
+
+/** See kick2_gpu_launch. */
+__global__ void kick2_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, struct hydro_props hp,
+                                 double dt_kick, double *leaf_dt) {
+  __shared__ double dt_min[GPU_BLOCK];
+  const int L = blockIdx.x;
+  const size_t beg = lv.offset[L];
+  double dt = 1e300;
+  for (int t = threadIdx.x; t < lv.count[L]; t += blockDim.x) {
+    const double d = kick2_part(&p, beg + (size_t)t, dt_kick, &hp);
+    if (d < dt) dt = d;
+  }
+  dt_min[threadIdx.x] = dt;
+  __syncthreads();
+  for (int w = blockDim.x / 2; w > 0; w /= 2) {
+    if ((int)threadIdx.x < w && dt_min[threadIdx.x + w] < dt_min[threadIdx.x])
+      dt_min[threadIdx.x] = dt_min[threadIdx.x + w];
+    __syncthreads();
+  }
+  if (threadIdx.x == 0) leaf_dt[L] = dt_min[0];
+}
+
+void kick2_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
+                      struct hydro_props hp, double dt_kick, double *leaf_dt) {
+  if (lv.n == 0) return;
+  kick2_gpu_kernel<<<lv.n, lv.block, 0, s>>>(p, lv, hp, dt_kick, leaf_dt);
+  gpu_check_launch(kick2_gpu_kernel);
+}
