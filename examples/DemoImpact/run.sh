@@ -3,7 +3,7 @@
 # Usage: ./run.sh [N]   (N: target particles, default 16000; impactor N/8)
 set -euo pipefail
 cd "$(dirname "$0")"
-top=../..
+top=${TOP:-../..}
 build=${BOLIDE_BUILD:-$top/_build}
 python=${PYTHON:-$build/.venv/bin/python}
 n=${1:-16000}
