@@ -136,6 +136,11 @@ enum part_flags {
   X(int32_t, flags, NULL,             0, 1, 0,  0,  0, 0, "internal state bits (enum part_state)")
 /* clang-format on */
 
+/** The number of fields, as a compile-time constant (for fixed arrays
+ *  indexed by field). */
+#define PART_COUNT_FIELD(...) +1
+enum { PART_NR_FIELDS = 0 BOLIDE_PART_FIELDS(PART_COUNT_FIELD) };
+
 /** Bits of parts.flags. */
 enum part_state {
   PART_ACTIVE = 1,       /**< updated in the current step */

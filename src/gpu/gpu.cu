@@ -65,7 +65,7 @@ struct gpu {
   long calls;                         /**< FORCE phases run */
   double bytes_h2d, bytes_d2h;        /**< traffic over the bus */
   long full_up, full_down;            /**< copies of every field (rebuilds, outputs) */
-  void *pinned[64];                   /**< host arrays registered as pinned memory, by field */
+  void *pinned[PART_NR_FIELDS];       /**< host arrays registered as pinned memory, by field */
   size_t pinned_bytes;                /**< bytes per field registered */
 };
 
@@ -307,7 +307,6 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
  *  that copies run at the bus's full rate and asynchronously; again when
  *  the arrays moved (parts_reserve). */
 static void gpu_pin(struct gpu *g, const struct parts *p) {
-  if (part_nr_fields > 64) error_bug("too many particle fields to pin");
   int same = g->pinned_bytes == p->capacity;
   for (int f = 0; f < part_nr_fields && same; f++)
     same = g->pinned[f] == *gpu_field_slot((struct parts *)p, f);
