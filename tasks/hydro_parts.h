@@ -77,7 +77,7 @@ BOLIDE_INLINE void hydro_gradient_gather(struct parts *BOLIDE_RESTRICT p, size_t
 
 /** Load what the force loop reads of particle i. */
 BOLIDE_INLINE void hydro_force_load(const struct parts *BOLIDE_RESTRICT p, size_t i,
-                                    struct force_in *in) {
+                                    struct force_in *in, int solids) {
   in->m = p->m[i];
   in->h_inv = 1.0 / p->h[i];
   in->rho = p->rho[i];
@@ -87,6 +87,13 @@ BOLIDE_INLINE void hydro_force_load(const struct parts *BOLIDE_RESTRICT p, size_
   in->f = p->f_gradh[i];
   in->balsara = p->balsara[i];
   in->h = p->h[i];
+  /* the stress tensors only where a material has strength: fluids skip twelve
+   * arrays' worth of memory traffic per neighbour (force_iact reads S and R
+   * only when hp->solids) */
+  if (!solids) {
+    for (int k = 0; k < 6; k++) in->S[k] = in->R[k] = 0.0;
+    return;
+  }
   in->S[0] = p->Spxx[i];
   in->S[1] = p->Spxy[i];
   in->S[2] = p->Spxz[i];

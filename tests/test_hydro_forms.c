@@ -128,7 +128,7 @@ static int check(int periodic, size_t n, unsigned long long seed, const struct f
     struct force_acc a;
     force_acc_zero(&a);
     struct force_in in_i, in_j;
-    hydro_force_load(&p, i, &in_i);
+    hydro_force_load(&p, i, &in_i, hp.solids);
     for (size_t j = 0; j < n; j++) {
       if (j == i) continue;
       double dx[3];
@@ -136,7 +136,7 @@ static int check(int periodic, size_t n, unsigned long long seed, const struct f
       const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
       const double H = kernel_gamma * fmax(p.h[i], p.h[j]);
       if (r2 >= H * H) continue;
-      hydro_force_load(&p, j, &in_j);
+      hydro_force_load(&p, j, &in_j, hp.solids);
       const double dv[3] = {p.vpx[i] - p.vpx[j], p.vpy[i] - p.vpy[j], p.vpz[i] - p.vpz[j]};
       force_iact(r2, dx, dv, &in_i, &in_j, &hp, &a);
     }

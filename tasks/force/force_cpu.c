@@ -15,8 +15,8 @@ static _Thread_local const struct hydro_props *force_hp;
 BOLIDE_ALWAYS_INLINE void force_sym(struct parts *p, size_t i, size_t j, double r2, const double dx[3]) {
   if (r2 <= 0.0) return; /* coincident particles exert no pairwise force */
   struct force_in in_i, in_j;
-  hydro_force_load(p, i, &in_i);
-  hydro_force_load(p, j, &in_j);
+  hydro_force_load(p, i, &in_i, force_hp->solids);
+  hydro_force_load(p, j, &in_j, force_hp->solids);
   const double dv[3] = {p->vpx[i] - p->vpx[j], p->vpy[i] - p->vpy[j], p->vpz[i] - p->vpz[j]};
   const double mdx[3] = {-dx[0], -dx[1], -dx[2]};
   const double mdv[3] = {-dv[0], -dv[1], -dv[2]};

@@ -22,7 +22,7 @@ __global__ void force_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, struc
     const double xi[3] = {x[i], y[i], z[i]}, vi[3] = {vx[i], vy[i], vz[i]};
     const double Hi = kernel_gamma * h[i], Hi2 = Hi * Hi;
     struct force_in in_i, in_j;
-    hydro_force_load(&p, i, &in_i);
+    hydro_force_load(&p, i, &in_i, hp.solids);
     struct force_acc a = {{0, 0, 0}, 0, 0, 0};
     for (int k = k0; k < k1; k++) {
       const int J = lv.ngb_leaf[k];
@@ -34,7 +34,7 @@ __global__ void force_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, struc
         const double Hj = kernel_gamma * h[j];
         /* r2 > 0: coincident particles (and i itself) exert no pairwise force */
         if ((r2 < Hi2 || r2 < Hj * Hj) && r2 > 0.0) {
-          hydro_force_load(&p, j, &in_j);
+          hydro_force_load(&p, j, &in_j, hp.solids);
           const double dv[3] = {vi[0] - vx[j], vi[1] - vy[j], vi[2] - vz[j]};
           force_iact(r2, dx, dv, &in_i, &in_j, &hp, &a);
         }
