@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "engine_tasks.h"
+#include "damage/flaws.h"
 #include "error.h"
 #include "drift/drift.h"
 #include "hydro_parts.h"
@@ -196,6 +197,57 @@ static void engine_read_ics(struct engine *e, char *icname, size_t len, double b
   }
 }
 
+/** Order of particle indices by id (flaws are drawn in id order, so that a
+ *  run resumed from a restart file, whose particles are sorted by cell,
+ *  draws the same flaws). */
+static const int64_t *engine_sort_ids;
+static int engine_cmp_by_id(const void *a, const void *b) {
+  const int64_t x = engine_sort_ids[*(const size_t *)a], y = engine_sort_ids[*(const size_t *)b];
+  return (x > y) - (x < y);
+}
+
+/** Weibull flaws for the brittle materials (weibull_k > 0 with a shear
+ *  modulus) from Damage:seed, by the procedure of Benz & Asphaug (1995):
+ *  each particle keeps the slice flaw_first .. + n_flaws of e->flaw_eps. */
+static void engine_init_flaws(struct engine *e) {
+  for (int k = 0; k < e->mats->n; k++)
+    if (e->mats->mats[k].weibull_k > 0.0 && e->mats->mats[k].shear_modulus > 0.0) e->damage = 1;
+  if (!e->damage) return;
+  struct parts *p = &e->parts;
+  const size_t n = p->count;
+  size_t *order = error_malloc(n * sizeof(size_t), "flaw order");
+  for (size_t i = 0; i < n; i++) order[i] = i;
+  engine_sort_ids = p->id;
+  qsort(order, n, sizeof(size_t), engine_cmp_by_id);
+  int32_t *mat = error_malloc(n * sizeof(int32_t), "flaw order");
+  double *m = error_malloc(n * sizeof(double), "flaw order"), *rho = error_malloc(n * sizeof(double), "flaw order");
+  for (size_t k = 0; k < n; k++) {
+    mat[k] = p->mat[order[k]];
+    m[k] = p->m[order[k]];
+    rho[k] = p->rho[order[k]];
+  }
+  struct flaws fl;
+  e->nr_flaws = flaws_generate_materials(n, mat, m, rho, e->mats, (uint64_t)params_get_int(e->params, "Damage:seed"), &fl);
+  for (size_t k = 0; k < n; k++) {
+    const size_t i = order[k];
+    p->flaw_first[i] = fl.offset[k];
+    p->n_flaws[i] = (int32_t)(fl.offset[k + 1] - fl.offset[k]);
+    if (p->dmg[i] > 0.0 && !(p->dcbrt[i] > 0.0)) p->dcbrt[i] = cbrt(p->dmg[i]);
+  }
+  e->flaw_eps = fl.eps;
+  fl.eps = NULL;
+  free(fl.offset);
+  free(order);
+  free(mat);
+  free(m);
+  free(rho);
+  e->damage_max_change = params_get_real(e->params, "Damage:max_change");
+  error_log(0, "damage: %lld Weibull flaws (%.1f per particle, %.1f MiB) from Damage:seed %ld",
+            (long long)e->nr_flaws, n ? (double)e->nr_flaws / (double)n : 0.0,
+            (double)e->nr_flaws * sizeof(double) / 1048576.0, params_get_int(e->params, "Damage:seed"));
+  if (!e->hp.solids) error_warning("brittle materials without strength: damage has no stress to act on");
+}
+
 /* ------------------------------------------------------------------------ */
 
 void engine_init(struct engine *e, const struct params *params, const struct engine_options *opt) {
@@ -249,6 +301,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     engine_read_ics(e, icname, sizeof icname, box);
   }
   engine_guess_h(e);
+  engine_init_flaws(e);
   if (e->gp.enabled && periodic)
     params_error(params, "InitialConditions:periodic", "self-gravity in a periodic box is not implemented");
   error_log(0, "read %zu particles from %s (box %g x %g x %g, %s)", e->parts.count, icname, box[0], box[1],
@@ -486,6 +539,7 @@ void engine_clean(struct engine *e) {
   free(e->out_times);
   free(e->cell_dt_min);
   free(e->gcells);
+  free(e->flaw_eps);
   free(e->params_text);
   if (e->mats) material_table_free(e->mats);
   free(e->mats);

@@ -35,6 +35,8 @@ struct engine_cell_tasks {
   struct task *ghost;    /**< h iteration and equation of state */
   struct task *extra_ghost; /**< end of the gradient loop (solids only, else NULL) */
   struct task *kick2;    /**< second half kick and new time step */
+  struct task *damage;   /**< damage growth (brittle materials only, else NULL) */
+  struct task *force_done; /**< what the force tasks unlock: damage, else kick2 */
   int nr_ngb;            /**< number of neighbouring task cells (itself included) */
   int *ngb;              /**< their numbers in engine.tcells */
   double (*ngb_shift)[3];/**< periodic shift to add to the neighbour's positions */
@@ -64,6 +66,10 @@ struct engine {
   int nr_tcells;                  /**< their number */
   int cell_task_size;             /**< Scheduler:cell_task_size */
   double reach;                   /**< task cells closer than this have pair tasks */
+  int damage;                     /**< 1 when a material is brittle (tasks/damage) */
+  double *flaw_eps;               /**< every particle's flaw thresholds, one flat array */
+  int64_t nr_flaws;               /**< their number */
+  double damage_max_change;       /**< Damage:max_change */
   struct gravity_props gp;        /**< self-gravity settings (gp.enabled) */
   struct gravity_cell *gcells;    /**< gravity data of every cell, by cell index */
   int gcells_cap;                 /**< its allocated length */

@@ -22,6 +22,9 @@
  *   ghost(t), ghost(t') -> gradient(t,t') -> extra_ghost(t), extra_ghost(t')
  *   extra_ghost(t), extra_ghost(t') -> force(t,t')
  *
+ * With brittle materials the damage task of a task cell sits between its
+ * force tasks and its kick: force(t), force(t,t') -> damage(t) -> kick2(t).
+ *
  * Self-gravity works on the top-level cells (gravity_cpu.h):
  *
  *   grav_up(c) -> grav(c,c'), grav(c) -> grav_down(c)       near pairs
@@ -198,8 +201,8 @@ static void engine_make_pair_tasks(struct engine *e, int a, int b, const double 
   /* density(a,b) -> ghost(a), ghost(b);  force(a,b) -> kick2(a), kick2(b) */
   scheduler_addunlock(sched, dp, e->ct[a].ghost);
   scheduler_addunlock(sched, dp, e->ct[b].ghost);
-  scheduler_addunlock(sched, fp, e->ct[a].kick2);
-  scheduler_addunlock(sched, fp, e->ct[b].kick2);
+  scheduler_addunlock(sched, fp, e->ct[a].force_done);
+  scheduler_addunlock(sched, fp, e->ct[b].force_done);
   engine_phase_add(e, ENGINE_PHASE_FORCE, dp, cap);
   engine_phase_add(e, ENGINE_PHASE_FORCE, fp, cap);
   if (e->hp.solids) {
@@ -253,6 +256,15 @@ void engine_make_graph(struct engine *e) {
     ct->ghost = scheduler_addtask(sched, task_type_ghost, task_subtype_none, c, NULL);
     ct->kick2 = scheduler_addtask(sched, task_type_kick2, task_subtype_none, c, NULL);
     ct->drift->cell_index = ct->ghost->cell_index = ct->kick2->cell_index = t;
+    ct->force_done = ct->kick2;
+    if (e->damage) {
+      /* force(t), force(t,t') -> damage(t) -> kick2(t) */
+      ct->damage = scheduler_addtask(sched, task_type_damage, task_subtype_damage, c, NULL);
+      ct->damage->cell_index = t;
+      scheduler_addunlock(sched, ct->damage, ct->kick2);
+      engine_phase_add(e, ENGINE_PHASE_FORCE, ct->damage, cap);
+      ct->force_done = ct->damage;
+    }
     engine_phase_add(e, ENGINE_PHASE_DRIFT, ct->drift, cap);
     engine_phase_add(e, ENGINE_PHASE_FORCE, ct->kick2, cap);
     if (!e->hp.enabled) continue; /* gravity-only run: no hydro tasks */
@@ -261,7 +273,7 @@ void engine_make_graph(struct engine *e) {
     ds->locks[0] = fs->locks[0] = &c->lock;
     ds->cell_index = fs->cell_index = t;
     scheduler_addunlock(sched, ds, ct->ghost);
-    scheduler_addunlock(sched, fs, ct->kick2);
+    scheduler_addunlock(sched, fs, ct->force_done);
     engine_phase_add(e, ENGINE_PHASE_FORCE, ds, cap);
     engine_phase_add(e, ENGINE_PHASE_FORCE, ct->ghost, cap);
     engine_phase_add(e, ENGINE_PHASE_FORCE, fs, cap);

@@ -1,6 +1,7 @@
 /* The scheduler's callback: what each task of the engine's graph does. */
 #include <stdatomic.h>
 
+#include "damage/damage_iact.h"
 #include "density/density_cpu.h"
 #include "drift/drift_cpu.h"
 #include "engine_tasks.h"
@@ -9,6 +10,7 @@
 #include "ghost/ghost_cpu.h"
 #include "gradient/gradient_cpu.h"
 #include "kernel.h"
+#include "material.h"
 #include "kick/kick_cpu.h"
 
 /** The largest kernel support the current cells and task graph allow. */
@@ -37,6 +39,32 @@ static void engine_ghost(struct engine *e, int t) {
     atomic_store((_Atomic int *)&e->need_rebuild, 1);
 }
 
+/** The damage task of task cell number t: flaw activation and growth of
+ *  d^(1/3) over the step just computed (tasks/damage/damage_iact.h), from
+ *  the stress the force loop used. */
+static void engine_damage(struct engine *e, int t) {
+  struct parts *p = &e->parts;
+  const struct cell *c = e->tcells[t];
+  const double dt = e->first_force ? 0.0 : e->dt;
+  for (size_t i = c->offset; i < c->offset + c->count; i++) {
+    p->dmg_rate[i] = 0.0;
+    if (p->n_flaws[i] == 0) continue;
+    const struct material *mat = material_table_find(e->mats, p->mat[i]);
+    double S[6];
+    S[DAMAGE_XX] = p->Spxx[i];
+    S[DAMAGE_YY] = p->Spyy[i];
+    S[DAMAGE_ZZ] = p->Spzz[i];
+    S[DAMAGE_XY] = p->Spxy[i];
+    S[DAMAGE_XZ] = p->Spxz[i];
+    S[DAMAGE_YZ] = p->Spyz[i];
+    int32_t n_act = p->n_act[i];
+    p->dmg_rate[i] = damage_update_particle(mat, p->rho[i], kernel_gamma * p->h[i], p->P[i], S, e->flaw_eps,
+                                            p->flaw_first[i], p->n_flaws[i], dt, &p->dcbrt[i], &n_act,
+                                            &p->dmg[i]);
+    p->n_act[i] = n_act;
+  }
+}
+
 /** Second half kick and new time step of task cell number t: the
  *  gravitational acceleration joins the hydrodynamic one here (the two
  *  families accumulate apart, engine_graph.c), and the gravitational
@@ -55,6 +83,11 @@ static void engine_kick2(struct engine *e, int t) {
   }
   double dt = kick2_cell_cpu(p, c, e->first_force ? 0.0 : 0.5 * e->dt, &e->hp);
   if (!e->hp.enabled) dt = 1e300;
+  if (e->damage)
+    for (size_t i = c->offset; i < end; i++) {
+      const double dtd = damage_timestep(p->dcbrt[i], p->n_act[i], p->n_flaws[i], p->dmg_rate[i], e->damage_max_change);
+      if (dtd < dt) dt = dtd;
+    }
   if (e->gp.enabled && e->gp.eps > 0.0)
     for (size_t i = c->offset; i < end; i++) {
       const double ga[3] = {p->gax[i], p->gay[i], p->gaz[i]};
@@ -121,6 +154,9 @@ void engine_run_task(void *ctx, struct task *t, int thread_id) {
       gravity_down(p, ci, e->gcells, &e->gp);
       break;
     case task_type_implicit:
+      break;
+    case task_type_damage:
+      engine_damage(e, t->cell_index);
       break;
     default:
       error_bug("the engine has no work for task type %s", task_type_names[t->type]);

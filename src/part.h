@@ -125,6 +125,13 @@ enum part_flags {
   X(double,  dSyz, NULL,              4, 6, 1, -1, -3, 0, "dS/dt yz")                            \
   X(double,  dSzz, NULL,              5, 6, 1, -1, -3, 0, "dS/dt zz")                            \
   X(double,  eps_p, "PlasticStrains", 0, 1, 0,  0,  0, PART_IC_OPT | PART_SNAP, "accumulated equivalent plastic strain") \
+  /* fracture (tasks/damage): Grady-Kipp damage with Weibull flaws */                              \
+  X(double,  dmg, "Damage",           0, 1, 0,  0,  0, PART_IC_OPT | PART_SNAP, "tensile damage d in [0, 1] (Grady & Kipp 1980; Benz & Asphaug 1995)") \
+  X(double,  dcbrt, "DamageCubeRoot", 0, 1, 0,  0,  0, PART_IC_OPT | PART_SNAP, "d^(1/3), the integrated variable of the damage model") \
+  X(int32_t, n_act, "ActiveFlaws",    0, 1, 0,  0,  0, PART_SNAP, "number of activated flaws") \
+  X(int32_t, n_flaws, "NumberOfFlaws", 0, 1, 0, 0,  0, PART_SNAP, "number of flaws of the particle") \
+  X(int64_t, flaw_first, NULL,        0, 1, 0,  0,  0, 0, "index of the particle's first flaw threshold in the engine's flat array") \
+  X(double,  dmg_rate, NULL,          0, 1, 0,  0, -1, 0, "growth rate of d^(1/3) in the last step") \
   X(double,  rho_full, NULL,          0, 1, 1, -3,  0, 0, "density integrated by the continuity equation") \
   X(double,  rho_fp, NULL,            0, 1, 1, -3,  0, 0, "predicted continuity density")        \
   X(double,  h_lo, NULL,              0, 1, 0,  1,  0, 0, "lower bracket of the h iteration")     \

@@ -94,12 +94,16 @@ BOLIDE_INLINE void hydro_force_load(const struct parts *BOLIDE_RESTRICT p, size_
     for (int k = 0; k < 6; k++) in->S[k] = in->R[k] = 0.0;
     return;
   }
-  in->S[0] = p->Spxx[i];
-  in->S[1] = p->Spxy[i];
-  in->S[2] = p->Spxz[i];
-  in->S[3] = p->Spyy[i];
-  in->S[4] = p->Spyz[i];
-  in->S[5] = p->Spzz[i];
+  /* damage reduces the deviatoric stress and the tension (Benz & Asphaug
+   * 1994; theory/damage.md D5): sigma = -P_d I + (1 - d) S */
+  const double d = p->dmg[i], f = 1.0 - d;
+  if (in->P < 0.0) in->P *= f;
+  in->S[0] = f * p->Spxx[i];
+  in->S[1] = f * p->Spxy[i];
+  in->S[2] = f * p->Spxz[i];
+  in->S[3] = f * p->Spyy[i];
+  in->S[4] = f * p->Spyz[i];
+  in->S[5] = f * p->Spzz[i];
   in->R[0] = p->Rxx[i];
   in->R[1] = p->Rxy[i];
   in->R[2] = p->Rxz[i];

@@ -238,19 +238,21 @@ BOLIDE_INLINE double damage_update_particle(const struct material *mat, double r
   return rate;
 }
 
-/** Time-step limit from damage: the step in which d grows by at most the
- *  fraction f of the intact fraction (1 - d), so that the damaged stress
- *  (1 - d) S changes by at most f relative.  No limit (INFINITY) when the
- *  limiter is reached within that change (the cap is applied exactly), when
- *  the rate is 0, or when d = 1: unlike a limit on d(d^(1/3))/dt alone, this
- *  never pins saturated particles (theory/damage.md). */
+/** Time-step limit from damage: the step in which d grows by at most f (an
+ *  absolute change: the damaged stress (1 - d) S then changes by at most f
+ *  times the intact stress).  No limit (INFINITY) when the limiter is
+ *  reached within that change (the growth of d^(1/3) is integrated exactly
+ *  and capped there), when the rate is 0, or when d = 1, so that a particle
+ *  saturates in at most about 1/f steps and is never pinned.  (A limit on
+ *  the change relative to (1 - d) would shrink the step geometrically as d
+ *  approaches 1: the pinning the issue reports of SWIFT's strength branch.) */
 BOLIDE_INLINE double damage_timestep(double dcbrt, int32_t n_act, int32_t n_tot, double rate,
                                      double f) {
   if (!(rate > 0.0) || dcbrt >= 1.0) return INFINITY;
   const double d = dcbrt * dcbrt * dcbrt;
   const double xmax = damage_cbrt_max(n_act, n_tot);
   const double dmax = xmax * xmax * xmax;
-  const double d_target = d + f * (1.0 - d);
+  const double d_target = d + f;
   if (d_target >= dmax) return INFINITY;
   return (cbrt(d_target) - dcbrt) / rate;
 }

@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# Damage in a run: a basalt sphere (Benz & Asphaug 1999 basalt, von Mises
+# strength, Weibull k = 5e34 m^-3, m = 8 as in the Nakamura set-up) expanding
+# radially, so in tension.  Asserts: flaws drawn at start-up (about ln N + 0.58
+# per particle); damage appears; no particle's damage ever decreases between
+# snapshots; every particle's d stays within its limiter d <= n_act / n_flaws;
+# damaged particles exist only where flaws were activated.
+set -uo pipefail
+B=${BOLIDE_BUILDDIR:?}
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+cd "$work"
+"$PYTHON" - <<'PY'
+import h5py, numpy as np
+R, n = 0.03, 20
+dx = 2 * R / n
+g = (np.arange(n) + 0.5) * dx - R
+x, y, z = np.meshgrid(g, g, g, indexing="ij")
+keep = x**2 + y**2 + z**2 < R * R
+pos = np.stack([x[keep], y[keep], z[keep]], axis=1)
+N = len(pos)
+rho = 2700.0
+with h5py.File("sphere.hdf5", "w") as f:
+    h = f.create_group("Header")
+    h.attrs["BoxSize"] = [0.2, 0.2, 0.2]
+    h.attrs["NumPart_Total"] = [N, 0, 0, 0, 0, 0]
+    p = f.create_group("PartType0")
+    p["Coordinates"] = pos + 0.1
+    p["Velocities"] = pos / R * 50.0      # 50 m/s at the surface: tension
+    p["Masses"] = np.full(N, rho * dx**3)
+    p["SmoothingLengths"] = np.full(N, 1.2348 * dx)
+    p["InternalEnergies"] = np.full(N, 1.0)
+    p["Densities"] = np.full(N, rho)
+    p["ParticleIDs"] = np.arange(1, N + 1)
+    p["MaterialIDs"] = np.zeros(N, dtype=np.int32)
+print(N)
+PY
+cat >p.yml <<'YML'
+InitialConditions:
+  file_name: sphere.hdf5
+TimeIntegration:
+  time_end: 4e-6
+Snapshots:
+  delta_time: 1e-6
+Materials:
+  0: {name: basalt, weibull_k: 5e34, weibull_m: 8}
+SPH:
+  viscosity_alpha: 1.0
+Damage:
+  seed: 7
+YML
+"$B/bolide" -t 2 p.yml >run.log 2>&1 || { echo "FAIL: run"; tail -5 run.log; exit 1; }
+grep "Weibull flaws" run.log
+"$PYTHON" - <<'PY'
+import sys, glob, h5py, numpy as np
+files = sorted(glob.glob("snapshot_*.hdf5"))
+fail = 0
+prev = None
+for f in files:
+    g = h5py.File(f, "r")["PartType0"]
+    o = np.argsort(g["ParticleIDs"][:])
+    d = g["Damage"][:][o]; na = g["ActiveFlaws"][:][o]; nf = g["NumberOfFlaws"][:][o]
+    t = float(np.ravel(h5py.File(f, "r")["Header"].attrs["Time"])[0])
+    lim = np.where(nf > 0, na / np.maximum(nf, 1), 0.0)
+    print("t = %.2e s: mean damage %.4f, max %.4f, damaged (d > 0.01) %.1f%%, active flaws %d"
+          % (t, d.mean(), d.max(), 100 * np.mean(d > 0.01), na.sum()))
+    if np.any(d > lim * (1 + 1e-12) + 1e-15):
+        print("FAIL: damage above its limiter n_act/n_flaws"); fail = 1
+    if np.any((d > 0) & (na == 0)):
+        print("FAIL: damage without activated flaws"); fail = 1
+    if prev is not None and np.any(d < prev - 1e-15):
+        print("FAIL: damage decreased"); fail = 1
+    prev = d
+N = len(prev)
+mean_flaws = nf.mean()
+print("flaws per particle %.2f (ln N + 0.577 = %.2f)" % (mean_flaws, np.log(N) + 0.5772))
+if abs(mean_flaws - (np.log(N) + 0.5772)) > 0.15 * (np.log(N) + 0.5772):
+    print("FAIL: flaw count"); fail = 1
+if not prev.max() > 0.1:
+    print("FAIL: no damage grew in tension"); fail = 1
+sys.exit(fail)
+PY
