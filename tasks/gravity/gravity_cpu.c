@@ -1,5 +1,7 @@
 /* Self-gravity on the CPU: tree walks over the cell octrees (see
  * gravity_cpu.h; the formulas are in gravity_iact.h and theory/gravity.md). */
+/* the M2L operators unrolled for each expansion order (gravity_iact.h) */
+#define GRAVITY_UNROLL_LOOPS 1
 #include "gravity/gravity_cpu.h"
 
 #include <math.h>
@@ -120,66 +122,177 @@ void gravity_up(struct parts *p, const struct cell *c, struct gravity_cell *gc,
 
 /* ------------------------------------------------------------------ P2P */
 
+/** Interaction counters of the walks (gravity_counters_get); updated without
+ *  locks, so approximate when tasks run in parallel (diagnostics only). */
+static struct gravity_counters counters;
+
+void gravity_counters_get(struct gravity_counters *out, int reset) {
+  *out = counters;
+  if (reset) memset(&counters, 0, sizeof counters);
+}
+
+/** Spline or Newtonian pair kernel without branches (the selects compile to
+ *  masks, so that the P2P loops vectorise): the same values as
+ *  gravity_softened_kernel with the spline softening.  inv_H = 1/H, H2 = H^2. */
+static inline void kernel_spline_nb(double r2, double inv_H, double H2, double *wpot,
+                                    double *wacc) {
+  const double r = sqrt(r2);
+  const double inv_r = 1.0 / r;
+  const double u = r * inv_H, u2 = u * u;
+  const double sp = inv_H * (3.0 + u2 * (-7.0 + u2 * (21.0 + u * (-28.0 + u * (15.0 - 3.0 * u)))));
+  const double sa =
+      inv_H * inv_H * inv_H * (14.0 + u2 * (-84.0 + u * (140.0 + u * (-90.0 + 21.0 * u))));
+  const int in = r2 < H2;
+  *wpot = in ? sp : inv_r;
+  *wacc = in ? sa : inv_r * inv_r * inv_r;
+}
+
+/** One target (xi, mi) against sources [j0, j1) of the particle arrays:
+ *  returns the target's sums in pot_a[4] (pot, ax, ay, az, without G) and,
+ *  when sym, adds the reaction to the sources (times G mi).  Written as one
+ *  straight loop over restrict arrays so that it vectorises (SSE2 doubles). */
+static inline void p2p_row(const double *restrict x, const double *restrict y,
+                           const double *restrict z, const double *restrict m, double *restrict pot,
+                           double *restrict gax, double *restrict gay, double *restrict gaz,
+                           size_t j0, size_t j1, const double xi[3], double gmi, int sym,
+                           int plummer, double eps, double inv_H, double H2, double G,
+                           double out[4]) {
+  double sp = 0.0, sx = 0.0, sy = 0.0, sz = 0.0;
+  if (plummer) {
+    const double e2 = eps * eps;
+    for (size_t j = j0; j < j1; j++) {
+      const double dx = xi[0] - x[j], dy = xi[1] - y[j], dz = xi[2] - z[j];
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      const double q = 1.0 / sqrt(r2 + e2);
+      const double wpot = q, wacc = q * q * q;
+      const double gmj = G * m[j];
+      sp -= gmj * wpot;
+      sx -= gmj * wacc * dx;
+      sy -= gmj * wacc * dy;
+      sz -= gmj * wacc * dz;
+      if (sym) {
+        pot[j] -= gmi * wpot;
+        gax[j] += gmi * wacc * dx;
+        gay[j] += gmi * wacc * dy;
+        gaz[j] += gmi * wacc * dz;
+      }
+    }
+  } else if (sym) {
+    for (size_t j = j0; j < j1; j++) {
+      const double dx = xi[0] - x[j], dy = xi[1] - y[j], dz = xi[2] - z[j];
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      double wpot, wacc;
+      kernel_spline_nb(r2, inv_H, H2, &wpot, &wacc);
+      const double gmj = G * m[j];
+      sp -= gmj * wpot;
+      sx -= gmj * wacc * dx;
+      sy -= gmj * wacc * dy;
+      sz -= gmj * wacc * dz;
+      pot[j] -= gmi * wpot;
+      gax[j] += gmi * wacc * dx;
+      gay[j] += gmi * wacc * dy;
+      gaz[j] += gmi * wacc * dz;
+    }
+  } else {
+    for (size_t j = j0; j < j1; j++) {
+      const double dx = xi[0] - x[j], dy = xi[1] - y[j], dz = xi[2] - z[j];
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      double wpot, wacc;
+      kernel_spline_nb(r2, inv_H, H2, &wpot, &wacc);
+      const double gmj = G * m[j];
+      sp -= gmj * wpot;
+      sx -= gmj * wacc * dx;
+      sy -= gmj * wacc * dy;
+      sz -= gmj * wacc * dz;
+    }
+  }
+  out[0] = sp;
+  out[1] = sx;
+  out[2] = sy;
+  out[3] = sz;
+}
+
+/** Particles [i0, i1) against [j0, j1) (disjoint, or j0 = i + 1 for the
+ *  self interaction when self is set); sym: the sources receive too. */
+static void p2p_block(struct parts *p, size_t i0, size_t i1, size_t j0, size_t j1, int self,
+                      int sym, const struct gravity_props *gp) {
+  const int plummer = gp->softening == GRAVITY_SOFTENING_PLUMMER;
+  const double H = GRAVITY_SPLINE_H_OVER_EPS * gp->eps;
+  const double inv_H = H > 0.0 ? 1.0 / H : 0.0, H2 = H * H;
+  for (size_t i = i0; i < i1; i++) {
+    const double xi[3] = {p->x[i], p->y[i], p->z[i]};
+    double out[4];
+    p2p_row(p->x, p->y, p->z, p->m, p->pot, p->gax, p->gay, p->gaz, self ? i + 1 : j0, j1, xi,
+            gp->G * p->m[i], sym, plummer, gp->eps, inv_H, H2, gp->G, out);
+    p->pot[i] += out[0];
+    p->gax[i] += out[1];
+    p->gay[i] += out[2];
+    p->gaz[i] += out[3];
+  }
+  const size_t ni = i1 - i0, nj = j1 - j0;
+  counters.p2p += self ? ni * (ni - 1) / 2 : ni * nj;
+}
+
 /** All pairs within leaf c, each once (symmetric). */
 static void p2p_self(struct parts *p, const struct cell *c, const struct gravity_props *gp) {
-  const size_t i0 = c->offset, i1 = c->offset + c->count;
-  for (size_t i = i0; i < i1; i++) {
-    double pot = 0.0, a[3] = {0.0, 0.0, 0.0};
-    for (size_t j = i + 1; j < i1; j++) {
-      const double dx[3] = {p->x[i] - p->x[j], p->y[i] - p->y[j], p->z[i] - p->z[j]};
-      const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-      double wpot, wacc;
-      gravity_softened_kernel(r2, gp->eps, gp->softening, &wpot, &wacc);
-      const double gi = gp->G * p->m[i], gj = gp->G * p->m[j];
-      pot -= gj * wpot;
-      a[0] -= gj * wacc * dx[0];
-      a[1] -= gj * wacc * dx[1];
-      a[2] -= gj * wacc * dx[2];
-      p->pot[j] -= gi * wpot;
-      p->gax[j] += gi * wacc * dx[0];
-      p->gay[j] += gi * wacc * dx[1];
-      p->gaz[j] += gi * wacc * dx[2];
-    }
-    p->pot[i] += pot;
-    p->gax[i] += a[0];
-    p->gay[i] += a[1];
-    p->gaz[i] += a[2];
-  }
+  p2p_block(p, c->offset, c->offset + c->count, c->offset, c->offset + c->count, 1, 1, gp);
 }
 
 /** Every particle of leaf a with every particle of leaf b; both updated
  *  when symmetric, only a's otherwise. */
 static void p2p_pair(struct parts *p, const struct cell *a, const struct cell *b, int symmetric,
                      const struct gravity_props *gp) {
-  const size_t j0 = b->offset, j1 = b->offset + b->count;
-  for (size_t i = a->offset; i < a->offset + a->count; i++) {
-    double pot = 0.0, acc[3] = {0.0, 0.0, 0.0};
-    const double gi = gp->G * p->m[i];
-    for (size_t j = j0; j < j1; j++) {
-      const double dx[3] = {p->x[i] - p->x[j], p->y[i] - p->y[j], p->z[i] - p->z[j]};
-      const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-      double wpot, wacc;
-      gravity_softened_kernel(r2, gp->eps, gp->softening, &wpot, &wacc);
-      const double gj = gp->G * p->m[j];
-      pot -= gj * wpot;
-      acc[0] -= gj * wacc * dx[0];
-      acc[1] -= gj * wacc * dx[1];
-      acc[2] -= gj * wacc * dx[2];
-      if (symmetric) {
-        p->pot[j] -= gi * wpot;
-        p->gax[j] += gi * wacc * dx[0];
-        p->gay[j] += gi * wacc * dx[1];
-        p->gaz[j] += gi * wacc * dx[2];
-      }
-    }
-    p->pot[i] += pot;
-    p->gax[i] += acc[0];
-    p->gay[i] += acc[1];
-    p->gaz[i] += acc[2];
-  }
+  p2p_block(p, a->offset, a->offset + a->count, b->offset, b->offset + b->count, 0, symmetric, gp);
 }
 
 /* ------------------------------------------------------------------ walks */
+
+/** The M2L of walk_pair with the expansion order a compile-time constant:
+ *  gravity_derivatives and gravity_m2l(_sym) of gravity_iact.h, inlined
+ *  once per order so that the compiler unrolls their loops and folds the
+ *  multi-index arithmetic (several times faster than the run-time order).
+ *  sym: both fields receive, R = z_b - z_a; else only fa, from mb. */
+#define M2L_ORDER(P)                                                                          \
+  static void m2l_order_##P(                                                                  \
+      struct gravity_field *fa, struct gravity_field *fb, const struct gravity_multipole *ma, \
+      const struct gravity_multipole *mb, const double R[3], double eps2, int sym) {          \
+    double D[GRAVITY_NCOMP(P)];                                                               \
+    if (sym) {                                                                                \
+      gravity_derivatives(R, eps2, P, D);                                                     \
+      gravity_m2l_sym(fa, fb, ma, mb, D, P);                                                  \
+    } else {                                                                                  \
+      const double Rab[3] = {-R[0], -R[1], -R[2]};                                            \
+      gravity_derivatives(Rab, eps2, P, D);                                                   \
+      gravity_m2l(fa, mb, D, P);                                                              \
+    }                                                                                         \
+  }
+M2L_ORDER(1)
+M2L_ORDER(2)
+M2L_ORDER(3)
+M2L_ORDER(4)
+M2L_ORDER(5)
+
+/** M2L between a and b at run-time order p (see M2L_ORDER). */
+static void m2l_cells(struct gravity_cell *ga, struct gravity_cell *gb, const double R[3],
+                      double eps2, int p, int sym) {
+  switch (p) {
+    case 1:
+      m2l_order_1(&ga->field, &gb->field, &ga->mp, &gb->mp, R, eps2, sym);
+      break;
+    case 2:
+      m2l_order_2(&ga->field, &gb->field, &ga->mp, &gb->mp, R, eps2, sym);
+      break;
+    case 3:
+      m2l_order_3(&ga->field, &gb->field, &ga->mp, &gb->mp, R, eps2, sym);
+      break;
+    case 4:
+      m2l_order_4(&ga->field, &gb->field, &ga->mp, &gb->mp, R, eps2, sym);
+      break;
+    default:
+      m2l_order_5(&ga->field, &gb->field, &ga->mp, &gb->mp, R, eps2, sym);
+      break;
+  }
+}
 
 /** Acceptance of the interaction between cells a and b, the same in both
  *  directions (mutual interactions conserve momentum): the geometric
@@ -193,79 +306,13 @@ static int accept(const struct gravity_cell *a, const struct gravity_cell *b, do
          gravity_mac_adaptive(gp->G, a->mp.M[0], rs, r2, gp->order, gp->epsilon_fmm, b->a_min);
 }
 
-/** Particle i (in a cell of scale a_min_i) with every particle of leaf b;
- *  upd_i / upd_b: which side receives. */
-static void p2p_point_leaf(struct parts *p, size_t i, const struct cell *b, int upd_i, int upd_b,
-                           const struct gravity_props *gp) {
-  double pot = 0.0, acc[3] = {0.0, 0.0, 0.0};
-  const double gi = gp->G * p->m[i];
-  for (size_t j = b->offset; j < b->offset + b->count; j++) {
-    const double dx[3] = {p->x[i] - p->x[j], p->y[i] - p->y[j], p->z[i] - p->z[j]};
-    const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-    double wpot, wacc;
-    gravity_softened_kernel(r2, gp->eps, gp->softening, &wpot, &wacc);
-    const double gj = gp->G * p->m[j];
-    pot -= gj * wpot;
-    acc[0] -= gj * wacc * dx[0];
-    acc[1] -= gj * wacc * dx[1];
-    acc[2] -= gj * wacc * dx[2];
-    if (upd_b) {
-      p->pot[j] -= gi * wpot;
-      p->gax[j] += gi * wacc * dx[0];
-      p->gay[j] += gi * wacc * dx[1];
-      p->gaz[j] += gi * wacc * dx[2];
-    }
-  }
-  if (upd_i) {
-    p->pot[i] += pot;
-    p->gax[i] += acc[0];
-    p->gay[i] += acc[1];
-    p->gaz[i] += acc[2];
-  }
-}
-
-/** Particle i (its leaf's a_min is a_min_i) against the tree of b: the
- *  mutual point-cell interaction (gravity_m2p_p2l) where the criterion
- *  accepts (point radius 0), else open b, P2P at b's leaves.  Used when a
- *  leaf too large to be opened meets smaller cells: its particles then see
- *  those cells one by one, instead of through one local expansion as large
- *  as the leaf, whose truncation errors would add up coherently over many
- *  small sources. */
-static void walk_point(struct parts *p, size_t i, double a_min_i, const struct cell *b, int upd_i,
-                       int upd_b, struct gravity_cell *gc, const struct gravity_props *gp) {
-  if (b->count == 0) return;
-  struct gravity_cell *gb = gc + b->index;
-  const double R[3] = {gb->mp.com[0] - p->x[i], gb->mp.com[1] - p->y[i], gb->mp.com[2] - p->z[i]};
-  const double r2 = R[0] * R[0] + R[1] * R[1] + R[2] * R[2];
-  const double rb = gb->mp.r_max;
-  if (gravity_mac(0.0, rb, r2, gp->theta, gp->h_support) &&
-      gravity_mac_adaptive(gp->G, gb->mp.M[0], rb, r2, gp->order, gp->epsilon_fmm, a_min_i) &&
-      gravity_mac_adaptive(gp->G, p->m[i], rb, r2, gp->order, gp->epsilon_fmm, gb->a_min)) {
-    double D[GRAVITY_ND], pot = 0.0, a[3] = {0.0, 0.0, 0.0};
-    gravity_derivatives(R, gp->eps2_expansion, gp->order, D);
-    gravity_m2p_p2l(p->m[i], &gb->mp, upd_b ? &gb->field : NULL, D, gp->order, gp->G, &pot, a);
-    if (upd_i) {
-      p->pot[i] += pot;
-      p->gax[i] += a[0];
-      p->gay[i] += a[1];
-      p->gaz[i] += a[2];
-    }
-    return;
-  }
-  if (!b->split) {
-    p2p_point_leaf(p, i, b, upd_i, upd_b, gp);
-    return;
-  }
-  for (int q = 0; q < 8; q++)
-    if (b->progeny[q]) walk_point(p, i, a_min_i, b->progeny[q], upd_i, upd_b, gc, gp);
-}
-
 /** Dual-tree walk between disjoint cells a and b (Dehnen 2002):
  *  M2L where the criterion accepts, P2P between leaves, else open the
- *  larger cell; when the larger is a leaf, its particles walk the other
- *  cell one by one (walk_point).  symmetric: both cells receive (pair
- *  task), else only a (long-range task).  The decisions are symmetric in a
- *  and b, so the walk from b's side pairs the same interactions (momentum). */
+ *  larger cell that can be opened (a leaf meeting a split cell opens the
+ *  split one: its pieces then meet the leaf through M2L or P2P, never one
+ *  particle at a time).  symmetric: both cells receive (pair task), else
+ *  only a (long-range task).  The decisions are symmetric in a and b, so
+ *  the walk from b's side pairs the same interactions (momentum). */
 static void walk_pair(struct parts *p, const struct cell *a, const struct cell *b, int symmetric,
                       struct gravity_cell *gc, const struct gravity_props *gp) {
   if (a->count == 0 || b->count == 0) return;
@@ -273,44 +320,28 @@ static void walk_pair(struct parts *p, const struct cell *a, const struct cell *
   const double R[3] = {gb->mp.com[0] - ga->mp.com[0], gb->mp.com[1] - ga->mp.com[1],
                        gb->mp.com[2] - ga->mp.com[2]};
   const double r2 = R[0] * R[0] + R[1] * R[1] + R[2] * R[2];
+  counters.mac++;
   if (accept(ga, gb, r2, gp)) {
-    double D[GRAVITY_ND];
-    if (symmetric) {
-      gravity_derivatives(R, gp->eps2_expansion, gp->order, D);
-      gravity_m2l_sym(&ga->field, &gb->field, &ga->mp, &gb->mp, D, gp->order);
-    } else {
-      /* target a, source b: the tensor at z_a - z_b */
-      const double Rab[3] = {-R[0], -R[1], -R[2]};
-      gravity_derivatives(Rab, gp->eps2_expansion, gp->order, D);
-      gravity_m2l(&ga->field, &gb->mp, D, gp->order);
-    }
+    counters.m2l++;
+    /* one-way: target a, source b, the tensor at z_a - z_b */
+    m2l_cells(ga, gb, R, gp->eps2_expansion, gp->order, symmetric);
     return;
   }
   if (!a->split && !b->split) {
     p2p_pair(p, a, b, symmetric, gp);
     return;
   }
-  /* the larger cell (ties: a), as in Dehnen 2002 */
-  const int a_larger = ga->mp.r_max >= gb->mp.r_max;
-  const struct cell *big = a_larger ? a : b, *small = a_larger ? b : a;
-  if (big->split) {
-    for (int q = 0; q < 8; q++) {
-      const struct cell *c = big->progeny[q];
-      if (c == NULL) continue;
-      if (a_larger)
-        walk_pair(p, c, b, symmetric, gc, gp);
-      else
-        walk_pair(p, a, c, symmetric, gc, gp);
-    }
-    return;
+  /* the larger cell that is split (ties: a), as in Dehnen 2002 */
+  const int open_a = a->split && (!b->split || ga->mp.r_max >= gb->mp.r_max);
+  const struct cell *big = open_a ? a : b;
+  for (int q = 0; q < 8; q++) {
+    const struct cell *c = big->progeny[q];
+    if (c == NULL) continue;
+    if (open_a)
+      walk_pair(p, c, b, symmetric, gc, gp);
+    else
+      walk_pair(p, a, c, symmetric, gc, gp);
   }
-  /* big is a leaf, small is split: big's particles one by one.  Receivers:
-   * both (symmetric), else a only (a is big: the points; b is big: the
-   * cells of a). */
-  const int upd_point = symmetric || a_larger, upd_cells = symmetric || !a_larger;
-  const double a_min_big = gc[big->index].a_min;
-  for (size_t i = big->offset; i < big->offset + big->count; i++)
-    walk_point(p, i, a_min_big, small, upd_point, upd_cells, gc, gp);
 }
 
 /** All interactions within c: self of every progeny and every pair of them. */

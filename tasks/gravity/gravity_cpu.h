@@ -127,6 +127,16 @@ void gravity_tree_all(struct parts *p, const struct cell *tops, int nr_top, stru
  *  splits the work over POSIX threads (gather form). */
 void gravity_direct(struct parts *p, double G, double eps, int softening, int nthreads);
 
+/** Work counters of the tree walks (diagnostics; approximate under threads). */
+struct gravity_counters {
+  unsigned long long mac; /**< cell pairs tested by the acceptance criterion */
+  unsigned long long m2l; /**< accepted cell pairs (M2L) */
+  unsigned long long p2p; /**< particle pairs summed directly (each pair once) */
+};
+
+/** Copy the counters since the last reset into *out; reset them if reset. */
+void gravity_counters_get(struct gravity_counters *out, int reset);
+
 /** Potential energy 1/2 sum_i m_i pot_i (pot from a complete gravity pass). */
 double gravity_potential_energy(const struct parts *p);
 
