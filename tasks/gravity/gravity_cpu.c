@@ -247,6 +247,10 @@ static void p2p_pair(struct parts *p, const struct cell *a, const struct cell *b
 
 /* ------------------------------------------------------------------ walks */
 
+/** A leaf meeting a cell GRAVITY_LOPSIDED times smaller (radius) interacts
+ *  particle by particle (walk_pair). */
+#define GRAVITY_LOPSIDED 2.0
+
 /** The M2L of walk_pair with the expansion order a compile-time constant:
  *  gravity_derivatives and gravity_m2l(_sym) of gravity_iact.h, inlined
  *  once per order so that the compiler unrolls their loops and folds the
@@ -271,6 +275,46 @@ M2L_ORDER(2)
 M2L_ORDER(3)
 M2L_ORDER(4)
 M2L_ORDER(5)
+
+/** Mutual point-cell interactions of every particle of leaf `leaf` with the
+ *  multipole of cell gs (gravity_m2p_p2l, order P a constant as in
+ *  M2L_ORDER): the particles receive when upd_point, gs's field when
+ *  upd_cell. */
+#define M2P_ORDER(P)                                                                             \
+  static void m2p_leaf_order_##P(struct parts *p, const struct cell *leaf,                      \
+                                 struct gravity_cell *gs, int upd_point, int upd_cell,          \
+                                 double eps2, double G) {                                       \
+    for (size_t i = leaf->offset; i < leaf->offset + leaf->count; i++) {                        \
+      const double R[3] = {gs->mp.com[0] - p->x[i], gs->mp.com[1] - p->y[i],                    \
+                           gs->mp.com[2] - p->z[i]};                                            \
+      double D[GRAVITY_NCOMP(P)], pot = 0.0, a[3] = {0.0, 0.0, 0.0};                            \
+      gravity_derivatives(R, eps2, P, D);                                                       \
+      gravity_m2p_p2l(p->m[i], &gs->mp, upd_cell ? &gs->field : NULL, D, P, G, &pot, a);        \
+      if (upd_point) {                                                                          \
+        p->pot[i] += pot;                                                                       \
+        p->gax[i] += a[0];                                                                      \
+        p->gay[i] += a[1];                                                                      \
+        p->gaz[i] += a[2];                                                                      \
+      }                                                                                         \
+    }                                                                                           \
+  }
+M2P_ORDER(1)
+M2P_ORDER(2)
+M2P_ORDER(3)
+M2P_ORDER(4)
+M2P_ORDER(5)
+
+/** M2P/P2L of leaf against cell gs at run-time order p (see M2P_ORDER). */
+static void m2p_leaf(struct parts *p, const struct cell *leaf, struct gravity_cell *gs,
+                     int upd_point, int upd_cell, double eps2, double G, int pord) {
+  switch (pord) {
+  case 1: m2p_leaf_order_1(p, leaf, gs, upd_point, upd_cell, eps2, G); break;
+  case 2: m2p_leaf_order_2(p, leaf, gs, upd_point, upd_cell, eps2, G); break;
+  case 3: m2p_leaf_order_3(p, leaf, gs, upd_point, upd_cell, eps2, G); break;
+  case 4: m2p_leaf_order_4(p, leaf, gs, upd_point, upd_cell, eps2, G); break;
+  default: m2p_leaf_order_5(p, leaf, gs, upd_point, upd_cell, eps2, G); break;
+  }
+}
 
 /** M2L between a and b at run-time order p (see M2L_ORDER). */
 static void m2l_cells(struct gravity_cell *ga, struct gravity_cell *gb, const double R[3],
@@ -322,6 +366,19 @@ static void walk_pair(struct parts *p, const struct cell *a, const struct cell *
   const double r2 = R[0] * R[0] + R[1] * R[1] + R[2] * R[2];
   counters.mac++;
   if (accept(ga, gb, r2, gp)) {
+    /* A leaf much larger than the cell it meets: its particles see the
+     * cell one by one (M2P, and P2L back), instead of through one local
+     * expansion as large as the leaf, whose truncation errors would add up
+     * coherently over the many small cells such a leaf meets. */
+    const int a_big = ga->mp.r_max >= gb->mp.r_max;
+    const struct cell *big = a_big ? a : b;
+    struct gravity_cell *gbig = a_big ? ga : gb, *gsmall = a_big ? gb : ga;
+    if (!big->split && gbig->mp.r_max > GRAVITY_LOPSIDED * gsmall->mp.r_max) {
+      counters.m2p += big->count;
+      m2p_leaf(p, big, gsmall, symmetric || a_big, symmetric || !a_big, gp->eps2_expansion, gp->G,
+               gp->order);
+      return;
+    }
     counters.m2l++;
     /* one-way: target a, source b, the tensor at z_a - z_b */
     m2l_cells(ga, gb, R, gp->eps2_expansion, gp->order, symmetric);

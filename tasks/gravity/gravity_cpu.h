@@ -132,6 +132,7 @@ struct gravity_counters {
   unsigned long long mac; /**< cell pairs tested by the acceptance criterion */
   unsigned long long m2l; /**< accepted cell pairs (M2L) */
   unsigned long long p2p; /**< particle pairs summed directly (each pair once) */
+  unsigned long long m2p; /**< particle-cell interactions (M2P/P2L of large leaves) */
 };
 
 /** Copy the counters since the last reset into *out; reset them if reset. */

@@ -372,8 +372,11 @@ BOLIDE_INLINE void gravity_m2p_p2l(double m, const struct gravity_multipole *BOL
                                    double *BOLIDE_RESTRICT pot, double *BOLIDE_RESTRICT a) {
   double phi = 0.0, ax = 0.0, ay = 0.0, az = 0.0;
   int i = 0;
+  GRAVITY_UNROLL
   for (int n = 0; n <= p; n++)
+    GRAVITY_UNROLL
     for (int nx = n; nx >= 0; nx--)
+      GRAVITY_UNROLL
       for (int ny = n - nx; ny >= 0; ny--, i++) {
         const int nz = n - nx - ny;
         phi += mb->M[i] * D[i];
