@@ -131,11 +131,20 @@ void gravity_counters_get(struct gravity_counters *out, int reset) {
   if (reset) memset(&counters, 0, sizeof counters);
 }
 
+/** The P2P loops call sqrt, which under the default -fmath-errno may set
+ *  errno and then cannot vectorise; their arguments are never negative, so
+ *  GCC may drop the errno path there. */
+#if defined(__GNUC__) && !defined(__clang__)
+#define P2P_NO_ERRNO __attribute__((optimize("no-math-errno")))
+#else
+#define P2P_NO_ERRNO
+#endif
+
 /** Spline or Newtonian pair kernel without branches (the selects compile to
  *  masks, so that the P2P loops vectorise): the same values as
  *  gravity_softened_kernel with the spline softening.  inv_H = 1/H, H2 = H^2. */
-static inline void kernel_spline_nb(double r2, double inv_H, double H2, double *wpot,
-                                    double *wacc) {
+P2P_NO_ERRNO static inline void kernel_spline_nb(double r2, double inv_H, double H2, double *wpot,
+                                                 double *wacc) {
   const double r = sqrt(r2);
   const double inv_r = 1.0 / r;
   const double u = r * inv_H, u2 = u * u;
@@ -151,12 +160,13 @@ static inline void kernel_spline_nb(double r2, double inv_H, double H2, double *
  *  returns the target's sums in pot_a[4] (pot, ax, ay, az, without G) and,
  *  when sym, adds the reaction to the sources (times G mi).  Written as one
  *  straight loop over restrict arrays so that it vectorises (SSE2 doubles). */
-static inline void p2p_row(const double *restrict x, const double *restrict y,
-                           const double *restrict z, const double *restrict m, double *restrict pot,
-                           double *restrict gax, double *restrict gay, double *restrict gaz,
-                           size_t j0, size_t j1, const double xi[3], double gmi, int sym,
-                           int plummer, double eps, double inv_H, double H2, double G,
-                           double out[4]) {
+P2P_NO_ERRNO static inline void p2p_row(const double *restrict x, const double *restrict y,
+                                        const double *restrict z, const double *restrict m,
+                                        double *restrict pot, double *restrict gax,
+                                        double *restrict gay, double *restrict gaz, size_t j0,
+                                        size_t j1, const double xi[3], double gmi, int sym,
+                                        int plummer, double eps, double inv_H, double H2, double G,
+                                        double out[4]) {
   double sp = 0.0, sx = 0.0, sy = 0.0, sz = 0.0;
   if (plummer) {
     const double e2 = eps * eps;
@@ -214,8 +224,8 @@ static inline void p2p_row(const double *restrict x, const double *restrict y,
 
 /** Particles [i0, i1) against [j0, j1) (disjoint, or j0 = i + 1 for the
  *  self interaction when self is set); sym: the sources receive too. */
-static void p2p_block(struct parts *p, size_t i0, size_t i1, size_t j0, size_t j1, int self,
-                      int sym, const struct gravity_props *gp) {
+P2P_NO_ERRNO static void p2p_block(struct parts *p, size_t i0, size_t i1, size_t j0, size_t j1,
+                                   int self, int sym, const struct gravity_props *gp) {
   const int plummer = gp->softening == GRAVITY_SOFTENING_PLUMMER;
   const double H = GRAVITY_SPLINE_H_OVER_EPS * gp->eps;
   const double inv_H = H > 0.0 ? 1.0 / H : 0.0, H2 = H * H;
