@@ -125,9 +125,9 @@ void gravity_up(struct parts *p, const struct cell *c, struct gravity_cell *gc,
 
 /* ------------------------------------------------------------------ P2P */
 
-/** Interaction counters of the walks (gravity_counters_get); updated without
- *  locks, so approximate when tasks run in parallel (diagnostics only). */
-static struct gravity_counters counters;
+/** Interaction counters of the walks (gravity_counters_get), per thread:
+ *  no shared cache line between workers, no data race. */
+static _Thread_local struct gravity_counters counters;
 
 void gravity_counters_get(struct gravity_counters *out, int reset) {
   *out = counters;
