@@ -72,7 +72,8 @@ int main(int argc, char **argv) {
   printf("%zu %.4f\n", n, now() - t0);
   gravity_counters_get(&cnt, 0);
   /* diagnostics on stderr: CPU time and work per particle */
-  fprintf(stderr, "# cpu %.4f s, per particle: %.1f P2P pairs, %.2f M2L, %.2f M2P, %.2f MAC tests\n", cpu,
+  fprintf(stderr,
+          "# cpu %.4f s, per particle: %.1f P2P pairs, %.2f M2L, %.2f M2P, %.2f MAC tests\n", cpu,
           (double)cnt.p2p / n, (double)cnt.m2l / n, (double)cnt.m2p / n, (double)cnt.mac / n);
   free(gc);
   space_free(&s);
