@@ -1,10 +1,15 @@
 /* Self-gravity on the CPU: tree walks over the cell octrees (see
  * gravity_cpu.h; the formulas are in gravity_iact.h and theory/gravity.md). */
+/* the M2L operators unrolled for each expansion order (gravity_iact.h) */
+#define GRAVITY_UNROLL_LOOPS 1
 #include "gravity/gravity_cpu.h"
 
 #include <math.h>
 #include <pthread.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "cell.h"
 #include "error.h"
@@ -120,66 +125,304 @@ void gravity_up(struct parts *p, const struct cell *c, struct gravity_cell *gc,
 
 /* ------------------------------------------------------------------ P2P */
 
+/** Interaction counters of the walks (gravity_counters_get), per thread:
+ *  no shared cache line between workers, no data race. */
+static _Thread_local struct gravity_counters counters;
+
+void gravity_counters_get(struct gravity_counters *out, int reset) {
+  *out = counters;
+  if (reset) memset(&counters, 0, sizeof counters);
+}
+
+/** Spline or Newtonian pair kernel without branches (the selects compile to
+ *  masks, so that the P2P loops vectorise): the same values as
+ *  gravity_softened_kernel with the spline softening.  inv_H = 1/H, H2 = H^2. */
+static inline void kernel_spline_nb(double r2, double inv_H, double H2, double *wpot,
+                                    double *wacc) {
+  const double r = sqrt(r2);
+  const double inv_r = 1.0 / r;
+  const double u = r * inv_H, u2 = u * u;
+  const double sp = inv_H * (3.0 + u2 * (-7.0 + u2 * (21.0 + u * (-28.0 + u * (15.0 - 3.0 * u)))));
+  const double sa =
+      inv_H * inv_H * inv_H * (14.0 + u2 * (-84.0 + u * (140.0 + u * (-90.0 + 21.0 * u))));
+  const int in = r2 < H2;
+  *wpot = in ? sp : inv_r;
+  *wacc = in ? sa : inv_r * inv_r * inv_r;
+}
+
+#if defined(__SSE2__)
+/** The spline loop of p2p_row two sources at a time in SSE2 (x86-64's
+ *  baseline; GCC does not vectorise the plain loop because sqrt may set
+ *  errno): the same arithmetic as kernel_spline_nb, the branch as a mask.
+ *  Adds the target's sums to out[4] and returns the first source not done
+ *  (the odd one left goes through the scalar loop). */
+static size_t p2p_spline_sse2(const double *restrict x, const double *restrict y,
+                              const double *restrict z, const double *restrict m,
+                              double *restrict pot, double *restrict gax, double *restrict gay,
+                              double *restrict gaz, size_t j0, size_t j1, const double xi[3],
+                              double gmi, int sym, double inv_H, double H2, double G,
+                              double out[4]) {
+  const __m128d vx = _mm_set1_pd(xi[0]), vy = _mm_set1_pd(xi[1]), vz = _mm_set1_pd(xi[2]);
+  const __m128d vih = _mm_set1_pd(inv_H), vih3 = _mm_set1_pd(inv_H * inv_H * inv_H);
+  const __m128d vH2 = _mm_set1_pd(H2), vG = _mm_set1_pd(G), vgmi = _mm_set1_pd(gmi);
+  const __m128d one = _mm_set1_pd(1.0);
+  __m128d sp = _mm_setzero_pd(), sx = sp, sy = sp, sz = sp;
+  size_t j = j0;
+  for (; j + 2 <= j1; j += 2) {
+    const __m128d dx = vx - _mm_loadu_pd(x + j), dy = vy - _mm_loadu_pd(y + j),
+                  dz = vz - _mm_loadu_pd(z + j);
+    const __m128d r2 = dx * dx + dy * dy + dz * dz;
+    const __m128d r = _mm_sqrt_pd(r2);
+    const __m128d inv_r = one / r;
+    const __m128d u = r * vih, u2 = u * u;
+    const __m128d kp =
+        vih *
+        (_mm_set1_pd(3.0) +
+         u2 * (_mm_set1_pd(-7.0) +
+               u2 * (_mm_set1_pd(21.0) +
+                     u * (_mm_set1_pd(-28.0) + u * (_mm_set1_pd(15.0) - _mm_set1_pd(3.0) * u)))));
+    const __m128d ka =
+        vih3 * (_mm_set1_pd(14.0) +
+                u2 * (_mm_set1_pd(-84.0) +
+                      u * (_mm_set1_pd(140.0) + u * (_mm_set1_pd(-90.0) + _mm_set1_pd(21.0) * u))));
+    const __m128d in = _mm_cmplt_pd(r2, vH2);
+    const __m128d wpot = _mm_or_pd(_mm_and_pd(in, kp), _mm_andnot_pd(in, inv_r));
+    const __m128d wacc = _mm_or_pd(_mm_and_pd(in, ka), _mm_andnot_pd(in, inv_r * inv_r * inv_r));
+    const __m128d gmj = vG * _mm_loadu_pd(m + j);
+    sp -= gmj * wpot;
+    sx -= gmj * wacc * dx;
+    sy -= gmj * wacc * dy;
+    sz -= gmj * wacc * dz;
+    if (sym) {
+      const __m128d g = vgmi * wacc;
+      _mm_storeu_pd(pot + j, _mm_loadu_pd(pot + j) - vgmi * wpot);
+      _mm_storeu_pd(gax + j, _mm_loadu_pd(gax + j) + g * dx);
+      _mm_storeu_pd(gay + j, _mm_loadu_pd(gay + j) + g * dy);
+      _mm_storeu_pd(gaz + j, _mm_loadu_pd(gaz + j) + g * dz);
+    }
+  }
+  out[0] += sp[0] + sp[1];
+  out[1] += sx[0] + sx[1];
+  out[2] += sy[0] + sy[1];
+  out[3] += sz[0] + sz[1];
+  return j;
+}
+#endif
+
+/** One target (xi, mi) against sources [j0, j1) of the particle arrays:
+ *  returns the target's sums in pot_a[4] (pot, ax, ay, az, without G) and,
+ *  when sym, adds the reaction to the sources (times G mi).  The spline
+ *  case runs two sources at a time (p2p_spline_sse2) where SSE2 exists. */
+static inline void p2p_row(const double *restrict x, const double *restrict y,
+                           const double *restrict z, const double *restrict m, double *restrict pot,
+                           double *restrict gax, double *restrict gay, double *restrict gaz,
+                           size_t j0, size_t j1, const double xi[3], double gmi, int sym,
+                           int plummer, double eps, double inv_H, double H2, double G,
+                           double out[4]) {
+  double sp = 0.0, sx = 0.0, sy = 0.0, sz = 0.0;
+#if defined(__SSE2__)
+  double vs[4] = {0.0, 0.0, 0.0, 0.0};
+  if (!plummer)
+    j0 = p2p_spline_sse2(x, y, z, m, pot, gax, gay, gaz, j0, j1, xi, gmi, sym, inv_H, H2, G, vs);
+  sp = vs[0];
+  sx = vs[1];
+  sy = vs[2];
+  sz = vs[3];
+#endif
+  if (plummer) {
+    const double e2 = eps * eps;
+    for (size_t j = j0; j < j1; j++) {
+      const double dx = xi[0] - x[j], dy = xi[1] - y[j], dz = xi[2] - z[j];
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      const double q = 1.0 / sqrt(r2 + e2);
+      const double wpot = q, wacc = q * q * q;
+      const double gmj = G * m[j];
+      sp -= gmj * wpot;
+      sx -= gmj * wacc * dx;
+      sy -= gmj * wacc * dy;
+      sz -= gmj * wacc * dz;
+      if (sym) {
+        pot[j] -= gmi * wpot;
+        gax[j] += gmi * wacc * dx;
+        gay[j] += gmi * wacc * dy;
+        gaz[j] += gmi * wacc * dz;
+      }
+    }
+  } else if (sym) {
+    for (size_t j = j0; j < j1; j++) {
+      const double dx = xi[0] - x[j], dy = xi[1] - y[j], dz = xi[2] - z[j];
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      double wpot, wacc;
+      kernel_spline_nb(r2, inv_H, H2, &wpot, &wacc);
+      const double gmj = G * m[j];
+      sp -= gmj * wpot;
+      sx -= gmj * wacc * dx;
+      sy -= gmj * wacc * dy;
+      sz -= gmj * wacc * dz;
+      pot[j] -= gmi * wpot;
+      gax[j] += gmi * wacc * dx;
+      gay[j] += gmi * wacc * dy;
+      gaz[j] += gmi * wacc * dz;
+    }
+  } else {
+    for (size_t j = j0; j < j1; j++) {
+      const double dx = xi[0] - x[j], dy = xi[1] - y[j], dz = xi[2] - z[j];
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      double wpot, wacc;
+      kernel_spline_nb(r2, inv_H, H2, &wpot, &wacc);
+      const double gmj = G * m[j];
+      sp -= gmj * wpot;
+      sx -= gmj * wacc * dx;
+      sy -= gmj * wacc * dy;
+      sz -= gmj * wacc * dz;
+    }
+  }
+  out[0] = sp;
+  out[1] = sx;
+  out[2] = sy;
+  out[3] = sz;
+}
+
+/** Particles [i0, i1) against [j0, j1) (disjoint, or j0 = i + 1 for the
+ *  self interaction when self is set); sym: the sources receive too. */
+static void p2p_block(struct parts *p, size_t i0, size_t i1, size_t j0, size_t j1, int self,
+                      int sym, const struct gravity_props *gp) {
+  const int plummer = gp->softening == GRAVITY_SOFTENING_PLUMMER;
+  const double H = GRAVITY_SPLINE_H_OVER_EPS * gp->eps;
+  const double inv_H = H > 0.0 ? 1.0 / H : 0.0, H2 = H * H;
+  for (size_t i = i0; i < i1; i++) {
+    const double xi[3] = {p->x[i], p->y[i], p->z[i]};
+    double out[4];
+    p2p_row(p->x, p->y, p->z, p->m, p->pot, p->gax, p->gay, p->gaz, self ? i + 1 : j0, j1, xi,
+            gp->G * p->m[i], sym, plummer, gp->eps, inv_H, H2, gp->G, out);
+    p->pot[i] += out[0];
+    p->gax[i] += out[1];
+    p->gay[i] += out[2];
+    p->gaz[i] += out[3];
+  }
+  const size_t ni = i1 - i0, nj = j1 - j0;
+  counters.p2p += self ? ni * (ni - 1) / 2 : ni * nj;
+}
+
 /** All pairs within leaf c, each once (symmetric). */
 static void p2p_self(struct parts *p, const struct cell *c, const struct gravity_props *gp) {
-  const size_t i0 = c->offset, i1 = c->offset + c->count;
-  for (size_t i = i0; i < i1; i++) {
-    double pot = 0.0, a[3] = {0.0, 0.0, 0.0};
-    for (size_t j = i + 1; j < i1; j++) {
-      const double dx[3] = {p->x[i] - p->x[j], p->y[i] - p->y[j], p->z[i] - p->z[j]};
-      const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-      double wpot, wacc;
-      gravity_softened_kernel(r2, gp->eps, gp->softening, &wpot, &wacc);
-      const double gi = gp->G * p->m[i], gj = gp->G * p->m[j];
-      pot -= gj * wpot;
-      a[0] -= gj * wacc * dx[0];
-      a[1] -= gj * wacc * dx[1];
-      a[2] -= gj * wacc * dx[2];
-      p->pot[j] -= gi * wpot;
-      p->gax[j] += gi * wacc * dx[0];
-      p->gay[j] += gi * wacc * dx[1];
-      p->gaz[j] += gi * wacc * dx[2];
-    }
-    p->pot[i] += pot;
-    p->gax[i] += a[0];
-    p->gay[i] += a[1];
-    p->gaz[i] += a[2];
-  }
+  p2p_block(p, c->offset, c->offset + c->count, c->offset, c->offset + c->count, 1, 1, gp);
 }
 
 /** Every particle of leaf a with every particle of leaf b; both updated
  *  when symmetric, only a's otherwise. */
 static void p2p_pair(struct parts *p, const struct cell *a, const struct cell *b, int symmetric,
                      const struct gravity_props *gp) {
-  const size_t j0 = b->offset, j1 = b->offset + b->count;
-  for (size_t i = a->offset; i < a->offset + a->count; i++) {
-    double pot = 0.0, acc[3] = {0.0, 0.0, 0.0};
-    const double gi = gp->G * p->m[i];
-    for (size_t j = j0; j < j1; j++) {
-      const double dx[3] = {p->x[i] - p->x[j], p->y[i] - p->y[j], p->z[i] - p->z[j]};
-      const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-      double wpot, wacc;
-      gravity_softened_kernel(r2, gp->eps, gp->softening, &wpot, &wacc);
-      const double gj = gp->G * p->m[j];
-      pot -= gj * wpot;
-      acc[0] -= gj * wacc * dx[0];
-      acc[1] -= gj * wacc * dx[1];
-      acc[2] -= gj * wacc * dx[2];
-      if (symmetric) {
-        p->pot[j] -= gi * wpot;
-        p->gax[j] += gi * wacc * dx[0];
-        p->gay[j] += gi * wacc * dx[1];
-        p->gaz[j] += gi * wacc * dx[2];
-      }
-    }
-    p->pot[i] += pot;
-    p->gax[i] += acc[0];
-    p->gay[i] += acc[1];
-    p->gaz[i] += acc[2];
-  }
+  p2p_block(p, a->offset, a->offset + a->count, b->offset, b->offset + b->count, 0, symmetric, gp);
 }
 
 /* ------------------------------------------------------------------ walks */
+
+/** A leaf meeting a cell GRAVITY_LOPSIDED times smaller (radius) interacts
+ *  particle by particle (walk_pair). */
+#define GRAVITY_LOPSIDED 2.0
+
+/** Opening angle of the first pass, when the adaptive criterion has no
+ *  acceleration scale yet, in units of Gravity:theta_cr (tests/test_gravity:
+ *  0.7 brings the 99th percentile of the first pass under 1e-3). */
+#define GRAVITY_THETA_FIRST 0.7
+
+/** The M2L of walk_pair with the expansion order a compile-time constant:
+ *  gravity_derivatives and gravity_m2l(_sym) of gravity_iact.h, inlined
+ *  once per order so that the compiler unrolls their loops and folds the
+ *  multi-index arithmetic (several times faster than the run-time order).
+ *  sym: both fields receive, R = z_b - z_a; else only fa, from mb. */
+#define M2L_ORDER(P)                                                                          \
+  static void m2l_order_##P(                                                                  \
+      struct gravity_field *fa, struct gravity_field *fb, const struct gravity_multipole *ma, \
+      const struct gravity_multipole *mb, const double R[3], double eps2, int sym) {          \
+    double D[GRAVITY_NCOMP(P)];                                                               \
+    if (sym) {                                                                                \
+      gravity_derivatives(R, eps2, P, D);                                                     \
+      gravity_m2l_sym(fa, fb, ma, mb, D, P);                                                  \
+    } else {                                                                                  \
+      const double Rab[3] = {-R[0], -R[1], -R[2]};                                            \
+      gravity_derivatives(Rab, eps2, P, D);                                                   \
+      gravity_m2l(fa, mb, D, P);                                                              \
+    }                                                                                         \
+  }
+M2L_ORDER(1)
+M2L_ORDER(2)
+M2L_ORDER(3)
+M2L_ORDER(4)
+M2L_ORDER(5)
+
+/** Mutual point-cell interactions of every particle of leaf `leaf` with the
+ *  multipole of cell gs (gravity_m2p_p2l, order P a constant as in
+ *  M2L_ORDER): the particles receive when upd_point, gs's field when
+ *  upd_cell. */
+#define M2P_ORDER(P)                                                                     \
+  static void m2p_leaf_order_##P(struct parts *p, const struct cell *leaf,               \
+                                 struct gravity_cell *gs, int upd_point, int upd_cell,   \
+                                 double eps2, double G) {                                \
+    for (size_t i = leaf->offset; i < leaf->offset + leaf->count; i++) {                 \
+      const double R[3] = {gs->mp.com[0] - p->x[i], gs->mp.com[1] - p->y[i],             \
+                           gs->mp.com[2] - p->z[i]};                                     \
+      double D[GRAVITY_NCOMP(P)], pot = 0.0, a[3] = {0.0, 0.0, 0.0};                     \
+      gravity_derivatives(R, eps2, P, D);                                                \
+      gravity_m2p_p2l(p->m[i], &gs->mp, upd_cell ? &gs->field : NULL, D, P, G, &pot, a); \
+      if (upd_point) {                                                                   \
+        p->pot[i] += pot;                                                                \
+        p->gax[i] += a[0];                                                               \
+        p->gay[i] += a[1];                                                               \
+        p->gaz[i] += a[2];                                                               \
+      }                                                                                  \
+    }                                                                                    \
+  }
+M2P_ORDER(1)
+M2P_ORDER(2)
+M2P_ORDER(3)
+M2P_ORDER(4)
+M2P_ORDER(5)
+
+/** M2P/P2L of leaf against cell gs at run-time order p (see M2P_ORDER). */
+static void m2p_leaf(struct parts *p, const struct cell *leaf, struct gravity_cell *gs,
+                     int upd_point, int upd_cell, double eps2, double G, int pord) {
+  switch (pord) {
+    case 1:
+      m2p_leaf_order_1(p, leaf, gs, upd_point, upd_cell, eps2, G);
+      break;
+    case 2:
+      m2p_leaf_order_2(p, leaf, gs, upd_point, upd_cell, eps2, G);
+      break;
+    case 3:
+      m2p_leaf_order_3(p, leaf, gs, upd_point, upd_cell, eps2, G);
+      break;
+    case 4:
+      m2p_leaf_order_4(p, leaf, gs, upd_point, upd_cell, eps2, G);
+      break;
+    default:
+      m2p_leaf_order_5(p, leaf, gs, upd_point, upd_cell, eps2, G);
+      break;
+  }
+}
+
+/** M2L between a and b at run-time order p (see M2L_ORDER). */
+static void m2l_cells(struct gravity_cell *ga, struct gravity_cell *gb, const double R[3],
+                      double eps2, int p, int sym) {
+  switch (p) {
+    case 1:
+      m2l_order_1(&ga->field, &gb->field, &ga->mp, &gb->mp, R, eps2, sym);
+      break;
+    case 2:
+      m2l_order_2(&ga->field, &gb->field, &ga->mp, &gb->mp, R, eps2, sym);
+      break;
+    case 3:
+      m2l_order_3(&ga->field, &gb->field, &ga->mp, &gb->mp, R, eps2, sym);
+      break;
+    case 4:
+      m2l_order_4(&ga->field, &gb->field, &ga->mp, &gb->mp, R, eps2, sym);
+      break;
+    default:
+      m2l_order_5(&ga->field, &gb->field, &ga->mp, &gb->mp, R, eps2, sym);
+      break;
+  }
+}
 
 /** Acceptance of the interaction between cells a and b, the same in both
  *  directions (mutual interactions conserve momentum): the geometric
@@ -187,85 +430,25 @@ static void p2p_pair(struct parts *p, const struct cell *a, const struct cell *b
  *  for a and for b. */
 static int accept(const struct gravity_cell *a, const struct gravity_cell *b, double r2,
                   const struct gravity_props *gp) {
-  if (!gravity_mac(a->mp.r_max, b->mp.r_max, r2, gp->theta, gp->h_support)) return 0;
+  /* No acceleration scale yet (a run's first step) while the adaptive
+   * criterion is on: a tighter geometric angle stands in for it, so that the
+   * first step meets the accuracy of the following ones. */
+  const double theta = (gp->epsilon_fmm > 0.0 && (a->a_min <= 0.0 || b->a_min <= 0.0))
+                           ? GRAVITY_THETA_FIRST * gp->theta
+                           : gp->theta;
+  if (!gravity_mac(a->mp.r_max, b->mp.r_max, r2, theta, gp->h_support)) return 0;
   const double rs = a->mp.r_max + b->mp.r_max;
   return gravity_mac_adaptive(gp->G, b->mp.M[0], rs, r2, gp->order, gp->epsilon_fmm, a->a_min) &&
          gravity_mac_adaptive(gp->G, a->mp.M[0], rs, r2, gp->order, gp->epsilon_fmm, b->a_min);
 }
 
-/** Particle i (in a cell of scale a_min_i) with every particle of leaf b;
- *  upd_i / upd_b: which side receives. */
-static void p2p_point_leaf(struct parts *p, size_t i, const struct cell *b, int upd_i, int upd_b,
-                           const struct gravity_props *gp) {
-  double pot = 0.0, acc[3] = {0.0, 0.0, 0.0};
-  const double gi = gp->G * p->m[i];
-  for (size_t j = b->offset; j < b->offset + b->count; j++) {
-    const double dx[3] = {p->x[i] - p->x[j], p->y[i] - p->y[j], p->z[i] - p->z[j]};
-    const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-    double wpot, wacc;
-    gravity_softened_kernel(r2, gp->eps, gp->softening, &wpot, &wacc);
-    const double gj = gp->G * p->m[j];
-    pot -= gj * wpot;
-    acc[0] -= gj * wacc * dx[0];
-    acc[1] -= gj * wacc * dx[1];
-    acc[2] -= gj * wacc * dx[2];
-    if (upd_b) {
-      p->pot[j] -= gi * wpot;
-      p->gax[j] += gi * wacc * dx[0];
-      p->gay[j] += gi * wacc * dx[1];
-      p->gaz[j] += gi * wacc * dx[2];
-    }
-  }
-  if (upd_i) {
-    p->pot[i] += pot;
-    p->gax[i] += acc[0];
-    p->gay[i] += acc[1];
-    p->gaz[i] += acc[2];
-  }
-}
-
-/** Particle i (its leaf's a_min is a_min_i) against the tree of b: the
- *  mutual point-cell interaction (gravity_m2p_p2l) where the criterion
- *  accepts (point radius 0), else open b, P2P at b's leaves.  Used when a
- *  leaf too large to be opened meets smaller cells: its particles then see
- *  those cells one by one, instead of through one local expansion as large
- *  as the leaf, whose truncation errors would add up coherently over many
- *  small sources. */
-static void walk_point(struct parts *p, size_t i, double a_min_i, const struct cell *b, int upd_i,
-                       int upd_b, struct gravity_cell *gc, const struct gravity_props *gp) {
-  if (b->count == 0) return;
-  struct gravity_cell *gb = gc + b->index;
-  const double R[3] = {gb->mp.com[0] - p->x[i], gb->mp.com[1] - p->y[i], gb->mp.com[2] - p->z[i]};
-  const double r2 = R[0] * R[0] + R[1] * R[1] + R[2] * R[2];
-  const double rb = gb->mp.r_max;
-  if (gravity_mac(0.0, rb, r2, gp->theta, gp->h_support) &&
-      gravity_mac_adaptive(gp->G, gb->mp.M[0], rb, r2, gp->order, gp->epsilon_fmm, a_min_i) &&
-      gravity_mac_adaptive(gp->G, p->m[i], rb, r2, gp->order, gp->epsilon_fmm, gb->a_min)) {
-    double D[GRAVITY_ND], pot = 0.0, a[3] = {0.0, 0.0, 0.0};
-    gravity_derivatives(R, gp->eps2_expansion, gp->order, D);
-    gravity_m2p_p2l(p->m[i], &gb->mp, upd_b ? &gb->field : NULL, D, gp->order, gp->G, &pot, a);
-    if (upd_i) {
-      p->pot[i] += pot;
-      p->gax[i] += a[0];
-      p->gay[i] += a[1];
-      p->gaz[i] += a[2];
-    }
-    return;
-  }
-  if (!b->split) {
-    p2p_point_leaf(p, i, b, upd_i, upd_b, gp);
-    return;
-  }
-  for (int q = 0; q < 8; q++)
-    if (b->progeny[q]) walk_point(p, i, a_min_i, b->progeny[q], upd_i, upd_b, gc, gp);
-}
-
 /** Dual-tree walk between disjoint cells a and b (Dehnen 2002):
  *  M2L where the criterion accepts, P2P between leaves, else open the
- *  larger cell; when the larger is a leaf, its particles walk the other
- *  cell one by one (walk_point).  symmetric: both cells receive (pair
- *  task), else only a (long-range task).  The decisions are symmetric in a
- *  and b, so the walk from b's side pairs the same interactions (momentum). */
+ *  larger cell that can be opened (a leaf meeting a split cell opens the
+ *  split one: its pieces then meet the leaf through M2L or P2P, never one
+ *  particle at a time).  symmetric: both cells receive (pair task), else
+ *  only a (long-range task).  The decisions are symmetric in a and b, so
+ *  the walk from b's side pairs the same interactions (momentum). */
 static void walk_pair(struct parts *p, const struct cell *a, const struct cell *b, int symmetric,
                       struct gravity_cell *gc, const struct gravity_props *gp) {
   if (a->count == 0 || b->count == 0) return;
@@ -273,44 +456,48 @@ static void walk_pair(struct parts *p, const struct cell *a, const struct cell *
   const double R[3] = {gb->mp.com[0] - ga->mp.com[0], gb->mp.com[1] - ga->mp.com[1],
                        gb->mp.com[2] - ga->mp.com[2]};
   const double r2 = R[0] * R[0] + R[1] * R[1] + R[2] * R[2];
+  counters.mac++;
   if (accept(ga, gb, r2, gp)) {
-    double D[GRAVITY_ND];
-    if (symmetric) {
-      gravity_derivatives(R, gp->eps2_expansion, gp->order, D);
-      gravity_m2l_sym(&ga->field, &gb->field, &ga->mp, &gb->mp, D, gp->order);
-    } else {
-      /* target a, source b: the tensor at z_a - z_b */
-      const double Rab[3] = {-R[0], -R[1], -R[2]};
-      gravity_derivatives(Rab, gp->eps2_expansion, gp->order, D);
-      gravity_m2l(&ga->field, &gb->mp, D, gp->order);
+    /* A leaf much larger than the cell it meets: its particles see the
+     * cell one by one (M2P, and P2L back), instead of through one local
+     * expansion as large as the leaf, whose truncation errors would add up
+     * coherently over the many small cells such a leaf meets. */
+    const int a_big = ga->mp.r_max >= gb->mp.r_max;
+    const struct cell *big = a_big ? a : b;
+    struct gravity_cell *gbig = a_big ? ga : gb, *gsmall = a_big ? gb : ga;
+    if (!big->split && gbig->mp.r_max > GRAVITY_LOPSIDED * gsmall->mp.r_max) {
+      const struct cell *small = a_big ? b : a;
+      if (!small->split) {
+        /* two leaves: exact P2P costs less than a point-cell interaction
+         * per particle (a few ns per pair against ~100 ns per M2P) */
+        p2p_pair(p, a, b, symmetric, gp);
+        return;
+      }
+      counters.m2p += big->count;
+      m2p_leaf(p, big, gsmall, symmetric || a_big, symmetric || !a_big, gp->eps2_expansion, gp->G,
+               gp->order);
+      return;
     }
+    counters.m2l++;
+    /* one-way: target a, source b, the tensor at z_a - z_b */
+    m2l_cells(ga, gb, R, gp->eps2_expansion, gp->order, symmetric);
     return;
   }
   if (!a->split && !b->split) {
     p2p_pair(p, a, b, symmetric, gp);
     return;
   }
-  /* the larger cell (ties: a), as in Dehnen 2002 */
-  const int a_larger = ga->mp.r_max >= gb->mp.r_max;
-  const struct cell *big = a_larger ? a : b, *small = a_larger ? b : a;
-  if (big->split) {
-    for (int q = 0; q < 8; q++) {
-      const struct cell *c = big->progeny[q];
-      if (c == NULL) continue;
-      if (a_larger)
-        walk_pair(p, c, b, symmetric, gc, gp);
-      else
-        walk_pair(p, a, c, symmetric, gc, gp);
-    }
-    return;
+  /* the larger cell that is split (ties: a), as in Dehnen 2002 */
+  const int open_a = a->split && (!b->split || ga->mp.r_max >= gb->mp.r_max);
+  const struct cell *big = open_a ? a : b;
+  for (int q = 0; q < 8; q++) {
+    const struct cell *c = big->progeny[q];
+    if (c == NULL) continue;
+    if (open_a)
+      walk_pair(p, c, b, symmetric, gc, gp);
+    else
+      walk_pair(p, a, c, symmetric, gc, gp);
   }
-  /* big is a leaf, small is split: big's particles one by one.  Receivers:
-   * both (symmetric), else a only (a is big: the points; b is big: the
-   * cells of a). */
-  const int upd_point = symmetric || a_larger, upd_cells = symmetric || !a_larger;
-  const double a_min_big = gc[big->index].a_min;
-  for (size_t i = big->offset; i < big->offset + big->count; i++)
-    walk_point(p, i, a_min_big, small, upd_point, upd_cells, gc, gp);
 }
 
 /** All interactions within c: self of every progeny and every pair of them. */

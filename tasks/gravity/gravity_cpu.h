@@ -127,6 +127,18 @@ void gravity_tree_all(struct parts *p, const struct cell *tops, int nr_top, stru
  *  splits the work over POSIX threads (gather form). */
 void gravity_direct(struct parts *p, double G, double eps, int softening, int nthreads);
 
+/** Work counters of the tree walks (diagnostics), kept per thread. */
+struct gravity_counters {
+  unsigned long long mac; /**< cell pairs tested by the acceptance criterion */
+  unsigned long long m2l; /**< accepted cell pairs (M2L) */
+  unsigned long long p2p; /**< particle pairs summed directly (each pair once) */
+  unsigned long long m2p; /**< particle-cell interactions (M2P/P2L of large leaves) */
+};
+
+/** Copy the calling thread's counters since its last reset into *out;
+ *  reset them if reset. */
+void gravity_counters_get(struct gravity_counters *out, int reset);
+
 /** Potential energy 1/2 sum_i m_i pot_i (pot from a complete gravity pass). */
 double gravity_potential_energy(const struct parts *p);
 

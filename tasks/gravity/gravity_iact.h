@@ -45,6 +45,20 @@
 
 #include "inline.h"
 
+/** Full unrolling of the loops over multi-indices, for a translation unit
+ *  that defines GRAVITY_UNROLL_LOOPS before including this header and calls
+ *  the operators with the order a compile-time constant (gravity_cpu.c
+ *  instantiates each order): the compiler then folds every index
+ *  (gravity_index) and factorial, several times faster.  Elsewhere (run-time
+ *  order) the loops stay loops. */
+#if defined(GRAVITY_UNROLL_LOOPS) && defined(__CUDACC__)
+#define GRAVITY_UNROLL _Pragma("unroll")
+#elif defined(GRAVITY_UNROLL_LOOPS) && defined(__GNUC__) && !defined(__clang__)
+#define GRAVITY_UNROLL _Pragma("GCC unroll 16")
+#else
+#define GRAVITY_UNROLL
+#endif
+
 /** Highest expansion order the arrays hold (p = 5: 56 coefficients). */
 #define GRAVITY_ORDER_MAX 5
 /** Default expansion order (theory/gravity.md, "Accuracy"). */
@@ -164,6 +178,7 @@ BOLIDE_INLINE void gravity_derivatives(const double R[3], double eps2, int q,
   double fact[GRAVITY_ORDER_MAX + 2];
   fm[0] = sqrt(inv_r2);
   xp[0] = yp[0] = zp[0] = fact[0] = 1.0;
+  GRAVITY_UNROLL
   for (int m = 1; m <= q; m++) {
     fm[m] = -(2 * m - 1) * fm[m - 1] * inv_r2;
     xp[m] = xp[m - 1] * R[0];
@@ -172,15 +187,21 @@ BOLIDE_INLINE void gravity_derivatives(const double R[3], double eps2, int q,
     fact[m] = fact[m - 1] * m;
   }
   int i = 0;
+  GRAVITY_UNROLL
   for (int n = 0; n <= q; n++)
+    GRAVITY_UNROLL
     for (int nx = n; nx >= 0; nx--)
+      GRAVITY_UNROLL
       for (int ny = n - nx; ny >= 0; ny--, i++) {
         const int nz = n - nx - ny;
         double s = 0.0;
+        GRAVITY_UNROLL
         for (int kx = 0; 2 * kx <= nx; kx++) {
           const double cx = xp[nx - 2 * kx] / (fact[kx] * fact[nx - 2 * kx] * (double)(1 << kx));
+          GRAVITY_UNROLL
           for (int ky = 0; 2 * ky <= ny; ky++) {
             const double cy = yp[ny - 2 * ky] / (fact[ky] * fact[ny - 2 * ky] * (double)(1 << ky));
+            GRAVITY_UNROLL
             for (int kz = 0; 2 * kz <= nz; kz++) {
               const double cz =
                   zp[nz - 2 * kz] / (fact[kz] * fact[nz - 2 * kz] * (double)(1 << kz));
@@ -198,15 +219,21 @@ BOLIDE_INLINE void gravity_m2l(struct gravity_field *BOLIDE_RESTRICT fb,
                                const struct gravity_multipole *BOLIDE_RESTRICT ma,
                                const double *BOLIDE_RESTRICT D, int p) {
   int i = 0;
+  GRAVITY_UNROLL
   for (int k = 0; k <= p; k++)
+    GRAVITY_UNROLL
     for (int kx = k; kx >= 0; kx--)
+      GRAVITY_UNROLL
       for (int ky = k - kx; ky >= 0; ky--, i++) {
         const int kz = k - kx - ky;
         double s = 0.0;
         int j = 0;
+        GRAVITY_UNROLL
         for (int n = 0; n <= p - k; n++) {
           const double sg = gravity_sign(n);
+          GRAVITY_UNROLL
           for (int nx = n; nx >= 0; nx--)
+            GRAVITY_UNROLL
             for (int ny = n - nx; ny >= 0; ny--, j++)
               s += sg * ma->M[j] * D[gravity_index(nx + kx, ny + ky, n - nx - ny + kz)];
         }
@@ -223,15 +250,21 @@ BOLIDE_INLINE void gravity_m2l_sym(struct gravity_field *BOLIDE_RESTRICT fa,
                                    const struct gravity_multipole *BOLIDE_RESTRICT mb,
                                    const double *BOLIDE_RESTRICT D, int p) {
   int i = 0;
+  GRAVITY_UNROLL
   for (int k = 0; k <= p; k++)
+    GRAVITY_UNROLL
     for (int kx = k; kx >= 0; kx--)
+      GRAVITY_UNROLL
       for (int ky = k - kx; ky >= 0; ky--, i++) {
         const int kz = k - kx - ky;
         double sa = 0.0, sb = 0.0;
         int j = 0;
+        GRAVITY_UNROLL
         for (int n = 0; n <= p - k; n++) {
           const double sg = gravity_sign(n);
+          GRAVITY_UNROLL
           for (int nx = n; nx >= 0; nx--)
+            GRAVITY_UNROLL
             for (int ny = n - nx; ny >= 0; ny--, j++) {
               const double d = D[gravity_index(nx + kx, ny + ky, n - nx - ny + kz)];
               sb += sg * ma->M[j] * d;
@@ -339,8 +372,11 @@ BOLIDE_INLINE void gravity_m2p_p2l(double m, const struct gravity_multipole *BOL
                                    double *BOLIDE_RESTRICT pot, double *BOLIDE_RESTRICT a) {
   double phi = 0.0, ax = 0.0, ay = 0.0, az = 0.0;
   int i = 0;
+  GRAVITY_UNROLL
   for (int n = 0; n <= p; n++)
+    GRAVITY_UNROLL
     for (int nx = n; nx >= 0; nx--)
+      GRAVITY_UNROLL
       for (int ny = n - nx; ny >= 0; ny--, i++) {
         const int nz = n - nx - ny;
         phi += mb->M[i] * D[i];
