@@ -323,7 +323,11 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   }
 
   /* cells and workers */
-  space_init(&e->space, &e->parts, box, periodic, (int)params_get_int(params, "Scheduler:cell_split_size"),
+  /* self-gravity wants small leaves (P2P between neighbouring leaves is most of
+   * its cost; BENCHMARKS.md): 32 unless the user chose */
+  int split_size = (int)params_get_int(params, "Scheduler:cell_split_size");
+  if (e->gp.enabled && !params_given(params, "Scheduler:cell_split_size")) split_size = 32;
+  space_init(&e->space, &e->parts, box, periodic, split_size,
              (int)params_get_int(params, "Scheduler:max_top_level_cells"));
   e->space.max_drift_fraction = params_get_real(params, "Scheduler:rebuild_fraction");
   e->nr_threads = opt->nr_threads > 0 ? opt->nr_threads : engine_nr_cores();

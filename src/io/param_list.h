@@ -81,7 +81,7 @@
   X("Gravity:epsilon_fmm", PARAM_REAL, "1e-4", 0, 1, NULL, "-", "tolerance of the adaptive opening criterion: estimated force error of an accepted interaction below epsilon_fmm times the particle's gravitational acceleration at the previous step (0: geometric criterion only); theory/gravity.md") \
   X("Gravity:multipole_order", PARAM_INT, "4", 1, 5, NULL, "-", "order p of the multipole and local expansions (potential to order p, forces to p-1); theory/gravity.md") \
                                                                                                          \
-  X("Scheduler:cell_split_size", PARAM_INT, "400", 8, 1000000, NULL, "-", "largest number of particles in a leaf cell") \
+  X("Scheduler:cell_split_size", PARAM_INT, "400", 8, 1000000, NULL, "-", "largest number of particles in a leaf cell (default 400; 32 when self-gravity is on and the key is not given)") \
   X("Scheduler:cell_task_size", PARAM_INT, "1000", 8, 100000000, NULL, "-", "tasks work on octree cells of at most this many particles (smaller: more, finer tasks)") \
   X("Scheduler:max_top_level_cells", PARAM_INT, "16", 1, 1024, NULL, "-", "largest number of top-level cells along one side") \
   X("Scheduler:tasks_per_cell", PARAM_REAL, "0", 0, PARAM_INF, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
