@@ -18,6 +18,7 @@
 #include "damage/flaws.h"
 #include "error.h"
 #include "drift/drift.h"
+#include "flaws_io.h"
 #include "hydro_parts.h"
 #include "ic.h"
 #include "kernel.h"
@@ -195,6 +196,19 @@ static void engine_read_ics(struct engine *e, char *icname, size_t len, double b
     e->parts.rho_full[i] = e->parts.rho_fp[i] = e->parts.rho[i];
     kick_sync_predicted(&e->parts, i);
   }
+  /* Weibull flaws stored in the ICs (bolide-flaws; FlawThresholds and
+   * FlawOffsets in the particle order of the file) */
+  struct flaws fl;
+  if (flaws_io_read(icname, e->parts.count, &fl)) {
+    for (size_t i = 0; i < e->parts.count; i++) {
+      e->parts.flaw_first[i] = fl.offset[i];
+      e->parts.n_flaws[i] = (int32_t)(fl.offset[i + 1] - fl.offset[i]);
+    }
+    e->flaw_eps = fl.eps;
+    e->nr_flaws = fl.offset[e->parts.count];
+    e->flaws_from = "the initial conditions";
+    free(fl.offset);
+  }
 }
 
 /** Order of particle indices by id (flaws are drawn in id order, so that a
@@ -207,44 +221,67 @@ static int engine_cmp_by_id(const void *a, const void *b) {
 }
 
 /** Weibull flaws for the brittle materials (weibull_k > 0 with a shear
- *  modulus) from Damage:seed, by the procedure of Benz & Asphaug (1995):
- *  each particle keeps the slice flaw_first .. + n_flaws of e->flaw_eps. */
-static void engine_init_flaws(struct engine *e) {
+ *  modulus): kept as read from a restart file or the initial conditions,
+ *  else drawn from Damage:seed by the procedure of Benz & Asphaug (1995).
+ *  Each particle keeps the slice flaw_first .. + n_flaws of e->flaw_eps. */
+static void engine_init_flaws(struct engine *e, const char *icname) {
   for (int k = 0; k < e->mats->n; k++)
     if (e->mats->mats[k].weibull_k > 0.0 && e->mats->mats[k].shear_modulus > 0.0) e->damage = 1;
-  if (!e->damage) return;
   struct parts *p = &e->parts;
   const size_t n = p->count;
-  size_t *order = error_malloc(n * sizeof(size_t), "flaw order");
-  for (size_t i = 0; i < n; i++) order[i] = i;
-  engine_sort_ids = p->id;
-  qsort(order, n, sizeof(size_t), engine_cmp_by_id);
-  int32_t *mat = error_malloc(n * sizeof(int32_t), "flaw order");
-  double *m = error_malloc(n * sizeof(double), "flaw order"), *rho = error_malloc(n * sizeof(double), "flaw order");
-  for (size_t k = 0; k < n; k++) {
-    mat[k] = p->mat[order[k]];
-    m[k] = p->m[order[k]];
-    rho[k] = p->rho[order[k]];
+  if (e->flaw_eps) {
+    /* flaws given: particles of materials that take no damage keep theirs unused */
+    size_t idle = 0, bare = 0;
+    for (size_t i = 0; i < n; i++) {
+      const struct material *mat = material_table_find(e->mats, p->mat[i]);
+      const int brittle = mat && mat->weibull_k > 0.0 && mat->shear_modulus > 0.0;
+      idle += !brittle && p->n_flaws[i] > 0;
+      bare += brittle && p->n_flaws[i] == 0;
+    }
+    if (idle && !e->restarted)
+      error_warning("%s: %zu particles have flaws but a material without weibull_k or shear_modulus: "
+                    "they take no damage", icname, idle);
+    if (bare && !e->restarted)
+      error_warning("%s: %zu particles of brittle materials have no flaws: they take no damage", icname,
+                    bare);
   }
-  struct flaws fl;
-  e->nr_flaws = flaws_generate_materials(n, mat, m, rho, e->mats, (uint64_t)params_get_int(e->params, "Damage:seed"), &fl);
-  for (size_t k = 0; k < n; k++) {
-    const size_t i = order[k];
-    p->flaw_first[i] = fl.offset[k];
-    p->n_flaws[i] = (int32_t)(fl.offset[k + 1] - fl.offset[k]);
-    if (p->dmg[i] > 0.0 && !(p->dcbrt[i] > 0.0)) p->dcbrt[i] = cbrt(p->dmg[i]);
+  if (!e->damage) return;
+  if (!e->flaw_eps) {
+    size_t *order = error_malloc(n * sizeof(size_t), "flaw order");
+    for (size_t i = 0; i < n; i++) order[i] = i;
+    engine_sort_ids = p->id;
+    qsort(order, n, sizeof(size_t), engine_cmp_by_id);
+    int32_t *mat = error_malloc(n * sizeof(int32_t), "flaw order");
+    double *m = error_malloc(n * sizeof(double), "flaw order"), *rho = error_malloc(n * sizeof(double), "flaw order");
+    for (size_t k = 0; k < n; k++) {
+      mat[k] = p->mat[order[k]];
+      m[k] = p->m[order[k]];
+      rho[k] = p->rho[order[k]];
+    }
+    struct flaws fl;
+    e->nr_flaws = flaws_generate_materials(n, mat, m, rho, e->mats, (uint64_t)params_get_int(e->params, "Damage:seed"), &fl);
+    for (size_t k = 0; k < n; k++) {
+      const size_t i = order[k];
+      p->flaw_first[i] = fl.offset[k];
+      p->n_flaws[i] = (int32_t)(fl.offset[k + 1] - fl.offset[k]);
+    }
+    e->flaw_eps = fl.eps;
+    fl.eps = NULL;
+    free(fl.offset);
+    free(order);
+    free(mat);
+    free(m);
+    free(rho);
   }
-  e->flaw_eps = fl.eps;
-  fl.eps = NULL;
-  free(fl.offset);
-  free(order);
-  free(mat);
-  free(m);
-  free(rho);
+  if (!e->restarted)
+    for (size_t i = 0; i < n; i++)
+      if (p->dmg[i] > 0.0 && !(p->dcbrt[i] > 0.0)) p->dcbrt[i] = cbrt(p->dmg[i]);
   e->damage_max_change = params_get_real(e->params, "Damage:max_change");
-  error_log(0, "damage: %lld Weibull flaws (%.1f per particle, %.1f MiB) from Damage:seed %ld",
-            (long long)e->nr_flaws, n ? (double)e->nr_flaws / (double)n : 0.0,
-            (double)e->nr_flaws * sizeof(double) / 1048576.0, params_get_int(e->params, "Damage:seed"));
+  char from[64];
+  snprintf(from, sizeof from, "Damage:seed %ld", params_get_int(e->params, "Damage:seed"));
+  error_log(0, "damage: %lld Weibull flaws (%.1f per particle, %.1f MiB) from %s", (long long)e->nr_flaws,
+            n ? (double)e->nr_flaws / (double)n : 0.0,
+            (double)e->nr_flaws * sizeof(double) / 1048576.0, e->flaws_from ? e->flaws_from : from);
   if (!e->hp.solids) error_warning("brittle materials without strength: damage has no stress to act on");
 }
 
@@ -285,7 +322,12 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   char icname[PATH_MAX];
   struct restart_state rs;
   if (opt->restart) {
-    restart_read(e->restart_dir, &rs, &e->parts);
+    restart_read(e->restart_dir, &rs, &e->parts, &e->flaw_eps, &e->nr_flaws);
+    if (e->nr_flaws == 0) {
+      free(e->flaw_eps);
+      e->flaw_eps = NULL;
+    }
+    e->flaws_from = "the restart file";
     snprintf(icname, sizeof icname, "%s/restart.bin", e->restart_dir);
     for (int k = 0; k < 3; k++) box[k] = rs.box[k];
     periodic = (int)rs.periodic;
@@ -301,7 +343,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     engine_read_ics(e, icname, sizeof icname, box);
   }
   engine_guess_h(e);
-  engine_init_flaws(e);
+  engine_init_flaws(e, icname);
   if (e->gp.enabled && periodic)
     params_error(params, "InitialConditions:periodic", "self-gravity in a periodic box is not implemented");
   error_log(0, "read %zu particles from %s (box %g x %g x %g, %s)", e->parts.count, icname, box[0], box[1],
@@ -365,6 +407,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   engine_stats_open(e);
 
   scheduler_init(&e->sched, e->nr_threads);
+  e->sched.fixed_costs = params_get_bool(params, "Scheduler:deterministic");
 #ifdef HAVE_CUDA
   gpu_engine_init(e);
 #endif
@@ -416,7 +459,7 @@ static void engine_write_restart(struct engine *e) {
   for (int k = 0; k < 3; k++) st.box[k] = e->space.dim[k];
   st.periodic = e->space.periodic;
   engine_mkdir(e->restart_dir);
-  restart_write(e->restart_dir, &st, &e->parts);
+  restart_write(e->restart_dir, &st, &e->parts, e->flaw_eps);
   e->restart_last_wall = error_walltime();
   error_log(0, "restart file %s/restart.bin at step %ld, t = %g", e->restart_dir, e->step, e->time);
 }
@@ -512,7 +555,19 @@ void engine_run(struct engine *e) {
     const double eta = frac > 0 ? (w1 - e->wall_start) * (1.0 - frac) / frac : 0.0;
     printf("%8ld %14.6e %14.6e %12zu %10.4f %10.1f\n", e->step, e->time, e->dt, e->parts.count, w1 - w0, eta);
     fflush(stdout);
-    if (e->restarts && w1 - e->restart_last_wall >= e->restart_dt_wall) engine_write_restart(e);
+    /* (not at the last step: the file written after the loop follows) */
+    if (e->restarts && w1 - e->restart_last_wall >= e->restart_dt_wall && e->time < e->time_end &&
+        (e->opt.max_steps < 0 || e->step < e->opt.max_steps)) {
+      engine_write_restart(e);
+      /* rebuild here, as a run resumed from this file does before its first
+       * step: both then continue from the same cells and particle order, and
+       * (with one thread and Scheduler:deterministic) bit for bit alike */
+      double dt_next = e->dt_max;
+      for (int t = 0; t < e->nr_tcells; t++)
+        if (e->cell_dt_min[t] < dt_next) dt_next = e->cell_dt_min[t];
+      engine_rebuild(e);
+      for (int t = 0; t < e->nr_tcells; t++) e->cell_dt_min[t] = dt_next;
+    }
   }
   if (!e->restarts && e->next_out < e->nr_out && e->out_times[e->nr_out - 1] > e->time) {
     /* stopped by --steps without restart files: keep the last state */

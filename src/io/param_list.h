@@ -87,6 +87,7 @@
   X("Scheduler:tasks_per_cell", PARAM_REAL, "0", 0, PARAM_INF, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
   X("Scheduler:dump_tasks", PARAM_INT, "0", 0, PARAM_INF, NULL, "-", "write a task timeline (thread, start, end, type, cell) every this many steps (0: never)") \
   X("Scheduler:rebuild_fraction", PARAM_REAL, "0.25", 0.01, 1, NULL, "-", "rebuild the cells once a particle drifted this fraction of its cell's width") \
+  X("Scheduler:deterministic", PARAM_BOOL, "false", 0, 0, NULL, "-", "keep the task priorities fixed instead of learning them from measured task times: with one thread (-t 1) every run, and every run resumed from a restart file, then repeats bit for bit (for tests; slightly slower)") \
   X("Scheduler:gpu", PARAM_STRING, "auto", 0, 0, NULL, "-", "which task families run on the GPU: auto, off, all, or a comma-separated list") \
                                                                                                          \
   X("Damage:seed", PARAM_INT, "1", 0, 9.2e18, NULL, "-", "seed of the Weibull flaws drawn at start-up for brittle materials (materials with weibull_k > 0 and a shear modulus)") \
