@@ -24,6 +24,7 @@
 #include "kernel.h"
 #include "material.h"
 #include "params.h"
+#include "porosity_eos.h"
 #include "restart.h"
 #include "version.h"
 #ifdef HAVE_CUDA
@@ -160,6 +161,62 @@ static void engine_mkdir(const char *dir) {
   if (mkdir(tmp, 0755) && errno != EEXIST) error_exit("%s: cannot create folder: %s", tmp, strerror(errno));
 }
 
+/** Index of the particle field called name in part_fields. */
+static int engine_field_index(const char *name) {
+  for (int k = 0; k < part_nr_fields; k++)
+    if (strcmp(part_fields[k].name, name) == 0) return k;
+  error_bug("no particle field %s", name);
+}
+
+/** Distentions of porous materials from the initial conditions (file icname;
+ *  has_alpha: the file has Distentions): alpha_0 of the material where the
+ *  file has none, 1 for every other particle; then the check that the bulk
+ *  density times alpha is the matrix density rho0 of the material's EOS
+ *  within Porosity:ic_tolerance (Jutzi et al. 2008; theory/porosity.md). */
+static void engine_init_porosity(struct engine *e, const char *icname, int has_alpha) {
+  struct parts *p = &e->parts;
+  for (int k = 0; k < e->mats->n; k++) {
+    const struct material *m = &e->mats->mats[k];
+    if (m->porosity.model == POROSITY_EPSALPHA)
+      error_exit("material '%s': porosity model epsalpha is not wired into the time step yet (use palpha)",
+                 m->name);
+    if (m->porosity.model != POROSITY_NONE) e->porous = 1;
+  }
+  const double tol = params_get_real(e->params, "Porosity:ic_tolerance");
+  for (size_t i = 0; i < p->count; i++) {
+    const struct material *m = material_table_find(e->mats, p->mat[i]);
+    if (!m || m->porosity.model == POROSITY_NONE) {
+      if (has_alpha && p->alpha[i] != 1.0)
+        error_exit("%s: particle %zu (id %lld): Distentions is %g but material %d is not porous (must be 1)",
+                   icname, i, (long long)p->id[i], p->alpha[i], (int)p->mat[i]);
+      p->alpha[i] = p->alpha_p[i] = 1.0;
+      continue;
+    }
+    const double alpha_0 = porosity_alpha_0(&m->porosity);
+    if (!has_alpha) p->alpha[i] = alpha_0;
+    if (!(p->alpha[i] >= 1.0) || p->alpha[i] > alpha_0)
+      error_exit("%s: particle %zu (id %lld): Distentions is %g (must be in [1, alpha_0 = %g] for material '%s')",
+                 icname, i, (long long)p->id[i], p->alpha[i], alpha_0, m->name);
+    if (!(p->rho[i] > 0.0))
+      error_exit("%s: particle %zu (id %lld) of porous material '%s' has no density: porous bodies need "
+                 "Densities in the initial conditions (the bulk density rho0/alpha)",
+                 icname, i, (long long)p->id[i], m->name);
+    const double err = porosity_check_ic(p->rho[i], p->alpha[i], m->rho0, tol);
+    if (err > 0.0)
+      error_exit("%s: particle %zu (id %lld) of porous material '%s': density %g times distention %g is %g, "
+                 "not the matrix density rho0 = %g (relative difference %.3g > Porosity:ic_tolerance %g)",
+                 icname, i, (long long)p->id[i], m->name, p->rho[i], p->alpha[i], p->rho[i] * p->alpha[i],
+                 m->rho0, err, tol);
+    p->alpha_p[i] = p->alpha[i];
+  }
+  if (e->porous) {
+    size_t n = 0;
+    for (size_t i = 0; i < p->count; i++) n += p->alpha[i] > 1.0;
+    error_log(0, "porosity: %zu porous particles (P-alpha, Jutzi et al. 2008), distentions %s", n,
+              has_alpha ? "from the initial conditions" : "alpha_0 of their materials");
+  }
+}
+
 /** Read the initial conditions named by the parameters into e->parts, with
  *  the box size (from the file or InitialConditions:box_size), the shift and
  *  the smoothing-length scaling applied. */
@@ -196,6 +253,7 @@ static void engine_read_ics(struct engine *e, char *icname, size_t len, double b
     e->parts.rho_full[i] = e->parts.rho_fp[i] = e->parts.rho[i];
     kick_sync_predicted(&e->parts, i);
   }
+  engine_init_porosity(e, icname, ic_field_read(&hdr, engine_field_index("alpha")));
   /* Weibull flaws stored in the ICs (bolide-flaws; FlawThresholds and
    * FlawOffsets in the particle order of the file) */
   struct flaws fl;
@@ -342,6 +400,8 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   } else {
     engine_read_ics(e, icname, sizeof icname, box);
   }
+  if (opt->restart)
+    for (int k = 0; k < e->mats->n; k++) e->porous |= e->mats->mats[k].porosity.model != POROSITY_NONE;
   engine_guess_h(e);
   engine_init_flaws(e, icname);
   if (e->gp.enabled && periodic)

@@ -141,6 +141,9 @@ extern "C" int gpu_supports(const struct material_table *mats, char *why, size_t
     if (mats->mats[k].eos_type == EOS_TABLE) {
       snprintf(why, len, "material %s has a tabulated EOS, not on the GPU yet", mats->mats[k].name);
       return 0;
+    } else if (mats->mats[k].porosity.model != POROSITY_NONE) {
+      snprintf(why, len, "material %s is porous, not on the GPU yet", mats->mats[k].name);
+      return 0;
     }
   return 1;
 }

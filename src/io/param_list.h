@@ -93,6 +93,8 @@
   X("Damage:seed", PARAM_INT, "1", 0, 9.2e18, NULL, "-", "seed of the Weibull flaws drawn at start-up for brittle materials (materials with weibull_k > 0 and a shear modulus)") \
   X("Damage:max_change", PARAM_REAL, "0.1", 1e-6, 1, NULL, "-", "time-step limit: damage d grows by at most this much per step (d^(1/3) is integrated exactly and capped, so saturation takes about 1/max_change steps)") \
                                                                                                          \
+  X("Porosity:ic_tolerance", PARAM_REAL, "0.01", 0, 1, NULL, "-", "start-up check of porous bodies: the IC density times the distention must be the matrix density rho0 of the material within this relative difference") \
+                                                                                                         \
   X("Restarts:enable", PARAM_BOOL, "false", 0, 0, NULL, "-", "write restart files") \
   X("Restarts:delta_hours", PARAM_REAL, "1", 0, PARAM_INF, NULL, "h", "wall-clock hours between restart files") \
   X("Restarts:subdir", PARAM_STRING, "restart", 0, 0, NULL, "-", "folder of the restart files") \
