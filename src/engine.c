@@ -185,15 +185,16 @@ static void engine_init_porosity(struct engine *e, const char *icname, int has_a
   const double tol = params_get_real(e->params, "Porosity:ic_tolerance");
   for (size_t i = 0; i < p->count; i++) {
     const struct material *m = material_table_find(e->mats, p->mat[i]);
+    /* 0: not given (bolide-ic writes every IC field, zero where it has no value) */
     if (!m || m->porosity.model == POROSITY_NONE) {
-      if (has_alpha && p->alpha[i] != 1.0)
+      if (has_alpha && p->alpha[i] != 1.0 && p->alpha[i] != 0.0)
         error_exit("%s: particle %zu (id %lld): Distentions is %g but material %d is not porous (must be 1)",
                    icname, i, (long long)p->id[i], p->alpha[i], (int)p->mat[i]);
       p->alpha[i] = p->alpha_p[i] = 1.0;
       continue;
     }
     const double alpha_0 = porosity_alpha_0(&m->porosity);
-    if (!has_alpha) p->alpha[i] = alpha_0;
+    if (!has_alpha || p->alpha[i] == 0.0) p->alpha[i] = alpha_0;
     if (!(p->alpha[i] >= 1.0) || p->alpha[i] > alpha_0)
       error_exit("%s: particle %zu (id %lld): Distentions is %g (must be in [1, alpha_0 = %g] for material '%s')",
                  icname, i, (long long)p->id[i], p->alpha[i], alpha_0, m->name);
@@ -213,7 +214,7 @@ static void engine_init_porosity(struct engine *e, const char *icname, int has_a
     size_t n = 0;
     for (size_t i = 0; i < p->count; i++) n += p->alpha[i] > 1.0;
     error_log(0, "porosity: %zu porous particles (P-alpha, Jutzi et al. 2008), distentions %s", n,
-              has_alpha ? "from the initial conditions" : "alpha_0 of their materials");
+              has_alpha ? "from the initial conditions (alpha_0 where 0)" : "alpha_0 of their materials");
   }
 }
 

@@ -133,7 +133,7 @@ enum part_flags {
   X(int64_t, flaw_first, NULL,        0, 1, 0,  0,  0, 0, "index of the particle's first flaw threshold in the engine's flat array") \
   X(double,  dmg_rate, NULL,          0, 1, 0,  0, -1, 0, "growth rate of d^(1/3) in the last step") \
   /* porosity (src/materials/porosity_eos.h): P-alpha distention */                                \
-  X(double,  alpha, "Distentions",    0, 1, 0,  0,  0, PART_IC_OPT | PART_SNAP, "distention alpha = rho_matrix / rho of porous materials (Jutzi et al. 2008; 1: not porous)") \
+  X(double,  alpha, "Distentions",    0, 1, 0,  0,  0, PART_IC_OPT | PART_SNAP, "distention alpha = rho_matrix / rho of porous materials (Jutzi et al. 2008; 1: not porous; 0 or absent in ICs: alpha_0 of the material)") \
   X(double,  alpha_p, NULL,           0, 1, 0,  0,  0, 0, "predicted distention (the EOS of the ghost uses it)") \
   X(double,  dalpha_dt, NULL,         0, 1, 0,  0, -1, 0, "rate of change of the distention") \
   X(double,  rho_full, NULL,          0, 1, 1, -3,  0, 0, "density integrated by the continuity equation") \
