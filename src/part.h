@@ -128,6 +128,7 @@ enum part_flags {
   /* fracture (tasks/damage): Grady-Kipp damage with Weibull flaws */                              \
   X(double,  dmg, "Damage",           0, 1, 0,  0,  0, PART_IC_OPT | PART_SNAP, "tensile damage d in [0, 1] (Grady & Kipp 1980; Benz & Asphaug 1995)") \
   X(double,  dcbrt, "DamageCubeRoot", 0, 1, 0,  0,  0, PART_IC_OPT | PART_SNAP, "d^(1/3), the integrated variable of the damage model") \
+  X(double,  dmg_shear, "ShearDamage", 0, 1, 0,  0,  0, PART_IC_OPT | PART_SNAP, "shear (compressive) damage D_s in [0, 1] from the plastic strain (Collins et al. 2004)") \
   X(int32_t, n_act, "ActiveFlaws",    0, 1, 0,  0,  0, PART_SNAP, "number of activated flaws") \
   X(int32_t, n_flaws, "NumberOfFlaws", 0, 1, 0, 0,  0, PART_SNAP, "number of flaws of the particle") \
   X(int64_t, flaw_first, NULL,        0, 1, 0,  0,  0, 0, "index of the particle's first flaw threshold in the engine's flat array") \

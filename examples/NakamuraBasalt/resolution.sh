@@ -7,7 +7,7 @@
 set -uo pipefail
 cd "$(dirname "$0")"
 top=${TOP:-../..}
-build=${BOLIDE_BUILD:-$top/_build}
+build=$(cd "${BOLIDE_BUILD:-$top/_build}" && pwd)
 python=${PYTHON:-$build/.venv/bin/python}
 limit=${LIMIT:-0}
 runs=()

@@ -7,7 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 top=${TOP:-../..}
-build=${BOLIDE_BUILD:-$top/_build}
+build=$(cd "${BOLIDE_BUILD:-$top/_build}" && pwd)
 python=${PYTHON:-$build/.venv/bin/python}
 n=${1:-40000}
 threads=${2:-2}
