@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # NakamuraBasalt: initial conditions, run, fragments and intact core.
-# Usage: ./run.sh [N] [THREADS]   (N: target particles, default 40000, about
+# Usage: ./run.sh [N] [THREADS]   (N: target particles, default 20000, about
 # ten minutes on 2 cores; the bullet gets particles of the same spacing)
 # Writes, in run_N/: the snapshots, fragments_*.txt (bolide-fof tables),
 # core.txt (intact-core fraction against time), spectrum.png.
@@ -9,7 +9,7 @@ cd "$(dirname "$0")"
 top=${TOP:-../..}
 build=$(cd "${BOLIDE_BUILD:-$top/_build}" && pwd)
 python=${PYTHON:-$build/.venv/bin/python}
-n=${1:-40000}
+n=${1:-20000}
 threads=${2:-2}
 # bullet: 0.2 g of lucite (1186 kg/m^3) against 0.30536 kg of basalt (2700
 # kg/m^3): equal spacing gives it N x 1.49e-3 particles
