@@ -37,7 +37,7 @@ def fof(snap, build):
 
 
 def analyse(run, build):
-    snaps = sorted(glob.glob(os.path.join(run, "nakamura_*.hdf5")))
+    snaps = sorted(glob.glob(os.path.join(run, "nakamura_[0-9]*.hdf5")))
     if not snaps:
         sys.exit("%s: no snapshots" % run)
     with h5py.File(snaps[0], "r") as f:

@@ -30,5 +30,5 @@ t0=$(date +%s)
 echo "run: $(( $(date +%s) - t0 )) s wall on $threads threads ($(nproc) cores here)" | tee "$dir/wall.txt"
 grep -E "Weibull flaws|done:" "$dir/bolide.log"
 BOLIDE_BUILD=$build "$python" analyse.py "$dir"
-last=$(ls "$dir"/nakamura_*.hdf5 | tail -1)
+last=$(ls "$dir"/nakamura_[0-9]*.hdf5 | tail -1)
 PYTHONPATH=$top/tools "$python" $top/tools/plot_snapshot.py "$last" --colour damage --out "$dir/damage.png"
