@@ -40,6 +40,13 @@ struct gpu_leaves {
   int nr_ngb;              /**< number of entries */
 };
 
+/** Damage in a FORCE phase (brittle materials, tasks/damage). */
+struct gpu_damage {
+  int enabled;       /**< run the damage task after the forces (flaws: gpu_set_flaws) */
+  double dt;         /**< step over which damage grows (0 at the first force computation) */
+  double max_change; /**< Damage:max_change, the time-step limit */
+};
+
 /** What a FORCE phase reports besides the particle fields. */
 struct gpu_force_out {
   int capped;     /**< some h hit the top-level cells' cap: rebuild */
@@ -56,9 +63,15 @@ const char *gpu_name(const struct gpu *g);
 /** 1 if every material of mats can be evaluated on the device, else 0 with
  *  the reason in why (tabulated EOS: host pointers). */
 int gpu_supports(const struct material_table *mats, char *why, size_t len);
+/** Copy the flat array of Weibull flaw thresholds (n of them, indexed by the
+ *  particles' flaw_first) to the device, where the damage kernel reads it;
+ *  again whenever the array changes. */
+void gpu_set_flaws(struct gpu *g, const double *eps, size_t n);
 /** Run the FORCE phase on the particles p: density, h iteration (repeating
- *  the density sums of unconverged particles), equation of state, forces,
- *  second half kick by dt_kick and new time steps.  resident = 0: copy what
+ *  the density sums of unconverged particles), equation of state, with
+ *  solids (hp->solids) the gradient loop and the extra ghost (plasticity,
+ *  dS/dt), forces, with dmg->enabled the damage update, second half kick by
+ *  dt_kick and new time steps.  resident = 0: copy what
  *  the loops read to the device first and the results back after;
  *  resident = 1: the device arrays are current (gpu_upload_all), nothing
  *  but the leaf time steps comes back.  leaf_dt_min[L]: smallest new time
@@ -66,7 +79,8 @@ int gpu_supports(const struct material_table *mats, char *why, size_t len);
  *  hp->max_iterations stops the run with an error. */
 void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu_leaves *lv,
                      const struct hydro_props *hp, const struct material_table *mats,
-                     double dt_kick, double *leaf_dt_min, int resident, struct gpu_force_out *out);
+                     const struct gpu_damage *dmg, double dt_kick, double *leaf_dt_min,
+                     int resident, struct gpu_force_out *out);
 /** Copy every particle field to the device (after a rebuild or a restart). */
 void gpu_upload_all(struct gpu *g, const struct parts *p);
 /** Copy every particle field back to the host (outputs, rebuilds). */

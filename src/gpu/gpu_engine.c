@@ -285,8 +285,8 @@ static int gpu_cells_valid(const struct gpu_cells *gc, const struct space *s,
 int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct space *s,
                     struct cell *const *tcells, int nr, const struct engine_cell_tasks *ct,
                     const double *tc_h_cap, const struct hydro_props *hp,
-                    const struct material_table *mats, double dt_kick, int resident,
-                    double *tc_dt_min) {
+                    const struct material_table *mats, const struct gpu_damage *dmg,
+                    double dt_kick, int resident, double *tc_dt_min) {
   /* lists a quarter wider than the current h_max, widened when h outgrows them */
   double growth = gc->growth > 1.25 ? 0.97 * gc->growth : 1.25;
   if (growth < 1.25) growth = 1.25;
@@ -309,7 +309,7 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
     const struct gpu_leaves lv = {gc->n,        gc->offset,     gc->count,
                                   gc->h_cap,    gc->h_list_cap, gc->ngb_start,
                                   gc->ngb_leaf, gc->ngb_shift,  gc->nr_ngb};
-    gpu_force_phase(g, p, &lv, hp, mats, dt_kick, leaf_dt, resident, &out);
+    gpu_force_phase(g, p, &lv, hp, mats, dmg, dt_kick, leaf_dt, resident, &out);
     if (!out.overflow) break;
     if (attempt > 30)
       error_bug("GPU neighbour lists did not cover the smoothing lengths after %d widenings",
@@ -345,12 +345,11 @@ void gpu_engine_init(struct engine *e) {
     return;
   }
   char why[256];
-  /* the GPU runs the hydrodynamic phase as a whole: gravity, the gradient
-   * loop of solids, XSPH and the continuity equation have no GPU
+  /* the GPU runs the hydrodynamic phase as a whole (solids and damage
+   * included): gravity, XSPH and the continuity equation have no GPU
    * implementation yet */
   const char *unsupported = e->gp.enabled      ? "self-gravity has no GPU implementation yet"
                             : !e->hp.enabled   ? "hydrodynamics is off"
-                            : e->hp.solids     ? "material strength has no GPU implementation yet"
                             : e->hp.xsph > 0.0 ? "XSPH has no GPU implementation yet"
                             : e->hp.continuity ? "the continuity equation has no GPU implementation yet"
                                                : NULL;
@@ -376,10 +375,13 @@ void gpu_engine_init(struct engine *e) {
   struct gpu_engine *ge = error_calloc(1, sizeof *ge, "GPU state");
   ge->gpu = g;
   e->gpu = ge;
+  /* the flaw thresholds never change during a run: on the device once */
+  if (e->damage) gpu_set_flaws(g, e->flaw_eps, (size_t)e->nr_flaws);
   error_log(0,
-            "GPU %s: drift, density, ghost, force and kick2 of every cell run on it, the particles "
-            "stay on it between steps",
-            gpu_name(g));
+            "GPU %s: drift, density, ghost, %sforce, %skick2 of every cell run on it, the "
+            "particles stay on it between steps",
+            gpu_name(g), e->hp.solids ? "gradient, extra ghost (plasticity, dS/dt), " : "",
+            e->damage ? "damage, " : "");
 }
 
 void gpu_engine_force(struct engine *e) {
@@ -404,8 +406,9 @@ void gpu_engine_force(struct engine *e) {
     ge->dev_valid = 1;
   }
   ge->host_stale = 1;
+  const struct gpu_damage dmg = {e->damage, e->first_force ? 0.0 : e->dt, e->damage_max_change};
   if (gpu_cells_force(ge->gpu, &ge->cells, &e->parts, &e->space, e->tcells, e->nr_tcells, e->ct,
-                      ge->tc_h_cap, &e->hp, e->mats, dt_kick, 1, e->cell_dt_min))
+                      ge->tc_h_cap, &e->hp, e->mats, &dmg, dt_kick, 1, e->cell_dt_min))
     e->need_rebuild = 1;
 }
 

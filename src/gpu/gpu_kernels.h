@@ -46,13 +46,25 @@ void ghost_gpu_step_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev
 /** Grad-h factor, EOS, Balsara switch, force sums zeroed. */
 void ghost_gpu_finish_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
                              struct hydro_props hp, const struct material_table *mats);
+/** Gradient sums (solids), gather form with r < H_i (tasks/gradient/gradient_gpu.cu). */
+void gradient_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv);
+/** Extra ghost of every particle: corrected velocity gradient, plasticity,
+ *  dS/dt, artificial stress (tasks/gradient/gradient_gpu.cu). */
+void extra_ghost_gpu_launch(cudaStream_t s, struct parts p, struct hydro_props hp,
+                            const struct material_table *mats);
+/** Damage update of every particle over the step dt, flaw thresholds eps
+ *  (tasks/damage/damage_gpu.cu). */
+void damage_gpu_launch(cudaStream_t s, struct parts p, const struct material_table *mats,
+                       const double *eps, double dt);
 /** Forces, gather form with r < max(H_i, H_j) (tasks/force/force_gpu.cu). */
 void force_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
                       struct hydro_props hp);
 /** First half kick and drift of every particle (tasks/drift/drift_gpu.cu). */
 void drift_gpu_launch(cudaStream_t s, struct parts p, double dt_kick, double dt);
-/** Second half kick and time step; leaf_dt[L] the smallest of leaf L (tasks/kick/kick_gpu.cu). */
+/** Second half kick and time step; leaf_dt[L] the smallest of leaf L; with
+ *  damage_max_change > 0 the damage limit joins (tasks/kick/kick_gpu.cu). */
 void kick2_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
-                      struct hydro_props hp, double dt_kick, double *leaf_dt);
+                      struct hydro_props hp, double dt_kick, double damage_max_change,
+                      double *leaf_dt);
 
 #endif
