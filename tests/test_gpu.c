@@ -18,7 +18,9 @@
  * partly damaged, so that plasticity and flaw activation and growth all
  * happen: the test fails if any of them does not).  All are jittered
  * lattices with h off by up to 40% so that the h iteration runs several
- * rounds.  Exits 77 (skip) when there is no CUDA device. */
+ * rounds.  Near-field gravity: the tree walk's P2P interactions on the GPU
+ * against the CPU walk (run_gravity_case).  Exits 77 (skip) when there is
+ * no CUDA device. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -32,6 +34,7 @@
 #include "force/force_cpu.h"
 #include "ghost/ghost_cpu.h"
 #include "gradient/gradient_cpu.h"
+#include "gravity/gravity_cpu.h"
 #include "gpu/gpu_engine.h"
 #include "hydro_parts.h"
 #include "kernel.h"
@@ -421,6 +424,88 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
   return fail;
 }
 
+/** Near-field gravity: the tree method on the CPU (gravity_tree_all) against
+ *  the same walk with its P2P interactions recorded and computed on the GPU
+ *  (gpu_gravity_p2p_list).  Everything but the P2P sums is the same CPU code
+ *  in the same order, so potentials and accelerations must agree to 1e-10
+ *  (accelerations relative to |a_i| + 1e-3 max |a|).  n particles uniform in
+ *  a unit sphere, equal masses, G = 1.  Returns the number of failures. */
+static int run_gravity_case(struct gpu *g, size_t n, int softening, unsigned long long seed) {
+  unsigned long long s = seed;
+  struct parts p, q;
+  parts_alloc(&p, n);
+  for (size_t i = 0; i < n;) {
+    const double x = 2.0 * urand(&s) - 1.0, y = 2.0 * urand(&s) - 1.0, z = 2.0 * urand(&s) - 1.0;
+    if (x * x + y * y + z * z >= 1.0) continue;
+    p.x[i] = 2.0 + x, p.y[i] = 2.0 + y, p.z[i] = 2.0 + z;
+    p.m[i] = 1.0 / (double)n;
+    p.h[i] = 0.05;
+    p.id[i] = (int64_t)i;
+    i++;
+  }
+  const double box[3] = {4.0, 4.0, 4.0};
+  struct space sp;
+  space_init(&sp, &p, box, 0, 32, 4);
+  space_rebuild(&sp);
+  parts_alloc(&q, n);
+  for (int f = 0; f < part_nr_fields; f++)
+    memcpy(part_field_array(&q, &part_fields[f]), part_field_array(&p, &part_fields[f]),
+           n * part_fields[f].size);
+  struct gravity_props gp;
+  gravity_props_set(&gp, 1.0, 0.5, 2e-3, softening, GRAVITY_ORDER_DEFAULT);
+  int cap = 0;
+  struct gravity_cell *gc = gravity_cells_reserve(NULL, &cap, sp.cells_capacity);
+  double t0 = error_walltime();
+  gravity_tree_all(&p, sp.cells, sp.nr_top, gc, &gp);
+  const double t_cpu = error_walltime() - t0;
+
+  /* the same walk on the copy, P2P recorded, then on the GPU */
+  sp.parts = &q;
+  memset(gc, 0, (size_t)cap * sizeof *gc);
+  struct gravity_p2p_list list;
+  memset(&list, 0, sizeof list);
+  t0 = error_walltime();
+  gravity_p2p_record(&list);
+  gravity_tree_all(&q, sp.cells, sp.nr_top, gc, &gp);
+  gravity_p2p_record(NULL);
+  const double t_walk = error_walltime() - t0;
+  t0 = error_walltime();
+  gpu_gravity_p2p_list(g, &q, &list, &gp);
+  const double t_gpu = error_walltime() - t0;
+
+  double amax = 0.0;
+  for (size_t i = 0; i < n; i++)
+    amax = fmax(amax, sqrt(p.gax[i] * p.gax[i] + p.gay[i] * p.gay[i] + p.gaz[i] * p.gaz[i]));
+  double wa = 0.0;
+  for (size_t i = 0; i < n; i++) {
+    const double ai = sqrt(p.gax[i] * p.gax[i] + p.gay[i] * p.gay[i] + p.gaz[i] * p.gaz[i]);
+    const double d[3] = {q.gax[i] - p.gax[i], q.gay[i] - p.gay[i], q.gaz[i] - p.gaz[i]};
+    const double e = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / (ai + 1e-3 * amax);
+    if (!(e <= wa)) wa = isnan(e) ? INFINITY : e;
+  }
+  const double wp = worst_rel(q.pot, p.pot, n, 0.0);
+  printf(
+      "gravity, %zu particles in a sphere, %s softening: CPU tree %.3f s; walk with P2P recorded "
+      "%.3f s, %zu leaf interactions on the GPU %.3f s\n",
+      n, softening == GRAVITY_SOFTENING_PLUMMER ? "Plummer" : "spline", t_cpu, t_walk, list.n,
+      t_gpu);
+  int fail = 0;
+  printf("  ga      worst relative difference %.3e%s\n", wa, wa < 1e-10 ? "" : "  FAIL (> 1e-10)");
+  fail += !(wa < 1e-10);
+  printf("  pot     worst relative difference %.3e%s\n", wp, wp < 1e-10 ? "" : "  FAIL (> 1e-10)");
+  fail += !(wp < 1e-10);
+  if (list.n == 0) {
+    printf("  FAIL: the walk recorded no P2P interaction\n");
+    fail++;
+  }
+  gravity_p2p_list_free(&list);
+  free(gc);
+  space_free(&sp);
+  parts_free(&p);
+  parts_free(&q);
+  return fail;
+}
+
 int main(int argc, char **argv) {
   (void)argc;
   error_init(argv[0]);
@@ -435,6 +520,8 @@ int main(int argc, char **argv) {
   fail += run_case(g, 1, 24, KIND_GAS, 12345);
   fail += run_case(g, 0, 20, KIND_GRANITE, 777);
   fail += run_case(g, 0, 20, KIND_BASALT_SOLID, 4242);
+  fail += run_gravity_case(g, 40000, GRAVITY_SOFTENING_SPLINE, 99);
+  fail += run_gravity_case(g, 20000, GRAVITY_SOFTENING_PLUMMER, 98);
   gpu_print_timers(g, stdout);
   gpu_free(g);
   printf("%s\n", fail ? "FAIL" : "PASS");

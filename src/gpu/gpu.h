@@ -55,6 +55,19 @@ struct gpu_force_out {
   int iterations; /**< rounds of the h iteration */
 };
 
+/** The near-field gravity of a tree walk as particle ranges: target range
+ *  T (a leaf) receives from the source ranges [src_start[T], src_start[T+1])
+ *  (leaves; a leaf may be its own source: a particle skips itself). */
+struct gpu_p2p {
+  int n;                  /**< target ranges */
+  const size_t *t_offset; /**< first particle of each */
+  const int *t_count;     /**< its particles */
+  const int *src_start;   /**< n + 1 */
+  const size_t *s_offset; /**< first particle of each source range */
+  const int *s_count;     /**< its particles */
+  int nr_src;             /**< number of source ranges */
+};
+
 /** Find a CUDA device (cudaGetDeviceCount) and set it up; NULL when there
  *  is none, with the reason in why. */
 struct gpu *gpu_init(char *why, size_t len);
@@ -81,6 +94,12 @@ void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu_leaves *lv
                      const struct hydro_props *hp, const struct material_table *mats,
                      const struct gpu_damage *dmg, double dt_kick, double *leaf_dt_min,
                      int resident, struct gpu_force_out *out);
+/** Near-field (P2P) gravity on the device: the potential and acceleration
+ *  of every target particle from its source ranges (gravity_p2p of
+ *  gravity_iact.h with constant G, softening eps and kernel softening),
+ *  added to p's pot, gax, gay, gaz (copied to the device and back). */
+void gpu_gravity_p2p(struct gpu *g, struct parts *p, const struct gpu_p2p *l, double G, double eps,
+                     int softening);
 /** Copy every particle field to the device (after a rebuild or a restart). */
 void gpu_upload_all(struct gpu *g, const struct parts *p);
 /** Copy every particle field back to the host (outputs, rebuilds). */

@@ -331,6 +331,52 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
   return out.capped;
 }
 
+/** Order of recorded P2P interactions: by target leaf, then by source. */
+static const struct gravity_p2p_list *gpu_p2p_sort_list;
+static int gpu_p2p_cmp(const void *a, const void *b) {
+  const struct gravity_p2p_list *l = gpu_p2p_sort_list;
+  const size_t i = *(const size_t *)a, j = *(const size_t *)b;
+  const size_t ti = l->target[i]->offset, tj = l->target[j]->offset;
+  if (ti != tj) return ti < tj ? -1 : 1;
+  const size_t si = l->source[i]->offset, sj = l->source[j]->offset;
+  return (si > sj) - (si < sj);
+}
+
+void gpu_gravity_p2p_list(struct gpu *g, struct parts *p, const struct gravity_p2p_list *l,
+                          const struct gravity_props *gp) {
+  const size_t n = l->n;
+  size_t *order = error_malloc((n + 1) * sizeof(size_t), "P2P list");
+  for (size_t k = 0; k < n; k++) order[k] = k;
+  gpu_p2p_sort_list = l;
+  qsort(order, n, sizeof(size_t), gpu_p2p_cmp);
+  size_t *t_offset = error_malloc((n + 1) * sizeof(size_t), "P2P list");
+  size_t *s_offset = error_malloc((n + 1) * sizeof(size_t), "P2P list");
+  int *t_count = error_malloc((n + 1) * sizeof(int), "P2P list");
+  int *s_count = error_malloc((n + 1) * sizeof(int), "P2P list");
+  int *src_start = error_malloc((n + 2) * sizeof(int), "P2P list");
+  int nt = 0;
+  for (size_t k = 0; k < n; k++) {
+    const struct cell *t = l->target[order[k]], *sc = l->source[order[k]];
+    if (nt == 0 || t_offset[nt - 1] != t->offset) {
+      t_offset[nt] = t->offset;
+      t_count[nt] = (int)t->count;
+      src_start[nt] = (int)k;
+      nt++;
+    }
+    s_offset[k] = sc->offset;
+    s_count[k] = (int)sc->count;
+  }
+  src_start[nt] = (int)n;
+  const struct gpu_p2p dl = {nt, t_offset, t_count, src_start, s_offset, s_count, (int)n};
+  gpu_gravity_p2p(g, p, &dl, gp->G, gp->eps, gp->softening);
+  free(order);
+  free(t_offset);
+  free(s_offset);
+  free(t_count);
+  free(s_count);
+  free(src_start);
+}
+
 void gpu_engine_init(struct engine *e) {
   const char *policy = params_get_string(e->params, "Scheduler:gpu");
   if (strcmp(policy, "auto") && strcmp(policy, "all") && strcmp(policy, "off"))

@@ -6,6 +6,7 @@
 
 #include "engine.h"
 #include "gpu.h"
+#include "gravity/gravity_cpu.h"
 
 struct gpu_cells_job;
 
@@ -59,6 +60,12 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
                     const double *tc_h_cap, const struct hydro_props *hp,
                     const struct material_table *mats, const struct gpu_damage *dmg,
                     double dt_kick, int resident, double *tc_dt_min);
+
+/** The P2P interactions recorded by gravity walks (gravity_p2p_record) on
+ *  the GPU g: grouped by target leaf and added to p's pot and ga with the
+ *  constants of gp (gpu_gravity_p2p). */
+void gpu_gravity_p2p_list(struct gpu *g, struct parts *p, const struct gravity_p2p_list *l,
+                          const struct gravity_props *gp);
 
 /** Choose where tasks run from Scheduler:gpu and --gpu/--no-gpu, set
  *  e->gpu when the FORCE phase goes to a device, and say so in one line. */

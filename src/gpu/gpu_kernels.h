@@ -30,6 +30,17 @@ struct gpu_leaves_dev {
   const double *ngb_shift;  /**< 3 per entry */
 };
 
+/** The P2P ranges of the near-field gravity in device memory (struct gpu_p2p). */
+struct gpu_p2p_dev {
+  int n;                  /**< target ranges */
+  int block;              /**< threads per block (<= GPU_BLOCK) */
+  const size_t *t_offset; /**< first particle of each target range */
+  const int *t_count;     /**< its particles */
+  const int *src_start;   /**< n + 1: target T's sources are [src_start[T], src_start[T+1]) */
+  const size_t *s_offset; /**< first particle of each source range */
+  const int *s_count;     /**< its particles */
+};
+
 /** Counters of the h iteration in device memory. */
 enum gpu_counter { GPU_LEFT = 0, GPU_CAPPED = 1, GPU_OVERFLOW = 2, GPU_NR_COUNTERS = 4 };
 
@@ -56,6 +67,10 @@ void extra_ghost_gpu_launch(cudaStream_t s, struct parts p, struct hydro_props h
  *  (tasks/damage/damage_gpu.cu). */
 void damage_gpu_launch(cudaStream_t s, struct parts p, const struct material_table *mats,
                        const double *eps, double dt);
+/** Near-field gravity: P2P of every target range from its source ranges,
+ *  added to pot and ga (tasks/gravity/gravity_gpu.cu). */
+void gravity_p2p_gpu_launch(cudaStream_t s, struct parts p, struct gpu_p2p_dev l, double G,
+                            double eps, int softening);
 /** Forces, gather form with r < max(H_i, H_j) (tasks/force/force_gpu.cu). */
 void force_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
                       struct hydro_props hp);
