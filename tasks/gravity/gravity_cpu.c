@@ -565,8 +565,8 @@ int gravity_top_pair_is_near(const struct cell *ci, const struct cell *cj,
                              const struct gravity_props *gp) {
   double ri2 = 0.0, rj2 = 0.0, d2 = 0.0;
   for (int k = 0; k < 3; k++) {
-    const double wi = ci->bmax[k] - ci->bmin[k] + 2.0 * ci->dx_max;
-    const double wj = cj->bmax[k] - cj->bmin[k] + 2.0 * cj->dx_max;
+    const double wi = ci->bmax[k] - ci->bmin[k];
+    const double wj = cj->bmax[k] - cj->bmin[k];
     const double d = 0.5 * (cj->bmin[k] + cj->bmax[k] - ci->bmin[k] - ci->bmax[k]);
     ri2 += 0.25 * wi * wi;
     rj2 += 0.25 * wj * wj;
