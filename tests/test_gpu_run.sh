@@ -7,6 +7,8 @@
 #     6,000 particles) at 2 km/s and 45 degrees, 40 steps through the
 #     contact: Tillotson, Collins strength, artificial stress, Grady-Kipp
 #     damage with Weibull flaws (the solid + damage FORCE phase on the GPU).
+#  3. Evrard collapse (7,208 particles, hydro + tree self-gravity), 40 steps:
+#     the tree walks on the CPU, their P2P interactions on the GPU.
 # The runs differ only by the order of the SPH sums (round-off, ~1e-15
 # relative per step, amplified along the run), so every column must agree
 # to 1e-8 relative to its scale (mass, E_tot, or sum m|v| for momenta).
@@ -87,7 +89,16 @@ run impact 40
 grep -q "gradient, extra ghost (plasticity, dS/dt), force, damage, kick2" impact/gpu/run.log ||
   { echo "FAIL: the solid + damage run did not run its FORCE phase on the GPU"; exit 1; }
 
+mkdir -p evrard/cpu evrard/gpu
+"${PYTHON:-python3}" "$S/examples/EvrardCollapse/make_ic.py" 24 evrard/cpu/evrard.hdf5 >/dev/null
+cp evrard/cpu/evrard.hdf5 evrard/gpu/
+for m in cpu gpu; do cp "$S/examples/EvrardCollapse/params.yml" evrard/$m/; done
+run evrard 40
+grep -q "self-gravity: the tree walks on the CPU, their P2P on the GPU" evrard/gpu/run.log ||
+  { echo "FAIL: the gravity run did not use the GPU"; exit 1; }
+
 fail=0
 compare sedov || fail=1
 compare impact || fail=1
+compare evrard || fail=1
 exit $fail

@@ -304,8 +304,9 @@ static void gpu_read_counters(struct gpu *g) {
 
 extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu_leaves *lv,
                                 const struct hydro_props *hp, const struct material_table *mats,
-                                const struct gpu_damage *dmg, double dt_kick, double *leaf_dt_min,
-                                int resident, struct gpu_force_out *out) {
+                                const struct gpu_damage *dmg, const struct gpu_gravity *grav,
+                                double dt_kick, double *leaf_dt_min, int resident,
+                                struct gpu_force_out *out) {
   cudaStream_t s = g->stream[0];
   memset(out, 0, sizeof *out);
   const int damage = dmg && dmg->enabled;
@@ -368,7 +369,9 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
   if (damage) damage_gpu_launch(s, g->dev, g->mats_dev, g->flaws_dev, dmg->dt);
   gpu_check(cudaEventRecord(g->ev[6], s));
   double *leaf_dt = g->leaf_dt;
-  kick2_gpu_launch(s, g->dev, dv, *hp, dt_kick, damage ? dmg->max_change : 0.0, leaf_dt);
+  struct gpu_gravity gr = {0, 0.0, 0.0};
+  if (grav) gr = *grav;
+  kick2_gpu_launch(s, g->dev, dv, *hp, dt_kick, damage ? dmg->max_change : 0.0, gr, leaf_dt);
   gpu_check(cudaEventRecord(g->ev[7], s));
   if (!resident) gpu_copy_fields(g, p, g->out, nr_out, 0);
   gpu_check(cudaMemcpyAsync(leaf_dt_min, leaf_dt, (size_t)lv->n * sizeof(double),

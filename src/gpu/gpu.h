@@ -47,6 +47,15 @@ struct gpu_damage {
   double max_change; /**< Damage:max_change, the time-step limit */
 };
 
+/** Self-gravity in a FORCE phase: the gravitational accelerations (gax,
+ *  gay, gaz, complete on the device: gpu_gravity_p2p) join the
+ *  hydrodynamic ones in the kick, and their time-step criterion joins. */
+struct gpu_gravity {
+  int enabled; /**< add ga in the kick */
+  double eps;  /**< softening (time step criterion when > 0) */
+  double eta;  /**< Gravity:eta */
+};
+
 /** What a FORCE phase reports besides the particle fields. */
 struct gpu_force_out {
   int capped;     /**< some h hit the top-level cells' cap: rebuild */
@@ -84,7 +93,8 @@ void gpu_set_flaws(struct gpu *g, const double *eps, size_t n);
  *  the density sums of unconverged particles), equation of state, with
  *  solids (hp->solids) the gradient loop and the extra ghost (plasticity,
  *  dS/dt), forces, with dmg->enabled the damage update, second half kick by
- *  dt_kick and new time steps.  resident = 0: copy what
+ *  dt_kick (with grav->enabled adding the gravitational acceleration already
+ *  on the device) and new time steps.  resident = 0: copy what
  *  the loops read to the device first and the results back after;
  *  resident = 1: the device arrays are current (gpu_upload_all), nothing
  *  but the leaf time steps comes back.  leaf_dt_min[L]: smallest new time
@@ -92,8 +102,8 @@ void gpu_set_flaws(struct gpu *g, const double *eps, size_t n);
  *  hp->max_iterations stops the run with an error. */
 void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu_leaves *lv,
                      const struct hydro_props *hp, const struct material_table *mats,
-                     const struct gpu_damage *dmg, double dt_kick, double *leaf_dt_min,
-                     int resident, struct gpu_force_out *out);
+                     const struct gpu_damage *dmg, const struct gpu_gravity *grav, double dt_kick,
+                     double *leaf_dt_min, int resident, struct gpu_force_out *out);
 /** Near-field (P2P) gravity on the device: the potential and acceleration
  *  of every target particle from its source ranges (gravity_p2p of
  *  gravity_iact.h with constant G, softening eps and kernel softening),

@@ -52,14 +52,16 @@ void gpu_cells_free(struct gpu_cells *gc);
 
 /** Run one FORCE phase on the GPU g over the task cells tcells[0..nr) of s
  *  (neighbours ct): build the lists, run, and when some h outgrows them
- *  rebuild them wider and run again.  dmg: damage (NULL or !enabled: none).  tc_dt_min[t]: the smallest new time
+ *  rebuild them wider and run again.  dmg: damage, grav: gravity in the
+ *  kick (NULL or !enabled: none).  tc_dt_min[t]: the smallest new time
  *  step of task cell t.  resident: as gpu_force_phase.  Returns 1 if a smoothing length was capped
  * by the cells (the space must be rebuilt), else 0. */
 int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct space *s,
                     struct cell *const *tcells, int nr, const struct engine_cell_tasks *ct,
                     const double *tc_h_cap, const struct hydro_props *hp,
                     const struct material_table *mats, const struct gpu_damage *dmg,
-                    double dt_kick, int resident, double *tc_dt_min);
+                    const struct gpu_gravity *grav, double dt_kick, int resident,
+                    double *tc_dt_min);
 
 /** The P2P interactions recorded by gravity walks (gravity_p2p_record) on
  *  the GPU g: grouped by target leaf and added to p's pot and ga with the

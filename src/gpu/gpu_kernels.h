@@ -5,6 +5,7 @@
 
 #include <cuda_runtime.h>
 
+#include "gpu.h"
 #include "gpu_check.h"
 #include "hydro_props.h"
 #include "part.h"
@@ -77,9 +78,10 @@ void force_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
 /** First half kick and drift of every particle (tasks/drift/drift_gpu.cu). */
 void drift_gpu_launch(cudaStream_t s, struct parts p, double dt_kick, double dt);
 /** Second half kick and time step; leaf_dt[L] the smallest of leaf L; with
- *  damage_max_change > 0 the damage limit joins (tasks/kick/kick_gpu.cu). */
+ *  damage_max_change > 0 the damage limit joins, with grav.enabled the
+ *  gravitational acceleration and its limit (tasks/kick/kick_gpu.cu). */
 void kick2_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
                       struct hydro_props hp, double dt_kick, double damage_max_change,
-                      double *leaf_dt);
+                      struct gpu_gravity grav, double *leaf_dt);
 
 #endif
