@@ -63,6 +63,18 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
                     const struct gpu_gravity *grav, double dt_kick, int resident,
                     double *tc_dt_min);
 
+/** Host arrays of the P2P interactions grouped by target leaf (gpu_p2p_group). */
+struct gpu_p2p_host {
+  struct gpu_p2p view;         /**< the ranges, as gpu_gravity_p2p reads them */
+  size_t *t_offset, *s_offset; /**< storage of the view */
+  int *t_count, *s_count, *src_start;
+  size_t cap, tcap; /**< allocated sources and targets */
+};
+/** Group the interactions of l by target leaf (counting sort by cell
+ *  index; within a target, in recording order) into out (grown, kept). */
+void gpu_p2p_group(const struct gravity_p2p_list *l, struct gpu_p2p_host *out);
+/** Free the arrays of h and zero it. */
+void gpu_p2p_host_free(struct gpu_p2p_host *h);
 /** The P2P interactions recorded by gravity walks (gravity_p2p_record) on
  *  the GPU g: grouped by target leaf and added to p's pot and ga with the
  *  constants of gp (gpu_gravity_p2p). */
