@@ -75,6 +75,13 @@ struct engine {
   int gcells_cap;                 /**< its allocated length */
   struct sched_lock *glocks;      /**< per top-level cell: taken by gravity tasks writing it */
   struct task **grav_down;        /**< per top-level cell: its gravity_down task (or NULL) */
+  struct gravity_ilist *gilists;  /**< interaction list of each gravity task, by task id
+                                       (Gravity:reuse_steps > 0; else NULL) */
+  int nr_gilists;                 /**< their number */
+  double *grav_x0;                /**< positions at the last full gravity evaluation (reuse) */
+  double grav_d_min;              /**< shortest far-field distance of that evaluation */
+  int grav_reused;                /**< steps since it that reused its far field */
+  long grav_replays;              /**< steps of the run that reused the far field */
   int *tcell_top;                 /**< top-level cell of each task cell */
   struct engine_cell_tasks *ct;   /**< per task cell */
   int nr_ct;                      /**< number of entries of ct */

@@ -126,6 +126,10 @@ static void engine_graph_free(struct engine *e) {
   e->grav_down = NULL;
   free(e->glocks);
   e->glocks = NULL;
+  for (int k = 0; k < e->nr_gilists; k++) gravity_ilist_free(&e->gilists[k]);
+  free(e->gilists);
+  e->gilists = NULL;
+  e->nr_gilists = 0;
 }
 
 /** The gravity tasks of the top-level cells (see the top comment). */
@@ -313,6 +317,11 @@ void engine_make_graph(struct engine *e) {
     engine_phase_add(e, ENGINE_PHASE_FORCE, d, cap);
   } else if (e->gp.enabled) {
     engine_make_gravity_tasks(e, first, cap);
+    if (e->gp.reuse_steps > 0) {
+      /* the gravity tasks are the first sched->nr_tasks: one list each */
+      e->nr_gilists = sched->nr_tasks;
+      e->gilists = error_calloc(e->nr_gilists, sizeof *e->gilists, "gravity interaction lists");
+    }
   }
   if (!e->hp.enabled) {
     free(first);

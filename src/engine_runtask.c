@@ -81,6 +81,25 @@ static void engine_kick2(struct engine *e, int t) {
   e->cell_dt_min[t] = dt;
 }
 
+/** A gravity walk task: self (cj == ci), near pair, or long range (cj
+ *  NULL); records its particle-level interactions when the far field may
+ *  be reused, or replays them on a step that reuses it. */
+static void engine_gravity_task(struct engine *e, const struct task *t, const struct cell *ci,
+                                const struct cell *cj) {
+  struct parts *p = &e->parts;
+  struct gravity_ilist *il = t->id < e->nr_gilists ? &e->gilists[t->id] : NULL;
+  if (e->gp.replay) {
+    gravity_replay(p, il, e->gcells, &e->gp);
+    return;
+  }
+  gravity_record_begin(il);
+  if (cj)
+    gravity_interact_cells(p, ci, cj, e->gcells, &e->gp);
+  else
+    gravity_long_range(p, ci, e->space.cells, e->space.nr_top, e->gcells, &e->gp);
+  gravity_record_end();
+}
+
 void engine_run_task(void *ctx, struct task *t, int thread_id) {
   struct engine *e = ctx;
   struct parts *p = &e->parts;
@@ -93,7 +112,7 @@ void engine_run_task(void *ctx, struct task *t, int thread_id) {
     case task_type_self:
       /* the accumulators were zeroed by the drift (density) and the ghost (force) */
       if (t->subtype == task_subtype_grav)
-        gravity_interact_cells(p, ci, ci, e->gcells, &e->gp);
+        engine_gravity_task(e, t, ci, ci);
       else if (t->subtype == task_subtype_density)
         density_self_cpu(p, ci);
       else if (t->subtype == task_subtype_gradient)
@@ -103,7 +122,7 @@ void engine_run_task(void *ctx, struct task *t, int thread_id) {
       break;
     case task_type_pair: {
       if (t->subtype == task_subtype_grav) {
-        gravity_interact_cells(p, ci, cj, e->gcells, &e->gp);
+        engine_gravity_task(e, t, ci, cj);
         break;
       }
       const double *shift = e->pairs[e->task_pair[t->id]].shift;
@@ -130,7 +149,7 @@ void engine_run_task(void *ctx, struct task *t, int thread_id) {
       break;
     case task_type_grav_long_range:
       if (ci)
-        gravity_long_range(p, ci, e->space.cells, e->space.nr_top, e->gcells, &e->gp);
+        engine_gravity_task(e, t, ci, NULL);
       else /* Gravity:direct: exact summation in one task */
         gravity_direct(p, e->gp.G, e->gp.eps, e->gp.softening, 1);
       break;
