@@ -419,6 +419,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   e->stats_dt = params_get_real(params, "Statistics:delta_time");
   e->dump_tasks = params_get_int(params, "Scheduler:dump_tasks");
   e->cell_task_size = (int)params_get_int(params, "Scheduler:cell_task_size");
+  e->grav_task_size = (int)params_get_int(params, "Scheduler:gravity_task_size");
   engine_init_outputs(e, e->time);
   if (e->restarted) {
     e->next_out = (int)rs.next_out;

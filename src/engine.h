@@ -65,6 +65,7 @@ struct engine {
   struct cell **tcells;           /**< the task cells (engine_graph.c) */
   int nr_tcells;                  /**< their number */
   int cell_task_size;             /**< Scheduler:cell_task_size */
+  int grav_task_size;             /**< Scheduler:gravity_task_size */
   double reach;                   /**< task cells closer than this have pair tasks */
   int damage;                     /**< 1 when a material is brittle (tasks/damage) */
   double *flaw_eps;               /**< every particle's flaw thresholds, one flat array */
@@ -76,6 +77,7 @@ struct engine {
   struct gravity_cell *gcells;    /**< gravity data of every cell, by cell index */
   int gcells_cap;                 /**< its allocated length */
   struct sched_lock *glocks;      /**< per top-level cell: taken by gravity tasks writing it */
+  struct sched_lock *gsublocks;   /**< by cell index: taken by the split self-gravity tasks */
   struct task **grav_down;        /**< per top-level cell: its gravity_down task (or NULL) */
   struct gravity_ilist *gilists;  /**< interaction list of each gravity task, by task id
                                        (Gravity:reuse_steps > 0; else NULL) */

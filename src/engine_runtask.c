@@ -1,7 +1,7 @@
 /* The scheduler's callback: what each task of the engine's graph does. */
 #include <stdatomic.h>
 
-#include "damage/damage_iact.h"
+#include "damage/damage_part.h"
 #include "density/density_cpu.h"
 #include "drift/drift_cpu.h"
 #include "engine_tasks.h"
@@ -47,23 +47,7 @@ static void engine_damage(struct engine *e, int t) {
   struct parts *p = &e->parts;
   const struct cell *c = e->tcells[t];
   const double dt = e->first_force ? 0.0 : e->dt;
-  for (size_t i = c->offset; i < c->offset + c->count; i++) {
-    p->dmg_rate[i] = 0.0;
-    if (p->n_flaws[i] == 0) continue;
-    const struct material *mat = material_table_find(e->mats, p->mat[i]);
-    double S[6];
-    S[DAMAGE_XX] = p->Spxx[i];
-    S[DAMAGE_YY] = p->Spyy[i];
-    S[DAMAGE_ZZ] = p->Spzz[i];
-    S[DAMAGE_XY] = p->Spxy[i];
-    S[DAMAGE_XZ] = p->Spxz[i];
-    S[DAMAGE_YZ] = p->Spyz[i];
-    int32_t n_act = p->n_act[i];
-    p->dmg_rate[i] = damage_update_particle(mat, p->rho[i], kernel_gamma * p->h[i], p->P[i], S, e->flaw_eps,
-                                            p->flaw_first[i], p->n_flaws[i], dt, &p->dcbrt[i], &n_act,
-                                            &p->dmg[i]);
-    p->n_act[i] = n_act;
-  }
+  for (size_t i = c->offset; i < c->offset + c->count; i++) damage_part(p, i, e->mats, e->flaw_eps, dt);
 }
 
 /** Second half kick and new time step of task cell number t: the
@@ -100,7 +84,7 @@ static void engine_kick2(struct engine *e, int t) {
   if (!e->hp.enabled) dt = 1e300;
   if (e->damage)
     for (size_t i = c->offset; i < end; i++) {
-      const double dtd = damage_timestep(p->dcbrt[i], p->n_act[i], p->n_flaws[i], p->dmg_rate[i], e->damage_max_change);
+      const double dtd = damage_part_timestep(p, i, e->damage_max_change);
       if (dtd < dt) dt = dtd;
     }
   if (e->gp.enabled && e->gp.eps > 0.0)

@@ -345,9 +345,40 @@ static void p2p_block(struct parts *p, size_t i0, size_t i1, size_t j0, size_t j
   counters.p2p += self ? ni * (ni - 1) / 2 : ni * nj;
 }
 
+/** Where the calling thread's walks record their P2P interactions instead
+ *  of computing them (NULL: compute; gravity_p2p_record). */
+static _Thread_local struct gravity_p2p_list *p2p_sink;
+
+void gravity_p2p_record(struct gravity_p2p_list *l) {
+  p2p_sink = l;
+}
+
+/** Record that the particles of leaf source act on those of leaf target. */
+static void p2p_sink_add(const struct cell *target, const struct cell *source) {
+  struct gravity_p2p_list *l = p2p_sink;
+  if (l->n == l->cap) {
+    l->cap = l->cap ? 2 * l->cap : 1024;
+    l->target = error_realloc(l->target, l->cap * sizeof(struct cell *), "P2P list");
+    l->source = error_realloc(l->source, l->cap * sizeof(struct cell *), "P2P list");
+  }
+  l->target[l->n] = target;
+  l->source[l->n] = source;
+  l->n++;
+}
+
+void gravity_p2p_list_free(struct gravity_p2p_list *l) {
+  free(l->target);
+  free(l->source);
+  memset(l, 0, sizeof *l);
+}
+
 /** All pairs within leaf c, each once (symmetric). */
 static void p2p_self(struct parts *p, const struct cell *c, const struct gravity_props *gp) {
   if (recording) record(c, NULL, 0, 1);
+  if (p2p_sink) {
+    p2p_sink_add(c, c);
+    return;
+  }
   p2p_block(p, c->offset, c->offset + c->count, c->offset, c->offset + c->count, 1, 1, gp);
 }
 
@@ -356,6 +387,11 @@ static void p2p_self(struct parts *p, const struct cell *c, const struct gravity
 static void p2p_pair(struct parts *p, const struct cell *a, const struct cell *b, int symmetric,
                      const struct gravity_props *gp) {
   if (recording) record(a, b, 0, symmetric);
+  if (p2p_sink) {
+    p2p_sink_add(a, b);
+    if (symmetric) p2p_sink_add(b, a);
+    return;
+  }
   p2p_block(p, a->offset, a->offset + a->count, b->offset, b->offset + b->count, 0, symmetric, gp);
 }
 

@@ -176,6 +176,22 @@ void gravity_tree_all(struct parts *p, const struct cell *tops, int nr_top, stru
  *  splits the work over POSIX threads (gather form). */
 void gravity_direct(struct parts *p, double G, double eps, int softening, int nthreads);
 
+/** P2P interactions of leaf pairs, recorded by the walks instead of
+ *  computed (the GPU computes them: gpu_gravity_p2p_list): the particles of
+ *  source[k] act on those of target[k]; a leaf with itself appears as
+ *  target == source.  Everything else of the walk (M2L, M2P/P2L, L2P) is
+ *  computed as usual. */
+struct gravity_p2p_list {
+  size_t n, cap;              /**< interactions recorded and allocated */
+  const struct cell **target; /**< leaf receiving */
+  const struct cell **source; /**< leaf acting */
+};
+/** From now on the calling thread's walks record their P2P interactions in
+ *  l (appending) instead of computing them; NULL: compute them again. */
+void gravity_p2p_record(struct gravity_p2p_list *l);
+/** Free the arrays of l and zero it. */
+void gravity_p2p_list_free(struct gravity_p2p_list *l);
+
 /** Work counters of the tree walks (diagnostics), kept per thread. */
 struct gravity_counters {
   unsigned long long mac; /**< cell pairs tested by the acceptance criterion */
