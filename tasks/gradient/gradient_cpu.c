@@ -58,6 +58,15 @@ void extra_ghost_part_cpu(struct parts *p, size_t i, const struct hydro_props *h
                           const struct material_table *mats) {
   const struct material *mat = material_table_find(mats, p->mat[i]);
   const double zero[6] = {0, 0, 0, 0, 0, 0};
+  if (hp->continuity_cspm) {
+    /* CSPM continuity (every particle, fluids included): the force loop adds
+     * no density rate of its own (force_iact.h) */
+    double M6[6];
+    GRADIENT_GET6(M6, p, gm, i);
+    const double G9[9] = {p->gvxx[i], p->gvxy[i], p->gvxz[i], p->gvyx[i], p->gvyy[i],
+                          p->gvyz[i], p->gvzx[i], p->gvzy[i], p->gvzz[i]};
+    p->drho_dt[i] = gradient_cspm_drho_dt(p->rho[i], M6, G9);
+  }
   if (!mat || mat->strength == STRENGTH_NONE || !(mat->shear_modulus > 0.0)) {
     GRADIENT_PUT6(zero, p, S, i);
     GRADIENT_PUT6(zero, p, Sp, i);
