@@ -8,6 +8,10 @@ symmetry planes); its top face is at z = 0 and the sphere starts one
 lattice spacing above it, moving in -z.  Material ids: 0 plate,
 1 projectile (both the `aluminium_6061` library entry).
 
+The projectile's particle masses are scaled so that it has the mass of
+the true sphere (the lattice sphere of a coarse run can be 20% heavier);
+--lattice-mass keeps rho0 dx^3.
+
 Usage: make_ic.py [--dx 0.0008] [-o plate.hdf5]  (SI units; an example
 input, not part of bolide-ic)."""
 import argparse
@@ -33,6 +37,8 @@ def main():
     ap.add_argument("--half-width", type=float, default=0.04, help="half-width of the plate [m]")
     ap.add_argument("--speed", type=float, default=6180.0, help="impact speed [m/s]")
     ap.add_argument("--eta", type=float, default=1.2348, help="h = eta dx")
+    ap.add_argument("--lattice-mass", action="store_true",
+                    help="keep rho0 dx^3 for the projectile's particles (default: scale them to the true sphere's mass)")
     ap.add_argument("-o", "--output", default="plate.hdf5")
     a = ap.parse_args()
     dx = a.dx
@@ -46,6 +52,7 @@ def main():
     pj[:, 2] += R_P + dx
     pos = np.concatenate([plate, pj])
     n0, n1 = len(plate), len(pj)
+    npp = n1
     vel = np.zeros_like(pos)
     vel[n0:, 2] = -a.speed
     mat = np.r_[np.zeros(n0, dtype=np.int32), np.ones(n1, dtype=np.int32)]
@@ -54,6 +61,11 @@ def main():
     shift = np.array([0.5 * span, 0.5 * span, 0.3])
     pos += shift
     N = len(pos)
+    mass = np.full(N, RHO0 * dx**3)
+    if not a.lattice_mass:
+        # the lattice sphere is not the sphere: give the projectile the mass of
+        # the true sphere (its particles' volumes m / rho0 then sum to 4/3 pi R^3)
+        mass[-npp:] = RHO0 * 4.0 / 3.0 * np.pi * R_P**3 / npp
     with h5py.File(a.output + ".tmp", "w") as f:
         h = f.create_group("Header")
         h.attrs["BoxSize"] = box
@@ -62,7 +74,7 @@ def main():
         p = f.create_group("PartType0")
         p["Coordinates"] = pos
         p["Velocities"] = vel
-        p["Masses"] = np.full(N, RHO0 * dx**3)
+        p["Masses"] = mass
         p["SmoothingLengths"] = np.full(N, a.eta * dx)
         p["InternalEnergies"] = np.zeros(N)
         p["Densities"] = np.full(N, RHO0)
