@@ -36,12 +36,13 @@ def read(path):
         return t, p["Coordinates"][:], p["Densities"][:], p["MaterialIDs"][:], p["PlasticStrains"][:]
 
 
-def profile(x, rho, origin, dx, rho_frac):
-    """Floor z(r) (m, negative below the original surface) per radial bin."""
+def profile(x, rho, mat, origin, dx, rho_frac):
+    """Floor z(r) (m, negative below the original surface) per radial bin,
+    from condensed target material (id 0)."""
     d = x - origin
     r = np.hypot(d[:, 0], d[:, 1])
     z = d[:, 2]
-    keep = (rho > rho_frac * RHO0) & (z <= 0.5 * dx)
+    keep = (rho > rho_frac * RHO0) & (z <= 0.5 * dx) & (mat == 0)
     nb = int(np.ceil(r[keep].max() / dx)) + 1 if keep.any() else 1
     k = (r[keep] / dx).astype(int)
     floor = np.full(nb, np.nan)
@@ -85,12 +86,12 @@ def main():
     hist = []
     for s in snaps[1:]:
         t, x, rho, mat, eps = read(s)
-        rc, fl = profile(x, rho, origin, a.dx, a.rho_frac)
+        rc, fl = profile(x, rho, mat, origin, a.dx, a.rho_frac)
         depth, diam = measure(rc, fl, a.dx)
         hist.append((t, depth, diam))
         print(f"  {t * 1e6:7.1f}   {depth * 100:10.2f}   {diam * 100:13.2f}")
     t, x, rho, mat, eps = read(snaps[-1])
-    rc, fl = profile(x, rho, origin, a.dx, a.rho_frac)
+    rc, fl = profile(x, rho, mat, origin, a.dx, a.rho_frac)
     depth, diam = measure(rc, fl, a.dx)
     print(f"final (t = {t * 1e6:.1f} us): crater depth {depth * 100:.2f} cm, diameter {diam * 100:.2f} cm "
           f"(dx = {a.dx * 1e3:.2f} mm; depth/diameter {depth / diam:.2f})")
