@@ -366,6 +366,8 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   /* solids: the gradient tasks and stress terms run only when a material has strength */
   for (int k = 0; k < e->mats->n; k++)
     if (e->mats->mats[k].strength != STRENGTH_NONE) e->hp.solids = 1;
+  /* the CSPM continuity equation takes div v from the gradient tasks: run them */
+  if (e->hp.continuity_cspm) e->hp.solids = 1;
 
   e->time = params_get_real(params, "TimeIntegration:time_begin");
   e->time_end = params_get_real(params, "TimeIntegration:time_end");
@@ -446,13 +448,10 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   error_log(0, "configured with: %s", BOLIDE_CONFIGURE_ARGS[0] ? BOLIDE_CONFIGURE_ARGS : "(defaults)");
   material_table_log(e->mats);
   if (e->hp.solids)
-    error_log(0, "solids: gradient tasks on (correction tensor %s, %s momentum form, artificial stress eps %g n %g)",
+    error_log(0, "solids: gradient tasks on (correction tensor %s, %s momentum form, artificial stress eps %g n %g%s)",
               e->hp.gradient_correction ? "on" : "off",
-              e->hp.momentum_form == HYDRO_MOMENTUM_SYMMETRIC ? "symmetric" : "standard", e->hp.as_eps, e->hp.as_n);
-  if (e->hp.solids)
-    error_log(0, "solids: gradient tasks on (correction tensor %s, %s momentum form, artificial stress eps %g n %g)",
-              e->hp.gradient_correction ? "on" : "off",
-              e->hp.momentum_form == HYDRO_MOMENTUM_SYMMETRIC ? "symmetric" : "standard", e->hp.as_eps, e->hp.as_n);
+              e->hp.momentum_form == HYDRO_MOMENTUM_SYMMETRIC ? "symmetric" : "standard", e->hp.as_eps, e->hp.as_n,
+              e->hp.continuity_cspm ? ", CSPM continuity" : "");
   error_log(0, "particle memory: %zu bytes per particle", parts_bytes_per_particle());
 
   if (opt->check_only) {

@@ -19,6 +19,9 @@ void hydro_props_init(struct hydro_props *hp, const struct params *p) {
   hp->balsara = params_get_bool(p, "SPH:balsara");
   hp->alpha_u = params_get_real(p, "SPH:conductivity_alpha");
   hp->continuity = params_get_enum(p, "SPH:density") == 1;
+  hp->continuity_cspm = params_get_bool(p, "SPH:continuity_correction");
+  if (hp->continuity_cspm && !hp->continuity)
+    params_error(p, "SPH:continuity_correction", "needs SPH:density: continuity");
   hp->xsph = params_get_real(p, "SPH:xsph_epsilon");
   hp->solids = 0; /* set by the engine from the materials */
   hp->momentum_form = params_get_enum(p, "SPH:momentum_form");

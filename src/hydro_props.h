@@ -19,6 +19,7 @@ struct hydro_props {
   int balsara;          /**< Balsara (1995) switch on/off */
   double alpha_u;       /**< artificial conduction (Price 2008), 0 = off */
   int continuity;       /**< 1: density from the continuity equation */
+  int continuity_cspm;  /**< 1: drho/dt = -rho tr(corrected velocity gradient) (CSPM) */
   double xsph;          /**< XSPH epsilon (Monaghan 1989), 0 = off */
   int solids;           /**< 1 when a material has strength: gradient tasks and stress terms run */
   int momentum_form;    /**< HYDRO_MOMENTUM_STANDARD or HYDRO_MOMENTUM_SYMMETRIC */

@@ -44,6 +44,8 @@ expect_error "bad thread count" "--threads" "$bolide" -t zero params.yml
 sed 's/time_end/time_edn/' params.yml >typo.yml
 expect_error "misspelt key" "typo.yml:4" "$bolide" typo.yml
 expect_error "bad -P value" "TimeIntegration:time_end" "$bolide" -P TimeIntegration:time_end:soon params.yml
+expect_error "CSPM continuity without continuity density" "SPH:continuity_correction" "$bolide" --check \
+  -P SPH:continuity_correction:true params.yml
 sed 's/ics.hdf5/missing.hdf5/' params.yml >noic.yml
 expect_error "missing initial conditions" "missing.hdf5" "$bolide" noic.yml
 

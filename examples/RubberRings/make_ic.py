@@ -6,7 +6,12 @@ thickness in z (the paper is 2D), on a cubic lattice of spacing dx, moving
 towards each other at +-0.059 c0 (c0 = 852 m/s), rho = rho0 = 1010 kg/m^3,
 material id 0 (the `rubber` entry of examples/materials.yml).
 
-Usage: make_ic.py [--dx 0.0025] [--thickness 0.01] [-o rings.hdf5]
+With --periodic-z the box is periodic and exactly one ring thickness tall
+in z, so that the tubes have no free faces in z: plane strain, the 2D
+problem of the paper (the thickness must then exceed twice the kernel
+radius, 2.3 dx with the default eta).
+
+Usage: make_ic.py [--dx 0.0025] [--thickness 0.01] [--periodic-z] [-o rings.hdf5]
 (SI units; an example input, not part of bolide-ic)."""
 import argparse
 
@@ -35,12 +40,16 @@ def main():
     ap.add_argument("--thickness", type=float, default=0.01, help="ring thickness in z [m]")
     ap.add_argument("--speed", type=float, default=0.059, help="speed of each ring in units of c0")
     ap.add_argument("--eta", type=float, default=1.2348, help="h = eta dx")
+    ap.add_argument("--periodic-z", action="store_true",
+                    help="periodic box one thickness tall in z (plane strain; run with InitialConditions:periodic: true)")
     ap.add_argument("-o", "--output", default="rings.hdf5")
     a = ap.parse_args()
     one = ring(a.dx, a.thickness)
     # centres 2 R_OUT + dx apart: the rings start one lattice spacing apart
     xc = R_OUT + 0.5 * a.dx
     box = np.array([0.6, 0.2, 0.1])  # room for the rebound: no particle leaves the open box by 4 ms
+    if a.periodic_z:
+        box[2] = max(1, int(round(a.thickness / a.dx))) * a.dx
     pos = np.concatenate([one + [-xc, 0, 0], one + [xc, 0, 0]]) + 0.5 * box
     n1 = len(one)
     vel = np.zeros_like(pos)

@@ -57,6 +57,7 @@
   X("SPH:balsara", PARAM_BOOL, "true", 0, 0, NULL, "-", "Balsara switch on the artificial viscosity") \
   X("SPH:conductivity_alpha", PARAM_REAL, "0", 0, 10, NULL, "-", "artificial conduction of internal energy (Price 2008); 0 switches it off") \
   X("SPH:density", PARAM_ENUM, "summation", 0, 0, "summation|continuity", "-", "density from kernel summation or from the continuity equation") \
+  X("SPH:continuity_correction", PARAM_BOOL, "false", 0, 0, NULL, "-", "with density: continuity, take div v in drho/dt = -rho div v from the velocity gradient corrected by the correction tensor (CSPM; Eghtesad & Knezevic 2018), exact for linear velocity fields") \
   X("SPH:xsph_epsilon", PARAM_REAL, "0", 0, 1, NULL, "-", "XSPH velocity smoothing factor (0: off)") \
   X("SPH:momentum_form", PARAM_ENUM, "standard", 0, 0, "standard|symmetric", "-", "momentum equation: sigma_i/rho_i^2 + sigma_j/rho_j^2 (standard, Gray et al. 2001) or (sigma_i + sigma_j)/(rho_i rho_j) (symmetric)") \
   X("SPH:velocity_gradient_correction", PARAM_BOOL, "true", 0, 0, NULL, "-", "linear-consistency correction tensor on the velocity gradient of solids (Randles & Libersky 1996)") \

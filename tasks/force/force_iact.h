@@ -9,7 +9,7 @@
  *   du_i/dt =   sum_j m_j [ f_i P_i/rho_i^2 v_ij.x_ij/r dW_ij(h_i)
  *                           + Pi_ij/2 v_ij.x_ij/r (dW_ij(h_i) + dW_ij(h_j))/2 ]
  *             + conduction
- *   drho_i/dt = sum_j m_j v_ij . x_ij / r dW_ij(h_i)
+ *   drho_i/dt = sum_j m_j v_ij . x_ij / r dW_ij(h_i)   (not with the CSPM option)
  * with Pi_ij = -alpha/2 (B_i + B_j)/2... (see force_iact below), dW = dW/dr.
  *
  * Solids (hp->solids; theory/solids.md, eqs. E8-E12): sigma = -P I + S, the
@@ -170,8 +170,10 @@ BOLIDE_INLINE void force_iact(double r2, const double dx[3], const double dv[3],
     acc->du_dt += pj->m * hp->alpha_u * vsig_u * (pi->u - pj->u) / rho_ij * w_mean_dr;
   }
 
-  /* continuity equation, grad W at h_i */
-  acc->drho_dt += pj->m * dvdr * r_inv * wi_dr;
+  /* continuity equation, grad W at h_i (with SPH:continuity_correction the
+   * extra ghost sets drho/dt from the corrected gradient instead:
+   * gradient_cspm_drho_dt in gradient_finish.h) */
+  if (!hp->continuity_cspm) acc->drho_dt += pj->m * dvdr * r_inv * wi_dr;
 
   if (v_sig > acc->v_sig) acc->v_sig = v_sig;
 }

@@ -30,12 +30,22 @@
 
 /** Finish solid particle i: gv = G M^-1 (Randles & Libersky 1996; the
  *  identity without SPH:gradient_correction), plasticity, dS/dt and R.
- *  Particles of materials without strength get zero stress, rates and R. */
+ *  Particles of materials without strength get zero stress, rates and R.
+ *  With SPH:continuity_correction, drho/dt of every particle (E14). */
 BOLIDE_INLINE void extra_ghost_part(struct parts *BOLIDE_RESTRICT p, size_t i,
                                     const struct hydro_props *hp,
                                     const struct material_table *mats) {
   const struct material *mat = material_table_find(mats, p->mat[i]);
   const double zero[6] = {0, 0, 0, 0, 0, 0};
+  if (hp->continuity_cspm) {
+    /* CSPM continuity (theory/solids.md E14), every particle, fluids
+     * included: the force loop adds no density rate of its own (force_iact.h) */
+    double M6[6];
+    EXTRA_GHOST_GET6(M6, p, gm, i);
+    const double G9[9] = {p->gvxx[i], p->gvxy[i], p->gvxz[i], p->gvyx[i], p->gvyy[i],
+                          p->gvyz[i], p->gvzx[i], p->gvzy[i], p->gvzz[i]};
+    p->drho_dt[i] = gradient_cspm_drho_dt(p->rho[i], M6, G9);
+  }
   if (!mat || mat->strength == STRENGTH_NONE || !(mat->shear_modulus > 0.0)) {
     EXTRA_GHOST_PUT6(zero, p, S, i);
     EXTRA_GHOST_PUT6(zero, p, Sp, i);

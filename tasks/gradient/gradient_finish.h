@@ -41,6 +41,24 @@ BOLIDE_INLINE void gradient_apply(const double G[9], const double Minv[9], doubl
       gv[3 * a + b] = G[3 * a] * Minv[b] + G[3 * a + 1] * Minv[3 + b] + G[3 * a + 2] * Minv[6 + b];
 }
 
+/** CSPM continuity equation (theory/solids.md eq. E14; Chen, Beraun & Carney
+ *  1999; Eghtesad & Knezevic 2018): the density rate of a particle from the
+ *  divergence of its corrected velocity gradient,
+ *    drho_i/dt = -rho_i (G_i M_i^{-1})^{aa},
+ *  with the sums M (symmetric, xx xy xz yy yz zz) and G (row-major) of the
+ *  gradient loop (gradient_iact.h).  Exact for a linear velocity field on
+ *  any particle set where M is invertible; where it is not (gradient_invert_sym
+ *  returns -1) the uncorrected divergence tr G is used. */
+BOLIDE_INLINE double gradient_cspm_drho_dt(double rho, const double M[6], const double G[9]) {
+  double Minv[9];
+  gradient_invert_sym(M, Minv);
+  /* tr(G Minv) = G^{ac} Minv^{ca} */
+  double div = 0.0;
+  for (int a = 0; a < 3; a++)
+    for (int c = 0; c < 3; c++) div += G[3 * a + c] * Minv[3 * c + a];
+  return -rho * div;
+}
+
 /** Hooke's law with the Jaumann rate (theory/solids.md eq. E5; Gray et al. 2001,
  *  Sec. 2; Benz & Asphaug 1994, Sec. 2; Schaefer et al. 2016, Sec. 2.2):
  *    dS/dt = 2 mu (e - tr(e)/3 I) + Omega S - S Omega
