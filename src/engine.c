@@ -316,6 +316,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   e->stats_dt = params_get_real(params, "Statistics:delta_time");
   e->dump_tasks = params_get_int(params, "Scheduler:dump_tasks");
   e->cell_task_size = (int)params_get_int(params, "Scheduler:cell_task_size");
+  e->grav_task_size = (int)params_get_int(params, "Scheduler:gravity_task_size");
   engine_init_outputs(e, e->time);
   if (e->restarted) {
     e->next_out = (int)rs.next_out;
@@ -395,6 +396,50 @@ static int engine_should_rebuild(const struct engine *e) {
   return kernel_gamma * h_max + 2.0 * dx_max > e->reach;
 }
 
+/** Whether the coming force phase may reuse the gravitational far field of
+ *  the last full evaluation (Gravity:reuse_steps, gravity_cpu.h): not after
+ *  a rebuild, not more than reuse_steps times in a row, and only while
+ *  every particle has moved less than reuse_tolerance times the shortest
+ *  far-field distance of that evaluation.  Sets e->gp.replay. */
+static void engine_gravity_reuse_decide(struct engine *e, int rebuilt) {
+  e->gp.replay = 0;
+  if (!e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0 || e->grav_x0 == NULL || rebuilt ||
+      e->grav_reused >= e->gp.reuse_steps || !(e->grav_d_min < HUGE_VAL))
+    return;
+  const struct parts *p = &e->parts;
+  const double *x0 = e->grav_x0;
+  double d2max = 0.0;
+  for (size_t i = 0; i < p->count; i++) {
+    const double dx = p->x[i] - x0[3 * i], dy = p->y[i] - x0[3 * i + 1], dz = p->z[i] - x0[3 * i + 2];
+    const double d2 = dx * dx + dy * dy + dz * dz;
+    if (d2 > d2max) d2max = d2;
+  }
+  const double lim = e->gp.reuse_tol * e->grav_d_min;
+  if (d2max < lim * lim) {
+    e->gp.replay = 1;
+    e->grav_reused++;
+    e->grav_replays++;
+  }
+}
+
+/** After a force phase that evaluated gravity in full (reuse on): remember
+ *  the positions and the shortest far-field distance of the walks. */
+static void engine_gravity_reuse_remember(struct engine *e) {
+  if (!e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0 || e->gp.replay) return;
+  const struct parts *p = &e->parts;
+  free(e->grav_x0);
+  e->grav_x0 = error_malloc(3 * (p->count ? p->count : 1) * sizeof(double), "gravity reuse positions");
+  for (size_t i = 0; i < p->count; i++) {
+    e->grav_x0[3 * i] = p->x[i];
+    e->grav_x0[3 * i + 1] = p->y[i];
+    e->grav_x0[3 * i + 2] = p->z[i];
+  }
+  e->grav_d_min = HUGE_VAL;
+  for (int k = 0; k < e->nr_gilists; k++)
+    if (e->gilists[k].d_min > 0.0 && e->gilists[k].d_min < e->grav_d_min) e->grav_d_min = e->gilists[k].d_min;
+  e->grav_reused = 0;
+}
+
 /** Save the state for --restart. */
 static void engine_write_restart(struct engine *e) {
 #ifdef HAVE_CUDA
@@ -459,7 +504,9 @@ static void engine_first_force(struct engine *e) {
   e->first_force = 1;
   e->dt = 0.0;
   for (size_t i = 0; i < e->parts.count; i++) hydro_density_reset(&e->parts, i);
+  e->gp.replay = 0;
   engine_run_phase(e, ENGINE_PHASE_FORCE);
+  engine_gravity_reuse_remember(e);
   e->first_force = 0;
 }
 
@@ -494,11 +541,15 @@ void engine_run(struct engine *e) {
     e->time += e->dt;
     if (e->next_out < e->nr_out && fabs(e->time - e->out_times[e->next_out]) <= 1e-12 * fabs(e->time))
       e->time = e->out_times[e->next_out];
+    int rebuilt = 0;
     if (atomic_load((_Atomic int *)&e->need_rebuild) || engine_should_rebuild(e)) {
       atomic_store((_Atomic int *)&e->need_rebuild, 0);
       engine_rebuild(e);
+      rebuilt = 1;
     }
+    engine_gravity_reuse_decide(e, rebuilt);
     engine_run_phase(e, ENGINE_PHASE_FORCE);
+    engine_gravity_reuse_remember(e);
     e->step++;
     e->updates += (long long)e->parts.count;
     if (e->dump_tasks > 0 && e->step % e->dump_tasks == 0) engine_dump_tasks(e);
@@ -524,6 +575,9 @@ void engine_run(struct engine *e) {
   error_log(0, "done: %ld steps to t = %g in %.2f s (%.3g particle updates per second)", e->step, e->time, wall,
             wall > 0 ? (double)e->updates / wall : 0.0);
   if (e->nr_removed) error_log(0, "%lld particles left the open box and were removed", e->nr_removed);
+  if (e->gp.enabled && e->gp.reuse_steps > 0)
+    error_log(0, "gravity: %ld of %ld steps reused the far field (Gravity:reuse_steps %d, reuse_tolerance %g)",
+              e->grav_replays, e->step, e->gp.reuse_steps, e->gp.reuse_tol);
   scheduler_print_timers(&e->sched, stdout);
 #ifdef HAVE_CUDA
   gpu_engine_print(e, stdout);
@@ -543,6 +597,7 @@ void engine_clean(struct engine *e) {
   free(e->out_times);
   free(e->cell_dt_min);
   free(e->gcells);
+  free(e->grav_x0);
   free(e->flaw_eps);
   free(e->params_text);
   if (e->mats) material_table_free(e->mats);

@@ -65,6 +65,7 @@ struct engine {
   struct cell **tcells;           /**< the task cells (engine_graph.c) */
   int nr_tcells;                  /**< their number */
   int cell_task_size;             /**< Scheduler:cell_task_size */
+  int grav_task_size;             /**< Scheduler:gravity_task_size */
   double reach;                   /**< task cells closer than this have pair tasks */
   int damage;                     /**< 1 when a material is brittle (tasks/damage) */
   double *flaw_eps;               /**< every particle's flaw thresholds, one flat array */
@@ -74,7 +75,15 @@ struct engine {
   struct gravity_cell *gcells;    /**< gravity data of every cell, by cell index */
   int gcells_cap;                 /**< its allocated length */
   struct sched_lock *glocks;      /**< per top-level cell: taken by gravity tasks writing it */
+  struct sched_lock *gsublocks;   /**< by cell index: taken by the split self-gravity tasks */
   struct task **grav_down;        /**< per top-level cell: its gravity_down task (or NULL) */
+  struct gravity_ilist *gilists;  /**< interaction list of each gravity task, by task id
+                                       (Gravity:reuse_steps > 0; else NULL) */
+  int nr_gilists;                 /**< their number */
+  double *grav_x0;                /**< positions at the last full gravity evaluation (reuse) */
+  double grav_d_min;              /**< shortest far-field distance of that evaluation */
+  int grav_reused;                /**< steps since it that reused its far field */
+  long grav_replays;              /**< steps of the run that reused the far field */
   int *tcell_top;                 /**< top-level cell of each task cell */
   struct engine_cell_tasks *ct;   /**< per task cell */
   int nr_ct;                      /**< number of entries of ct */

@@ -1,7 +1,7 @@
 /* The scheduler's callback: what each task of the engine's graph does. */
 #include <stdatomic.h>
 
-#include "damage/damage_iact.h"
+#include "damage/damage_part.h"
 #include "density/density_cpu.h"
 #include "drift/drift_cpu.h"
 #include "engine_tasks.h"
@@ -46,23 +46,7 @@ static void engine_damage(struct engine *e, int t) {
   struct parts *p = &e->parts;
   const struct cell *c = e->tcells[t];
   const double dt = e->first_force ? 0.0 : e->dt;
-  for (size_t i = c->offset; i < c->offset + c->count; i++) {
-    p->dmg_rate[i] = 0.0;
-    if (p->n_flaws[i] == 0) continue;
-    const struct material *mat = material_table_find(e->mats, p->mat[i]);
-    double S[6];
-    S[DAMAGE_XX] = p->Spxx[i];
-    S[DAMAGE_YY] = p->Spyy[i];
-    S[DAMAGE_ZZ] = p->Spzz[i];
-    S[DAMAGE_XY] = p->Spxy[i];
-    S[DAMAGE_XZ] = p->Spxz[i];
-    S[DAMAGE_YZ] = p->Spyz[i];
-    int32_t n_act = p->n_act[i];
-    p->dmg_rate[i] = damage_update_particle(mat, p->rho[i], kernel_gamma * p->h[i], p->P[i], S, e->flaw_eps,
-                                            p->flaw_first[i], p->n_flaws[i], dt, &p->dcbrt[i], &n_act,
-                                            &p->dmg[i]);
-    p->n_act[i] = n_act;
-  }
+  for (size_t i = c->offset; i < c->offset + c->count; i++) damage_part(p, i, e->mats, e->flaw_eps, dt);
 }
 
 /** Second half kick and new time step of task cell number t: the
@@ -85,7 +69,7 @@ static void engine_kick2(struct engine *e, int t) {
   if (!e->hp.enabled) dt = 1e300;
   if (e->damage)
     for (size_t i = c->offset; i < end; i++) {
-      const double dtd = damage_timestep(p->dcbrt[i], p->n_act[i], p->n_flaws[i], p->dmg_rate[i], e->damage_max_change);
+      const double dtd = damage_part_timestep(p, i, e->damage_max_change);
       if (dtd < dt) dt = dtd;
     }
   if (e->gp.enabled && e->gp.eps > 0.0)
@@ -95,6 +79,25 @@ static void engine_kick2(struct engine *e, int t) {
       if (dtg < dt) dt = dtg;
     }
   e->cell_dt_min[t] = dt;
+}
+
+/** A gravity walk task: self (cj == ci), near pair, or long range (cj
+ *  NULL); records its particle-level interactions when the far field may
+ *  be reused, or replays them on a step that reuses it. */
+static void engine_gravity_task(struct engine *e, const struct task *t, const struct cell *ci,
+                                const struct cell *cj) {
+  struct parts *p = &e->parts;
+  struct gravity_ilist *il = t->id < e->nr_gilists ? &e->gilists[t->id] : NULL;
+  if (e->gp.replay) {
+    gravity_replay(p, il, e->gcells, &e->gp);
+    return;
+  }
+  gravity_record_begin(il);
+  if (cj)
+    gravity_interact_cells(p, ci, cj, e->gcells, &e->gp);
+  else
+    gravity_long_range(p, ci, e->space.cells, e->space.nr_top, e->gcells, &e->gp);
+  gravity_record_end();
 }
 
 void engine_run_task(void *ctx, struct task *t, int thread_id) {
@@ -109,7 +112,7 @@ void engine_run_task(void *ctx, struct task *t, int thread_id) {
     case task_type_self:
       /* the accumulators were zeroed by the drift (density) and the ghost (force) */
       if (t->subtype == task_subtype_grav)
-        gravity_interact_cells(p, ci, ci, e->gcells, &e->gp);
+        engine_gravity_task(e, t, ci, ci);
       else if (t->subtype == task_subtype_density)
         density_self_cpu(p, ci);
       else if (t->subtype == task_subtype_gradient)
@@ -119,7 +122,7 @@ void engine_run_task(void *ctx, struct task *t, int thread_id) {
       break;
     case task_type_pair: {
       if (t->subtype == task_subtype_grav) {
-        gravity_interact_cells(p, ci, cj, e->gcells, &e->gp);
+        engine_gravity_task(e, t, ci, cj);
         break;
       }
       const double *shift = e->pairs[e->task_pair[t->id]].shift;
@@ -146,7 +149,7 @@ void engine_run_task(void *ctx, struct task *t, int thread_id) {
       break;
     case task_type_grav_long_range:
       if (ci)
-        gravity_long_range(p, ci, e->space.cells, e->space.nr_top, e->gcells, &e->gp);
+        engine_gravity_task(e, t, ci, NULL);
       else /* Gravity:direct: exact summation in one task */
         gravity_direct(p, e->gp.G, e->gp.eps, e->gp.softening, 1);
       break;

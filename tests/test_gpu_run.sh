@@ -1,23 +1,37 @@
 #!/usr/bin/env bash
-# Sedov blast on the CPU (--no-gpu) and on the GPU (--gpu), 40 steps of
-# 32,768 particles: the conservation budgets of the two statistics files
-# (mass, momentum, angular momentum, kinetic, internal and total energy) must
-# agree.  The runs differ only by the order of the SPH sums (round-off,
-# ~1e-15 relative per step, amplified along the run), so every column must
-# agree to 1e-8 relative to its scale (mass, E_tot, or sum m|v| for momenta).
+# Runs on the CPU (--no-gpu) and on the GPU (--gpu): the conservation
+# budgets of the two statistics files (mass, momentum, angular momentum,
+# kinetic, internal and total energy) must agree.
+#  1. Sedov blast, 40 steps of 32,768 particles (fluid).
+#  2. A basalt impactor (25 m, 400 particles) hitting a basalt target (100 m,
+#     6,000 particles) at 2 km/s and 45 degrees, 40 steps through the
+#     contact: Tillotson, Collins strength, artificial stress, Grady-Kipp
+#     damage with Weibull flaws (the solid + damage FORCE phase on the GPU).
+#  3. Evrard collapse (7,208 particles, hydro + tree self-gravity), 40 steps:
+#     the tree walks on the CPU, their P2P interactions on the GPU.
+# The runs differ only by the order of the SPH sums (round-off, ~1e-15
+# relative per step, amplified along the run), so every column must agree
+# to 1e-8 relative to its scale (mass, E_tot, or sum m|v| for momenta).
 # Part of `make check-gpu` (needs a GPU); exits 77 without one.
 set -euo pipefail
 B=${BOLIDE_BUILDDIR:?}; S=${BOLIDE_SRCDIR:?}
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
-"$B/bolide-ic" sedov --n 32 --energy 1 --rho 1 -o sedov.hdf5 >/dev/null
-for mode in cpu gpu; do
-  mkdir $mode; cp "$S/examples/SedovBlast3D/params.yml" $mode/; cp sedov.hdf5 $mode/
-  flag=--no-gpu; [ $mode = gpu ] && flag=--gpu
-  (cd $mode && "$B/bolide" $flag -n 40 params.yml >run.log 2>&1) || { tail -5 $mode/run.log; exit 1; }
-done
-grep -h "GPU" gpu/run.log | head -3
-paste <(grep -v '^#' cpu/statistics.txt) <(grep -v '^#' gpu/statistics.txt) | awk '
+
+# run NAME STEPS: bolide in NAME/cpu and NAME/gpu (each holds params.yml and the IC)
+run() {
+  for mode in cpu gpu; do
+    flag=--no-gpu; [ $mode = gpu ] && flag=--gpu
+    (cd "$1/$mode" && "$B/bolide" $flag -n "$2" params.yml >run.log 2>&1) ||
+      { tail -5 "$1/$mode/run.log"; exit 1; }
+  done
+  grep -h "GPU" "$1/gpu/run.log" | head -3
+}
+
+# compare NAME: the budgets of NAME/cpu and NAME/gpu
+compare() {
+  echo "$1: CPU against GPU"
+  paste <(grep -v '^#' "$1/cpu/statistics.txt") <(grep -v '^#' "$1/gpu/statistics.txt") | awk '
   { n = NF / 2; for (k = 1; k <= n; k++) { c[k] = $k; g[k] = $(k + n) } rows++
     # columns: step time dt mass px py pz Lx Ly Lz E_kin E_int E_pot E_tot n n_removed
     scale_p = sqrt(2 * c[4] * (c[11] > 0 ? c[11] : 1e-300))
@@ -28,8 +42,63 @@ paste <(grep -v '^#' cpu/statistics.txt) <(grep -v '^#' gpu/statistics.txt) | aw
   }
   END { split("step time dt mass px py pz Lx Ly Lz E_kin E_int E_pot E_tot", name, " ")
         fail = 0
-        for (k = 4; k <= 14; k++) { printf "%-6s CPU vs GPU worst relative difference %.3e\n", name[k], worst[k]
+        for (k = 4; k <= 14; k++) { printf "  %-6s CPU vs GPU worst relative difference %.3e\n", name[k], worst[k]
                                      if (worst[k] > 1e-8) fail = 1 }
-        printf "%d statistics rows compared\n", rows
+        printf "  %d statistics rows compared\n", rows
         if (rows < 2) fail = 1
         exit fail }'
+}
+
+mkdir -p sedov/cpu sedov/gpu
+"$B/bolide-ic" sedov --n 32 --energy 1 --rho 1 -o sedov/cpu/sedov.hdf5 >/dev/null
+cp sedov/cpu/sedov.hdf5 sedov/gpu/
+for m in cpu gpu; do cp "$S/examples/SedovBlast3D/params.yml" sedov/$m/; done
+run sedov 40
+
+mkdir -p impact/cpu impact/gpu
+"$B/bolide-ic" impact --target "sphere,material=basalt,radius=100,n=6000,u=1e4" \
+  --impactor "sphere,material=basalt,radius=25,n=400,u=1e4" --v-contact 2000 --angle 45 \
+  --separation 126 --impactor-mat-offset 1000 -o impact/cpu/impact.hdf5 >/dev/null
+cp impact/cpu/impact.hdf5 impact/gpu/
+for m in cpu gpu; do
+  cat >impact/$m/params.yml <<'YML'
+InitialConditions:
+  file_name: impact.hdf5
+  periodic: false
+TimeIntegration:
+  time_end: 1
+Snapshots:
+  delta_time: 1
+Statistics:
+  delta_time: 1e-4
+SPH:
+  resolution_eta: 1.2348
+  CFL_condition: 0.2
+  viscosity_alpha: 1.5
+  artificial_stress_epsilon: 0.3
+Materials:
+  103: &rock {name: basalt, strength: collins, yield_stress: 1e7, yield_stress_max: 3.5e9,
+              friction_intact: 1.2, cohesion_damaged: 1e5, friction_damaged: 0.6,
+              weibull_k: 5e34, weibull_m: 8}
+  1103: *rock
+Damage:
+  seed: 11
+YML
+done
+run impact 40
+grep -q "gradient, extra ghost (plasticity, dS/dt), force, damage, kick2" impact/gpu/run.log ||
+  { echo "FAIL: the solid + damage run did not run its FORCE phase on the GPU"; exit 1; }
+
+mkdir -p evrard/cpu evrard/gpu
+"${PYTHON:-python3}" "$S/examples/EvrardCollapse/make_ic.py" 24 evrard/cpu/evrard.hdf5 >/dev/null
+cp evrard/cpu/evrard.hdf5 evrard/gpu/
+for m in cpu gpu; do cp "$S/examples/EvrardCollapse/params.yml" evrard/$m/; done
+run evrard 40
+grep -q "self-gravity: the tree walks on the CPU, their P2P on the GPU" evrard/gpu/run.log ||
+  { echo "FAIL: the gravity run did not use the GPU"; exit 1; }
+
+fail=0
+compare sedov || fail=1
+compare impact || fail=1
+compare evrard || fail=1
+exit $fail

@@ -1,6 +1,8 @@
 /* The GPU runner (gpu.h): device set-up, memory that is allocated once and
  * grown, two streams, pinned staging for the per-phase cell data, and the
- * FORCE phase as a sequence of batched kernels over every leaf cell.
+ * FORCE phase as a sequence of batched kernels over every leaf cell:
+ * density, ghost (h iteration, EOS), with solids gradient and extra ghost,
+ * force, with brittle materials damage, and kick2.
  *
  * Stream 0 carries the particle fields and the kernels; stream 1 uploads the
  * leaves and their neighbour lists at the same time, and stream 0 waits for
@@ -18,7 +20,8 @@ extern "C" {
 #include "gpu_kernels.h"
 #include "material.h"
 
-/** Fields the FORCE phase reads (copied to the device before it). */
+/** Fields the FORCE phase reads (copied to the device before it when the
+ *  particles are not resident). */
 static const char *const gpu_fields_in[] = {"x",  "y",   "z",  "vpx", "vpy", "vpz", "m",    "h",
                                             "up", "mat", "vx", "vy",  "vz",  "u",   "flags"};
 /** Fields the FORCE phase writes (copied back after it). */
@@ -27,21 +30,44 @@ static const char *const gpu_fields_out[] = {
     "curl_vz", "P",   "cs",     "balsara", "f_gradh",   "flags", "h_lo",    "h_hi",
     "ax",      "ay",  "az",     "du_dt",   "drho_dt",   "v_sig", "vx",      "vy",
     "vz",      "u",   "vpx",    "vpy",     "vpz",       "up"};
-#define GPU_NR_IN ((int)(sizeof gpu_fields_in / sizeof gpu_fields_in[0]))
-#define GPU_NR_OUT ((int)(sizeof gpu_fields_out / sizeof gpu_fields_out[0]))
+/** Fields the gradient loop, the extra ghost and the stress terms read, and
+ *  the kick integrates (solids). */
+static const char *const gpu_fields_solid_in[] = {"Sxx",  "Sxy",  "Sxz",   "Syy",  "Syz",
+                                                  "Szz",  "Spxx", "Spxy",  "Spxz", "Spyy",
+                                                  "Spyz", "Spzz", "eps_p", "dmg"};
+/** Fields they write. */
+static const char *const gpu_fields_solid_out[] = {
+    "gmxx", "gmxy", "gmxz", "gmyy", "gmyz", "gmzz", "gvxx", "gvxy", "gvxz", "gvyx",
+    "gvyy", "gvyz", "gvzx", "gvzy", "gvzz", "Sxx",  "Sxy",  "Sxz",  "Syy",  "Syz",
+    "Szz",  "Spxx", "Spxy", "Spxz", "Spyy", "Spyz", "Spzz", "dSxx", "dSxy", "dSxz",
+    "dSyy", "dSyz", "dSzz", "Rxx",  "Rxy",  "Rxz",  "Ryy",  "Ryz",  "Rzz",  "eps_p"};
+/** Fields the damage task reads (besides the above). */
+static const char *const gpu_fields_damage_in[] = {"dmg", "dcbrt", "n_act", "n_flaws",
+                                                   "flaw_first"};
+/** Fields it writes. */
+static const char *const gpu_fields_damage_out[] = {"dmg", "dcbrt", "n_act", "dmg_rate"};
+#define GPU_NR_OF(a) ((int)(sizeof a / sizeof a[0]))
+#define GPU_NR_IN GPU_NR_OF(gpu_fields_in)
+#define GPU_NR_OUT GPU_NR_OF(gpu_fields_out)
+#define GPU_NR_SOLID_IN GPU_NR_OF(gpu_fields_solid_in)
+#define GPU_NR_SOLID_OUT GPU_NR_OF(gpu_fields_solid_out)
+#define GPU_NR_DAMAGE_IN GPU_NR_OF(gpu_fields_damage_in)
+#define GPU_NR_DAMAGE_OUT GPU_NR_OF(gpu_fields_damage_out)
 
 /** Stages timed with events. */
 enum gpu_stage {
   GPU_T_UPLOAD,
   GPU_T_DENSITY,
   GPU_T_GHOST,
+  GPU_T_GRADIENT,
   GPU_T_FORCE,
+  GPU_T_DAMAGE,
   GPU_T_KICK,
   GPU_T_DOWNLOAD,
   GPU_T_N
 };
-static const char *const gpu_stage_names[GPU_T_N] = {"upload", "density", "ghost",
-                                                     "force",  "kick2",   "download"};
+static const char *const gpu_stage_names[GPU_T_N] = {
+    "upload", "density", "ghost", "gradient(+extra ghost)", "force", "damage", "kick2", "download"};
 
 struct gpu {
   int device;                  /**< CUDA device number */
@@ -54,19 +80,27 @@ struct gpu {
   long drifts;                 /**< drifts run */
   struct parts dev;            /**< device arrays of every particle field */
   size_t capacity;             /**< their length */
-  int in[GPU_NR_IN], out[GPU_NR_OUT]; /**< indices in part_fields */
-  void *cell_dev, *cell_host;         /**< device buffer and pinned staging of the leaf data */
-  double *leaf_dt;                    /**< smallest time step of each leaf (in cell_dev) */
-  size_t cell_bytes;                  /**< their size */
-  int *counters_dev, *counters_host;  /**< h-iteration counters (host side pinned) */
-  struct material_table *mats_dev;    /**< the material table on the device */
-  struct material_table *mats_host;   /**< pinned staging of it */
-  double t[GPU_T_N];                  /**< accumulated milliseconds per stage */
-  long calls;                         /**< FORCE phases run */
-  double bytes_h2d, bytes_d2h;        /**< traffic over the bus */
-  long full_up, full_down;            /**< copies of every field (rebuilds, outputs) */
-  void *pinned[PART_NR_FIELDS];       /**< host arrays registered as pinned memory, by field */
-  size_t pinned_bytes;                /**< bytes per field registered */
+  int in[GPU_NR_IN + GPU_NR_SOLID_IN + GPU_NR_DAMAGE_IN];     /**< indices in part_fields */
+  int out[GPU_NR_OUT + GPU_NR_SOLID_OUT + GPU_NR_DAMAGE_OUT]; /**< indices in part_fields */
+  double *flaws_dev;                 /**< Weibull flaw thresholds (gpu_set_flaws) */
+  size_t flaws_n, flaws_cap;         /**< their number and allocated length */
+  void *p2p_dev;                     /**< P2P ranges of the near-field gravity */
+  size_t p2p_bytes;                  /**< their allocated size */
+  cudaEvent_t ev_p2p[2];             /**< around the last P2P kernel */
+  double t_p2p;                      /**< accumulated milliseconds of P2P kernels */
+  long p2p_calls;                    /**< P2P batches run */
+  void *cell_dev, *cell_host;        /**< device buffer and pinned staging of the leaf data */
+  double *leaf_dt;                   /**< smallest time step of each leaf (in cell_dev) */
+  size_t cell_bytes;                 /**< their size */
+  int *counters_dev, *counters_host; /**< h-iteration counters (host side pinned) */
+  struct material_table *mats_dev;   /**< the material table on the device */
+  struct material_table *mats_host;  /**< pinned staging of it */
+  double t[GPU_T_N];                 /**< accumulated milliseconds per stage */
+  long calls;                        /**< FORCE phases run */
+  double bytes_h2d, bytes_d2h;       /**< traffic over the bus */
+  long full_up, full_down;           /**< copies of every field (rebuilds, outputs) */
+  void *pinned[PART_NR_FIELDS];      /**< host arrays registered as pinned memory, by field */
+  size_t pinned_bytes;               /**< bytes per field registered */
 };
 
 void gpu_check_fail(cudaError_t err, const char *what, const char *file, int line) {
@@ -123,8 +157,7 @@ extern "C" struct gpu *gpu_init(char *why, size_t len) {
   for (int k = 0; k <= GPU_T_N; k++) gpu_check(cudaEventCreate(&g->ev[k]));
   gpu_check(cudaEventCreateWithFlags(&g->cells_ready, cudaEventDisableTiming));
   for (int k = 0; k < 2; k++) gpu_check(cudaEventCreate(&g->ev_drift[k]));
-  for (int k = 0; k < GPU_NR_IN; k++) g->in[k] = gpu_field_index(gpu_fields_in[k]);
-  for (int k = 0; k < GPU_NR_OUT; k++) g->out[k] = gpu_field_index(gpu_fields_out[k]);
+  for (int k = 0; k < 2; k++) gpu_check(cudaEventCreate(&g->ev_p2p[k]));
   g->counters_dev = (int *)gpu_alloc(GPU_NR_COUNTERS * sizeof(int), "counters");
   gpu_check(cudaMallocHost((void **)&g->counters_host, GPU_NR_COUNTERS * sizeof(int)));
   g->mats_dev = (struct material_table *)gpu_alloc(sizeof(struct material_table), "material table");
@@ -227,6 +260,41 @@ static void gpu_copy_fields(struct gpu *g, struct parts *p, const int *idx, int 
   }
 }
 
+/** The indices (in part_fields) of the fields a FORCE phase reads (out = 0)
+ *  or writes (out = 1), for fluids, solids and damage; returns their
+ *  number.  A field named twice is copied once. */
+static int gpu_phase_fields(int *idx, int solids, int damage, int out) {
+  int n = 0;
+  const char *const *lists[3] = {out ? gpu_fields_out : gpu_fields_in,
+                                 out ? gpu_fields_solid_out : gpu_fields_solid_in,
+                                 out ? gpu_fields_damage_out : gpu_fields_damage_in};
+  const int len[3] = {out ? GPU_NR_OUT : GPU_NR_IN, out ? GPU_NR_SOLID_OUT : GPU_NR_SOLID_IN,
+                      out ? GPU_NR_DAMAGE_OUT : GPU_NR_DAMAGE_IN};
+  const int use[3] = {1, solids, damage};
+  for (int l = 0; l < 3; l++)
+    if (use[l])
+      for (int k = 0; k < len[l]; k++) {
+        const int f = gpu_field_index(lists[l][k]);
+        int seen = 0;
+        for (int q = 0; q < n; q++) seen |= idx[q] == f;
+        if (!seen) idx[n++] = f;
+      }
+  return n;
+}
+
+extern "C" void gpu_set_flaws(struct gpu *g, const double *eps, size_t n) {
+  if (n > g->flaws_cap) {
+    if (g->flaws_dev) gpu_check(cudaFree(g->flaws_dev));
+    char what[128];
+    snprintf(what, sizeof what, "Weibull flaw thresholds (%zu)", n);
+    g->flaws_dev = (double *)gpu_alloc(n * sizeof(double), what);
+    g->flaws_cap = n;
+  }
+  g->flaws_n = n;
+  if (n) gpu_check(cudaMemcpy(g->flaws_dev, eps, n * sizeof(double), cudaMemcpyHostToDevice));
+  g->bytes_h2d += (double)(n * sizeof(double));
+}
+
 /** Read the counters of the h iteration (waits for stream 0). */
 static void gpu_read_counters(struct gpu *g) {
   gpu_check(cudaMemcpyAsync(g->counters_host, g->counters_dev, GPU_NR_COUNTERS * sizeof(int),
@@ -236,17 +304,21 @@ static void gpu_read_counters(struct gpu *g) {
 
 extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu_leaves *lv,
                                 const struct hydro_props *hp, const struct material_table *mats,
+                                const struct gpu_damage *dmg, const struct gpu_gravity *grav,
                                 double dt_kick, double *leaf_dt_min, int resident,
                                 struct gpu_force_out *out) {
   cudaStream_t s = g->stream[0];
   memset(out, 0, sizeof *out);
+  const int damage = dmg && dmg->enabled;
+  const int nr_in = gpu_phase_fields(g->in, hp->solids, damage, 0);
+  const int nr_out = gpu_phase_fields(g->out, hp->solids, damage, 1);
   if (resident && (p->count != g->dev.count || !g->dev.x))
     error_bug("GPU particle arrays are not resident");
   gpu_reserve(g, p->count);
   g->dev.count = p->count;
   gpu_check(cudaEventRecord(g->ev[0], s));
   const struct gpu_leaves_dev dv = gpu_upload_cells(g, lv);
-  if (!resident) gpu_copy_fields(g, p, g->in, GPU_NR_IN, 1);
+  if (!resident) gpu_copy_fields(g, p, g->in, nr_in, 1);
   memcpy(g->mats_host, mats, sizeof *mats);
   gpu_check(cudaMemcpyAsync(g->mats_dev, g->mats_host, sizeof *mats, cudaMemcpyHostToDevice, s));
   gpu_check(cudaMemsetAsync(g->counters_dev, 0, GPU_NR_COUNTERS * sizeof(int), s));
@@ -285,15 +357,26 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
   }
   ghost_gpu_finish_launch(s, g->dev, dv, *hp, g->mats_dev);
   gpu_check(cudaEventRecord(g->ev[3], s));
-  force_gpu_launch(s, g->dev, dv, *hp);
+  if (hp->solids) {
+    /* ghost -> gradient -> extra ghost -> force (engine_graph.c) */
+    gradient_gpu_launch(s, g->dev, dv);
+    extra_ghost_gpu_launch(s, g->dev, *hp, g->mats_dev);
+  }
   gpu_check(cudaEventRecord(g->ev[4], s));
-  double *leaf_dt = g->leaf_dt;
-  kick2_gpu_launch(s, g->dev, dv, *hp, dt_kick, leaf_dt);
+  force_gpu_launch(s, g->dev, dv, *hp);
   gpu_check(cudaEventRecord(g->ev[5], s));
-  if (!resident) gpu_copy_fields(g, p, g->out, GPU_NR_OUT, 0);
+  /* force -> damage -> kick2 */
+  if (damage) damage_gpu_launch(s, g->dev, g->mats_dev, g->flaws_dev, dmg->dt);
+  gpu_check(cudaEventRecord(g->ev[6], s));
+  double *leaf_dt = g->leaf_dt;
+  struct gpu_gravity gr = {0, 0.0, 0.0};
+  if (grav) gr = *grav;
+  kick2_gpu_launch(s, g->dev, dv, *hp, dt_kick, damage ? dmg->max_change : 0.0, gr, leaf_dt);
+  gpu_check(cudaEventRecord(g->ev[7], s));
+  if (!resident) gpu_copy_fields(g, p, g->out, nr_out, 0);
   gpu_check(cudaMemcpyAsync(leaf_dt_min, leaf_dt, (size_t)lv->n * sizeof(double),
                             cudaMemcpyDeviceToHost, s));
-  gpu_check(cudaEventRecord(g->ev[6], s));
+  gpu_check(cudaEventRecord(g->ev[8], s));
   gpu_check(cudaStreamSynchronize(s));
   for (int k = 0; k < GPU_T_N; k++) {
     float ms = 0.0f;
@@ -301,6 +384,54 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
     g->t[k] += ms;
   }
   g->calls++;
+}
+
+extern "C" void gpu_gravity_p2p(struct gpu *g, struct parts *p, const struct gpu_p2p *l, double G,
+                                double eps, int softening) {
+  cudaStream_t s = g->stream[0];
+  gpu_reserve(g, p->count);
+  g->dev.count = p->count;
+  /* the ranges, packed into one buffer */
+  const size_t n = (size_t)l->n, ns = (size_t)l->nr_src;
+  const size_t sz[5] = {n * sizeof(size_t), n * sizeof(int), (n + 1) * sizeof(int),
+                        ns * sizeof(size_t), ns * sizeof(int)};
+  const void *src[5] = {l->t_offset, l->t_count, l->src_start, l->s_offset, l->s_count};
+  size_t off[5], total = 0;
+  for (int k = 0; k < 5; k++) {
+    off[k] = total;
+    total += gpu_align(sz[k]);
+  }
+  if (total > g->p2p_bytes) {
+    if (g->p2p_dev) gpu_check(cudaFree(g->p2p_dev));
+    g->p2p_bytes = total + total / 2;
+    g->p2p_dev = gpu_alloc(g->p2p_bytes, "P2P ranges of the near-field gravity");
+  }
+  char *d = (char *)g->p2p_dev;
+  for (int k = 0; k < 5; k++)
+    if (sz[k]) gpu_check(cudaMemcpyAsync(d + off[k], src[k], sz[k], cudaMemcpyHostToDevice, s));
+  g->bytes_h2d += (double)total;
+  struct gpu_p2p_dev dv;
+  dv.n = l->n;
+  const double mean = l->n ? (double)p->count / l->n : 0.0;
+  dv.block = mean <= 40.0 ? 32 : (mean <= 96.0 ? 64 : GPU_BLOCK);
+  dv.t_offset = (const size_t *)(d + off[0]);
+  dv.t_count = (const int *)(d + off[1]);
+  dv.src_start = (const int *)(d + off[2]);
+  dv.s_offset = (const size_t *)(d + off[3]);
+  dv.s_count = (const int *)(d + off[4]);
+  const int idx_in[8] = {gpu_field_index("x"),   gpu_field_index("y"),   gpu_field_index("z"),
+                         gpu_field_index("m"),   gpu_field_index("gax"), gpu_field_index("gay"),
+                         gpu_field_index("gaz"), gpu_field_index("pot")};
+  gpu_copy_fields(g, p, idx_in, 8, 1);
+  gpu_check(cudaEventRecord(g->ev_p2p[0], s));
+  gravity_p2p_gpu_launch(s, g->dev, dv, G, eps, softening);
+  gpu_check(cudaEventRecord(g->ev_p2p[1], s));
+  gpu_copy_fields(g, p, idx_in + 4, 4, 0);
+  gpu_check(cudaStreamSynchronize(s));
+  float ms = 0.0f;
+  gpu_check(cudaEventElapsedTime(&ms, g->ev_p2p[0], g->ev_p2p[1]));
+  g->t_p2p += ms;
+  g->p2p_calls++;
 }
 
 /** Register the particle arrays of p as pinned (page-locked) memory, so
@@ -374,6 +505,9 @@ extern "C" void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double
 }
 
 extern "C" void gpu_print_timers(const struct gpu *g, FILE *f) {
+  if (g->p2p_calls)
+    fprintf(f, "GPU (%s), %ld near-field gravity batches, P2P kernel %.3f ms per batch\n", g->name,
+            g->p2p_calls, g->t_p2p / g->p2p_calls);
   if (g->calls == 0) return;
   fprintf(f, "GPU (%s), %ld force phases, ms per phase:", g->name, g->calls);
   for (int k = 0; k < GPU_T_N; k++) fprintf(f, " %s %.3f", gpu_stage_names[k], g->t[k] / g->calls);
@@ -400,6 +534,9 @@ extern "C" void gpu_free(struct gpu *g) {
   gpu_check(cudaFree(g->counters_dev));
   gpu_check(cudaFreeHost(g->counters_host));
   gpu_check(cudaFree(g->mats_dev));
+  if (g->flaws_dev) gpu_check(cudaFree(g->flaws_dev));
+  if (g->p2p_dev) gpu_check(cudaFree(g->p2p_dev));
+  for (int k = 0; k < 2; k++) gpu_check(cudaEventDestroy(g->ev_p2p[k]));
   gpu_check(cudaFreeHost(g->mats_host));
   for (int k = 0; k <= GPU_T_N; k++) gpu_check(cudaEventDestroy(g->ev[k]));
   gpu_check(cudaEventDestroy(g->cells_ready));

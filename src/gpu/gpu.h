@@ -40,12 +40,41 @@ struct gpu_leaves {
   int nr_ngb;              /**< number of entries */
 };
 
+/** Damage in a FORCE phase (brittle materials, tasks/damage). */
+struct gpu_damage {
+  int enabled;       /**< run the damage task after the forces (flaws: gpu_set_flaws) */
+  double dt;         /**< step over which damage grows (0 at the first force computation) */
+  double max_change; /**< Damage:max_change, the time-step limit */
+};
+
+/** Self-gravity in a FORCE phase: the gravitational accelerations (gax,
+ *  gay, gaz, complete on the device: gpu_gravity_p2p) join the
+ *  hydrodynamic ones in the kick, and their time-step criterion joins. */
+struct gpu_gravity {
+  int enabled; /**< add ga in the kick */
+  double eps;  /**< softening (time step criterion when > 0) */
+  double eta;  /**< Gravity:eta */
+};
+
 /** What a FORCE phase reports besides the particle fields. */
 struct gpu_force_out {
   int capped;     /**< some h hit the top-level cells' cap: rebuild */
   int overflow;   /**< some h outgrew h_list_cap: rebuild the lists and call again
                        (h was copied back, everything else is unchanged) */
   int iterations; /**< rounds of the h iteration */
+};
+
+/** The near-field gravity of a tree walk as particle ranges: target range
+ *  T (a leaf) receives from the source ranges [src_start[T], src_start[T+1])
+ *  (leaves; a leaf may be its own source: a particle skips itself). */
+struct gpu_p2p {
+  int n;                  /**< target ranges */
+  const size_t *t_offset; /**< first particle of each */
+  const int *t_count;     /**< its particles */
+  const int *src_start;   /**< n + 1 */
+  const size_t *s_offset; /**< first particle of each source range */
+  const int *s_count;     /**< its particles */
+  int nr_src;             /**< number of source ranges */
 };
 
 /** Find a CUDA device (cudaGetDeviceCount) and set it up; NULL when there
@@ -56,9 +85,16 @@ const char *gpu_name(const struct gpu *g);
 /** 1 if every material of mats can be evaluated on the device, else 0 with
  *  the reason in why (tabulated EOS: host pointers). */
 int gpu_supports(const struct material_table *mats, char *why, size_t len);
+/** Copy the flat array of Weibull flaw thresholds (n of them, indexed by the
+ *  particles' flaw_first) to the device, where the damage kernel reads it;
+ *  again whenever the array changes. */
+void gpu_set_flaws(struct gpu *g, const double *eps, size_t n);
 /** Run the FORCE phase on the particles p: density, h iteration (repeating
- *  the density sums of unconverged particles), equation of state, forces,
- *  second half kick by dt_kick and new time steps.  resident = 0: copy what
+ *  the density sums of unconverged particles), equation of state, with
+ *  solids (hp->solids) the gradient loop and the extra ghost (plasticity,
+ *  dS/dt), forces, with dmg->enabled the damage update, second half kick by
+ *  dt_kick (with grav->enabled adding the gravitational acceleration already
+ *  on the device) and new time steps.  resident = 0: copy what
  *  the loops read to the device first and the results back after;
  *  resident = 1: the device arrays are current (gpu_upload_all), nothing
  *  but the leaf time steps comes back.  leaf_dt_min[L]: smallest new time
@@ -66,7 +102,14 @@ int gpu_supports(const struct material_table *mats, char *why, size_t len);
  *  hp->max_iterations stops the run with an error. */
 void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu_leaves *lv,
                      const struct hydro_props *hp, const struct material_table *mats,
-                     double dt_kick, double *leaf_dt_min, int resident, struct gpu_force_out *out);
+                     const struct gpu_damage *dmg, const struct gpu_gravity *grav, double dt_kick,
+                     double *leaf_dt_min, int resident, struct gpu_force_out *out);
+/** Near-field (P2P) gravity on the device: the potential and acceleration
+ *  of every target particle from its source ranges (gravity_p2p of
+ *  gravity_iact.h with constant G, softening eps and kernel softening),
+ *  added to p's pot, gax, gay, gaz (copied to the device and back). */
+void gpu_gravity_p2p(struct gpu *g, struct parts *p, const struct gpu_p2p *l, double G, double eps,
+                     int softening);
 /** Copy every particle field to the device (after a rebuild or a restart). */
 void gpu_upload_all(struct gpu *g, const struct parts *p);
 /** Copy every particle field back to the host (outputs, rebuilds). */

@@ -21,6 +21,12 @@ struct gpu_engine {
   long steps;             /**< FORCE phases run */
   double *tc_h_cap;       /**< cap on h per task cell */
   int nr_tc;              /**< its length */
+  struct gravity_p2p_list *p2p; /**< P2P interactions recorded by each CPU worker */
+  struct gravity_p2p_list p2p_all; /**< all of them */
+  struct gpu_p2p_host p2p_host;    /**< grouped by target leaf */
+  int nr_p2p;                      /**< workers (length of p2p) */
+  double t_grav_walk;              /**< host seconds of the gravity tasks (walks) */
+  double t_grav_p2p;               /**< seconds of the P2P batches (copies included) */
 };
 
 /** Grow the per-leaf arrays to n. */
@@ -285,7 +291,8 @@ static int gpu_cells_valid(const struct gpu_cells *gc, const struct space *s,
 int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct space *s,
                     struct cell *const *tcells, int nr, const struct engine_cell_tasks *ct,
                     const double *tc_h_cap, const struct hydro_props *hp,
-                    const struct material_table *mats, double dt_kick, int resident,
+                    const struct material_table *mats, const struct gpu_damage *dmg,
+                    const struct gpu_gravity *grav, double dt_kick, int resident,
                     double *tc_dt_min) {
   /* lists a quarter wider than the current h_max, widened when h outgrows them */
   double growth = gc->growth > 1.25 ? 0.97 * gc->growth : 1.25;
@@ -309,7 +316,7 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
     const struct gpu_leaves lv = {gc->n,        gc->offset,     gc->count,
                                   gc->h_cap,    gc->h_list_cap, gc->ngb_start,
                                   gc->ngb_leaf, gc->ngb_shift,  gc->nr_ngb};
-    gpu_force_phase(g, p, &lv, hp, mats, dt_kick, leaf_dt, resident, &out);
+    gpu_force_phase(g, p, &lv, hp, mats, dmg, grav, dt_kick, leaf_dt, resident, &out);
     if (!out.overflow) break;
     if (attempt > 30)
       error_bug("GPU neighbour lists did not cover the smoothing lengths after %d widenings",
@@ -331,6 +338,74 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
   return out.capped;
 }
 
+void gpu_p2p_group(const struct gravity_p2p_list *l, struct gpu_p2p_host *out) {
+  const size_t n = l->n;
+  /* counting sort by the target's cell index (O(n), no comparisons: a run
+   * of 1e6 particles records ~1e7 interactions per step) */
+  int nc = 0;
+  for (size_t k = 0; k < n; k++)
+    if (l->target[k]->index + 1 > nc) nc = l->target[k]->index + 1;
+  int *first = error_calloc((size_t)nc + 1, sizeof(int), "P2P list");
+  for (size_t k = 0; k < n; k++) first[l->target[k]->index + 1]++;
+  int nt = 0;
+  for (int c = 0; c < nc; c++) {
+    nt += first[c + 1] > 0;
+    first[c + 1] += first[c];
+  }
+  if (n + 1 > out->cap || (size_t)nt + 1 > out->tcap) {
+    out->cap = n + n / 4 + 16;
+    out->tcap = (size_t)nt + nt / 4 + 16;
+    out->s_offset = error_realloc(out->s_offset, out->cap * sizeof(size_t), "P2P list");
+    out->s_count = error_realloc(out->s_count, out->cap * sizeof(int), "P2P list");
+    out->t_offset = error_realloc(out->t_offset, out->tcap * sizeof(size_t), "P2P list");
+    out->t_count = error_realloc(out->t_count, out->tcap * sizeof(int), "P2P list");
+    out->src_start = error_realloc(out->src_start, (out->tcap + 1) * sizeof(int), "P2P list");
+  }
+  /* the targets in cell order, each with its slice of the sources */
+  int *tnum = error_malloc(((size_t)nc + 1) * sizeof(int), "P2P list");
+  int t = 0;
+  for (int c = 0; c < nc; c++) {
+    tnum[c] = first[c + 1] > first[c] ? t : -1;
+    if (tnum[c] >= 0) out->src_start[t++] = first[c];
+  }
+  out->src_start[nt] = (int)n;
+  for (size_t k = 0; k < n; k++) {
+    const struct cell *tc = l->target[k], *sc = l->source[k];
+    const int q = first[tc->index]++;
+    out->s_offset[q] = sc->offset;
+    out->s_count[q] = (int)sc->count;
+    out->t_offset[tnum[tc->index]] = tc->offset;
+    out->t_count[tnum[tc->index]] = (int)tc->count;
+  }
+  out->view.n = nt;
+  out->view.t_offset = out->t_offset;
+  out->view.t_count = out->t_count;
+  out->view.src_start = out->src_start;
+  out->view.s_offset = out->s_offset;
+  out->view.s_count = out->s_count;
+  out->view.nr_src = (int)n;
+  free(tnum);
+  free(first);
+}
+
+void gpu_p2p_host_free(struct gpu_p2p_host *h) {
+  free(h->t_offset);
+  free(h->t_count);
+  free(h->src_start);
+  free(h->s_offset);
+  free(h->s_count);
+  memset(h, 0, sizeof *h);
+}
+
+void gpu_gravity_p2p_list(struct gpu *g, struct parts *p, const struct gravity_p2p_list *l,
+                          const struct gravity_props *gp) {
+  struct gpu_p2p_host h;
+  memset(&h, 0, sizeof h);
+  gpu_p2p_group(l, &h);
+  gpu_gravity_p2p(g, p, &h.view, gp->G, gp->eps, gp->softening);
+  gpu_p2p_host_free(&h);
+}
+
 void gpu_engine_init(struct engine *e) {
   const char *policy = params_get_string(e->params, "Scheduler:gpu");
   if (strcmp(policy, "auto") && strcmp(policy, "all") && strcmp(policy, "off"))
@@ -345,12 +420,10 @@ void gpu_engine_init(struct engine *e) {
     return;
   }
   char why[256];
-  /* the GPU runs the hydrodynamic phase as a whole: gravity, the gradient
-   * loop of solids, XSPH and the continuity equation have no GPU
-   * implementation yet */
-  const char *unsupported = e->gp.enabled      ? "self-gravity has no GPU implementation yet"
-                            : !e->hp.enabled   ? "hydrodynamics is off"
-                            : e->hp.solids     ? "material strength has no GPU implementation yet"
+  /* the GPU runs the hydrodynamic phase as a whole (solids and damage
+   * included) and the near field of self-gravity; XSPH and the continuity
+   * equation have no GPU implementation yet, and a gravity-only run none */
+  const char *unsupported = !e->hp.enabled     ? "hydrodynamics is off"
                             : e->hp.xsph > 0.0 ? "XSPH has no GPU implementation yet"
                             : e->hp.continuity ? "the continuity equation has no GPU implementation yet"
                                                : NULL;
@@ -376,10 +449,65 @@ void gpu_engine_init(struct engine *e) {
   struct gpu_engine *ge = error_calloc(1, sizeof *ge, "GPU state");
   ge->gpu = g;
   e->gpu = ge;
+  /* the flaw thresholds never change during a run: on the device once */
+  if (e->damage) gpu_set_flaws(g, e->flaw_eps, (size_t)e->nr_flaws);
   error_log(0,
-            "GPU %s: drift, density, ghost, force and kick2 of every cell run on it, the particles "
-            "stay on it between steps",
-            gpu_name(g));
+            "GPU %s: drift, density, ghost, %sforce, %skick2 of every cell run on it, the "
+            "particles stay on it between steps%s",
+            gpu_name(g), e->hp.solids ? "gradient, extra ghost (plasticity, dS/dt), " : "",
+            e->damage ? "damage, " : "",
+            e->gp.enabled ? "; self-gravity: the tree walks on the CPU, their P2P on the GPU" : "");
+}
+
+/** Scheduler callback of the gravity pass: the engine's task, with the
+ *  calling worker's P2P interactions recorded in its own list. */
+static void gpu_engine_grav_task(void *ctx, struct task *t, int thread_id) {
+  struct engine *e = ctx;
+  gravity_p2p_record(&e->gpu->p2p[thread_id]);
+  engine_run_task(ctx, t, thread_id);
+  gravity_p2p_record(NULL);
+}
+
+/** Self-gravity of the FORCE phase: the gravity tasks of the graph on the
+ *  CPU workers (multipoles, walks, far field, L2P into the host's ga and
+ *  pot; the host holds the positions since the drift), their P2P
+ *  interactions recorded and then summed on the GPU, which leaves ga and
+ *  pot complete on both sides for the kick. */
+static void gpu_engine_gravity(struct engine *e) {
+  struct gpu_engine *ge = e->gpu;
+  const int nw = e->sched.nr_threads > 0 ? e->sched.nr_threads : 1;
+  if (nw > ge->nr_p2p) {
+    ge->p2p = error_realloc(ge->p2p, nw * sizeof *ge->p2p, "P2P lists");
+    memset(ge->p2p + ge->nr_p2p, 0, (nw - ge->nr_p2p) * sizeof *ge->p2p);
+    ge->nr_p2p = nw;
+  }
+  for (int w = 0; w < ge->nr_p2p; w++) ge->p2p[w].n = 0;
+  const double w0 = error_walltime();
+  engine_activate_phase(e, ENGINE_PHASE_FORCE);
+  for (int k = 0; k < e->sched.nr_tasks; k++) {
+    struct task *t = scheduler_task(&e->sched, k);
+    if (t->subtype != task_subtype_grav) t->skip = 1;
+  }
+  scheduler_run(&e->sched, gpu_engine_grav_task, e);
+  const double w1 = error_walltime();
+  /* one batch of every worker's interactions */
+  struct gravity_p2p_list *all = &ge->p2p_all;
+  all->n = 0;
+  for (int w = 0; w < ge->nr_p2p; w++) {
+    const struct gravity_p2p_list *l = &ge->p2p[w];
+    if (all->n + l->n > all->cap) {
+      all->cap = all->n + l->n + (all->n + l->n) / 4 + 1024;
+      all->target = error_realloc(all->target, all->cap * sizeof(struct cell *), "P2P list");
+      all->source = error_realloc(all->source, all->cap * sizeof(struct cell *), "P2P list");
+    }
+    memcpy(all->target + all->n, l->target, l->n * sizeof(struct cell *));
+    memcpy(all->source + all->n, l->source, l->n * sizeof(struct cell *));
+    all->n += l->n;
+  }
+  gpu_p2p_group(all, &ge->p2p_host);
+  gpu_gravity_p2p(ge->gpu, &e->parts, &ge->p2p_host.view, e->gp.G, e->gp.eps, e->gp.softening);
+  ge->t_grav_walk += w1 - w0;
+  ge->t_grav_p2p += error_walltime() - w1;
 }
 
 void gpu_engine_force(struct engine *e) {
@@ -404,8 +532,11 @@ void gpu_engine_force(struct engine *e) {
     ge->dev_valid = 1;
   }
   ge->host_stale = 1;
+  if (e->gp.enabled) gpu_engine_gravity(e);
+  const struct gpu_damage dmg = {e->damage, e->first_force ? 0.0 : e->dt, e->damage_max_change};
+  const struct gpu_gravity grav = {e->gp.enabled, e->gp.eps, e->gp.eta};
   if (gpu_cells_force(ge->gpu, &ge->cells, &e->parts, &e->space, e->tcells, e->nr_tcells, e->ct,
-                      ge->tc_h_cap, &e->hp, e->mats, dt_kick, 1, e->cell_dt_min))
+                      ge->tc_h_cap, &e->hp, e->mats, &dmg, &grav, dt_kick, 1, e->cell_dt_min))
     e->need_rebuild = 1;
 }
 
@@ -477,6 +608,9 @@ void gpu_engine_print(const struct engine *e, FILE *f) {
             "bounds %.3f\n",
             1e3 * ge->cells.t_build / ge->steps, ge->cells.builds, ge->cells.widenings,
             1e3 * ge->t_bounds / ge->steps);
+  if (ge->steps && e->gp.enabled)
+    fprintf(f, "GPU gravity, ms per step: tree walks on the CPU %.3f, P2P batch on the GPU %.3f\n",
+            1e3 * ge->t_grav_walk / ge->steps, 1e3 * ge->t_grav_p2p / ge->steps);
 }
 
 void gpu_engine_free(struct engine *e) {
@@ -486,6 +620,10 @@ void gpu_engine_free(struct engine *e) {
   gpu_free(ge->gpu);
   gpu_cells_free(&ge->cells);
   free(ge->tc_h_cap);
+  for (int w = 0; w < ge->nr_p2p; w++) gravity_p2p_list_free(&ge->p2p[w]);
+  free(ge->p2p);
+  gravity_p2p_list_free(&ge->p2p_all);
+  gpu_p2p_host_free(&ge->p2p_host);
   free(ge);
   e->gpu = NULL;
 }

@@ -6,6 +6,7 @@
 
 #include "engine.h"
 #include "gpu.h"
+#include "gravity/gravity_cpu.h"
 
 struct gpu_cells_job;
 
@@ -51,14 +52,34 @@ void gpu_cells_free(struct gpu_cells *gc);
 
 /** Run one FORCE phase on the GPU g over the task cells tcells[0..nr) of s
  *  (neighbours ct): build the lists, run, and when some h outgrows them
- *  rebuild them wider and run again.  tc_dt_min[t]: the smallest new time
+ *  rebuild them wider and run again.  dmg: damage, grav: gravity in the
+ *  kick (NULL or !enabled: none).  tc_dt_min[t]: the smallest new time
  *  step of task cell t.  resident: as gpu_force_phase.  Returns 1 if a smoothing length was capped
  * by the cells (the space must be rebuilt), else 0. */
 int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct space *s,
                     struct cell *const *tcells, int nr, const struct engine_cell_tasks *ct,
                     const double *tc_h_cap, const struct hydro_props *hp,
-                    const struct material_table *mats, double dt_kick, int resident,
+                    const struct material_table *mats, const struct gpu_damage *dmg,
+                    const struct gpu_gravity *grav, double dt_kick, int resident,
                     double *tc_dt_min);
+
+/** Host arrays of the P2P interactions grouped by target leaf (gpu_p2p_group). */
+struct gpu_p2p_host {
+  struct gpu_p2p view;         /**< the ranges, as gpu_gravity_p2p reads them */
+  size_t *t_offset, *s_offset; /**< storage of the view */
+  int *t_count, *s_count, *src_start;
+  size_t cap, tcap; /**< allocated sources and targets */
+};
+/** Group the interactions of l by target leaf (counting sort by cell
+ *  index; within a target, in recording order) into out (grown, kept). */
+void gpu_p2p_group(const struct gravity_p2p_list *l, struct gpu_p2p_host *out);
+/** Free the arrays of h and zero it. */
+void gpu_p2p_host_free(struct gpu_p2p_host *h);
+/** The P2P interactions recorded by gravity walks (gravity_p2p_record) on
+ *  the GPU g: grouped by target leaf and added to p's pot and ga with the
+ *  constants of gp (gpu_gravity_p2p). */
+void gpu_gravity_p2p_list(struct gpu *g, struct parts *p, const struct gravity_p2p_list *l,
+                          const struct gravity_props *gp);
 
 /** Choose where tasks run from Scheduler:gpu and --gpu/--no-gpu, set
  *  e->gpu when the FORCE phase goes to a device, and say so in one line. */

@@ -5,6 +5,7 @@
 
 #include <cuda_runtime.h>
 
+#include "gpu.h"
 #include "gpu_check.h"
 #include "hydro_props.h"
 #include "part.h"
@@ -30,6 +31,17 @@ struct gpu_leaves_dev {
   const double *ngb_shift;  /**< 3 per entry */
 };
 
+/** The P2P ranges of the near-field gravity in device memory (struct gpu_p2p). */
+struct gpu_p2p_dev {
+  int n;                  /**< target ranges */
+  int block;              /**< threads per block (<= GPU_BLOCK) */
+  const size_t *t_offset; /**< first particle of each target range */
+  const int *t_count;     /**< its particles */
+  const int *src_start;   /**< n + 1: target T's sources are [src_start[T], src_start[T+1]) */
+  const size_t *s_offset; /**< first particle of each source range */
+  const int *s_count;     /**< its particles */
+};
+
 /** Counters of the h iteration in device memory. */
 enum gpu_counter { GPU_LEFT = 0, GPU_CAPPED = 1, GPU_OVERFLOW = 2, GPU_NR_COUNTERS = 4 };
 
@@ -46,13 +58,30 @@ void ghost_gpu_step_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev
 /** Grad-h factor, EOS, Balsara switch, force sums zeroed. */
 void ghost_gpu_finish_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
                              struct hydro_props hp, const struct material_table *mats);
+/** Gradient sums (solids), gather form with r < H_i (tasks/gradient/gradient_gpu.cu). */
+void gradient_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv);
+/** Extra ghost of every particle: corrected velocity gradient, plasticity,
+ *  dS/dt, artificial stress (tasks/gradient/gradient_gpu.cu). */
+void extra_ghost_gpu_launch(cudaStream_t s, struct parts p, struct hydro_props hp,
+                            const struct material_table *mats);
+/** Damage update of every particle over the step dt, flaw thresholds eps
+ *  (tasks/damage/damage_gpu.cu). */
+void damage_gpu_launch(cudaStream_t s, struct parts p, const struct material_table *mats,
+                       const double *eps, double dt);
+/** Near-field gravity: P2P of every target range from its source ranges,
+ *  added to pot and ga (tasks/gravity/gravity_gpu.cu). */
+void gravity_p2p_gpu_launch(cudaStream_t s, struct parts p, struct gpu_p2p_dev l, double G,
+                            double eps, int softening);
 /** Forces, gather form with r < max(H_i, H_j) (tasks/force/force_gpu.cu). */
 void force_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
                       struct hydro_props hp);
 /** First half kick and drift of every particle (tasks/drift/drift_gpu.cu). */
 void drift_gpu_launch(cudaStream_t s, struct parts p, double dt_kick, double dt);
-/** Second half kick and time step; leaf_dt[L] the smallest of leaf L (tasks/kick/kick_gpu.cu). */
+/** Second half kick and time step; leaf_dt[L] the smallest of leaf L; with
+ *  damage_max_change > 0 the damage limit joins, with grav.enabled the
+ *  gravitational acceleration and its limit (tasks/kick/kick_gpu.cu). */
 void kick2_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
-                      struct hydro_props hp, double dt_kick, double *leaf_dt);
+                      struct hydro_props hp, double dt_kick, double damage_max_change,
+                      struct gpu_gravity grav, double *leaf_dt);
 
 #endif

@@ -80,9 +80,12 @@
   X("Gravity:softening_kernel", PARAM_ENUM, "spline", 0, 0, "spline|plummer", "-", "pair softening: spline (Wendland C2 mass, Newtonian beyond 3 eps) or plummer (1/sqrt(r^2+eps^2)); theory/gravity.md") \
   X("Gravity:epsilon_fmm", PARAM_REAL, "1e-4", 0, 1, NULL, "-", "tolerance of the adaptive opening criterion: estimated force error of an accepted interaction below epsilon_fmm times the particle's gravitational acceleration at the previous step (0: geometric criterion only); theory/gravity.md") \
   X("Gravity:multipole_order", PARAM_INT, "4", 1, 5, NULL, "-", "order p of the multipole and local expansions (potential to order p, forces to p-1); theory/gravity.md") \
+  X("Gravity:reuse_steps", PARAM_INT, "0", 0, 1000000, NULL, "-", "reuse the far field (multipoles and local expansions) for at most this many steps after a full evaluation, recomputing only the particle-level interactions (0: every step is full); theory/gravity.md") \
+  X("Gravity:reuse_tolerance", PARAM_REAL, "0.01", 0, 1, NULL, "-", "a step reuses the far field only while every particle has moved less than this fraction of the shortest far-field interaction distance since the full evaluation") \
                                                                                                          \
   X("Scheduler:cell_split_size", PARAM_INT, "400", 8, 1000000, NULL, "-", "largest number of particles in a leaf cell (default 400; 32 when self-gravity is on and the key is not given)") \
   X("Scheduler:cell_task_size", PARAM_INT, "1000", 8, 100000000, NULL, "-", "tasks work on octree cells of at most this many particles (smaller: more, finer tasks)") \
+  X("Scheduler:gravity_task_size", PARAM_INT, "2000", 8, 1000000000, NULL, "-", "the self-gravity task of a top-level cell with more particles is split into tasks on its octants (and theirs, up to 3 levels down) so that a concentrated body keeps every worker busy") \
   X("Scheduler:max_top_level_cells", PARAM_INT, "16", 1, 1024, NULL, "-", "largest number of top-level cells along one side") \
   X("Scheduler:tasks_per_cell", PARAM_REAL, "0", 0, PARAM_INF, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
   X("Scheduler:dump_tasks", PARAM_INT, "0", 0, PARAM_INF, NULL, "-", "write a task timeline (thread, start, end, type, cell) every this many steps (0: never)") \

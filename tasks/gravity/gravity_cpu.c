@@ -6,6 +6,7 @@
 
 #include <math.h>
 #include <pthread.h>
+#include <stdlib.h>
 #include <string.h>
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -120,6 +121,12 @@ static void up_rec(struct parts *p, const struct cell *c, struct gravity_cell *g
 
 void gravity_up(struct parts *p, const struct cell *c, struct gravity_cell *gc,
                 const struct gravity_props *gp) {
+  if (gp->replay) {
+    /* the multipoles and local expansions of the last full evaluation stay */
+    for (size_t i = c->offset; i < c->offset + c->count; i++)
+      p->gax[i] = p->gay[i] = p->gaz[i] = p->pot[i] = 0.0;
+    return;
+  }
   up_rec(p, c, gc, gp->order);
 }
 
@@ -283,6 +290,40 @@ static inline void p2p_row(const double *restrict x, const double *restrict y,
   out[3] = sz;
 }
 
+/* ------------------------------------------------------------------ lists */
+
+/** The list the walks of this thread record into (NULL: none). */
+static _Thread_local struct gravity_ilist *recording;
+
+void gravity_record_begin(struct gravity_ilist *il) {
+  recording = il;
+  if (il) {
+    il->count = 0;
+    il->d_min = HUGE_VAL;
+  }
+}
+
+void gravity_record_end(void) { recording = NULL; }
+
+void gravity_ilist_free(struct gravity_ilist *il) {
+  free(il->item);
+  memset(il, 0, sizeof *il);
+}
+
+static void record(const struct cell *a, const struct cell *b, int kind, int symmetric) {
+  struct gravity_ilist *il = recording;
+  if (il->count == il->capacity) {
+    il->capacity = il->capacity ? 2 * il->capacity : 64;
+    il->item = error_realloc(il->item, (size_t)il->capacity * sizeof *il->item,
+                             "gravity interaction list");
+  }
+  il->item[il->count++] = (struct gravity_iitem){a, b, kind, symmetric};
+}
+
+static void record_distance(double r2) {
+  if (recording && r2 < recording->d_min * recording->d_min) recording->d_min = sqrt(r2);
+}
+
 /** Particles [i0, i1) against [j0, j1) (disjoint, or j0 = i + 1 for the
  *  self interaction when self is set); sym: the sources receive too. */
 static void p2p_block(struct parts *p, size_t i0, size_t i1, size_t j0, size_t j1, int self,
@@ -304,8 +345,40 @@ static void p2p_block(struct parts *p, size_t i0, size_t i1, size_t j0, size_t j
   counters.p2p += self ? ni * (ni - 1) / 2 : ni * nj;
 }
 
+/** Where the calling thread's walks record their P2P interactions instead
+ *  of computing them (NULL: compute; gravity_p2p_record). */
+static _Thread_local struct gravity_p2p_list *p2p_sink;
+
+void gravity_p2p_record(struct gravity_p2p_list *l) {
+  p2p_sink = l;
+}
+
+/** Record that the particles of leaf source act on those of leaf target. */
+static void p2p_sink_add(const struct cell *target, const struct cell *source) {
+  struct gravity_p2p_list *l = p2p_sink;
+  if (l->n == l->cap) {
+    l->cap = l->cap ? 2 * l->cap : 1024;
+    l->target = error_realloc(l->target, l->cap * sizeof(struct cell *), "P2P list");
+    l->source = error_realloc(l->source, l->cap * sizeof(struct cell *), "P2P list");
+  }
+  l->target[l->n] = target;
+  l->source[l->n] = source;
+  l->n++;
+}
+
+void gravity_p2p_list_free(struct gravity_p2p_list *l) {
+  free(l->target);
+  free(l->source);
+  memset(l, 0, sizeof *l);
+}
+
 /** All pairs within leaf c, each once (symmetric). */
 static void p2p_self(struct parts *p, const struct cell *c, const struct gravity_props *gp) {
+  if (recording) record(c, NULL, 0, 1);
+  if (p2p_sink) {
+    p2p_sink_add(c, c);
+    return;
+  }
   p2p_block(p, c->offset, c->offset + c->count, c->offset, c->offset + c->count, 1, 1, gp);
 }
 
@@ -313,6 +386,12 @@ static void p2p_self(struct parts *p, const struct cell *c, const struct gravity
  *  when symmetric, only a's otherwise. */
 static void p2p_pair(struct parts *p, const struct cell *a, const struct cell *b, int symmetric,
                      const struct gravity_props *gp) {
+  if (recording) record(a, b, 0, symmetric);
+  if (p2p_sink) {
+    p2p_sink_add(a, b);
+    if (symmetric) p2p_sink_add(b, a);
+    return;
+  }
   p2p_block(p, a->offset, a->offset + a->count, b->offset, b->offset + b->count, 0, symmetric, gp);
 }
 
@@ -474,11 +553,14 @@ static void walk_pair(struct parts *p, const struct cell *a, const struct cell *
         return;
       }
       counters.m2p += big->count;
+      record_distance(r2);
+      if (recording && (symmetric || a_big)) record(big, small, 1, 0);
       m2p_leaf(p, big, gsmall, symmetric || a_big, symmetric || !a_big, gp->eps2_expansion, gp->G,
                gp->order);
       return;
     }
     counters.m2l++;
+    record_distance(r2);
     /* one-way: target a, source b, the tensor at z_a - z_b */
     m2l_cells(ga, gb, R, gp->eps2_expansion, gp->order, symmetric);
     return;
@@ -528,8 +610,8 @@ int gravity_top_pair_is_near(const struct cell *ci, const struct cell *cj,
                              const struct gravity_props *gp) {
   double ri2 = 0.0, rj2 = 0.0, d2 = 0.0;
   for (int k = 0; k < 3; k++) {
-    const double wi = ci->bmax[k] - ci->bmin[k] + 2.0 * ci->dx_max;
-    const double wj = cj->bmax[k] - cj->bmin[k] + 2.0 * cj->dx_max;
+    const double wi = ci->bmax[k] - ci->bmin[k];
+    const double wj = cj->bmax[k] - cj->bmin[k];
     const double d = 0.5 * (cj->bmin[k] + cj->bmax[k] - ci->bmin[k] - ci->bmax[k]);
     ri2 += 0.25 * wi * wi;
     rj2 += 0.25 * wj * wj;
@@ -578,9 +660,49 @@ static void down_rec(struct parts *p, const struct cell *c, struct gravity_cell 
   }
 }
 
+/** L2P at every leaf of c's octree from the leaf's complete local
+ *  expansion (a reuse step: the L2L of the last full evaluation stay). */
+static void down_leaves(struct parts *p, const struct cell *c, struct gravity_cell *gc,
+                        const struct gravity_props *gp) {
+  if (c->count == 0) return;
+  if (c->split) {
+    for (int q = 0; q < 8; q++)
+      if (c->progeny[q]) down_leaves(p, c->progeny[q], gc, gp);
+    return;
+  }
+  const struct gravity_cell *g = gc + c->index;
+  for (size_t i = c->offset; i < c->offset + c->count; i++) {
+    const double s[3] = {p->x[i] - g->mp.com[0], p->y[i] - g->mp.com[1], p->z[i] - g->mp.com[2]};
+    double pot = 0.0, a[3] = {0.0, 0.0, 0.0};
+    gravity_l2p(&g->field, s, gp->order, gp->G, &pot, a);
+    p->pot[i] += pot;
+    p->gax[i] += a[0];
+    p->gay[i] += a[1];
+    p->gaz[i] += a[2];
+  }
+}
+
 void gravity_down(struct parts *p, const struct cell *c, struct gravity_cell *gc,
                   const struct gravity_props *gp) {
-  down_rec(p, c, gc, gp);
+  if (gp->replay)
+    down_leaves(p, c, gc, gp);
+  else
+    down_rec(p, c, gc, gp);
+}
+
+void gravity_replay(struct parts *p, const struct gravity_ilist *il, struct gravity_cell *gc,
+                    const struct gravity_props *gp) {
+  for (int k = 0; k < il->count; k++) {
+    const struct gravity_iitem *it = il->item + k;
+    if (it->kind == 1)
+      m2p_leaf(p, it->a, gc + it->b->index, 1, 0, gp->eps2_expansion, gp->G, gp->order);
+    else if (it->b == NULL)
+      p2p_block(p, it->a->offset, it->a->offset + it->a->count, it->a->offset,
+                it->a->offset + it->a->count, 1, 1, gp);
+    else
+      p2p_block(p, it->a->offset, it->a->offset + it->a->count, it->b->offset,
+                it->b->offset + it->b->count, 0, it->symmetric, gp);
+  }
 }
 
 void gravity_tree_all(struct parts *p, const struct cell *tops, int nr_top, struct gravity_cell *gc,

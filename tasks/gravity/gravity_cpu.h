@@ -61,6 +61,33 @@ struct gravity_props {
   double h_support;      /**< distance beyond which the pair force is Newtonian (3 eps for the
                               spline, 0 for Plummer whose expansions are softened) */
   double eps2_expansion; /**< softening squared inside the expansions (eps^2 for Plummer, else 0) */
+  int reuse_steps;       /**< Gravity:reuse_steps: most steps in a row that reuse the far field */
+  double reuse_tol;      /**< Gravity:reuse_tolerance: largest displacement since the last full
+                              evaluation, in units of the shortest far-field distance */
+  int replay;            /**< set by the engine for one step: 1 = reuse the far field (below) */
+};
+
+/** One particle-level interaction of a walk: what a step that reuses the
+ *  far field recomputes (gravity_replay). */
+struct gravity_iitem {
+  const struct cell *a, *b; /**< leaves (P2P; b == NULL: within a), or leaf a and cell b (M2P) */
+  int kind;                 /**< 0: P2P, 1: M2P of b's multipole to a's particles */
+  int symmetric;            /**< P2P: b's particles receive too */
+};
+
+/** The particle-level interactions of one gravity task, recorded by a full
+ *  evaluation (gravity_record_begin ... end) and replayed by the steps that
+ *  reuse the far field: those steps keep every cell's local expansion (the
+ *  M2L and P2L of the full step) and every multipole, recompute the P2P
+ *  pairs and the M2P of the list at the particles' current positions, and
+ *  evaluate the kept local expansions at the current positions (L2P).  The
+ *  error is that of sources that moved since the full evaluation: of order
+ *  displacement / distance of the far-field interactions (theory/gravity.md;
+ *  measured in tests/test_gravity_reuse). */
+struct gravity_ilist {
+  struct gravity_iitem *item; /**< the interactions */
+  int count, capacity;        /**< their number and the allocated length */
+  double d_min; /**< shortest centre distance of an M2L or M2P of the walk (HUGE_VAL: none) */
 };
 
 /** Gravity data of one cell (cold: only gravity tasks read them). */
@@ -69,6 +96,20 @@ struct gravity_cell {
   struct gravity_field field;  /**< local expansion about mp.com (interactions, gravity_down) */
   double a_min; /**< smallest |ga| of the cell's particles at the previous pass (0: unknown) */
 };
+
+/** Record the particle-level interactions of the walks this thread runs
+ *  until gravity_record_end into il (emptied first; NULL: record nothing). */
+void gravity_record_begin(struct gravity_ilist *il);
+void gravity_record_end(void);
+
+/** Redo the particle-level interactions of il at the current positions
+ *  (a step with gp->replay set; gravity_up and gravity_down then keep the
+ *  multipoles and local expansions of the last full evaluation). */
+void gravity_replay(struct parts *p, const struct gravity_ilist *il, struct gravity_cell *gc,
+                    const struct gravity_props *gp);
+
+/** Free the interactions of il. */
+void gravity_ilist_free(struct gravity_ilist *il);
 
 /** Fill gp from the Gravity section of params; G from the unit system. */
 void gravity_props_init(struct gravity_props *gp, const struct params *params,
@@ -112,7 +153,15 @@ void gravity_down(struct parts *p, const struct cell *c, struct gravity_cell *gc
 
 /** 1 if top-level cells ci and cj should interact in a pair task: their
  *  boxes fail the opening criterion (radius: half-diagonal of the particles'
- *  bounding box grown by dx_max; distance between box centres). */
+ *  bounding box at the rebuild; distance between box centres).  It must give
+ *  the same answer from one rebuild to the next: the pair tasks are made
+ *  with it when the graph is built and the long-range tasks skip, with it,
+ *  the pairs that have one.  (It once grew the boxes by dx_max, which grows
+ *  between rebuilds: pairs that turned "near" after the rebuild then had no
+ *  pair task and were skipped by the long-range task, so that collapsing
+ *  bodies lost part of their gravity and energy drifted by ~1% in the
+ *  Evrard test.)  The walks stay exact for any classification: they apply
+ *  the acceptance criterion to the current multipoles at every level. */
 int gravity_top_pair_is_near(const struct cell *ci, const struct cell *cj,
                              const struct gravity_props *gp);
 
@@ -126,6 +175,22 @@ void gravity_tree_all(struct parts *p, const struct cell *tops, int nr_top, stru
  *  of the tests): sets ga and pot.  nthreads > 1
  *  splits the work over POSIX threads (gather form). */
 void gravity_direct(struct parts *p, double G, double eps, int softening, int nthreads);
+
+/** P2P interactions of leaf pairs, recorded by the walks instead of
+ *  computed (the GPU computes them: gpu_gravity_p2p_list): the particles of
+ *  source[k] act on those of target[k]; a leaf with itself appears as
+ *  target == source.  Everything else of the walk (M2L, M2P/P2L, L2P) is
+ *  computed as usual. */
+struct gravity_p2p_list {
+  size_t n, cap;              /**< interactions recorded and allocated */
+  const struct cell **target; /**< leaf receiving */
+  const struct cell **source; /**< leaf acting */
+};
+/** From now on the calling thread's walks record their P2P interactions in
+ *  l (appending) instead of computing them; NULL: compute them again. */
+void gravity_p2p_record(struct gravity_p2p_list *l);
+/** Free the arrays of l and zero it. */
+void gravity_p2p_list_free(struct gravity_p2p_list *l);
 
 /** Work counters of the tree walks (diagnostics), kept per thread. */
 struct gravity_counters {

@@ -20,6 +20,8 @@ void gravity_props_init(struct gravity_props *gp, const struct params *params,
   gp->direct = params_get_bool(params, "Gravity:direct");
   gp->eta = params_get_real(params, "Gravity:eta");
   gp->epsilon_fmm = params_get_real(params, "Gravity:epsilon_fmm");
+  gp->reuse_steps = (int)params_get_int(params, "Gravity:reuse_steps");
+  gp->reuse_tol = params_get_real(params, "Gravity:reuse_tolerance");
   if (gp->enabled && eps == 0.0)
     error_warning("Gravity:softening is 0: close pairs of particles will see a singular force");
 }

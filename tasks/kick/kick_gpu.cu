@@ -1,19 +1,39 @@
-/* Second half kick and new time step on the GPU, with kick2_part (kick.h),
- * the function the CPU task calls; each block reduces the smallest time
- * step of its leaf. */
+/* Second half kick and new time step on the GPU, with kick2_part (kick.h)
+ * and, with brittle materials, damage_part_timestep (damage_part.h), with
+ * self-gravity the gravitational acceleration added first and
+ * gravity_timestep (gravity_iact.h), as the CPU task (engine_kick2) does; each block reduces the
+ * smallest time step of its leaf. */
+#include "damage/damage_part.h"
+#include "gravity/gravity_iact.h"
 #include "gpu_kernels.h"
 #include "kick.h"
 
 /** See kick2_gpu_launch. */
 __global__ void kick2_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, struct hydro_props hp,
-                                 double dt_kick, double *leaf_dt) {
+                                 double dt_kick, double damage_max_change, struct gpu_gravity grav,
+                                 double *leaf_dt) {
   __shared__ double dt_min[GPU_BLOCK];
   const int L = blockIdx.x;
   const size_t beg = lv.offset[L];
   double dt = 1e300;
   for (int t = threadIdx.x; t < lv.count[L]; t += blockDim.x) {
-    const double d = kick2_part(&p, beg + (size_t)t, dt_kick, &hp);
+    const size_t i = beg + (size_t)t;
+    if (grav.enabled) {
+      p.ax[i] += p.gax[i];
+      p.ay[i] += p.gay[i];
+      p.az[i] += p.gaz[i];
+    }
+    const double d = kick2_part(&p, i, dt_kick, &hp);
     if (d < dt) dt = d;
+    if (damage_max_change > 0.0) {
+      const double dtd = damage_part_timestep(&p, i, damage_max_change);
+      if (dtd < dt) dt = dtd;
+    }
+    if (grav.enabled && grav.eps > 0.0) {
+      const double ga[3] = {p.gax[i], p.gay[i], p.gaz[i]};
+      const double dtg = gravity_timestep(ga, grav.eps, grav.eta);
+      if (dtg < dt) dt = dtg;
+    }
   }
   dt_min[threadIdx.x] = dt;
   __syncthreads();
@@ -26,8 +46,9 @@ __global__ void kick2_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, struc
 }
 
 void kick2_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
-                      struct hydro_props hp, double dt_kick, double *leaf_dt) {
+                      struct hydro_props hp, double dt_kick, double damage_max_change,
+                      struct gpu_gravity grav, double *leaf_dt) {
   if (lv.n == 0) return;
-  kick2_gpu_kernel<<<lv.n, lv.block, 0, s>>>(p, lv, hp, dt_kick, leaf_dt);
+  kick2_gpu_kernel<<<lv.n, lv.block, 0, s>>>(p, lv, hp, dt_kick, damage_max_change, grav, leaf_dt);
   gpu_check_launch(kick2_gpu_kernel);
 }

@@ -1,12 +1,16 @@
 #!/usr/bin/env bash
 # CPU-only (every host core) against the GPU runner, seconds per step with
-# every particle active, for a uniform periodic box, a Sedov blast and the
+# every particle active, for a uniform periodic box, a Sedov blast, the
 # planetary reference impact of shared/bench (make_impact_ic.py, Tillotson
-# granite, hydro only), at each size; median over REPEAT runs of STEPS steps
+# granite, hydro only) and the same initial conditions as solids ("solid":
+# Tillotson basalt with Collins strength and Grady-Kipp damage with Weibull
+# flaws; no self-gravity) and with self-gravity ("gravity": granite, hydro +
+# tree gravity, softening 30 km; on the GPU runner the walks stay on the CPU
+# and their P2P runs on the GPU), at each size; median over REPEAT runs of STEPS steps
 # (each run's mean step).  Prints one table (markdown) and the GPU's stage
 # times of the last GPU run of each case.
 #
-# Usage: tools/bench/gpu.sh [-n "1e5 1e6"] [-p "box sedov impact"] [-r 3] [-s 4] [-g "GPU ARGS"]
+# Usage: tools/bench/gpu.sh [-n "1e5 1e6"] [-p "box sedov impact solid gravity"] [-r 3] [-s 4] [-g "GPU ARGS"]
 #   -g  extra bolide arguments for the GPU runs only, e.g.
 #       "-P Scheduler:cell_split_size:64" (smaller leaves: shorter GPU loops)
 # Env:   BOLIDE_BUILD (build folder), BOLIDE_BENCH_IC (make_impact_ic.py),
@@ -27,7 +31,7 @@ ncpu=$(nproc)
 printf "# %s on %s (%s, %d cores); GPU: %s\n" "$("$build/bolide" --version | head -1)" "$(uname -n)" \
   "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')" "$ncpu" \
   "$(nvidia-smi --query-gpu=name --format=csv,noheader 2>/dev/null | head -1)"
-printf "# median of %d runs of %d steps, every particle active, hydro only\n" "$repeat" "$steps"
+printf "# median of %d runs of %d steps, every particle active\n" "$repeat" "$steps"
 printf "| problem | N | CPU %d threads s/step | GPU %s s/step | speed-up |\n|---|---|---|---|---|\n" "$ncpu" "$gpu_args"
 stages=""
 
@@ -49,12 +53,14 @@ for prob in $problems; do
       sedov)
         "$build/bolide-ic" sedov --n "$side" --energy 1 --rho 1 -o ic.hdf5 >/dev/null
         extra="  periodic: true" ;;
-      impact)
+      impact|solid|gravity)
         nt=$(awk -v n=$n 'BEGIN {printf "%d", n * 10 / 11}'); ni=$(awk -v n=$n 'BEGIN {printf "%d", n / 11}')
         "$python" "$gen" "$nt" "$ni" ic.hdf5 >/dev/null
         extra="  periodic: false" ;;
     esac
     mats=""; [ $prob = impact ] && mats=$'Materials:\n  101: {}'
+    [ $prob = gravity ] && mats=$'Materials:\n  101: {}\nGravity:\n  enabled: true\n  softening: 3e4'
+    [ $prob = solid ] && mats=$'Materials:\n  101: {name: basalt, strength: collins, yield_stress: 1e7, yield_stress_max: 3.5e9, friction_intact: 1.2, cohesion_damaged: 1e5, friction_damaged: 0.6, weibull_k: 1e61, weibull_m: 16}\nDamage:\n  seed: 1'
     cat >p.yml <<YML
 InitialConditions:
   file_name: ic.hdf5
@@ -79,7 +85,7 @@ YML
         <("$build/bolide" --check p.yml 2>&1 || true) | head -1)
     cpu=$(run --no-gpu)
     gpu=$(run "--gpu $gpu_args")
-    stages="$stages$prob $N: $(grep -m1 '^GPU (' run.log | sed 's/^GPU ([^)]*), //'); $(grep -m1 '^GPU host' run.log)"$'\n'
+    stages="$stages$prob $N: $(grep '^GPU (' run.log | sed 's/^GPU ([^)]*), //' | tr '\n' ' '); $(grep '^GPU host\|^GPU gravity' run.log | tr '\n' ' ')"$'\n'
     printf "| %s | %s | %.4f | %.4f | %.1f |\n" "$prob" "$N" "$cpu" "$gpu" "$(awk -v a=$cpu -v b=$gpu 'BEGIN {print a / b}')"
   done
 done

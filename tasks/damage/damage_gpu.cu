@@ -1,0 +1,21 @@
+/* The damage task on the GPU: one thread per particle running damage_part
+ * (damage_part.h, the function the CPU task calls) with the flaw thresholds
+ * resident in device memory (gpu_set_flaws). */
+#include "damage_part.h"
+#include "gpu_kernels.h"
+
+/** See damage_gpu_launch. */
+__global__ void damage_gpu_kernel(struct parts p, const struct material_table *mats,
+                                  const double *eps, double dt) {
+  const size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= p.count) return;
+  damage_part(&p, i, mats, eps, dt);
+}
+
+void damage_gpu_launch(cudaStream_t s, struct parts p, const struct material_table *mats,
+                       const double *eps, double dt) {
+  if (p.count == 0) return;
+  const unsigned nb = (unsigned)((p.count + GPU_BLOCK - 1) / GPU_BLOCK);
+  damage_gpu_kernel<<<nb, GPU_BLOCK, 0, s>>>(p, mats, eps, dt);
+  gpu_check_launch(damage_gpu_kernel);
+}
