@@ -39,7 +39,10 @@
  * walk_self), each sub-task locking the cells it writes; an implicit
  * done(q) follows q's sub-tasks, pair(q, r) waits for done(q) and done(r)
  * (a task on q then never runs beside one on a descendant of q), and the
- * top-level pairs and the long-range task of c wait for done(c).  Without
+ * top-level pairs and the long-range task of c wait for done(c).  A near
+ * pair with such a cell is split into pairs of the octants (of the split
+ * cells), which lock the octants and come before the long-range tasks of
+ * the split cells (which write the whole cell).  Without
  * the split a few large cells serialise the gravity of a concentrated body
  * (a planet: 14 occupied top-level cells at 1e5 particles).
  *
@@ -189,6 +192,20 @@ static struct task *engine_grav_self(struct engine *e, struct cell *c, struct ta
   return done;
 }
 
+/** The cells a near pair of top-level cell c is split into: c's non-empty
+ *  octants when its self tasks were split, else c itself.  Returns their
+ *  number. */
+static int engine_grav_units(struct cell *c, int split, struct cell *units[8]) {
+  int n = 0;
+  if (!split) {
+    units[n++] = c;
+    return n;
+  }
+  for (int q = 0; q < 8; q++)
+    if (c->progeny[q] && c->progeny[q]->count > 0) units[n++] = c->progeny[q];
+  return n;
+}
+
 /** The gravity tasks of the top-level cells (see the top comment). */
 static void engine_make_gravity_tasks(struct engine *e, const int *first, int *cap) {
   struct space *s = &e->space;
@@ -200,6 +217,7 @@ static void engine_make_gravity_tasks(struct engine *e, const int *first, int *c
   e->grav_down = error_calloc(nt, sizeof(struct task *), "gravity tasks");
   struct task **up = error_calloc(nt, sizeof(struct task *), "gravity tasks");
   struct task **gself = error_calloc(nt, sizeof(struct task *), "gravity tasks");
+  struct task **glr = error_calloc(nt, sizeof(struct task *), "gravity tasks");
   struct task *all_up = scheduler_addtask(sched, task_type_implicit, task_subtype_grav, NULL, NULL);
   engine_phase_add(e, ENGINE_PHASE_FORCE, all_up, cap);
   for (int c = 0; c < nt; c++) {
@@ -211,7 +229,7 @@ static void engine_make_gravity_tasks(struct engine *e, const int *first, int *c
     /* self(c), or its split: then gself[c] is the implicit done(c) */
     gself[c] = engine_grav_self(e, ci, up[c], 0, c, cap);
     const int split = gself[c]->type != task_type_self;
-    struct task *lr = scheduler_addtask(sched, task_type_grav_long_range, task_subtype_grav, ci, NULL);
+    struct task *lr = glr[c] = scheduler_addtask(sched, task_type_grav_long_range, task_subtype_grav, ci, NULL);
     e->grav_down[c] = scheduler_addtask(sched, task_type_grav_down, task_subtype_grav, ci, NULL);
     up[c]->cell_index = lr->cell_index = e->grav_down[c]->cell_index = c;
     up[c]->locks[0] = lr->locks[0] = e->grav_down[c]->locks[0] = &e->glocks[c];
@@ -229,26 +247,43 @@ static void engine_make_gravity_tasks(struct engine *e, const int *first, int *c
     engine_phase_add(e, ENGINE_PHASE_FORCE, lr, cap);
     engine_phase_add(e, ENGINE_PHASE_FORCE, e->grav_down[c], cap);
   }
-  /* near pairs of top-level cells: grav_up(c), grav_up(c') -> grav(c,c') -> grav_down(c), grav_down(c') */
+  /* near pairs of top-level cells: grav_up(c), grav_up(c') -> grav(c,c') -> grav_down(c), grav_down(c');
+   * a pair with a split cell (gself set: its self tasks were split) is split
+   * too, into pairs of the octants of the split cells (engine_grav_units):
+   * they lock those octants, wait for done() of the split cells and come
+   * before their long-range tasks, the other writers of the whole cell */
   for (int a = 0; a < nt; a++) {
     if (!up[a]) continue;
     for (int b = a + 1; b < nt; b++) {
       if (!up[b] || !gravity_top_pair_is_near(&s->cells[a], &s->cells[b], &e->gp)) continue;
-      struct task *pt = scheduler_addtask(sched, task_type_pair, task_subtype_grav, &s->cells[a], &s->cells[b]);
-      pt->cell_index = a;
-      pt->locks[0] = &e->glocks[a];
-      pt->locks[1] = &e->glocks[b];
-      scheduler_addunlock(sched, up[a], pt);
-      scheduler_addunlock(sched, up[b], pt);
-      if (gself[a]) scheduler_addunlock(sched, gself[a], pt);
-      if (gself[b]) scheduler_addunlock(sched, gself[b], pt);
-      scheduler_addunlock(sched, pt, e->grav_down[a]);
-      scheduler_addunlock(sched, pt, e->grav_down[b]);
-      engine_phase_add(e, ENGINE_PHASE_FORCE, pt, cap);
+      struct cell *ua[8], *ub[8];
+      const int na = engine_grav_units(&s->cells[a], gself[a] != NULL, ua);
+      const int nb = engine_grav_units(&s->cells[b], gself[b] != NULL, ub);
+      for (int i = 0; i < na; i++)
+        for (int j = 0; j < nb; j++) {
+          struct task *pt = scheduler_addtask(sched, task_type_pair, task_subtype_grav, ua[i], ub[j]);
+          pt->cell_index = a;
+          pt->locks[0] = ua[i] == &s->cells[a] ? &e->glocks[a] : &e->gsublocks[ua[i]->index];
+          pt->locks[1] = ub[j] == &s->cells[b] ? &e->glocks[b] : &e->gsublocks[ub[j]->index];
+          scheduler_addunlock(sched, up[a], pt);
+          scheduler_addunlock(sched, up[b], pt);
+          if (gself[a]) {
+            scheduler_addunlock(sched, gself[a], pt);
+            scheduler_addunlock(sched, pt, glr[a]);
+          }
+          if (gself[b]) {
+            scheduler_addunlock(sched, gself[b], pt);
+            scheduler_addunlock(sched, pt, glr[b]);
+          }
+          scheduler_addunlock(sched, pt, e->grav_down[a]);
+          scheduler_addunlock(sched, pt, e->grav_down[b]);
+          engine_phase_add(e, ENGINE_PHASE_FORCE, pt, cap);
+        }
     }
   }
   free(up);
   free(gself);
+  free(glr);
 }
 
 /** The tasks of a pair of task cells a, b (b seen at x + shift). */

@@ -35,8 +35,11 @@ awk '/^# step/ {for (k = 2; k <= NF; k++) if ($k == "E_tot") c = k - 1}
      !/^#/ {if (first == "") first = $c; d = ($c - first) / first; if (d < 0) d = -d; if (d > dmax) dmax = d}
      END {printf "with reuse: max |dE/E| %.3e\n", dmax; if (!(dmax < 0.01)) {print "FAIL: energy with reuse"; exit 1}}' statistics.txt
 
-# The split self-gravity tasks (Scheduler:gravity_task_size) compute the same
-# walk as one task per top-level cell: to t = 0.3, energies agree to 1e-10.
+# Split gravity tasks (Scheduler:gravity_task_size 50) against one task per
+# top-level cell: the split self tasks compute the same walk; the split near
+# pairs open both cells at once where the walk opens the larger first (other
+# interactions of the same accuracy), so to t = 0.3 the energies agree to the
+# accuracy of the tree, 1e-5 (measured: 7e-7), not to rounding.
 for g in 1000000000 50; do
   "$B/bolide" -t 2 params.yml -P TimeIntegration:time_end:0.3 -P Snapshots:delta_time:10 \
     -P Scheduler:gravity_task_size:$g >split.log 2>&1 || { tail -5 split.log; exit 1; }
@@ -45,4 +48,4 @@ done
 paste stats_1000000000.txt stats_50.txt | awk '{n = NF / 2; d = 0
   for (k = 11; k <= 14; k++) {r = ($k - $(k + n)) / $k; if (r < 0) r = -r; if (r > d) d = r}
   printf "split gravity tasks: largest relative energy difference %.2e\n", d
-  if (!(d < 1e-10)) {print "FAIL: split tasks change the result"; exit 1}}'
+  if (!(d < 1e-5)) {print "FAIL: split tasks change the result"; exit 1}}'

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Boss-Bodenheimer collapse: initial conditions, run to 1.3 t_ff, maximum
+# Boss-Bodenheimer collapse: initial conditions, run to 1.2 t_ff, maximum
 # density against t/t_ff.  Usage: ./run.sh [N_ACROSS]  (default 40)
 set -euo pipefail
 cd "$(dirname "$0")"
