@@ -18,11 +18,13 @@
 #include "damage/flaws.h"
 #include "error.h"
 #include "drift/drift.h"
+#include "flaws_io.h"
 #include "hydro_parts.h"
 #include "ic.h"
 #include "kernel.h"
 #include "material.h"
 #include "params.h"
+#include "porosity_eos.h"
 #include "restart.h"
 #include "version.h"
 #ifdef HAVE_CUDA
@@ -159,6 +161,63 @@ static void engine_mkdir(const char *dir) {
   if (mkdir(tmp, 0755) && errno != EEXIST) error_exit("%s: cannot create folder: %s", tmp, strerror(errno));
 }
 
+/** Index of the particle field called name in part_fields. */
+static int engine_field_index(const char *name) {
+  for (int k = 0; k < part_nr_fields; k++)
+    if (strcmp(part_fields[k].name, name) == 0) return k;
+  error_bug("no particle field %s", name);
+}
+
+/** Distentions of porous materials from the initial conditions (file icname;
+ *  has_alpha: the file has Distentions): alpha_0 of the material where the
+ *  file has none, 1 for every other particle; then the check that the bulk
+ *  density times alpha is the matrix density rho0 of the material's EOS
+ *  within Porosity:ic_tolerance (Jutzi et al. 2008; theory/porosity.md). */
+static void engine_init_porosity(struct engine *e, const char *icname, int has_alpha) {
+  struct parts *p = &e->parts;
+  for (int k = 0; k < e->mats->n; k++) {
+    const struct material *m = &e->mats->mats[k];
+    if (m->porosity.model == POROSITY_EPSALPHA)
+      error_exit("material '%s': porosity model epsalpha is not wired into the time step yet (use palpha)",
+                 m->name);
+    if (m->porosity.model != POROSITY_NONE) e->porous = 1;
+  }
+  const double tol = params_get_real(e->params, "Porosity:ic_tolerance");
+  for (size_t i = 0; i < p->count; i++) {
+    const struct material *m = material_table_find(e->mats, p->mat[i]);
+    /* 0: not given (bolide-ic writes every IC field, zero where it has no value) */
+    if (!m || m->porosity.model == POROSITY_NONE) {
+      if (has_alpha && p->alpha[i] != 1.0 && p->alpha[i] != 0.0)
+        error_exit("%s: particle %zu (id %lld): Distentions is %g but material %d is not porous (must be 1)",
+                   icname, i, (long long)p->id[i], p->alpha[i], (int)p->mat[i]);
+      p->alpha[i] = p->alpha_p[i] = 1.0;
+      continue;
+    }
+    const double alpha_0 = porosity_alpha_0(&m->porosity);
+    if (!has_alpha || p->alpha[i] == 0.0) p->alpha[i] = alpha_0;
+    if (!(p->alpha[i] >= 1.0) || p->alpha[i] > alpha_0)
+      error_exit("%s: particle %zu (id %lld): Distentions is %g (must be in [1, alpha_0 = %g] for material '%s')",
+                 icname, i, (long long)p->id[i], p->alpha[i], alpha_0, m->name);
+    if (!(p->rho[i] > 0.0))
+      error_exit("%s: particle %zu (id %lld) of porous material '%s' has no density: porous bodies need "
+                 "Densities in the initial conditions (the bulk density rho0/alpha)",
+                 icname, i, (long long)p->id[i], m->name);
+    const double err = porosity_check_ic(p->rho[i], p->alpha[i], m->rho0, tol);
+    if (err > 0.0)
+      error_exit("%s: particle %zu (id %lld) of porous material '%s': density %g times distention %g is %g, "
+                 "not the matrix density rho0 = %g (relative difference %.3g > Porosity:ic_tolerance %g)",
+                 icname, i, (long long)p->id[i], m->name, p->rho[i], p->alpha[i], p->rho[i] * p->alpha[i],
+                 m->rho0, err, tol);
+    p->alpha_p[i] = p->alpha[i];
+  }
+  if (e->porous) {
+    size_t n = 0;
+    for (size_t i = 0; i < p->count; i++) n += p->alpha[i] > 1.0;
+    error_log(0, "porosity: %zu porous particles (P-alpha, Jutzi et al. 2008), distentions %s", n,
+              has_alpha ? "from the initial conditions (alpha_0 where 0)" : "alpha_0 of their materials");
+  }
+}
+
 /** Read the initial conditions named by the parameters into e->parts, with
  *  the box size (from the file or InitialConditions:box_size), the shift and
  *  the smoothing-length scaling applied. */
@@ -195,6 +254,20 @@ static void engine_read_ics(struct engine *e, char *icname, size_t len, double b
     e->parts.rho_full[i] = e->parts.rho_fp[i] = e->parts.rho[i];
     kick_sync_predicted(&e->parts, i);
   }
+  engine_init_porosity(e, icname, ic_field_read(&hdr, engine_field_index("alpha")));
+  /* Weibull flaws stored in the ICs (bolide-flaws; FlawThresholds and
+   * FlawOffsets in the particle order of the file) */
+  struct flaws fl;
+  if (flaws_io_read(icname, e->parts.count, &fl)) {
+    for (size_t i = 0; i < e->parts.count; i++) {
+      e->parts.flaw_first[i] = fl.offset[i];
+      e->parts.n_flaws[i] = (int32_t)(fl.offset[i + 1] - fl.offset[i]);
+    }
+    e->flaw_eps = fl.eps;
+    e->nr_flaws = fl.offset[e->parts.count];
+    e->flaws_from = "the initial conditions";
+    free(fl.offset);
+  }
 }
 
 /** Order of particle indices by id (flaws are drawn in id order, so that a
@@ -207,44 +280,67 @@ static int engine_cmp_by_id(const void *a, const void *b) {
 }
 
 /** Weibull flaws for the brittle materials (weibull_k > 0 with a shear
- *  modulus) from Damage:seed, by the procedure of Benz & Asphaug (1995):
- *  each particle keeps the slice flaw_first .. + n_flaws of e->flaw_eps. */
-static void engine_init_flaws(struct engine *e) {
+ *  modulus): kept as read from a restart file or the initial conditions,
+ *  else drawn from Damage:seed by the procedure of Benz & Asphaug (1995).
+ *  Each particle keeps the slice flaw_first .. + n_flaws of e->flaw_eps. */
+static void engine_init_flaws(struct engine *e, const char *icname) {
   for (int k = 0; k < e->mats->n; k++)
     if (e->mats->mats[k].weibull_k > 0.0 && e->mats->mats[k].shear_modulus > 0.0) e->damage = 1;
-  if (!e->damage) return;
   struct parts *p = &e->parts;
   const size_t n = p->count;
-  size_t *order = error_malloc(n * sizeof(size_t), "flaw order");
-  for (size_t i = 0; i < n; i++) order[i] = i;
-  engine_sort_ids = p->id;
-  qsort(order, n, sizeof(size_t), engine_cmp_by_id);
-  int32_t *mat = error_malloc(n * sizeof(int32_t), "flaw order");
-  double *m = error_malloc(n * sizeof(double), "flaw order"), *rho = error_malloc(n * sizeof(double), "flaw order");
-  for (size_t k = 0; k < n; k++) {
-    mat[k] = p->mat[order[k]];
-    m[k] = p->m[order[k]];
-    rho[k] = p->rho[order[k]];
+  if (e->flaw_eps) {
+    /* flaws given: particles of materials that take no damage keep theirs unused */
+    size_t idle = 0, bare = 0;
+    for (size_t i = 0; i < n; i++) {
+      const struct material *mat = material_table_find(e->mats, p->mat[i]);
+      const int brittle = mat && mat->weibull_k > 0.0 && mat->shear_modulus > 0.0;
+      idle += !brittle && p->n_flaws[i] > 0;
+      bare += brittle && p->n_flaws[i] == 0;
+    }
+    if (idle && !e->restarted)
+      error_warning("%s: %zu particles have flaws but a material without weibull_k or shear_modulus: "
+                    "they take no damage", icname, idle);
+    if (bare && !e->restarted)
+      error_warning("%s: %zu particles of brittle materials have no flaws: they take no damage", icname,
+                    bare);
   }
-  struct flaws fl;
-  e->nr_flaws = flaws_generate_materials(n, mat, m, rho, e->mats, (uint64_t)params_get_int(e->params, "Damage:seed"), &fl);
-  for (size_t k = 0; k < n; k++) {
-    const size_t i = order[k];
-    p->flaw_first[i] = fl.offset[k];
-    p->n_flaws[i] = (int32_t)(fl.offset[k + 1] - fl.offset[k]);
-    if (p->dmg[i] > 0.0 && !(p->dcbrt[i] > 0.0)) p->dcbrt[i] = cbrt(p->dmg[i]);
+  if (!e->damage) return;
+  if (!e->flaw_eps) {
+    size_t *order = error_malloc(n * sizeof(size_t), "flaw order");
+    for (size_t i = 0; i < n; i++) order[i] = i;
+    engine_sort_ids = p->id;
+    qsort(order, n, sizeof(size_t), engine_cmp_by_id);
+    int32_t *mat = error_malloc(n * sizeof(int32_t), "flaw order");
+    double *m = error_malloc(n * sizeof(double), "flaw order"), *rho = error_malloc(n * sizeof(double), "flaw order");
+    for (size_t k = 0; k < n; k++) {
+      mat[k] = p->mat[order[k]];
+      m[k] = p->m[order[k]];
+      rho[k] = p->rho[order[k]];
+    }
+    struct flaws fl;
+    e->nr_flaws = flaws_generate_materials(n, mat, m, rho, e->mats, (uint64_t)params_get_int(e->params, "Damage:seed"), &fl);
+    for (size_t k = 0; k < n; k++) {
+      const size_t i = order[k];
+      p->flaw_first[i] = fl.offset[k];
+      p->n_flaws[i] = (int32_t)(fl.offset[k + 1] - fl.offset[k]);
+    }
+    e->flaw_eps = fl.eps;
+    fl.eps = NULL;
+    free(fl.offset);
+    free(order);
+    free(mat);
+    free(m);
+    free(rho);
   }
-  e->flaw_eps = fl.eps;
-  fl.eps = NULL;
-  free(fl.offset);
-  free(order);
-  free(mat);
-  free(m);
-  free(rho);
+  if (!e->restarted)
+    for (size_t i = 0; i < n; i++)
+      if (p->dmg[i] > 0.0 && !(p->dcbrt[i] > 0.0)) p->dcbrt[i] = cbrt(p->dmg[i]);
   e->damage_max_change = params_get_real(e->params, "Damage:max_change");
-  error_log(0, "damage: %lld Weibull flaws (%.1f per particle, %.1f MiB) from Damage:seed %ld",
-            (long long)e->nr_flaws, n ? (double)e->nr_flaws / (double)n : 0.0,
-            (double)e->nr_flaws * sizeof(double) / 1048576.0, params_get_int(e->params, "Damage:seed"));
+  char from[64];
+  snprintf(from, sizeof from, "Damage:seed %ld", params_get_int(e->params, "Damage:seed"));
+  error_log(0, "damage: %lld Weibull flaws (%.1f per particle, %.1f MiB) from %s", (long long)e->nr_flaws,
+            n ? (double)e->nr_flaws / (double)n : 0.0,
+            (double)e->nr_flaws * sizeof(double) / 1048576.0, e->flaws_from ? e->flaws_from : from);
   if (!e->hp.solids) error_warning("brittle materials without strength: damage has no stress to act on");
 }
 
@@ -285,7 +381,12 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   char icname[PATH_MAX];
   struct restart_state rs;
   if (opt->restart) {
-    restart_read(e->restart_dir, &rs, &e->parts);
+    restart_read(e->restart_dir, &rs, &e->parts, &e->flaw_eps, &e->nr_flaws);
+    if (e->nr_flaws == 0) {
+      free(e->flaw_eps);
+      e->flaw_eps = NULL;
+    }
+    e->flaws_from = "the restart file";
     snprintf(icname, sizeof icname, "%s/restart.bin", e->restart_dir);
     for (int k = 0; k < 3; k++) box[k] = rs.box[k];
     periodic = (int)rs.periodic;
@@ -300,8 +401,10 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   } else {
     engine_read_ics(e, icname, sizeof icname, box);
   }
+  if (opt->restart)
+    for (int k = 0; k < e->mats->n; k++) e->porous |= e->mats->mats[k].porosity.model != POROSITY_NONE;
   engine_guess_h(e);
-  engine_init_flaws(e);
+  engine_init_flaws(e, icname);
   if (e->gp.enabled && periodic)
     params_error(params, "InitialConditions:periodic", "self-gravity in a periodic box is not implemented");
   error_log(0, "read %zu particles from %s (box %g x %g x %g, %s)", e->parts.count, icname, box[0], box[1],
@@ -366,6 +469,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   engine_stats_open(e);
 
   scheduler_init(&e->sched, e->nr_threads);
+  e->sched.fixed_costs = params_get_bool(params, "Scheduler:deterministic");
 #ifdef HAVE_CUDA
   gpu_engine_init(e);
 #endif
@@ -461,7 +565,7 @@ static void engine_write_restart(struct engine *e) {
   for (int k = 0; k < 3; k++) st.box[k] = e->space.dim[k];
   st.periodic = e->space.periodic;
   engine_mkdir(e->restart_dir);
-  restart_write(e->restart_dir, &st, &e->parts);
+  restart_write(e->restart_dir, &st, &e->parts, e->flaw_eps);
   e->restart_last_wall = error_walltime();
   error_log(0, "restart file %s/restart.bin at step %ld, t = %g", e->restart_dir, e->step, e->time);
 }
@@ -563,7 +667,19 @@ void engine_run(struct engine *e) {
     const double eta = frac > 0 ? (w1 - e->wall_start) * (1.0 - frac) / frac : 0.0;
     printf("%8ld %14.6e %14.6e %12zu %10.4f %10.1f\n", e->step, e->time, e->dt, e->parts.count, w1 - w0, eta);
     fflush(stdout);
-    if (e->restarts && w1 - e->restart_last_wall >= e->restart_dt_wall) engine_write_restart(e);
+    /* (not at the last step: the file written after the loop follows) */
+    if (e->restarts && w1 - e->restart_last_wall >= e->restart_dt_wall && e->time < e->time_end &&
+        (e->opt.max_steps < 0 || e->step < e->opt.max_steps)) {
+      engine_write_restart(e);
+      /* rebuild here, as a run resumed from this file does before its first
+       * step: both then continue from the same cells and particle order, and
+       * (with one thread and Scheduler:deterministic) bit for bit alike */
+      double dt_next = e->dt_max;
+      for (int t = 0; t < e->nr_tcells; t++)
+        if (e->cell_dt_min[t] < dt_next) dt_next = e->cell_dt_min[t];
+      engine_rebuild(e);
+      for (int t = 0; t < e->nr_tcells; t++) e->cell_dt_min[t] = dt_next;
+    }
   }
   if (!e->restarts && e->next_out < e->nr_out && e->out_times[e->nr_out - 1] > e->time) {
     /* stopped by --steps without restart files: keep the last state */

@@ -70,7 +70,9 @@ struct engine {
   int damage;                     /**< 1 when a material is brittle (tasks/damage) */
   double *flaw_eps;               /**< every particle's flaw thresholds, one flat array */
   int64_t nr_flaws;               /**< their number */
+  const char *flaws_from;         /**< where they came from (log), NULL: Damage:seed */
   double damage_max_change;       /**< Damage:max_change */
+  int porous;                     /**< 1 when a material has a porosity model */
   struct gravity_props gp;        /**< self-gravity settings (gp.enabled) */
   struct gravity_cell *gcells;    /**< gravity data of every cell, by cell index */
   int gcells_cap;                 /**< its allocated length */

@@ -12,6 +12,7 @@
 #include "kernel.h"
 #include "material.h"
 #include "kick/kick_cpu.h"
+#include "porosity_eos.h"
 
 /** The largest kernel support the current cells and task graph allow. */
 double engine_H_limit(const struct engine *e) {
@@ -65,7 +66,21 @@ static void engine_kick2(struct engine *e, int t) {
       p->az[i] += p->gaz[i];
     }
   }
+  /* porous materials: dalpha/dt from the rates of this force loop (PA6) */
+  if (e->porous)
+    for (size_t i = c->offset; i < end; i++) {
+      const struct material *mat = material_table_find(e->mats, p->mat[i]);
+      p->dalpha_dt[i] = porosity_rate(mat, p->rho[i], p->drho_dt[i], p->up[i], p->du_dt[i], p->alpha_p[i]);
+    }
   double dt = kick2_cell_cpu(p, c, e->first_force ? 0.0 : 0.5 * e->dt, &e->hp);
+  /* ... and the kicked state back on the crush curve (PA10) */
+  if (e->porous && !e->first_force)
+    for (size_t i = c->offset; i < end; i++) {
+      const struct material *mat = material_table_find(e->mats, p->mat[i]);
+      if (mat->porosity.model != POROSITY_PALPHA) continue;
+      const double rho = e->hp.continuity ? p->rho_full[i] : p->rho[i];
+      p->alpha[i] = p->alpha_p[i] = porosity_palpha_return(mat, rho, p->u[i], p->alpha[i]);
+    }
   if (!e->hp.enabled) dt = 1e300;
   if (e->damage)
     for (size_t i = c->offset; i < end; i++) {

@@ -128,10 +128,15 @@ enum part_flags {
   /* fracture (tasks/damage): Grady-Kipp damage with Weibull flaws */                              \
   X(double,  dmg, "Damage",           0, 1, 0,  0,  0, PART_IC_OPT | PART_SNAP, "tensile damage d in [0, 1] (Grady & Kipp 1980; Benz & Asphaug 1995)") \
   X(double,  dcbrt, "DamageCubeRoot", 0, 1, 0,  0,  0, PART_IC_OPT | PART_SNAP, "d^(1/3), the integrated variable of the damage model") \
+  X(double,  dmg_shear, "ShearDamage", 0, 1, 0,  0,  0, PART_IC_OPT | PART_SNAP, "shear (compressive) damage D_s in [0, 1] from the plastic strain (Collins et al. 2004)") \
   X(int32_t, n_act, "ActiveFlaws",    0, 1, 0,  0,  0, PART_SNAP, "number of activated flaws") \
   X(int32_t, n_flaws, "NumberOfFlaws", 0, 1, 0, 0,  0, PART_SNAP, "number of flaws of the particle") \
   X(int64_t, flaw_first, NULL,        0, 1, 0,  0,  0, 0, "index of the particle's first flaw threshold in the engine's flat array") \
   X(double,  dmg_rate, NULL,          0, 1, 0,  0, -1, 0, "growth rate of d^(1/3) in the last step") \
+  /* porosity (src/materials/porosity_eos.h): P-alpha distention */                                \
+  X(double,  alpha, "Distentions",    0, 1, 0,  0,  0, PART_IC_OPT | PART_SNAP, "distention alpha = rho_matrix / rho of porous materials (Jutzi et al. 2008; 1: not porous; 0 or absent in ICs: alpha_0 of the material)") \
+  X(double,  alpha_p, NULL,           0, 1, 0,  0,  0, 0, "predicted distention (the EOS of the ghost uses it)") \
+  X(double,  dalpha_dt, NULL,         0, 1, 0,  0, -1, 0, "rate of change of the distention") \
   X(double,  rho_full, NULL,          0, 1, 1, -3,  0, 0, "density integrated by the continuity equation") \
   X(double,  rho_fp, NULL,            0, 1, 1, -3,  0, 0, "predicted continuity density")        \
   X(double,  h_lo, NULL,              0, 1, 0,  1,  0, 0, "lower bracket of the h iteration")     \

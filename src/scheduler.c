@@ -288,7 +288,7 @@ void scheduler_work(struct scheduler *s, int tid) {
     s->fn(s->ctx, t, tid);
     t->toc = task_now_ns();
     t->rid = tid;
-    t->cost = (float)((t->toc - t->tic) * 1e-9);
+    if (!s->fixed_costs) t->cost = (float)((t->toc - t->tic) * 1e-9);
     struct scheduler_timer *timer = &s->timers[scheduler_timer_index(tid, t->type, t->subtype)];
     timer->ns += t->toc - t->tic;
     timer->count++;

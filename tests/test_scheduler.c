@@ -305,7 +305,7 @@ int main(int argc, char **argv) {
   error_init(argv[0]);
   if (argc == 3 && strcmp(argv[1], "--dump") == 0) return test_dump(argv[2]);
   signal(SIGALRM, test_alarm);
-  alarm(100);
+  alarm(300); /* a hang detector: 16 threads on 2 loaded cores take ~90 s */
 
   test_cycle();
 #ifdef BOLIDE_DEBUG_CHECKS

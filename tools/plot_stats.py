@@ -84,6 +84,7 @@ def main(argv=None):
         L = np.stack([cols["Lx"], cols["Ly"], cols["Lz"]], axis=1)
         dl = np.sqrt(np.sum((L - L[0]) ** 2, axis=1))
         scale = np.max(np.sqrt(np.sum(L * L, axis=1)))
+        l_max = scale
         if scale > 0:
             l_drift = dl / scale
             print("max_rel_angular_momentum_drift %.6g" % np.max(l_drift))
@@ -99,15 +100,19 @@ def main(argv=None):
             ax1.plot(t, cols[key], label=label, lw=2.0 if key == "E_tot" else 1.2)
     ax1.set_ylabel("energy")
     ax1.legend(loc="best", fontsize="small")
+    # magnitudes on a log axis: drifts of 1e-4 and of order 1 side by side
+    # (a body without net spin has max|L| at rounding level: its L curve is
+    # then of order 1 and says nothing; the legend gives max|L|)
+    floor = 1e-16
     if e_drift is not None:
-        ax2.plot(t, e_drift, label=r"$(E_{tot} - E_{tot,0}) / E_{scale}$")
+        ax2.semilogy(t, np.maximum(np.abs(e_drift), floor), label=r"$|E_{tot} - E_{tot,0}| / E_{scale}$")
     if p_drift is not None:
-        ax2.plot(t, p_drift, label=r"$|p - p_0| / p_{scale}$")
+        ax2.semilogy(t, np.maximum(p_drift, floor), label=r"$|p - p_0| / p_{scale}$")
     if l_drift is not None:
-        ax2.plot(t, l_drift, label=r"$|L - L_0| / \max|L|$")
-    ax2.axhline(0.0, color="0.5", lw=0.6)
+        ax2.semilogy(t, np.maximum(l_drift, floor),
+                     label=r"$|L - L_0| / \max|L|$ (max|L| = %.2g)" % l_max)
     ax2.set_xlabel("time")
-    ax2.set_ylabel("relative drift")
+    ax2.set_ylabel("relative drift (magnitude)")
     ax2.legend(loc="best", fontsize="small")
     fig.suptitle("Conservation: %s" % args.stats)
     fig.tight_layout()

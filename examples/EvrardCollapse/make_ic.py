@@ -32,7 +32,7 @@ def main():
     m = np.full(N, 1.0 / N)
     rho = 1.0 / (2.0 * np.pi * np.maximum(r, 1e-3))
     h = 1.2348 * (m / rho) ** (1.0 / 3.0)
-    box = 8.0
+    box = 24.0  # wide: the outgoing shock throws gas beyond r = 4 after t = 2
     with h5py.File(out, "w") as f:
         hd = f.create_group("Header")
         hd.attrs["BoxSize"] = [box, box, box]

@@ -34,13 +34,15 @@ static const char *const gpu_fields_out[] = {
  *  the kick integrates (solids). */
 static const char *const gpu_fields_solid_in[] = {"Sxx",  "Sxy",  "Sxz",   "Syy",  "Syz",
                                                   "Szz",  "Spxx", "Spxy",  "Spxz", "Spyy",
-                                                  "Spyz", "Spzz", "eps_p", "dmg"};
+                                                  "Spyz", "Spzz", "eps_p", "dmg",
+                                                  "dmg_shear"};
 /** Fields they write. */
 static const char *const gpu_fields_solid_out[] = {
     "gmxx", "gmxy", "gmxz", "gmyy", "gmyz", "gmzz", "gvxx", "gvxy", "gvxz", "gvyx",
     "gvyy", "gvyz", "gvzx", "gvzy", "gvzz", "Sxx",  "Sxy",  "Sxz",  "Syy",  "Syz",
     "Szz",  "Spxx", "Spxy", "Spxz", "Spyy", "Spyz", "Spzz", "dSxx", "dSxy", "dSxz",
-    "dSyy", "dSyz", "dSzz", "Rxx",  "Rxy",  "Rxz",  "Ryy",  "Ryz",  "Rzz",  "eps_p"};
+    "dSyy", "dSyz", "dSzz", "Rxx",  "Rxy",  "Rxz",  "Ryy",  "Ryz",  "Rzz",  "eps_p",
+    "dmg_shear"};
 /** Fields the damage task reads (besides the above). */
 static const char *const gpu_fields_damage_in[] = {"dmg", "dcbrt", "n_act", "n_flaws",
                                                    "flaw_first"};
@@ -173,6 +175,9 @@ extern "C" int gpu_supports(const struct material_table *mats, char *why, size_t
   for (int k = 0; k < mats->n; k++)
     if (mats->mats[k].eos_type == EOS_TABLE) {
       snprintf(why, len, "material %s has a tabulated EOS, not on the GPU yet", mats->mats[k].name);
+      return 0;
+    } else if (mats->mats[k].porosity.model != POROSITY_NONE) {
+      snprintf(why, len, "material %s is porous, not on the GPU yet", mats->mats[k].name);
       return 0;
     }
   return 1;

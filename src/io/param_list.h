@@ -90,10 +90,13 @@
   X("Scheduler:tasks_per_cell", PARAM_REAL, "0", 0, PARAM_INF, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
   X("Scheduler:dump_tasks", PARAM_INT, "0", 0, PARAM_INF, NULL, "-", "write a task timeline (thread, start, end, type, cell) every this many steps (0: never)") \
   X("Scheduler:rebuild_fraction", PARAM_REAL, "0.25", 0.01, 1, NULL, "-", "rebuild the cells once a particle drifted this fraction of its cell's width") \
+  X("Scheduler:deterministic", PARAM_BOOL, "false", 0, 0, NULL, "-", "keep the task priorities fixed instead of learning them from measured task times: with one thread (-t 1) every run, and every run resumed from a restart file, then repeats bit for bit (for tests; slightly slower)") \
   X("Scheduler:gpu", PARAM_STRING, "auto", 0, 0, NULL, "-", "which task families run on the GPU: auto, off, all, or a comma-separated list") \
                                                                                                          \
   X("Damage:seed", PARAM_INT, "1", 0, 9.2e18, NULL, "-", "seed of the Weibull flaws drawn at start-up for brittle materials (materials with weibull_k > 0 and a shear modulus)") \
   X("Damage:max_change", PARAM_REAL, "0.1", 1e-6, 1, NULL, "-", "time-step limit: damage d grows by at most this much per step (d^(1/3) is integrated exactly and capped, so saturation takes about 1/max_change steps)") \
+                                                                                                         \
+  X("Porosity:ic_tolerance", PARAM_REAL, "0.01", 0, 1, NULL, "-", "start-up check of porous bodies: the IC density times the distention must be the matrix density rho0 of the material within this relative difference") \
                                                                                                          \
   X("Restarts:enable", PARAM_BOOL, "false", 0, 0, NULL, "-", "write restart files") \
   X("Restarts:delta_hours", PARAM_REAL, "1", 0, PARAM_INF, NULL, "h", "wall-clock hours between restart files") \

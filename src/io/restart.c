@@ -1,6 +1,9 @@
 /* Restart files (see restart.h).  Layout: a magic line, the number of
  * fields, each field's name and element size, the state struct, the particle
- * count, then every field array in the order of part_fields[]. */
+ * count, every field array in the order of part_fields[], then the Weibull
+ * flaws as DESIGN.md lays them out: the number of thresholds, N + 1 offsets
+ * (particle i owns thresholds off[i] .. off[i+1]-1, in the particle order of
+ * the file) and the flat threshold array. */
 #include "restart.h"
 
 #include <errno.h>
@@ -9,9 +12,10 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "damage/flaws.h"
 #include "error.h"
 
-#define RESTART_MAGIC "BOLIDE-RESTART-1\n"
+#define RESTART_MAGIC "BOLIDE-RESTART-2\n"
 
 /** fwrite that stops with one line on failure. */
 static void restart_put(FILE *f, const void *buf, size_t size, size_t n, const char *path) {
@@ -30,7 +34,8 @@ static void restart_get(FILE *f, void *buf, size_t size, size_t n, const char *p
   }
 }
 
-void restart_write(const char *dir, const struct restart_state *st, const struct parts *p) {
+void restart_write(const char *dir, const struct restart_state *st, const struct parts *p,
+                   const double *flaw_eps) {
   char path[2048], tmp[2100], prev[2100];
   snprintf(path, sizeof path, "%s/restart.bin", dir);
   snprintf(tmp, sizeof tmp, "%s.tmp", path);
@@ -53,6 +58,18 @@ void restart_write(const char *dir, const struct restart_state *st, const struct
   restart_put(f, &n, sizeof n, 1, tmp);
   for (int k = 0; k < part_nr_fields; k++)
     restart_put(f, part_field_array(p, &part_fields[k]), part_fields[k].size, p->count, tmp);
+  /* flaws: the particles' slices of the engine's flat array, gathered in the
+   * particle order of the file (bit-exact copies) */
+  int64_t *off = error_malloc((p->count + 1) * sizeof *off, "restart: flaw offsets");
+  off[0] = 0;
+  for (size_t i = 0; i < p->count; i++) off[i + 1] = off[i] + (flaw_eps ? p->n_flaws[i] : 0);
+  const uint64_t nflaws = (uint64_t)off[p->count];
+  restart_put(f, &nflaws, sizeof nflaws, 1, tmp);
+  restart_put(f, off, sizeof *off, p->count + 1, tmp);
+  for (size_t i = 0; i < p->count; i++)
+    if (off[i + 1] > off[i])
+      restart_put(f, flaw_eps + p->flaw_first[i], sizeof(double), (size_t)(off[i + 1] - off[i]), tmp);
+  free(off);
   if (fflush(f) || fsync(fileno(f))) {
     const int err = errno;
     fclose(f);
@@ -66,7 +83,8 @@ void restart_write(const char *dir, const struct restart_state *st, const struct
   error_unregister_tmpfile(tmp);
 }
 
-void restart_read(const char *dir, struct restart_state *st, struct parts *p) {
+void restart_read(const char *dir, struct restart_state *st, struct parts *p, double **flaw_eps,
+                  int64_t *nr_flaws) {
   char path[2048];
   snprintf(path, sizeof path, "%s/restart.bin", dir);
   FILE *f = fopen(path, "rb");
@@ -101,5 +119,34 @@ void restart_read(const char *dir, struct restart_state *st, struct parts *p) {
   parts_alloc(p, (size_t)n);
   for (int k = 0; k < part_nr_fields; k++)
     restart_get(f, part_field_array(p, &part_fields[k]), part_fields[k].size, p->count, path);
+  uint64_t nflaws;
+  restart_get(f, &nflaws, sizeof nflaws, 1, path);
+  if (nflaws > (uint64_t)1 << 48) {
+    fclose(f);
+    error_exit("%s: corrupt restart file (%llu flaws)", path, (unsigned long long)nflaws);
+  }
+  struct flaws fl = {p->count, NULL, NULL};
+  fl.offset = error_malloc((p->count + 1) * sizeof *fl.offset, "restart: flaw offsets");
+  fl.eps = error_malloc((nflaws ? nflaws : 1) * sizeof *fl.eps, "restart: flaw thresholds");
+  restart_get(f, fl.offset, sizeof *fl.offset, p->count + 1, path);
+  restart_get(f, fl.eps, sizeof *fl.eps, (size_t)nflaws, path);
+  if (fgetc(f) != EOF) {
+    fclose(f);
+    error_exit("%s: corrupt restart file (data after the flaws)", path);
+  }
   fclose(f);
+  char msg[256];
+  if (fl.offset[p->count] != (int64_t)nflaws)
+    error_exit("%s: corrupt restart file (flaw offsets end at %lld, %llu flaws)", path,
+               (long long)fl.offset[p->count], (unsigned long long)nflaws);
+  if (flaws_check(&fl, msg, sizeof msg)) error_exit("%s: corrupt restart file: %s", path, msg);
+  for (size_t i = 0; i < p->count; i++) {
+    if (fl.offset[i + 1] - fl.offset[i] != p->n_flaws[i])
+      error_exit("%s: corrupt restart file (particle %zu has %d flaws, its offsets say %lld)", path,
+                 i, (int)p->n_flaws[i], (long long)(fl.offset[i + 1] - fl.offset[i]));
+    p->flaw_first[i] = fl.offset[i];
+  }
+  free(fl.offset);
+  *flaw_eps = fl.eps;
+  *nr_flaws = (int64_t)nflaws;
 }

@@ -27,11 +27,19 @@ struct restart_state {
 
 /** Write the state to DIR/restart.bin (through DIR/restart.bin.tmp; the
  *  previous file is kept as DIR/restart.prev.bin until the new one is in
- *  place).  Errors (disk full...) stop with one line, the old file intact. */
-void restart_write(const char *dir, const struct restart_state *st, const struct parts *p);
+ *  place).  flaw_eps: the engine's flat array of flaw thresholds, particle
+ *  i owning flaw_eps[flaw_first[i] .. + n_flaws[i]] (NULL: no flaws); they
+ *  are written as one flat array with N + 1 offsets in the particle order
+ *  of the file.  Errors (disk full...) stop with one line, the old file
+ *  intact. */
+void restart_write(const char *dir, const struct restart_state *st, const struct parts *p,
+                   const double *flaw_eps);
 
-/** Read DIR/restart.bin into st and p (p allocated here).  Stops with one
- *  line if missing, truncated or written by a build with other fields. */
-void restart_read(const char *dir, struct restart_state *st, struct parts *p);
+/** Read DIR/restart.bin into st and p (p allocated here) and the flaws into
+ *  *flaw_eps (allocated here; p->flaw_first indexes it) and *nr_flaws.
+ *  Stops with one line if missing, truncated, inconsistent or written by a
+ *  build with other fields. */
+void restart_read(const char *dir, struct restart_state *st, struct parts *p, double **flaw_eps,
+                  int64_t *nr_flaws);
 
 #endif

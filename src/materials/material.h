@@ -45,7 +45,8 @@ struct unit_system;
   X(HEAT_CAPACITY, "J kg^-1 K^-1", 0, 2, -2) \
   X(PER_VOLUME, "m^-3", 0, -3, 0)            \
   X(RATE, "s^-1", 0, 0, -1)                  \
-  X(TEMPERATURE, "K", 0, 0, 0)
+  X(TEMPERATURE, "K", 0, 0, 0)               \
+  X(PER_PRESSURE, "Pa^-1", -1, 1, 2)
 
 /** Unit kinds (MATERIAL_UNIT_DENSITY, ...). */
 enum material_unit {
@@ -142,7 +143,13 @@ enum material_strength_type {
     "specific heat c_v for T = T_ref + u / c_v (Johnson-Cook; 0: the EOS's temperature)")              \
   X(material, weibull_k, "weibull_k", 0.0, 0.0, 0, INFINITY, MATERIAL_UNIT_PER_VOLUME,                 \
     "Weibull k of the flaw distribution (0: no brittle damage)")                                       \
-  X(material, weibull_m, "weibull_m", 0.0, 0.0, 0, 100.0, MATERIAL_UNIT_NONE, "Weibull m")
+  X(material, weibull_m, "weibull_m", 0.0, 0.0, 0, 100.0, MATERIAL_UNIT_NONE, "Weibull m")          \
+  X(material, shear_failure_strain, "shear_failure_strain", 0.0, 0.0, 0, 10.0, MATERIAL_UNIT_NONE,   \
+    "shear damage (Collins et al. 2004): plastic strain at failure at low pressure eps_fb (0: no shear damage)") \
+  X(material, shear_failure_slope, "shear_failure_slope", 1e-11, 0.0, 0, INFINITY,                  \
+    MATERIAL_UNIT_PER_PRESSURE, "shear damage: growth of the failure strain with pressure B, eps_f = max(eps_fb, B (P - P_c))") \
+  X(material, shear_failure_pressure, "shear_failure_pressure", 3e8, -INFINITY, 0, INFINITY,        \
+    MATERIAL_UNIT_PRESSURE, "shear damage: pressure P_c above which the failure strain grows")
 /* clang-format on */
 
 #define MATERIAL_NAME_LEN 48

@@ -26,6 +26,10 @@ BOLIDE_INLINE void kick_part(struct parts *BOLIDE_RESTRICT p, size_t i, double d
   p->Szz[i] += p->dSzz[i] * dt_kick;
   const double r1 = p->rho_full[i] + p->drho_dt[i] * dt_kick;
   p->rho_full[i] = (r1 > 0.0) ? r1 : 0.5 * p->rho_full[i];
+  /* distention of porous materials: dalpha/dt <= 0 (compaction is
+   * irreversible), alpha >= 1 */
+  const double a1 = p->alpha[i] + p->dalpha_dt[i] * dt_kick;
+  p->alpha[i] = a1 > 1.0 ? a1 : 1.0;
 }
 
 /** After the second kick the predicted values are the integrated ones. */
@@ -41,6 +45,7 @@ BOLIDE_INLINE void kick_sync_predicted(struct parts *BOLIDE_RESTRICT p, size_t i
   p->Spyz[i] = p->Syz[i];
   p->Spzz[i] = p->Szz[i];
   p->rho_fp[i] = p->rho_full[i];
+  p->alpha_p[i] = p->alpha[i];
 }
 
 /** Drift of particle i by dt after its first half kick: positions move with
@@ -63,6 +68,8 @@ BOLIDE_INLINE void drift_part(struct parts *BOLIDE_RESTRICT p, size_t i, double 
   p->Spzz[i] = p->Szz[i] + p->dSzz[i] * half;
   const double rp = p->rho_full[i] + p->drho_dt[i] * half;
   p->rho_fp[i] = (rp > 0.0) ? rp : 0.5 * p->rho_full[i];
+  const double ap = p->alpha[i] + p->dalpha_dt[i] * half;
+  p->alpha_p[i] = ap > 1.0 ? ap : 1.0;
   p->vpx[i] = p->vx[i] + p->ax[i] * half;
   p->vpy[i] = p->vy[i] + p->ay[i] * half;
   p->vpz[i] = p->vz[i] + p->az[i] * half;

@@ -13,6 +13,7 @@
 #include "inline.h"
 #include "material.h"
 #include "part.h"
+#include "porosity_eos.h"
 
 /** Add particle i's own contribution to its density sums. */
 BOLIDE_INLINE void ghost_part_add_self(struct parts *BOLIDE_RESTRICT p, size_t i) {
@@ -72,7 +73,10 @@ BOLIDE_INLINE void ghost_part_finish(struct parts *BOLIDE_RESTRICT p, size_t i,
   }
   const struct material *mat = material_table_find(mats, p->mat[i]);
   double P, cs;
-  material_eos(mat, p->rho[i], p->up[i], &P, &cs);
+  if (mat->porosity.model != POROSITY_NONE)
+    porosity_eos(mat, p->rho[i], p->up[i], &p->alpha_p[i], &P, &cs); /* P = P_s(alpha rho, u)/alpha */
+  else
+    material_eos(mat, p->rho[i], p->up[i], &P, &cs);
   p->P[i] = P;
   p->cs[i] = cs;
   const double curl = sqrt(p->curl_vx[i] * p->curl_vx[i] + p->curl_vy[i] * p->curl_vy[i] +

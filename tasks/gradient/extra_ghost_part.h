@@ -7,6 +7,7 @@
 #ifndef BOLIDE_EXTRA_GHOST_PART_H
 #define BOLIDE_EXTRA_GHOST_PART_H
 
+#include "damage/damage_iact.h"
 #include "gradient_finish.h"
 #include "hydro_props.h"
 #include "inline.h"
@@ -63,9 +64,17 @@ BOLIDE_INLINE void extra_ghost_part(struct parts *BOLIDE_RESTRICT p, size_t i,
   const double mu = mat->shear_modulus;
   const double eps_rate = gradient_stress_rate(gv, Sp, mu, dS);
   if (mat->strength != STRENGTH_ELASTIC) {
-    const struct strength_state st = {p->P[i], p->rho[i], p->up[i], p->eps_p[i], eps_rate, 0.0};
+    /* the yield curve of the damaged material (Collins et al. 2004): tensile
+     * and shear damage together, min(1, d + D_s) */
+    const struct strength_state st = {p->P[i], p->rho[i], p->up[i], p->eps_p[i], eps_rate,
+                                      damage_total(p->dmg[i], p->dmg_shear[i])};
     const double Y = strength_yield(mat, &st);
-    p->eps_p[i] += strength_radial_return(S, Y, mu);
+    const double deps_p = strength_radial_return(S, Y, mu);
+    p->eps_p[i] += deps_p;
+    /* shear damage grows with the plastic strain (Collins et al. 2004) */
+    if (mat->shear_failure_strain > 0.0)
+      p->dmg_shear[i] = damage_shear_update(p->dmg_shear[i], deps_p, p->P[i], mat->shear_failure_strain,
+                                            mat->shear_failure_slope, mat->shear_failure_pressure);
     strength_radial_return(Sp, Y, mu);
     EXTRA_GHOST_PUT6(S, p, S, i);
     EXTRA_GHOST_PUT6(Sp, p, Sp, i);

@@ -244,6 +244,7 @@ static void body_write(const char *path, struct parts *p, int argc, char **argv,
   for (int d = 0; d < 3; d++) meta.box_size[d] = 4 * ext;
   /* the engine's open box is [0, L]^3: centre of mass at the box centre */
   for (size_t i = 0; i < p->count; i++) p->x[i] += 2 * ext, p->y[i] += 2 * ext, p->z[i] += 2 * ext;
+  for (size_t i = 0; i < p->count; i++) p->alpha[i] = 1.0; /* not porous */
   snapshot_write(path, &meta, p, &si, 0);
 }
 

@@ -314,6 +314,7 @@ int main(int argc, char **argv) {
   struct snapshot_meta meta = {
       .time = 0, .periodic = o.periodic, .ic = 1, .run_name = sub, .command = command, .hydro = 1};
   memcpy(meta.box_size, o.size, sizeof meta.box_size);
+  for (size_t i = 0; i < p.count; i++) p.alpha[i] = 1.0; /* not porous */
   snapshot_write(o.output, &meta, &p, &si, 0);
   printf("bolide-ic %s: %zu particles written to %s\n", sub, p.count, o.output);
   parts_free(&p);
