@@ -200,11 +200,30 @@ with tempfile.TemporaryDirectory() as tmp:
               f"impact {' '.join(args)}: v {v:.5g} (want {want_v:.5g}), angle {ang:.4f} "
               f"(want {want_a:.4f}), |p_tot| {pres:.1e}")
 
+    # start state instead of contact (the Ceres hit-and-run set-up): the file
+    # holds the requested separation, speed and impact parameter
+    out = os.path.join(tmp, "impact.hdf5")
+    d0, b0, v0 = 8 * (Rt + Ri), 2.0e6, 3000.0
+    run("impact", "--target", tgt, "--impactor", imp, "--v-start", str(v0), "--b-start", str(b0),
+        "--separation", str(d0), "-o", out)
+    d = read(out)
+    m, ids = d["Masses"], d["ParticleIDs"]
+    c = [((m[s, None] * d["Coordinates"][s]).sum(0) / m[s].sum(),
+          (m[s, None] * d["Velocities"][s]).sum(0) / m[s].sum()) for s in (ids <= 3000, ids > 3000)]
+    rel_x, rel_v = c[1][0] - c[0][0], c[1][1] - c[0][1]
+    bb = np.linalg.norm(np.cross(rel_x, rel_v)) / np.linalg.norm(rel_v)
+    check(abs(np.linalg.norm(rel_x) / d0 - 1) < 1e-6 and abs(np.linalg.norm(rel_v) / v0 - 1) < 1e-6
+          and abs(bb / b0 - 1) < 1e-6,
+          f"impact --v-start {v0} --b-start {b0} --separation {d0}: d {np.linalg.norm(rel_x):.6e},"
+          f" v {np.linalg.norm(rel_v):.6e}, b {bb:.6e}")
+
     # ---- bad input: one line, non-zero exit
     for args in (["planet", "--materials", "unobtainium", "--mass", "1e24"],
                  ["planet", "--materials", "iron,granite", "--mass", "1e24",
                   "--mass-fractions", "0.3,0.6"],
-                 ["impact", "--target", "sphere,material=granite", "--impactor", "x"]):
+                 ["impact", "--target", "sphere,material=granite", "--impactor", "x"],
+                 ["impact", "--target", tgt, "--impactor", imp, "--v-start", "5000",
+                  "--b-start", str(2 * (Rt + Ri)), "--separation", str(8 * (Rt + Ri))]):
         r = subprocess.run([exe, *args], capture_output=True, text=True)
         check(r.returncode != 0 and r.stderr.count("\n") == 1 and "error" in r.stderr,
               f"bad input {' '.join(args)}: {r.stderr.strip()}")

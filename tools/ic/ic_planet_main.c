@@ -361,6 +361,9 @@ static void impact_usage(FILE *f) {
           "  --b B                   impact parameter sin(angle)\n"
           "  --separation D          centre distance at the start (default 3 (Rt + Ri)), or\n"
           "  --time T                time before contact at the start\n"
+          "  --v-start V --b-start B  instead of the contact speed and angle: relative speed\n"
+          "                          and impact parameter (distance of the initial velocity\n"
+          "                          line from the target centre) at --separation\n"
           "  --impactor-mat-offset K add K to the impactor's material ids (default 0)\n"
           "Particle ids: target 1..Nt, impactor Nt+1..Nt+Ni.  At contact the impactor\n"
           "moves along +x; the orbit lies in the x-y plane.  The centre of mass is at\n"
@@ -377,6 +380,8 @@ static const struct option impact_longopts[] = {{"output", required_argument, NU
                                                 {"separation", required_argument, NULL, 7},
                                                 {"time", required_argument, NULL, 8},
                                                 {"impactor-mat-offset", required_argument, NULL, 9},
+                                                {"v-start", required_argument, NULL, 10},
+                                                {"b-start", required_argument, NULL, 11},
                                                 {"help", no_argument, NULL, 'h'},
                                                 {NULL, 0, NULL, 0}};
 
@@ -385,7 +390,8 @@ int icgen_impact_main(int argc, char **argv) {
   body_init(&t, "target");
   body_init(&im, "impactor");
   const char *out = "impact.hdf5";
-  double v_c = -1, v_rel = -1, angle = 45, bimp = -1, d0 = -1, t0 = -1;
+  double v_c = -1, v_rel = -1, angle = 45, bimp = -1, d0 = -1, t0 = -1, v0 = -1, b0 = -1;
+  int angle_given = 0;
   long mat_off = 0;
   int have_t = 0, have_i = 0;
   opterr = 0;
@@ -416,6 +422,7 @@ int icgen_impact_main(int argc, char **argv) {
       case 5:
         angle = body_real(&t, "--angle", optarg, 0);
         if (angle >= 90) error_exit("impact: --angle must be below 90 degrees");
+        angle_given = 1;
         break;
       case 6:
         bimp = body_real(&t, "--b", optarg, 0);
@@ -430,11 +437,27 @@ int icgen_impact_main(int argc, char **argv) {
       case 9:
         mat_off = (long)body_real(&t, "--impactor-mat-offset", optarg, 0);
         break;
+      case 10:
+        v0 = body_real(&t, "--v-start", optarg, 1e-300);
+        break;
+      case 11:
+        b0 = body_real(&t, "--b-start", optarg, 0);
+        break;
     }
   }
   if (optind < argc) error_exit("impact: unexpected argument '%s'", argv[optind]);
   if (!have_t || !have_i) error_exit("impact: --target and --impactor are required");
-  if ((v_c >= 0) == (v_rel >= 0)) error_exit("impact: give one of --v-contact and --v-over-vesc");
+  const int start_mode = v0 > 0 || b0 >= 0;
+  if (start_mode) {
+    if (!(v0 > 0) || !(b0 >= 0)) error_exit("impact: --v-start and --b-start go together");
+    if (v_c >= 0 || v_rel >= 0 || angle_given || bimp >= 0 || t0 >= 0)
+      error_exit("impact: --v-start/--b-start replace --v-contact, --v-over-vesc, --angle, --b "
+                 "and --time");
+    if (!(d0 > 0)) error_exit("impact: --v-start/--b-start need --separation");
+    if (b0 >= d0) error_exit("impact: --b-start must be below --separation");
+  } else if ((v_c >= 0) == (v_rel >= 0)) {
+    error_exit("impact: give one of --v-contact and --v-over-vesc (or --v-start and --b-start)");
+  }
   if (d0 > 0 && t0 >= 0) error_exit("impact: give --separation or --time, not both");
   body_make(&t, 1, 1);
   body_make(&im, 1 + (int64_t)t.p.count, 1);
@@ -444,8 +467,20 @@ int icgen_impact_main(int argc, char **argv) {
   const double G = units_G(&si);
   const double Mt = t.M, Mi = im.M, d_c = t.R + im.R, mu = G * (Mt + Mi);
   const double v_esc = sqrt(2 * mu / d_c);
+  double theta = bimp >= 0 ? asin(bimp) : angle * M_PI / 180;
+  if (start_mode) {
+    /* the same orbit through the contact point: energy and angular momentum
+     * of the start state (theory/planets.md) */
+    if (d0 < d_c) error_exit("impact: the initial separation is smaller than R_t + R_i");
+    const double E = 0.5 * v0 * v0 - mu / d0;
+    v_c = sqrt(2 * (E + mu / d_c));
+    const double sin_c = b0 * v0 / (d_c * v_c);
+    if (!(sin_c < 1))
+      error_exit("impact: with --b-start %g m the bodies pass %g m apart, beyond R_t + R_i = %g m",
+                 b0, d_c * sin_c, d_c);
+    theta = asin(sin_c);
+  }
   if (v_c < 0) v_c = v_rel * v_esc;
-  const double theta = bimp >= 0 ? asin(bimp) : angle * M_PI / 180;
   if (d0 <= 0 && t0 < 0) d0 = 3 * d_c;
   double s[6];
   const double t_contact = ic_impact_start(mu, d_c, v_c, theta, d0, t0, s);
