@@ -87,10 +87,12 @@ static void engine_kick2(struct engine *e, int t) {
       const double dtd = damage_part_timestep(p, i, e->damage_max_change);
       if (dtd < dt) dt = dtd;
     }
-  if (e->gp.enabled && e->gp.eps > 0.0)
+  if (e->gp.enabled && (e->gp.eps > 0.0 || e->gp.h_factor > 0.0))
     for (size_t i = c->offset; i < end; i++) {
       const double ga[3] = {p->gax[i], p->gay[i], p->gaz[i]};
-      const double dtg = gravity_timestep(ga, e->gp.eps, e->gp.eta);
+      /* eps_i: the absolute softening or h_factor * h_i */
+      const double epsi = gravity_pair_softening(e->gp.eps, e->gp.h_factor, p->h[i], 0.0);
+      const double dtg = gravity_timestep(ga, epsi, e->gp.eta);
       if (dtg < dt) dt = dtg;
     }
   e->cell_dt_min[t] = dt;
@@ -166,7 +168,7 @@ void engine_run_task(void *ctx, struct task *t, int thread_id) {
       if (ci)
         engine_gravity_task(e, t, ci, NULL);
       else /* Gravity:direct: exact summation in one task */
-        gravity_direct(p, e->gp.G, e->gp.eps, e->gp.softening, 1);
+        gravity_direct_h(p, e->gp.G, e->gp.eps, e->gp.softening, e->gp.h_factor, 1);
       break;
     case task_type_grav_down:
       gravity_down(p, ci, e->gcells, &e->gp);

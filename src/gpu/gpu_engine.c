@@ -422,11 +422,16 @@ void gpu_engine_init(struct engine *e) {
   char why[256];
   /* the GPU runs the hydrodynamic phase as a whole (solids and damage
    * included) and the near field of self-gravity; XSPH and the continuity
-   * equation have no GPU implementation yet, and a gravity-only run none */
+   * equation have no GPU implementation yet, nor the gravitational softening
+   * tied to h (the GPU P2P and kick use one constant eps), and a
+   * gravity-only run none */
   const char *unsupported = !e->hp.enabled     ? "hydrodynamics is off"
                             : e->hp.xsph > 0.0 ? "XSPH has no GPU implementation yet"
                             : e->hp.continuity ? "the continuity equation has no GPU implementation yet"
-                                               : NULL;
+                            : e->gp.enabled && e->gp.h_factor > 0.0
+                                ? "Gravity:softening_h_factor > 0 (softening tied to h) has no GPU "
+                                  "implementation yet"
+                                : NULL;
   if (unsupported) {
     if (required)
       error_exit("a GPU was required (%s) but %s", e->opt.use_gpu == 2 ? "--gpu" : "Scheduler:gpu: all",

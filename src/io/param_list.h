@@ -73,6 +73,7 @@
   X("Gravity:theta_cr", PARAM_REAL, "0.5", 0, 1, NULL, "-", "opening angle of the multipole acceptance criterion") \
   X("Gravity:eta", PARAM_REAL, "0.025", 1e-6, 10, NULL, "-", "gravitational time-step factor: dt = sqrt(2 eta eps / |a|)") \
   X("Gravity:softening", PARAM_REAL, "0", 0, PARAM_INF, NULL, "internal length", "Plummer-equivalent softening length (absolute)") \
+  X("Gravity:softening_h_factor", PARAM_REAL, "0", 0, PARAM_INF, NULL, "-", "softening tied to h: eps_i = factor * h_i, pairs use max(eps_i, eps_j); 0 = off (absolute Gravity:softening); spline kernel only") \
   X("Gravity:max_physical_baryon_softening", PARAM_REAL, "0", 0, PARAM_INF, NULL, "internal length", "SWIFT's name for the softening; used when Gravity:softening is 0") \
   X("Gravity:mesh_side_length", PARAM_INT, "0", 0, 4096, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
   X("Gravity:comoving_DM_softening", PARAM_REAL, "0", 0, PARAM_INF, NULL, "-", "accepted for SWIFT compatibility; has no effect") \

@@ -54,13 +54,15 @@ struct gravity_cell *gravity_cells_reserve(struct gravity_cell *gc, int *capacit
 /* ------------------------------------------------------------------ up */
 
 /** Multipole of c from its particles (leaf) or its progeny (split cell). */
-static void up_rec(struct parts *p, const struct cell *c, struct gravity_cell *gc, int order) {
+static void up_rec(struct parts *p, const struct cell *c, struct gravity_cell *gc, int order,
+                   double h_factor) {
   struct gravity_cell *g = gc + c->index;
   struct gravity_multipole *mp = &g->mp;
   gravity_field_zero(&g->field);
   gravity_multipole_zero(mp);
   mp->r_max = 0.0;
   g->a_min = 0.0;
+  g->h_support = 0.0;
   for (int k = 0; k < 3; k++) mp->com[k] = c->loc[k] + 0.5 * c->width[k];
   if (c->count == 0) return;
 
@@ -70,9 +72,10 @@ static void up_rec(struct parts *p, const struct cell *c, struct gravity_cell *g
     for (int q = 0; q < 8; q++) {
       const struct cell *cp = c->progeny[q];
       if (cp == NULL || cp->count == 0) continue;
-      up_rec(p, cp, gc, order);
+      up_rec(p, cp, gc, order, h_factor);
       const struct gravity_multipole *mq = &gc[cp->index].mp;
       mass += mq->M[0];
+      if (gc[cp->index].h_support > g->h_support) g->h_support = gc[cp->index].h_support;
       for (int k = 0; k < 3; k++) s[k] += mq->M[0] * mq->com[k];
       if (gc[cp->index].a_min < a_min) a_min = gc[cp->index].a_min;
     }
@@ -80,9 +83,10 @@ static void up_rec(struct parts *p, const struct cell *c, struct gravity_cell *g
   } else {
     /* |ga| of the previous pass (0 for a particle never computed: then the
      * cell's a_min is 0, "unknown"), then a fresh start of the sums. */
-    double a2_min = HUGE_VAL;
+    double a2_min = HUGE_VAL, h_max = 0.0;
     for (size_t i = c->offset; i < c->offset + c->count; i++) {
       mass += p->m[i];
+      if (p->h[i] > h_max) h_max = p->h[i];
       s[0] += p->m[i] * p->x[i];
       s[1] += p->m[i] * p->y[i];
       s[2] += p->m[i] * p->z[i];
@@ -91,6 +95,9 @@ static void up_rec(struct parts *p, const struct cell *c, struct gravity_cell *g
       p->gax[i] = p->gay[i] = p->gaz[i] = p->pot[i] = 0.0;
     }
     g->a_min = sqrt(a2_min);
+    /* softening tied to h: the largest support of the leaf's particles
+     * (a pair's support is the larger of its two particles') */
+    if (h_factor > 0.0) g->h_support = GRAVITY_SPLINE_H_OVER_EPS * h_factor * h_max;
   }
   /* A massless cell keeps its box centre as expansion centre. */
   if (mass > 0.0)
@@ -127,7 +134,7 @@ void gravity_up(struct parts *p, const struct cell *c, struct gravity_cell *gc,
       p->gax[i] = p->gay[i] = p->gaz[i] = p->pot[i] = 0.0;
     return;
   }
-  up_rec(p, c, gc, gp->order);
+  up_rec(p, c, gc, gp->order, gp->h_factor);
 }
 
 /* ------------------------------------------------------------------ P2P */
@@ -324,10 +331,51 @@ static void record_distance(double r2) {
   if (recording && r2 < recording->d_min * recording->d_min) recording->d_min = sqrt(r2);
 }
 
+/** p2p_block with the softening tied to h (Gravity:softening_h_factor):
+ *  each pair's softening is gravity_pair_softening(h_i, h_j), spline
+ *  kernel; a plain scalar loop (the SSE2 path assumes one support). */
+static void p2p_block_h(struct parts *p, size_t i0, size_t i1, size_t j0, size_t j1, int self,
+                        int sym, const struct gravity_props *gp) {
+  const double G = gp->G;
+  for (size_t i = i0; i < i1; i++) {
+    const double xi = p->x[i], yi = p->y[i], zi = p->z[i], hi = p->h[i];
+    const double gmi = G * p->m[i];
+    double sp = 0.0, sa[3] = {0.0, 0.0, 0.0};
+    for (size_t j = self ? i + 1 : j0; j < j1; j++) {
+      const double dx[3] = {xi - p->x[j], yi - p->y[j], zi - p->z[j]};
+      const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+      const double eps = gravity_pair_softening(gp->eps, gp->h_factor, hi, p->h[j]);
+      double wpot, wacc;
+      gravity_softened_kernel(r2, eps, GRAVITY_SOFTENING_SPLINE, &wpot, &wacc);
+      const double gmj = G * p->m[j];
+      sp -= gmj * wpot;
+      sa[0] -= gmj * wacc * dx[0];
+      sa[1] -= gmj * wacc * dx[1];
+      sa[2] -= gmj * wacc * dx[2];
+      if (sym) {
+        p->pot[j] -= gmi * wpot;
+        p->gax[j] += gmi * wacc * dx[0];
+        p->gay[j] += gmi * wacc * dx[1];
+        p->gaz[j] += gmi * wacc * dx[2];
+      }
+    }
+    p->pot[i] += sp;
+    p->gax[i] += sa[0];
+    p->gay[i] += sa[1];
+    p->gaz[i] += sa[2];
+  }
+  const size_t ni = i1 - i0, nj = j1 - j0;
+  counters.p2p += self ? ni * (ni - 1) / 2 : ni * nj;
+}
+
 /** Particles [i0, i1) against [j0, j1) (disjoint, or j0 = i + 1 for the
  *  self interaction when self is set); sym: the sources receive too. */
 static void p2p_block(struct parts *p, size_t i0, size_t i1, size_t j0, size_t j1, int self,
                       int sym, const struct gravity_props *gp) {
+  if (gp->h_factor > 0.0) {
+    p2p_block_h(p, i0, i1, j0, j1, self, sym, gp);
+    return;
+  }
   const int plummer = gp->softening == GRAVITY_SOFTENING_PLUMMER;
   const double H = GRAVITY_SPLINE_H_OVER_EPS * gp->eps;
   const double inv_H = H > 0.0 ? 1.0 / H : 0.0, H2 = H * H;
@@ -515,7 +563,11 @@ static int accept(const struct gravity_cell *a, const struct gravity_cell *b, do
   const double theta = (gp->epsilon_fmm > 0.0 && (a->a_min <= 0.0 || b->a_min <= 0.0))
                            ? GRAVITY_THETA_FIRST * gp->theta
                            : gp->theta;
-  if (!gravity_mac(a->mp.r_max, b->mp.r_max, r2, theta, gp->h_support)) return 0;
+  /* the support beyond which every pair of a and b is Newtonian: the
+   * constant one, or with the softening tied to h the larger of the two
+   * cells' largest supports (max over pairs of max(H_i, H_j)) */
+  const double h_support = gp->h_factor > 0.0 ? fmax(a->h_support, b->h_support) : gp->h_support;
+  if (!gravity_mac(a->mp.r_max, b->mp.r_max, r2, theta, h_support)) return 0;
   const double rs = a->mp.r_max + b->mp.r_max;
   return gravity_mac_adaptive(gp->G, b->mp.M[0], rs, r2, gp->order, gp->epsilon_fmm, a->a_min) &&
          gravity_mac_adaptive(gp->G, a->mp.M[0], rs, r2, gp->order, gp->epsilon_fmm, b->a_min);
@@ -726,6 +778,7 @@ struct direct_job {
   size_t i0, i1;   /**< targets of this thread */
   double G, eps;   /**< constant and softening */
   int softening;   /**< enum gravity_softening */
+  double h_factor; /**< Gravity:softening_h_factor (0: the constant eps) */
 };
 
 /** Gather form: each target sums over every other particle. */
@@ -738,7 +791,8 @@ static void *direct_gather(void *arg) {
       if (j == i) continue;
       const double dx[3] = {p->x[i] - p->x[j], p->y[i] - p->y[j], p->z[i] - p->z[j]};
       const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-      gravity_p2p(dx, r2, p->m[j], job->G, job->eps, job->softening, &pot, a);
+      const double eps = gravity_pair_softening(job->eps, job->h_factor, p->h[i], p->h[j]);
+      gravity_p2p(dx, r2, p->m[j], job->G, eps, job->softening, &pot, a);
     }
     p->pot[i] += pot;
     p->gax[i] += a[0];
@@ -748,9 +802,17 @@ static void *direct_gather(void *arg) {
   return NULL;
 }
 
-static void direct_threads(struct parts *p, double G, double eps, int softening, int nthreads);
+static void direct_threads(struct parts *p, double G, double eps, int softening, double h_factor,
+                           int nthreads);
 
 void gravity_direct(struct parts *p, double G, double eps, int softening, int nthreads) {
+  gravity_direct_h(p, G, eps, softening, 0.0, nthreads);
+}
+
+void gravity_direct_h(struct parts *p, double G, double eps, int softening, double h_factor,
+                      int nthreads) {
+  if (h_factor > 0.0 && softening != GRAVITY_SOFTENING_SPLINE)
+    error_exit("gravity: the softening tied to h needs the spline softening kernel");
   const size_t n = p->count;
   memset(p->gax, 0, n * sizeof(double));
   memset(p->gay, 0, n * sizeof(double));
@@ -760,20 +822,20 @@ void gravity_direct(struct parts *p, double G, double eps, int softening, int nt
     /* Symmetric: each pair once. */
     struct gravity_props gp;
     gravity_props_set(&gp, G, 0.0, eps, softening, 1);
+    gp.h_factor = h_factor;
     struct cell all;
     memset(&all, 0, sizeof all);
     all.offset = 0;
     all.count = p->count;
     p2p_self(p, &all, &gp);
   } else {
-    direct_threads(p, G, eps, softening, nthreads);
-  }
-  for (size_t i = 0; i < n; i++) {
+    direct_threads(p, G, eps, softening, h_factor, nthreads);
   }
 }
 
 /** Gather-form direct summation over nthreads POSIX threads. */
-static void direct_threads(struct parts *p, double G, double eps, int softening, int nthreads) {
+static void direct_threads(struct parts *p, double G, double eps, int softening, double h_factor,
+                           int nthreads) {
   pthread_t tid[64];
   struct direct_job job[64];
   if (nthreads > 64) nthreads = 64;
@@ -784,6 +846,7 @@ static void direct_threads(struct parts *p, double G, double eps, int softening,
     job[t].G = G;
     job[t].eps = eps;
     job[t].softening = softening;
+    job[t].h_factor = h_factor;
     if (pthread_create(&tid[t], NULL, direct_gather, &job[t]) != 0)
       error_exit("gravity_direct: cannot start thread %d", t);
   }

@@ -61,6 +61,8 @@ struct gravity_props {
   double h_support;      /**< distance beyond which the pair force is Newtonian (3 eps for the
                               spline, 0 for Plummer whose expansions are softened) */
   double eps2_expansion; /**< softening squared inside the expansions (eps^2 for Plummer, else 0) */
+  double h_factor;       /**< Gravity:softening_h_factor: > 0: eps_i = h_factor h_i, a pair's
+                              softening max(eps_i, eps_j), spline only (0: the constant eps) */
   int reuse_steps;       /**< Gravity:reuse_steps: most steps in a row that reuse the far field */
   double reuse_tol;      /**< Gravity:reuse_tolerance: largest displacement since the last full
                               evaluation, in units of the shortest far-field distance */
@@ -95,6 +97,8 @@ struct gravity_cell {
   struct gravity_multipole mp; /**< multipole about the centre of mass (gravity_up) */
   struct gravity_field field;  /**< local expansion about mp.com (interactions, gravity_down) */
   double a_min; /**< smallest |ga| of the cell's particles at the previous pass (0: unknown) */
+  double h_support; /**< largest kernel support 3 h_factor h_i of the cell's particles (gravity_up;
+                         0 unless Gravity:softening_h_factor > 0) */
 };
 
 /** Record the particle-level interactions of the walks this thread runs
@@ -175,6 +179,11 @@ void gravity_tree_all(struct parts *p, const struct cell *tops, int nr_top, stru
  *  of the tests): sets ga and pot.  nthreads > 1
  *  splits the work over POSIX threads (gather form). */
 void gravity_direct(struct parts *p, double G, double eps, int softening, int nthreads);
+
+/** gravity_direct with the softening tied to h when h_factor > 0 (pair
+ *  softening gravity_pair_softening; spline kernel). */
+void gravity_direct_h(struct parts *p, double G, double eps, int softening, double h_factor,
+                      int nthreads);
 
 /** P2P interactions of leaf pairs, recorded by the walks instead of
  *  computed (the GPU computes them: gpu_gravity_p2p_list): the particles of

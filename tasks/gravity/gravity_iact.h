@@ -424,6 +424,16 @@ BOLIDE_INLINE void gravity_softened_kernel(double r2, double eps, int softening,
   *wacc = inv_H * inv_H * inv_H * (14.0 + u2 * (-84.0 + u * (140.0 + u * (-90.0 + 21.0 * u))));
 }
 
+/** Softening of the pair (i, j) (Plummer equivalent): the constant eps, or,
+ *  when h_factor > 0 (Gravity:softening_h_factor, spline kernel only),
+ *  h_factor * max(h_i, h_j): eps_ij = max(eps_i, eps_j) with eps_i =
+ *  h_factor h_i, the same for both particles of the pair, so that the pair
+ *  forces are equal and opposite (momentum). */
+BOLIDE_INLINE double gravity_pair_softening(double eps, double h_factor, double hi, double hj) {
+  if (h_factor <= 0.0) return eps;
+  return h_factor * (hi > hj ? hi : hj);
+}
+
 /** P2P: potential and acceleration of particle i from particle j of mass mj
  *  at dx = x_i - x_j, r2 = |dx|^2, with softening; adds to *pot and a[3]. */
 BOLIDE_INLINE void gravity_p2p(const double dx[3], double r2, double mj, double G, double eps,

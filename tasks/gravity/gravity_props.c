@@ -22,6 +22,15 @@ void gravity_props_init(struct gravity_props *gp, const struct params *params,
   gp->epsilon_fmm = params_get_real(params, "Gravity:epsilon_fmm");
   gp->reuse_steps = (int)params_get_int(params, "Gravity:reuse_steps");
   gp->reuse_tol = params_get_real(params, "Gravity:reuse_tolerance");
-  if (gp->enabled && eps == 0.0)
+  gp->h_factor = params_get_real(params, "Gravity:softening_h_factor");
+  if (gp->h_factor > 0.0 && kind != GRAVITY_SOFTENING_SPLINE)
+    error_exit(
+        "%s: Gravity:softening_h_factor > 0 (softening tied to h) needs Gravity:softening_kernel: "
+        "spline (the Plummer expansions use one constant softening)",
+        params_filename(params));
+  if (gp->enabled && eps > 0.0 && gp->h_factor > 0.0)
+    error_warning("Gravity:softening %g is not used: Gravity:softening_h_factor %g sets eps_i = "
+                  "factor * h_i", eps, gp->h_factor);
+  if (gp->enabled && eps == 0.0 && gp->h_factor <= 0.0)
     error_warning("Gravity:softening is 0: close pairs of particles will see a singular force");
 }
