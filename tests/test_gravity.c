@@ -300,16 +300,16 @@ static void test_set(int kind, double eps, double eps_fmm) {
     gravity_direct(&q, 1.0, epl, GRAVITY_SOFTENING_PLUMMER, 2);
     double *qa = error_malloc(3 * q.count * sizeof(double), "test");
     for (size_t i = 0; i < q.count; i++) {
-      qa[3 * i] = q.ax[i];
-      qa[3 * i + 1] = q.ay[i];
-      qa[3 * i + 2] = q.az[i];
+      qa[3 * i] = q.gax[i];
+      qa[3 * i + 1] = q.gay[i];
+      qa[3 * i + 2] = q.gaz[i];
     }
     zero_acc(&q);
     gravity_direct(&q, 1.0, epl, GRAVITY_SOFTENING_PLUMMER, 1);
     double d = 0.0;
     for (size_t i = 0; i < q.count; i++) {
       const double *r = qa + 3 * i;
-      const double dd[3] = {q.ax[i] - r[0], q.ay[i] - r[1], q.az[i] - r[2]};
+      const double dd[3] = {q.gax[i] - r[0], q.gay[i] - r[1], q.gaz[i] - r[2]};
       d = fmax(d, sqrt(dd[0] * dd[0] + dd[1] * dd[1] + dd[2] * dd[2]) /
                       sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]));
     }
