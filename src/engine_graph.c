@@ -30,6 +30,7 @@
  *   grav_up(c) -> grav(c,c'), grav(c) -> grav_down(c)       near pairs
  *   grav_up(all) -> grav_long_range(c) -> grav_down(c)      far field
  *   grav_down(c) -> kick2(t) for the task cells t of c
+ *   ghost(t) -> grav_up(c)   only with the softening tied to h (the walks read h)
  *
  * The self interaction of a top-level cell holding more than
  * Scheduler:gravity_task_size particles is split along its octree
@@ -243,6 +244,10 @@ static void engine_make_gravity_tasks(struct engine *e, const int *first, int *c
     else gself[c] = NULL; /* the lock orders it against the pairs */
     /* grav_down(c) -> kick2(t) for the task cells of c */
     for (int t = first[c]; t < first[c + 1]; t++) scheduler_addunlock(sched, e->grav_down[c], e->ct[t].kick2);
+    /* softening tied to h (Gravity:softening_h_factor): ghost(t) -> grav_up(c), so that
+     * every gravity task reads the step's final h (the long range waits for every up) */
+    if (e->gp.h_factor > 0.0 && e->hp.enabled)
+      for (int t = first[c]; t < first[c + 1]; t++) scheduler_addunlock(sched, e->ct[t].ghost, up[c]);
     engine_phase_add(e, ENGINE_PHASE_FORCE, up[c], cap);
     engine_phase_add(e, ENGINE_PHASE_FORCE, lr, cap);
     engine_phase_add(e, ENGINE_PHASE_FORCE, e->grav_down[c], cap);
