@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "engine_tasks.h"
+#include "damage/damage_part.h"
 #include "damage/flaws.h"
 #include "error.h"
 #include "drift/drift.h"
@@ -26,6 +27,7 @@
 #include "params.h"
 #include "porosity_eos.h"
 #include "restart.h"
+#include "timestep/timestep.h"
 #include "version.h"
 #ifdef HAVE_CUDA
 #include "gpu/gpu_engine.h"
@@ -584,15 +586,68 @@ static void engine_run_phase(struct engine *e, int phase) {
   scheduler_run(&e->sched, engine_run_task, e);
 }
 
+/** Which particle and which criterion set the smallest time step (the
+ *  criteria of kick2_part, the damage and the gravity steps, recomputed from
+ *  the state of the last kick), written into why. */
+static void engine_dt_culprit(const struct engine *e, char *why, size_t len) {
+  const struct parts *p = &e->parts;
+  const struct hydro_props *hp = &e->hp;
+  double best = HUGE_VAL;
+  size_t ib = 0;
+  const char *crit = "none";
+  for (size_t i = 0; i < p->count; i++) {
+    const double H = kernel_gamma * p->h[i];
+    const double a = sqrt(p->ax[i] * p->ax[i] + p->ay[i] * p->ay[i] + p->az[i] * p->az[i]);
+    double d[6] = {HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL};
+    static const char *name[6] = {"Courant condition (h, v_sig)", "acceleration criterion (h, |a|)",
+                                  "volume change (div v)", "relative change of rho, u or S",
+                                  "damage growth", "gravitational criterion (eps, |a_grav|)"};
+    if (hp->enabled) {
+      if (p->v_sig[i] > 0.0) d[0] = 2.0 * hp->cfl * H / p->v_sig[i];
+      if (a > 0.0) d[1] = sqrt(2.0 * hp->cfl * H / a);
+      if (p->div_v[i] != 0.0) d[2] = hp->log_max_volume_change / fabs(p->div_v[i]);
+      if (hp->max_rel_change > 0.0) {
+        const double S[6] = {p->Sxx[i], p->Sxy[i], p->Sxz[i], p->Syy[i], p->Syz[i], p->Szz[i]};
+        const double dS[6] = {p->dSxx[i], p->dSxy[i], p->dSxz[i], p->dSyy[i], p->dSyz[i], p->dSzz[i]};
+        d[3] = timestep_relative_change(hp, p->rho[i], p->drho_dt[i], p->u[i], p->du_dt[i], p->cs[i], S, dS);
+      }
+    }
+    if (e->damage) d[4] = damage_part_timestep(p, i, e->damage_max_change);
+    if (e->gp.enabled && e->gp.eps > 0.0) {
+      const double ga[3] = {p->gax[i], p->gay[i], p->gaz[i]};
+      d[5] = gravity_timestep(ga, e->gp.eps, e->gp.eta);
+    }
+    for (int k = 0; k < 6; k++)
+      if (d[k] < best) {
+        best = d[k];
+        ib = i;
+        crit = name[k];
+      }
+  }
+  if (p->count == 0) {
+    snprintf(why, len, "no particles");
+    return;
+  }
+  const size_t i = ib;
+  snprintf(why, len,
+           "particle id %lld (material %d) at (%g, %g, %g) limited by the %s: h %g, rho %g, u %g, P %g, "
+           "c_s %g, v_sig %g, |a| %g, div v %g",
+           (long long)p->id[i], (int)p->mat[i], p->x[i], p->y[i], p->z[i], crit, p->h[i], p->rho[i], p->u[i],
+           p->P[i], p->cs[i], p->v_sig[i],
+           sqrt(p->ax[i] * p->ax[i] + p->ay[i] * p->ay[i] + p->az[i] * p->az[i]), p->div_v[i]);
+}
+
 /** The next global time step: the smallest particle step, limited by dt_max,
  *  the next output time and the end of the run. */
 static double engine_next_dt(struct engine *e) {
   double dt = e->dt_max;
   for (int t = 0; t < e->nr_tcells; t++)
     if (e->cell_dt_min[t] < dt) dt = e->cell_dt_min[t];
-  if (dt < e->dt_min)
-    error_exit("time step %g at t = %g is below TimeIntegration:dt_min = %g (run -v for details)", dt, e->time,
-               e->dt_min);
+  if (dt < e->dt_min) {
+    char why[512];
+    engine_dt_culprit(e, why, sizeof why);
+    error_exit("time step %g at t = %g is below TimeIntegration:dt_min = %g: %s", dt, e->time, e->dt_min, why);
+  }
   if (e->next_out < e->nr_out) {
     const double to_out = e->out_times[e->next_out] - e->time;
     if (to_out > 0.0 && dt >= to_out) dt = to_out;

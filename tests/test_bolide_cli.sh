@@ -43,6 +43,9 @@ expect_error "missing parameter file" "nothere.yml" "$bolide" nothere.yml
 expect_error "bad thread count" "--threads" "$bolide" -t zero params.yml
 sed 's/time_end/time_edn/' params.yml >typo.yml
 expect_error "misspelt key" "typo.yml:4" "$bolide" typo.yml
+# a time step below dt_min names the particle and the criterion that set it
+expect_error "time step below dt_min" "limited by the Courant condition" "$bolide" \
+  -P TimeIntegration:dt_min:1 -P Snapshots:subdir:out_dtmin params.yml
 expect_error "bad -P value" "TimeIntegration:time_end" "$bolide" -P TimeIntegration:time_end:soon params.yml
 expect_error "CSPM continuity without continuity density" "SPH:continuity_correction" "$bolide" --check \
   -P SPH:continuity_correction:true params.yml
