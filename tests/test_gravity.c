@@ -32,6 +32,7 @@
 #include <time.h>
 
 #include "error.h"
+#include "gravity_sets.h"
 #include "gravity/gravity_cpu.h"
 #include "part.h"
 #include "space.h"
@@ -54,25 +55,6 @@ static double urand(void) {
   return drand48();
 }
 
-/** A random direction times r, added to c. */
-static void place(double r, const double c[3], double out[3]) {
-  const double z = 2.0 * urand() - 1.0, ph = 2.0 * M_PI * urand(), s = sqrt(1.0 - z * z);
-  out[0] = c[0] + r * s * cos(ph);
-  out[1] = c[1] + r * s * sin(ph);
-  out[2] = c[2] + r * z;
-}
-
-/** Radius drawn from a Plummer sphere of scale a, truncated at rmax
- *  (Aarseth, Henon & Wielen 1974: M(<r)/M = r^3 / (r^2 + a^2)^(3/2)). */
-static double plummer_radius(double a, double rmax) {
-  for (;;) {
-    const double X = urand();
-    if (X <= 0.0) continue;
-    const double r = a / sqrt(pow(X, -2.0 / 3.0) - 1.0);
-    if (r < rmax) return r;
-  }
-}
-
 enum set_kind { SET_UNIFORM, SET_PLUMMER, SET_TWO_BODIES };
 static const char *set_name[] = {"uniform sphere", "Plummer sphere", "two clustered bodies"};
 
@@ -85,14 +67,11 @@ static void make_set(struct parts *p, int kind, size_t n) {
     double x[3];
     p->m[i] = 1.0 / n;
     if (kind == SET_UNIFORM) {
-      place(cbrt(urand()), c, x);
+      gset_place(cbrt(urand()), c, x);
     } else if (kind == SET_PLUMMER) {
-      place(plummer_radius(0.2, 1.8), c, x);
+      gset_place(gset_plummer_radius(0.2, 1.8), c, x);
     } else {
-      /* a body of 2/3 of the mass (scale 0.15) and one of 1/3 (0.08) 1.2 apart */
-      const int big = i < 2 * n / 3;
-      const double cc[3] = {c[0] + (big ? -0.4 : 0.8), c[1] + (big ? 0.0 : 0.3), c[2]};
-      place(plummer_radius(big ? 0.15 : 0.08, 0.9), cc, x);
+      gset_two_bodies(i, n, c, x);
     }
     p->x[i] = x[0];
     p->y[i] = x[1];
@@ -114,11 +93,6 @@ struct reference {
   double *ax, *ay, *az, *pot; /**< per particle, indexed by particle id (rebuilds reorder) */
   double epot;                /**< potential energy */
 };
-
-static int cmp_double(const void *a, const void *b) {
-  const double x = *(const double *)a, y = *(const double *)b;
-  return x < y ? -1 : x > y;
-}
 
 /** Errors of the current accelerations against the reference. */
 struct errors {
@@ -142,7 +116,7 @@ static struct errors measure(const struct parts *p, const struct reference *ref)
     P[2] += p->m[i] * p->gaz[i];
     A += p->m[i] * sqrt(p->gax[i] * p->gax[i] + p->gay[i] * p->gay[i] + p->gaz[i] * p->gaz[i]);
   }
-  qsort(e, n, sizeof *e, cmp_double);
+  qsort(e, n, sizeof *e, gset_cmp_double);
   struct errors r;
   r.median = e[n / 2];
   r.p99 = e[(size_t)(0.99 * n)];

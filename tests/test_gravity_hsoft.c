@@ -30,6 +30,7 @@
 #include <string.h>
 
 #include "error.h"
+#include "gravity_sets.h"
 #include "gravity/gravity_cpu.h"
 #include "part.h"
 #include "space.h"
@@ -50,38 +51,22 @@ static void check(int ok, const char *what, double got, double limit) {
   if (!ok) failures++;
 }
 
-/** Radius drawn from a Plummer sphere of scale a, truncated at rmax. */
-static double plummer_radius(double a, double rmax) {
-  for (;;) {
-    const double X = drand48();
-    if (X <= 0.0) continue;
-    const double r = a / sqrt(pow(X, -2.0 / 3.0) - 1.0);
-    if (r < rmax) return r;
-  }
-}
-
 /** Two Plummer spheres (2/3 of the mass, scale 0.15; 1/3, scale 0.08, 1.2
  *  apart), total mass 1, h_i = H_MIN 10^U with U uniform in [0, 1). */
 static void make_set(struct parts *p, size_t n) {
   parts_alloc(p, n);
   p->count = n;
   for (size_t i = 0; i < n; i++) {
-    const int big = i < 2 * n / 3;
-    const double c[3] = {0.5 * BOX + (big ? -0.4 : 0.8), 0.5 * BOX + (big ? 0.0 : 0.3), 0.5 * BOX};
-    const double r = plummer_radius(big ? 0.15 : 0.08, 0.9);
-    const double z = 2.0 * drand48() - 1.0, ph = 2.0 * M_PI * drand48(), s = sqrt(1.0 - z * z);
-    p->x[i] = c[0] + r * s * cos(ph);
-    p->y[i] = c[1] + r * s * sin(ph);
-    p->z[i] = c[2] + r * z;
+    const double c[3] = {0.5 * BOX, 0.5 * BOX, 0.5 * BOX};
+    double x[3];
+    gset_two_bodies(i, n, c, x);
+    p->x[i] = x[0];
+    p->y[i] = x[1];
+    p->z[i] = x[2];
     p->m[i] = 1.0 / n;
     p->h[i] = H_MIN * pow(10.0, drand48());
     p->id[i] = (int64_t)i;
   }
-}
-
-static int cmp_double(const void *a, const void *b) {
-  const double x = *(const double *)a, y = *(const double *)b;
-  return x < y ? -1 : x > y;
 }
 
 /** Reference of direct summation, indexed by particle id. */
@@ -107,7 +92,7 @@ static struct errors measure(const struct parts *p, const struct reference *ref)
     P[2] += p->m[i] * p->gaz[i];
     A += p->m[i] * sqrt(p->gax[i] * p->gax[i] + p->gay[i] * p->gay[i] + p->gaz[i] * p->gaz[i]);
   }
-  qsort(e, n, sizeof *e, cmp_double);
+  qsort(e, n, sizeof *e, gset_cmp_double);
   struct errors r = {e[n / 2], e[(size_t)(0.99 * n)], e[n - 1],
                      sqrt(P[0] * P[0] + P[1] * P[1] + P[2] * P[2]) / A, 0.0};
   r.epot = fabs(gravity_potential_energy(p) - ref->epot) / fabs(ref->epot);

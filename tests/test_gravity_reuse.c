@@ -24,6 +24,7 @@
 #include <string.h>
 
 #include "error.h"
+#include "gravity_sets.h"
 #include "gravity/gravity_cpu.h"
 #include "part.h"
 #include "space.h"
@@ -38,22 +39,6 @@ static void check(int ok, const char *what, double got, double limit) {
   if (!ok) failures++;
 }
 
-static void place(double r, const double c[3], double out[3]) {
-  const double z = 2.0 * drand48() - 1.0, ph = 2.0 * M_PI * drand48(), s = sqrt(1.0 - z * z);
-  out[0] = c[0] + r * s * cos(ph);
-  out[1] = c[1] + r * s * sin(ph);
-  out[2] = c[2] + r * z;
-}
-
-static double plummer_radius(double a, double rmax) {
-  for (;;) {
-    const double X = drand48();
-    if (X <= 0.0) continue;
-    const double r = a / sqrt(pow(X, -2.0 / 3.0) - 1.0);
-    if (r < rmax) return r;
-  }
-}
-
 static void make_set(struct parts *p, int two_bodies) {
   parts_alloc(p, NPART);
   p->count = NPART;
@@ -61,11 +46,9 @@ static void make_set(struct parts *p, int two_bodies) {
   for (size_t i = 0; i < NPART; i++) {
     double x[3];
     if (!two_bodies) {
-      place(cbrt(drand48()), c, x);
+      gset_place(cbrt(drand48()), c, x);
     } else {
-      const int big = i < 2 * NPART / 3;
-      const double cc[3] = {c[0] + (big ? -0.4 : 0.8), c[1] + (big ? 0.0 : 0.3), c[2]};
-      place(plummer_radius(big ? 0.15 : 0.08, 0.9), cc, x);
+      gset_two_bodies(i, NPART, c, x);
     }
     p->m[i] = 1.0 / NPART;
     p->x[i] = x[0];
@@ -74,11 +57,6 @@ static void make_set(struct parts *p, int two_bodies) {
     p->h[i] = 1e-3;
     p->id[i] = (int64_t)i;
   }
-}
-
-static int cmp_double(const void *a, const void *b) {
-  const double x = *(const double *)a, y = *(const double *)b;
-  return x < y ? -1 : x > y;
 }
 
 /** Median and 99th percentile of |a - ref| / |ref| (ref indexed like p). */
@@ -92,7 +70,7 @@ static void errors(const struct parts *p, const double *ref, double *median, dou
                           ref[3 * i + 2] * ref[3 * i + 2]);
     e[i] = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / a;
   }
-  qsort(e, n, sizeof *e, cmp_double);
+  qsort(e, n, sizeof *e, gset_cmp_double);
   *median = e[n / 2];
   *p99 = e[(size_t)(0.99 * n)];
   free(e);
@@ -153,7 +131,7 @@ static void test_set(int two_bodies) {
     x0[3 * i + 1] = p.y[i];
     x0[3 * i + 2] = p.z[i];
     const double o[3] = {0, 0, 0};
-    place(1.0, o, dir + 3 * i);
+    gset_place(1.0, o, dir + 3 * i);
   }
   memset(p.gax, 0, n * sizeof(double));
   /* two passes: the second with the adaptive criterion's scale, as in a run */
