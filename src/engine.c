@@ -532,8 +532,7 @@ static void engine_gravity_reuse_decide(struct engine *e, int rebuilt) {
 static void engine_gravity_reuse_remember(struct engine *e) {
   if (!e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0 || e->gp.replay) return;
   const struct parts *p = &e->parts;
-  free(e->grav_x0);
-  e->grav_x0 = error_malloc(3 * (p->count ? p->count : 1) * sizeof(double), "gravity reuse positions");
+  e->grav_x0 = error_realloc(e->grav_x0, 3 * (p->count ? p->count : 1) * sizeof(double), "gravity reuse positions");
   for (size_t i = 0; i < p->count; i++) {
     e->grav_x0[3 * i] = p->x[i];
     e->grav_x0[3 * i + 1] = p->y[i];
