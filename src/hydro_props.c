@@ -20,6 +20,7 @@ void hydro_props_init(struct hydro_props *hp, const struct params *p) {
   hp->alpha_u = params_get_real(p, "SPH:conductivity_alpha");
   hp->continuity = params_get_enum(p, "SPH:density") == 1;
   hp->continuity_cspm = params_get_bool(p, "SPH:continuity_correction");
+  hp->continuity_min_ratio = params_get_real(p, "SPH:continuity_min_density_ratio");
   if (hp->continuity_cspm && !hp->continuity)
     params_error(p, "SPH:continuity_correction", "needs SPH:density: continuity");
   hp->xsph = params_get_real(p, "SPH:xsph_epsilon");

@@ -20,6 +20,7 @@ struct hydro_props {
   double alpha_u;       /**< artificial conduction (Price 2008), 0 = off */
   int continuity;       /**< 1: density from the continuity equation */
   int continuity_cspm;  /**< 1: drho/dt = -rho tr(corrected velocity gradient) (CSPM) */
+  double continuity_min_ratio; /**< continuity density floor in units of the material's rho0 */
   double xsph;          /**< XSPH epsilon (Monaghan 1989), 0 = off */
   int solids;           /**< 1 when a material has strength: gradient tasks and stress terms run */
   int momentum_form;    /**< HYDRO_MOMENTUM_STANDARD or HYDRO_MOMENTUM_SYMMETRIC */

@@ -157,6 +157,7 @@ enum { PART_NR_FIELDS = 0 BOLIDE_PART_FIELDS(PART_COUNT_FIELD) };
 enum part_state {
   PART_ACTIVE = 1,       /**< updated in the current step */
   PART_H_CONVERGED = 2,  /**< smoothing length iteration converged */
+  PART_RHO_FLOOR = 4,    /**< continuity density held at its floor (continuity_floor.h) */
 };
 
 /** All particles, one array per field. */

@@ -58,6 +58,7 @@
   X("SPH:conductivity_alpha", PARAM_REAL, "0", 0, 10, NULL, "-", "artificial conduction of internal energy (Price 2008); 0 switches it off") \
   X("SPH:density", PARAM_ENUM, "summation", 0, 0, "summation|continuity", "-", "density from kernel summation or from the continuity equation") \
   X("SPH:continuity_correction", PARAM_BOOL, "false", 0, 0, NULL, "-", "with density: continuity, take div v in drho/dt = -rho div v from the velocity gradient corrected by the correction tensor (CSPM; Eghtesad & Knezevic 2018), exact for linear velocity fields") \
+  X("SPH:continuity_min_density_ratio", PARAM_REAL, "0.01", 0, 1, NULL, "-", "with density: continuity, the integrated density never falls below this fraction of the material's reference density rho0 (nor below its density_floor); a particle on the floor keeps its density while its neighbours diverge (theory/sph.md section 6; 0: no floor)") \
   X("SPH:xsph_epsilon", PARAM_REAL, "0", 0, 1, NULL, "-", "XSPH velocity smoothing factor (0: off)") \
   X("SPH:momentum_form", PARAM_ENUM, "standard", 0, 0, "standard|symmetric", "-", "momentum equation: sigma_i/rho_i^2 + sigma_j/rho_j^2 (standard, Gray et al. 2001) or (sigma_i + sigma_j)/(rho_i rho_j) (symmetric)") \
   X("SPH:velocity_gradient_correction", PARAM_BOOL, "true", 0, 0, NULL, "-", "linear-consistency correction tensor on the velocity gradient of solids (Randles & Libersky 1996)") \

@@ -7,6 +7,7 @@
 
 #include <math.h>
 
+#include "continuity_floor.h"
 #include "ghost_iact.h"
 #include "hydro_parts.h"
 #include "hydro_props.h"
@@ -67,11 +68,12 @@ BOLIDE_INLINE void ghost_part_finish(struct parts *BOLIDE_RESTRICT p, size_t i,
   /* continuity equation: the summed density served the h iteration and the
    * grad-h factor; the EOS and the force loop use the integrated density
    * (started from the summation where the initial conditions had none) */
+  const struct material *mat = material_table_find(mats, p->mat[i]);
   if (hp->continuity) {
     if (!(p->rho_full[i] > 0.0)) p->rho_full[i] = p->rho_fp[i] = rho;
+    continuity_floor_part(p, i, continuity_rho_floor(hp, mat));
     p->rho[i] = p->rho_fp[i];
   }
-  const struct material *mat = material_table_find(mats, p->mat[i]);
   double P, cs;
   if (mat->porosity.model != POROSITY_NONE)
     porosity_eos(mat, p->rho[i], p->up[i], &p->alpha_p[i], &P, &cs); /* P = P_s(alpha rho, u)/alpha */

@@ -6,6 +6,7 @@
 #include <math.h>
 
 #include "drift/drift.h"
+#include "ghost/continuity_floor.h"
 #include "hydro_props.h"
 #include "inline.h"
 #include "part.h"
@@ -13,9 +14,12 @@
 
 /** Kick particle i by dt_kick, make the predicted state the kicked one
  *  (kick_sync_predicted), and return its new time step (timestep_hydro and,
- *  with SPH:max_relative_change, the relative-change limits). */
+ *  with SPH:max_relative_change, the relative-change limits).  With the
+ *  continuity equation a particle on its density floor does not expand
+ *  further (continuity_floor.h). */
 BOLIDE_INLINE double kick2_part(struct parts *BOLIDE_RESTRICT p, size_t i, double dt_kick,
                                 const struct hydro_props *hp) {
+  if (hp->continuity) continuity_floor_rate(p, i);
   kick_part(p, i, dt_kick);
   kick_sync_predicted(p, i);
   const double a = sqrt(p->ax[i] * p->ax[i] + p->ay[i] * p->ay[i] + p->az[i] * p->az[i]);
