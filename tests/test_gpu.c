@@ -97,7 +97,9 @@ static double max_abs(double *const *a, int k, size_t n) {
 }
 
 /** The three cases. */
-enum test_kind { KIND_GAS, KIND_GRANITE, KIND_BASALT_SOLID };
+/** KIND_BASALT_CONT: the solid case with the density from the continuity
+ *  equation (from perturbed densities) and XSPH. */
+enum test_kind { KIND_GAS, KIND_GRANITE, KIND_BASALT_SOLID, KIND_BASALT_CONT };
 
 /** The solids and damage fields of the CPU run p and the GPU run q: tensors
  *  relative to their largest component over the particles, damage relative
@@ -184,7 +186,8 @@ static int compare_solids(const struct parts *p, const struct parts *q, size_t n
 static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
                     unsigned long long seed) {
   unsigned long long s = seed;
-  const int granite = kind != KIND_GAS, solid = kind == KIND_BASALT_SOLID;
+  const int granite = kind != KIND_GAS;
+  const int cont = kind == KIND_BASALT_CONT, solid = kind == KIND_BASALT_SOLID || cont;
   const size_t n = (size_t)side * side * side;
   const double box[3] = {1.0, 1.0, 1.0};
   const double dx = (periodic ? 1.0 : 0.6) / side, rho0 = granite ? 2680.0 : 1.0;
@@ -235,6 +238,7 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
           p.dcbrt[i] = urand(&s) < 0.33 ? 0.5 * urand(&s) : 0.0;
           p.dmg[i] = p.dcbrt[i] * p.dcbrt[i] * p.dcbrt[i];
         }
+        if (cont) p.rho_full[i] = p.rho_fp[i] = rho0 * (0.95 + 0.1 * urand(&s));
       }
   struct material_table mats;
   material_table_init(&mats);
@@ -258,6 +262,10 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
     hp.as_n = 4.0;
     hp.as_wdp_inv = 1.0 / kernel_W(1.0 / hp.eta, 1.0);
     hp.max_rel_change = 0.25;
+    if (cont) {
+      hp.continuity = 1;
+      hp.xsph = 0.5;
+    }
   } else if (granite) {
     material_from_library(&m, material_default_library(), "granite", 1);
   } else {
@@ -379,13 +387,21 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
       {"v_sig", p.v_sig, q.v_sig, 0.0},
       {"vx", p.vx, q.vx, vmax},
       {"u", p.u, q.u, 0.0},
+      /* continuity + XSPH case (zero elsewhere: rho_full and the XSPH sums
+       * then compare as equal) */
+      {"drho_dt", p.drho_dt, q.drho_dt, 1e-3 * rho0 * vmax / hmean},
+      {"rho_full", p.rho_full, q.rho_full, 0.0},
+      {"xsphx", p.xsphx, q.xsphx, vmax},
+      {"xsphy", p.xsphy, q.xsphy, vmax},
+      {"xsphz", p.xsphz, q.xsphz, vmax},
   };
   int fail = 0;
   printf(
       "%s box, %zu particles, %s: CPU %.3f s (1 thread), GPU %.3f s (lists %d leaves, %d "
       "entries)\n",
       periodic ? "periodic" : "open", n,
-      solid     ? "Tillotson basalt, Collins strength, artificial stress, Weibull flaws"
+      cont      ? "Tillotson basalt, Collins strength, damage, continuity density, XSPH"
+      : solid   ? "Tillotson basalt, Collins strength, artificial stress, Weibull flaws"
       : granite ? "Tillotson granite"
                 : "ideal gas",
       t_cpu, t_gpu, gc.n, gc.nr_ngb);
@@ -520,6 +536,7 @@ int main(int argc, char **argv) {
   fail += run_case(g, 1, 24, KIND_GAS, 12345);
   fail += run_case(g, 0, 20, KIND_GRANITE, 777);
   fail += run_case(g, 0, 20, KIND_BASALT_SOLID, 4242);
+  fail += run_case(g, 0, 20, KIND_BASALT_CONT, 4343);
   fail += run_gravity_case(g, 40000, GRAVITY_SOFTENING_SPLINE, 99);
   fail += run_gravity_case(g, 20000, GRAVITY_SOFTENING_PLUMMER, 98);
   gpu_print_timers(g, stdout);

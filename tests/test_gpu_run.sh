@@ -6,7 +6,8 @@
 #  2. A basalt impactor (25 m, 400 particles) hitting a basalt target (100 m,
 #     6,000 particles) at 2 km/s and 45 degrees, 40 steps through the
 #     contact: Tillotson, Collins strength, artificial stress, Grady-Kipp
-#     damage with Weibull flaws (the solid + damage FORCE phase on the GPU).
+#     damage with Weibull flaws (the solid + damage FORCE phase on the GPU);
+#     2b. again with the continuity density and XSPH.
 #  3. Evrard collapse (7,208 particles, hydro + tree self-gravity), 40 steps:
 #     the tree walks on the CPU, their P2P interactions on the GPU.
 # The runs differ only by the order of the SPH sums (round-off, ~1e-15
@@ -89,6 +90,17 @@ run impact 40
 grep -q "gradient, extra ghost (plasticity, dS/dt), force, damage, kick2" impact/gpu/run.log ||
   { echo "FAIL: the solid + damage run did not run its FORCE phase on the GPU"; exit 1; }
 
+# 2b. the same impact with the density from the continuity equation and XSPH
+mkdir -p impactc/cpu impactc/gpu
+for m in cpu gpu; do
+  cp impact/cpu/impact.hdf5 impactc/$m/
+  sed -e 's/^  viscosity_alpha: 1.5/  viscosity_alpha: 1.5\n  density: continuity\n  xsph_epsilon: 0.5/' \
+    impact/$m/params.yml >impactc/$m/params.yml
+done
+grep -q "xsph_epsilon: 0.5" impactc/gpu/params.yml || { echo "FAIL: test set-up"; exit 1; }
+run impactc 40
+grep -q "GPU not used" impactc/gpu/run.log && { echo "FAIL: the continuity + XSPH run did not use the GPU"; exit 1; }
+
 mkdir -p evrard/cpu evrard/gpu
 "${PYTHON:-python3}" "$S/examples/EvrardCollapse/make_ic.py" 24 evrard/cpu/evrard.hdf5 >/dev/null
 cp evrard/cpu/evrard.hdf5 evrard/gpu/
@@ -100,5 +112,6 @@ grep -q "self-gravity: the tree walks on the CPU, their P2P on the GPU" evrard/g
 fail=0
 compare sedov || fail=1
 compare impact || fail=1
+compare impactc || fail=1
 compare evrard || fail=1
 exit $fail

@@ -23,13 +23,15 @@ extern "C" {
 /** Fields the FORCE phase reads (copied to the device before it when the
  *  particles are not resident). */
 static const char *const gpu_fields_in[] = {"x",  "y",   "z",  "vpx", "vpy", "vpz", "m",    "h",
-                                            "up", "mat", "vx", "vy",  "vz",  "u",   "flags"};
+                                            "up", "mat", "vx", "vy",  "vz",  "u",   "flags",
+                                            "rho_full", "rho_fp"};
 /** Fields the FORCE phase writes (copied back after it). */
 static const char *const gpu_fields_out[] = {
     "h",       "rho", "rho_dh", "wcount",  "wcount_dh", "div_v", "curl_vx", "curl_vy",
     "curl_vz", "P",   "cs",     "balsara", "f_gradh",   "flags", "h_lo",    "h_hi",
     "ax",      "ay",  "az",     "du_dt",   "drho_dt",   "v_sig", "vx",      "vy",
-    "vz",      "u",   "vpx",    "vpy",     "vpz",       "up"};
+    "vz",      "u",   "vpx",    "vpy",     "vpz",       "up",      "rho_full", "rho_fp",
+    "xsphx",   "xsphy", "xsphz"};
 /** Fields the gradient loop, the extra ghost and the stress terms read, and
  *  the kick integrates (solids). */
 static const char *const gpu_fields_solid_in[] = {"Sxx",  "Sxy",  "Sxz",   "Syy",  "Syz",
@@ -492,12 +494,12 @@ extern "C" void gpu_download_all(struct gpu *g, struct parts *p) {
   gpu_check(cudaStreamSynchronize(g->stream[0]));
 }
 
-extern "C" void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt) {
+extern "C" void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt, double xsph) {
   if (p->count != g->dev.count) error_bug("GPU and host particle counts differ");
   gpu_pin(g, p);
   cudaStream_t s = g->stream[0];
   gpu_check(cudaEventRecord(g->ev_drift[0], s));
-  drift_gpu_launch(s, g->dev, dt_kick, dt);
+  drift_gpu_launch(s, g->dev, dt_kick, dt, xsph);
   const int idx[4] = {gpu_field_index("x"), gpu_field_index("y"), gpu_field_index("z"),
                       gpu_field_index("h")};
   gpu_copy_fields(g, p, idx, 4, 0);
