@@ -24,14 +24,14 @@ extern "C" {
  *  particles are not resident). */
 static const char *const gpu_fields_in[] = {"x",  "y",   "z",  "vpx", "vpy", "vpz", "m",    "h",
                                             "up", "mat", "vx", "vy",  "vz",  "u",   "flags",
-                                            "rho_full", "rho_fp"};
+                                            "rho_full", "rho_fp", "alpha", "alpha_p"};
 /** Fields the FORCE phase writes (copied back after it). */
 static const char *const gpu_fields_out[] = {
     "h",       "rho", "rho_dh", "wcount",  "wcount_dh", "div_v", "curl_vx", "curl_vy",
     "curl_vz", "P",   "cs",     "balsara", "f_gradh",   "flags", "h_lo",    "h_hi",
     "ax",      "ay",  "az",     "du_dt",   "drho_dt",   "v_sig", "vx",      "vy",
     "vz",      "u",   "vpx",    "vpy",     "vpz",       "up",      "rho_full", "rho_fp",
-    "xsphx",   "xsphy", "xsphz"};
+    "xsphx",   "xsphy", "xsphz", "alpha", "alpha_p", "dalpha_dt"};
 /** Fields the gradient loop, the extra ghost and the stress terms read, and
  *  the kick integrates (solids). */
 static const char *const gpu_fields_solid_in[] = {"Sxx",  "Sxy",  "Sxz",   "Syy",  "Syz",
@@ -178,8 +178,10 @@ extern "C" int gpu_supports(const struct material_table *mats, char *why, size_t
     if (mats->mats[k].eos_type == EOS_TABLE) {
       snprintf(why, len, "material %s has a tabulated EOS, not on the GPU yet", mats->mats[k].name);
       return 0;
-    } else if (mats->mats[k].porosity.model != POROSITY_NONE) {
-      snprintf(why, len, "material %s is porous, not on the GPU yet", mats->mats[k].name);
+    } else if (mats->mats[k].porosity.model != POROSITY_NONE &&
+               mats->mats[k].porosity.model != POROSITY_PALPHA) {
+      snprintf(why, len, "material %s has a porosity model other than P-alpha, not on the GPU yet",
+               mats->mats[k].name);
       return 0;
     }
   return 1;
@@ -378,7 +380,8 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
   double *leaf_dt = g->leaf_dt;
   struct gpu_gravity gr = {0, 0.0, 0.0};
   if (grav) gr = *grav;
-  kick2_gpu_launch(s, g->dev, dv, *hp, dt_kick, damage ? dmg->max_change : 0.0, gr, leaf_dt);
+  kick2_gpu_launch(s, g->dev, dv, *hp, g->mats_dev, dt_kick, damage ? dmg->max_change : 0.0, gr,
+                   leaf_dt);
   gpu_check(cudaEventRecord(g->ev[7], s));
   if (!resident) gpu_copy_fields(g, p, g->out, nr_out, 0);
   gpu_check(cudaMemcpyAsync(leaf_dt_min, leaf_dt, (size_t)lv->n * sizeof(double),
