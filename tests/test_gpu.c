@@ -26,6 +26,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "eos_tables.h"
 #include "damage/damage_part.h"
 #include "damage/flaws.h"
 #include "density/density_cpu.h"
@@ -98,8 +99,9 @@ static double max_abs(double *const *a, int k, size_t n) {
 
 /** The three cases. */
 /** KIND_BASALT_CONT: the solid case with the density from the continuity
- *  equation (from perturbed densities) and XSPH. */
-enum test_kind { KIND_GAS, KIND_GRANITE, KIND_BASALT_SOLID, KIND_BASALT_CONT };
+ *  equation (from perturbed densities) and XSPH; KIND_GRANITE_TABLE: the
+ *  granite case with its Tillotson EOS as a table (eos_tables.h). */
+enum test_kind { KIND_GAS, KIND_GRANITE, KIND_BASALT_SOLID, KIND_BASALT_CONT, KIND_GRANITE_TABLE };
 
 /** The solids and damage fields of the CPU run p and the GPU run q: tensors
  *  relative to their largest component over the particles, damage relative
@@ -268,6 +270,14 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
     }
   } else if (granite) {
     material_from_library(&m, material_default_library(), "granite", 1);
+    if (kind == KIND_GRANITE_TABLE) {
+      /* 96 x 96 nodes over the states of the case (rho 0.4 to 2.5 rho0,
+       * u 1e4 to 1e8 J/kg): the GPU must read the same nodes */
+      const struct eos_tillotson till = m.eos.tillotson;
+      m.eos_type = EOS_TABLE;
+      memset(&m.eos, 0, sizeof m.eos);
+      table_from_tillotson(&m.eos.table, &till, 96, 96, 0.4 * till.rho0, 2.5 * till.rho0, 1e4, 1e8);
+    }
   } else {
     material_init(&m, 0, "gas", EOS_IDEAL_GAS);
     material_set(&m, "gamma", 5.0 / 3.0, msg, sizeof msg);
@@ -400,7 +410,8 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
       "%s box, %zu particles, %s: CPU %.3f s (1 thread), GPU %.3f s (lists %d leaves, %d "
       "entries)\n",
       periodic ? "periodic" : "open", n,
-      cont      ? "Tillotson basalt, Collins strength, damage, continuity density, XSPH"
+      kind == KIND_GRANITE_TABLE ? "granite as a 96 x 96 (rho, u) EOS table"
+      : cont    ? "Tillotson basalt, Collins strength, damage, continuity density, XSPH"
       : solid   ? "Tillotson basalt, Collins strength, artificial stress, Weibull flaws"
       : granite ? "Tillotson granite"
                 : "ideal gas",
@@ -537,6 +548,7 @@ int main(int argc, char **argv) {
   fail += run_case(g, 0, 20, KIND_GRANITE, 777);
   fail += run_case(g, 0, 20, KIND_BASALT_SOLID, 4242);
   fail += run_case(g, 0, 20, KIND_BASALT_CONT, 4343);
+  fail += run_case(g, 0, 20, KIND_GRANITE_TABLE, 778);
   fail += run_gravity_case(g, 40000, GRAVITY_SOFTENING_SPLINE, 99);
   fail += run_gravity_case(g, 20000, GRAVITY_SOFTENING_PLUMMER, 98);
   gpu_print_timers(g, stdout);
