@@ -220,5 +220,22 @@ void ic_sea_relax(size_t n, double *x, double *y, double *z, const double *m, co
       if (r > 0 && r1 > 0) x[i] = p[0] * r / r1, y[i] = p[1] * r / r1, z[i] = p[2] * r / r1;
     }
   }
+  /* the moves along the shells shift the centre of mass: take it back to
+   * the origin, again along the shells (each pass removes 2/3 of it) */
+  for (int pass = 0; pass < 60; pass++) {
+    double c[4] = {0, 0, 0, 0}, r2 = 0;
+    for (size_t i = 0; i < n; i++) {
+      c[0] += m[i] * x[i], c[1] += m[i] * y[i], c[2] += m[i] * z[i], c[3] += m[i];
+      r2 = fmax(r2, x[i] * x[i] + y[i] * y[i] + z[i] * z[i]);
+    }
+    for (int k = 0; k < 3; k++) c[k] /= c[3];
+    if (sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) < 1e-13 * sqrt(r2)) break;
+    for (size_t i = 0; i < n; i++) {
+      const double r = sqrt(x[i] * x[i] + y[i] * y[i] + z[i] * z[i]);
+      const double p[3] = {x[i] - c[0], y[i] - c[1], z[i] - c[2]};
+      const double r1 = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+      if (r > 0 && r1 > 0) x[i] = p[0] * r / r1, y[i] = p[1] * r / r1, z[i] = p[2] * r / r1;
+    }
+  }
   free(b.j), free(b.r), free(dx), free(e);
 }
