@@ -279,6 +279,13 @@ static void planet_usage(FILE *f) {
       "  --mat-ids I,J            material ids (default: the library's swift_id)\n"
       "  --eta ETA                h = ETA (m/rho)^(1/3) (default 1.2348)\n"
       "  --seed S                 seed of the shell rotations (default 1)\n"
+      "  --shell-thickness F      SEA shell thickness in particle spacings (default 1.2;\n"
+      "                           Kegerreis et al. 2019: 1)\n"
+      "  --stretch-a A            latitude stretching a, b = 10 a (default 0.15; paper: 0.2)\n"
+      "  --density-iter K         iterations of the shells' placement density against\n"
+      "                           their SPH density (default 6; 0: none)\n"
+      "  --relax S                steps of relaxation along the shells towards\n"
+      "                           SPH density = profile (default 30; 0: none)\n"
       "  --library FILE           material library (default: materials.yml)\n");
 }
 
