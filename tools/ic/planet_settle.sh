@@ -67,8 +67,8 @@ for f in sorted(glob.glob("settle_*.hdf5")):
     sp = np.linalg.norm(vc, axis=1)
     v_rms = np.sqrt((m * sp**2).sum() / m.sum())
     outer = r > 0.97 * R
-    print(f"t = {t:7.0f} s  v_rms/v_esc = {v_rms / v_esc:.4f}  (inner 97% of R: "
+    print(f"t = {t:7.0f} s  v_rms/v_esc = {v_rms / v_esc:.4f}  (r < 0.97 r_max: "
           f"{np.sqrt((m[~outer] * sp[~outer]**2).sum() / m[~outer].sum()) / v_esc:.4f}, "
-          f"max {sp.max() / v_esc:.4f})  R/R0 {R:.4e} m")
+          f"max {sp.max() / v_esc:.4f})  r_max {R:.4e} m")
 PY
 echo "planet_settle: files in $out"
