@@ -236,6 +236,10 @@ static const char *material_strength_check(const struct material *mat, const cha
     *key = mat->jc_D1 != 0.0 ? "jc_D1" : "jc_D2";
     return "(Johnson-Cook fracture) needs strength johnson_cook";
   }
+  if (mat->spall_pressure > 0.0 && !(s == STRENGTH_JOHNSON_COOK && (mat->jc_D1 != 0.0 || mat->jc_D2 != 0.0))) {
+    *key = "spall_pressure";
+    return "needs Johnson-Cook fracture (strength johnson_cook with jc_D1 or jc_D2)";
+  }
   if ((mat->weibull_k > 0.0) != (mat->weibull_m > 0.0)) {
     *key = mat->weibull_k > 0.0 ? "weibull_m" : "weibull_k";
     return "must be given together with the other Weibull parameter";

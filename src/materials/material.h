@@ -150,6 +150,8 @@ enum material_strength_type {
     "Johnson-Cook fracture D4 (strain rate)")                                                          \
   X(material, jc_D5, "jc_D5", 0.0, -INFINITY, 0, INFINITY, MATERIAL_UNIT_NONE,                       \
     "Johnson-Cook fracture D5 (temperature)")                                                          \
+  X(material, spall_pressure, "spall_pressure", 0.0, 0.0, 0, INFINITY, MATERIAL_UNIT_PRESSURE,       \
+    "Johnson-Cook fracture also where the pressure falls below -spall_pressure (0: never)")            \
   X(material, weibull_k, "weibull_k", 0.0, 0.0, 0, INFINITY, MATERIAL_UNIT_PER_VOLUME,                 \
     "Weibull k of the flaw distribution (0: no brittle damage)")                                       \
   X(material, weibull_m, "weibull_m", 0.0, 0.0, 0, 100.0, MATERIAL_UNIT_NONE, "Weibull m")          \
