@@ -14,7 +14,11 @@
  * layer boundary on a shell boundary.  Shell masses come from the profile;
  * the particle count of each shell is its mass over the mean particle mass,
  * rounded with the remainder carried, so particle masses are equal within
- * that rounding and the total mass is exact.  See theory/planets.md. */
+ * that rounding and the total mass is exact (the outermost shell takes what
+ * is left).  Then (ic_sea_planet's options) the shells' placement density is
+ * iterated against their SPH density and the particles are relaxed along
+ * their shells (ic_sea_fit.c).  See theory/planets.md, "SEA planet: the 1 %
+ * bar". */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -182,7 +186,7 @@ static double sea_invert(const struct ic_planet_profile *p, const double *s, dou
 
 /** Correction g(r) of the placement density (theory/planets.md, "SEA
  *  planet: the 1 % bar"): piecewise linear through (gr[k], gv[k]), constant
- *  beyond the ends; 1 where ng == 0 or below gr[0] when g_lo1 is set. */
+ *  beyond the ends; 1 where ng == 0. */
 static double sea_g(const double *gr, const double *gv, int ng, double r) {
   if (ng <= 0) return 1;
   if (r <= gr[0]) return gv[0];
