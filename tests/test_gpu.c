@@ -35,6 +35,7 @@
 #include "ghost/ghost_cpu.h"
 #include "gradient/gradient_cpu.h"
 #include "gravity/gravity_cpu.h"
+#include "gravity_sets.h"
 #include "gpu/gpu_engine.h"
 #include "hydro_parts.h"
 #include "kernel.h"
@@ -463,15 +464,26 @@ static int gravity_report(const char *what, const struct parts *p, const struct 
  *  default) reading |ga| of the first (the CPU's, on both sides, so that no
  *  decision can flip on a round-off of a_min), and a replay of the second's
  *  interactions at moved positions (Gravity:reuse_steps: gravity_replay on
- *  the CPU, gpu_grav_run with replay on the GPU).  n particles uniform in a
- *  unit sphere, equal masses, G = 1.  Returns the number of failures. */
-static int run_gravity_case(struct gpu *g, size_t n, int softening, unsigned long long seed) {
+ *  the CPU, gpu_grav_run with replay on the GPU).  n particles of equal
+ *  masses, G = 1, uniform in a unit sphere or (clustered) two Plummer
+ *  spheres of tests/gravity_sets.h, whose large sparse leaves meet small
+ *  dense cells: the walks' lopsided M2P and P2L, which the case then
+ *  requires.  Returns the number of failures. */
+static int run_gravity_case(struct gpu *g, size_t n, int softening, unsigned long long seed,
+                            int clustered) {
   unsigned long long s = seed;
   struct parts p, q;
   parts_alloc(&p, n);
+  srand48((long)seed);
+  const double centre[3] = {2.0, 2.0, 2.0};
   for (size_t i = 0; i < n;) {
-    const double x = 2.0 * urand(&s) - 1.0, y = 2.0 * urand(&s) - 1.0, z = 2.0 * urand(&s) - 1.0;
-    if (x * x + y * y + z * z >= 1.0) continue;
+    double x = 2.0 * urand(&s) - 1.0, y = 2.0 * urand(&s) - 1.0, z = 2.0 * urand(&s) - 1.0;
+    if (clustered) {
+      double r[3];
+      gset_two_bodies(i, n, centre, r);
+      x = r[0] - 2.0, y = r[1] - 2.0, z = r[2] - 2.0;
+    } else if (x * x + y * y + z * z >= 1.0)
+      continue;
     p.x[i] = 2.0 + x, p.y[i] = 2.0 + y, p.z[i] = 2.0 + z;
     p.m[i] = 1.0 / (double)n;
     p.h[i] = 0.05;
@@ -499,7 +511,8 @@ static int run_gravity_case(struct gpu *g, size_t n, int softening, unsigned lon
   memset(&h, 0, sizeof h);
   h.built_rebuild = -1;
   int fail = 0;
-  printf("gravity, %zu particles in a sphere, %s softening, far field on the GPU:\n", n,
+  printf("gravity, %zu particles %s, %s softening, far field on the GPU:\n", n,
+         clustered ? "in two Plummer spheres" : "in a sphere",
          softening == GRAVITY_SOFTENING_PLUMMER ? "Plummer" : "spline");
 
   /* 1: first evaluation */
@@ -522,6 +535,10 @@ static int run_gravity_case(struct gpu *g, size_t n, int softening, unsigned lon
          n_part - n_m2p);
   if (n_part - n_m2p == 0 || n_field - n_p2l == 0 || h.tree.nr_levels == 0) {
     printf("  FAIL: the walk recorded no P2P or no M2L, or the tree has no levels\n");
+    fail++;
+  }
+  if (clustered && (n_m2p == 0 || n_p2l == 0)) {
+    printf("  FAIL: the clustered set exercised no M2P or no P2L\n");
     fail++;
   }
 
@@ -579,8 +596,9 @@ int main(int argc, char **argv) {
   fail += run_case(g, 1, 24, KIND_GAS, 12345);
   fail += run_case(g, 0, 20, KIND_GRANITE, 777);
   fail += run_case(g, 0, 20, KIND_BASALT_SOLID, 4242);
-  fail += run_gravity_case(g, 40000, GRAVITY_SOFTENING_SPLINE, 99);
-  fail += run_gravity_case(g, 20000, GRAVITY_SOFTENING_PLUMMER, 98);
+  fail += run_gravity_case(g, 40000, GRAVITY_SOFTENING_SPLINE, 99, 0);
+  fail += run_gravity_case(g, 20000, GRAVITY_SOFTENING_PLUMMER, 98, 0);
+  fail += run_gravity_case(g, 40000, GRAVITY_SOFTENING_SPLINE, 97, 1);
   gpu_print_timers(g, stdout);
   gpu_free(g);
   printf("%s\n", fail ? "FAIL" : "PASS");

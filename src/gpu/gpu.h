@@ -142,6 +142,10 @@ struct gravity_multipole *gpu_grav_multipoles(struct gpu_grav *gg, int nr_cells)
 void gpu_grav_run(struct gpu_grav *gg, struct parts *p, const struct gpu_grav_groups *part,
                   const struct gpu_grav_groups *field, double G, double eps, int softening,
                   double eps2, int order, int resident, int replay);
+/** Pinned (page-locked) host memory of bytes, for arrays copied to the
+ *  device every step (fast, asynchronous copies); gpu_host_free frees it. */
+void *gpu_host_alloc(size_t bytes, const char *what);
+void gpu_host_free(void *ptr);
 /** Print the accumulated times of the gravity kernels. */
 void gpu_grav_print(const struct gpu_grav *gg, FILE *f);
 /** Copy every particle field to the device (after a rebuild or a restart). */

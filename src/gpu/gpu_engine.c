@@ -447,7 +447,8 @@ static void gpu_engine_gravity(struct engine *e) {
     memset(ge->rec + ge->nr_rec, 0, (nw - ge->nr_rec) * sizeof *ge->rec);
     ge->nr_rec = nw;
   }
-  for (int w = 0; w < ge->nr_rec; w++) ge->rec[w].part.n = ge->rec[w].field.n = 0;
+  for (int w = 0; w < ge->nr_rec; w++)
+    ge->rec[w].part.n = ge->rec[w].field.n = ge->rec[w].part_sym.n = ge->rec[w].field_sym.n = 0;
   engine_activate_phase(e, ENGINE_PHASE_FORCE);
   for (int k = 0; k < e->sched.nr_tasks; k++) {
     struct task *t = scheduler_task(&e->sched, k);

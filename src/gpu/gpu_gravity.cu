@@ -124,6 +124,19 @@ extern "C" struct gravity_multipole *gpu_grav_multipoles(struct gpu_grav *gg, in
   return gg->mp_host;
 }
 
+extern "C" void *gpu_host_alloc(size_t bytes, const char *what) {
+  void *ptr = NULL;
+  const cudaError_t err = cudaMallocHost(&ptr, bytes ? bytes : 8);
+  if (err != cudaSuccess)
+    error_exit("cannot allocate %.1f MiB of pinned host memory for %s: %s", bytes / 1048576.0,
+               what, cudaGetErrorString(err));
+  return ptr;
+}
+
+extern "C" void gpu_host_free(void *ptr) {
+  if (ptr) gpu_check(cudaFreeHost(ptr));
+}
+
 /** Upload one list of grouped interactions into buffer k; its device view. */
 static struct gravity_gpu_groups gg_groups(struct gpu_grav *gg, int k,
                                            const struct gpu_grav_groups *h, cudaStream_t s) {

@@ -93,11 +93,12 @@ void gpu_grav_pack_multipoles(struct gravity_multipole *dst, const struct cell *
 
 /* ------------------------------------------------------------------ grouping */
 
-/** The shared state of one grouping (struct gravity_rec_list of every
- *  worker, one kind). */
+/** The shared state of one grouping (one kind, struct gravity_rec_list of
+ *  every worker): lists [0, nl1) one way, [nl1, nl) mutual (each entry
+ *  also counts from source to target). */
 struct group_job {
   const struct gravity_rec_list *const *lists; /**< the workers' lists */
-  int nl;                                      /**< their number */
+  int nl, nl1;                                 /**< their number; the one-way ones */
   int nc;                                      /**< cells */
   int *cnt;                                    /**< nl * nc counters, then positions */
   int *tot;                                    /**< nc totals */
@@ -140,6 +141,8 @@ static void group_count(void *arg, int t, int nt) {
     memset(cnt, 0, j->nc * sizeof(int));
     const struct gravity_rec_list *l = j->lists[w];
     for (size_t k = 0; k < l->n; k++) cnt[l->target[k]]++;
+    if (w >= j->nl1)
+      for (size_t k = 0; k < l->n; k++) cnt[l->source[k]]++;
   }
 }
 
@@ -176,19 +179,28 @@ static void group_scatter(void *arg, int t, int nt) {
   for (int w = t; w < j->nl; w += nt) {
     int *pos = j->cnt + (size_t)w * j->nc;
     const struct gravity_rec_list *l = j->lists[w];
-    for (size_t k = 0; k < l->n; k++) j->source[pos[l->target[k]]++] = l->source[k];
+    if (w < j->nl1)
+      for (size_t k = 0; k < l->n; k++) j->source[pos[l->target[k]]++] = l->source[k];
+    else
+      for (size_t k = 0; k < l->n; k++) {
+        j->source[pos[l->target[k]]++] = l->source[k];
+        j->source[pos[l->source[k]]++] = l->target[k];
+      }
   }
 }
 
 void gpu_grav_group(struct gpu_grav_host *h, const struct gravity_gpu_rec *rec, int nr_rec,
                     int nr_cells, int nthreads) {
-  const struct gravity_rec_list *lists[2][256];
+  const struct gravity_rec_list *lists[2][512];
   if (nr_rec > 256) error_bug("more than 256 gravity recording lists");
   for (int w = 0; w < nr_rec; w++) {
     lists[0][w] = &rec[w].part;
     lists[1][w] = &rec[w].field;
+    lists[0][nr_rec + w] = &rec[w].part_sym;
+    lists[1][nr_rec + w] = &rec[w].field_sym;
   }
-  const size_t ncnt = (size_t)nr_rec * (size_t)nr_cells;
+  const int nl = 2 * nr_rec;
+  const size_t ncnt = (size_t)nl * (size_t)nr_cells;
   if (ncnt > h->cnt_cap) {
     h->cnt_cap = ncnt + ncnt / 4 + 64;
     h->cnt = error_realloc(h->cnt, h->cnt_cap * sizeof(int), "GPU gravity lists");
@@ -200,20 +212,22 @@ void gpu_grav_group(struct gpu_grav_host *h, const struct gravity_gpu_rec *rec, 
   for (int k = 0; k < 2; k++) {
     struct gpu_grav_groups_host *g = &h->groups[k];
     size_t n = 0;
-    for (int w = 0; w < nr_rec; w++) n += lists[k][w]->n;
+    for (int w = 0; w < nl; w++) n += (w < nr_rec ? 1 : 2) * lists[k][w]->n;
     if (n > (size_t)INT_MAX) error_exit("%zu recorded gravity interactions: more than the GPU lists hold", n);
     if (n > g->cap) {
       g->cap = n + n / 4 + 1024;
-      g->source = error_realloc(g->source, g->cap * sizeof(int), "GPU gravity lists");
+      /* pinned: uploaded every step (contents rebuilt below) */
+      gpu_host_free(g->source);
+      g->source = gpu_host_alloc(g->cap * sizeof(int), "the grouped gravity interactions");
     }
     if (nr_cells + 1 > g->tcap) {
       g->tcap = nr_cells + nr_cells / 4 + 16;
       g->cell = error_realloc(g->cell, g->tcap * sizeof(int), "GPU gravity lists");
       g->start = error_realloc(g->start, (g->tcap + 1) * sizeof(int), "GPU gravity lists");
     }
-    struct group_job j = {lists[k], nr_rec, nr_cells, h->cnt, h->tot, g->source};
+    struct group_job j = {lists[k], nl, nr_rec, nr_cells, h->cnt, h->tot, g->source};
     const int nt = nthreads < 1 ? 1 : nthreads;
-    par_for(nt < nr_rec ? nt : nr_rec, group_count, &j);
+    par_for(nt < nl ? nt : nl, group_count, &j);
     par_for(nt, group_total, &j);
     /* the receiving cells in index order, each with its slice */
     int ng = 0, run = 0;
@@ -228,7 +242,7 @@ void gpu_grav_group(struct gpu_grav_host *h, const struct gravity_gpu_rec *rec, 
     }
     g->start[ng] = run;
     par_for(nt, group_position, &j);
-    par_for(nt < nr_rec ? nt : nr_rec, group_scatter, &j);
+    par_for(nt < nl ? nt : nl, group_scatter, &j);
     g->view.n = ng;
     g->view.cell = g->cell;
     g->view.start = g->start;
@@ -249,7 +263,7 @@ void gpu_grav_host_free(struct gpu_grav_host *h) {
   for (int k = 0; k < 2; k++) {
     free(h->groups[k].cell);
     free(h->groups[k].start);
-    free(h->groups[k].source);
+    gpu_host_free(h->groups[k].source);
   }
   memset(h, 0, sizeof *h);
 }

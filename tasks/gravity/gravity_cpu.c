@@ -422,6 +422,8 @@ static void rec_list_free(struct gravity_rec_list *l) {
 void gravity_gpu_rec_free(struct gravity_gpu_rec *r) {
   rec_list_free(&r->part);
   rec_list_free(&r->field);
+  rec_list_free(&r->part_sym);
+  rec_list_free(&r->field_sym);
 }
 
 /** All pairs within leaf c, each once (symmetric). */
@@ -440,8 +442,10 @@ static void p2p_pair(struct parts *p, const struct cell *a, const struct cell *b
                      const struct gravity_props *gp) {
   if (recording) record(a, b, 0, symmetric);
   if (gpu_sink) {
-    rec_add(&gpu_sink->part, a->index, b->index);
-    if (symmetric) rec_add(&gpu_sink->part, b->index, a->index);
+    if (symmetric)
+      rec_add(&gpu_sink->part_sym, a->index, b->index);
+    else
+      rec_add(&gpu_sink->part, a->index, b->index);
     return;
   }
   p2p_block(p, a->offset, a->offset + a->count, b->offset, b->offset + b->count, 0, symmetric, gp);
@@ -625,8 +629,10 @@ static void walk_pair(struct parts *p, const struct cell *a, const struct cell *
     record_distance(r2);
     if (gpu_sink) {
       /* one M2L per receiving cell */
-      rec_add(&gpu_sink->field, a->index, b->index);
-      if (symmetric) rec_add(&gpu_sink->field, b->index, a->index);
+      if (symmetric)
+        rec_add(&gpu_sink->field_sym, a->index, b->index);
+      else
+        rec_add(&gpu_sink->field, a->index, b->index);
       return;
     }
     /* one-way: target a, source b, the tensor at z_a - z_b */

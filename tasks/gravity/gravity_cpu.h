@@ -196,7 +196,7 @@ struct gravity_rec_list {
 };
 
 /** What a walk records instead of computing, for the GPU
- *  (gpu_gravity_far): everything but P2M, M2M (gravity_up) and the L2L and
+ *  (gpu_grav_run): everything but P2M, M2M (gravity_up) and the L2L and
  *  L2P of gravity_down.
  *    part:  the target is a leaf whose particles receive: source >= 0, the
  *           particles of leaf `source` (P2P; a leaf with itself: target ==
@@ -205,10 +205,16 @@ struct gravity_rec_list {
  *    field: the target is a cell whose local expansion receives: source
  *           >= 0, the multipole of cell `source` (M2L, one way: a
  *           symmetric M2L is recorded once in each direction); source < 0,
- *           the particles of leaf -1 - source (P2L of gravity_m2p_p2l). */
+ *           the particles of leaf -1 - source (P2L of gravity_m2p_p2l).
+ *  A mutual interaction (a symmetric walk's P2P of two leaves, or M2L of
+ *  two cells) is recorded once, in part_sym or field_sym, and stands for
+ *  (target, source) and (source, target): half the memory traffic.
+ *  gpu_grav_group expands them. */
 struct gravity_gpu_rec {
-  struct gravity_rec_list part;  /**< interactions received by particles */
-  struct gravity_rec_list field; /**< interactions received by local expansions */
+  struct gravity_rec_list part;      /**< interactions received by particles */
+  struct gravity_rec_list field;     /**< interactions received by local expansions */
+  struct gravity_rec_list part_sym;  /**< P2P of two distinct leaves, both receiving */
+  struct gravity_rec_list field_sym; /**< M2L of two cells, both receiving */
 };
 /** From now on the calling thread's walks record their interactions in r
  *  (appending) instead of computing them; NULL: compute them again. */
