@@ -510,6 +510,8 @@ static int run_gravity_case(struct gpu *g, size_t n, int softening, unsigned lon
   struct gpu_grav_host h;
   memset(&h, 0, sizeof h);
   h.built_rebuild = -1;
+  struct gravity_gpu_rec rec;
+  memset(&rec, 0, sizeof rec);
   int fail = 0;
   printf("gravity, %zu particles %s, %s softening, far field on the GPU:\n", n,
          clustered ? "in two Plummer spheres" : "in a sphere",
@@ -520,18 +522,18 @@ static int run_gravity_case(struct gpu *g, size_t n, int softening, unsigned lon
   gravity_tree_all(&p, sp.cells, sp.nr_top, gcp, &gp);
   const double t_cpu = error_walltime() - t0;
   t0 = error_walltime();
-  gpu_grav_tree_all(gg, &h, &q, &sp, gcq, &gp, 0);
+  gpu_grav_tree_all(gg, &h, &rec, &q, &sp, gcq, &gp, 0);
   const double t_gpu = error_walltime() - t0;
-  const int n_part = h.groups[0].view.n ? h.groups[0].view.start[h.groups[0].view.n] : 0;
-  const int n_field = h.groups[1].view.n ? h.groups[1].view.start[h.groups[1].view.n] : 0;
-  printf("  CPU tree %.3f s; CPU up + recorded walks + GPU %.3f s; %d P2P/M2P and %d M2L/P2L "
+  /* the interactions, a mutual one counted in each direction */
+  size_t n_m2p = 0, n_p2l = 0;
+  for (size_t k = 0; k < rec.part.n; k++) n_m2p += rec.part.source[k] < 0;
+  for (size_t k = 0; k < rec.field.n; k++) n_p2l += rec.field.source[k] < 0;
+  const size_t n_part = rec.part.n + 2 * rec.part_sym.n, n_field = rec.field.n + 2 * rec.field_sym.n;
+  printf("  CPU tree %.3f s; CPU up + recorded walks + GPU %.3f s; %zu P2P/M2P and %zu M2L/P2L "
          "interactions, %d leaves, %d L2L levels\n",
          t_cpu, t_gpu, n_part, n_field, h.tree.nr_leaves, h.tree.nr_levels);
   fail += gravity_report("first evaluation", &p, &q);
-  int n_m2p = 0, n_p2l = 0;
-  for (int k = 0; k < n_part; k++) n_m2p += h.groups[0].source[k] < 0;
-  for (int k = 0; k < n_field; k++) n_p2l += h.groups[1].source[k] < 0;
-  printf("  exercised: %d M2P, %d P2L, %d M2L, %d P2P\n", n_m2p, n_p2l, n_field - n_p2l,
+  printf("  exercised: %zu M2P, %zu P2L, %zu M2L, %zu P2P\n", n_m2p, n_p2l, n_field - n_p2l,
          n_part - n_m2p);
   if (n_part - n_m2p == 0 || n_field - n_p2l == 0 || h.tree.nr_levels == 0) {
     printf("  FAIL: the walk recorded no P2P or no M2L, or the tree has no levels\n");
@@ -553,7 +555,7 @@ static int run_gravity_case(struct gpu *g, size_t n, int softening, unsigned lon
   gravity_record_begin(&il);
   gravity_tree_all(&p, sp.cells, sp.nr_top, gcp, &gp);
   gravity_record_end();
-  gpu_grav_tree_all(gg, &h, &q, &sp, gcq, &gp, 0);
+  gpu_grav_tree_all(gg, &h, &rec, &q, &sp, gcq, &gp, 0);
   fail += gravity_report("second (adaptive) evaluation", &p, &q);
 
   /* 3: replay at positions moved by up to 1e-3 (of a unit radius) */
@@ -567,10 +569,11 @@ static int run_gravity_case(struct gpu *g, size_t n, int softening, unsigned lon
   for (int i = 0; i < sp.nr_top; i++) gravity_up(&p, sp.cells + i, gcp, &gp);
   gravity_replay(&p, &il, gcp, &gp);
   for (int i = 0; i < sp.nr_top; i++) gravity_down(&p, sp.cells + i, gcp, &gp);
-  gpu_grav_run(gg, &q, NULL, NULL, gp.G, gp.eps, gp.softening, gp.eps2_expansion, gp.order, 0, 1);
+  gpu_grav_run(gg, &q, NULL, 0, gp.G, gp.eps, gp.softening, gp.eps2_expansion, gp.order, 0, 1);
   fail += gravity_report("replay at moved positions", &p, &q);
 
   gravity_ilist_free(&il);
+  gravity_gpu_rec_free(&rec);
   gpu_grav_print(gg, stdout);
   gpu_grav_free(gg);
   gpu_grav_host_free(&h);

@@ -13,7 +13,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "gravity/gravity_iact.h"
+#include "gravity/gravity_cpu.h"
 #include "hydro_props.h"
 #include "part.h"
 
@@ -80,15 +80,6 @@ struct gpu_grav_tree {
   const int *leaf;        /**< their cell indices */
 };
 
-/** Interactions recorded by the walks (struct gravity_gpu_rec, one of its
- *  lists) grouped by receiving cell. */
-struct gpu_grav_groups {
-  int n;              /**< receiving cells */
-  const int *cell;    /**< each one's index */
-  const int *start;   /**< n + 1: T's sources are [start[T], start[T+1]) */
-  const int *source;  /**< the sources, as recorded */
-};
-
 /** Self-gravity's device state (buffers of the tree, the multipoles, the
  *  local expansions and the grouped interactions; opaque). */
 struct gpu_grav;
@@ -131,21 +122,19 @@ void gpu_grav_set_tree(struct gpu_grav *gg, const struct gpu_grav_tree *t);
 struct gravity_multipole *gpu_grav_multipoles(struct gpu_grav *gg, int nr_cells);
 /** One gravity evaluation on the device, ending with p's pot, gax, gay, gaz
  *  complete on the device and on the host.  replay = 0: the multipoles
- *  (gpu_grav_multipoles) and the grouped interactions part and field
- *  (struct gravity_gpu_rec) go up; fields zeroed, field kernel (M2L, P2L),
- *  L2L level by level, part kernel (P2P, M2P), L2P.  replay = 1
- *  (Gravity:reuse_steps): the multipoles, local expansions and
- *  interactions of the last full evaluation stay; only the part kernel and
- *  L2P run at the current positions (part and field unused).  resident = 0:
- *  upload x, y, z and m first.  G, eps, softening, eps2 (softening^2 in the
- *  expansions), order: as struct gravity_props. */
-void gpu_grav_run(struct gpu_grav *gg, struct parts *p, const struct gpu_grav_groups *part,
-                  const struct gpu_grav_groups *field, double G, double eps, int softening,
-                  double eps2, int order, int resident, int replay);
-/** Pinned (page-locked) host memory of bytes, for arrays copied to the
- *  device every step (fast, asynchronous copies); gpu_host_free frees it. */
-void *gpu_host_alloc(size_t bytes, const char *what);
-void gpu_host_free(void *ptr);
+ *  (gpu_grav_multipoles) and the interactions that the walks recorded in
+ *  rec[0..nr_rec) (one struct per worker) go up; the device groups the
+ *  interactions by receiving cell (counting sort with atomic cursors: the
+ *  order within a cell varies from run to run, like the CPU's task order),
+ *  zeroes the fields and runs M2L and P2L, L2L level by level, P2P and M2P,
+ *  L2P.  replay = 1 (Gravity:reuse_steps): the multipoles, local
+ *  expansions and grouped interactions of the last full evaluation stay;
+ *  only P2P, M2P and L2P run, at the current positions (rec unused).
+ *  resident = 0: upload x, y, z and m first.  G, eps, softening, eps2
+ *  (softening^2 in the expansions), order: as struct gravity_props. */
+void gpu_grav_run(struct gpu_grav *gg, struct parts *p, const struct gravity_gpu_rec *rec,
+                  int nr_rec, double G, double eps, int softening, double eps2, int order,
+                  int resident, int replay);
 /** Print the accumulated times of the gravity kernels. */
 void gpu_grav_print(const struct gpu_grav *gg, FILE *f);
 /** Copy every particle field to the device (after a rebuild or a restart). */

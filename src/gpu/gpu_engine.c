@@ -27,7 +27,6 @@ struct gpu_engine {
   struct gpu_grav_host grav_host; /**< its host side: tree, grouped interactions */
   struct gravity_multipole *mp;   /**< pinned staging of the multipoles (grav_up tasks fill it) */
   double t_grav_walk;             /**< host seconds of the gravity tasks (up, walks) */
-  double t_grav_group;            /**< host seconds grouping their interactions */
   double t_grav_gpu;              /**< seconds of the device part (copies included) */
   long grav_evals;                /**< gravity evaluations */
 };
@@ -418,9 +417,8 @@ static void gpu_engine_grav_task(void *ctx, struct task *t, int thread_id) {
 
 /** Self-gravity of the FORCE phase: the gravity tasks of the graph on the
  *  CPU workers (multipoles, and the walks, which record their interactions
- *  instead of computing them; grav_down is the GPU's), the interactions
- *  grouped by receiving cell, then everything else on the GPU
- *  (gpu_grav_run), which leaves ga and pot complete on both sides for the
+ *  instead of computing them; grav_down is the GPU's), then everything
+ *  else on the GPU (gpu_grav_run: grouping included), which leaves ga and pot complete on both sides for the
  *  kick.  A step that reuses the far field (Gravity:reuse_steps) runs on
  *  the GPU alone: the device kept the multipoles, the local expansions and
  *  the interactions of the last full evaluation. */
@@ -431,7 +429,7 @@ static void gpu_engine_gravity(struct engine *e) {
   const double w0 = error_walltime();
   ge->grav_evals++;
   if (gp->replay) {
-    gpu_grav_run(ge->grav, &e->parts, NULL, NULL, gp->G, gp->eps, gp->softening,
+    gpu_grav_run(ge->grav, &e->parts, NULL, 0, gp->G, gp->eps, gp->softening,
                  gp->eps2_expansion, gp->order, 1, 1);
     ge->t_grav_gpu += error_walltime() - w0;
     return;
@@ -456,13 +454,10 @@ static void gpu_engine_gravity(struct engine *e) {
   }
   scheduler_run(&e->sched, gpu_engine_grav_task, e);
   const double w1 = error_walltime();
-  gpu_grav_group(h, ge->rec, ge->nr_rec, e->space.nr_cells, e->nr_threads);
-  const double w2 = error_walltime();
-  gpu_grav_run(ge->grav, &e->parts, &h->groups[0].view, &h->groups[1].view, gp->G, gp->eps,
-               gp->softening, gp->eps2_expansion, gp->order, 1, 0);
+  gpu_grav_run(ge->grav, &e->parts, ge->rec, ge->nr_rec, gp->G, gp->eps, gp->softening,
+               gp->eps2_expansion, gp->order, 1, 0);
   ge->t_grav_walk += w1 - w0;
-  ge->t_grav_group += w2 - w1;
-  ge->t_grav_gpu += error_walltime() - w2;
+  ge->t_grav_gpu += error_walltime() - w1;
 }
 
 void gpu_engine_force(struct engine *e) {
@@ -567,9 +562,8 @@ void gpu_engine_print(const struct engine *e, FILE *f) {
   if (ge->grav_evals)
     fprintf(f,
             "GPU gravity host side, ms per evaluation: multipoles + walks on the CPU %.3f, "
-            "grouping %.3f, device part (copies included) %.3f\n",
-            1e3 * ge->t_grav_walk / ge->grav_evals, 1e3 * ge->t_grav_group / ge->grav_evals,
-            1e3 * ge->t_grav_gpu / ge->grav_evals);
+            "device part (copies included) %.3f\n",
+            1e3 * ge->t_grav_walk / ge->grav_evals, 1e3 * ge->t_grav_gpu / ge->grav_evals);
 }
 
 void gpu_engine_free(struct engine *e) {

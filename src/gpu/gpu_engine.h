@@ -63,17 +63,8 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
                     const struct gpu_gravity *grav, double dt_kick, int resident,
                     double *tc_dt_min);
 
-/** One list of recorded gravity interactions grouped by receiving cell. */
-struct gpu_grav_groups_host {
-  struct gpu_grav_groups view; /**< as gpu_grav_run reads it */
-  int *cell, *start, *source;  /**< storage of the view */
-  size_t cap;                  /**< allocated sources */
-  int tcap;                    /**< allocated receiving cells */
-};
-
 /** Host side of self-gravity on the GPU, grown and reused between steps:
- *  the cell tree as index arrays (gpu_grav_tree_build, at each rebuild)
- *  and the walks' interactions grouped by receiving cell (gpu_grav_group). */
+ *  the cell tree as index arrays (gpu_grav_tree_build, at each rebuild). */
 struct gpu_grav_host {
   struct gpu_grav_tree tree;            /**< the tree, as gpu_grav_set_tree reads it */
   size_t *offset;                       /**< storage of the tree: by cell */
@@ -85,17 +76,9 @@ struct gpu_grav_host {
   int *leaf, nr_leaf, leaf_cap;         /**< non-empty leaves */
   int built_rebuild;                    /**< space.nr_rebuilds of the tree */
   const struct cell *built_cells;       /**< space.cells of the tree */
-  struct gpu_grav_groups_host groups[2]; /**< 0: part (P2P, M2P), 1: field (M2L, P2L) */
-  int *cnt, *tot;                       /**< counters of the grouping */
-  size_t cnt_cap, tot_cap;              /**< their allocated lengths */
 };
 /** The tree of s (its top-level cells' octrees) as index arrays into h->tree. */
 void gpu_grav_tree_build(struct gpu_grav_host *h, const struct space *s);
-/** Group the part and field lists of rec[0..nr_rec) (the workers') by
- *  receiving cell (counting sort; within a cell, list after list, each in
- *  recording order) into h->groups, on nthreads host threads. */
-void gpu_grav_group(struct gpu_grav_host *h, const struct gravity_gpu_rec *rec, int nr_rec,
-                    int nr_cells, int nthreads);
 /** Copy the multipoles of c's octree from gc into dst (by cell index). */
 void gpu_grav_pack_multipoles(struct gravity_multipole *dst, const struct cell *c,
                               const struct gravity_cell *gc);
@@ -103,11 +86,12 @@ void gpu_grav_pack_multipoles(struct gravity_multipole *dst, const struct cell *
 void gpu_grav_host_free(struct gpu_grav_host *h);
 /** The whole tree method with the far field on the GPU, without tasks, in
  *  the order of gravity_tree_all: gravity_up of every top-level cell on
- *  the CPU, the walks recorded (gravity_gpu_record), grouped, and run on
+ *  the CPU, the walks recorded (gravity_gpu_record) into rec (emptied
+ *  first; the caller keeps it, e.g. to count the interactions) and run on
  *  the device (gpu_grav_run; resident as there).  Sets p's ga and pot.
  *  For tests; h->built_rebuild must start at -1. */
-void gpu_grav_tree_all(struct gpu_grav *gg, struct gpu_grav_host *h, struct parts *p,
-                       const struct space *s, struct gravity_cell *gc,
+void gpu_grav_tree_all(struct gpu_grav *gg, struct gpu_grav_host *h, struct gravity_gpu_rec *rec,
+                       struct parts *p, const struct space *s, struct gravity_cell *gc,
                        const struct gravity_props *gp, int resident);
 
 /** Choose where tasks run from Scheduler:gpu and --gpu/--no-gpu, set

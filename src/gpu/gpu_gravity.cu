@@ -1,10 +1,12 @@
 /* Self-gravity's device state (gpu.h, struct gpu_grav): the cell tree as
  * index arrays (uploaded at rebuilds), the multipoles (each full
  * evaluation, from pinned staging), the local expansions (device only),
- * the grouped interactions of the CPU walks (each full evaluation), and the
+ * the interactions of the CPU walks (each full evaluation, grouped by
+ * receiving cell on the device), and the
  * sequence of kernels of tasks/gravity/gravity_gpu.cu on stream 0, where
  * the particles are resident between steps.  Buffers are allocated once
  * and grown, never per step. */
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -21,16 +23,19 @@ struct gpu_grav_buf {
 };
 
 /** Stages of one evaluation timed with events. */
-enum { GG_UP, GG_FIELD, GG_L2L, GG_PART, GG_L2P, GG_DOWN, GG_N };
-static const char *const gg_stage_names[GG_N] = {"upload",     "M2L+P2L", "L2L",
-                                                 "P2P+M2P",    "L2P",     "ga back"};
+enum { GG_UP, GG_GROUP, GG_FIELD, GG_L2L, GG_PART, GG_L2P, GG_DOWN, GG_N };
+static const char *const gg_stage_names[GG_N] = {"upload",  "grouping", "M2L+P2L", "L2L",
+                                                 "P2P+M2P", "L2P",      "ga back"};
 
 struct gpu_grav {
   struct gpu *g;                     /**< the device */
   struct gpu_grav_buf mp, field;     /**< multipoles, local expansions (by cell) */
   struct gpu_grav_buf offset, count; /**< particle range of each cell */
   struct gpu_grav_buf l2l, leaf;     /**< L2L pairs (child then parent), leaves */
-  struct gpu_grav_buf groups[2];     /**< part and field: cell, start, source packed */
+  struct gpu_grav_buf raw[2];        /**< part and field: the recorded pairs as uploaded */
+  struct gpu_grav_buf start[2];      /**< part and field: counts, then start of each cell */
+  struct gpu_grav_buf src[2];        /**< part and field: the sources grouped by cell */
+  struct gpu_grav_buf cursor;        /**< scatter positions of each cell */
   struct gravity_gpu_groups gl[2];   /**< device views of them (last full evaluation) */
   struct gravity_multipole *mp_host; /**< pinned staging of the multipoles */
   int mp_host_cap;                   /**< its length */
@@ -43,6 +48,7 @@ struct gpu_grav {
   double t[GG_N];                    /**< accumulated milliseconds per stage */
   long calls, replays;               /**< evaluations: all, of which replays */
   double bytes;                      /**< bytes moved (both ways) */
+  double n_entries[2];               /**< grouped part and field interactions of the last */
 };
 
 /** Make b hold at least bytes (grown by half again; contents lost). */
@@ -72,9 +78,11 @@ extern "C" struct gpu_grav *gpu_grav_new(struct gpu *g) {
 
 extern "C" void gpu_grav_free(struct gpu_grav *gg) {
   if (!gg) return;
-  struct gpu_grav_buf *bufs[8] = {&gg->mp,   &gg->field, &gg->offset,    &gg->count,
-                                  &gg->l2l,  &gg->leaf,  &gg->groups[0], &gg->groups[1]};
-  for (int k = 0; k < 8; k++)
+  struct gpu_grav_buf *bufs[13] = {&gg->mp,       &gg->field,    &gg->offset,   &gg->count,
+                                   &gg->l2l,      &gg->leaf,     &gg->raw[0],   &gg->raw[1],
+                                   &gg->start[0], &gg->start[1], &gg->src[0],   &gg->src[1],
+                                   &gg->cursor};
+  for (int k = 0; k < 13; k++)
     if (bufs[k]->ptr) gpu_check(cudaFree(bufs[k]->ptr));
   if (gg->mp_host) gpu_check(cudaFreeHost(gg->mp_host));
   for (int k = 0; k <= GG_N; k++) gpu_check(cudaEventDestroy(gg->ev[k]));
@@ -124,43 +132,114 @@ extern "C" struct gravity_multipole *gpu_grav_multipoles(struct gpu_grav *gg, in
   return gg->mp_host;
 }
 
-extern "C" void *gpu_host_alloc(size_t bytes, const char *what) {
-  void *ptr = NULL;
-  const cudaError_t err = cudaMallocHost(&ptr, bytes ? bytes : 8);
-  if (err != cudaSuccess)
-    error_exit("cannot allocate %.1f MiB of pinned host memory for %s: %s", bytes / 1048576.0,
-               what, cudaGetErrorString(err));
-  return ptr;
+/** Add 1 to cnt[t[k]] for k < n. */
+__global__ void gg_count_kernel(const int *__restrict__ t, size_t n, int *cnt) {
+  for (size_t k = blockIdx.x * (size_t)blockDim.x + threadIdx.x; k < n;
+       k += (size_t)gridDim.x * blockDim.x)
+    atomicAdd(cnt + t[k], 1);
 }
 
-extern "C" void gpu_host_free(void *ptr) {
-  if (ptr) gpu_check(cudaFreeHost(ptr));
-}
-
-/** Upload one list of grouped interactions into buffer k; its device view. */
-static struct gravity_gpu_groups gg_groups(struct gpu_grav *gg, int k,
-                                           const struct gpu_grav_groups *h, cudaStream_t s) {
-  const size_t n = (size_t)h->n, ns = n ? (size_t)h->start[n] : 0;
-  const size_t b0 = (n * sizeof(int) + 15) & ~(size_t)15;
-  const size_t b1 = ((n + 1) * sizeof(int) + 15) & ~(size_t)15;
-  char *d = (char *)gg_reserve(&gg->groups[k], b0 + b1 + ns * sizeof(int) + 16,
-                               k ? "gravity M2L/P2L lists" : "gravity P2P/M2P lists");
-  struct gravity_gpu_groups v;
-  v.n = h->n;
-  v.cell = (const int *)d;
-  v.start = (const int *)(d + b0);
-  v.source = (const int *)(d + b0 + b1);
-  if (n) {
-    gg_up(gg, s, d, h->cell, n * sizeof(int));
-    gg_up(gg, s, d + b0, h->start, (n + 1) * sizeof(int));
-    gg_up(gg, s, d + b0 + b1, h->source, ns * sizeof(int));
+/** In place: the counts c[0..n) become their exclusive prefix sums, c[n]
+ *  the total.  One block: each thread sums a chunk, thread 0 scans the
+ *  chunks' sums, each thread then writes its chunk. */
+__global__ void gg_scan_kernel(int *c, int n) {
+  __shared__ int part[1024];
+  const int t = threadIdx.x, nt = blockDim.x;
+  const int chunk = (n + nt - 1) / nt;
+  const int b = min(t * chunk, n), e = min(b + chunk, n);
+  int sum = 0;
+  for (int i = b; i < e; i++) sum += c[i];
+  part[t] = sum;
+  __syncthreads();
+  if (t == 0) {
+    int run = 0;
+    for (int k = 0; k < nt; k++) {
+      const int v = part[k];
+      part[k] = run;
+      run += v;
+    }
+    c[n] = run;
   }
+  __syncthreads();
+  int run = part[t];
+  for (int i = b; i < e; i++) {
+    const int v = c[i];
+    c[i] = run;
+    run += v;
+  }
+}
+
+/** Entry k < n goes to the next free place of cell t[k]: out = s[k]. */
+__global__ void gg_scatter_kernel(const int *__restrict__ t, const int *__restrict__ s, size_t n,
+                                  int *cursor, int *out) {
+  for (size_t k = blockIdx.x * (size_t)blockDim.x + threadIdx.x; k < n;
+       k += (size_t)gridDim.x * blockDim.x)
+    out[atomicAdd(cursor + t[k], 1)] = s[k];
+}
+
+/** Grid of the grid-stride kernels over n entries. */
+static int gg_grid(size_t n) {
+  const size_t g = (n + 255) / 256;
+  return g > 4096 ? 4096 : (g ? (int)g : 1);
+}
+
+/** Upload the lists of kind k (0: part, 1: field) of the workers' records
+ *  and group them by receiving cell on the device; the device view. */
+static struct gravity_gpu_groups gg_group(struct gpu_grav *gg, int k,
+                                          const struct gravity_gpu_rec *rec, int nr_rec,
+                                          cudaStream_t s) {
+  size_t n1 = 0, n2 = 0;
+  for (int w = 0; w < nr_rec; w++) {
+    n1 += (k ? rec[w].field : rec[w].part).n;
+    n2 += (k ? rec[w].field_sym : rec[w].part_sym).n;
+  }
+  const size_t ntot = n1 + 2 * n2;
+  if (ntot > (size_t)INT_MAX) error_exit("%zu recorded gravity interactions: more than the GPU lists hold", ntot);
+  /* raw: one-way targets, sources; mutual firsts, seconds */
+  int *raw = (int *)gg_reserve(&gg->raw[k], (2 * n1 + 2 * n2) * sizeof(int) + 16,
+                               k ? "recorded M2L/P2L" : "recorded P2P/M2P");
+  int *t1 = raw, *s1 = raw + n1, *a2 = raw + 2 * n1, *b2 = raw + 2 * n1 + n2;
+  size_t o1 = 0, o2 = 0;
+  for (int w = 0; w < nr_rec; w++) {
+    const struct gravity_rec_list *l = k ? &rec[w].field : &rec[w].part;
+    const struct gravity_rec_list *m = k ? &rec[w].field_sym : &rec[w].part_sym;
+    gg_up(gg, s, t1 + o1, l->target, l->n * sizeof(int));
+    gg_up(gg, s, s1 + o1, l->source, l->n * sizeof(int));
+    gg_up(gg, s, a2 + o2, m->target, m->n * sizeof(int));
+    gg_up(gg, s, b2 + o2, m->source, m->n * sizeof(int));
+    o1 += l->n;
+    o2 += m->n;
+  }
+  const int nc = gg->nr_cells;
+  int *start = (int *)gg_reserve(&gg->start[k], ((size_t)nc + 1) * sizeof(int), "gravity lists");
+  int *cursor = (int *)gg_reserve(&gg->cursor, ((size_t)nc + 1) * sizeof(int), "gravity lists");
+  int *out = (int *)gg_reserve(&gg->src[k], ntot * sizeof(int) + 16, "grouped gravity lists");
+  gpu_check(cudaMemsetAsync(start, 0, ((size_t)nc + 1) * sizeof(int), s));
+  gg_count_kernel<<<gg_grid(n1), 256, 0, s>>>(t1, n1, start);
+  gpu_check_launch(gg_count_kernel);
+  gg_count_kernel<<<gg_grid(n2), 256, 0, s>>>(a2, n2, start);
+  gpu_check_launch(gg_count_kernel);
+  gg_count_kernel<<<gg_grid(n2), 256, 0, s>>>(b2, n2, start);
+  gpu_check_launch(gg_count_kernel);
+  gg_scan_kernel<<<1, 1024, 0, s>>>(start, nc);
+  gpu_check_launch(gg_scan_kernel);
+  gpu_check(cudaMemcpyAsync(cursor, start, (size_t)nc * sizeof(int), cudaMemcpyDeviceToDevice, s));
+  gg_scatter_kernel<<<gg_grid(n1), 256, 0, s>>>(t1, s1, n1, cursor, out);
+  gpu_check_launch(gg_scatter_kernel);
+  gg_scatter_kernel<<<gg_grid(n2), 256, 0, s>>>(a2, b2, n2, cursor, out);
+  gpu_check_launch(gg_scatter_kernel);
+  gg_scatter_kernel<<<gg_grid(n2), 256, 0, s>>>(b2, a2, n2, cursor, out);
+  gpu_check_launch(gg_scatter_kernel);
+  struct gravity_gpu_groups v;
+  v.nr_cells = nc;
+  v.start = start;
+  v.source = out;
+  gg->n_entries[k] = (double)ntot;
   return v;
 }
 
 extern "C" void gpu_grav_run(struct gpu_grav *gg, struct parts *p,
-                             const struct gpu_grav_groups *part,
-                             const struct gpu_grav_groups *field, double G, double eps,
+                             const struct gravity_gpu_rec *rec, int nr_rec, double G, double eps,
                              int softening, double eps2, int order, int resident, int replay) {
   if (!gg->have_tree) error_bug("gpu_grav_run before gpu_grav_set_tree");
   if (replay && !gg->have_eval) error_bug("gravity replay on the GPU without a full evaluation");
@@ -185,11 +264,12 @@ extern "C" void gpu_grav_run(struct gpu_grav *gg, struct parts *p,
   d.eps2 = eps2;
   d.softening = softening;
   d.order = order;
+  const size_t nc = (size_t)gg->nr_cells;
+  if (!replay) gg_up(gg, s, gg->mp.ptr, gg->mp_host, nc * sizeof(struct gravity_multipole));
+  gpu_check(cudaEventRecord(gg->ev[GG_GROUP], s));
   if (!replay) {
-    const size_t nc = (size_t)gg->nr_cells;
-    gg_up(gg, s, gg->mp.ptr, gg->mp_host, nc * sizeof(struct gravity_multipole));
-    gg->gl[0] = gg_groups(gg, 0, part, s);
-    gg->gl[1] = gg_groups(gg, 1, field, s);
+    gg->gl[0] = gg_group(gg, 0, rec, nr_rec, s);
+    gg->gl[1] = gg_group(gg, 1, rec, nr_rec, s);
     gpu_check(cudaMemsetAsync(gg->field.ptr, 0, nc * sizeof(struct gravity_field), s));
   }
   gpu_check(cudaEventRecord(gg->ev[GG_FIELD], s));
@@ -202,7 +282,8 @@ extern "C" void gpu_grav_run(struct gpu_grav *gg, struct parts *p,
       gravity_l2l_gpu_launch(s, d, l2l, l2l + nl, gg->level_start[L], gg->level_start[L + 1]);
   }
   gpu_check(cudaEventRecord(gg->ev[GG_PART], s));
-  gravity_part_gpu_launch(s, dp, d, gg->gl[0], gg->block);
+  gravity_part_gpu_launch(s, dp, d, gg->gl[0], (const int *)gg->leaf.ptr, gg->nr_leaves,
+                          gg->block);
   gpu_check(cudaEventRecord(gg->ev[GG_L2P], s));
   gravity_l2p_gpu_launch(s, dp, d, (const int *)gg->leaf.ptr, gg->nr_leaves, gg->block);
   gpu_check(cudaEventRecord(gg->ev[GG_DOWN], s));
@@ -227,5 +308,6 @@ extern "C" void gpu_grav_print(const struct gpu_grav *gg, FILE *f) {
   fprintf(f, "GPU gravity, %ld evaluations (%ld replays), ms per evaluation:", gg->calls,
           gg->replays);
   for (int k = 0; k < GG_N; k++) fprintf(f, " %s %.3f", gg_stage_names[k], gg->t[k] / gg->calls);
-  fprintf(f, "; bus %.1f MB per evaluation\n", gg->bytes / gg->calls / 1e6);
+  fprintf(f, "; bus %.1f MB per evaluation; last full evaluation %.3g P2P/M2P, %.3g M2L/P2L\n",
+          gg->bytes / gg->calls / 1e6, gg->n_entries[0], gg->n_entries[1]);
 }

@@ -1,9 +1,6 @@
 /* Host side of self-gravity on the GPU (gpu_engine.h): the cell tree as
- * index arrays, the recorded interactions grouped by receiving cell (a
- * counting sort over the workers' lists, on host threads), the multipoles
- * packed for the upload, and the serial sequence of a whole evaluation. */
-#include <limits.h>
-#include <pthread.h>
+ * index arrays, the multipoles packed for the upload, and the serial
+ * sequence of a whole evaluation. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -91,165 +88,6 @@ void gpu_grav_pack_multipoles(struct gravity_multipole *dst, const struct cell *
       if (c->progeny[q]) gpu_grav_pack_multipoles(dst, c->progeny[q], gc);
 }
 
-/* ------------------------------------------------------------------ grouping */
-
-/** The shared state of one grouping (one kind, struct gravity_rec_list of
- *  every worker): lists [0, nl1) one way, [nl1, nl) mutual (each entry
- *  also counts from source to target). */
-struct group_job {
-  const struct gravity_rec_list *const *lists; /**< the workers' lists */
-  int nl, nl1;                                 /**< their number; the one-way ones */
-  int nc;                                      /**< cells */
-  int *cnt;                                    /**< nl * nc counters, then positions */
-  int *tot;                                    /**< nc totals */
-  int *source;                                 /**< the grouped sources */
-};
-
-/** One thread's share of par_for. */
-struct par_arg {
-  void (*fn)(void *, int, int); /**< the work */
-  void *arg;                    /**< its argument */
-  int t, nt;                    /**< this thread, of nt */
-};
-
-/** Thread body of par_for. */
-static void *par_body(void *p) {
-  struct par_arg *a = p;
-  a->fn(a->arg, a->t, a->nt);
-  return NULL;
-}
-
-/** Run fn(arg, t, nt) for t = 0 .. nt - 1 on nt threads (t = 0 here). */
-static void par_for(int nt, void (*fn)(void *, int, int), void *arg) {
-  struct par_arg a[64];
-  pthread_t tid[64];
-  if (nt > 64) nt = 64;
-  if (nt < 1) nt = 1;
-  for (int t = 0; t < nt; t++) a[t] = (struct par_arg){fn, arg, t, nt};
-  for (int t = 1; t < nt; t++)
-    if (pthread_create(&tid[t], NULL, par_body, &a[t]))
-      error_exit("cannot start a thread to group the gravity interactions");
-  fn(arg, 0, nt);
-  for (int t = 1; t < nt; t++) pthread_join(tid[t], NULL);
-}
-
-/** Phase 1, by list: count each list's entries per target cell. */
-static void group_count(void *arg, int t, int nt) {
-  struct group_job *j = arg;
-  for (int w = t; w < j->nl; w += nt) {
-    int *cnt = j->cnt + (size_t)w * j->nc;
-    memset(cnt, 0, j->nc * sizeof(int));
-    const struct gravity_rec_list *l = j->lists[w];
-    for (size_t k = 0; k < l->n; k++) cnt[l->target[k]]++;
-    if (w >= j->nl1)
-      for (size_t k = 0; k < l->n; k++) cnt[l->source[k]]++;
-  }
-}
-
-/** Phase 2, by range of cells: each cell's total. */
-static void group_total(void *arg, int t, int nt) {
-  struct group_job *j = arg;
-  const int c0 = (int)((long)j->nc * t / nt), c1 = (int)((long)j->nc * (t + 1) / nt);
-  for (int c = c0; c < c1; c++) {
-    long s = 0;
-    for (int w = 0; w < j->nl; w++) s += j->cnt[(size_t)w * j->nc + c];
-    j->tot[c] = (int)s;
-  }
-}
-
-/** Phase 3, by range of cells: each list's first position in each cell's
- *  slice (tot now holds the slices' starts). */
-static void group_position(void *arg, int t, int nt) {
-  struct group_job *j = arg;
-  const int c0 = (int)((long)j->nc * t / nt), c1 = (int)((long)j->nc * (t + 1) / nt);
-  for (int c = c0; c < c1; c++) {
-    int run = j->tot[c];
-    for (int w = 0; w < j->nl; w++) {
-      int *q = j->cnt + (size_t)w * j->nc + c;
-      const int n = *q;
-      *q = run;
-      run += n;
-    }
-  }
-}
-
-/** Phase 4, by list: scatter the sources. */
-static void group_scatter(void *arg, int t, int nt) {
-  struct group_job *j = arg;
-  for (int w = t; w < j->nl; w += nt) {
-    int *pos = j->cnt + (size_t)w * j->nc;
-    const struct gravity_rec_list *l = j->lists[w];
-    if (w < j->nl1)
-      for (size_t k = 0; k < l->n; k++) j->source[pos[l->target[k]]++] = l->source[k];
-    else
-      for (size_t k = 0; k < l->n; k++) {
-        j->source[pos[l->target[k]]++] = l->source[k];
-        j->source[pos[l->source[k]]++] = l->target[k];
-      }
-  }
-}
-
-void gpu_grav_group(struct gpu_grav_host *h, const struct gravity_gpu_rec *rec, int nr_rec,
-                    int nr_cells, int nthreads) {
-  const struct gravity_rec_list *lists[2][512];
-  if (nr_rec > 256) error_bug("more than 256 gravity recording lists");
-  for (int w = 0; w < nr_rec; w++) {
-    lists[0][w] = &rec[w].part;
-    lists[1][w] = &rec[w].field;
-    lists[0][nr_rec + w] = &rec[w].part_sym;
-    lists[1][nr_rec + w] = &rec[w].field_sym;
-  }
-  const int nl = 2 * nr_rec;
-  const size_t ncnt = (size_t)nl * (size_t)nr_cells;
-  if (ncnt > h->cnt_cap) {
-    h->cnt_cap = ncnt + ncnt / 4 + 64;
-    h->cnt = error_realloc(h->cnt, h->cnt_cap * sizeof(int), "GPU gravity lists");
-  }
-  if ((size_t)nr_cells + 1 > h->tot_cap) {
-    h->tot_cap = (size_t)nr_cells + nr_cells / 4 + 16;
-    h->tot = error_realloc(h->tot, h->tot_cap * sizeof(int), "GPU gravity lists");
-  }
-  for (int k = 0; k < 2; k++) {
-    struct gpu_grav_groups_host *g = &h->groups[k];
-    size_t n = 0;
-    for (int w = 0; w < nl; w++) n += (w < nr_rec ? 1 : 2) * lists[k][w]->n;
-    if (n > (size_t)INT_MAX) error_exit("%zu recorded gravity interactions: more than the GPU lists hold", n);
-    if (n > g->cap) {
-      g->cap = n + n / 4 + 1024;
-      /* pinned: uploaded every step (contents rebuilt below) */
-      gpu_host_free(g->source);
-      g->source = gpu_host_alloc(g->cap * sizeof(int), "the grouped gravity interactions");
-    }
-    if (nr_cells + 1 > g->tcap) {
-      g->tcap = nr_cells + nr_cells / 4 + 16;
-      g->cell = error_realloc(g->cell, g->tcap * sizeof(int), "GPU gravity lists");
-      g->start = error_realloc(g->start, (g->tcap + 1) * sizeof(int), "GPU gravity lists");
-    }
-    struct group_job j = {lists[k], nl, nr_rec, nr_cells, h->cnt, h->tot, g->source};
-    const int nt = nthreads < 1 ? 1 : nthreads;
-    par_for(nt < nl ? nt : nl, group_count, &j);
-    par_for(nt, group_total, &j);
-    /* the receiving cells in index order, each with its slice */
-    int ng = 0, run = 0;
-    for (int c = 0; c < nr_cells; c++) {
-      const int tc = h->tot[c];
-      h->tot[c] = run;
-      if (tc > 0) {
-        g->cell[ng] = c;
-        g->start[ng++] = run;
-      }
-      run += tc;
-    }
-    g->start[ng] = run;
-    par_for(nt, group_position, &j);
-    par_for(nt < nl ? nt : nl, group_scatter, &j);
-    g->view.n = ng;
-    g->view.cell = g->cell;
-    g->view.start = g->start;
-    g->view.source = g->source;
-  }
-}
-
 void gpu_grav_host_free(struct gpu_grav_host *h) {
   free(h->offset);
   free(h->count);
@@ -258,20 +96,13 @@ void gpu_grav_host_free(struct gpu_grav_host *h) {
   free(h->l2l_parent);
   free(h->level_start);
   free(h->leaf);
-  free(h->cnt);
-  free(h->tot);
-  for (int k = 0; k < 2; k++) {
-    free(h->groups[k].cell);
-    free(h->groups[k].start);
-    gpu_host_free(h->groups[k].source);
-  }
   memset(h, 0, sizeof *h);
 }
 
 /* ------------------------------------------------------------------ serial */
 
-void gpu_grav_tree_all(struct gpu_grav *gg, struct gpu_grav_host *h, struct parts *p,
-                       const struct space *s, struct gravity_cell *gc,
+void gpu_grav_tree_all(struct gpu_grav *gg, struct gpu_grav_host *h, struct gravity_gpu_rec *rec,
+                       struct parts *p, const struct space *s, struct gravity_cell *gc,
                        const struct gravity_props *gp, int resident) {
   const struct cell *tops = s->cells;
   const int nr_top = s->nr_top;
@@ -284,9 +115,8 @@ void gpu_grav_tree_all(struct gpu_grav *gg, struct gpu_grav_host *h, struct part
     gravity_up(p, tops + i, gc, gp);
     gpu_grav_pack_multipoles(mp, tops + i, gc);
   }
-  struct gravity_gpu_rec rec;
-  memset(&rec, 0, sizeof rec);
-  gravity_gpu_record(&rec);
+  rec->part.n = rec->field.n = rec->part_sym.n = rec->field_sym.n = 0;
+  gravity_gpu_record(rec);
   /* the walks of gravity_tree_all, recorded */
   for (int i = 0; i < nr_top; i++) {
     gravity_interact_cells(p, tops + i, tops + i, gc, gp);
@@ -296,8 +126,6 @@ void gpu_grav_tree_all(struct gpu_grav *gg, struct gpu_grav_host *h, struct part
   }
   for (int i = 0; i < nr_top; i++) gravity_long_range(p, tops + i, tops, nr_top, gc, gp);
   gravity_gpu_record(NULL);
-  gpu_grav_group(h, &rec, 1, s->nr_cells, 1);
-  gpu_grav_run(gg, p, &h->groups[0].view, &h->groups[1].view, gp->G, gp->eps, gp->softening,
-               gp->eps2_expansion, gp->order, resident, 0);
-  gravity_gpu_rec_free(&rec);
+  gpu_grav_run(gg, p, rec, 1, gp->G, gp->eps, gp->softening, gp->eps2_expansion, gp->order,
+               resident, 0);
 }

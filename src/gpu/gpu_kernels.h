@@ -41,12 +41,11 @@ struct gravity_gpu_dev {
   int softening, order;               /**< enum gravity_softening, expansion order */
 };
 
-/** Recorded interactions grouped by receiving cell (struct gpu_grav_groups). */
+/** Recorded interactions grouped by receiving cell (src/gpu/gpu_gravity.cu). */
 struct gravity_gpu_groups {
-  int n;                           /**< receiving cells */
-  const int *cell;                 /**< each one's index */
-  const int *start;                /**< n + 1: T's sources are [start[T], start[T+1]) */
-  const int *source;               /**< the sources (struct gravity_gpu_rec) */
+  int nr_cells;      /**< cells */
+  const int *start;  /**< nr_cells + 1: cell c's sources are [start[c], start[c+1]) */
+  const int *source; /**< the sources (struct gravity_gpu_rec) */
 };
 
 /** Counters of the h iteration in device memory. */
@@ -75,16 +74,18 @@ void extra_ghost_gpu_launch(cudaStream_t s, struct parts p, struct hydro_props h
  *  (tasks/damage/damage_gpu.cu). */
 void damage_gpu_launch(cudaStream_t s, struct parts p, const struct material_table *mats,
                        const double *eps, double dt);
-/** Gravity (tasks/gravity/gravity_gpu.cu): M2L and P2L of every receiving
- *  cell of l, stored as its field. */
+/** Gravity (tasks/gravity/gravity_gpu.cu): M2L and P2L of every cell
+ *  with sources in l, stored as its field. */
 void gravity_field_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_dev d,
                               struct gravity_gpu_groups l);
 /** L2L of the parent-child pairs [k0, k1) (one tree level). */
 void gravity_l2l_gpu_launch(cudaStream_t s, struct gravity_gpu_dev d, const int *child,
                             const int *parent, int k0, int k1);
-/** P2P and M2P of every receiving leaf of l, added to pot and ga. */
+/** P2P and M2P of the leaves leaf[0..nr_leaves) from their sources in l,
+ *  added to pot and ga. */
 void gravity_part_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_dev d,
-                             struct gravity_gpu_groups l, int block);
+                             struct gravity_gpu_groups l, const int *leaf, int nr_leaves,
+                             int block);
 /** L2P at the leaves leaf[0..nr_leaves), added to pot and ga. */
 void gravity_l2p_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_dev d,
                             const int *leaf, int nr_leaves, int block);

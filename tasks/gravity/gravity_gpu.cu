@@ -7,11 +7,11 @@
  * with the expansion order a template constant so that nvcc unrolls their
  * loops as gcc does for gravity_cpu.c's M2L_ORDER.
  *
- *   field kernel: one thread per receiving cell, its M2L and P2L summed in
+ *   field kernel: one thread per cell, its M2L and P2L summed in
  *                 registers, then stored (the cells' expansions start at 0)
  *   L2L kernel:   one thread per parent-child pair of one tree level, the
  *                 levels one launch after the other (parents first)
- *   P2P, M2P:     one block per receiving leaf, one thread per particle,
+ *   P2P, M2P:     one block per leaf, one thread per particle,
  *                 its P2P (gather form: a leaf with itself skips i == j),
  *                 then (second kernel) its M2P summed in registers, added
  *                 to pot and ga
@@ -24,21 +24,21 @@
 #include "gpu_kernels.h"
 #include "gravity_iact.h"
 
-/** Every receiving cell T: the M2L of its multipole sources and the P2L of
- *  its leaf sources (struct gravity_gpu_rec.field), stored as its field. */
+/** Every cell c with sources: the M2L of its multipole sources and the P2L
+ *  of its leaf sources (struct gravity_gpu_rec.field), stored as its field. */
 template <int P>
 __global__ void gravity_field_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
                                          struct gravity_gpu_groups l) {
-  const int T = blockIdx.x * blockDim.x + threadIdx.x;
-  if (T >= l.n) return;
-  const int c = l.cell[T];
+  const int c = blockIdx.x * blockDim.x + threadIdx.x;
+  if (c >= l.nr_cells) return;
+  const int k0 = l.start[c], k1 = l.start[c + 1];
+  if (k0 == k1) return;
   const struct gravity_multipole *mc = d.mp + c;
   const double zc[3] = {mc->com[0], mc->com[1], mc->com[2]};
   struct gravity_field f;
 #pragma unroll
   for (int i = 0; i < GRAVITY_NCOMP(P); i++) f.F[i] = 0.0;
-  const int k1 = l.start[T + 1];
-  for (int k = l.start[T]; k < k1; k++) {
+  for (int k = k0; k < k1; k++) {
     const int s = l.source[k];
     double D[GRAVITY_NCOMP(P)];
     if (s >= 0) {
@@ -77,15 +77,14 @@ __global__ void gravity_l2l_gpu_kernel(struct gravity_gpu_dev d, const int *__re
   gravity_l2l(d.field + c, d.field + q, t, P);
 }
 
-/** Every receiving leaf T (one block): its particles' P2P with the source
+/** Every leaf (one block): its particles' P2P with the source
  *  leaves (struct gravity_gpu_rec.part, sources >= 0). */
 __global__ void gravity_p2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
-                                       struct gravity_gpu_groups l) {
-  const int T = blockIdx.x;
-  const int c = l.cell[T];
+                                       struct gravity_gpu_groups l, const int *__restrict__ leaf) {
+  const int c = leaf[blockIdx.x];
   const size_t beg = d.offset[c];
   const int cnt = d.count[c];
-  const int k0 = l.start[T], k1 = l.start[T + 1];
+  const int k0 = l.start[c], k1 = l.start[c + 1];
   const double *__restrict__ x = p.x, *__restrict__ y = p.y, *__restrict__ z = p.z;
   const double *__restrict__ m = p.m;
   for (int t = threadIdx.x; t < cnt; t += blockDim.x) {
@@ -110,17 +109,16 @@ __global__ void gravity_p2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
   }
 }
 
-/** Every receiving leaf T (one block): its particles' M2P from the source
+/** Every leaf (one block): its particles' M2P from the source
  *  cells (sources < 0).  A kernel of its own: the derivative tensors need
  *  registers that would slow the P2P loop down. */
 template <int P>
 __global__ void gravity_m2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
-                                       struct gravity_gpu_groups l) {
-  const int T = blockIdx.x;
-  const int c = l.cell[T];
+                                       struct gravity_gpu_groups l, const int *__restrict__ leaf) {
+  const int c = leaf[blockIdx.x];
   const size_t beg = d.offset[c];
   const int cnt = d.count[c];
-  const int k0 = l.start[T], k1 = l.start[T + 1];
+  const int k0 = l.start[c], k1 = l.start[c + 1];
   int any = 0;
   for (int k = k0; k < k1 && !any; k++) any = l.source[k] < 0;
   if (!any) return;
@@ -182,8 +180,8 @@ __global__ void gravity_l2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
 
 void gravity_field_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_dev d,
                               struct gravity_gpu_groups l) {
-  if (l.n == 0) return;
-  const int grid = (l.n + GRAVITY_GPU_CELL_BLOCK - 1) / GRAVITY_GPU_CELL_BLOCK;
+  if (l.nr_cells == 0) return;
+  const int grid = (l.nr_cells + GRAVITY_GPU_CELL_BLOCK - 1) / GRAVITY_GPU_CELL_BLOCK;
   GRAVITY_GPU_DISPATCH(gravity_field_gpu_kernel, grid, GRAVITY_GPU_CELL_BLOCK, p, d, l);
 }
 
@@ -196,11 +194,12 @@ void gravity_l2l_gpu_launch(cudaStream_t s, struct gravity_gpu_dev d, const int 
 }
 
 void gravity_part_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_dev d,
-                             struct gravity_gpu_groups l, int block) {
-  if (l.n == 0) return;
-  gravity_p2p_gpu_kernel<<<l.n, block, 0, s>>>(p, d, l);
+                             struct gravity_gpu_groups l, const int *leaf, int nr_leaves,
+                             int block) {
+  if (nr_leaves == 0) return;
+  gravity_p2p_gpu_kernel<<<nr_leaves, block, 0, s>>>(p, d, l, leaf);
   gpu_check_launch(gravity_p2p_gpu_kernel);
-  GRAVITY_GPU_DISPATCH(gravity_m2p_gpu_kernel, l.n, block, p, d, l);
+  GRAVITY_GPU_DISPATCH(gravity_m2p_gpu_kernel, nr_leaves, block, p, d, l, leaf);
 }
 
 void gravity_l2p_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_dev d,
