@@ -9,7 +9,8 @@
 #     damage with Weibull flaws (the solid + damage FORCE phase on the GPU);
 #     2b. again with the continuity density and XSPH.
 #     2c. a porous (P-alpha) basalt cube squeezed: budgets, and distentions,
-#     densities and energies particle by particle.
+#     densities and energies particle by particle; 2d. the same with an
+#     epsilon-alpha matrix.
 #  3. Evrard collapse (7,208 particles, hydro + tree self-gravity), 40 steps:
 #     multipoles and walks on the CPU, which record the interactions; M2L,
 #     L2L, L2P, M2P and P2P on the GPU.
@@ -151,6 +152,15 @@ YML
 done
 run porous 80
 grep -q "GPU not used" porous/gpu/run.log && { echo "FAIL: the porous run did not use the GPU"; exit 1; }
+# 2d. the same cube with an epsilon-alpha Murnaghan matrix (test_epsalpha_run.sh's curve)
+for m in cpu gpu; do
+  mkdir -p porousea/$m; cp porous/$m/block.hdf5 porousea/$m/
+  sed -e 's/^  0: {name: basalt, porosity: .*/  0: {name: porous, eos: murnaghan, rho0: 2700, K0: 2e10, n: 4,/' \
+      -e 's/^                                p_s: 2e8, n1: 6, n2: 3}}/      porosity: {model: epsalpha, alpha_0: 1.8, eps_e: -0.05, eps_x: -0.3, kappa: 1.2, chi: 0.5}}/' \
+      porous/$m/params.yml >porousea/$m/params.yml
+done
+grep -q "model: epsalpha" porousea/gpu/params.yml || { echo "FAIL: test set-up (epsilon-alpha)"; exit 1; }
+run porousea 80
 
 mkdir -p evrard/cpu evrard/gpu
 "${PYTHON:-python3}" "$S/examples/EvrardCollapse/make_ic.py" 24 evrard/cpu/evrard.hdf5 >/dev/null
@@ -175,16 +185,19 @@ compare sedov || fail=1
 compare impact || fail=1
 compare impactc || fail=1
 compare porous || fail=1
-# the distentions and densities at the end of the porous run, particle by particle
-"${PYTHON:-python3}" - <<'PY' || fail=1
-import glob, h5py, numpy as np
+compare porousea || fail=1
+# the distentions and densities at the end of the porous runs, particle by particle
+for case in porous porousea; do
+"${PYTHON:-python3}" - "$case" <<'PY' || fail=1
+import sys, glob, h5py, numpy as np
+case = sys.argv[1]
 def last(m):
-    f = h5py.File(sorted(glob.glob("porous/%s/snapshot_*.hdf5" % m))[-1], "r")["PartType0"]
+    f = h5py.File(sorted(glob.glob("%s/%s/snapshot_*.hdf5" % (case, m)))[-1], "r")["PartType0"]
     o = np.argsort(f["ParticleIDs"][:])
     return {k: f[k][:][o] for k in ("Distentions", "Densities", "InternalEnergies")}
 c, g = last("cpu"), last("gpu")
 a = c["Distentions"]
-print("porous: %d of %d particles compacted (alpha < 1.8), %d fully (alpha = 1)" %
+print(case + ": %d of %d particles compacted (alpha < 1.8), %d fully (alpha = 1)" %
       ((a < 1.8 - 1e-12).sum(), a.size, (a == 1.0).sum()))
 bad = 0
 for k in c:
@@ -194,6 +207,7 @@ for k in c:
 if not (a < 1.8 - 1e-12).sum() > 0: print("  FAIL: nothing compacted"); bad = 1
 raise SystemExit(bad)
 PY
+done
 compare evrard || fail=1
 compare reuse || fail=1
 exit $fail

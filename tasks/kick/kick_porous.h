@@ -19,14 +19,17 @@ BOLIDE_INLINE void kick2_porous_rate(struct parts *BOLIDE_RESTRICT p, size_t i,
 }
 
 /** After the kick (not after the first force computation): the kicked state
- *  of a P-alpha particle back on the crush curve (PA10); rho is the
+ *  of a P-alpha particle back on the crush curve (PA10), the distention of
+ *  an epsilon-alpha particle to that of its strain (EA6); rho is the
  *  integrated density with the continuity equation, the summed one else. */
 BOLIDE_INLINE void kick2_porous_return(struct parts *BOLIDE_RESTRICT p, size_t i,
                                        const struct material_table *mats, int continuity) {
   const struct material *mat = material_table_find(mats, p->mat[i]);
-  if (mat->porosity.model != POROSITY_PALPHA) return;
+  if (mat->porosity.model == POROSITY_NONE) return;
   const double rho = continuity ? p->rho_full[i] : p->rho[i];
-  p->alpha[i] = p->alpha_p[i] = porosity_palpha_return(mat, rho, p->u[i], p->alpha[i]);
+  p->alpha[i] = p->alpha_p[i] = mat->porosity.model == POROSITY_PALPHA
+                                    ? porosity_palpha_return(mat, rho, p->u[i], p->alpha[i])
+                                    : porosity_epsalpha_update(mat, rho, p->alpha[i]);
 }
 
 #endif
