@@ -24,7 +24,7 @@ struct gpu_engine {
   struct gravity_gpu_rec *rec;    /**< interactions recorded by each CPU worker */
   int nr_rec;                     /**< workers (length of rec) */
   struct gpu_grav *grav;          /**< self-gravity's device state */
-  struct gpu_grav_host grav_host; /**< its host side: tree, grouped interactions */
+  struct gpu_grav_host grav_host; /**< its host side: the tree as index arrays */
   struct gravity_multipole *mp;   /**< pinned staging of the multipoles (grav_up tasks fill it) */
   double t_grav_walk;             /**< host seconds of the gravity tasks (up, walks) */
   double t_grav_gpu;              /**< seconds of the device part (copies included) */
