@@ -179,9 +179,6 @@ static void engine_init_porosity(struct engine *e, const char *icname, int has_a
   struct parts *p = &e->parts;
   for (int k = 0; k < e->mats->n; k++) {
     const struct material *m = &e->mats->mats[k];
-    if (m->porosity.model == POROSITY_EPSALPHA)
-      error_exit("material '%s': porosity model epsalpha is not wired into the time step yet (use palpha)",
-                 m->name);
     if (m->porosity.model != POROSITY_NONE) e->porous = 1;
   }
   const double tol = params_get_real(e->params, "Porosity:ic_tolerance");
@@ -215,7 +212,7 @@ static void engine_init_porosity(struct engine *e, const char *icname, int has_a
   if (e->porous) {
     size_t n = 0;
     for (size_t i = 0; i < p->count; i++) n += p->alpha[i] > 1.0;
-    error_log(0, "porosity: %zu porous particles (P-alpha, Jutzi et al. 2008), distentions %s", n,
+    error_log(0, "porosity: %zu porous particles (P-alpha: Jutzi et al. 2008; epsilon-alpha: Wuennemann et al. 2006, Collins et al. 2011), distentions %s", n,
               has_alpha ? "from the initial conditions (alpha_0 where 0)" : "alpha_0 of their materials");
   }
 }

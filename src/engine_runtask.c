@@ -12,7 +12,7 @@
 #include "kernel.h"
 #include "material.h"
 #include "kick/kick_cpu.h"
-#include "porosity_eos.h"
+#include "kick/kick_porous.h"
 
 /** The largest kernel support the current cells and task graph allow. */
 double engine_H_limit(const struct engine *e) {
@@ -66,21 +66,13 @@ static void engine_kick2(struct engine *e, int t) {
       p->az[i] += p->gaz[i];
     }
   }
-  /* porous materials: dalpha/dt from the rates of this force loop (PA6) */
+  /* porous materials: dalpha/dt from the rates of this force loop, the
+   * kick, and the kicked state back on the crush curve (kick_porous.h) */
   if (e->porous)
-    for (size_t i = c->offset; i < end; i++) {
-      const struct material *mat = material_table_find(e->mats, p->mat[i]);
-      p->dalpha_dt[i] = porosity_rate(mat, p->rho[i], p->drho_dt[i], p->up[i], p->du_dt[i], p->alpha_p[i]);
-    }
+    for (size_t i = c->offset; i < end; i++) kick2_porous_rate(p, i, e->mats);
   double dt = kick2_cell_cpu(p, c, e->first_force ? 0.0 : 0.5 * e->dt, &e->hp);
-  /* ... and the kicked state back on the crush curve (PA10) */
   if (e->porous && !e->first_force)
-    for (size_t i = c->offset; i < end; i++) {
-      const struct material *mat = material_table_find(e->mats, p->mat[i]);
-      if (mat->porosity.model != POROSITY_PALPHA) continue;
-      const double rho = e->hp.continuity ? p->rho_full[i] : p->rho[i];
-      p->alpha[i] = p->alpha_p[i] = porosity_palpha_return(mat, rho, p->u[i], p->alpha[i]);
-    }
+    for (size_t i = c->offset; i < end; i++) kick2_porous_return(p, i, e->mats, e->hp.continuity);
   if (!e->hp.enabled) dt = 1e300;
   if (e->damage)
     for (size_t i = c->offset; i < end; i++) {

@@ -26,6 +26,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "eos_tables.h"
 #include "damage/damage_part.h"
 #include "damage/flaws.h"
 #include "density/density_cpu.h"
@@ -97,7 +98,10 @@ static double max_abs(double *const *a, int k, size_t n) {
 }
 
 /** The three cases. */
-enum test_kind { KIND_GAS, KIND_GRANITE, KIND_BASALT_SOLID };
+/** KIND_BASALT_CONT: the solid case with the density from the continuity
+ *  equation (from perturbed densities) and XSPH; KIND_GRANITE_TABLE: the
+ *  granite case with its Tillotson EOS as a table (eos_tables.h). */
+enum test_kind { KIND_GAS, KIND_GRANITE, KIND_BASALT_SOLID, KIND_BASALT_CONT, KIND_GRANITE_TABLE };
 
 /** The solids and damage fields of the CPU run p and the GPU run q: tensors
  *  relative to their largest component over the particles, damage relative
@@ -184,7 +188,8 @@ static int compare_solids(const struct parts *p, const struct parts *q, size_t n
 static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
                     unsigned long long seed) {
   unsigned long long s = seed;
-  const int granite = kind != KIND_GAS, solid = kind == KIND_BASALT_SOLID;
+  const int granite = kind != KIND_GAS;
+  const int cont = kind == KIND_BASALT_CONT, solid = kind == KIND_BASALT_SOLID || cont;
   const size_t n = (size_t)side * side * side;
   const double box[3] = {1.0, 1.0, 1.0};
   const double dx = (periodic ? 1.0 : 0.6) / side, rho0 = granite ? 2680.0 : 1.0;
@@ -235,6 +240,7 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
           p.dcbrt[i] = urand(&s) < 0.33 ? 0.5 * urand(&s) : 0.0;
           p.dmg[i] = p.dcbrt[i] * p.dcbrt[i] * p.dcbrt[i];
         }
+        if (cont) p.rho_full[i] = p.rho_fp[i] = rho0 * (0.95 + 0.1 * urand(&s));
       }
   struct material_table mats;
   material_table_init(&mats);
@@ -258,8 +264,20 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
     hp.as_n = 4.0;
     hp.as_wdp_inv = 1.0 / kernel_W(1.0 / hp.eta, 1.0);
     hp.max_rel_change = 0.25;
+    if (cont) {
+      hp.continuity = 1;
+      hp.xsph = 0.5;
+    }
   } else if (granite) {
     material_from_library(&m, material_default_library(), "granite", 1);
+    if (kind == KIND_GRANITE_TABLE) {
+      /* 96 x 96 nodes over the states of the case (rho 0.4 to 2.5 rho0,
+       * u 1e4 to 1e8 J/kg): the GPU must read the same nodes */
+      const struct eos_tillotson till = m.eos.tillotson;
+      m.eos_type = EOS_TABLE;
+      memset(&m.eos, 0, sizeof m.eos);
+      table_from_tillotson(&m.eos.table, &till, 96, 96, 0.4 * till.rho0, 2.5 * till.rho0, 1e4, 1e8);
+    }
   } else {
     material_init(&m, 0, "gas", EOS_IDEAL_GAS);
     material_set(&m, "gamma", 5.0 / 3.0, msg, sizeof msg);
@@ -379,13 +397,22 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
       {"v_sig", p.v_sig, q.v_sig, 0.0},
       {"vx", p.vx, q.vx, vmax},
       {"u", p.u, q.u, 0.0},
+      /* continuity + XSPH case (zero elsewhere: rho_full and the XSPH sums
+       * then compare as equal) */
+      {"drho_dt", p.drho_dt, q.drho_dt, 1e-3 * rho0 * vmax / hmean},
+      {"rho_full", p.rho_full, q.rho_full, 0.0},
+      {"xsphx", p.xsphx, q.xsphx, vmax},
+      {"xsphy", p.xsphy, q.xsphy, vmax},
+      {"xsphz", p.xsphz, q.xsphz, vmax},
   };
   int fail = 0;
   printf(
       "%s box, %zu particles, %s: CPU %.3f s (1 thread), GPU %.3f s (lists %d leaves, %d "
       "entries)\n",
       periodic ? "periodic" : "open", n,
-      solid     ? "Tillotson basalt, Collins strength, artificial stress, Weibull flaws"
+      kind == KIND_GRANITE_TABLE ? "granite as a 96 x 96 (rho, u) EOS table"
+      : cont    ? "Tillotson basalt, Collins strength, damage, continuity density, XSPH"
+      : solid   ? "Tillotson basalt, Collins strength, artificial stress, Weibull flaws"
       : granite ? "Tillotson granite"
                 : "ideal gas",
       t_cpu, t_gpu, gc.n, gc.nr_ngb);
@@ -520,6 +547,8 @@ int main(int argc, char **argv) {
   fail += run_case(g, 1, 24, KIND_GAS, 12345);
   fail += run_case(g, 0, 20, KIND_GRANITE, 777);
   fail += run_case(g, 0, 20, KIND_BASALT_SOLID, 4242);
+  fail += run_case(g, 0, 20, KIND_BASALT_CONT, 4343);
+  fail += run_case(g, 0, 20, KIND_GRANITE_TABLE, 778);
   fail += run_gravity_case(g, 40000, GRAVITY_SOFTENING_SPLINE, 99);
   fail += run_gravity_case(g, 20000, GRAVITY_SOFTENING_PLUMMER, 98);
   gpu_print_timers(g, stdout);

@@ -6,7 +6,11 @@
 #  2. A basalt impactor (25 m, 400 particles) hitting a basalt target (100 m,
 #     6,000 particles) at 2 km/s and 45 degrees, 40 steps through the
 #     contact: Tillotson, Collins strength, artificial stress, Grady-Kipp
-#     damage with Weibull flaws (the solid + damage FORCE phase on the GPU).
+#     damage with Weibull flaws (the solid + damage FORCE phase on the GPU);
+#     2b. again with the continuity density and XSPH.
+#     2c. a porous (P-alpha) basalt cube squeezed: budgets, and distentions,
+#     densities and energies particle by particle; 2d. the same with an
+#     epsilon-alpha matrix.
 #  3. Evrard collapse (7,208 particles, hydro + tree self-gravity), 40 steps:
 #     the tree walks on the CPU, their P2P interactions on the GPU.
 # The runs differ only by the order of the SPH sums (round-off, ~1e-15
@@ -89,6 +93,72 @@ run impact 40
 grep -q "gradient, extra ghost (plasticity, dS/dt), force, damage, kick2" impact/gpu/run.log ||
   { echo "FAIL: the solid + damage run did not run its FORCE phase on the GPU"; exit 1; }
 
+# 2b. the same impact with the density from the continuity equation and XSPH
+mkdir -p impactc/cpu impactc/gpu
+for m in cpu gpu; do
+  cp impact/cpu/impact.hdf5 impactc/$m/
+  sed -e 's/^  viscosity_alpha: 1.5/  viscosity_alpha: 1.5\n  density: continuity\n  xsph_epsilon: 0.5/' \
+    impact/$m/params.yml >impactc/$m/params.yml
+done
+grep -q "xsph_epsilon: 0.5" impactc/gpu/params.yml || { echo "FAIL: test set-up"; exit 1; }
+run impactc 40
+grep -q "GPU not used" impactc/gpu/run.log && { echo "FAIL: the continuity + XSPH run did not use the GPU"; exit 1; }
+
+# 2c. P-alpha porosity: the porous cube of test_porosity_run.sh (Tillotson
+# basalt matrix, alpha_0 1.8, continuity density) squeezed at -300/s x for
+# 80 steps (alpha 1.31 to 1.68 at the end)
+mkdir -p porous/cpu porous/gpu
+"${PYTHON:-python3}" - <<'PY'
+import h5py, numpy as np
+n, L, rate, rho = 16, 1.0, 300.0, 1500.0
+dx = L / n
+g = (np.arange(n) + 0.5) * dx - 0.5 * L
+x, y, z = np.meshgrid(g, g, g, indexing="ij")
+pos = np.stack([x.ravel(), y.ravel(), z.ravel()], axis=1)
+N = len(pos)
+for m in ("cpu", "gpu"):
+    with h5py.File("porous/%s/block.hdf5" % m, "w") as f:
+        h = f.create_group("Header"); h.attrs["BoxSize"] = [4.0, 4.0, 4.0]
+        h.attrs["NumPart_Total"] = [N, 0, 0, 0, 0, 0]
+        p = f.create_group("PartType0")
+        p["Coordinates"] = pos + 2.0
+        p["Velocities"] = -rate * pos
+        p["Masses"] = np.full(N, rho * dx**3)
+        p["SmoothingLengths"] = np.full(N, 1.2348 * dx)
+        p["InternalEnergies"] = np.full(N, 0.0)
+        p["Densities"] = np.full(N, rho)
+        p["ParticleIDs"] = np.arange(1, N + 1)
+        p["MaterialIDs"] = np.zeros(N, dtype=np.int32)
+PY
+for m in cpu gpu; do
+  cat >porous/$m/params.yml <<'YML'
+InitialConditions:
+  file_name: block.hdf5
+TimeIntegration:
+  time_end: 1
+Snapshots:
+  delta_time: 1
+Statistics:
+  delta_time: 2.5e-6
+SPH:
+  density: continuity
+Materials:
+  0: {name: basalt, porosity: {model: palpha, alpha_0: 1.8, alpha_t: 1.3, p_e: 1e6, p_t: 5e7,
+                                p_s: 2e8, n1: 6, n2: 3}}
+YML
+done
+run porous 80
+grep -q "GPU not used" porous/gpu/run.log && { echo "FAIL: the porous run did not use the GPU"; exit 1; }
+# 2d. the same cube with an epsilon-alpha Murnaghan matrix (test_epsalpha_run.sh's curve)
+for m in cpu gpu; do
+  mkdir -p porousea/$m; cp porous/$m/block.hdf5 porousea/$m/
+  sed -e 's/^  0: {name: basalt, porosity: .*/  0: {name: porous, eos: murnaghan, rho0: 2700, K0: 2e10, n: 4,/' \
+      -e 's/^                                p_s: 2e8, n1: 6, n2: 3}}/      porosity: {model: epsalpha, alpha_0: 1.8, eps_e: -0.05, eps_x: -0.3, kappa: 1.2, chi: 0.5}}/' \
+      porous/$m/params.yml >porousea/$m/params.yml
+done
+grep -q "model: epsalpha" porousea/gpu/params.yml || { echo "FAIL: test set-up (epsilon-alpha)"; exit 1; }
+run porousea 80
+
 mkdir -p evrard/cpu evrard/gpu
 "${PYTHON:-python3}" "$S/examples/EvrardCollapse/make_ic.py" 24 evrard/cpu/evrard.hdf5 >/dev/null
 cp evrard/cpu/evrard.hdf5 evrard/gpu/
@@ -100,5 +170,30 @@ grep -q "self-gravity: the tree walks on the CPU, their P2P on the GPU" evrard/g
 fail=0
 compare sedov || fail=1
 compare impact || fail=1
+compare impactc || fail=1
+compare porous || fail=1
+compare porousea || fail=1
+# the distentions and densities at the end of the porous runs, particle by particle
+for case in porous porousea; do
+"${PYTHON:-python3}" - "$case" <<'PY' || fail=1
+import sys, glob, h5py, numpy as np
+case = sys.argv[1]
+def last(m):
+    f = h5py.File(sorted(glob.glob("%s/%s/snapshot_*.hdf5" % (case, m)))[-1], "r")["PartType0"]
+    o = np.argsort(f["ParticleIDs"][:])
+    return {k: f[k][:][o] for k in ("Distentions", "Densities", "InternalEnergies")}
+c, g = last("cpu"), last("gpu")
+a = c["Distentions"]
+print(case + ": %d of %d particles compacted (alpha < 1.8), %d fully (alpha = 1)" %
+      ((a < 1.8 - 1e-12).sum(), a.size, (a == 1.0).sum()))
+bad = 0
+for k in c:
+    d = np.max(np.abs(c[k] - g[k]) / (np.abs(c[k]) + 1e-300 + (1e-3 * np.abs(c[k]).max() if k == "InternalEnergies" else 0)))
+    print("  %-16s CPU vs GPU worst relative difference %.3e" % (k, d))
+    bad |= not d < 1e-8
+if not (a < 1.8 - 1e-12).sum() > 0: print("  FAIL: nothing compacted"); bad = 1
+raise SystemExit(bad)
+PY
+done
 compare evrard || fail=1
 exit $fail

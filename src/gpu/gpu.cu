@@ -23,13 +23,15 @@ extern "C" {
 /** Fields the FORCE phase reads (copied to the device before it when the
  *  particles are not resident). */
 static const char *const gpu_fields_in[] = {"x",  "y",   "z",  "vpx", "vpy", "vpz", "m",    "h",
-                                            "up", "mat", "vx", "vy",  "vz",  "u",   "flags"};
+                                            "up", "mat", "vx", "vy",  "vz",  "u",   "flags",
+                                            "rho_full", "rho_fp", "alpha", "alpha_p"};
 /** Fields the FORCE phase writes (copied back after it). */
 static const char *const gpu_fields_out[] = {
     "h",       "rho", "rho_dh", "wcount",  "wcount_dh", "div_v", "curl_vx", "curl_vy",
     "curl_vz", "P",   "cs",     "balsara", "f_gradh",   "flags", "h_lo",    "h_hi",
     "ax",      "ay",  "az",     "du_dt",   "drho_dt",   "v_sig", "vx",      "vy",
-    "vz",      "u",   "vpx",    "vpy",     "vpz",       "up"};
+    "vz",      "u",   "vpx",    "vpy",     "vpz",       "up",      "rho_full", "rho_fp",
+    "xsphx",   "xsphy", "xsphz", "alpha", "alpha_p", "dalpha_dt"};
 /** Fields the gradient loop, the extra ghost and the stress terms read, and
  *  the kick integrates (solids). */
 static const char *const gpu_fields_solid_in[] = {"Sxx",  "Sxy",  "Sxz",   "Syy",  "Syz",
@@ -97,6 +99,8 @@ struct gpu {
   int *counters_dev, *counters_host; /**< h-iteration counters (host side pinned) */
   struct material_table *mats_dev;   /**< the material table on the device */
   struct material_table *mats_host;  /**< pinned staging of it */
+  double *table_dev[MATERIAL_MAX];   /**< device copies of tabulated EOS nodes (P, c2, T) */
+  struct eos_table table_src[MATERIAL_MAX]; /**< the host tables they mirror */
   double t[GPU_T_N];                 /**< accumulated milliseconds per stage */
   long calls;                        /**< FORCE phases run */
   double bytes_h2d, bytes_d2h;       /**< traffic over the bus */
@@ -172,14 +176,11 @@ extern "C" const char *gpu_name(const struct gpu *g) {
 }
 
 extern "C" int gpu_supports(const struct material_table *mats, char *why, size_t len) {
-  for (int k = 0; k < mats->n; k++)
-    if (mats->mats[k].eos_type == EOS_TABLE) {
-      snprintf(why, len, "material %s has a tabulated EOS, not on the GPU yet", mats->mats[k].name);
-      return 0;
-    } else if (mats->mats[k].porosity.model != POROSITY_NONE) {
-      snprintf(why, len, "material %s is porous, not on the GPU yet", mats->mats[k].name);
-      return 0;
-    }
+  /* every EOS (tables included), strength, damage and porosity model of
+   * the material table has a GPU path (the shared inline functions) */
+  (void)mats;
+  (void)why;
+  (void)len;
   return 1;
 }
 
@@ -300,6 +301,36 @@ extern "C" void gpu_set_flaws(struct gpu *g, const double *eps, size_t n) {
   g->bytes_h2d += (double)(n * sizeof(double));
 }
 
+/** The material table as the device sees it: a copy of mats whose tabulated
+ *  EOS point at device copies of their nodes.  A table is uploaded once
+ *  (tables are constant during a run) and again only when the host table
+ *  it mirrors changes (other arrays or grid). */
+static void gpu_stage_materials(struct gpu *g, const struct material_table *mats) {
+  memcpy(g->mats_host, mats, sizeof *mats);
+  for (int k = 0; k < mats->n; k++) {
+    if (mats->mats[k].eos_type != EOS_TABLE) continue;
+    const struct eos_table *t = &mats->mats[k].eos.table;
+    const size_t nn = (size_t)t->n_rho * (size_t)t->n_u, nf = t->T ? 3 : 2;
+    if (!g->table_dev[k] || memcmp(&g->table_src[k], t, sizeof *t) != 0) {
+      if (g->table_dev[k]) gpu_check(cudaFree(g->table_dev[k]));
+      char what[160];
+      snprintf(what, sizeof what, "tabulated EOS of material %s (%zu nodes)", mats->mats[k].name,
+               nn);
+      g->table_dev[k] = (double *)gpu_alloc(nf * nn * sizeof(double), what);
+      const double *src[3] = {t->P, t->c2, t->T};
+      for (size_t f = 0; f < nf; f++)
+        gpu_check(cudaMemcpy(g->table_dev[k] + f * nn, src[f], nn * sizeof(double),
+                             cudaMemcpyHostToDevice));
+      g->bytes_h2d += (double)(nf * nn * sizeof(double));
+      g->table_src[k] = *t;
+    }
+    struct eos_table *d = &g->mats_host->mats[k].eos.table;
+    d->P = g->table_dev[k];
+    d->c2 = g->table_dev[k] + nn;
+    d->T = t->T ? g->table_dev[k] + 2 * nn : NULL;
+  }
+}
+
 /** Read the counters of the h iteration (waits for stream 0). */
 static void gpu_read_counters(struct gpu *g) {
   gpu_check(cudaMemcpyAsync(g->counters_host, g->counters_dev, GPU_NR_COUNTERS * sizeof(int),
@@ -324,7 +355,7 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
   gpu_check(cudaEventRecord(g->ev[0], s));
   const struct gpu_leaves_dev dv = gpu_upload_cells(g, lv);
   if (!resident) gpu_copy_fields(g, p, g->in, nr_in, 1);
-  memcpy(g->mats_host, mats, sizeof *mats);
+  gpu_stage_materials(g, mats);
   gpu_check(cudaMemcpyAsync(g->mats_dev, g->mats_host, sizeof *mats, cudaMemcpyHostToDevice, s));
   gpu_check(cudaMemsetAsync(g->counters_dev, 0, GPU_NR_COUNTERS * sizeof(int), s));
   gpu_check(cudaStreamWaitEvent(s, g->cells_ready, 0));
@@ -376,7 +407,8 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
   double *leaf_dt = g->leaf_dt;
   struct gpu_gravity gr = {0, 0.0, 0.0};
   if (grav) gr = *grav;
-  kick2_gpu_launch(s, g->dev, dv, *hp, dt_kick, damage ? dmg->max_change : 0.0, gr, leaf_dt);
+  kick2_gpu_launch(s, g->dev, dv, *hp, g->mats_dev, dt_kick, damage ? dmg->max_change : 0.0, gr,
+                   leaf_dt);
   gpu_check(cudaEventRecord(g->ev[7], s));
   if (!resident) gpu_copy_fields(g, p, g->out, nr_out, 0);
   gpu_check(cudaMemcpyAsync(leaf_dt_min, leaf_dt, (size_t)lv->n * sizeof(double),
@@ -492,12 +524,12 @@ extern "C" void gpu_download_all(struct gpu *g, struct parts *p) {
   gpu_check(cudaStreamSynchronize(g->stream[0]));
 }
 
-extern "C" void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt) {
+extern "C" void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt, double xsph) {
   if (p->count != g->dev.count) error_bug("GPU and host particle counts differ");
   gpu_pin(g, p);
   cudaStream_t s = g->stream[0];
   gpu_check(cudaEventRecord(g->ev_drift[0], s));
-  drift_gpu_launch(s, g->dev, dt_kick, dt);
+  drift_gpu_launch(s, g->dev, dt_kick, dt, xsph);
   const int idx[4] = {gpu_field_index("x"), gpu_field_index("y"), gpu_field_index("z"),
                       gpu_field_index("h")};
   gpu_copy_fields(g, p, idx, 4, 0);
@@ -539,6 +571,8 @@ extern "C" void gpu_free(struct gpu *g) {
   gpu_check(cudaFree(g->counters_dev));
   gpu_check(cudaFreeHost(g->counters_host));
   gpu_check(cudaFree(g->mats_dev));
+  for (int k = 0; k < MATERIAL_MAX; k++)
+    if (g->table_dev[k]) gpu_check(cudaFree(g->table_dev[k]));
   if (g->flaws_dev) gpu_check(cudaFree(g->flaws_dev));
   if (g->p2p_dev) gpu_check(cudaFree(g->p2p_dev));
   for (int k = 0; k < 2; k++) gpu_check(cudaEventDestroy(g->ev_p2p[k]));

@@ -420,14 +420,12 @@ void gpu_engine_init(struct engine *e) {
     return;
   }
   char why[256];
-  /* the GPU runs the hydrodynamic phase as a whole (solids and damage
-   * included) and the near field of self-gravity; XSPH and the continuity
-   * equation have no GPU implementation yet, nor the gravitational softening
-   * tied to h (the GPU P2P and kick use one constant eps), and a
+  /* the GPU runs the hydrodynamic phase as a whole (solids, damage, XSPH
+   * and the continuity equation included) and the near field of
+   * self-gravity; the gravitational softening tied to h has no GPU
+   * implementation yet (the GPU P2P and kick use one constant eps), and a
    * gravity-only run none */
-  const char *unsupported = !e->hp.enabled     ? "hydrodynamics is off"
-                            : e->hp.xsph > 0.0 ? "XSPH has no GPU implementation yet"
-                            : e->hp.continuity ? "the continuity equation has no GPU implementation yet"
+  const char *unsupported = !e->hp.enabled ? "hydrodynamics is off"
                             : e->gp.enabled && e->gp.h_factor > 0.0
                                 ? "Gravity:softening_h_factor > 0 (softening tied to h) has no GPU "
                                   "implementation yet"
@@ -583,7 +581,7 @@ void gpu_engine_drift(struct engine *e) {
     gpu_upload_all(ge->gpu, &e->parts);
     ge->dev_valid = 1;
   }
-  gpu_drift(ge->gpu, &e->parts, 0.5 * e->dt, e->dt);
+  gpu_drift(ge->gpu, &e->parts, 0.5 * e->dt, e->dt, e->hp.xsph);
   ge->host_stale = 1;
   /* positions and h are back: the bounds the rebuild test and the lists read */
   const double w0 = error_walltime();

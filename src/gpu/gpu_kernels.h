@@ -76,12 +76,12 @@ void gravity_p2p_gpu_launch(cudaStream_t s, struct parts p, struct gpu_p2p_dev l
 void force_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
                       struct hydro_props hp);
 /** First half kick and drift of every particle (tasks/drift/drift_gpu.cu). */
-void drift_gpu_launch(cudaStream_t s, struct parts p, double dt_kick, double dt);
+void drift_gpu_launch(cudaStream_t s, struct parts p, double dt_kick, double dt, double xsph);
 /** Second half kick and time step; leaf_dt[L] the smallest of leaf L; with
  *  damage_max_change > 0 the damage limit joins, with grav.enabled the
  *  gravitational acceleration and its limit (tasks/kick/kick_gpu.cu). */
 void kick2_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
-                      struct hydro_props hp, double dt_kick, double damage_max_change,
-                      struct gpu_gravity grav, double *leaf_dt);
+                      struct hydro_props hp, const struct material_table *mats, double dt_kick,
+                      double damage_max_change, struct gpu_gravity grav, double *leaf_dt);
 
 #endif

@@ -78,13 +78,42 @@ BOLIDE_INLINE double porosity_palpha_return(const struct material *mat, double r
   return lo;
 }
 
+/** Volumetric strain of an epsilon-alpha particle of bulk density rho
+ *  (EA7): eps_v = ln(rho_00 / rho), rho_00 = rho0 / alpha_0 the bulk
+ *  density of the unstressed porous material (negative in compression;
+ *  d eps_v/dt = -drho/dt / rho = div v as in EA5). */
+BOLIDE_INLINE double porosity_epsalpha_strain(const struct material *mat, double rho) {
+  return log(mat->rho0 / (mat->porosity.epsalpha.alpha_0 * rho));
+}
+
+/** The distention of an epsilon-alpha particle of bulk density rho that
+ *  had alpha: min(alpha, alpha(eps_v)) (EA6: alpha is a function of the
+ *  strain, compaction is irreversible). */
+BOLIDE_INLINE double porosity_epsalpha_update(const struct material *mat, double rho,
+                                              double alpha) {
+  const double a = porosity_epsalpha_alpha(&mat->porosity.epsalpha,
+                                           porosity_epsalpha_strain(mat, rho));
+  return a < alpha ? a : alpha;
+}
+
 /** Equation of state of a particle of material mat with bulk density rho,
  *  specific energy u and distention *alpha: for a P-alpha material the
  *  state is first returned to the crush curve (PA10, *alpha updated), then
  *  P = P_s(alpha rho, u)/alpha (PA1) and cs = c_s(alpha rho, u) h(alpha)
- *  (PA8).  A material without porosity: material_eos (alpha untouched). */
+ *  (PA8); for an epsilon-alpha material alpha follows the strain first
+ *  (EA6), then P = P_s(alpha rho, u)/alpha and cs = c_s(alpha rho, u), the
+ *  matrix's (EA8).  A material without porosity: material_eos (alpha
+ *  untouched). */
 BOLIDE_INLINE void porosity_eos(const struct material *mat, double rho, double u, double *alpha,
                                 double *P, double *cs) {
+  if (mat->porosity.model == POROSITY_EPSALPHA) {
+    const double a = porosity_epsalpha_update(mat, rho, *alpha);
+    double Ps;
+    material_eos(mat, a * rho, u, &Ps, cs);
+    *alpha = a;
+    *P = porosity_pressure(a, Ps);
+    return;
+  }
   if (mat->porosity.model != POROSITY_PALPHA) {
     material_eos(mat, rho, u, P, cs);
     return;

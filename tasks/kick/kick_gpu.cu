@@ -7,10 +7,12 @@
 #include "gravity/gravity_iact.h"
 #include "gpu_kernels.h"
 #include "kick.h"
+#include "kick_porous.h"
 
 /** See kick2_gpu_launch. */
 __global__ void kick2_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, struct hydro_props hp,
-                                 double dt_kick, double damage_max_change, struct gpu_gravity grav,
+                                 const struct material_table *mats, double dt_kick,
+                                 double damage_max_change, struct gpu_gravity grav,
                                  double *leaf_dt) {
   __shared__ double dt_min[GPU_BLOCK];
   const int L = blockIdx.x;
@@ -23,7 +25,11 @@ __global__ void kick2_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, struc
       p.ay[i] += p.gay[i];
       p.az[i] += p.gaz[i];
     }
+    /* porous materials (kick_porous.h; no-ops for the others); dt_kick is
+     * 0 exactly after the first force computation, which has no return */
+    kick2_porous_rate(&p, i, mats);
     const double d = kick2_part(&p, i, dt_kick, &hp);
+    if (dt_kick > 0.0) kick2_porous_return(&p, i, mats, hp.continuity);
     if (d < dt) dt = d;
     if (damage_max_change > 0.0) {
       const double dtd = damage_part_timestep(&p, i, damage_max_change);
@@ -46,9 +52,10 @@ __global__ void kick2_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, struc
 }
 
 void kick2_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
-                      struct hydro_props hp, double dt_kick, double damage_max_change,
-                      struct gpu_gravity grav, double *leaf_dt) {
+                      struct hydro_props hp, const struct material_table *mats, double dt_kick,
+                      double damage_max_change, struct gpu_gravity grav, double *leaf_dt) {
   if (lv.n == 0) return;
-  kick2_gpu_kernel<<<lv.n, lv.block, 0, s>>>(p, lv, hp, dt_kick, damage_max_change, grav, leaf_dt);
+  kick2_gpu_kernel<<<lv.n, lv.block, 0, s>>>(p, lv, hp, mats, dt_kick, damage_max_change, grav,
+                                             leaf_dt);
   gpu_check_launch(kick2_gpu_kernel);
 }
