@@ -312,6 +312,7 @@ static void test_other_eos(void) {
   check_c2("Mie-Grueneisen (compression)", w_mie_gruneisen, &mg, 3500.0, 1e6);
   check_c2("Mie-Grueneisen (strong compression)", w_mie_gruneisen, &mg, 5000.0, 3e7);
   check_c2("Mie-Grueneisen (tension)", w_mie_gruneisen, &mg, 2500.0, 1e5);
+  check_c2("Mie-Grueneisen (strong expansion)", w_mie_gruneisen, &mg, 2000.0, 1e6);
   /* Tillotson water with SWIFT's low-density ramp of P_c (eta 0.875..0.925):
    * the derivative of the ramp factor is part of c^2 */
   {
@@ -343,6 +344,18 @@ static void test_other_eos(void) {
     const double P = eos_mie_gruneisen_pressure(&mg, rho, eH);
     CHECK(fabs(P - exact) <= 1e-7 * exact, "Mie-Grueneisen on its Hugoniot: P %.12g vs P_H %.12g",
           P, exact);
+  }
+  /* Mie-Grueneisen in expansion (MG3): P = a0 mu + Gamma0 rho0 u exactly, so
+   * the tension stays bounded by a0 as the material expands */
+  {
+    const double a0 = mg.rho0 * mg.c0 * mg.c0;
+    const double rho = 0.5 * mg.rho0, u = 2e5;
+    const double P = eos_mie_gruneisen_pressure(&mg, rho, u);
+    const double want = a0 * (-0.5) + mg.Gamma0 * mg.rho0 * u;
+    CHECK(fabs(P - want) <= 1e-12 * a0, "Mie-Grueneisen expanded (MG3): P %.12g vs %.12g", P, want);
+    const double P10 = eos_mie_gruneisen_pressure(&mg, 0.1 * mg.rho0, 0.0);
+    CHECK(fabs(P10 + 0.9 * a0) <= 1e-12 * a0, "Mie-Grueneisen at rho0/10: P %.6g a0 (want -0.9)",
+          P10 / a0);
   }
   /* Gray et al. 2001 rubber: c0 = 852 m/s gives K = rho0 c0^2 */
   {

@@ -5,9 +5,9 @@
    within 0.5 %, density profile within 1 %.  The material library here
    sets P_min = 0, as woma's Tillotson does, so that both cold-energy
    integrals see the same pressures.
-2. SEA shells against seagen (Kegerreis et al. 2019) for the same profile:
-   number of shells, particles per shell at the same radius, and the SPH
-   density scatter about the profile.
+2. SEA shells against seagen (Kegerreis et al. 2019) for the same profile,
+   both with the paper's settings: number of shells, particles per shell at
+   the same radius, and the SPH density scatter about the profile.
 3. Isolated shells of N = 100 ... 1e5 particles: every SPH density within
    1 % of the median (a = 0.2, b = 2 of the stretching hold for N >= 80).
 4. Impact: the two centres of mass, integrated forward as a two-body
@@ -79,8 +79,12 @@ with tempfile.TemporaryDirectory() as tmp:
     # ---- 1. profile against woma
     prof = os.path.join(tmp, "prof.txt")
     planet = os.path.join(tmp, "planet.hdf5")
+    # SEA as Kegerreis et al. (2019) place it (shells one particle spacing
+    # thick, a = 0.2, no density iterations or relaxation), to compare like
+    # with like against seagen; the defaults are tested in test_sea_planet.py
     run("planet", "--library", lib, "--materials", "granite", "--mass", str(M_E),
         "--T-surface", "300", "--P-surface", "1e5", "--n", "20000", "--profile", prof,
+        "--shell-thickness", "1", "--stretch-a", "0.2", "--density-iter", "0", "--relax", "0",
         "-o", planet)
     P = np.loadtxt(prof)
     r, rho = P[:, 0], P[:, 2]

@@ -2,25 +2,24 @@
 granite planet (isothermal 300 K) on SEA shells has every particle's SPH
 density within 1 % of the profile, the outermost shell excepted.
 
-The SPH density is the one Bolide computes at start-up (cubic spline,
-resolution_eta 1.2348, 48 neighbours; tools/sph_density.py is the same
-estimator).  The test asserts the bar as written and, because Bolide does
-not meet it, is listed in XFAIL_TESTS.  It prints where the deviation comes
-from, so that the numbers can be followed:
+The planet is made by `bolide-ic planet` with its defaults: shells 1.2
+particle spacings thick, stretching a = 0.2 -> 0.15, the shells' placement
+density iterated against their SPH density (6 iterations; the outermost
+shell takes the mass that is left) and 30 steps of relaxation along the
+shells (theory/planets.md, "SEA planet: the 1 % bar").  The SPH density is
+the one Bolide computes at start-up (cubic spline, resolution_eta 1.2348,
+48 neighbours; tools/sph_density.py is the same estimator, written
+independently of the C code that the generator uses).  The test asserts the
+bar as written and prints, per shell, where the deviation comes from:
 
 * surface: the SPH density of the *continuous* profile (no particles at all,
-  sph_density.profile_density) at each shell.  Within a kernel radius
-  (2.26 particle spacings) of the free surface the kernel reaches into
-  vacuum; the second shell from the top sits 1.5 spacings deep and even a
-  perfect continuum gives a density 1.2 % below the profile there.
-* discretisation: the particles' SPH densities about that continuum value,
-  the noise of a 48-neighbour cubic-spline sum on shells, about +-1 %.
+  sph_density.profile_density) at each shell.  Within a kernel radius of
+  the free surface the kernel reaches into vacuum: even a perfect continuum
+  gives a density ~1 % below the profile on the second shell from the top;
+  the generator compensates by placing slightly more mass there.
+* discretisation: the particles' SPH densities about that continuum value.
 * seagen (Kegerreis et al. 2019's own implementation) on the same profile
-  and N, with the same estimator, for comparison.
-
-The two parts are properties of the density estimate at this neighbour
-number, not of the placement (seagen gives the same), see
-theory/planets.md, "SEA planet: the 1 % bar"."""
+  and N, with the same estimator, for comparison (~2 %)."""
 import os
 import subprocess
 import sys

@@ -14,7 +14,10 @@
  *  6. the CSPM continuity equation (SPH:continuity_correction) gives the exact
  *     drho/dt = -rho div v of a linear velocity field on a random particle set
  *     with free surfaces, through the extra ghost and the force loops; the
- *     plain SPH continuity sum does not (its error is asserted to be large). */
+ *     plain SPH continuity sum does not (its error is asserted to be large);
+ *  7. Johnson & Cook (1985) fracture: the strain at fracture at known points,
+ *     fracture after exactly eps_f of plastic strain, no strength after it,
+ *     and the start-up checks of fracture and Johnson-Cook temperature. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -410,6 +413,98 @@ static void test_cspm_continuity(void) {
   parts_free(&p);
 }
 
+/* ----------------------------------------------------------------------- 7 */
+/** Johnson & Cook (1985) fracture (theory/solids.md E6f) with the 2024-T351
+ *  constants of examples/materials.yml (D1 0.13, D2 0.13, D3 -1.5, D4 0.011,
+ *  D5 0): the strain at fracture at known points, the accumulation of D to
+ *  fracture at exactly eps_f, no strength after it, and the start-up checks. */
+static void test_jc_fracture(void) {
+  printf("Johnson-Cook fracture:\n");
+  const double D1 = 0.13, D2 = 0.13, D3 = -1.5, D4 = 0.011, D5 = 0.0;
+  double e = 0.0;
+  /* pure shear (s* = 0), reference rate, room temperature: D1 + D2 */
+  e = fmax(e, fabs(strength_johnson_cook_failure_strain(D1, D2, D3, D4, D5, 1.0, 0.0, 1.0, 0.0) - 0.26));
+  /* uniaxial tension (s* = 1/3): D1 + D2 exp(-0.5) */
+  const double ef_t = D1 + D2 * exp(-0.5);
+  e = fmax(e, fabs(strength_johnson_cook_failure_strain(D1, D2, D3, D4, D5, 1.0, 1.0 / 3.0, 1.0, 0.0) -
+                   ef_t));
+  /* rate e^2 times the reference: factor 1 + 2 D4; below the reference: 1 */
+  e = fmax(e, fabs(strength_johnson_cook_failure_strain(D1, D2, D3, D4, D5, 1.0, 0.0, exp(2.0), 0.0) -
+                   0.26 * (1.0 + 2.0 * D4)));
+  e = fmax(e, fabs(strength_johnson_cook_failure_strain(D1, D2, D3, D4, D5, 1.0, 0.0, 0.01, 0.0) - 0.26));
+  /* temperature factor 1 + D5 T*, T* clipped to [0, 1] */
+  e = fmax(e, fabs(strength_johnson_cook_failure_strain(D1, D2, D3, D4, 0.5, 1.0, 0.0, 1.0, 3.0) -
+                   0.26 * 1.5));
+  /* a fit with eps_f <= 0 fractures at once (floor 1e-6) */
+  e = fmax(e, fabs(strength_johnson_cook_failure_strain(-0.5, 0.1, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 0.0) -
+                   1e-6));
+  check_le("strain at fracture at known points", e, 1e-15);
+
+  /* uniaxial tension at the reference rate and temperature: D reaches 1 when
+   * the plastic strain reaches eps_f, not before */
+  struct material m;
+  char msg[256];
+  material_init(&m, 0, "al", EOS_LIQUID);
+  m.strength = STRENGTH_JOHNSON_COOK;
+  m.shear_modulus = 26e9;
+  m.jc_A = 265e6, m.jc_B = 426e6, m.jc_C = 0.015, m.jc_m = 1.0, m.jc_n = 0.34;
+  m.jc_strain_rate_ref = 1.0, m.T_ref = 293.0, m.T_melt = 775.0, m.specific_heat = 875.0;
+  m.jc_D1 = D1, m.jc_D2 = D2, m.jc_D3 = D3, m.jc_D4 = D4, m.jc_D5 = D5;
+  const double seq = 300e6, P = -seq / 3.0; /* s* = -P / seq = 1/3 */
+  const int n = 1000;
+  const double deps = ef_t / n;
+  double D = 0.0;
+  int steps = 0;
+  while (D < 1.0 && steps < 2 * n) {
+    D = strength_jc_damage_update(&m, D, deps, seq, P, 2710.0, 0.0, 1.0);
+    steps++;
+  }
+  printf("  fractured after %d of %d increments of eps_f / %d\n", steps, n, n);
+  check_le("| steps to fracture - eps_f / d eps_p |", fabs((double)(steps - n)), 1.0);
+  check_le("D capped at 1", D - 1.0, 0.0);
+  const struct strength_state intact = {0.0, 2710.0, 0.0, 0.1, 1.0, 0.999};
+  const struct strength_state broken = {0.0, 2710.0, 0.0, 0.1, 1.0, 1.0};
+  const double Y0 = strength_yield(&m, &intact), Y1 = strength_yield(&m, &broken);
+  printf("  yield stress at D = 0.999: %.4g Pa, at D = 1: %.4g Pa\n", Y0, Y1);
+  check_le("no strength once fractured (D = 1)", Y1, 0.0);
+  check_le("full strength before (D < 1): | Y / (A + B eps_p^n) - 1 |",
+           fabs(Y0 / (265e6 + 426e6 * pow(0.1, 0.34)) - 1.0), 1e-14);
+  m.jc_D1 = m.jc_D2 = 0.0;
+  check_le("no fracture without D1, D2", strength_jc_fracture(&m) ? 1.0 : 0.0, 0.0);
+
+  /* start-up checks: fracture needs Johnson-Cook strength; Johnson-Cook with
+   * Mie-Grueneisen needs specific_heat (its temperature starts at 0 K) */
+  int bad = 0;
+  struct material v;
+  material_init(&v, 0, "vm", EOS_LIQUID);
+  if (material_set(&v, "rho0", 2710.0, msg, sizeof msg) || material_set(&v, "c0", 5000.0, msg, sizeof msg) ||
+      material_set(&v, "shear_modulus", 26e9, msg, sizeof msg) ||
+      material_set(&v, "yield_stress", 3e8, msg, sizeof msg) || material_set(&v, "jc_D1", 0.13, msg, sizeof msg))
+    error_exit("%s", msg);
+  v.strength = STRENGTH_VON_MISES;
+  if (material_finalize(&v, msg, sizeof msg) == 0) bad++;
+  printf("  von Mises with jc_D1: %s\n", msg);
+  struct material g;
+  material_init(&g, 0, "mg", EOS_MIE_GRUNEISEN);
+  if (material_set(&g, "rho0", 2710.0, msg, sizeof msg) || material_set(&g, "c0", 6320.0, msg, sizeof msg) ||
+      material_set(&g, "s", 1.337, msg, sizeof msg) || material_set(&g, "Gamma0", 2.1, msg, sizeof msg) ||
+      material_set(&g, "cv", 875.0, msg, sizeof msg) || material_set(&g, "shear_modulus", 26e9, msg, sizeof msg) ||
+      material_set(&g, "jc_A", 265e6, msg, sizeof msg) || material_set(&g, "T_melt", 775.0, msg, sizeof msg))
+    error_exit("%s", msg);
+  g.strength = STRENGTH_JOHNSON_COOK;
+  if (material_finalize(&g, msg, sizeof msg) == 0) bad++;
+  printf("  Mie-Grueneisen + Johnson-Cook without specific_heat: %s\n", msg);
+  if (material_set(&g, "specific_heat", 875.0, msg, sizeof msg)) error_exit("%s", msg);
+  if (material_finalize(&g, msg, sizeof msg) != 0) bad++;
+  /* spall_pressure needs Johnson-Cook fracture */
+  if (material_set(&g, "spall_pressure", 1.2e9, msg, sizeof msg)) error_exit("%s", msg);
+  if (material_finalize(&g, msg, sizeof msg) == 0) bad++;
+  printf("  spall_pressure without fracture: %s\n", msg);
+  if (material_set(&g, "jc_D1", 0.13, msg, sizeof msg)) error_exit("%s", msg);
+  if (material_finalize(&g, msg, sizeof msg) != 0) bad++;
+  check_le("start-up checks reject the three bad materials, accept the good ones", bad, 0.0);
+}
+
 int main(int argc, char **argv) {
   (void)argc;
   error_init(argv[0]);
@@ -418,6 +513,7 @@ int main(int argc, char **argv) {
   test_yield();
   test_artificial_stress();
   test_cspm_continuity();
+  test_jc_fracture();
   printf("%s\n", nfail ? "FAIL" : "PASS");
   return nfail ? 1 : 0;
 }

@@ -8,14 +8,21 @@ x, y; z = 0 is the plate's front face, the rear face is at z = -0.4 cm.
   thickness of its mid-plane) and condensed (density above --rho-frac rho0)
   is sorted into 32 azimuthal sectors; the hole radius of a sector is the
   smallest radius of such material in it, the hole diameter twice the
-  median over the sectors.
+  median over the sectors (the clear opening).
+- Fractured rim (Johnson-Cook fracture, ShearDamage = 1): per sector the
+  95th percentile radius of fractured condensed plate material still in
+  the plate, twice the median over the sectors.  Fractured material carries
+  no tension and no shear: the ring between the clear hole and this
+  diameter is rubble, no longer attached to the plate, so this is the hole
+  of the plate that would be recovered if the rubble fell out.
 - Debris cloud: every particle behind the rear face by more than one
   lattice spacing (projectile and plate fragments).  Length L: from the rear
   face to the front of the cloud (the 99.5th percentile of the distance
   behind the rear face, so that a few stray particles do not set it);
   width W: twice the 99.5th percentile of the distance from the axis.
-  Hiermaier et al. (1997) measured L/W on flash X-ray images in the same
-  way (rear face of the bumper to the cloud's front, largest width).
+  This is meant to follow an L/W read off a flash X-ray image (rear face of
+  the bumper to the cloud's front, largest width); how Hiermaier et al.
+  (1997) measured it and at what time was not checked against the paper.
 
 Usage: analyse.py [--dx 0.0008] [--out plate.png] OUTPUT_DIR"""
 import argparse
@@ -37,18 +44,39 @@ def read(path):
     with h5py.File(path, "r") as f:
         t = float(np.ravel(f["Header"].attrs["Time"])[0])
         p = f["PartType0"]
-        return t, p["Coordinates"][:], p["Densities"][:], p["MaterialIDs"][:]
+        dmg = p["ShearDamage"][:] if "ShearDamage" in p else np.zeros(len(p["Densities"]))
+        return t, p["Coordinates"][:], p["Densities"][:], p["MaterialIDs"][:], dmg
+
+
+def in_plate(d, rho, mat, rho_frac):
+    """Condensed plate material still in the plate: sector index and radius."""
+    zmid = -0.5 * THICK
+    inplate = (mat == 0) & (np.abs(d[:, 2] - zmid) < THICK) & (rho > rho_frac * RHO0)
+    r = np.hypot(d[:, 0], d[:, 1])
+    phi = np.arctan2(d[:, 1], d[:, 0])
+    k = ((phi + np.pi) / (2 * np.pi) * 32).astype(int) % 32
+    return inplate, k, r
 
 
 def hole_diameter(d, rho, mat, rho_frac):
-    zmid = -0.5 * THICK
-    inplate = (mat == 0) & (np.abs(d[:, 2] - zmid) < THICK) & (rho > rho_frac * RHO0)
-    r = np.hypot(d[inplate, 0], d[inplate, 1])
-    phi = np.arctan2(d[inplate, 1], d[inplate, 0])
-    k = ((phi + np.pi) / (2 * np.pi) * 32).astype(int) % 32
+    """Clear hole: twice the median over 32 sectors of the smallest radius of
+    condensed plate material in the plate."""
+    inplate, k, r = in_plate(d, rho, mat, rho_frac)
     rmin = np.full(32, np.inf)
-    np.minimum.at(rmin, k, r)
+    np.minimum.at(rmin, k[inplate], r[inplate])
     return 2.0 * np.median(rmin)
+
+
+def rim_diameter(d, rho, mat, dmg, rho_frac):
+    """Outer diameter of the fractured rim: twice the median over 32 sectors
+    of the 95th percentile radius of fractured (D = 1) condensed plate
+    material in the plate (nan without fracture)."""
+    inplate, k, r = in_plate(d, rho, mat, rho_frac)
+    frac = inplate & (dmg >= 1.0)
+    if frac.sum() < 32:
+        return np.nan
+    rr = [np.percentile(r[frac & (k == j)], 95) if (frac & (k == j)).any() else 0.0 for j in range(32)]
+    return 2.0 * np.median(rr)
 
 
 def cloud(d, dx):
@@ -71,23 +99,25 @@ def main():
     snaps = sorted(glob.glob(os.path.join(a.dir, "plate_*.hdf5")))
     if len(snaps) < 2:
         raise SystemExit(f"analyse.py: error: {a.dir}: fewer than two snapshots plate_*.hdf5")
-    t0, x0, _, mat0 = read(snaps[0])
+    t0, x0, _, mat0, _ = read(snaps[0])
     origin = np.array([x0[mat0 == 1, 0].mean(), x0[mat0 == 1, 1].mean(), x0[mat0 == 0, 2].max() + 0.5 * a.dx])
-    print("   t [us]   hole diameter [cm]   cloud L [cm]   cloud W [cm]    L/W")
+    print("   t [us]   hole [cm]   fractured rim [cm]   cloud L [cm]   cloud W [cm]    L/W")
     rows = []
     for s in snaps[1:]:
-        t, x, rho, mat = read(s)
+        t, x, rho, mat, dmg = read(s)
         d = x - origin
         D = hole_diameter(d, rho, mat, a.rho_frac)
+        Di = rim_diameter(d, rho, mat, dmg, a.rho_frac)
         L, W, _ = cloud(d, a.dx)
-        rows.append((t, D, L, W))
-        print(f"  {t * 1e6:7.2f}   {D * 100:18.2f}   {L * 100:12.2f}   {W * 100:12.2f}   {L / W:5.2f}")
-    t, D, L, W = rows[-1]
+        rows.append((t, D, Di, L, W))
+        print(f"  {t * 1e6:7.2f}   {D * 100:9.2f}   {Di * 100:18.2f}   {L * 100:12.2f}   {W * 100:12.2f}   {L / W:5.2f}")
+    t, D, Di, L, W = rows[-1]
     print(f"final (t = {t * 1e6:.1f} us, dx = {a.dx * 1e3:.2f} mm): hole diameter {D * 100:.2f} cm "
-          f"(experiment 3.45 cm: {100 * (D / 0.0345 - 1):+.0f}%), debris cloud L/W {L / W:.2f} "
+          f"(experiment 3.45 cm: {100 * (D / 0.0345 - 1):+.0f}%), fractured rim {Di * 100:.2f} cm "
+          f"({100 * (Di / 0.0345 - 1):+.0f}%), debris cloud L/W {L / W:.2f} "
           f"(experiment 1.39: {100 * (L / W / 1.39 - 1):+.0f}%)")
 
-    t, x, rho, mat = read(snaps[-1])
+    t, x, rho, mat, dmg = read(snaps[-1])
     d = x - origin
     fig, ax = plt.subplots(1, 2, figsize=(12, 5))
     sl = np.abs(d[:, 1]) < 0.6 * a.dx
@@ -109,6 +139,11 @@ def main():
     th = np.linspace(0, 2 * np.pi, 200)
     ax[1].plot(1.725 * np.cos(th), 1.725 * np.sin(th), "k--", lw=1, label="experiment, 3.45 cm")
     ax[1].plot(D / 2 * 100 * np.cos(th), D / 2 * 100 * np.sin(th), "g-", lw=1, label=f"this run, {D * 100:.2f} cm")
+    if Di > D:
+        ax[1].plot(Di / 2 * 100 * np.cos(th), Di / 2 * 100 * np.sin(th), "m-", lw=1,
+                   label=f"fractured rim, {Di * 100:.2f} cm")
+    frac = pl & (dmg >= 1.0)
+    ax[1].scatter(d[frac, 0] * 100, d[frac, 1] * 100, s=0.5, c="tab:orange", label="fractured (D = 1)")
     ax[1].set_aspect("equal")
     ax[1].set_xlim(-4, 4)
     ax[1].set_ylim(-4, 4)

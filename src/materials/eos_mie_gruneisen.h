@@ -12,13 +12,24 @@
  * Off the Hugoniot, P = P_H + Gamma rho (u - e_H), with the Rankine-Hugoniot
  * energy e_H = P_H (1/rho0 - 1/rho) / 2 = P_H mu / (2 rho0 (1 + mu)) and
  * Gamma rho = Gamma0 rho0 (Meyers 1994):
- *   P = [1 - Gamma0 mu / (2 (1 + mu))] P_H + Gamma0 rho0 u.          (MG2)
+ *   P = [1 - Gamma0 mu / (2 (1 + mu))] P_H + Gamma0 rho0 u,   mu > 0,  (MG2)
+ *   P = a0 mu + Gamma0 rho0 u,                                mu <= 0. (MG3)
+ * In expansion there is no shock Hugoniot to refer to (a rarefaction is
+ * not a shock): MG3 is the linear cold curve plus the thermal pressure, the
+ * expanded branch of the Grueneisen EOS of hydrocodes (e.g. LS-DYNA's
+ * *EOS_GRUNEISEN).  MG2 continued to mu < 0 has the factor
+ * 1 + Gamma0 |mu| / (2 (1 + mu)) > 1, which grows without bound as the
+ * material expands (tension of -9.4 a0 at rho = rho0 / 10, against -0.9 a0
+ * from MG3): expanded debris and spall would be held together by a tension
+ * that the cold curve does not have.  MG2 and MG3 meet at mu = 0 with the
+ * same P and dP/drho.
  * (Libersky et al. write the factor as 1 - Gamma0 mu / 2, its first-order
  * expansion; that form gives c^2 < 0 above mu ~ 0.7 for aluminium, so the
  * exact factor is used.)  Sound speed c^2 = (dP/drho)_u + P/rho^2
  * (dP/du)_rho with, for f = 1 - Gamma0 mu / (2 (1 + mu)),
  *   (dP/drho)_u = [ f P_H'(mu) - Gamma0 P_H / (2 (1 + mu)^2) ] / rho0,
- *   (dP/du)_rho = Gamma0 rho0.
+ *   (dP/du)_rho = Gamma0 rho0
+ * in compression, and (dP/drho)_u = a0 / rho0 in expansion.
  * Temperature T = u / cv when cv > 0. */
 #ifndef BOLIDE_EOS_MIE_GRUNEISEN_H
 #define BOLIDE_EOS_MIE_GRUNEISEN_H
@@ -57,10 +68,13 @@ BOLIDE_INLINE void eos_mie_gruneisen_eval(const struct eos_mie_gruneisen *p, dou
     PH = a0 * mu;
     dPH = a0;
   }
+  /* the Hugoniot-energy correction of MG2 in compression only; in
+   * expansion P = a0 mu + Gamma0 rho0 u (MG3) */
   const double eta = rho / p->rho0; /* 1 + mu */
-  const double f = 1.0 - 0.5 * p->Gamma0 * mu / eta;
+  const double f = mu > 0.0 ? 1.0 - 0.5 * p->Gamma0 * mu / eta : 1.0;
+  const double df = mu > 0.0 ? 0.5 * p->Gamma0 * PH / (eta * eta) : 0.0;
   *P = f * PH + p->Gamma0 * p->rho0 * u;
-  const double dPdrho = (f * dPH - 0.5 * p->Gamma0 * PH / (eta * eta)) / p->rho0;
+  const double dPdrho = (f * dPH - df) / p->rho0;
   *c2 = dPdrho + *P / (rho * rho) * p->Gamma0 * p->rho0;
 }
 

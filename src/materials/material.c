@@ -221,6 +221,24 @@ static const char *material_strength_check(const struct material *mat, const cha
       *key = "specific_heat";
       return "must be positive for the Johnson-Cook model when the EOS defines no temperature";
     }
+    if (!(mat->specific_heat > 0.0) && mat->eos_type == EOS_MIE_GRUNEISEN) {
+      /* the Mie-Grueneisen temperature u / cv is 0 K at u = 0, the state of
+       * initial conditions at room temperature: T* would start at 0 */
+      *key = "specific_heat";
+      return "must be positive for the Johnson-Cook model with the Mie-Grueneisen EOS "
+             "(its temperature u/cv starts at 0 K, not at T_ref)";
+    }
+    if ((mat->jc_D1 != 0.0 || mat->jc_D2 != 0.0) && mat->shear_failure_strain > 0.0) {
+      *key = "shear_failure_strain";
+      return "cannot be combined with Johnson-Cook fracture (jc_D1, jc_D2)";
+    }
+  } else if (mat->jc_D1 != 0.0 || mat->jc_D2 != 0.0) {
+    *key = mat->jc_D1 != 0.0 ? "jc_D1" : "jc_D2";
+    return "(Johnson-Cook fracture) needs strength johnson_cook";
+  }
+  if (mat->spall_pressure > 0.0 && !(s == STRENGTH_JOHNSON_COOK && (mat->jc_D1 != 0.0 || mat->jc_D2 != 0.0))) {
+    *key = "spall_pressure";
+    return "needs Johnson-Cook fracture (strength johnson_cook with jc_D1 or jc_D2)";
   }
   if ((mat->weibull_k > 0.0) != (mat->weibull_m > 0.0)) {
     *key = mat->weibull_k > 0.0 ? "weibull_m" : "weibull_k";

@@ -141,6 +141,17 @@ enum material_strength_type {
     "melting temperature (0: none)")                                                                   \
   X(material, specific_heat, "specific_heat", 0.0, 0.0, 0, INFINITY, MATERIAL_UNIT_HEAT_CAPACITY,      \
     "specific heat c_v for T = T_ref + u / c_v (Johnson-Cook; 0: the EOS's temperature)")              \
+  X(material, jc_D1, "jc_D1", 0.0, -INFINITY, 0, INFINITY, MATERIAL_UNIT_NONE,                       \
+    "Johnson-Cook (1985) fracture D1 (D1 = D2 = 0: no failure)")                                       \
+  X(material, jc_D2, "jc_D2", 0.0, -INFINITY, 0, INFINITY, MATERIAL_UNIT_NONE, "Johnson-Cook fracture D2") \
+  X(material, jc_D3, "jc_D3", 0.0, -INFINITY, 0, INFINITY, MATERIAL_UNIT_NONE,                       \
+    "Johnson-Cook fracture D3 (exponent of the stress triaxiality)")                                   \
+  X(material, jc_D4, "jc_D4", 0.0, -INFINITY, 0, INFINITY, MATERIAL_UNIT_NONE,                       \
+    "Johnson-Cook fracture D4 (strain rate)")                                                          \
+  X(material, jc_D5, "jc_D5", 0.0, -INFINITY, 0, INFINITY, MATERIAL_UNIT_NONE,                       \
+    "Johnson-Cook fracture D5 (temperature)")                                                          \
+  X(material, spall_pressure, "spall_pressure", 0.0, 0.0, 0, INFINITY, MATERIAL_UNIT_PRESSURE,       \
+    "Johnson-Cook fracture also where the pressure falls below -spall_pressure (0: never)")            \
   X(material, weibull_k, "weibull_k", 0.0, 0.0, 0, INFINITY, MATERIAL_UNIT_PER_VOLUME,                 \
     "Weibull k of the flaw distribution (0: no brittle damage)")                                       \
   X(material, weibull_m, "weibull_m", 0.0, 0.0, 0, 100.0, MATERIAL_UNIT_NONE, "Weibull m")          \

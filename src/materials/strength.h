@@ -33,6 +33,12 @@ BOLIDE_INLINE double strength_temperature(const struct material *mat, double rho
   return material_temperature(mat, rho, u);
 }
 
+/** Whether material mat fractures by Johnson & Cook (1985): Johnson-Cook
+ *  strength with D1 or D2 set (theory/solids.md E6f). */
+BOLIDE_INLINE int strength_jc_fracture(const struct material *mat) {
+  return mat->strength == STRENGTH_JOHNSON_COOK && (mat->jc_D1 != 0.0 || mat->jc_D2 != 0.0);
+}
+
 /** Yield stress Y (as the equivalent stress sqrt(3 J2)) of material mat in
  *  state st; INFINITY for purely elastic materials, 0 for fluids.  Thermal
  *  softening: Y falls linearly to zero at melt_energy when it is set
@@ -61,6 +67,8 @@ BOLIDE_INLINE double strength_yield(const struct material *mat, const struct str
                                            mat->yield_stress_max, mat->cohesion_damaged,
                                            mat->friction_damaged, st->P, st->damage);
     case STRENGTH_JOHNSON_COOK:
+      /* fractured (Johnson & Cook 1985: D = 1): no strength */
+      if (st->damage >= 1.0 && strength_jc_fracture(mat)) return 0.0;
       return strength_johnson_cook_yield(mat->jc_A, mat->jc_B, mat->jc_C, mat->jc_m, mat->jc_n,
                                          mat->jc_strain_rate_ref, mat->T_ref, mat->T_melt,
                                          st->eps_p, st->eps_rate,
@@ -68,6 +76,26 @@ BOLIDE_INLINE double strength_yield(const struct material *mat, const struct str
     default:
       return 0.0;
   }
+}
+
+/** Johnson & Cook (1985) fracture damage D after a radial return that gave
+ *  the plastic strain increment deps_p; seq: the equivalent stress
+ *  sqrt(3 J2) of the trial (elastic predictor) stress, which with the
+ *  pressure P gives the triaxiality s* = -P / seq; rho, u, eps_rate as for
+ *  the yield stress.  D is stored in the ShearDamage field; at D = 1 the
+ *  particle has fractured: no strength (strength_yield) and no tension
+ *  (ghost_part.h). */
+BOLIDE_INLINE double strength_jc_damage_update(const struct material *mat, double D, double deps_p,
+                                               double seq, double P, double rho, double u,
+                                               double eps_rate) {
+  if (!(deps_p > 0.0) || D >= 1.0) return D;
+  const double s_star = seq > 0.0 ? -P / seq : 0.0;
+  const double T = strength_temperature(mat, rho, u);
+  const double T_star = (T - mat->T_ref) / (mat->T_melt - mat->T_ref);
+  const double eps_f = strength_johnson_cook_failure_strain(mat->jc_D1, mat->jc_D2, mat->jc_D3, mat->jc_D4,
+                                                            mat->jc_D5, mat->jc_strain_rate_ref, s_star,
+                                                            eps_rate, T_star);
+  return strength_johnson_cook_damage(D, deps_p, eps_f);
 }
 
 /** Second invariant J2 = S:S / 2 of a deviatoric stress (xx xy xz yy yz zz). */

@@ -14,6 +14,7 @@
 #include "material.h"
 #include "part.h"
 #include "porosity_eos.h"
+#include "strength.h"
 
 /** Add particle i's own contribution to its density sums. */
 BOLIDE_INLINE void ghost_part_add_self(struct parts *BOLIDE_RESTRICT p, size_t i) {
@@ -77,6 +78,12 @@ BOLIDE_INLINE void ghost_part_finish(struct parts *BOLIDE_RESTRICT p, size_t i,
     porosity_eos(mat, p->rho[i], p->up[i], &p->alpha_p[i], &P, &cs); /* P = P_s(alpha rho, u)/alpha */
   else
     material_eos(mat, p->rho[i], p->up[i], &P, &cs);
+  /* fractured material (Johnson & Cook 1985; theory/solids.md E6f) carries
+   * no tension; with spall_pressure, a tension beyond it fractures (E6g) */
+  if (hp->solids && P < 0.0 && strength_jc_fracture(mat)) {
+    if (mat->spall_pressure > 0.0 && P < -mat->spall_pressure) p->dmg_shear[i] = 1.0;
+    if (p->dmg_shear[i] >= 1.0) P = 0.0;
+  }
   p->P[i] = P;
   p->cs[i] = cs;
   const double curl = sqrt(p->curl_vx[i] * p->curl_vx[i] + p->curl_vy[i] * p->curl_vy[i] +

@@ -79,10 +79,15 @@ BOLIDE_INLINE void extra_ghost_part(struct parts *BOLIDE_RESTRICT p, size_t i,
     const struct strength_state st = {p->P[i], p->rho[i], p->up[i], p->eps_p[i], eps_rate,
                                       damage_total(p->dmg[i], p->dmg_shear[i])};
     const double Y = strength_yield(mat, &st);
+    const double seq = sqrt(3.0 * strength_J2(S)); /* trial stress: triaxiality of E6f */
     const double deps_p = strength_radial_return(S, Y, mu);
     p->eps_p[i] += deps_p;
-    /* shear damage grows with the plastic strain (Collins et al. 2004) */
-    if (mat->shear_failure_strain > 0.0)
+    /* Johnson & Cook (1985) fracture (theory/solids.md E6f), else shear
+     * damage (Collins et al. 2004): both grow with the plastic strain */
+    if (strength_jc_fracture(mat))
+      p->dmg_shear[i] = strength_jc_damage_update(mat, p->dmg_shear[i], deps_p, seq, p->P[i], p->rho[i],
+                                                  p->up[i], eps_rate);
+    else if (mat->shear_failure_strain > 0.0)
       p->dmg_shear[i] = damage_shear_update(p->dmg_shear[i], deps_p, p->P[i], mat->shear_failure_strain,
                                             mat->shear_failure_slope, mat->shear_failure_pressure);
     strength_radial_return(Sp, Y, mu);

@@ -84,13 +84,37 @@ void ic_planet_spec_free(struct ic_planet_spec *s);
 /** N points on the unit sphere by stretched equal-area regions (Kegerreis
  *  et al. 2019, Sect. 2.1), randomly rotated with the generator state rng. */
 void ic_sea_shell(int N, double *x, double *y, double *z, uint64_t *rng);
+/** The same with stretching parameter a (b = 10 a). */
+void ic_sea_shell_a(int N, double a, double *x, double *y, double *z, uint64_t *rng);
+
+/** Options of the SEA placement of a planet (theory/planets.md, "SEA
+ *  planet: the 1 % bar"). */
+struct ic_sea_options {
+  int density_iter;       /**< iterations of the shells' density against rho_SPH (0: none) */
+  int relax;              /**< steps of relaxation along the shells (0: none) */
+  double shell_thickness; /**< shell thickness over the particle spacing (m/rho)^(1/3) */
+  double stretch_a;       /**< a of the latitude stretching (b = 10 a) */
+};
+/** The defaults of bolide-ic planet (theory/planets.md). */
+#define IC_SEA_OPTIONS_DEFAULT {.density_iter = 6, .relax = 30, .shell_thickness = 1.2, .stretch_a = 0.15}
 
 /** Particles of a profile on SEA shells: about N of them, masses equal
  *  within rounding, h = eta (m/rho)^(1/3), MaterialIDs mat_id[layer], ids
  *  first_id, first_id+1, ...  Prints one line per layer to stdout when
  *  verbose. */
 void ic_sea_planet(const struct ic_planet_profile *prof, const int32_t *mat_id, size_t N,
-                   double eta, uint64_t seed, int64_t first_id, struct parts *p, int verbose);
+                   double eta, uint64_t seed, int64_t first_id, struct parts *p,
+                   const struct ic_sea_options *opt, int verbose);
+
+/** SPH density rho of n points as Bolide computes it at start-up: h solves
+ *  sum_j W(r_ij, h) = (eta / h)^3 (h: the guess in, the solution out). */
+void ic_sph_density(size_t n, const double *x, const double *y, const double *z, const double *m,
+                    double eta, double *h, double *rho);
+
+/** `steps` steps of relaxation of the points along their spheres about the
+ *  origin, towards rho_SPH = rho_t; leaves h and rho of the final positions. */
+void ic_sea_relax(size_t n, double *x, double *y, double *z, const double *m, const double *rho_t,
+                  double eta, double *h, double *rho, int steps);
 
 /** splitmix64 (Steele, Lea & Flood 2014). */
 uint64_t ic_rng_next(uint64_t *s);

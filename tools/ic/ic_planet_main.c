@@ -34,6 +34,7 @@ struct body {
   int T_given;         /**< sphere: u from T (else u = 0) */
   double radius_given; /**< file: radius override */
   uint64_t seed;       /**< random rotations */
+  struct ic_sea_options sea; /**< surface iterations and relaxation of the SEA shells */
   /* results */
   struct parts p; /**< the particles, centred on their centre of mass */
   double M, R;    /**< mass and radius */
@@ -101,6 +102,14 @@ static void body_set(struct body *b, const char *key, const char *val) {
     b->spec.n_prof = (int)body_real(b, key, val, 100);
   } else if (!strcmp(key, "eta")) {
     b->eta = body_real(b, key, val, 1e-3);
+  } else if (!strcmp(key, "density-iter")) {
+    b->sea.density_iter = (int)body_real(b, key, val, 0);
+  } else if (!strcmp(key, "relax")) {
+    b->sea.relax = (int)body_real(b, key, val, 0);
+  } else if (!strcmp(key, "shell-thickness")) {
+    b->sea.shell_thickness = body_real(b, key, val, 0.5);
+  } else if (!strcmp(key, "stretch-a")) {
+    b->sea.stretch_a = body_real(b, key, val, 0);
   } else if (!strcmp(key, "seed")) {
     b->seed = (uint64_t)body_real(b, key, val, 0);
   } else if (!strcmp(key, "rho")) {
@@ -128,6 +137,7 @@ static void body_init(struct body *b, const char *what) {
   b->n = 1e5;
   b->eta = 1.2348;
   b->seed = 1;
+  b->sea = (struct ic_sea_options)IC_SEA_OPTIONS_DEFAULT;
   b->u = -1;
 }
 
@@ -215,7 +225,7 @@ static void body_make(struct body *b, int64_t first_id, int verbose) {
   if (b->profile) ic_planet_profile_write(&prof, b->profile);
   if (b->n >= 4)
     ic_sea_planet(&prof, b->mat_ids, (size_t)llround(b->n), b->eta, b->seed, first_id, &b->p,
-                  verbose);
+                  &b->sea, verbose);
   ic_planet_profile_free(&prof);
   ic_planet_spec_free(s);
 }
@@ -269,6 +279,13 @@ static void planet_usage(FILE *f) {
       "  --mat-ids I,J            material ids (default: the library's swift_id)\n"
       "  --eta ETA                h = ETA (m/rho)^(1/3) (default 1.2348)\n"
       "  --seed S                 seed of the shell rotations (default 1)\n"
+      "  --shell-thickness F      SEA shell thickness in particle spacings (default 1.2;\n"
+      "                           Kegerreis et al. 2019: 1)\n"
+      "  --stretch-a A            latitude stretching a, b = 10 a (default 0.15; paper: 0.2)\n"
+      "  --density-iter K         iterations of the shells' placement density against\n"
+      "                           their SPH density (default 6; 0: none)\n"
+      "  --relax S                steps of relaxation along the shells towards\n"
+      "                           SPH density = profile (default 30; 0: none)\n"
       "  --library FILE           material library (default: materials.yml)\n");
 }
 
@@ -287,6 +304,10 @@ static const struct option planet_longopts[] = {{"output", required_argument, NU
                                                 {"mat-ids", required_argument, NULL, 0},
                                                 {"eta", required_argument, NULL, 0},
                                                 {"seed", required_argument, NULL, 0},
+                                                {"density-iter", required_argument, NULL, 0},
+                                                {"relax", required_argument, NULL, 0},
+                                                {"shell-thickness", required_argument, NULL, 0},
+                                                {"stretch-a", required_argument, NULL, 0},
                                                 {"library", required_argument, NULL, 0},
                                                 {"help", no_argument, NULL, 'h'},
                                                 {NULL, 0, NULL, 0}};

@@ -14,7 +14,11 @@
  * layer boundary on a shell boundary.  Shell masses come from the profile;
  * the particle count of each shell is its mass over the mean particle mass,
  * rounded with the remainder carried, so particle masses are equal within
- * that rounding and the total mass is exact.  See theory/planets.md. */
+ * that rounding and the total mass is exact (the outermost shell takes what
+ * is left).  Then (ic_sea_planet's options) the shells' placement density is
+ * iterated against their SPH density and the particles are relaxed along
+ * their shells (ic_sea_fit.c).  See theory/planets.md, "SEA planet: the 1 %
+ * bar". */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -48,10 +52,11 @@ static void sea_rotate(int n, double *x, double *y, double *z, uint64_t *rng) {
 }
 
 /** Latitude stretching of Kegerreis et al. (2019, eq. 3) of colatitude th
- *  for N particles, a = 0.2, b = 2: pushes collars near the poles towards
- *  the equator, where the equal-area regions are too tall. */
-static double sea_stretch(double th, int N) {
-  const double a = 0.2, b = 2.0, s = 1.0 / sqrt((double)N);
+ *  for N particles, b = 10 a (a = 0.2, b = 2 in the paper): pushes collars
+ *  near the poles towards the equator, where the equal-area regions are too
+ *  tall. */
+static double sea_stretch(double th, int N, double a) {
+  const double b = 10 * a, s = 1.0 / sqrt((double)N);
   return th + (M_PI / 2 - th) * a * s * exp(-(M_PI / 2 - fabs(M_PI / 2 - th)) / (M_PI * b * s));
 }
 
@@ -63,7 +68,7 @@ static double sea_lon_gap(double phi, double off, int m) {
   return fmin(t, d - t);
 }
 
-void ic_sea_shell(int N, double *x, double *y, double *z, uint64_t *rng) {
+void ic_sea_shell_a(int N, double a, double *x, double *y, double *z, uint64_t *rng) {
   if (N <= 0) return;
   if (N <= 4) {
     /* the regular configurations: point, segment, triangle, tetrahedron */
@@ -102,7 +107,7 @@ void ic_sea_shell(int N, double *x, double *y, double *z, uint64_t *rng) {
     cum += m;
     const double th_hi = j == n_col ? M_PI - th_c : sea_cap_angle(cum * area);
     if (m > 0) {
-      const double th = sea_stretch(0.5 * (th_lo + th_hi), N);
+      const double th = sea_stretch(0.5 * (th_lo + th_hi), N, a);
       /* rotate the collar to maximise the smallest longitude gap to the
        * previous collar: try 32 offsets over one region width */
       double off = 0, best = -1;
@@ -124,6 +129,10 @@ void ic_sea_shell(int N, double *x, double *y, double *z, uint64_t *rng) {
   x[i] = 0, y[i] = 0, z[i] = -1, i++;
   if (i != N) error_bug("SEA shell of %d points placed %d", N, i);
   sea_rotate(N, x, y, z, rng);
+}
+
+void ic_sea_shell(int N, double *x, double *y, double *z, uint64_t *rng) {
+  ic_sea_shell_a(N, 0.2, x, y, z, rng);
 }
 
 /** Index j of the profile segment [r_j, r_j+1] holding r. */
@@ -175,27 +184,57 @@ static double sea_invert(const struct ic_planet_profile *p, const double *s, dou
   return p->r[lo] + t * (p->r[hi] - p->r[lo]);
 }
 
-void ic_sea_planet(const struct ic_planet_profile *prof, const int32_t *mat_id, size_t N,
-                   double eta, uint64_t seed, int64_t first_id, struct parts *p, int verbose) {
+/** Correction g(r) of the placement density (theory/planets.md, "SEA
+ *  planet: the 1 % bar"): piecewise linear through (gr[k], gv[k]), constant
+ *  beyond the ends; 1 where ng == 0. */
+static double sea_g(const double *gr, const double *gv, int ng, double r) {
+  if (ng <= 0) return 1;
+  if (r <= gr[0]) return gv[0];
+  if (r >= gr[ng - 1]) return gv[ng - 1];
+  int lo = 0, hi = ng - 1;
+  while (hi - lo > 1) {
+    const int mid = (lo + hi) / 2;
+    if (gr[mid] <= r)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  const double t = (r - gr[lo]) / (gr[hi] - gr[lo]);
+  return gv[lo] + t * (gv[hi] - gv[lo]);
+}
+
+/** One SEA placement of the profile, the shells' particle counts and radii
+ *  following the density rho(r) g(r) (g == 1: the profile itself).  The
+ *  outermost shell takes the mass that is left, so the total is exactly the
+ *  profile's.  Writes the shell index of each particle to *shell_of (grown
+ *  as needed), the radius and first particle of each shell to *sh_r,
+ *  *sh_first (n_shells + 1 entries), and returns the number of shells. */
+static int sea_place(const struct ic_planet_profile *prof, const int32_t *mat_id, size_t N,
+                     double eta, uint64_t seed, int64_t first_id, struct parts *p, double dr_fac,
+                     double a, const double *gr, const double *gv, int ng, double **sh_r,
+                     size_t **sh_first, int **sh_layer, int verbose) {
   const size_t n = prof->n;
   struct sea_cum c = {error_malloc(n * sizeof(double), "planet profile"),
                       error_malloc(n * sizeof(double), "planet profile"),
                       error_malloc(n * sizeof(double), "planet profile")};
   c.m[0] = c.rm[0] = c.s[0] = 0;
+  double m_plain = 0;
   for (size_t j = 1; j < n; j++) {
     /* trapezoids over each segment, each end with the density of the
      * segment's own layer side */
     const double r0 = prof->r[j - 1], r1 = prof->r[j], dr = r1 - r0;
     const int k = prof->layer[j];
-    const double rho0 = prof->layer[j - 1] == k ? prof->rho[j - 1] : prof->rho[j];
-    const double rho1 = prof->rho[j];
+    const double rho0p = prof->layer[j - 1] == k ? prof->rho[j - 1] : prof->rho[j];
+    const double rho1p = prof->rho[j];
+    m_plain += 2 * M_PI * dr * (r0 * r0 * rho0p + r1 * r1 * rho1p);
+    const double rho0 = rho0p * sea_g(gr, gv, ng, r0), rho1 = rho1p * sea_g(gr, gv, ng, r1);
     c.m[j] = c.m[j - 1] + 2 * M_PI * dr * (r0 * r0 * rho0 + r1 * r1 * rho1);
     c.rm[j] = c.rm[j - 1] + 2 * M_PI * dr * (r0 * r0 * r0 * rho0 + r1 * r1 * r1 * rho1);
     c.s[j] = c.s[j - 1] + 0.5 * dr * (cbrt(rho0) + cbrt(rho1));
   }
   /* the trapezoids differ from the profile's own (explicit) integration by
    * O(dr): scale so that the particles carry exactly the profile's mass */
-  const double scale = prof->M / c.m[n - 1];
+  const double scale = prof->M / m_plain;
   for (size_t j = 0; j < n; j++) c.m[j] *= scale, c.rm[j] *= scale;
   const double M = prof->M;
   const double mp = M / (double)N;
@@ -207,7 +246,7 @@ void ic_sea_planet(const struct ic_planet_profile *prof, const int32_t *mat_id, 
          *sy = error_malloc((N + 64) * sizeof(double), "planet profile"),
          *sz = error_malloc((N + 64) * sizeof(double), "planet profile");
   /* central tetrahedron: the sphere holding 4 mean particle masses */
-  double r_in = sea_interp(prof, c.s, 0); /* 0 */
+  double r_in = 0;
   {
     double lo = 0, hi = prof->r_layer[0];
     if (sea_interp(prof, c.m, hi) < 4 * mp)
@@ -221,43 +260,63 @@ void ic_sea_planet(const struct ic_planet_profile *prof, const int32_t *mat_id, 
     }
     r_in = hi;
   }
-  struct shell_out {
-    double r, mass;
-    int N, k;
-  };
-  int n_shells = 0;
+  int n_shells = 0, cap_shells = 64;
+  *sh_r = error_malloc(cap_shells * sizeof(double), "planet shells");
+  *sh_first = error_malloc((cap_shells + 1) * sizeof(size_t), "planet shells");
+  *sh_layer = error_malloc(cap_shells * sizeof(int), "planet shells");
   size_t count = 0;
   for (int k = 0; k < prof->n_layers; k++) {
     const double r_out = prof->r_layer[k];
     const double r_lo = k == 0 ? 0 : prof->r_layer[k - 1];
     const double s_lo = sea_interp(prof, c.s, k == 0 ? r_in : r_lo);
     const double s_hi = sea_interp(prof, c.s, r_out);
-    /* shells of thickness (mp / rho)^(1/3): their number is mp^(-1/3) int rho^(1/3) dr */
-    int ns = (int)lround((s_hi - s_lo) / cbrt(mp));
+    /* shells of thickness dr_fac (mp / rho)^(1/3): their number is
+     * mp^(-1/3) int rho^(1/3) dr / dr_fac */
+    int ns = (int)lround((s_hi - s_lo) / (dr_fac * cbrt(mp)));
     if (ns < 1) ns = 1;
     int layer_count = 0;
     for (int i = (k == 0 ? -1 : 0); i < ns; i++) {
       double ra, rb;
       int Ni;
+      const int last = k == prof->n_layers - 1 && i == ns - 1;
       if (i < 0) {
         ra = 0, rb = r_in, Ni = 4;
       } else {
         ra = i == 0 ? (k == 0 ? r_in : r_lo) : sea_invert(prof, c.s, s_lo + (s_hi - s_lo) * i / ns);
         rb = i == ns - 1 ? r_out : sea_invert(prof, c.s, s_lo + (s_hi - s_lo) * (i + 1) / ns);
-        const double want = (sea_interp(prof, c.m, rb) - sea_interp(prof, c.m, ra)) / mp;
+        double want = (sea_interp(prof, c.m, rb) - sea_interp(prof, c.m, ra)) / mp;
+        if (last) { /* the outermost shell: what is left of the profile's mass */
+          double done = 0;
+          for (size_t q = 0; q < count; q++) done += p->m[q];
+          want = (M - done) / mp - carry;
+        }
         Ni = (int)lround(want + carry);
         if (Ni < 1) Ni = 1;
         carry += want - Ni;
       }
-      const double Mi = sea_interp(prof, c.m, rb) - sea_interp(prof, c.m, ra);
+      double Mi = sea_interp(prof, c.m, rb) - sea_interp(prof, c.m, ra);
       /* shell radius: mean of the half-way and the mass-weighted radii */
       const double r_mw = (sea_interp(prof, c.rm, rb) - sea_interp(prof, c.rm, ra)) / Mi;
       const double rs = 0.5 * (0.5 * (ra + rb) + r_mw);
+      if (last) {
+        double done = 0;
+        for (size_t q = 0; q < count; q++) done += p->m[q];
+        Mi = M - done;
+        if (!(Mi > 0)) error_bug("SEA planet: no mass left for the outermost shell");
+      }
       const double rho = sea_at(prof, prof->rho, rs, k), u = sea_at(prof, prof->u, rs, k);
       const double m = Mi / Ni;
       if ((size_t)Ni > N + 64) error_bug("SEA shell of %d particles", Ni);
-      ic_sea_shell(Ni, sx, sy, sz, &rng);
+      ic_sea_shell_a(Ni, a, sx, sy, sz, &rng);
       if (count + (size_t)Ni > p->capacity) parts_reserve(p, 2 * (count + (size_t)Ni));
+      if (n_shells + 1 >= cap_shells) {
+        cap_shells *= 2;
+        *sh_r = realloc(*sh_r, cap_shells * sizeof(double));
+        *sh_first = realloc(*sh_first, (cap_shells + 1) * sizeof(size_t));
+        *sh_layer = realloc(*sh_layer, cap_shells * sizeof(int));
+        if (!*sh_r || !*sh_first || !*sh_layer) error_exit("planet shells: out of memory");
+      }
+      (*sh_r)[n_shells] = rs, (*sh_first)[n_shells] = count, (*sh_layer)[n_shells] = k;
       for (int q = 0; q < Ni; q++, count++) {
         p->x[count] = rs * sx[q], p->y[count] = rs * sy[q], p->z[count] = rs * sz[q];
         p->vx[count] = p->vy[count] = p->vz[count] = 0;
@@ -276,7 +335,86 @@ void ic_sea_planet(const struct ic_planet_profile *prof, const int32_t *mat_id, 
       printf("  layer %d: %d shells, %d particles, r %.6g .. %.6g m\n", k, ns + (k == 0),
              layer_count, r_lo, r_out);
   }
+  (*sh_first)[n_shells] = count;
   p->count = count;
   free(sx), free(sy), free(sz);
   free(c.m), free(c.rm), free(c.s);
+  return n_shells;
+}
+
+/** Per shell: mean, min and max of rho_SPH / rho_profile - 1. */
+static void sea_shell_stats(const size_t *first, int ns, const double *rho, const double *rho_t,
+                            double *mean, double *lo, double *hi) {
+  for (int k = 0; k < ns; k++) {
+    double s = 0, a = INFINITY, b = -INFINITY;
+    for (size_t i = first[k]; i < first[k + 1]; i++) {
+      const double d = rho[i] / rho_t[i] - 1;
+      s += d, a = fmin(a, d), b = fmax(b, d);
+    }
+    mean[k] = s / (double)(first[k + 1] - first[k]), lo[k] = a, hi[k] = b;
+  }
+}
+
+void ic_sea_planet(const struct ic_planet_profile *prof, const int32_t *mat_id, size_t N,
+                   double eta, uint64_t seed, int64_t first_id, struct parts *p,
+                   const struct ic_sea_options *opt, int verbose) {
+  double *gr = NULL, *gv = NULL, *sh_r = NULL;
+  size_t *sh_first = NULL;
+  int *sh_layer = NULL;
+  int ng = 0;
+  const struct ic_sea_options def = IC_SEA_OPTIONS_DEFAULT;
+  if (!opt) opt = &def;
+  for (int it = 0;; it++) {
+    free(sh_r), free(sh_first), free(sh_layer);
+    const int ns =
+        sea_place(prof, mat_id, N, eta, seed, first_id, p, opt->shell_thickness, opt->stretch_a,
+                  gr, gv, ng, &sh_r, &sh_first, &sh_layer, verbose && it == 0);
+    if (opt->density_iter == 0 && opt->relax == 0) break;
+    const size_t n = p->count;
+    double *rho = error_malloc(n * sizeof(double), "SEA planet");
+    double *h = error_malloc(n * sizeof(double), "SEA planet");
+    memcpy(h, p->h, n * sizeof(double));
+    const int final = it == opt->density_iter;
+    if (final && opt->relax > 0)
+      ic_sea_relax(n, p->x, p->y, p->z, p->m, p->rho, eta, h, rho, opt->relax);
+    else
+      ic_sph_density(n, p->x, p->y, p->z, p->m, eta, h, rho);
+    double *mean = error_malloc(3 * (size_t)ns * sizeof(double), "SEA planet");
+    double *lo = mean + ns, *hi = mean + 2 * ns;
+    sea_shell_stats(sh_first, ns, rho, p->rho, mean, lo, hi);
+    double worst = 0, wmean = 0;
+    int kw = 0, kmw = 0;
+    for (int k = 0; k < ns - 1; k++) {
+      if (fmax(-lo[k], hi[k]) > worst) worst = fmax(-lo[k], hi[k]), kw = k;
+      if (fabs(mean[k]) > wmean) wmean = fabs(mean[k]), kmw = k;
+    }
+    if (verbose)
+      printf("  SPH density, %s %d: largest |rho_SPH / rho - 1| %.4f (shell %d of %d), of a shell "
+             "mean %.4f (shell %d), outermost shell mean %+.4f\n",
+             final ? "relaxation steps" : "iteration", final ? opt->relax : it, worst, kw, ns,
+             wmean, kmw, mean[ns - 1]);
+    if (final) {
+      free(rho), free(h), free(mean);
+      break;
+    }
+    /* the placement density of every shell but the outermost (which takes
+     * what mass is left) and those within 3 shells of an inner layer
+     * boundary, divided by its mean rho_SPH / rho */
+    double *ngr = error_malloc((size_t)ns * sizeof(double), "SEA planet");
+    double *ngv = error_malloc((size_t)ns * sizeof(double), "SEA planet");
+    int nn = 0;
+    for (int k = 0; k < ns - 1; k++) {
+      int near = 0;
+      for (int q = k - 3; q <= k + 3; q++)
+        if (q >= 0 && q < ns && sh_layer[q] != sh_layer[k]) near = 1;
+      if (near) continue;
+      ngr[nn] = sh_r[k];
+      ngv[nn] = sea_g(gr, gv, ng, sh_r[k]) / (1 + mean[k]);
+      nn++;
+    }
+    free(gr), free(gv);
+    gr = ngr, gv = ngv, ng = nn;
+    free(rho), free(h), free(mean);
+  }
+  free(gr), free(gv), free(sh_r), free(sh_first), free(sh_layer);
 }
