@@ -18,8 +18,8 @@
  * partly damaged, so that plasticity and flaw activation and growth all
  * happen: the test fails if any of them does not).  All are jittered
  * lattices with h off by up to 40% so that the h iteration runs several
- * rounds.  Near-field gravity: the tree walk's P2P interactions on the GPU
- * against the CPU walk (run_gravity_case).  Exits 77 (skip) when there is
+ * rounds.  Self-gravity: the tree method with its far and near field on the
+ * GPU against the CPU's (run_gravity_case).  Exits 77 (skip) when there is
  * no CUDA device. */
 #include <math.h>
 #include <stdio.h>
@@ -36,6 +36,7 @@
 #include "ghost/ghost_cpu.h"
 #include "gradient/gradient_cpu.h"
 #include "gravity/gravity_cpu.h"
+#include "gravity_sets.h"
 #include "gpu/gpu_engine.h"
 #include "hydro_parts.h"
 #include "kernel.h"
@@ -451,19 +452,65 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
   return fail;
 }
 
-/** Near-field gravity: the tree method on the CPU (gravity_tree_all) against
- *  the same walk with its P2P interactions recorded and computed on the GPU
- *  (gpu_gravity_p2p_list).  Everything but the P2P sums is the same CPU code
- *  in the same order, so potentials and accelerations must agree to 1e-10
- *  (accelerations relative to |a_i| + 1e-3 max |a|).  n particles uniform in
- *  a unit sphere, equal masses, G = 1.  Returns the number of failures. */
-static int run_gravity_case(struct gpu *g, size_t n, int softening, unsigned long long seed) {
+/** Worst relative difference of the accelerations of q from those of p
+ *  (relative to |a_i| + 1e-3 max |a|: near the centre of a body a_i
+ *  vanishes) and of the potentials; in wa and wp. */
+static void gravity_diff(const struct parts *p, const struct parts *q, double *wa, double *wp) {
+  const size_t n = p->count;
+  double amax = 0.0;
+  for (size_t i = 0; i < n; i++)
+    amax = fmax(amax, sqrt(p->gax[i] * p->gax[i] + p->gay[i] * p->gay[i] + p->gaz[i] * p->gaz[i]));
+  *wa = 0.0;
+  for (size_t i = 0; i < n; i++) {
+    const double ai = sqrt(p->gax[i] * p->gax[i] + p->gay[i] * p->gay[i] + p->gaz[i] * p->gaz[i]);
+    const double d[3] = {q->gax[i] - p->gax[i], q->gay[i] - p->gay[i], q->gaz[i] - p->gaz[i]};
+    const double e = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / (ai + 1e-3 * amax);
+    if (!(e <= *wa)) *wa = isnan(e) ? INFINITY : e;
+  }
+  *wp = worst_rel(q->pot, p->pot, n, 0.0);
+}
+
+/** Print and count the failures of one comparison of gravity_diff. */
+static int gravity_report(const char *what, const struct parts *p, const struct parts *q) {
+  double wa, wp;
+  gravity_diff(p, q, &wa, &wp);
+  printf("  %-28s ga %.3e%s  pot %.3e%s\n", what, wa, wa < 1e-10 ? "" : " FAIL (> 1e-10)", wp,
+         wp < 1e-10 ? "" : " FAIL (> 1e-10)");
+  return !(wa < 1e-10) + !(wp < 1e-10);
+}
+
+/** Self-gravity: the tree method on the CPU (gravity_tree_all) against the
+ *  same method with the far field on the GPU (gpu_grav_tree_all: the CPU
+ *  computes the multipoles and walks the trees, recording every
+ *  interaction; the GPU runs M2L, P2L, L2L, L2P, M2P and P2P with the same
+ *  inline operators).  The two make the same decisions on the same
+ *  multipoles and sum the same terms in another order, so potentials and
+ *  accelerations must agree to 1e-10 (accelerations relative to |a_i| +
+ *  1e-3 max |a|).  Three evaluations: the first (no acceleration scale
+ *  yet), a second with the adaptive criterion (Gravity:epsilon_fmm at its
+ *  default) reading |ga| of the first (the CPU's, on both sides, so that no
+ *  decision can flip on a round-off of a_min), and a replay of the second's
+ *  interactions at moved positions (Gravity:reuse_steps: gravity_replay on
+ *  the CPU, gpu_grav_run with replay on the GPU).  n particles of equal
+ *  masses, G = 1, uniform in a unit sphere or (clustered) two Plummer
+ *  spheres of tests/gravity_sets.h, whose large sparse leaves meet small
+ *  dense cells: the walks' lopsided M2P and P2L, which the case then
+ *  requires.  Returns the number of failures. */
+static int run_gravity_case(struct gpu *g, size_t n, int softening, unsigned long long seed,
+                            int clustered) {
   unsigned long long s = seed;
   struct parts p, q;
   parts_alloc(&p, n);
+  srand48((long)seed);
+  const double centre[3] = {2.0, 2.0, 2.0};
   for (size_t i = 0; i < n;) {
-    const double x = 2.0 * urand(&s) - 1.0, y = 2.0 * urand(&s) - 1.0, z = 2.0 * urand(&s) - 1.0;
-    if (x * x + y * y + z * z >= 1.0) continue;
+    double x = 2.0 * urand(&s) - 1.0, y = 2.0 * urand(&s) - 1.0, z = 2.0 * urand(&s) - 1.0;
+    if (clustered) {
+      double r[3];
+      gset_two_bodies(i, n, centre, r);
+      x = r[0] - 2.0, y = r[1] - 2.0, z = r[2] - 2.0;
+    } else if (x * x + y * y + z * z >= 1.0)
+      continue;
     p.x[i] = 2.0 + x, p.y[i] = 2.0 + y, p.z[i] = 2.0 + z;
     p.m[i] = 1.0 / (double)n;
     p.h[i] = 0.05;
@@ -480,53 +527,85 @@ static int run_gravity_case(struct gpu *g, size_t n, int softening, unsigned lon
            n * part_fields[f].size);
   struct gravity_props gp;
   gravity_props_set(&gp, 1.0, 0.5, 2e-3, softening, GRAVITY_ORDER_DEFAULT);
-  int cap = 0;
-  struct gravity_cell *gc = gravity_cells_reserve(NULL, &cap, sp.cells_capacity);
-  double t0 = error_walltime();
-  gravity_tree_all(&p, sp.cells, sp.nr_top, gc, &gp);
-  const double t_cpu = error_walltime() - t0;
-
-  /* the same walk on the copy, P2P recorded, then on the GPU */
-  sp.parts = &q;
-  memset(gc, 0, (size_t)cap * sizeof *gc);
-  struct gravity_p2p_list list;
-  memset(&list, 0, sizeof list);
-  t0 = error_walltime();
-  gravity_p2p_record(&list);
-  gravity_tree_all(&q, sp.cells, sp.nr_top, gc, &gp);
-  gravity_p2p_record(NULL);
-  const double t_walk = error_walltime() - t0;
-  t0 = error_walltime();
-  gpu_gravity_p2p_list(g, &q, &list, &gp);
-  const double t_gpu = error_walltime() - t0;
-
-  double amax = 0.0;
-  for (size_t i = 0; i < n; i++)
-    amax = fmax(amax, sqrt(p.gax[i] * p.gax[i] + p.gay[i] * p.gay[i] + p.gaz[i] * p.gaz[i]));
-  double wa = 0.0;
-  for (size_t i = 0; i < n; i++) {
-    const double ai = sqrt(p.gax[i] * p.gax[i] + p.gay[i] * p.gay[i] + p.gaz[i] * p.gaz[i]);
-    const double d[3] = {q.gax[i] - p.gax[i], q.gay[i] - p.gay[i], q.gaz[i] - p.gaz[i]};
-    const double e = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / (ai + 1e-3 * amax);
-    if (!(e <= wa)) wa = isnan(e) ? INFINITY : e;
-  }
-  const double wp = worst_rel(q.pot, p.pot, n, 0.0);
-  printf(
-      "gravity, %zu particles in a sphere, %s softening: CPU tree %.3f s; walk with P2P recorded "
-      "%.3f s, %zu leaf interactions on the GPU %.3f s\n",
-      n, softening == GRAVITY_SOFTENING_PLUMMER ? "Plummer" : "spline", t_cpu, t_walk, list.n,
-      t_gpu);
+  gp.epsilon_fmm = GRAVITY_EPSILON_FMM_DEFAULT;
+  int capp = 0, capq = 0;
+  struct gravity_cell *gcp = gravity_cells_reserve(NULL, &capp, sp.cells_capacity);
+  struct gravity_cell *gcq = gravity_cells_reserve(NULL, &capq, sp.cells_capacity);
+  memset(gcp, 0, (size_t)capp * sizeof *gcp);
+  memset(gcq, 0, (size_t)capq * sizeof *gcq);
+  struct gpu_grav *gg = gpu_grav_new(g);
+  struct gpu_grav_host h;
+  memset(&h, 0, sizeof h);
+  h.built_rebuild = -1;
+  struct gravity_gpu_rec rec;
+  memset(&rec, 0, sizeof rec);
   int fail = 0;
-  printf("  ga      worst relative difference %.3e%s\n", wa, wa < 1e-10 ? "" : "  FAIL (> 1e-10)");
-  fail += !(wa < 1e-10);
-  printf("  pot     worst relative difference %.3e%s\n", wp, wp < 1e-10 ? "" : "  FAIL (> 1e-10)");
-  fail += !(wp < 1e-10);
-  if (list.n == 0) {
-    printf("  FAIL: the walk recorded no P2P interaction\n");
+  printf("gravity, %zu particles %s, %s softening, far field on the GPU:\n", n,
+         clustered ? "in two Plummer spheres" : "in a sphere",
+         softening == GRAVITY_SOFTENING_PLUMMER ? "Plummer" : "spline");
+
+  /* 1: first evaluation */
+  double t0 = error_walltime();
+  gravity_tree_all(&p, sp.cells, sp.nr_top, gcp, &gp);
+  const double t_cpu = error_walltime() - t0;
+  t0 = error_walltime();
+  gpu_grav_tree_all(gg, &h, &rec, &q, &sp, gcq, &gp, 0);
+  const double t_gpu = error_walltime() - t0;
+  /* the interactions, a mutual one counted in each direction */
+  size_t n_m2p = 0, n_p2l = 0;
+  for (size_t k = 0; k < rec.part.n; k++) n_m2p += rec.part.source[k] < 0;
+  for (size_t k = 0; k < rec.field.n; k++) n_p2l += rec.field.source[k] < 0;
+  const size_t n_part = rec.part.n + 2 * rec.part_sym.n, n_field = rec.field.n + 2 * rec.field_sym.n;
+  printf("  CPU tree %.3f s; CPU up + recorded walks + GPU %.3f s; %zu P2P/M2P and %zu M2L/P2L "
+         "interactions, %d leaves, %d L2L levels\n",
+         t_cpu, t_gpu, n_part, n_field, h.tree.nr_leaves, h.tree.nr_levels);
+  fail += gravity_report("first evaluation", &p, &q);
+  printf("  exercised: %zu M2P, %zu P2L, %zu M2L, %zu P2P\n", n_m2p, n_p2l, n_field - n_p2l,
+         n_part - n_m2p);
+  if (n_part - n_m2p == 0 || n_field - n_p2l == 0 || h.tree.nr_levels == 0) {
+    printf("  FAIL: the walk recorded no P2P or no M2L, or the tree has no levels\n");
     fail++;
   }
-  gravity_p2p_list_free(&list);
-  free(gc);
+  if (clustered && (n_m2p == 0 || n_p2l == 0)) {
+    printf("  FAIL: the clustered set exercised no M2P or no P2L\n");
+    fail++;
+  }
+
+  /* 2: adaptive criterion on |ga| of the first (the CPU's on both sides) */
+  for (size_t i = 0; i < n; i++) {
+    q.gax[i] = p.gax[i];
+    q.gay[i] = p.gay[i];
+    q.gaz[i] = p.gaz[i];
+  }
+  struct gravity_ilist il;
+  memset(&il, 0, sizeof il);
+  gravity_record_begin(&il);
+  gravity_tree_all(&p, sp.cells, sp.nr_top, gcp, &gp);
+  gravity_record_end();
+  gpu_grav_tree_all(gg, &h, &rec, &q, &sp, gcq, &gp, 0);
+  fail += gravity_report("second (adaptive) evaluation", &p, &q);
+
+  /* 3: replay at positions moved by up to 1e-3 (of a unit radius) */
+  for (size_t i = 0; i < n; i++) {
+    const double d[3] = {1e-3 * (urand(&s) - 0.5), 1e-3 * (urand(&s) - 0.5),
+                         1e-3 * (urand(&s) - 0.5)};
+    p.x[i] += d[0], p.y[i] += d[1], p.z[i] += d[2];
+    q.x[i] += d[0], q.y[i] += d[1], q.z[i] += d[2];
+  }
+  gp.replay = 1;
+  for (int i = 0; i < sp.nr_top; i++) gravity_up(&p, sp.cells + i, gcp, &gp);
+  gravity_replay(&p, &il, gcp, &gp);
+  for (int i = 0; i < sp.nr_top; i++) gravity_down(&p, sp.cells + i, gcp, &gp);
+  gpu_grav_run(gg, &q, NULL, 0, gp.G, gp.eps, gp.softening, gp.eps2_expansion, gp.order, 0, 1);
+  fail += gravity_report("replay at moved positions", &p, &q);
+
+  gravity_ilist_free(&il);
+  gravity_gpu_rec_free(&rec);
+  gpu_grav_print(gg, stdout);
+  gpu_grav_free(gg);
+  gpu_grav_host_free(&h);
+  free(gcp);
+  free(gcq);
   space_free(&sp);
   parts_free(&p);
   parts_free(&q);
@@ -549,8 +628,9 @@ int main(int argc, char **argv) {
   fail += run_case(g, 0, 20, KIND_BASALT_SOLID, 4242);
   fail += run_case(g, 0, 20, KIND_BASALT_CONT, 4343);
   fail += run_case(g, 0, 20, KIND_GRANITE_TABLE, 778);
-  fail += run_gravity_case(g, 40000, GRAVITY_SOFTENING_SPLINE, 99);
-  fail += run_gravity_case(g, 20000, GRAVITY_SOFTENING_PLUMMER, 98);
+  fail += run_gravity_case(g, 40000, GRAVITY_SOFTENING_SPLINE, 99, 0);
+  fail += run_gravity_case(g, 20000, GRAVITY_SOFTENING_PLUMMER, 98, 0);
+  fail += run_gravity_case(g, 40000, GRAVITY_SOFTENING_SPLINE, 97, 1);
   gpu_print_timers(g, stdout);
   gpu_free(g);
   printf("%s\n", fail ? "FAIL" : "PASS");

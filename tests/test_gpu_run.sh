@@ -12,7 +12,10 @@
 #     densities and energies particle by particle; 2d. the same with an
 #     epsilon-alpha matrix.
 #  3. Evrard collapse (7,208 particles, hydro + tree self-gravity), 40 steps:
-#     the tree walks on the CPU, their P2P interactions on the GPU.
+#     multipoles and walks on the CPU, which record the interactions; M2L,
+#     L2L, L2P, M2P and P2P on the GPU.
+#  4. The same with Gravity:reuse_steps 2: the steps that reuse the far
+#     field replay the interactions on the GPU (gravity_replay on the CPU).
 # The runs differ only by the order of the SPH sums (round-off, ~1e-15
 # relative per step, amplified along the run), so every column must agree
 # to 1e-8 relative to its scale (mass, E_tot, or sum m|v| for momenta).
@@ -164,8 +167,18 @@ mkdir -p evrard/cpu evrard/gpu
 cp evrard/cpu/evrard.hdf5 evrard/gpu/
 for m in cpu gpu; do cp "$S/examples/EvrardCollapse/params.yml" evrard/$m/; done
 run evrard 40
-grep -q "self-gravity: the tree walks on the CPU, their P2P on the GPU" evrard/gpu/run.log ||
-  { echo "FAIL: the gravity run did not use the GPU"; exit 1; }
+grep -q "self-gravity: multipoles and walks on the CPU, M2L, L2L, L2P, M2P and P2P on the GPU" \
+  evrard/gpu/run.log || { echo "FAIL: the gravity run did not use the GPU"; exit 1; }
+
+mkdir -p reuse/cpu reuse/gpu
+for m in cpu gpu; do
+  cp evrard/cpu/evrard.hdf5 reuse/$m/
+  sed 's/^Gravity:$/Gravity:\n  reuse_steps: 2\n  reuse_tolerance: 0.05/' "$S/examples/EvrardCollapse/params.yml" >reuse/$m/params.yml
+done
+run reuse 40
+grep "reused the far field" reuse/gpu/run.log
+grep -q "GPU gravity, .* evaluations ([1-9][0-9]* replays)" reuse/gpu/run.log ||
+  { echo "FAIL: the reuse run replayed no step on the GPU"; exit 1; }
 
 fail=0
 compare sedov || fail=1
@@ -196,4 +209,5 @@ raise SystemExit(bad)
 PY
 done
 compare evrard || fail=1
+compare reuse || fail=1
 exit $fail

@@ -2,6 +2,9 @@
 # NakamuraBasalt: initial conditions, run, fragments and intact core.
 # Usage: ./run.sh [N] [THREADS]   (N: target particles, default 20000, about
 # ten minutes on 2 cores; the bullet gets particles of the same spacing)
+# WEIBULL_K, WEIBULL_M (optional) replace the target's Weibull k and m of
+# params.yml (e.g. WEIBULL_M=8.5, the value of miluphcuda's Nakamura test
+# case, README.md); the run folder is then run_N_m<M>_k<K>.
 # Writes, in run_N/: the snapshots, fragments_*.txt (bolide-fof tables),
 # core.txt (intact-core fraction against time), spectrum.png.
 set -euo pipefail
@@ -16,6 +19,7 @@ threads=${2:-2}
 ni=$(( (n * 149 + 50000) / 100000 ))
 [ "$ni" -ge 8 ] || ni=8
 dir=run_$n
+[ -z "${WEIBULL_M:-}${WEIBULL_K:-}" ] || dir=run_${n}_m${WEIBULL_M:-8}_k${WEIBULL_K:-5e34}
 mkdir -p "$dir"
 # start 1 us before contact (3.2 mm apart); 30 degrees between the velocity
 # and the line of centres at contact
@@ -23,7 +27,10 @@ mkdir -p "$dir"
   --target "sphere,material=basalt,radius=0.03,n=$n" \
   --impactor "sphere,material=lucite,mass=2e-4,n=$ni" \
   --v-contact 3200 --angle 30 --time 1e-6 -o "$dir/nakamura_ic.hdf5"
-cp params.yml "$dir/params.yml"
+sed -e "s/weibull_k: 5e34/weibull_k: ${WEIBULL_K:-5e34}/" -e "s/weibull_m: 8}/weibull_m: ${WEIBULL_M:-8}}/" \
+  params.yml >"$dir/params.yml"
+grep -q "weibull_k: ${WEIBULL_K:-5e34}, weibull_m: ${WEIBULL_M:-8}}" "$dir/params.yml" \
+  || { echo "run.sh: could not set the Weibull parameters in $dir/params.yml"; exit 1; }
 t0=$(date +%s)
 ( cd "$dir" && "$build/bolide" -t "$threads" params.yml >bolide.log 2>&1 ) \
   || { tail -5 "$dir/bolide.log"; exit 1; }

@@ -88,11 +88,6 @@ struct gpu {
   int out[GPU_NR_OUT + GPU_NR_SOLID_OUT + GPU_NR_DAMAGE_OUT]; /**< indices in part_fields */
   double *flaws_dev;                 /**< Weibull flaw thresholds (gpu_set_flaws) */
   size_t flaws_n, flaws_cap;         /**< their number and allocated length */
-  void *p2p_dev;                     /**< P2P ranges of the near-field gravity */
-  size_t p2p_bytes;                  /**< their allocated size */
-  cudaEvent_t ev_p2p[2];             /**< around the last P2P kernel */
-  double t_p2p;                      /**< accumulated milliseconds of P2P kernels */
-  long p2p_calls;                    /**< P2P batches run */
   void *cell_dev, *cell_host;        /**< device buffer and pinned staging of the leaf data */
   double *leaf_dt;                   /**< smallest time step of each leaf (in cell_dev) */
   size_t cell_bytes;                 /**< their size */
@@ -115,7 +110,7 @@ void gpu_check_fail(cudaError_t err, const char *what, const char *file, int lin
 
 /** cudaMalloc that reports, when the device is full, what was needed and
  *  what is free. */
-static void *gpu_alloc(size_t bytes, const char *what) {
+void *gpu_alloc(size_t bytes, const char *what) {
   void *ptr = NULL;
   if (bytes == 0) bytes = 8;
   const cudaError_t err = cudaMalloc(&ptr, bytes);
@@ -163,7 +158,6 @@ extern "C" struct gpu *gpu_init(char *why, size_t len) {
   for (int k = 0; k <= GPU_T_N; k++) gpu_check(cudaEventCreate(&g->ev[k]));
   gpu_check(cudaEventCreateWithFlags(&g->cells_ready, cudaEventDisableTiming));
   for (int k = 0; k < 2; k++) gpu_check(cudaEventCreate(&g->ev_drift[k]));
-  for (int k = 0; k < 2; k++) gpu_check(cudaEventCreate(&g->ev_p2p[k]));
   g->counters_dev = (int *)gpu_alloc(GPU_NR_COUNTERS * sizeof(int), "counters");
   gpu_check(cudaMallocHost((void **)&g->counters_host, GPU_NR_COUNTERS * sizeof(int)));
   g->mats_dev = (struct material_table *)gpu_alloc(sizeof(struct material_table), "material table");
@@ -423,52 +417,26 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
   g->calls++;
 }
 
-extern "C" void gpu_gravity_p2p(struct gpu *g, struct parts *p, const struct gpu_p2p *l, double G,
-                                double eps, int softening) {
-  cudaStream_t s = g->stream[0];
-  gpu_reserve(g, p->count);
-  g->dev.count = p->count;
-  /* the ranges, packed into one buffer */
-  const size_t n = (size_t)l->n, ns = (size_t)l->nr_src;
-  const size_t sz[5] = {n * sizeof(size_t), n * sizeof(int), (n + 1) * sizeof(int),
-                        ns * sizeof(size_t), ns * sizeof(int)};
-  const void *src[5] = {l->t_offset, l->t_count, l->src_start, l->s_offset, l->s_count};
-  size_t off[5], total = 0;
-  for (int k = 0; k < 5; k++) {
-    off[k] = total;
-    total += gpu_align(sz[k]);
-  }
-  if (total > g->p2p_bytes) {
-    if (g->p2p_dev) gpu_check(cudaFree(g->p2p_dev));
-    g->p2p_bytes = total + total / 2;
-    g->p2p_dev = gpu_alloc(g->p2p_bytes, "P2P ranges of the near-field gravity");
-  }
-  char *d = (char *)g->p2p_dev;
-  for (int k = 0; k < 5; k++)
-    if (sz[k]) gpu_check(cudaMemcpyAsync(d + off[k], src[k], sz[k], cudaMemcpyHostToDevice, s));
-  g->bytes_h2d += (double)total;
-  struct gpu_p2p_dev dv;
-  dv.n = l->n;
-  const double mean = l->n ? (double)p->count / l->n : 0.0;
-  dv.block = mean <= 40.0 ? 32 : (mean <= 96.0 ? 64 : GPU_BLOCK);
-  dv.t_offset = (const size_t *)(d + off[0]);
-  dv.t_count = (const int *)(d + off[1]);
-  dv.src_start = (const int *)(d + off[2]);
-  dv.s_offset = (const size_t *)(d + off[3]);
-  dv.s_count = (const int *)(d + off[4]);
-  const int idx_in[8] = {gpu_field_index("x"),   gpu_field_index("y"),   gpu_field_index("z"),
-                         gpu_field_index("m"),   gpu_field_index("gax"), gpu_field_index("gay"),
-                         gpu_field_index("gaz"), gpu_field_index("pot")};
-  gpu_copy_fields(g, p, idx_in, 8, 1);
-  gpu_check(cudaEventRecord(g->ev_p2p[0], s));
-  gravity_p2p_gpu_launch(s, g->dev, dv, G, eps, softening);
-  gpu_check(cudaEventRecord(g->ev_p2p[1], s));
-  gpu_copy_fields(g, p, idx_in + 4, 4, 0);
-  gpu_check(cudaStreamSynchronize(s));
-  float ms = 0.0f;
-  gpu_check(cudaEventElapsedTime(&ms, g->ev_p2p[0], g->ev_p2p[1]));
-  g->t_p2p += ms;
-  g->p2p_calls++;
+cudaStream_t gpu_stream(struct gpu *g, int k) {
+  return g->stream[k];
+}
+
+struct parts gpu_device_parts(struct gpu *g, size_t count) {
+  gpu_reserve(g, count);
+  g->dev.count = count;
+  return g->dev;
+}
+
+void gpu_copy_named(struct gpu *g, struct parts *p, const char *const *names, int n,
+                    int to_device) {
+  int idx[PART_NR_FIELDS];
+  for (int k = 0; k < n; k++) idx[k] = gpu_field_index(names[k]);
+  gpu_copy_fields(g, p, idx, n, to_device);
+}
+
+void gpu_bytes_add(struct gpu *g, double h2d, double d2h) {
+  g->bytes_h2d += h2d;
+  g->bytes_d2h += d2h;
 }
 
 /** Register the particle arrays of p as pinned (page-locked) memory, so
@@ -542,9 +510,6 @@ extern "C" void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double
 }
 
 extern "C" void gpu_print_timers(const struct gpu *g, FILE *f) {
-  if (g->p2p_calls)
-    fprintf(f, "GPU (%s), %ld near-field gravity batches, P2P kernel %.3f ms per batch\n", g->name,
-            g->p2p_calls, g->t_p2p / g->p2p_calls);
   if (g->calls == 0) return;
   fprintf(f, "GPU (%s), %ld force phases, ms per phase:", g->name, g->calls);
   for (int k = 0; k < GPU_T_N; k++) fprintf(f, " %s %.3f", gpu_stage_names[k], g->t[k] / g->calls);
@@ -574,8 +539,6 @@ extern "C" void gpu_free(struct gpu *g) {
   for (int k = 0; k < MATERIAL_MAX; k++)
     if (g->table_dev[k]) gpu_check(cudaFree(g->table_dev[k]));
   if (g->flaws_dev) gpu_check(cudaFree(g->flaws_dev));
-  if (g->p2p_dev) gpu_check(cudaFree(g->p2p_dev));
-  for (int k = 0; k < 2; k++) gpu_check(cudaEventDestroy(g->ev_p2p[k]));
   gpu_check(cudaFreeHost(g->mats_host));
   for (int k = 0; k <= GPU_T_N; k++) gpu_check(cudaEventDestroy(g->ev[k]));
   gpu_check(cudaEventDestroy(g->cells_ready));

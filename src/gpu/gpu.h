@@ -13,6 +13,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "gravity/gravity_cpu.h"
 #include "hydro_props.h"
 #include "part.h"
 
@@ -48,7 +49,7 @@ struct gpu_damage {
 };
 
 /** Self-gravity in a FORCE phase: the gravitational accelerations (gax,
- *  gay, gaz, complete on the device: gpu_gravity_p2p) join the
+ *  gay, gaz, complete on the device: gpu_grav_run) join the
  *  hydrodynamic ones in the kick, and their time-step criterion joins. */
 struct gpu_gravity {
   int enabled; /**< add ga in the kick */
@@ -64,18 +65,24 @@ struct gpu_force_out {
   int iterations; /**< rounds of the h iteration */
 };
 
-/** The near-field gravity of a tree walk as particle ranges: target range
- *  T (a leaf) receives from the source ranges [src_start[T], src_start[T+1])
- *  (leaves; a leaf may be its own source: a particle skips itself). */
-struct gpu_p2p {
-  int n;                  /**< target ranges */
-  const size_t *t_offset; /**< first particle of each */
-  const int *t_count;     /**< its particles */
-  const int *src_start;   /**< n + 1 */
-  const size_t *s_offset; /**< first particle of each source range */
-  const int *s_count;     /**< its particles */
-  int nr_src;             /**< number of source ranges */
+/** The cell tree of self-gravity on the GPU as index arrays (cells by
+ *  struct cell.index): set again after each rebuild (gpu_grav_set_tree). */
+struct gpu_grav_tree {
+  int nr_cells;           /**< cells 0 .. nr_cells - 1 */
+  const size_t *offset;   /**< first particle of each cell */
+  const int *count;       /**< its particles */
+  int nr_l2l;             /**< parent-child pairs of non-empty cells, level after level */
+  const int *l2l_child;   /**< child of each pair */
+  const int *l2l_parent;  /**< parent of each pair */
+  int nr_levels;          /**< tree levels below the top-level cells */
+  const int *level_start; /**< nr_levels + 1: level L's pairs are [level_start[L], [L+1]) */
+  int nr_leaves;          /**< non-empty leaves */
+  const int *leaf;        /**< their cell indices */
 };
+
+/** Self-gravity's device state (buffers of the tree, the multipoles, the
+ *  local expansions and the grouped interactions; opaque). */
+struct gpu_grav;
 
 /** Find a CUDA device (cudaGetDeviceCount) and set it up; NULL when there
  *  is none, with the reason in why. */
@@ -104,12 +111,32 @@ void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu_leaves *lv
                      const struct hydro_props *hp, const struct material_table *mats,
                      const struct gpu_damage *dmg, const struct gpu_gravity *grav, double dt_kick,
                      double *leaf_dt_min, int resident, struct gpu_force_out *out);
-/** Near-field (P2P) gravity on the device: the potential and acceleration
- *  of every target particle from its source ranges (gravity_p2p of
- *  gravity_iact.h with constant G, softening eps and kernel softening),
- *  added to p's pot, gax, gay, gaz (copied to the device and back). */
-void gpu_gravity_p2p(struct gpu *g, struct parts *p, const struct gpu_p2p *l, double G, double eps,
-                     int softening);
+/** Self-gravity's device state on g (freed by gpu_grav_free, before gpu_free). */
+struct gpu_grav *gpu_grav_new(struct gpu *g);
+void gpu_grav_free(struct gpu_grav *gg);
+/** Upload the cell tree (after each rebuild). */
+void gpu_grav_set_tree(struct gpu_grav *gg, const struct gpu_grav_tree *t);
+/** Pinned host array of at least nr_cells multipoles (kept while large
+ *  enough): the caller writes each cell's multipole (gravity_up's) at its
+ *  index before gpu_grav_run. */
+struct gravity_multipole *gpu_grav_multipoles(struct gpu_grav *gg, int nr_cells);
+/** One gravity evaluation on the device, ending with p's pot, gax, gay, gaz
+ *  complete on the device and on the host.  replay = 0: the multipoles
+ *  (gpu_grav_multipoles) and the interactions that the walks recorded in
+ *  rec[0..nr_rec) (one struct per worker) go up; the device groups the
+ *  interactions by receiving cell (counting sort with atomic cursors: the
+ *  order within a cell varies from run to run, like the CPU's task order),
+ *  zeroes the fields and runs M2L and P2L, L2L level by level, P2P and M2P,
+ *  L2P.  replay = 1 (Gravity:reuse_steps): the multipoles, local
+ *  expansions and grouped interactions of the last full evaluation stay;
+ *  only P2P, M2P and L2P run, at the current positions (rec unused).
+ *  resident = 0: upload x, y, z and m first.  G, eps, softening, eps2
+ *  (softening^2 in the expansions), order: as struct gravity_props. */
+void gpu_grav_run(struct gpu_grav *gg, struct parts *p, const struct gravity_gpu_rec *rec,
+                  int nr_rec, double G, double eps, int softening, double eps2, int order,
+                  int resident, int replay);
+/** Print the accumulated times of the gravity kernels. */
+void gpu_grav_print(const struct gpu_grav *gg, FILE *f);
 /** Copy every particle field to the device (after a rebuild or a restart). */
 void gpu_upload_all(struct gpu *g, const struct parts *p);
 /** Copy every particle field back to the host (outputs, rebuilds). */

@@ -21,12 +21,14 @@ struct gpu_engine {
   long steps;             /**< FORCE phases run */
   double *tc_h_cap;       /**< cap on h per task cell */
   int nr_tc;              /**< its length */
-  struct gravity_p2p_list *p2p; /**< P2P interactions recorded by each CPU worker */
-  struct gravity_p2p_list p2p_all; /**< all of them */
-  struct gpu_p2p_host p2p_host;    /**< grouped by target leaf */
-  int nr_p2p;                      /**< workers (length of p2p) */
-  double t_grav_walk;              /**< host seconds of the gravity tasks (walks) */
-  double t_grav_p2p;               /**< seconds of the P2P batches (copies included) */
+  struct gravity_gpu_rec *rec;    /**< interactions recorded by each CPU worker */
+  int nr_rec;                     /**< workers (length of rec) */
+  struct gpu_grav *grav;          /**< self-gravity's device state */
+  struct gpu_grav_host grav_host; /**< its host side: the tree as index arrays */
+  struct gravity_multipole *mp;   /**< pinned staging of the multipoles (grav_up tasks fill it) */
+  double t_grav_walk;             /**< host seconds of the gravity tasks (up, walks) */
+  double t_grav_gpu;              /**< seconds of the device part (copies included) */
+  long grav_evals;                /**< gravity evaluations */
 };
 
 /** Grow the per-leaf arrays to n. */
@@ -338,74 +340,6 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
   return out.capped;
 }
 
-void gpu_p2p_group(const struct gravity_p2p_list *l, struct gpu_p2p_host *out) {
-  const size_t n = l->n;
-  /* counting sort by the target's cell index (O(n), no comparisons: a run
-   * of 1e6 particles records ~1e7 interactions per step) */
-  int nc = 0;
-  for (size_t k = 0; k < n; k++)
-    if (l->target[k]->index + 1 > nc) nc = l->target[k]->index + 1;
-  int *first = error_calloc((size_t)nc + 1, sizeof(int), "P2P list");
-  for (size_t k = 0; k < n; k++) first[l->target[k]->index + 1]++;
-  int nt = 0;
-  for (int c = 0; c < nc; c++) {
-    nt += first[c + 1] > 0;
-    first[c + 1] += first[c];
-  }
-  if (n + 1 > out->cap || (size_t)nt + 1 > out->tcap) {
-    out->cap = n + n / 4 + 16;
-    out->tcap = (size_t)nt + nt / 4 + 16;
-    out->s_offset = error_realloc(out->s_offset, out->cap * sizeof(size_t), "P2P list");
-    out->s_count = error_realloc(out->s_count, out->cap * sizeof(int), "P2P list");
-    out->t_offset = error_realloc(out->t_offset, out->tcap * sizeof(size_t), "P2P list");
-    out->t_count = error_realloc(out->t_count, out->tcap * sizeof(int), "P2P list");
-    out->src_start = error_realloc(out->src_start, (out->tcap + 1) * sizeof(int), "P2P list");
-  }
-  /* the targets in cell order, each with its slice of the sources */
-  int *tnum = error_malloc(((size_t)nc + 1) * sizeof(int), "P2P list");
-  int t = 0;
-  for (int c = 0; c < nc; c++) {
-    tnum[c] = first[c + 1] > first[c] ? t : -1;
-    if (tnum[c] >= 0) out->src_start[t++] = first[c];
-  }
-  out->src_start[nt] = (int)n;
-  for (size_t k = 0; k < n; k++) {
-    const struct cell *tc = l->target[k], *sc = l->source[k];
-    const int q = first[tc->index]++;
-    out->s_offset[q] = sc->offset;
-    out->s_count[q] = (int)sc->count;
-    out->t_offset[tnum[tc->index]] = tc->offset;
-    out->t_count[tnum[tc->index]] = (int)tc->count;
-  }
-  out->view.n = nt;
-  out->view.t_offset = out->t_offset;
-  out->view.t_count = out->t_count;
-  out->view.src_start = out->src_start;
-  out->view.s_offset = out->s_offset;
-  out->view.s_count = out->s_count;
-  out->view.nr_src = (int)n;
-  free(tnum);
-  free(first);
-}
-
-void gpu_p2p_host_free(struct gpu_p2p_host *h) {
-  free(h->t_offset);
-  free(h->t_count);
-  free(h->src_start);
-  free(h->s_offset);
-  free(h->s_count);
-  memset(h, 0, sizeof *h);
-}
-
-void gpu_gravity_p2p_list(struct gpu *g, struct parts *p, const struct gravity_p2p_list *l,
-                          const struct gravity_props *gp) {
-  struct gpu_p2p_host h;
-  memset(&h, 0, sizeof h);
-  gpu_p2p_group(l, &h);
-  gpu_gravity_p2p(g, p, &h.view, gp->G, gp->eps, gp->softening);
-  gpu_p2p_host_free(&h);
-}
-
 void gpu_engine_init(struct engine *e) {
   const char *policy = params_get_string(e->params, "Scheduler:gpu");
   if (strcmp(policy, "auto") && strcmp(policy, "all") && strcmp(policy, "off"))
@@ -421,9 +355,9 @@ void gpu_engine_init(struct engine *e) {
   }
   char why[256];
   /* the GPU runs the hydrodynamic phase as a whole (solids, damage, XSPH
-   * and the continuity equation included) and the near field of
-   * self-gravity; the gravitational softening tied to h has no GPU
-   * implementation yet (the GPU P2P and kick use one constant eps), and a
+   * and the continuity equation included) and self-gravity's interactions
+   * (the walks stay on the CPU); the gravitational softening tied to h has
+   * no GPU implementation yet (the GPU P2P and kick use one constant eps), and a
    * gravity-only run none */
   const char *unsupported = !e->hp.enabled ? "hydrodynamics is off"
                             : e->gp.enabled && e->gp.h_factor > 0.0
@@ -452,6 +386,10 @@ void gpu_engine_init(struct engine *e) {
   struct gpu_engine *ge = error_calloc(1, sizeof *ge, "GPU state");
   ge->gpu = g;
   e->gpu = ge;
+  if (e->gp.enabled) {
+    ge->grav = gpu_grav_new(g);
+    ge->grav_host.built_rebuild = -1;
+  }
   /* the flaw thresholds never change during a run: on the device once */
   if (e->damage) gpu_set_flaws(g, e->flaw_eps, (size_t)e->nr_flaws);
   error_log(0,
@@ -459,58 +397,65 @@ void gpu_engine_init(struct engine *e) {
             "particles stay on it between steps%s",
             gpu_name(g), e->hp.solids ? "gradient, extra ghost (plasticity, dS/dt), " : "",
             e->damage ? "damage, " : "",
-            e->gp.enabled ? "; self-gravity: the tree walks on the CPU, their P2P on the GPU" : "");
+            e->gp.enabled ? "; self-gravity: multipoles and walks on the CPU, M2L, L2L, L2P, M2P and P2P "
+                            "on the GPU"
+                          : "");
 }
 
 /** Scheduler callback of the gravity pass: the engine's task, with the
- *  calling worker's P2P interactions recorded in its own list. */
+ *  calling worker's interactions recorded in its own list; after a
+ *  grav_up task, its cell's multipoles go to the upload staging. */
 static void gpu_engine_grav_task(void *ctx, struct task *t, int thread_id) {
   struct engine *e = ctx;
-  gravity_p2p_record(&e->gpu->p2p[thread_id]);
+  gravity_gpu_record(&e->gpu->rec[thread_id]);
   engine_run_task(ctx, t, thread_id);
-  gravity_p2p_record(NULL);
+  gravity_gpu_record(NULL);
+  if (t->type == task_type_grav_up) gpu_grav_pack_multipoles(e->gpu->mp, t->ci, e->gcells);
 }
 
 /** Self-gravity of the FORCE phase: the gravity tasks of the graph on the
- *  CPU workers (multipoles, walks, far field, L2P into the host's ga and
- *  pot; the host holds the positions since the drift), their P2P
- *  interactions recorded and then summed on the GPU, which leaves ga and
- *  pot complete on both sides for the kick. */
+ *  CPU workers (multipoles, and the walks, which record their interactions
+ *  instead of computing them; grav_down is the GPU's), then everything
+ *  else on the GPU (gpu_grav_run: grouping included), which leaves ga and pot complete on both sides for the
+ *  kick.  A step that reuses the far field (Gravity:reuse_steps) runs on
+ *  the GPU alone: the device kept the multipoles, the local expansions and
+ *  the interactions of the last full evaluation. */
 static void gpu_engine_gravity(struct engine *e) {
   struct gpu_engine *ge = e->gpu;
-  const int nw = e->sched.nr_threads > 0 ? e->sched.nr_threads : 1;
-  if (nw > ge->nr_p2p) {
-    ge->p2p = error_realloc(ge->p2p, nw * sizeof *ge->p2p, "P2P lists");
-    memset(ge->p2p + ge->nr_p2p, 0, (nw - ge->nr_p2p) * sizeof *ge->p2p);
-    ge->nr_p2p = nw;
-  }
-  for (int w = 0; w < ge->nr_p2p; w++) ge->p2p[w].n = 0;
+  const struct gravity_props *gp = &e->gp;
+  struct gpu_grav_host *h = &ge->grav_host;
   const double w0 = error_walltime();
+  ge->grav_evals++;
+  if (gp->replay) {
+    gpu_grav_run(ge->grav, &e->parts, NULL, 0, gp->G, gp->eps, gp->softening,
+                 gp->eps2_expansion, gp->order, 1, 1);
+    ge->t_grav_gpu += error_walltime() - w0;
+    return;
+  }
+  if (h->built_rebuild != e->space.nr_rebuilds || h->built_cells != e->space.cells) {
+    gpu_grav_tree_build(h, &e->space);
+    gpu_grav_set_tree(ge->grav, &h->tree);
+  }
+  ge->mp = gpu_grav_multipoles(ge->grav, e->space.nr_cells);
+  const int nw = e->sched.nr_threads > 0 ? e->sched.nr_threads : 1;
+  if (nw > ge->nr_rec) {
+    ge->rec = error_realloc(ge->rec, nw * sizeof *ge->rec, "gravity lists");
+    memset(ge->rec + ge->nr_rec, 0, (nw - ge->nr_rec) * sizeof *ge->rec);
+    ge->nr_rec = nw;
+  }
+  for (int w = 0; w < ge->nr_rec; w++)
+    ge->rec[w].part.n = ge->rec[w].field.n = ge->rec[w].part_sym.n = ge->rec[w].field_sym.n = 0;
   engine_activate_phase(e, ENGINE_PHASE_FORCE);
   for (int k = 0; k < e->sched.nr_tasks; k++) {
     struct task *t = scheduler_task(&e->sched, k);
-    if (t->subtype != task_subtype_grav) t->skip = 1;
+    if (t->subtype != task_subtype_grav || t->type == task_type_grav_down) t->skip = 1;
   }
   scheduler_run(&e->sched, gpu_engine_grav_task, e);
   const double w1 = error_walltime();
-  /* one batch of every worker's interactions */
-  struct gravity_p2p_list *all = &ge->p2p_all;
-  all->n = 0;
-  for (int w = 0; w < ge->nr_p2p; w++) {
-    const struct gravity_p2p_list *l = &ge->p2p[w];
-    if (all->n + l->n > all->cap) {
-      all->cap = all->n + l->n + (all->n + l->n) / 4 + 1024;
-      all->target = error_realloc(all->target, all->cap * sizeof(struct cell *), "P2P list");
-      all->source = error_realloc(all->source, all->cap * sizeof(struct cell *), "P2P list");
-    }
-    memcpy(all->target + all->n, l->target, l->n * sizeof(struct cell *));
-    memcpy(all->source + all->n, l->source, l->n * sizeof(struct cell *));
-    all->n += l->n;
-  }
-  gpu_p2p_group(all, &ge->p2p_host);
-  gpu_gravity_p2p(ge->gpu, &e->parts, &ge->p2p_host.view, e->gp.G, e->gp.eps, e->gp.softening);
+  gpu_grav_run(ge->grav, &e->parts, ge->rec, ge->nr_rec, gp->G, gp->eps, gp->softening,
+               gp->eps2_expansion, gp->order, 1, 0);
   ge->t_grav_walk += w1 - w0;
-  ge->t_grav_p2p += error_walltime() - w1;
+  ge->t_grav_gpu += error_walltime() - w1;
 }
 
 void gpu_engine_force(struct engine *e) {
@@ -611,22 +556,25 @@ void gpu_engine_print(const struct engine *e, FILE *f) {
             "bounds %.3f\n",
             1e3 * ge->cells.t_build / ge->steps, ge->cells.builds, ge->cells.widenings,
             1e3 * ge->t_bounds / ge->steps);
-  if (ge->steps && e->gp.enabled)
-    fprintf(f, "GPU gravity, ms per step: tree walks on the CPU %.3f, P2P batch on the GPU %.3f\n",
-            1e3 * ge->t_grav_walk / ge->steps, 1e3 * ge->t_grav_p2p / ge->steps);
+  gpu_grav_print(ge->grav, f);
+  if (ge->grav_evals)
+    fprintf(f,
+            "GPU gravity host side, ms per evaluation: multipoles + walks on the CPU %.3f, "
+            "device part (copies included) %.3f\n",
+            1e3 * ge->t_grav_walk / ge->grav_evals, 1e3 * ge->t_grav_gpu / ge->grav_evals);
 }
 
 void gpu_engine_free(struct engine *e) {
   struct gpu_engine *ge = e->gpu;
   if (!ge) return;
   gpu_unpin(ge->gpu);
+  gpu_grav_free(ge->grav);
   gpu_free(ge->gpu);
   gpu_cells_free(&ge->cells);
   free(ge->tc_h_cap);
-  for (int w = 0; w < ge->nr_p2p; w++) gravity_p2p_list_free(&ge->p2p[w]);
-  free(ge->p2p);
-  gravity_p2p_list_free(&ge->p2p_all);
-  gpu_p2p_host_free(&ge->p2p_host);
+  for (int w = 0; w < ge->nr_rec; w++) gravity_gpu_rec_free(&ge->rec[w]);
+  free(ge->rec);
+  gpu_grav_host_free(&ge->grav_host);
   free(ge);
   e->gpu = NULL;
 }

@@ -63,23 +63,36 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
                     const struct gpu_gravity *grav, double dt_kick, int resident,
                     double *tc_dt_min);
 
-/** Host arrays of the P2P interactions grouped by target leaf (gpu_p2p_group). */
-struct gpu_p2p_host {
-  struct gpu_p2p view;         /**< the ranges, as gpu_gravity_p2p reads them */
-  size_t *t_offset, *s_offset; /**< storage of the view */
-  int *t_count, *s_count, *src_start;
-  size_t cap, tcap; /**< allocated sources and targets */
+/** Host side of self-gravity on the GPU, grown and reused between steps:
+ *  the cell tree as index arrays (gpu_grav_tree_build, at each rebuild). */
+struct gpu_grav_host {
+  struct gpu_grav_tree tree;            /**< the tree, as gpu_grav_set_tree reads it */
+  size_t *offset;                       /**< storage of the tree: by cell */
+  int *count, cells_cap;                /**< by cell; allocated cells */
+  int *l2l_tmp;                         /**< (child, parent, level) while building */
+  int *l2l_child, *l2l_parent;          /**< pairs by level */
+  int nr_l2l, l2l_cap;                  /**< pairs and allocated length */
+  int *level_start;                     /**< levels + 1 */
+  int *leaf, nr_leaf, leaf_cap;         /**< non-empty leaves */
+  int built_rebuild;                    /**< space.nr_rebuilds of the tree */
+  const struct cell *built_cells;       /**< space.cells of the tree */
 };
-/** Group the interactions of l by target leaf (counting sort by cell
- *  index; within a target, in recording order) into out (grown, kept). */
-void gpu_p2p_group(const struct gravity_p2p_list *l, struct gpu_p2p_host *out);
+/** The tree of s (its top-level cells' octrees) as index arrays into h->tree. */
+void gpu_grav_tree_build(struct gpu_grav_host *h, const struct space *s);
+/** Copy the multipoles of c's octree from gc into dst (by cell index). */
+void gpu_grav_pack_multipoles(struct gravity_multipole *dst, const struct cell *c,
+                              const struct gravity_cell *gc);
 /** Free the arrays of h and zero it. */
-void gpu_p2p_host_free(struct gpu_p2p_host *h);
-/** The P2P interactions recorded by gravity walks (gravity_p2p_record) on
- *  the GPU g: grouped by target leaf and added to p's pot and ga with the
- *  constants of gp (gpu_gravity_p2p). */
-void gpu_gravity_p2p_list(struct gpu *g, struct parts *p, const struct gravity_p2p_list *l,
-                          const struct gravity_props *gp);
+void gpu_grav_host_free(struct gpu_grav_host *h);
+/** The whole tree method with the far field on the GPU, without tasks, in
+ *  the order of gravity_tree_all: gravity_up of every top-level cell on
+ *  the CPU, the walks recorded (gravity_gpu_record) into rec (emptied
+ *  first; the caller keeps it, e.g. to count the interactions) and run on
+ *  the device (gpu_grav_run; resident as there).  Sets p's ga and pot.
+ *  For tests; h->built_rebuild must start at -1. */
+void gpu_grav_tree_all(struct gpu_grav *gg, struct gpu_grav_host *h, struct gravity_gpu_rec *rec,
+                       struct parts *p, const struct space *s, struct gravity_cell *gc,
+                       const struct gravity_props *gp, int resident);
 
 /** Choose where tasks run from Scheduler:gpu and --gpu/--no-gpu, set
  *  e->gpu when the FORCE phase goes to a device, and say so in one line. */

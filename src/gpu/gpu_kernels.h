@@ -31,15 +31,21 @@ struct gpu_leaves_dev {
   const double *ngb_shift;  /**< 3 per entry */
 };
 
-/** The P2P ranges of the near-field gravity in device memory (struct gpu_p2p). */
-struct gpu_p2p_dev {
-  int n;                  /**< target ranges */
-  int block;              /**< threads per block (<= GPU_BLOCK) */
-  const size_t *t_offset; /**< first particle of each target range */
-  const int *t_count;     /**< its particles */
-  const int *src_start;   /**< n + 1: target T's sources are [src_start[T], src_start[T+1]) */
-  const size_t *s_offset; /**< first particle of each source range */
-  const int *s_count;     /**< its particles */
+/** The gravity tree on the device (src/gpu/gpu_gravity.cu), by cell index. */
+struct gravity_gpu_dev {
+  const struct gravity_multipole *mp; /**< multipole of each cell (CPU's gravity_up) */
+  struct gravity_field *field;        /**< local expansion of each cell */
+  const size_t *offset;               /**< first particle of each cell */
+  const int *count;                   /**< its particles */
+  double G, eps, eps2;                /**< constant, softening, softening^2 in the expansions */
+  int softening, order;               /**< enum gravity_softening, expansion order */
+};
+
+/** Recorded interactions grouped by receiving cell (src/gpu/gpu_gravity.cu). */
+struct gravity_gpu_groups {
+  int nr_cells;      /**< cells */
+  const int *start;  /**< nr_cells + 1: cell c's sources are [start[c], start[c+1]) */
+  const int *source; /**< the sources (struct gravity_gpu_rec) */
 };
 
 /** Counters of the h iteration in device memory. */
@@ -68,10 +74,34 @@ void extra_ghost_gpu_launch(cudaStream_t s, struct parts p, struct hydro_props h
  *  (tasks/damage/damage_gpu.cu). */
 void damage_gpu_launch(cudaStream_t s, struct parts p, const struct material_table *mats,
                        const double *eps, double dt);
-/** Near-field gravity: P2P of every target range from its source ranges,
- *  added to pot and ga (tasks/gravity/gravity_gpu.cu). */
-void gravity_p2p_gpu_launch(cudaStream_t s, struct parts p, struct gpu_p2p_dev l, double G,
-                            double eps, int softening);
+/** Gravity (tasks/gravity/gravity_gpu.cu): M2L and P2L of every cell
+ *  with sources in l, stored as its field. */
+void gravity_field_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_dev d,
+                              struct gravity_gpu_groups l);
+/** L2L of the parent-child pairs [k0, k1) (one tree level). */
+void gravity_l2l_gpu_launch(cudaStream_t s, struct gravity_gpu_dev d, const int *child,
+                            const int *parent, int k0, int k1);
+/** P2P and M2P of the leaves leaf[0..nr_leaves) from their sources in l,
+ *  added to pot and ga. */
+void gravity_part_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_dev d,
+                             struct gravity_gpu_groups l, const int *leaf, int nr_leaves,
+                             int block);
+/** L2P at the leaves leaf[0..nr_leaves), added to pot and ga. */
+void gravity_l2p_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_dev d,
+                            const int *leaf, int nr_leaves, int block);
+
+/** Internal services of the runner (src/gpu/gpu.cu) for the other runner
+ *  files: stream k (0: fields and kernels), the device particle arrays
+ *  grown to count particles (contents kept only if no growth was needed),
+ *  copies of the fields named names[0..n) of particles [0, p->count),
+ *  allocation with the out-of-memory report, and the bus counters. */
+cudaStream_t gpu_stream(struct gpu *g, int k);
+struct parts gpu_device_parts(struct gpu *g, size_t count);
+void gpu_copy_named(struct gpu *g, struct parts *p, const char *const *names, int n,
+                    int to_device);
+void *gpu_alloc(size_t bytes, const char *what);
+void gpu_bytes_add(struct gpu *g, double h2d, double d2h);
+
 /** Forces, gather form with r < max(H_i, H_j) (tasks/force/force_gpu.cu). */
 void force_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
                       struct hydro_props hp);

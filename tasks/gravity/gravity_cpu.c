@@ -393,38 +393,44 @@ static void p2p_block(struct parts *p, size_t i0, size_t i1, size_t j0, size_t j
   counters.p2p += self ? ni * (ni - 1) / 2 : ni * nj;
 }
 
-/** Where the calling thread's walks record their P2P interactions instead
- *  of computing them (NULL: compute; gravity_p2p_record). */
-static _Thread_local struct gravity_p2p_list *p2p_sink;
+/** Where the calling thread's walks record their interactions instead of
+ *  computing them (NULL: compute; gravity_gpu_record). */
+static _Thread_local struct gravity_gpu_rec *gpu_sink;
 
-void gravity_p2p_record(struct gravity_p2p_list *l) {
-  p2p_sink = l;
+void gravity_gpu_record(struct gravity_gpu_rec *r) {
+  gpu_sink = r;
 }
 
-/** Record that the particles of leaf source act on those of leaf target. */
-static void p2p_sink_add(const struct cell *target, const struct cell *source) {
-  struct gravity_p2p_list *l = p2p_sink;
+/** Append (target, source) to l. */
+static void rec_add(struct gravity_rec_list *l, int target, int source) {
   if (l->n == l->cap) {
     l->cap = l->cap ? 2 * l->cap : 1024;
-    l->target = error_realloc(l->target, l->cap * sizeof(struct cell *), "P2P list");
-    l->source = error_realloc(l->source, l->cap * sizeof(struct cell *), "P2P list");
+    l->target = error_realloc(l->target, l->cap * sizeof(int), "GPU gravity list");
+    l->source = error_realloc(l->source, l->cap * sizeof(int), "GPU gravity list");
   }
   l->target[l->n] = target;
   l->source[l->n] = source;
   l->n++;
 }
 
-void gravity_p2p_list_free(struct gravity_p2p_list *l) {
+static void rec_list_free(struct gravity_rec_list *l) {
   free(l->target);
   free(l->source);
   memset(l, 0, sizeof *l);
 }
 
+void gravity_gpu_rec_free(struct gravity_gpu_rec *r) {
+  rec_list_free(&r->part);
+  rec_list_free(&r->field);
+  rec_list_free(&r->part_sym);
+  rec_list_free(&r->field_sym);
+}
+
 /** All pairs within leaf c, each once (symmetric). */
 static void p2p_self(struct parts *p, const struct cell *c, const struct gravity_props *gp) {
   if (recording) record(c, NULL, 0, 1);
-  if (p2p_sink) {
-    p2p_sink_add(c, c);
+  if (gpu_sink) {
+    rec_add(&gpu_sink->part, c->index, c->index);
     return;
   }
   p2p_block(p, c->offset, c->offset + c->count, c->offset, c->offset + c->count, 1, 1, gp);
@@ -435,9 +441,11 @@ static void p2p_self(struct parts *p, const struct cell *c, const struct gravity
 static void p2p_pair(struct parts *p, const struct cell *a, const struct cell *b, int symmetric,
                      const struct gravity_props *gp) {
   if (recording) record(a, b, 0, symmetric);
-  if (p2p_sink) {
-    p2p_sink_add(a, b);
-    if (symmetric) p2p_sink_add(b, a);
+  if (gpu_sink) {
+    if (symmetric)
+      rec_add(&gpu_sink->part_sym, a->index, b->index);
+    else
+      rec_add(&gpu_sink->part, a->index, b->index);
     return;
   }
   p2p_block(p, a->offset, a->offset + a->count, b->offset, b->offset + b->count, 0, symmetric, gp);
@@ -607,12 +615,26 @@ static void walk_pair(struct parts *p, const struct cell *a, const struct cell *
       counters.m2p += big->count;
       record_distance(r2);
       if (recording && (symmetric || a_big)) record(big, small, 1, 0);
+      if (gpu_sink) {
+        /* M2P to big's particles, P2L to small's local expansion */
+        if (symmetric || a_big) rec_add(&gpu_sink->part, big->index, -1 - small->index);
+        if (symmetric || !a_big) rec_add(&gpu_sink->field, small->index, -1 - big->index);
+        return;
+      }
       m2p_leaf(p, big, gsmall, symmetric || a_big, symmetric || !a_big, gp->eps2_expansion, gp->G,
                gp->order);
       return;
     }
     counters.m2l++;
     record_distance(r2);
+    if (gpu_sink) {
+      /* one M2L per receiving cell */
+      if (symmetric)
+        rec_add(&gpu_sink->field_sym, a->index, b->index);
+      else
+        rec_add(&gpu_sink->field, a->index, b->index);
+      return;
+    }
     /* one-way: target a, source b, the tensor at z_a - z_b */
     m2l_cells(ga, gb, R, gp->eps2_expansion, gp->order, symmetric);
     return;

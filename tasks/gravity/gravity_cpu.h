@@ -185,21 +185,42 @@ void gravity_direct(struct parts *p, double G, double eps, int softening, int nt
 void gravity_direct_h(struct parts *p, double G, double eps, int softening, double h_factor,
                       int nthreads);
 
-/** P2P interactions of leaf pairs, recorded by the walks instead of
- *  computed (the GPU computes them: gpu_gravity_p2p_list): the particles of
- *  source[k] act on those of target[k]; a leaf with itself appears as
- *  target == source.  Everything else of the walk (M2L, M2P/P2L, L2P) is
- *  computed as usual. */
-struct gravity_p2p_list {
-  size_t n, cap;              /**< interactions recorded and allocated */
-  const struct cell **target; /**< leaf receiving */
-  const struct cell **source; /**< leaf acting */
+/** Interactions of one kind recorded by the walks for the GPU
+ *  (gravity_gpu_record): entry k acts on cell target[k] from source[k],
+ *  both cell indices (struct cell.index); a negative source -1 - s names
+ *  cell s as the other kind of source (below). */
+struct gravity_rec_list {
+  size_t n, cap; /**< entries recorded and allocated */
+  int *target;   /**< receiving cell */
+  int *source;   /**< acting cell (>= 0) or -1 - cell (< 0) */
 };
-/** From now on the calling thread's walks record their P2P interactions in
- *  l (appending) instead of computing them; NULL: compute them again. */
-void gravity_p2p_record(struct gravity_p2p_list *l);
-/** Free the arrays of l and zero it. */
-void gravity_p2p_list_free(struct gravity_p2p_list *l);
+
+/** What a walk records instead of computing, for the GPU
+ *  (gpu_grav_run): everything but P2M, M2M (gravity_up) and the L2L and
+ *  L2P of gravity_down.
+ *    part:  the target is a leaf whose particles receive: source >= 0, the
+ *           particles of leaf `source` (P2P; a leaf with itself: target ==
+ *           source, a particle skips itself); source < 0, the multipole of
+ *           cell -1 - source (M2P, gravity_m2p_p2l without P2L).
+ *    field: the target is a cell whose local expansion receives: source
+ *           >= 0, the multipole of cell `source` (M2L, one way: a
+ *           symmetric M2L is recorded once in each direction); source < 0,
+ *           the particles of leaf -1 - source (P2L of gravity_m2p_p2l).
+ *  A mutual interaction (a symmetric walk's P2P of two leaves, or M2L of
+ *  two cells) is recorded once, in part_sym or field_sym, and stands for
+ *  (target, source) and (source, target): half the memory traffic.
+ *  gpu_grav_group expands them. */
+struct gravity_gpu_rec {
+  struct gravity_rec_list part;      /**< interactions received by particles */
+  struct gravity_rec_list field;     /**< interactions received by local expansions */
+  struct gravity_rec_list part_sym;  /**< P2P of two distinct leaves, both receiving */
+  struct gravity_rec_list field_sym; /**< M2L of two cells, both receiving */
+};
+/** From now on the calling thread's walks record their interactions in r
+ *  (appending) instead of computing them; NULL: compute them again. */
+void gravity_gpu_record(struct gravity_gpu_rec *r);
+/** Free the arrays of r and zero it. */
+void gravity_gpu_rec_free(struct gravity_gpu_rec *r);
 
 /** Work counters of the tree walks (diagnostics), kept per thread. */
 struct gravity_counters {

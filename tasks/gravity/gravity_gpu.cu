@@ -1,20 +1,90 @@
-/* Near-field self-gravity on the GPU: the P2P interactions of the tree walk
- * (recorded by the CPU walk, gravity_p2p_record), gather form.  One block
- * per target leaf, one thread per particle i of it, summing gravity_p2p
- * (gravity_iact.h, the function of the CPU's direct summation) over every
- * particle j != i of the leaf's source leaves in registers; the sums are
- * added to the particle's potential and gravitational acceleration, which
- * already hold the far field of the walk. */
+/* Self-gravity on the GPU: every operator of the fast multipole method
+ * after P2M and M2M, on interactions that the CPU walks recorded
+ * (gravity_gpu_record) and on the cell tree as index arrays
+ * (src/gpu/gpu_gravity.cu uploads both).  Each kernel calls the inline
+ * operators of gravity_iact.h that the CPU walk calls (gravity_derivatives,
+ * gravity_m2l, gravity_m2p_p2l, gravity_l2l, gravity_l2p, gravity_p2p),
+ * with the expansion order a template constant so that nvcc unrolls their
+ * loops as gcc does for gravity_cpu.c's M2L_ORDER.
+ *
+ *   field kernel: one thread per cell, its M2L and P2L summed in
+ *                 registers, then stored (the cells' expansions start at 0)
+ *   L2L kernel:   one thread per parent-child pair of one tree level, the
+ *                 levels one launch after the other (parents first)
+ *   P2P, M2P:     one block per leaf, one thread per particle,
+ *                 its P2P (gather form: a leaf with itself skips i == j),
+ *                 then (second kernel) its M2P summed in registers, added
+ *                 to pot and ga
+ *   L2P kernel:   one block per leaf, one thread per particle.
+ *
+ * Compared with the CPU the sums run in another order (the CPU adds each
+ * interaction to the field or particle as the walk meets it): the results
+ * differ by round-off (tests/test_gpu.c). */
+#define GRAVITY_UNROLL_LOOPS 1
 #include "gpu_kernels.h"
 #include "gravity_iact.h"
 
-/** See gravity_p2p_gpu_launch. */
-__global__ void gravity_p2p_gpu_kernel(struct parts p, struct gpu_p2p_dev l, double G, double eps,
-                                       int softening) {
-  const int T = blockIdx.x;
-  const size_t beg = l.t_offset[T];
-  const int cnt = l.t_count[T];
-  const int k0 = l.src_start[T], k1 = l.src_start[T + 1];
+/** Every cell c with sources: the M2L of its multipole sources and the P2L
+ *  of its leaf sources (struct gravity_gpu_rec.field), stored as its field. */
+template <int P>
+__global__ void gravity_field_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
+                                         struct gravity_gpu_groups l) {
+  const int c = blockIdx.x * blockDim.x + threadIdx.x;
+  if (c >= l.nr_cells) return;
+  const int k0 = l.start[c], k1 = l.start[c + 1];
+  if (k0 == k1) return;
+  const struct gravity_multipole *mc = d.mp + c;
+  const double zc[3] = {mc->com[0], mc->com[1], mc->com[2]};
+  struct gravity_field f;
+#pragma unroll
+  for (int i = 0; i < GRAVITY_NCOMP(P); i++) f.F[i] = 0.0;
+  for (int k = k0; k < k1; k++) {
+    const int s = l.source[k];
+    double D[GRAVITY_NCOMP(P)];
+    if (s >= 0) {
+      /* M2L, one way: target c, source s, the tensor at z_c - z_s */
+      const struct gravity_multipole *ms = d.mp + s;
+      const double R[3] = {zc[0] - ms->com[0], zc[1] - ms->com[1], zc[2] - ms->com[2]};
+      gravity_derivatives(R, d.eps2, P, D);
+      gravity_m2l(&f, ms, D, P);
+    } else {
+      /* P2L: every particle of leaf -1 - s as a point mass */
+      const int q = -1 - s;
+      const size_t j1 = d.offset[q] + (size_t)d.count[q];
+      for (size_t j = d.offset[q]; j < j1; j++) {
+        const double R[3] = {zc[0] - p.x[j], zc[1] - p.y[j], zc[2] - p.z[j]};
+        double pot = 0.0, a[3] = {0.0, 0.0, 0.0};
+        gravity_derivatives(R, d.eps2, P, D);
+        gravity_m2p_p2l(p.m[j], mc, &f, D, P, d.G, &pot, a);
+      }
+    }
+  }
+  struct gravity_field *out = d.field + c;
+#pragma unroll
+  for (int i = 0; i < GRAVITY_NCOMP(P); i++) out->F[i] = f.F[i];
+}
+
+/** L2L of the pairs [k0, k1) of one level: parent's expansion shifted to
+ *  the child's centre, added to the child's. */
+template <int P>
+__global__ void gravity_l2l_gpu_kernel(struct gravity_gpu_dev d, const int *__restrict__ child,
+                                       const int *__restrict__ parent, int k0, int k1) {
+  const int k = k0 + blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= k1) return;
+  const int c = child[k], q = parent[k];
+  const double t[3] = {d.mp[c].com[0] - d.mp[q].com[0], d.mp[c].com[1] - d.mp[q].com[1],
+                       d.mp[c].com[2] - d.mp[q].com[2]};
+  gravity_l2l(d.field + c, d.field + q, t, P);
+}
+
+/** Every leaf (one block): its particles' P2P with the source
+ *  leaves (struct gravity_gpu_rec.part, sources >= 0). */
+__global__ void gravity_p2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
+                                       struct gravity_gpu_groups l, const int *__restrict__ leaf) {
+  const int c = leaf[blockIdx.x];
+  const size_t beg = d.offset[c];
+  const int cnt = d.count[c];
+  const int k0 = l.start[c], k1 = l.start[c + 1];
   const double *__restrict__ x = p.x, *__restrict__ y = p.y, *__restrict__ z = p.z;
   const double *__restrict__ m = p.m;
   for (int t = threadIdx.x; t < cnt; t += blockDim.x) {
@@ -22,12 +92,14 @@ __global__ void gravity_p2p_gpu_kernel(struct parts p, struct gpu_p2p_dev l, dou
     const double xi[3] = {x[i], y[i], z[i]};
     double pot = 0.0, a[3] = {0.0, 0.0, 0.0};
     for (int k = k0; k < k1; k++) {
-      const size_t jb = l.s_offset[k], je = jb + (size_t)l.s_count[k];
+      const int s = l.source[k];
+      if (s < 0) continue;
+      const size_t jb = d.offset[s], je = jb + (size_t)d.count[s];
       for (size_t j = jb; j < je; j++) {
         if (j == i) continue;
         const double dx[3] = {xi[0] - x[j], xi[1] - y[j], xi[2] - z[j]};
         const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-        gravity_p2p(dx, r2, m[j], G, eps, softening, &pot, a);
+        gravity_p2p(dx, r2, m[j], d.G, d.eps, d.softening, &pot, a);
       }
     }
     p.pot[i] += pot;
@@ -37,9 +109,101 @@ __global__ void gravity_p2p_gpu_kernel(struct parts p, struct gpu_p2p_dev l, dou
   }
 }
 
-void gravity_p2p_gpu_launch(cudaStream_t s, struct parts p, struct gpu_p2p_dev l, double G,
-                            double eps, int softening) {
-  if (l.n == 0) return;
-  gravity_p2p_gpu_kernel<<<l.n, l.block, 0, s>>>(p, l, G, eps, softening);
+/** Every leaf (one block): its particles' M2P from the source
+ *  cells (sources < 0).  A kernel of its own: the derivative tensors need
+ *  registers that would slow the P2P loop down. */
+template <int P>
+__global__ void gravity_m2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
+                                       struct gravity_gpu_groups l, const int *__restrict__ leaf) {
+  const int c = leaf[blockIdx.x];
+  const size_t beg = d.offset[c];
+  const int cnt = d.count[c];
+  const int k0 = l.start[c], k1 = l.start[c + 1];
+  int any = 0;
+  for (int k = k0; k < k1 && !any; k++) any = l.source[k] < 0;
+  if (!any) return;
+  for (int t = threadIdx.x; t < cnt; t += blockDim.x) {
+    const size_t i = beg + (size_t)t;
+    const double xi[3] = {p.x[i], p.y[i], p.z[i]};
+    double pot = 0.0, a[3] = {0.0, 0.0, 0.0};
+    for (int k = k0; k < k1; k++) {
+      const int s = l.source[k];
+      if (s >= 0) continue;
+      const struct gravity_multipole *ms = d.mp + (-1 - s);
+      const double R[3] = {ms->com[0] - xi[0], ms->com[1] - xi[1], ms->com[2] - xi[2]};
+      double D[GRAVITY_NCOMP(P)];
+      gravity_derivatives(R, d.eps2, P, D);
+      gravity_m2p_p2l(p.m[i], ms, NULL, D, P, d.G, &pot, a);
+    }
+    p.pot[i] += pot;
+    p.gax[i] += a[0];
+    p.gay[i] += a[1];
+    p.gaz[i] += a[2];
+  }
+}
+
+/** L2P at every leaf (one block each): its complete local expansion
+ *  evaluated at its particles, added to pot and ga. */
+template <int P>
+__global__ void gravity_l2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
+                                       const int *__restrict__ leaf) {
+  const int c = leaf[blockIdx.x];
+  const size_t beg = d.offset[c];
+  const int cnt = d.count[c];
+  const struct gravity_multipole *mc = d.mp + c;
+  for (int t = threadIdx.x; t < cnt; t += blockDim.x) {
+    const size_t i = beg + (size_t)t;
+    const double s[3] = {p.x[i] - mc->com[0], p.y[i] - mc->com[1], p.z[i] - mc->com[2]};
+    double pot = 0.0, a[3] = {0.0, 0.0, 0.0};
+    gravity_l2p(d.field + c, s, P, d.G, &pot, a);
+    p.pot[i] += pot;
+    p.gax[i] += a[0];
+    p.gay[i] += a[1];
+    p.gaz[i] += a[2];
+  }
+}
+
+/** Threads per block of the one-thread-per-cell kernels. */
+#define GRAVITY_GPU_CELL_BLOCK 64
+
+/** Instantiate kernel K for the orders 1..GRAVITY_ORDER_MAX and launch the
+ *  one of d.order. */
+#define GRAVITY_GPU_DISPATCH(K, grid, block, ...)                                           \
+  switch (d.order) {                                                                        \
+    case 1: K<1><<<(grid), (block), 0, s>>>(__VA_ARGS__); break;                            \
+    case 2: K<2><<<(grid), (block), 0, s>>>(__VA_ARGS__); break;                            \
+    case 3: K<3><<<(grid), (block), 0, s>>>(__VA_ARGS__); break;                            \
+    case 4: K<4><<<(grid), (block), 0, s>>>(__VA_ARGS__); break;                            \
+    default: K<GRAVITY_ORDER_MAX><<<(grid), (block), 0, s>>>(__VA_ARGS__); break;           \
+  }                                                                                         \
+  gpu_check_launch(K)
+
+void gravity_field_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_dev d,
+                              struct gravity_gpu_groups l) {
+  if (l.nr_cells == 0) return;
+  const int grid = (l.nr_cells + GRAVITY_GPU_CELL_BLOCK - 1) / GRAVITY_GPU_CELL_BLOCK;
+  GRAVITY_GPU_DISPATCH(gravity_field_gpu_kernel, grid, GRAVITY_GPU_CELL_BLOCK, p, d, l);
+}
+
+void gravity_l2l_gpu_launch(cudaStream_t s, struct gravity_gpu_dev d, const int *child,
+                            const int *parent, int k0, int k1) {
+  if (k1 <= k0) return;
+  const int grid = (k1 - k0 + GRAVITY_GPU_CELL_BLOCK - 1) / GRAVITY_GPU_CELL_BLOCK;
+  GRAVITY_GPU_DISPATCH(gravity_l2l_gpu_kernel, grid, GRAVITY_GPU_CELL_BLOCK, d, child, parent, k0,
+                       k1);
+}
+
+void gravity_part_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_dev d,
+                             struct gravity_gpu_groups l, const int *leaf, int nr_leaves,
+                             int block) {
+  if (nr_leaves == 0) return;
+  gravity_p2p_gpu_kernel<<<nr_leaves, block, 0, s>>>(p, d, l, leaf);
   gpu_check_launch(gravity_p2p_gpu_kernel);
+  GRAVITY_GPU_DISPATCH(gravity_m2p_gpu_kernel, nr_leaves, block, p, d, l, leaf);
+}
+
+void gravity_l2p_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_dev d,
+                            const int *leaf, int nr_leaves, int block) {
+  if (nr_leaves == 0) return;
+  GRAVITY_GPU_DISPATCH(gravity_l2p_gpu_kernel, nr_leaves, block, p, d, leaf);
 }

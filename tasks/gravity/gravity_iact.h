@@ -50,9 +50,12 @@
  *  the operators with the order a compile-time constant (gravity_cpu.c
  *  instantiates each order): the compiler then folds every index
  *  (gravity_index) and factorial, several times faster.  Elsewhere (run-time
- *  order) the loops stay loops. */
-#if defined(GRAVITY_UNROLL_LOOPS) && defined(__CUDACC__)
+ *  order) the loops stay loops.  In CUDA the device pass unrolls. */
+#if defined(GRAVITY_UNROLL_LOOPS) && defined(__CUDA_ARCH__)
 #define GRAVITY_UNROLL _Pragma("unroll")
+#elif defined(__CUDACC__)
+/* the host pass of a .cu file: its host copies of the operators are unused */
+#define GRAVITY_UNROLL
 #elif defined(GRAVITY_UNROLL_LOOPS) && defined(__GNUC__) && !defined(__clang__)
 #define GRAVITY_UNROLL _Pragma("GCC unroll 16")
 #else

@@ -5,8 +5,9 @@
 # granite, hydro only) and the same initial conditions as solids ("solid":
 # Tillotson basalt with Collins strength and Grady-Kipp damage with Weibull
 # flaws; no self-gravity) and with self-gravity ("gravity": granite, hydro +
-# tree gravity, softening 30 km; on the GPU runner the walks stay on the CPU
-# and their P2P runs on the GPU), at each size; median over REPEAT runs of STEPS steps
+# tree gravity, softening 30 km; on the GPU runner the multipoles and the walks
+# stay on the CPU, which record the interactions, and M2L, L2L, L2P, M2P and
+# P2P run on the GPU), at each size; median over REPEAT runs of STEPS steps
 # (each run's mean step).  Prints one table (markdown) and the GPU's stage
 # times of the last GPU run of each case.
 #

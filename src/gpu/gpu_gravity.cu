@@ -1,0 +1,313 @@
+/* Self-gravity's device state (gpu.h, struct gpu_grav): the cell tree as
+ * index arrays (uploaded at rebuilds), the multipoles (each full
+ * evaluation, from pinned staging), the local expansions (device only),
+ * the interactions of the CPU walks (each full evaluation, grouped by
+ * receiving cell on the device), and the
+ * sequence of kernels of tasks/gravity/gravity_gpu.cu on stream 0, where
+ * the particles are resident between steps.  Buffers are allocated once
+ * and grown, never per step. */
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+
+extern "C" {
+#include "error.h"
+}
+#include "gpu.h"
+#include "gpu_kernels.h"
+
+/** A device buffer grown on demand (contents not kept). */
+struct gpu_grav_buf {
+  void *ptr;    /**< device memory */
+  size_t bytes; /**< allocated */
+};
+
+/** Stages of one evaluation timed with events. */
+enum { GG_UP, GG_GROUP, GG_FIELD, GG_L2L, GG_PART, GG_L2P, GG_DOWN, GG_N };
+static const char *const gg_stage_names[GG_N] = {"upload",  "grouping", "M2L+P2L", "L2L",
+                                                 "P2P+M2P", "L2P",      "ga back"};
+
+struct gpu_grav {
+  struct gpu *g;                     /**< the device */
+  struct gpu_grav_buf mp, field;     /**< multipoles, local expansions (by cell) */
+  struct gpu_grav_buf offset, count; /**< particle range of each cell */
+  struct gpu_grav_buf l2l, leaf;     /**< L2L pairs (child then parent), leaves */
+  struct gpu_grav_buf raw[2];        /**< part and field: the recorded pairs as uploaded */
+  struct gpu_grav_buf start[2];      /**< part and field: counts, then start of each cell */
+  struct gpu_grav_buf src[2];        /**< part and field: the sources grouped by cell */
+  struct gpu_grav_buf cursor;        /**< scatter positions of each cell */
+  struct gravity_gpu_groups gl[2];   /**< device views of them (last full evaluation) */
+  struct gravity_multipole *mp_host; /**< pinned staging of the multipoles */
+  int mp_host_cap;                   /**< its length */
+  int nr_cells;                      /**< cells of the tree */
+  int nr_levels, *level_start;       /**< L2L levels (host copy) */
+  int nr_leaves;                     /**< leaves */
+  int block;                         /**< threads per block of the leaf kernels */
+  int have_tree, have_eval;          /**< a tree was set; a full evaluation ran on it */
+  cudaEvent_t ev[GG_N + 1];          /**< stage boundaries */
+  double t[GG_N];                    /**< accumulated milliseconds per stage */
+  long calls, replays;               /**< evaluations: all, of which replays */
+  double bytes;                      /**< bytes moved (both ways) */
+  double n_entries[2];               /**< grouped part and field interactions of the last */
+};
+
+/** Make b hold at least bytes (grown by half again; contents lost). */
+static void *gg_reserve(struct gpu_grav_buf *b, size_t bytes, const char *what) {
+  if (bytes > b->bytes || !b->ptr) {
+    if (b->ptr) gpu_check(cudaFree(b->ptr));
+    b->bytes = bytes + bytes / 2 + 64;
+    b->ptr = gpu_alloc(b->bytes, what);
+  }
+  return b->ptr;
+}
+
+/** Copy bytes from host to the device on stream s, counted. */
+static void gg_up(struct gpu_grav *gg, cudaStream_t s, void *d, const void *h, size_t bytes) {
+  if (bytes == 0) return;
+  gpu_check(cudaMemcpyAsync(d, h, bytes, cudaMemcpyHostToDevice, s));
+  gpu_bytes_add(gg->g, (double)bytes, 0.0);
+  gg->bytes += (double)bytes;
+}
+
+extern "C" struct gpu_grav *gpu_grav_new(struct gpu *g) {
+  struct gpu_grav *gg = (struct gpu_grav *)error_calloc(1, sizeof *gg, "GPU gravity state");
+  gg->g = g;
+  for (int k = 0; k <= GG_N; k++) gpu_check(cudaEventCreate(&gg->ev[k]));
+  return gg;
+}
+
+extern "C" void gpu_grav_free(struct gpu_grav *gg) {
+  if (!gg) return;
+  struct gpu_grav_buf *bufs[13] = {&gg->mp,       &gg->field,    &gg->offset,   &gg->count,
+                                   &gg->l2l,      &gg->leaf,     &gg->raw[0],   &gg->raw[1],
+                                   &gg->start[0], &gg->start[1], &gg->src[0],   &gg->src[1],
+                                   &gg->cursor};
+  for (int k = 0; k < 13; k++)
+    if (bufs[k]->ptr) gpu_check(cudaFree(bufs[k]->ptr));
+  if (gg->mp_host) gpu_check(cudaFreeHost(gg->mp_host));
+  for (int k = 0; k <= GG_N; k++) gpu_check(cudaEventDestroy(gg->ev[k]));
+  free(gg->level_start);
+  free(gg);
+}
+
+extern "C" void gpu_grav_set_tree(struct gpu_grav *gg, const struct gpu_grav_tree *t) {
+  cudaStream_t s = gpu_stream(gg->g, 0);
+  const size_t nc = (size_t)t->nr_cells;
+  gg_reserve(&gg->mp, nc * sizeof(struct gravity_multipole), "gravity multipoles");
+  gg_reserve(&gg->field, nc * sizeof(struct gravity_field), "gravity local expansions");
+  gg_up(gg, s, gg_reserve(&gg->offset, nc * sizeof(size_t), "gravity cells"), t->offset,
+        nc * sizeof(size_t));
+  gg_up(gg, s, gg_reserve(&gg->count, nc * sizeof(int), "gravity cells"), t->count,
+        nc * sizeof(int));
+  const size_t nl = (size_t)t->nr_l2l;
+  int *l2l = (int *)gg_reserve(&gg->l2l, 2 * nl * sizeof(int), "gravity L2L pairs");
+  gg_up(gg, s, l2l, t->l2l_child, nl * sizeof(int));
+  gg_up(gg, s, l2l + nl, t->l2l_parent, nl * sizeof(int));
+  gg_up(gg, s, gg_reserve(&gg->leaf, (size_t)t->nr_leaves * sizeof(int), "gravity leaves"),
+        t->leaf, (size_t)t->nr_leaves * sizeof(int));
+  gg->level_start =
+      (int *)error_realloc(gg->level_start, (t->nr_levels + 1) * sizeof(int), "gravity levels");
+  memcpy(gg->level_start, t->level_start, (t->nr_levels + 1) * sizeof(int));
+  gg->nr_levels = t->nr_levels;
+  gg->nr_leaves = t->nr_leaves;
+  gg->nr_cells = t->nr_cells;
+  /* a warp per 32 particles of the mean leaf */
+  size_t np = 0;
+  for (int k = 0; k < t->nr_leaves; k++) np += (size_t)t->count[t->leaf[k]];
+  const double mean = t->nr_leaves ? (double)np / t->nr_leaves : 0.0;
+  gg->block = mean <= 40.0 ? 32 : (mean <= 96.0 ? 64 : GPU_BLOCK);
+  gg->have_tree = 1;
+  gg->have_eval = 0;
+  /* the host arrays may change once this returns */
+  gpu_check(cudaStreamSynchronize(s));
+}
+
+extern "C" struct gravity_multipole *gpu_grav_multipoles(struct gpu_grav *gg, int nr_cells) {
+  if (nr_cells > gg->mp_host_cap || !gg->mp_host) {
+    if (gg->mp_host) gpu_check(cudaFreeHost(gg->mp_host));
+    gg->mp_host_cap = nr_cells + nr_cells / 4 + 16;
+    gpu_check(cudaMallocHost((void **)&gg->mp_host,
+                             (size_t)gg->mp_host_cap * sizeof(struct gravity_multipole)));
+  }
+  return gg->mp_host;
+}
+
+/** Add 1 to cnt[t[k]] for k < n. */
+__global__ void gg_count_kernel(const int *__restrict__ t, size_t n, int *cnt) {
+  for (size_t k = blockIdx.x * (size_t)blockDim.x + threadIdx.x; k < n;
+       k += (size_t)gridDim.x * blockDim.x)
+    atomicAdd(cnt + t[k], 1);
+}
+
+/** In place: the counts c[0..n) become their exclusive prefix sums, c[n]
+ *  the total.  One block: each thread sums a chunk, thread 0 scans the
+ *  chunks' sums, each thread then writes its chunk. */
+__global__ void gg_scan_kernel(int *c, int n) {
+  __shared__ int part[1024];
+  const int t = threadIdx.x, nt = blockDim.x;
+  const int chunk = (n + nt - 1) / nt;
+  const int b = min(t * chunk, n), e = min(b + chunk, n);
+  int sum = 0;
+  for (int i = b; i < e; i++) sum += c[i];
+  part[t] = sum;
+  __syncthreads();
+  if (t == 0) {
+    int run = 0;
+    for (int k = 0; k < nt; k++) {
+      const int v = part[k];
+      part[k] = run;
+      run += v;
+    }
+    c[n] = run;
+  }
+  __syncthreads();
+  int run = part[t];
+  for (int i = b; i < e; i++) {
+    const int v = c[i];
+    c[i] = run;
+    run += v;
+  }
+}
+
+/** Entry k < n goes to the next free place of cell t[k]: out = s[k]. */
+__global__ void gg_scatter_kernel(const int *__restrict__ t, const int *__restrict__ s, size_t n,
+                                  int *cursor, int *out) {
+  for (size_t k = blockIdx.x * (size_t)blockDim.x + threadIdx.x; k < n;
+       k += (size_t)gridDim.x * blockDim.x)
+    out[atomicAdd(cursor + t[k], 1)] = s[k];
+}
+
+/** Grid of the grid-stride kernels over n entries. */
+static int gg_grid(size_t n) {
+  const size_t g = (n + 255) / 256;
+  return g > 4096 ? 4096 : (g ? (int)g : 1);
+}
+
+/** Upload the lists of kind k (0: part, 1: field) of the workers' records
+ *  and group them by receiving cell on the device; the device view. */
+static struct gravity_gpu_groups gg_group(struct gpu_grav *gg, int k,
+                                          const struct gravity_gpu_rec *rec, int nr_rec,
+                                          cudaStream_t s) {
+  size_t n1 = 0, n2 = 0;
+  for (int w = 0; w < nr_rec; w++) {
+    n1 += (k ? rec[w].field : rec[w].part).n;
+    n2 += (k ? rec[w].field_sym : rec[w].part_sym).n;
+  }
+  const size_t ntot = n1 + 2 * n2;
+  if (ntot > (size_t)INT_MAX) error_exit("%zu recorded gravity interactions: more than the GPU lists hold", ntot);
+  /* raw: one-way targets, sources; mutual firsts, seconds */
+  int *raw = (int *)gg_reserve(&gg->raw[k], (2 * n1 + 2 * n2) * sizeof(int) + 16,
+                               k ? "recorded M2L/P2L" : "recorded P2P/M2P");
+  int *t1 = raw, *s1 = raw + n1, *a2 = raw + 2 * n1, *b2 = raw + 2 * n1 + n2;
+  size_t o1 = 0, o2 = 0;
+  for (int w = 0; w < nr_rec; w++) {
+    const struct gravity_rec_list *l = k ? &rec[w].field : &rec[w].part;
+    const struct gravity_rec_list *m = k ? &rec[w].field_sym : &rec[w].part_sym;
+    gg_up(gg, s, t1 + o1, l->target, l->n * sizeof(int));
+    gg_up(gg, s, s1 + o1, l->source, l->n * sizeof(int));
+    gg_up(gg, s, a2 + o2, m->target, m->n * sizeof(int));
+    gg_up(gg, s, b2 + o2, m->source, m->n * sizeof(int));
+    o1 += l->n;
+    o2 += m->n;
+  }
+  const int nc = gg->nr_cells;
+  int *start = (int *)gg_reserve(&gg->start[k], ((size_t)nc + 1) * sizeof(int), "gravity lists");
+  int *cursor = (int *)gg_reserve(&gg->cursor, ((size_t)nc + 1) * sizeof(int), "gravity lists");
+  int *out = (int *)gg_reserve(&gg->src[k], ntot * sizeof(int) + 16, "grouped gravity lists");
+  gpu_check(cudaMemsetAsync(start, 0, ((size_t)nc + 1) * sizeof(int), s));
+  gg_count_kernel<<<gg_grid(n1), 256, 0, s>>>(t1, n1, start);
+  gpu_check_launch(gg_count_kernel);
+  gg_count_kernel<<<gg_grid(n2), 256, 0, s>>>(a2, n2, start);
+  gpu_check_launch(gg_count_kernel);
+  gg_count_kernel<<<gg_grid(n2), 256, 0, s>>>(b2, n2, start);
+  gpu_check_launch(gg_count_kernel);
+  gg_scan_kernel<<<1, 1024, 0, s>>>(start, nc);
+  gpu_check_launch(gg_scan_kernel);
+  gpu_check(cudaMemcpyAsync(cursor, start, (size_t)nc * sizeof(int), cudaMemcpyDeviceToDevice, s));
+  gg_scatter_kernel<<<gg_grid(n1), 256, 0, s>>>(t1, s1, n1, cursor, out);
+  gpu_check_launch(gg_scatter_kernel);
+  gg_scatter_kernel<<<gg_grid(n2), 256, 0, s>>>(a2, b2, n2, cursor, out);
+  gpu_check_launch(gg_scatter_kernel);
+  gg_scatter_kernel<<<gg_grid(n2), 256, 0, s>>>(b2, a2, n2, cursor, out);
+  gpu_check_launch(gg_scatter_kernel);
+  struct gravity_gpu_groups v;
+  v.nr_cells = nc;
+  v.start = start;
+  v.source = out;
+  gg->n_entries[k] = (double)ntot;
+  return v;
+}
+
+extern "C" void gpu_grav_run(struct gpu_grav *gg, struct parts *p,
+                             const struct gravity_gpu_rec *rec, int nr_rec, double G, double eps,
+                             int softening, double eps2, int order, int resident, int replay) {
+  if (!gg->have_tree) error_bug("gpu_grav_run before gpu_grav_set_tree");
+  if (replay && !gg->have_eval) error_bug("gravity replay on the GPU without a full evaluation");
+  cudaStream_t s = gpu_stream(gg->g, 0);
+  static const char *const xyzm[4] = {"x", "y", "z", "m"};
+  static const char *const out[4] = {"gax", "gay", "gaz", "pot"};
+  struct parts dp = gpu_device_parts(gg->g, p->count);
+  gpu_check(cudaEventRecord(gg->ev[GG_UP], s));
+  if (!resident) gpu_copy_named(gg->g, p, xyzm, 4, 1);
+  const size_t n = p->count;
+  gpu_check(cudaMemsetAsync(dp.gax, 0, n * sizeof(double), s));
+  gpu_check(cudaMemsetAsync(dp.gay, 0, n * sizeof(double), s));
+  gpu_check(cudaMemsetAsync(dp.gaz, 0, n * sizeof(double), s));
+  gpu_check(cudaMemsetAsync(dp.pot, 0, n * sizeof(double), s));
+  struct gravity_gpu_dev d;
+  d.mp = (const struct gravity_multipole *)gg->mp.ptr;
+  d.field = (struct gravity_field *)gg->field.ptr;
+  d.offset = (const size_t *)gg->offset.ptr;
+  d.count = (const int *)gg->count.ptr;
+  d.G = G;
+  d.eps = eps;
+  d.eps2 = eps2;
+  d.softening = softening;
+  d.order = order;
+  const size_t nc = (size_t)gg->nr_cells;
+  if (!replay) gg_up(gg, s, gg->mp.ptr, gg->mp_host, nc * sizeof(struct gravity_multipole));
+  gpu_check(cudaEventRecord(gg->ev[GG_GROUP], s));
+  if (!replay) {
+    gg->gl[0] = gg_group(gg, 0, rec, nr_rec, s);
+    gg->gl[1] = gg_group(gg, 1, rec, nr_rec, s);
+    gpu_check(cudaMemsetAsync(gg->field.ptr, 0, nc * sizeof(struct gravity_field), s));
+  }
+  gpu_check(cudaEventRecord(gg->ev[GG_FIELD], s));
+  if (!replay) gravity_field_gpu_launch(s, dp, d, gg->gl[1]);
+  gpu_check(cudaEventRecord(gg->ev[GG_L2L], s));
+  if (!replay) {
+    const int *l2l = (const int *)gg->l2l.ptr;
+    const int nl = gg->level_start[gg->nr_levels];
+    for (int L = 0; L < gg->nr_levels; L++)
+      gravity_l2l_gpu_launch(s, d, l2l, l2l + nl, gg->level_start[L], gg->level_start[L + 1]);
+  }
+  gpu_check(cudaEventRecord(gg->ev[GG_PART], s));
+  gravity_part_gpu_launch(s, dp, d, gg->gl[0], (const int *)gg->leaf.ptr, gg->nr_leaves,
+                          gg->block);
+  gpu_check(cudaEventRecord(gg->ev[GG_L2P], s));
+  gravity_l2p_gpu_launch(s, dp, d, (const int *)gg->leaf.ptr, gg->nr_leaves, gg->block);
+  gpu_check(cudaEventRecord(gg->ev[GG_DOWN], s));
+  /* ga and pot back: the host's next gravity_up reads |ga| (the adaptive
+   * criterion's scale), the statistics read pot */
+  gpu_copy_named(gg->g, p, out, 4, 0);
+  gpu_check(cudaEventRecord(gg->ev[GG_N], s));
+  gpu_check(cudaStreamSynchronize(s));
+  gg->bytes += 4.0 * (double)n * sizeof(double) * (resident ? 1.0 : 2.0);
+  for (int k = 0; k < GG_N; k++) {
+    float ms = 0.0f;
+    gpu_check(cudaEventElapsedTime(&ms, gg->ev[k], gg->ev[k + 1]));
+    gg->t[k] += ms;
+  }
+  gg->have_eval = 1;
+  gg->calls++;
+  gg->replays += replay;
+}
+
+extern "C" void gpu_grav_print(const struct gpu_grav *gg, FILE *f) {
+  if (!gg || gg->calls == 0) return;
+  fprintf(f, "GPU gravity, %ld evaluations (%ld replays), ms per evaluation:", gg->calls,
+          gg->replays);
+  for (int k = 0; k < GG_N; k++) fprintf(f, " %s %.3f", gg_stage_names[k], gg->t[k] / gg->calls);
+  fprintf(f, "; bus %.1f MB per evaluation; last full evaluation %.3g P2P/M2P, %.3g M2L/P2L\n",
+          gg->bytes / gg->calls / 1e6, gg->n_entries[0], gg->n_entries[1]);
+}

@@ -1,0 +1,131 @@
+/* Host side of self-gravity on the GPU (gpu_engine.h): the cell tree as
+ * index arrays, the multipoles packed for the upload, and the serial
+ * sequence of a whole evaluation. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "error.h"
+#include "gpu_engine.h"
+
+/* ------------------------------------------------------------------ tree */
+
+/** Append the pairs (child, c) of c's non-empty progeny at level depth and
+ *  c's leaves, recursively. */
+static void tree_visit(struct gpu_grav_host *h, const struct cell *c, int depth) {
+  if (c->count == 0) return;
+  if (!c->split) {
+    if (h->nr_leaf == h->leaf_cap) {
+      h->leaf_cap = 2 * h->leaf_cap + 1024;
+      h->leaf = error_realloc(h->leaf, h->leaf_cap * sizeof(int), "GPU gravity tree");
+    }
+    h->leaf[h->nr_leaf++] = c->index;
+    return;
+  }
+  for (int q = 0; q < 8; q++) {
+    const struct cell *cp = c->progeny[q];
+    if (cp == NULL || cp->count == 0) continue;
+    if (h->nr_l2l == h->l2l_cap) {
+      h->l2l_cap = 2 * h->l2l_cap + 1024;
+      h->l2l_tmp = error_realloc(h->l2l_tmp, 3 * h->l2l_cap * sizeof(int), "GPU gravity tree");
+    }
+    int *e = h->l2l_tmp + 3 * h->nr_l2l++;
+    e[0] = cp->index;
+    e[1] = c->index;
+    e[2] = depth;
+    tree_visit(h, cp, depth + 1);
+  }
+}
+
+void gpu_grav_tree_build(struct gpu_grav_host *h, const struct space *s) {
+  const int nc = s->nr_cells;
+  if (nc > h->cells_cap) {
+    h->cells_cap = nc + nc / 4 + 16;
+    h->offset = error_realloc(h->offset, h->cells_cap * sizeof(size_t), "GPU gravity tree");
+    h->count = error_realloc(h->count, h->cells_cap * sizeof(int), "GPU gravity tree");
+  }
+  for (int k = 0; k < nc; k++) {
+    if (s->cells[k].index != k) error_bug("cell %d has index %d", k, s->cells[k].index);
+    h->offset[k] = s->cells[k].offset;
+    h->count[k] = (int)s->cells[k].count;
+  }
+  h->nr_l2l = h->nr_leaf = 0;
+  for (int c = 0; c < s->nr_top; c++) tree_visit(h, &s->cells[c], 0);
+  /* the pairs by level (counting sort; within a level, in visiting order) */
+  int nlev = 0;
+  for (int k = 0; k < h->nr_l2l; k++)
+    if (h->l2l_tmp[3 * k + 2] + 1 > nlev) nlev = h->l2l_tmp[3 * k + 2] + 1;
+  h->level_start = error_realloc(h->level_start, (nlev + 2) * sizeof(int), "GPU gravity tree");
+  memset(h->level_start, 0, (nlev + 2) * sizeof(int));
+  for (int k = 0; k < h->nr_l2l; k++) h->level_start[h->l2l_tmp[3 * k + 2] + 2]++;
+  for (int L = 0; L < nlev; L++) h->level_start[L + 2] += h->level_start[L + 1];
+  h->l2l_child = error_realloc(h->l2l_child, (h->l2l_cap + 1) * sizeof(int), "GPU gravity tree");
+  h->l2l_parent = error_realloc(h->l2l_parent, (h->l2l_cap + 1) * sizeof(int), "GPU gravity tree");
+  for (int k = 0; k < h->nr_l2l; k++) {
+    const int q = h->level_start[h->l2l_tmp[3 * k + 2] + 1]++;
+    h->l2l_child[q] = h->l2l_tmp[3 * k];
+    h->l2l_parent[q] = h->l2l_tmp[3 * k + 1];
+  }
+  struct gpu_grav_tree *t = &h->tree;
+  t->nr_cells = nc;
+  t->offset = h->offset;
+  t->count = h->count;
+  t->nr_l2l = h->nr_l2l;
+  t->l2l_child = h->l2l_child;
+  t->l2l_parent = h->l2l_parent;
+  t->nr_levels = nlev;
+  t->level_start = h->level_start;
+  t->nr_leaves = h->nr_leaf;
+  t->leaf = h->leaf;
+  h->built_rebuild = s->nr_rebuilds;
+  h->built_cells = s->cells;
+}
+
+void gpu_grav_pack_multipoles(struct gravity_multipole *dst, const struct cell *c,
+                              const struct gravity_cell *gc) {
+  dst[c->index] = gc[c->index].mp;
+  if (c->split)
+    for (int q = 0; q < 8; q++)
+      if (c->progeny[q]) gpu_grav_pack_multipoles(dst, c->progeny[q], gc);
+}
+
+void gpu_grav_host_free(struct gpu_grav_host *h) {
+  free(h->offset);
+  free(h->count);
+  free(h->l2l_tmp);
+  free(h->l2l_child);
+  free(h->l2l_parent);
+  free(h->level_start);
+  free(h->leaf);
+  memset(h, 0, sizeof *h);
+}
+
+/* ------------------------------------------------------------------ serial */
+
+void gpu_grav_tree_all(struct gpu_grav *gg, struct gpu_grav_host *h, struct gravity_gpu_rec *rec,
+                       struct parts *p, const struct space *s, struct gravity_cell *gc,
+                       const struct gravity_props *gp, int resident) {
+  const struct cell *tops = s->cells;
+  const int nr_top = s->nr_top;
+  if (h->built_rebuild != s->nr_rebuilds || h->built_cells != s->cells || !h->tree.offset) {
+    gpu_grav_tree_build(h, s);
+    gpu_grav_set_tree(gg, &h->tree);
+  }
+  struct gravity_multipole *mp = gpu_grav_multipoles(gg, s->nr_cells);
+  for (int i = 0; i < nr_top; i++) {
+    gravity_up(p, tops + i, gc, gp);
+    gpu_grav_pack_multipoles(mp, tops + i, gc);
+  }
+  rec->part.n = rec->field.n = rec->part_sym.n = rec->field_sym.n = 0;
+  gravity_gpu_record(rec);
+  /* the walks of gravity_tree_all, recorded */
+  for (int i = 0; i < nr_top; i++) {
+    gravity_interact_cells(p, tops + i, tops + i, gc, gp);
+    for (int j = i + 1; j < nr_top; j++)
+      if (gravity_top_pair_is_near(tops + i, tops + j, gp))
+        gravity_interact_cells(p, tops + i, tops + j, gc, gp);
+  }
+  for (int i = 0; i < nr_top; i++) gravity_long_range(p, tops + i, tops, nr_top, gc, gp);
+  gravity_gpu_record(NULL);
+  gpu_grav_run(gg, p, rec, 1, gp->G, gp->eps, gp->softening, gp->eps2_expansion, gp->order,
+               resident, 0);
+}
