@@ -3,6 +3,8 @@
 # planet (isothermal 300 K) on SEA shells sit still?  Makes the planet with
 # `bolide-ic planet`, evolves it with hydrodynamics and self-gravity and no
 # damping, and prints v_rms / v_esc of every snapshot (theory/planets.md).
+# Exits 1 unless v_rms / v_esc of the last snapshot is below 1% (the bar of
+# shared/VALIDATION.md; theory/planets.md "Sitting still" for measurements).
 # Usage: tools/ic/planet_settle.sh N T_END [bolide-ic planet options...]
 #   e.g. tools/ic/planet_settle.sh 1e4 6000
 # Environment: BOLIDE_BUILD (default _build), THREADS (default 2),
@@ -47,8 +49,8 @@ Materials:
   101: {name: granite, P_min: 0}
 YML
 "$build/bolide" -t "${THREADS:-2}" params.yml > bolide.log
-"$python" - <<'PY'
-import glob
+"$python" - <<'PY' || { echo "planet_settle: files in $out"; exit 1; }
+import glob, sys
 import h5py
 import numpy as np
 G = 6.674e-11
@@ -70,5 +72,8 @@ for f in sorted(glob.glob("settle_*.hdf5")):
     print(f"t = {t:7.0f} s  v_rms/v_esc = {v_rms / v_esc:.4f}  (r < 0.97 r_max: "
           f"{np.sqrt((m[~outer] * sp[~outer]**2).sum() / m[~outer].sum()) / v_esc:.4f}, "
           f"max {sp.max() / v_esc:.4f})  r_max {R:.4e} m")
+ok = v_rms / v_esc < 0.01
+print("v_rms / v_esc at the end %.4f: %s the 1%% bar" % (v_rms / v_esc, "within" if ok else "NOT within"))
+sys.exit(0 if ok else 1)
 PY
 echo "planet_settle: files in $out"
