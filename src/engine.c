@@ -335,11 +335,14 @@ static void engine_init_flaws(struct engine *e, const char *icname) {
     for (size_t i = 0; i < n; i++)
       if (p->dmg[i] > 0.0 && !(p->dcbrt[i] > 0.0)) p->dcbrt[i] = cbrt(p->dmg[i]);
   e->damage_max_change = params_get_real(e->params, "Damage:max_change");
+  e->damage_start = params_get_real(e->params, "Damage:start_time");
   char from[64];
   snprintf(from, sizeof from, "Damage:seed %ld", params_get_int(e->params, "Damage:seed"));
   error_log(0, "damage: %lld Weibull flaws (%.1f per particle, %.1f MiB) from %s", (long long)e->nr_flaws,
             n ? (double)e->nr_flaws / (double)n : 0.0,
             (double)e->nr_flaws * sizeof(double) / 1048576.0, e->flaws_from ? e->flaws_from : from);
+  if (e->damage_start > 0.0)
+    error_log(0, "damage: no flaw activation or growth before t = %g (Damage:start_time)", e->damage_start);
   if (!e->hp.solids) error_warning("brittle materials without strength: damage has no stress to act on");
 }
 

@@ -72,6 +72,7 @@ struct engine {
   int64_t nr_flaws;               /**< their number */
   const char *flaws_from;         /**< where they came from (log), NULL: Damage:seed */
   double damage_max_change;       /**< Damage:max_change */
+  double damage_start;            /**< Damage:start_time: no damage before it */
   int porous;                     /**< 1 when a material has a porosity model */
   struct gravity_props gp;        /**< self-gravity settings (gp.enabled) */
   struct gravity_cell *gcells;    /**< gravity data of every cell, by cell index */

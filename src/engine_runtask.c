@@ -47,6 +47,7 @@ static void engine_damage(struct engine *e, int t) {
   struct parts *p = &e->parts;
   const struct cell *c = e->tcells[t];
   const double dt = e->first_force ? 0.0 : e->dt;
+  if (e->time < e->damage_start) return; /* Damage:start_time: not yet */
   for (size_t i = c->offset; i < c->offset + c->count; i++) damage_part(p, i, e->mats, e->flaw_eps, dt);
 }
 

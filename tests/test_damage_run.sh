@@ -4,7 +4,9 @@
 # radially, so in tension.  Asserts: flaws drawn at start-up (about ln N + 0.58
 # per particle); damage appears; no particle's damage ever decreases between
 # snapshots; every particle's d stays within its limiter d <= n_act / n_flaws;
-# damaged particles exist only where flaws were activated.
+# damaged particles exist only where flaws were activated.  Then with
+# Damage:start_time 2e-6: no flaw active and no damage at the snapshots
+# before it, damage after it.
 set -uo pipefail
 B=${BOLIDE_BUILDDIR:?}
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
@@ -77,5 +79,26 @@ if abs(mean_flaws - (np.log(N) + 0.5772)) > 0.15 * (np.log(N) + 0.5772):
     print("FAIL: flaw count"); fail = 1
 if not prev.max() > 0.1:
     print("FAIL: no damage grew in tension"); fail = 1
+sys.exit(fail)
+PY
+[ $? -eq 0 ] || exit 1
+# Damage:start_time: the same run, damage only from t = 2e-6
+mkdir -p late && cd late
+sed 's|file_name: sphere.hdf5|file_name: ../sphere.hdf5|' ../p.yml >p.yml
+"$B/bolide" -t 2 -P Damage:start_time:2e-6 p.yml >run.log 2>&1 ||
+  { echo "FAIL: run with Damage:start_time"; tail -5 run.log; exit 1; }
+grep -q "before t = 2e-06 (Damage:start_time)" run.log || { echo "FAIL: no start-time line in the log"; exit 1; }
+"$PYTHON" - <<'PY'
+import sys, glob, h5py, numpy as np
+fail = 0
+for f in sorted(glob.glob("snapshot_*.hdf5")):
+    F = h5py.File(f, "r"); g = F["PartType0"]
+    t = float(np.ravel(F["Header"].attrs["Time"])[0])
+    d = g["Damage"][:]; na = g["ActiveFlaws"][:]
+    print("Damage:start_time 2e-6: t = %.2e s: max damage %.4f, active flaws %d" % (t, d.max(), na.sum()))
+    if t < 2e-6 * (1 - 1e-9) and (d.max() > 0 or na.sum() > 0):
+        print("FAIL: damage before Damage:start_time"); fail = 1
+    if t > 3.5e-6 and not d.max() > 0.01:
+        print("FAIL: no damage after Damage:start_time"); fail = 1
 sys.exit(fail)
 PY

@@ -481,7 +481,9 @@ void gpu_engine_force(struct engine *e) {
   }
   ge->host_stale = 1;
   if (e->gp.enabled) gpu_engine_gravity(e);
-  const struct gpu_damage dmg = {e->damage, e->first_force ? 0.0 : e->dt, e->damage_max_change};
+  /* no damage before Damage:start_time (engine_damage does the same) */
+  const struct gpu_damage dmg = {e->damage && !(e->time < e->damage_start),
+                                 e->first_force ? 0.0 : e->dt, e->damage_max_change};
   const struct gpu_gravity grav = {e->gp.enabled, e->gp.eps, e->gp.eta};
   if (gpu_cells_force(ge->gpu, &ge->cells, &e->parts, &e->space, e->tcells, e->nr_tcells, e->ct,
                       ge->tc_h_cap, &e->hp, e->mats, &dmg, &grav, dt_kick, 1, e->cell_dt_min))

@@ -97,6 +97,7 @@
   X("Scheduler:gpu", PARAM_STRING, "auto", 0, 0, NULL, "-", "which task families run on the GPU: auto, off, all, or a comma-separated list") \
                                                                                                          \
   X("Damage:seed", PARAM_INT, "1", 0, 9.2e18, NULL, "-", "seed of the Weibull flaws drawn at start-up for brittle materials (materials with weibull_k > 0 and a shear modulus)") \
+  X("Damage:start_time", PARAM_REAL, "0", 0, 1e300, NULL, "internal time", "no flaw activation and no damage growth before this time (lets bodies settle under self-gravity first: their settling oscillation can exceed the weakest flaws' thresholds; 0: damage from the start)") \
   X("Damage:max_change", PARAM_REAL, "0.1", 1e-6, 1, NULL, "-", "time-step limit: damage d grows by at most this much per step (d^(1/3) is integrated exactly and capped, so saturation takes about 1/max_change steps)") \
                                                                                                          \
   X("Porosity:ic_tolerance", PARAM_REAL, "0.01", 0, 1, NULL, "-", "start-up check of porous bodies: the IC density times the distention must be the matrix density rho0 of the material within this relative difference") \
