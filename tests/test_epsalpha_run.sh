@@ -19,27 +19,7 @@ set -uo pipefail
 B=${BOLIDE_BUILDDIR:?}
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
-"$PYTHON" - <<'PY'
-import h5py, numpy as np
-n, L, rate, rho = 16, 1.0, 3000.0, 2700.0 / 1.8
-dx = L / n
-g = (np.arange(n) + 0.5) * dx - 0.5 * L
-x, y, z = np.meshgrid(g, g, g, indexing="ij")
-pos = np.stack([x.ravel(), y.ravel(), z.ravel()], axis=1)
-N = len(pos)
-with h5py.File("block.hdf5", "w") as f:
-    h = f.create_group("Header"); h.attrs["BoxSize"] = [4.0, 4.0, 4.0]
-    h.attrs["NumPart_Total"] = [N, 0, 0, 0, 0, 0]
-    p = f.create_group("PartType0")
-    p["Coordinates"] = pos + 2.0
-    p["Velocities"] = -rate * pos
-    p["Masses"] = np.full(N, rho * dx**3)
-    p["SmoothingLengths"] = np.full(N, 1.2348 * dx)
-    p["InternalEnergies"] = np.full(N, 0.0)
-    p["Densities"] = np.full(N, rho)
-    p["ParticleIDs"] = np.arange(1, N + 1)
-    p["MaterialIDs"] = np.zeros(N, dtype=np.int32)
-PY
+"$PYTHON" "${BOLIDE_SRCDIR:?}/tests/porous_cube.py" block.hdf5 1500 3000   # 2700 / 1.8
 cat >params.yml <<'YML'
 InitialConditions:
   file_name: block.hdf5

@@ -111,28 +111,7 @@ grep -q "GPU not used" impactc/gpu/run.log && { echo "FAIL: the continuity + XSP
 # basalt matrix, alpha_0 1.8, continuity density) squeezed at -300/s x for
 # 80 steps (alpha 1.31 to 1.68 at the end)
 mkdir -p porous/cpu porous/gpu
-"${PYTHON:-python3}" - <<'PY'
-import h5py, numpy as np
-n, L, rate, rho = 16, 1.0, 300.0, 1500.0
-dx = L / n
-g = (np.arange(n) + 0.5) * dx - 0.5 * L
-x, y, z = np.meshgrid(g, g, g, indexing="ij")
-pos = np.stack([x.ravel(), y.ravel(), z.ravel()], axis=1)
-N = len(pos)
-for m in ("cpu", "gpu"):
-    with h5py.File("porous/%s/block.hdf5" % m, "w") as f:
-        h = f.create_group("Header"); h.attrs["BoxSize"] = [4.0, 4.0, 4.0]
-        h.attrs["NumPart_Total"] = [N, 0, 0, 0, 0, 0]
-        p = f.create_group("PartType0")
-        p["Coordinates"] = pos + 2.0
-        p["Velocities"] = -rate * pos
-        p["Masses"] = np.full(N, rho * dx**3)
-        p["SmoothingLengths"] = np.full(N, 1.2348 * dx)
-        p["InternalEnergies"] = np.full(N, 0.0)
-        p["Densities"] = np.full(N, rho)
-        p["ParticleIDs"] = np.arange(1, N + 1)
-        p["MaterialIDs"] = np.zeros(N, dtype=np.int32)
-PY
+for m in cpu gpu; do "${PYTHON:-python3}" "$S/tests/porous_cube.py" porous/$m/block.hdf5 1500 300; done
 for m in cpu gpu; do
   cat >porous/$m/params.yml <<'YML'
 InitialConditions:

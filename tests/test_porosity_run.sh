@@ -22,32 +22,10 @@ set -uo pipefail
 B=${BOLIDE_BUILDDIR:?}
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
-"$PYTHON" - <<'PY'
-import h5py, numpy as np
-def cube(name, rho, alpha=None):
-    n, L, rate = 16, 1.0, 3000.0
-    dx = L / n
-    g = (np.arange(n) + 0.5) * dx - 0.5 * L
-    x, y, z = np.meshgrid(g, g, g, indexing="ij")
-    pos = np.stack([x.ravel(), y.ravel(), z.ravel()], axis=1)
-    N = len(pos)
-    with h5py.File(name, "w") as f:
-        h = f.create_group("Header"); h.attrs["BoxSize"] = [4.0, 4.0, 4.0]
-        h.attrs["NumPart_Total"] = [N, 0, 0, 0, 0, 0]
-        p = f.create_group("PartType0")
-        p["Coordinates"] = pos + 2.0
-        p["Velocities"] = -rate * pos
-        p["Masses"] = np.full(N, rho * dx**3)
-        p["SmoothingLengths"] = np.full(N, 1.2348 * dx)
-        p["InternalEnergies"] = np.full(N, 0.0)
-        p["Densities"] = np.full(N, rho)
-        p["ParticleIDs"] = np.arange(1, N + 1)
-        p["MaterialIDs"] = np.zeros(N, dtype=np.int32)
-        if alpha is not None: p["Distentions"] = np.full(N, alpha)
-cube("block.hdf5", 1500.0)                 # 2700 / 1.8
-cube("wrong.hdf5", 1600.0)                 # 1600 x 1.8 = 2880, not 2700
-cube("given.hdf5", 2700.0 / 1.5, 1.5)      # Distentions in the file
-PY
+cube="$PYTHON ${BOLIDE_SRCDIR:?}/tests/porous_cube.py"
+$cube block.hdf5 1500 3000                 # 2700 / 1.8
+$cube wrong.hdf5 1600 3000                 # 1600 x 1.8 = 2880, not 2700
+$cube given.hdf5 1800 3000 1.5             # Distentions in the file: 2700 / 1.5
 crush='porosity: {model: palpha, alpha_0: 1.8, alpha_t: 1.3, p_e: 1e6, p_t: 5e7, p_s: 2e8, n1: 6, n2: 3}'
 for matrix in murnaghan tillotson; do
   if [ $matrix = murnaghan ]; then
