@@ -169,15 +169,6 @@ extern "C" const char *gpu_name(const struct gpu *g) {
   return g->name;
 }
 
-extern "C" int gpu_supports(const struct material_table *mats, char *why, size_t len) {
-  /* every EOS (tables included), strength, damage and porosity model of
-   * the material table has a GPU path (the shared inline functions) */
-  (void)mats;
-  (void)why;
-  (void)len;
-  return 1;
-}
-
 /** Grow the device particle arrays to at least n (contents are not kept:
  *  every phase uploads what it reads). */
 static void gpu_reserve(struct gpu *g, size_t n) {

@@ -89,9 +89,6 @@ struct gpu_grav;
 struct gpu *gpu_init(char *why, size_t len);
 /** "NVIDIA H100 80GB HBM3 (132 SMs, 79.1 GiB)" */
 const char *gpu_name(const struct gpu *g);
-/** 1 if every material of mats can be evaluated on the device, else 0 with
- *  the reason in why (tabulated EOS: host pointers). */
-int gpu_supports(const struct material_table *mats, char *why, size_t len);
 /** Copy the flat array of Weibull flaw thresholds (n of them, indexed by the
  *  particles' flaw_first) to the device, where the damage kernel reads it;
  *  again whenever the array changes. */

@@ -371,11 +371,9 @@ void gpu_engine_init(struct engine *e) {
     error_log(0, "GPU not used (%s): every task runs on the CPU", unsupported);
     return;
   }
+  /* every EOS (tables included), strength, damage and porosity model has
+   * a GPU path: the shared inline functions */
   struct gpu *g = gpu_init(why, sizeof why);
-  if (g && !gpu_supports(e->mats, why, sizeof why)) {
-    gpu_free(g);
-    g = NULL;
-  }
   if (!g) {
     if (required)
       error_exit("a GPU was required (%s) but cannot be used: %s",
