@@ -29,6 +29,7 @@
 #include "restart.h"
 #include "timestep/timestep.h"
 #include "version.h"
+#include "gpu/gpu_policy.h"
 #ifdef HAVE_CUDA
 #include "gpu/gpu_engine.h"
 #endif
@@ -473,6 +474,8 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   e->sched.fixed_costs = params_get_bool(params, "Scheduler:deterministic");
 #ifdef HAVE_CUDA
   gpu_engine_init(e);
+#else
+  (void)gpu_policy_read(params); /* checked in every build; every task runs on the CPU */
 #endif
 }
 

@@ -66,12 +66,14 @@ enum gpu_stage {
   GPU_T_GRADIENT,
   GPU_T_FORCE,
   GPU_T_DAMAGE,
+  GPU_T_WAIT,
   GPU_T_KICK,
   GPU_T_DOWNLOAD,
   GPU_T_N
 };
 static const char *const gpu_stage_names[GPU_T_N] = {
-    "upload", "density", "ghost", "gradient(+extra ghost)", "force", "damage", "kick2", "download"};
+    "upload", "density", "ghost", "gradient(+extra ghost)", "force", "damage",
+    "gravity(hybrid: wait + device part)", "kick2", "download"};
 
 struct gpu {
   int device;                  /**< CUDA device number */
@@ -102,6 +104,8 @@ struct gpu {
   long full_up, full_down;           /**< copies of every field (rebuilds, outputs) */
   void *pinned[PART_NR_FIELDS];      /**< host arrays registered as pinned memory, by field */
   size_t pinned_bytes;               /**< bytes per field registered */
+  void (*kick_wait)(void *);         /**< called before the kick reads ga (gpu_set_kick_wait) */
+  void *kick_wait_ctx;               /**< its argument */
 };
 
 void gpu_check_fail(cudaError_t err, const char *what, const char *file, int line) {
@@ -371,6 +375,8 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
   if (g->counters_host[GPU_OVERFLOW]) {
     /* the lists were too short for the new h: hand h back for new lists */
     out->overflow = 1;
+    /* the host's h changes below: let whatever runs beside this phase finish first */
+    if (g->kick_wait) g->kick_wait(g->kick_wait_ctx);
     const int ih = gpu_field_index("h");
     gpu_copy_fields(g, p, &ih, 1, 0);
     gpu_check(cudaStreamSynchronize(s));
@@ -389,16 +395,20 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
   /* force -> damage -> kick2 */
   if (damage) damage_gpu_launch(s, g->dev, g->mats_dev, g->flaws_dev, dmg->dt);
   gpu_check(cudaEventRecord(g->ev[6], s));
+  /* hybrid runs: ga is being computed beside this phase; complete on the
+   * device once this returns (its device part, if any, queued on stream 0) */
+  if (g->kick_wait) g->kick_wait(g->kick_wait_ctx);
+  gpu_check(cudaEventRecord(g->ev[7], s));
   double *leaf_dt = g->leaf_dt;
   struct gpu_gravity gr = {0, 0.0, 0.0};
   if (grav) gr = *grav;
   kick2_gpu_launch(s, g->dev, dv, *hp, g->mats_dev, dt_kick, damage ? dmg->max_change : 0.0, gr,
                    leaf_dt);
-  gpu_check(cudaEventRecord(g->ev[7], s));
+  gpu_check(cudaEventRecord(g->ev[8], s));
   if (!resident) gpu_copy_fields(g, p, g->out, nr_out, 0);
   gpu_check(cudaMemcpyAsync(leaf_dt_min, leaf_dt, (size_t)lv->n * sizeof(double),
                             cudaMemcpyDeviceToHost, s));
-  gpu_check(cudaEventRecord(g->ev[8], s));
+  gpu_check(cudaEventRecord(g->ev[9], s));
   gpu_check(cudaStreamSynchronize(s));
   for (int k = 0; k < GPU_T_N; k++) {
     float ms = 0.0f;
@@ -406,6 +416,27 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
     g->t[k] += ms;
   }
   g->calls++;
+}
+
+extern "C" void gpu_set_kick_wait(struct gpu *g, void (*fn)(void *), void *ctx) {
+  g->kick_wait = fn;
+  g->kick_wait_ctx = ctx;
+}
+
+extern "C" void gpu_upload_gravity(struct gpu *g, struct parts *p) {
+  static const char *const names[4] = {"gax", "gay", "gaz", "pot"};
+  if (p->count != g->dev.count) error_bug("GPU and host particle counts differ");
+  gpu_copy_named(g, p, names, 4, 1);
+}
+
+extern "C" int gpu_set_blocking_sync(struct gpu *g) {
+  (void)g;
+  const cudaError_t err = cudaSetDeviceFlags(cudaDeviceScheduleBlockingSync);
+  if (err != cudaSuccess) {
+    cudaGetLastError();
+    return 0;
+  }
+  return 1;
 }
 
 cudaStream_t gpu_stream(struct gpu *g, int k) {

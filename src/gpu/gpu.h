@@ -108,6 +108,19 @@ void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu_leaves *lv
                      const struct hydro_props *hp, const struct material_table *mats,
                      const struct gpu_damage *dmg, const struct gpu_gravity *grav, double dt_kick,
                      double *leaf_dt_min, int resident, struct gpu_force_out *out);
+/** Have gpu_force_phase call fn(ctx) before its kick reads ga, and before
+ *  it writes the host's h when the lists overflow (fn NULL: nothing).  The
+ *  hybrid runner's hook: it waits there for the self-gravity computed
+ *  beside the phase (CPU tasks), then completes ga on the device (the
+ *  device part of gravity on stream 0, or gpu_upload_gravity). */
+void gpu_set_kick_wait(struct gpu *g, void (*fn)(void *), void *ctx);
+/** Copy gax, gay, gaz and pot of the resident particles from the host to
+ *  the device on stream 0 (self-gravity computed on the CPU). */
+void gpu_upload_gravity(struct gpu *g, struct parts *p);
+/** Let host threads waiting for the device sleep instead of spinning (the
+ *  hybrid runner: the CPU workers need the cores).  Returns 0 when the
+ *  driver refuses (the waits then keep spinning). */
+int gpu_set_blocking_sync(struct gpu *g);
 /** Self-gravity's device state on g (freed by gpu_grav_free, before gpu_free). */
 struct gpu_grav *gpu_grav_new(struct gpu *g);
 void gpu_grav_free(struct gpu_grav *gg);

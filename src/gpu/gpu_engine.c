@@ -8,11 +8,22 @@
 
 #include "engine_tasks.h"
 #include "error.h"
+#include "gpu_policy.h"
 #include "kernel.h"
 #include "params.h"
+#include "runner.h"
+
+/** Where the work of a FORCE phase runs (Scheduler:gpu, gpu_policy.h). */
+enum gpu_engine_mode {
+  GPU_MODE_SERIAL,  /**< all: gravity's CPU part, its device part, then the hydrodynamics */
+  GPU_MODE_HYBRID,  /**< the walks on the CPU beside the GPU's hydrodynamics, then gravity's
+                         device part, then the kick */
+  GPU_MODE_CPU_GRAV /**< the whole of self-gravity on the CPU beside the GPU's hydrodynamics */
+};
 
 /** The engine's GPU state. */
 struct gpu_engine {
+  int mode;               /**< enum gpu_engine_mode */
   struct gpu *gpu;        /**< the device */
   struct gpu_cells cells; /**< leaves and lists */
   int dev_valid;          /**< the device holds the current particles */
@@ -29,6 +40,12 @@ struct gpu_engine {
   double t_grav_walk;             /**< host seconds of the gravity tasks (up, walks) */
   double t_grav_gpu;              /**< seconds of the device part (copies included) */
   long grav_evals;                /**< gravity evaluations */
+  double t_phase;                 /**< host seconds of the FORCE phases */
+  long phases;                    /**< FORCE phases */
+  double t_cpu_side;              /**< hybrid: seconds of the CPU's gravity tasks */
+  double t_gpu_side;              /**< hybrid: seconds of the hydro thread until the kick */
+  double t_waited;                /**< hybrid: seconds the kick waited for the CPU */
+  long hybrid_phases;             /**< FORCE phases run hybrid (with CPU work beside) */
 };
 
 /** Grow the per-leaf arrays to n. */
@@ -341,18 +358,21 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
 }
 
 void gpu_engine_init(struct engine *e) {
-  const char *policy = params_get_string(e->params, "Scheduler:gpu");
-  if (strcmp(policy, "auto") && strcmp(policy, "all") && strcmp(policy, "off"))
-    params_error(e->params, "Scheduler:gpu",
-                 "expected auto, off or all, got '%s' (lists of task families are "
-                 "not implemented yet)",
-                 policy);
-  const int required = e->opt.use_gpu == 2 || strcmp(policy, "all") == 0;
-  if (e->opt.use_gpu == 0 || strcmp(policy, "off") == 0) {
+  const struct gpu_policy pol = gpu_policy_read(e->params);
+  char asked[300];
+  if (e->opt.use_gpu == 2)
+    snprintf(asked, sizeof asked, "--gpu");
+  else
+    snprintf(asked, sizeof asked, "Scheduler:gpu: %s", pol.text);
+  if (e->opt.use_gpu == 0 || pol.kind == GPU_POLICY_OFF ||
+      (pol.kind == GPU_POLICY_LIST && pol.families == 0)) {
     error_log(0, "GPU off (%s): every task runs on the CPU",
-              e->opt.use_gpu == 0 ? "--no-gpu" : "Scheduler:gpu: off");
+              e->opt.use_gpu == 0 ? "--no-gpu" : asked);
     return;
   }
+  /* a GPU asked for by name (--gpu, all, a list) must be there */
+  const int required =
+      e->opt.use_gpu == 2 || pol.kind == GPU_POLICY_ALL || pol.kind == GPU_POLICY_LIST;
   char why[256];
   /* the GPU runs the hydrodynamic phase as a whole (solids, damage, XSPH
    * and the continuity equation included) and self-gravity's interactions
@@ -365,9 +385,7 @@ void gpu_engine_init(struct engine *e) {
                                   "implementation yet"
                                 : NULL;
   if (unsupported) {
-    if (required)
-      error_exit("a GPU was required (%s) but %s", e->opt.use_gpu == 2 ? "--gpu" : "Scheduler:gpu: all",
-                 unsupported);
+    if (required) error_exit("a GPU was required (%s) but %s", asked, unsupported);
     error_log(0, "GPU not used (%s): every task runs on the CPU", unsupported);
     return;
   }
@@ -375,29 +393,52 @@ void gpu_engine_init(struct engine *e) {
    * a GPU path: the shared inline functions */
   struct gpu *g = gpu_init(why, sizeof why);
   if (!g) {
-    if (required)
-      error_exit("a GPU was required (%s) but cannot be used: %s",
-                 e->opt.use_gpu == 2 ? "--gpu" : "Scheduler:gpu: all", why);
+    if (required) error_exit("a GPU was required (%s) but cannot be used: %s", asked, why);
     error_log(0, "no GPU (%s): every task runs on the CPU", why);
     return;
   }
+  /* auto: the measured best, the hybrid (BENCHMARKS.md, "Hybrid") */
+  int mode = GPU_MODE_HYBRID;
+  if (pol.kind == GPU_POLICY_ALL)
+    mode = GPU_MODE_SERIAL;
+  else if (pol.kind == GPU_POLICY_LIST && !(pol.families & (1u << GPU_FAMILY_GRAVITY)))
+    mode = GPU_MODE_CPU_GRAV;
+  /* exact summation has no GPU part: it runs on the CPU beside the hydrodynamics */
+  if (e->gp.enabled && e->gp.direct) mode = GPU_MODE_CPU_GRAV;
+  if (!e->gp.enabled) mode = GPU_MODE_SERIAL; /* nothing to run beside the hydrodynamics */
   struct gpu_engine *ge = error_calloc(1, sizeof *ge, "GPU state");
   ge->gpu = g;
+  ge->mode = mode;
   e->gpu = ge;
-  if (e->gp.enabled) {
+  if (e->gp.enabled && mode != GPU_MODE_CPU_GRAV) {
     ge->grav = gpu_grav_new(g);
     ge->grav_host.built_rebuild = -1;
   }
+  /* the host thread driving the GPU then sleeps while it waits: the CPU
+   * workers have every core */
+  if (mode != GPU_MODE_SERIAL && !gpu_set_blocking_sync(g))
+    error_log(1, "GPU: the driver refused blocking waits; the thread driving the GPU spins");
   /* the flaw thresholds never change during a run: on the device once */
   if (e->damage) gpu_set_flaws(g, e->flaw_eps, (size_t)e->nr_flaws);
+  const char *grav = "";
+  if (e->gp.enabled && mode == GPU_MODE_SERIAL)
+    grav = "; self-gravity: multipoles and walks on the CPU, M2L, L2L, L2P, M2P and P2P on the GPU "
+           "(one after the other: the CPU part, the GPU part, then the hydrodynamics)";
+  else if (mode == GPU_MODE_HYBRID)
+    grav = "; self-gravity: multipoles and walks on the CPU, M2L, L2L, L2P, M2P and P2P on the GPU "
+           "(hybrid: the CPU workers walk while the GPU computes the hydrodynamics; then gravity's "
+           "GPU part and the kick)";
+  else if (mode == GPU_MODE_CPU_GRAV)
+    grav = e->gp.direct ? "; self-gravity (Gravity:direct, no GPU implementation) on the CPU "
+                          "workers while the GPU computes the hydrodynamics; ga goes up for the kick"
+                        : "; self-gravity entirely on the CPU workers (multipoles, walks, M2L, "
+                          "P2P, L2P) while the GPU computes the hydrodynamics; ga goes up for the "
+                          "kick";
   error_log(0,
-            "GPU %s: drift, density, ghost, %sforce, %skick2 of every cell run on it, the "
+            "GPU %s (%s): drift, density, ghost, %sforce, %skick2 of every cell run on it, the "
             "particles stay on it between steps%s",
-            gpu_name(g), e->hp.solids ? "gradient, extra ghost (plasticity, dS/dt), " : "",
-            e->damage ? "damage, " : "",
-            e->gp.enabled ? "; self-gravity: multipoles and walks on the CPU, M2L, L2L, L2P, M2P and P2P "
-                            "on the GPU"
-                          : "");
+            gpu_name(g), asked, e->hp.solids ? "gradient, extra ghost (plasticity, dS/dt), " : "",
+            e->damage ? "damage, " : "", grav);
 }
 
 /** Scheduler callback of the gravity pass: the engine's task, with the
@@ -411,53 +452,115 @@ static void gpu_engine_grav_task(void *ctx, struct task *t, int thread_id) {
   if (t->type == task_type_grav_up) gpu_grav_pack_multipoles(e->gpu->mp, t->ci, e->gcells);
 }
 
-/** Self-gravity of the FORCE phase: the gravity tasks of the graph on the
- *  CPU workers (multipoles, and the walks, which record their interactions
- *  instead of computing them; grav_down is the GPU's), then everything
- *  else on the GPU (gpu_grav_run: grouping included), which leaves ga and pot complete on both sides for the
- *  kick.  A step that reuses the far field (Gravity:reuse_steps) runs on
- *  the GPU alone: the device kept the multipoles, the local expansions and
- *  the interactions of the last full evaluation. */
-static void gpu_engine_gravity(struct engine *e) {
+/** Self-gravity of the FORCE phase, in three parts.  Prepare (here): the
+ *  tree on the device after a rebuild, the staging of the multipoles, the
+ *  workers' lists emptied, the gravity tasks of the graph activated (with
+ *  on_gpu, grav_down, the GPU's, skipped).  Returns 0 when the step reuses
+ *  the far field (Gravity:reuse_steps): the GPU alone then, nothing on the
+ *  CPU.  These make CUDA calls: before any thread drives the GPU beside. */
+static int gpu_engine_grav_prepare(struct engine *e, int on_gpu) {
   struct gpu_engine *ge = e->gpu;
-  const struct gravity_props *gp = &e->gp;
-  struct gpu_grav_host *h = &ge->grav_host;
-  const double w0 = error_walltime();
-  ge->grav_evals++;
-  if (gp->replay) {
-    gpu_grav_run(ge->grav, &e->parts, NULL, 0, gp->G, gp->eps, gp->softening,
-                 gp->eps2_expansion, gp->order, 1, 1);
-    ge->t_grav_gpu += error_walltime() - w0;
-    return;
+  if (on_gpu) {
+    ge->grav_evals++;
+    if (e->gp.replay) return 0;
+    struct gpu_grav_host *h = &ge->grav_host;
+    if (h->built_rebuild != e->space.nr_rebuilds || h->built_cells != e->space.cells) {
+      gpu_grav_tree_build(h, &e->space);
+      gpu_grav_set_tree(ge->grav, &h->tree);
+    }
+    ge->mp = gpu_grav_multipoles(ge->grav, e->space.nr_cells);
+    const int nw = e->sched.nr_threads > 0 ? e->sched.nr_threads : 1;
+    if (nw > ge->nr_rec) {
+      ge->rec = error_realloc(ge->rec, nw * sizeof *ge->rec, "gravity lists");
+      memset(ge->rec + ge->nr_rec, 0, (nw - ge->nr_rec) * sizeof *ge->rec);
+      ge->nr_rec = nw;
+    }
+    for (int w = 0; w < ge->nr_rec; w++)
+      ge->rec[w].part.n = ge->rec[w].field.n = ge->rec[w].part_sym.n = ge->rec[w].field_sym.n = 0;
   }
-  if (h->built_rebuild != e->space.nr_rebuilds || h->built_cells != e->space.cells) {
-    gpu_grav_tree_build(h, &e->space);
-    gpu_grav_set_tree(ge->grav, &h->tree);
-  }
-  ge->mp = gpu_grav_multipoles(ge->grav, e->space.nr_cells);
-  const int nw = e->sched.nr_threads > 0 ? e->sched.nr_threads : 1;
-  if (nw > ge->nr_rec) {
-    ge->rec = error_realloc(ge->rec, nw * sizeof *ge->rec, "gravity lists");
-    memset(ge->rec + ge->nr_rec, 0, (nw - ge->nr_rec) * sizeof *ge->rec);
-    ge->nr_rec = nw;
-  }
-  for (int w = 0; w < ge->nr_rec; w++)
-    ge->rec[w].part.n = ge->rec[w].field.n = ge->rec[w].part_sym.n = ge->rec[w].field_sym.n = 0;
   engine_activate_phase(e, ENGINE_PHASE_FORCE);
   for (int k = 0; k < e->sched.nr_tasks; k++) {
     struct task *t = scheduler_task(&e->sched, k);
-    if (t->subtype != task_subtype_grav || t->type == task_type_grav_down) t->skip = 1;
+    if (t->subtype != task_subtype_grav || (on_gpu && t->type == task_type_grav_down)) t->skip = 1;
   }
-  scheduler_run(&e->sched, gpu_engine_grav_task, e);
-  const double w1 = error_walltime();
-  gpu_grav_run(ge->grav, &e->parts, ge->rec, ge->nr_rec, gp->G, gp->eps, gp->softening,
-               gp->eps2_expansion, gp->order, 1, 0);
-  ge->t_grav_walk += w1 - w0;
-  ge->t_grav_gpu += error_walltime() - w1;
+  return 1;
+}
+
+/** The CPU part: the gravity tasks on the CPU workers, the calling thread
+ *  as thread 0.  on_gpu: multipoles, and walks that record their
+ *  interactions instead of computing them; else the CPU's own gravity
+ *  (grav_down included), which leaves ga and pot complete on the host. */
+static void gpu_engine_grav_cpu(struct engine *e, int on_gpu) {
+  const double w0 = error_walltime();
+  scheduler_run(&e->sched, on_gpu ? gpu_engine_grav_task : engine_run_task, e);
+  e->gpu->t_grav_walk += error_walltime() - w0;
+}
+
+/** The device part (gpu_grav_run: grouping included, or the replay of a
+ *  step that reuses the far field), which leaves ga and pot complete on
+ *  both sides for the kick, on stream 0 after whatever is queued there. */
+static void gpu_engine_grav_device(struct engine *e) {
+  struct gpu_engine *ge = e->gpu;
+  const struct gravity_props *gp = &e->gp;
+  const double w0 = error_walltime();
+  gpu_grav_run(ge->grav, &e->parts, gp->replay ? NULL : ge->rec, gp->replay ? 0 : ge->nr_rec,
+               gp->G, gp->eps, gp->softening, gp->eps2_expansion, gp->order, 1, gp->replay);
+  ge->t_grav_gpu += error_walltime() - w0;
+}
+
+/** The hydrodynamic phase on the GPU driven by a host thread beside the
+ *  CPU's gravity (hybrid modes), or alone (serial). */
+struct gpu_hydro_job {
+  struct engine *e;          /**< the engine */
+  struct gpu_damage dmg;     /**< damage of this phase */
+  struct gpu_gravity grav;   /**< gravity in the kick */
+  double dt_kick;            /**< second half kick */
+  int capped;                /**< gpu_cells_force's result */
+  pthread_mutex_t mutex;     /**< guards cpu_done */
+  pthread_cond_t cond;       /**< signalled when cpu_done is set */
+  int cpu_done;              /**< the CPU's gravity tasks have finished */
+  int ga_ready;              /**< ga is complete on the device (the hook ran) */
+  double t_start, t_hook;    /**< wall clock: the thread started, it reached the hook */
+  double t_waited;           /**< seconds the hook waited for the CPU */
+};
+
+/** gpu_set_kick_wait's hook in the hybrid modes: wait until the CPU's
+ *  gravity tasks are done, then complete ga on the device (gravity's device
+ *  part, or the CPU's ga uploaded); at once when already done. */
+static void gpu_engine_kick_wait(void *ctx) {
+  struct gpu_hydro_job *jb = ctx;
+  if (jb->ga_ready) return;
+  struct engine *e = jb->e;
+  jb->t_hook = error_walltime();
+  pthread_mutex_lock(&jb->mutex);
+  while (!jb->cpu_done) pthread_cond_wait(&jb->cond, &jb->mutex);
+  pthread_mutex_unlock(&jb->mutex);
+  jb->t_waited = error_walltime() - jb->t_hook;
+  if (e->gpu->mode == GPU_MODE_HYBRID)
+    gpu_engine_grav_device(e);
+  else
+    gpu_upload_gravity(e->gpu->gpu, &e->parts);
+  jb->ga_ready = 1;
+}
+
+/** Thread body: the hydrodynamic phase (lists, density, ghost, gradient,
+ *  force, damage, kick2) on the GPU.  Unpinned from thread 0's core, so
+ *  that it and the list build's threads spread over the process's cores. */
+static void *gpu_engine_hydro_run(void *arg) {
+  struct gpu_hydro_job *jb = arg;
+  struct engine *e = jb->e;
+  struct gpu_engine *ge = e->gpu;
+  runner_unpin_self(&e->sched);
+  jb->t_start = error_walltime();
+  jb->capped = gpu_cells_force(ge->gpu, &ge->cells, &e->parts, &e->space, e->tcells, e->nr_tcells,
+                               e->ct, ge->tc_h_cap, &e->hp, e->mats, &jb->dmg, &jb->grav,
+                               jb->dt_kick, 1, e->cell_dt_min);
+  return NULL;
 }
 
 void gpu_engine_force(struct engine *e) {
   struct gpu_engine *ge = e->gpu;
+  const double w_phase = error_walltime();
   if (e->nr_tcells > ge->nr_tc) {
     ge->tc_h_cap = error_realloc(ge->tc_h_cap, e->nr_tcells * sizeof(double), "GPU caps");
     ge->nr_tc = e->nr_tcells;
@@ -471,21 +574,61 @@ void gpu_engine_force(struct engine *e) {
       if (e->tcells[e->ct[t].ngb[k]]->dx_max > dx_max) dx_max = e->tcells[e->ct[t].ngb[k]]->dx_max;
     ge->tc_h_cap[t] = (H_limit - 2.0 * dx_max) / kernel_gamma;
   }
-  const double dt_kick = e->first_force ? 0.0 : 0.5 * e->dt;
   ge->cells.nr_threads = e->nr_threads;
   if (!ge->dev_valid) {
     gpu_upload_all(ge->gpu, &e->parts);
     ge->dev_valid = 1;
   }
   ge->host_stale = 1;
-  if (e->gp.enabled) gpu_engine_gravity(e);
+  struct gpu_hydro_job jb;
+  memset(&jb, 0, sizeof jb);
+  jb.e = e;
+  jb.dt_kick = e->first_force ? 0.0 : 0.5 * e->dt;
   /* no damage before Damage:start_time (engine_damage does the same) */
-  const struct gpu_damage dmg = {e->damage && !(e->time < e->damage_start),
-                                 e->first_force ? 0.0 : e->dt, e->damage_max_change};
-  const struct gpu_gravity grav = {e->gp.enabled, e->gp.eps, e->gp.eta};
-  if (gpu_cells_force(ge->gpu, &ge->cells, &e->parts, &e->space, e->tcells, e->nr_tcells, e->ct,
-                      ge->tc_h_cap, &e->hp, e->mats, &dmg, &grav, dt_kick, 1, e->cell_dt_min))
-    e->need_rebuild = 1;
+  jb.dmg = (struct gpu_damage){e->damage && !(e->time < e->damage_start),
+                               e->first_force ? 0.0 : e->dt, e->damage_max_change};
+  jb.grav = (struct gpu_gravity){e->gp.enabled, e->gp.eps, e->gp.eta};
+  const int hybrid = e->gp.enabled && ge->mode != GPU_MODE_SERIAL;
+  const int on_gpu = ge->mode != GPU_MODE_CPU_GRAV;
+  /* serial: gravity's CPU part and device part first */
+  if (e->gp.enabled && !hybrid && gpu_engine_grav_prepare(e, 1)) gpu_engine_grav_cpu(e, 1);
+  if (e->gp.enabled && !hybrid) gpu_engine_grav_device(e);
+  /* hybrid: prepare gravity (CUDA calls) before the hydro thread starts */
+  int cpu_work = 0;
+  if (hybrid) {
+    cpu_work = gpu_engine_grav_prepare(e, on_gpu);
+    pthread_mutex_init(&jb.mutex, NULL);
+    pthread_cond_init(&jb.cond, NULL);
+    jb.cpu_done = !cpu_work;
+    gpu_set_kick_wait(ge->gpu, gpu_engine_kick_wait, &jb);
+  }
+  /* the hydrodynamics on the GPU, driven by a thread off thread 0's core */
+  pthread_t tid;
+  if (pthread_create(&tid, NULL, gpu_engine_hydro_run, &jb))
+    error_exit("cannot start the thread that drives the GPU");
+  if (cpu_work) {
+    /* the CPU workers, this thread as thread 0, while the GPU works */
+    const double w0 = error_walltime();
+    gpu_engine_grav_cpu(e, on_gpu);
+    ge->t_cpu_side += error_walltime() - w0;
+    pthread_mutex_lock(&jb.mutex);
+    jb.cpu_done = 1;
+    pthread_cond_signal(&jb.cond);
+    pthread_mutex_unlock(&jb.mutex);
+  }
+  pthread_join(tid, NULL);
+  if (hybrid) {
+    gpu_set_kick_wait(ge->gpu, NULL, NULL);
+    if (!jb.ga_ready) error_bug("the GPU's kick did not wait for self-gravity");
+    pthread_mutex_destroy(&jb.mutex);
+    pthread_cond_destroy(&jb.cond);
+    ge->t_gpu_side += jb.t_hook - jb.t_start;
+    ge->t_waited += jb.t_waited;
+    ge->hybrid_phases++;
+  }
+  ge->t_phase += error_walltime() - w_phase;
+  ge->phases++;
+  if (jb.capped) e->need_rebuild = 1;
 }
 
 /** A range of top-level cells whose bounds one thread updates. */
@@ -556,6 +699,18 @@ void gpu_engine_print(const struct engine *e, FILE *f) {
             "bounds %.3f\n",
             1e3 * ge->cells.t_build / ge->steps, ge->cells.builds, ge->cells.widenings,
             1e3 * ge->t_bounds / ge->steps);
+  if (ge->phases) {
+    static const char *const mode_name[3] = {"serial", "hybrid", "gravity on the CPU"};
+    fprintf(f, "GPU runner (%s), ms per FORCE phase: %.3f", mode_name[ge->mode],
+            1e3 * ge->t_phase / ge->phases);
+    if (ge->hybrid_phases)
+      fprintf(f,
+              "; at the same time (%ld phases): CPU gravity tasks %.3f, GPU hydrodynamics until "
+              "the kick %.3f, the kick waited %.3f for the CPU",
+              ge->hybrid_phases, 1e3 * ge->t_cpu_side / ge->hybrid_phases,
+              1e3 * ge->t_gpu_side / ge->hybrid_phases, 1e3 * ge->t_waited / ge->hybrid_phases);
+    fprintf(f, "\n");
+  }
   gpu_grav_print(ge->grav, f);
   if (ge->grav_evals)
     fprintf(f,
