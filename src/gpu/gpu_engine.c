@@ -360,10 +360,8 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
 void gpu_engine_init(struct engine *e) {
   const struct gpu_policy pol = gpu_policy_read(e->params);
   char asked[300];
-  if (e->opt.use_gpu == 2)
-    snprintf(asked, sizeof asked, "--gpu");
-  else
-    snprintf(asked, sizeof asked, "Scheduler:gpu: %s", pol.text);
+  snprintf(asked, sizeof asked, "Scheduler:gpu: %s%s", pol.text,
+           e->opt.use_gpu == 2 ? ", --gpu" : "");
   if (e->opt.use_gpu == 0 || pol.kind == GPU_POLICY_OFF ||
       (pol.kind == GPU_POLICY_LIST && pol.families == 0)) {
     error_log(0, "GPU off (%s): every task runs on the CPU",
