@@ -95,6 +95,8 @@
   X("Scheduler:rebuild_fraction", PARAM_REAL, "0.25", 0.01, 1, NULL, "-", "rebuild the cells once a particle drifted this fraction of its cell's width") \
   X("Scheduler:deterministic", PARAM_BOOL, "false", 0, 0, NULL, "-", "keep the task priorities fixed instead of learning them from measured task times: with one thread (-t 1) every run, and every run resumed from a restart file, then repeats bit for bit (for tests; slightly slower)") \
   X("Scheduler:gpu", PARAM_STRING, "auto", 0, 0, NULL, "-", "which task families run on the GPU: auto, off, all, or a comma-separated list") \
+  X("Scheduler:gpu_leaf_size", PARAM_INT, "0", 0, 1000000, NULL, "-", "the GPU runner's hydro neighbour lists join cells of at most this many particles (coarser than the tree's leaves when larger than Scheduler:cell_split_size: fewer list entries, more pairs tested per entry; 0: the tree's leaves)") \
+  X("Scheduler:gpu_lists", PARAM_ENUM, "device", 0, 0, "device|host", "-", "where the GPU runner builds its hydro neighbour lists: device (kernels; the lists stay on the GPU) or host (threads walking the trees, the lists uploaded; the same lists, for comparison)") \
                                                                                                          \
   X("Damage:seed", PARAM_INT, "1", 0, 9.2e18, NULL, "-", "seed of the Weibull flaws drawn at start-up for brittle materials (materials with weibull_k > 0 and a shear modulus)") \
   X("Damage:start_time", PARAM_REAL, "0", 0, 1e300, NULL, "internal time", "no flaw activation and no damage growth before this time (lets bodies settle under self-gravity first: their settling oscillation can exceed the weakest flaws' thresholds; 0: damage from the start)") \
