@@ -4,9 +4,10 @@
  * density, ghost (h iteration, EOS), with solids gradient and extra ghost,
  * force, with brittle materials damage, and kick2.
  *
- * Stream 0 carries the particle fields and the kernels; stream 1 uploads the
- * leaves and their neighbour lists at the same time, and stream 0 waits for
- * it on an event before the first kernel.  The host waits only where it must
+ * Stream 0 carries the particle fields and the kernels; stream 1 builds the
+ * neighbour lists (gpu_lists.cu, or uploads the host's) and uploads the
+ * leaves at the same time, and stream 0 waits for it on an event before the
+ * first kernel.  The host waits only where it must
  * read something: the counter of particles still iterating h after each
  * round of the ghost, and the results at the end of the phase. */
 #include <stdlib.h>
