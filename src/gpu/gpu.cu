@@ -78,6 +78,7 @@ static const char *const gpu_stage_names[GPU_T_N] = {
 struct gpu {
   int device;                  /**< CUDA device number */
   char name[512];              /**< description for the log */
+  size_t mem_base;             /**< device memory in use when the context was made (not the run's) */
   cudaStream_t stream[2];      /**< 0: fields and kernels; 1: cell data */
   cudaEvent_t ev[GPU_T_N + 1]; /**< stage boundaries of the last phase */
   cudaEvent_t cells_ready;     /**< stream 1 finished its upload */
@@ -157,6 +158,11 @@ extern "C" struct gpu *gpu_init(char *why, size_t len) {
            prop.minor);
   for (int k = 0; k < 2; k++)
     gpu_check(cudaStreamCreateWithFlags(&g->stream[k], cudaStreamNonBlocking));
+  {
+    size_t free_b = 0, total_b = 0;
+    gpu_check(cudaMemGetInfo(&free_b, &total_b));
+    g->mem_base = total_b - free_b;
+  }
   for (int k = 0; k <= GPU_T_N; k++) gpu_check(cudaEventCreate(&g->ev[k]));
   gpu_check(cudaEventCreateWithFlags(&g->cells_ready, cudaEventDisableTiming));
   for (int k = 0; k < 2; k++) gpu_check(cudaEventCreate(&g->ev_drift[k]));
@@ -512,6 +518,13 @@ extern "C" void gpu_print_timers(const struct gpu *g, FILE *f) {
   fprintf(f, "; %ld full uploads, %ld full downloads", g->full_up, g->full_down);
   fprintf(f, "; bus %.1f MB up, %.1f MB down per step\n", g->bytes_h2d / g->calls / 1e6,
           g->bytes_d2h / g->calls / 1e6);
+}
+
+extern "C" void gpu_memory_used(const struct gpu *g, double *run, double *total) {
+  size_t free_b = 0, total_b = 0;
+  gpu_check(cudaMemGetInfo(&free_b, &total_b));
+  *run = (double)(total_b - free_b) - (double)g->mem_base;
+  *total = (double)total_b;
 }
 
 extern "C" void gpu_bytes_moved(const struct gpu *g, double *h2d, double *d2h) {

@@ -152,6 +152,9 @@ void gpu_unpin(struct gpu *g);
 void gpu_print_timers(const struct gpu *g, FILE *f);
 /** Bytes copied host -> device and device -> host so far. */
 void gpu_bytes_moved(const struct gpu *g, double *h2d, double *d2h);
+/** Device memory the run holds now (in use minus what the context took at
+ *  gpu_init) and the device's total, in bytes. */
+void gpu_memory_used(const struct gpu *g, double *run, double *total);
 /** Free everything. */
 void gpu_free(struct gpu *g);
 

@@ -663,6 +663,11 @@ void gpu_engine_print(const struct engine *e, FILE *f) {
             ge->cells.nr_ngb, nb ? dev_ms / nb : 0.0, 1e3 * ge->t_bounds / ge->steps);
   }
   gpu_grav_print(ge->grav, f);
+  double run = 0.0, total = 0.0;
+  gpu_memory_used(ge->gpu, &run, &total);
+  fprintf(f, "GPU memory: %.1f MiB held by the run (%.0f bytes per particle) of %.1f GiB\n",
+          run / 1048576.0, e->parts.count ? run / (double)e->parts.count : 0.0,
+          total / 1073741824.0);
   if (ge->grav_evals)
     fprintf(f,
             "GPU gravity host side, ms per evaluation: multipoles + walks on the CPU %.3f, "
