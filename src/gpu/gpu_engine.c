@@ -122,10 +122,8 @@ static void gpu_cells_walk(struct gpu_cells_job *jb, const struct cell *ci, cons
   if (ci->count == 0 || cj->count == 0) return;
   const struct gpu_cells *gc = jb->gc;
   const int li = gpu_cells_is_leaf(gc, ci), lj = gpu_cells_is_leaf(gc, cj);
-  struct gpu_list_box bi, bj;
-  gpu_cells_box(&bi, ci);
-  gpu_cells_box(&bj, cj);
-  if (!gpu_list_accept(&bi, &bj, shift, jb->growth, !(li && lj))) return;
+  if (!gpu_list_accept(&gc->box[ci->index], &gc->box[cj->index], shift, jb->growth, !(li && lj)))
+    return;
   if (!li && (lj || ci->count >= cj->count)) {
     for (int k = 0; k < 8; k++)
       if (ci->progeny[k]) gpu_cells_walk(jb, ci->progeny[k], cj, shift);
@@ -199,6 +197,12 @@ void gpu_cells_build(struct gpu_cells *gc, const struct space *s, struct cell *c
     gc->leaf_of_cell = error_realloc(gc->leaf_of_cell, gc->cells_cap * sizeof(int), "GPU leaves");
   }
   for (int k = 0; k < s->nr_cells; k++) gc->leaf_of_cell[k] = -1;
+  /* the bounds of every cell as the acceptance test reads them */
+  if (s->nr_cells > gc->box_cap) {
+    gc->box_cap = gc->cells_cap;
+    gc->box = error_realloc(gc->box, gc->box_cap * sizeof(struct gpu_list_box), "GPU leaves");
+  }
+  for (int k = 0; k < s->nr_cells; k++) gpu_cells_box(&gc->box[k], &s->cells[k]);
   gc->n = 0;
   int *first_leaf = error_malloc((nr + 1) * sizeof(int), "GPU leaves");
   for (int t = 0; t < nr; t++) {
@@ -351,6 +355,7 @@ void gpu_cells_build_dev(struct gpu *g, struct gpu_cells *gc, const struct space
 
 void gpu_cells_free(struct gpu_cells *gc) {
   gpu_lists_free(gc->dev);
+  free(gc->box);
   free(gc->leaf_node);
   free(gc->tc_node);
   free(gc->tc_ngb_start);

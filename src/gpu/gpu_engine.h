@@ -9,6 +9,7 @@
 #include "gravity/gravity_cpu.h"
 
 struct gpu_cells_job;
+struct gpu_list_box;
 
 /** Host-side leaf cells and neighbour lists, grown and reused between steps. */
 struct gpu_cells {
@@ -48,6 +49,8 @@ struct gpu_cells {
   int *tc_ngb;                      /**< neighbouring task cells, all in one array */
   double *tc_ngb_shift;             /**< 3 per entry */
   int tc_ngb_cap;                   /**< allocated entries */
+  struct gpu_list_box *box;         /**< bounds of each cell (host build) */
+  int box_cap;                      /**< their allocated length */
 };
 
 /** Build the leaves below the task cells tcells[0..nr) (the engine's, or the
