@@ -343,12 +343,17 @@ void gpu_cells_build_dev(struct gpu *g, struct gpu_cells *gc, const struct space
   }
   gc->tc_node[nr] = gc->nr_nodes;
   gpu_cells_reserve(gc, gc->n + 1);
-  const struct gpu_list_input in = {gc->n,           gc->leaf_node, gc->top,         nr,
-                                    gc->tc_node,     gc->tc_ngb_start, gc->tc_ngb,   gc->tc_ngb_shift,
-                                    gc->nr_nodes,    growth};
-  const long total = gpu_lists_build(gc->dev, &in);
-  if (total > 2147483647L) error_exit("GPU neighbour lists: %ld entries, more than an int holds", total);
-  gc->nr_ngb = (int)total;
+  const struct gpu_list_input in = {.nr_leaves = gc->n,
+                                    .leaf_node = gc->leaf_node,
+                                    .leaf_tc = gc->top,
+                                    .nr_tc = nr,
+                                    .tc_node = gc->tc_node,
+                                    .tc_ngb_start = gc->tc_ngb_start,
+                                    .tc_ngb = gc->tc_ngb,
+                                    .tc_ngb_shift = gc->tc_ngb_shift,
+                                    .nr_nodes = gc->nr_nodes,
+                                    .growth = growth};
+  gc->nr_ngb = (int)gpu_lists_build(gc->dev, &in);
   for (int l = 0; l < gc->n; l++) gc->h_cap[l] = tc_h_cap[gc->top[l]];
   gc->growth = growth;
 }

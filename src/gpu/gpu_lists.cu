@@ -15,35 +15,35 @@ extern "C" {
 #define GPU_LISTS_BLOCK 128
 
 struct gpu_lists {
-  struct gpu *g;                    /**< the runner (its stream 1 and bus counters) */
-  struct gpu_list_node *node_host;  /**< pinned staging of the nodes */
-  struct gpu_list_node *node_dev;   /**< their device copy */
-  int node_cap;                     /**< allocated nodes (both sides) */
-  char *in_host, *in_dev;           /**< pinned staging and device copy of the other inputs */
-  size_t in_cap;                    /**< their allocated bytes */
-  int *start_dev;                   /**< counts, then ngb_start (nr_leaves + 1) */
-  int start_cap;                    /**< allocated length */
-  int *leaf_dev;                    /**< ngb_leaf */
-  double *shift_dev;                /**< ngb_shift, 3 per entry */
-  long ngb_cap;                     /**< allocated entries */
-  int *total_host;                  /**< pinned: the number of entries */
-  int n;                            /**< leaves of the last build */
-  long nr_ngb;                      /**< entries of the last build */
-  cudaEvent_t ev[2];                /**< around the last build */
-  int pending;                      /**< ev holds a build not yet added to ms */
-  double ms;                        /**< accumulated device milliseconds */
-  long builds;                      /**< builds run */
+  struct gpu *g;                   /**< the runner (its stream 1 and bus counters) */
+  struct gpu_list_node *node_host; /**< pinned staging of the nodes */
+  struct gpu_list_node *node_dev;  /**< their device copy */
+  int node_cap;                    /**< allocated nodes (both sides) */
+  char *in_host, *in_dev;          /**< pinned staging and device copy of the other inputs */
+  size_t in_cap;                   /**< their allocated bytes */
+  int *start_dev;                  /**< counts, then ngb_start (nr_leaves + 1) */
+  int start_cap;                   /**< allocated length */
+  int *leaf_dev;                   /**< ngb_leaf */
+  double *shift_dev;               /**< ngb_shift, 3 per entry */
+  long ngb_cap;                    /**< allocated entries */
+  int *total_host;                 /**< pinned: the number of entries */
+  int n;                           /**< leaves of the last build */
+  long nr_ngb;                     /**< entries of the last build */
+  cudaEvent_t ev[2];               /**< around the last build */
+  int pending;                     /**< ev holds a build not yet added to ms */
+  double ms;                       /**< accumulated device milliseconds */
+  long builds;                     /**< builds run */
 };
 
 /** The inputs as device pointers. */
 struct gpu_lists_args {
-  int n;                              /**< leaves */
-  const struct gpu_list_node *node;   /**< nodes */
-  const int *leaf_node, *leaf_tc;     /**< node and task cell of each leaf */
-  const int *tc_node, *tc_ngb_start;  /**< by task cell, nr_tc + 1 each */
-  const int *tc_ngb;                  /**< neighbouring task cells */
-  const double *tc_ngb_shift;         /**< 3 per neighbour */
-  double growth;                      /**< reach factor */
+  int n;                             /**< leaves */
+  const struct gpu_list_node *node;  /**< nodes */
+  const int *leaf_node, *leaf_tc;    /**< node and task cell of each leaf */
+  const int *tc_node, *tc_ngb_start; /**< by task cell, nr_tc + 1 each */
+  const int *tc_ngb;                 /**< neighbouring task cells */
+  const double *tc_ngb_shift;        /**< 3 per neighbour */
+  double growth;                     /**< reach factor */
 };
 
 /** Walk of leaf L: FILL = 0 counts its entries into start[L]; FILL = 1
@@ -141,10 +141,10 @@ extern "C" struct gpu_list_node *gpu_lists_nodes(struct gpu_lists *l, int n) {
     l->node_cap = n + n / 4 + 64;
     char what[128];
     snprintf(what, sizeof what, "cell nodes of the neighbour-list build (%d)", l->node_cap);
-    l->node_dev = (struct gpu_list_node *)gpu_alloc(
-        (size_t)l->node_cap * sizeof(struct gpu_list_node), what);
-    gpu_check(cudaMallocHost((void **)&l->node_host,
-                             (size_t)l->node_cap * sizeof(struct gpu_list_node)));
+    l->node_dev =
+        (struct gpu_list_node *)gpu_alloc((size_t)l->node_cap * sizeof(struct gpu_list_node), what);
+    gpu_check(
+        cudaMallocHost((void **)&l->node_host, (size_t)l->node_cap * sizeof(struct gpu_list_node)));
   }
   return l->node_host;
 }
@@ -174,8 +174,8 @@ extern "C" long gpu_lists_build(struct gpu_lists *l, const struct gpu_list_input
   const size_t sz[6] = {(size_t)n * sizeof(int),        (size_t)n * sizeof(int),
                         (size_t)(nt + 1) * sizeof(int), (size_t)(nt + 1) * sizeof(int),
                         (size_t)nk * sizeof(int),       3 * (size_t)nk * sizeof(double)};
-  const void *src[6] = {in->leaf_node, in->leaf_tc,  in->tc_node,
-                        in->tc_ngb_start, in->tc_ngb, in->tc_ngb_shift};
+  const void *src[6] = {in->leaf_node,    in->leaf_tc, in->tc_node,
+                        in->tc_ngb_start, in->tc_ngb,  in->tc_ngb_shift};
   size_t off[6], total = 0;
   for (int k = 0; k < 6; k++) {
     off[k] = total;
@@ -218,12 +218,15 @@ extern "C" long gpu_lists_build(struct gpu_lists *l, const struct gpu_list_input
   }
   gpu_lists_scan_kernel<<<1, 1024, 0, s>>>(l->start_dev, n);
   gpu_check_launch(gpu_lists_scan_kernel);
-  gpu_check(cudaMemcpyAsync(l->total_host, l->start_dev + n, sizeof(int), cudaMemcpyDeviceToHost,
-                            s));
+  gpu_check(
+      cudaMemcpyAsync(l->total_host, l->start_dev + n, sizeof(int), cudaMemcpyDeviceToHost, s));
   gpu_check(cudaStreamSynchronize(s));
   gpu_bytes_add(l->g, 0.0, (double)sizeof(int));
   const long nr = *l->total_host;
-  if (nr < 0) error_exit("GPU neighbour lists: more than 2^31 entries (%d leaves)", n);
+  if (nr < 0)
+    error_exit(
+        "GPU neighbour lists: more than 2^31 entries (%d leaves); lower h or use coarser leaves",
+        n);
   if (nr > l->ngb_cap) {
     if (l->leaf_dev) gpu_check(cudaFree(l->leaf_dev));
     if (l->shift_dev) gpu_check(cudaFree(l->shift_dev));
@@ -234,8 +237,8 @@ extern "C" long gpu_lists_build(struct gpu_lists *l, const struct gpu_list_input
     l->shift_dev = (double *)gpu_alloc(3 * (size_t)l->ngb_cap * sizeof(double), what);
   }
   if (n > 0) {
-    gpu_lists_walk_kernel<1><<<blocks, GPU_LISTS_BLOCK, 0, s>>>(a, l->start_dev, l->leaf_dev,
-                                                                 l->shift_dev);
+    gpu_lists_walk_kernel<1>
+        <<<blocks, GPU_LISTS_BLOCK, 0, s>>>(a, l->start_dev, l->leaf_dev, l->shift_dev);
     gpu_check_launch(gpu_lists_walk_kernel<1>);
   }
   gpu_check(cudaEventRecord(l->ev[1], s));

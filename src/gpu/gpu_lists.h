@@ -102,16 +102,16 @@ struct gpu_lists;
 
 /** What the build reads (host arrays; the nodes in gpu_lists_nodes' staging). */
 struct gpu_list_input {
-  int nr_leaves;            /**< list leaves */
-  const int *leaf_node;     /**< node of each leaf */
-  const int *leaf_tc;       /**< task cell of each leaf */
-  int nr_tc;                /**< task cells */
-  const int *tc_node;       /**< nr_tc + 1: task cell t's nodes are [tc_node[t], tc_node[t+1]) */
-  const int *tc_ngb_start;  /**< nr_tc + 1: its neighbours are [tc_ngb_start[t], [t+1]) */
-  const int *tc_ngb;        /**< neighbouring task cell of each entry (itself included) */
+  int nr_leaves;              /**< list leaves */
+  const int *leaf_node;       /**< node of each leaf */
+  const int *leaf_tc;         /**< task cell of each leaf */
+  int nr_tc;                  /**< task cells */
+  const int *tc_node;         /**< nr_tc + 1: task cell t's nodes are [tc_node[t], tc_node[t+1]) */
+  const int *tc_ngb_start;    /**< nr_tc + 1: its neighbours are [tc_ngb_start[t], [t+1]) */
+  const int *tc_ngb;          /**< neighbouring task cell of each entry (itself included) */
   const double *tc_ngb_shift; /**< 3 per entry: added to the neighbour's positions */
-  int nr_nodes;             /**< nodes written to the staging */
-  double growth;            /**< reach factor of gpu_list_accept */
+  int nr_nodes;               /**< nodes written to the staging */
+  double growth;              /**< reach factor of gpu_list_accept */
 };
 
 /** The device lists of g (freed by gpu_lists_free, before or after gpu_free). */
