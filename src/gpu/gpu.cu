@@ -4,9 +4,10 @@
  * density, ghost (h iteration, EOS), with solids gradient and extra ghost,
  * force, with brittle materials damage, and kick2.
  *
- * Stream 0 carries the particle fields and the kernels; stream 1 uploads the
- * leaves and their neighbour lists at the same time, and stream 0 waits for
- * it on an event before the first kernel.  The host waits only where it must
+ * Stream 0 carries the particle fields and the kernels; stream 1 builds the
+ * neighbour lists (gpu_lists.cu, or uploads the host's) and uploads the
+ * leaves at the same time, and stream 0 waits for it on an event before the
+ * first kernel.  The host waits only where it must
  * read something: the counter of particles still iterating h after each
  * round of the ghost, and the results at the end of the phase. */
 #include <stdlib.h>
@@ -18,6 +19,7 @@ extern "C" {
 }
 #include "gpu.h"
 #include "gpu_kernels.h"
+#include "gpu_lists.h"
 #include "material.h"
 
 /** Fields the FORCE phase reads (copied to the device before it when the
@@ -203,9 +205,10 @@ static size_t gpu_align(size_t b) {
 /** Pack the leaf data into pinned memory, upload it on stream 1 and return
  *  the device view. */
 static struct gpu_leaves_dev gpu_upload_cells(struct gpu *g, const struct gpu_leaves *lv) {
-  const size_t n = (size_t)lv->n, nn = (size_t)lv->nr_ngb;
+  /* lists built on the device stay there */
+  const size_t n = (size_t)lv->n, nn = lv->lists ? 0 : (size_t)lv->nr_ngb;
   const size_t sz[8] = {n * sizeof(size_t),      n * sizeof(int),       n * sizeof(double),
-                        n * sizeof(double),      (n + 1) * sizeof(int), nn * sizeof(int),
+                        n * sizeof(double),      (lv->lists ? 0 : n + 1) * sizeof(int), nn * sizeof(int),
                         3 * nn * sizeof(double), n * sizeof(double)};
   size_t off[8], total = 0;
   for (int k = 0; k < 8; k++) {
@@ -240,6 +243,7 @@ static struct gpu_leaves_dev gpu_upload_cells(struct gpu *g, const struct gpu_le
   dv.ngb_start = (const int *)(d + off[4]);
   dv.ngb_leaf = (const int *)(d + off[5]);
   dv.ngb_shift = (const double *)(d + off[6]);
+  if (lv->lists) gpu_lists_view(lv->lists, &dv.ngb_start, &dv.ngb_leaf, &dv.ngb_shift);
   g->leaf_dt = (double *)(d + off[7]);
   return dv;
 }

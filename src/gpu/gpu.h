@@ -22,6 +22,7 @@ extern "C" {
 #endif
 
 struct material_table;
+struct gpu_lists;
 /** A device with its streams, buffers and timers (opaque). */
 struct gpu;
 
@@ -39,6 +40,9 @@ struct gpu_leaves {
   const int *ngb_leaf; /**< neighbouring leaf of each entry (the leaf itself included) */
   const double *ngb_shift; /**< 3 per entry: added to the neighbour's positions */
   int nr_ngb;              /**< number of entries */
+  const struct gpu_lists *lists; /**< non-NULL: the lists were built on the device
+                                      (gpu_lists.h); ngb_start, ngb_leaf and ngb_shift
+                                      above are then unused */
 };
 
 /** Damage in a FORCE phase (brittle materials, tasks/damage). */

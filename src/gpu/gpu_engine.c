@@ -9,6 +9,7 @@
 #include "engine_tasks.h"
 #include "error.h"
 #include "gpu_policy.h"
+#include "gpu_lists.h"
 #include "kernel.h"
 #include "params.h"
 #include "runner.h"
@@ -60,12 +61,31 @@ static void gpu_cells_reserve(struct gpu_cells *gc, int n) {
   gc->ngb_start = error_realloc(gc->ngb_start, (gc->cap + 1) * sizeof(int), "GPU leaves");
   gc->leaf_cell = error_realloc(gc->leaf_cell, gc->cap * sizeof(struct cell *), "GPU leaves");
   gc->dx_allow = error_realloc(gc->dx_allow, gc->cap * sizeof(double), "GPU leaves");
+  gc->leaf_node = error_realloc(gc->leaf_node, gc->cap * sizeof(int), "GPU leaves");
+}
+
+/** 1 if the lists stop at c: a leaf of the tree, or a cell of at most
+ *  leaf_size particles (Scheduler:gpu_leaf_size). */
+static int gpu_cells_is_leaf(const struct gpu_cells *gc, const struct cell *c) {
+  return !c->split || (size_t)gc->leaf_size >= c->count;
+}
+
+/** The bounds of c as the acceptance test reads them. */
+static void gpu_cells_box(struct gpu_list_box *b, const struct cell *c) {
+  for (int k = 0; k < 3; k++) {
+    b->bmin[k] = c->bmin[k];
+    b->bmax[k] = c->bmax[k];
+    b->loc[k] = c->loc[k];
+    b->width[k] = c->width[k];
+  }
+  b->h_max = c->h_max;
+  b->dx_max = c->dx_max;
 }
 
 /** Number the non-empty leaves below c. */
 static void gpu_cells_collect(struct gpu_cells *gc, const struct cell *c, int top) {
   if (c->count == 0) return;
-  if (c->split) {
+  if (!gpu_cells_is_leaf(gc, c)) {
     for (int k = 0; k < 8; k++)
       if (c->progeny[k]) gpu_cells_collect(gc, c->progeny[k], top);
     return;
@@ -78,11 +98,6 @@ static void gpu_cells_collect(struct gpu_cells *gc, const struct cell *c, int to
   gc->leaf_cell[gc->n] = c;
   gc->n++;
 }
-
-/** Fraction of its kernel support a leaf may drift after the lists were
- *  built before they are built again: a margin in the lists' reach that lets
- *  most steps reuse them. */
-#define GPU_LIST_SLACK 0.1
 
 /** One worker of the list build: the task cells [t0, t1), whose leaves are
  *  the contiguous range [l0, l1), and the entries it found. */
@@ -116,38 +131,31 @@ static void gpu_cells_job_add(struct gpu_cells_job *jb, int li, int lj, const do
 }
 
 /** Dual walk of the trees below ci and cj (cj at shift): every pair of
- *  leaves whose bounding boxes come within growth * kernel_gamma * the
- *  larger h_max plus both drifts, pruning whole sub-trees on both sides
- *  (the test of the CPU loops, iact_loop.h, with the lists' margin). */
+ *  list leaves that gpu_list_accept keeps, pruning whole sub-trees on both
+ *  sides (internal pairs with the loosened bound: the pairs kept are exactly
+ *  the leaf pairs that pass the exact test, as on the device). */
 static void gpu_cells_walk(struct gpu_cells_job *jb, const struct cell *ci, const struct cell *cj,
                            const double shift[3]) {
   if (ci->count == 0 || cj->count == 0) return;
-  const double hm = ci->h_max > cj->h_max ? ci->h_max : cj->h_max;
-  /* each side may drift GPU_LIST_SLACK kernel supports further before the
-   * lists must be built again (gpu_cells_valid) */
-  const double R = jb->growth * kernel_gamma * hm + ci->dx_max + cj->dx_max +
-                   GPU_LIST_SLACK * kernel_gamma * (ci->h_max + cj->h_max);
-  /* widened as the CPU loops' pruning: never drop a pair the particle test keeps */
-  double scale = 0.0;
-  for (int k = 0; k < 3; k++)
-    scale += fabs(ci->loc[k]) + ci->width[k] + fabs(cj->loc[k]) + cj->width[k] + fabs(shift[k]);
-  const double Rs = R * (1.0 + 1e-10) + 1e-13 * scale;
-  if (cell_bbox_dist2(ci, cj, shift) > Rs * Rs) return;
-  if (ci->split && (!cj->split || ci->count >= cj->count)) {
+  const struct gpu_cells *gc = jb->gc;
+  const int li = gpu_cells_is_leaf(gc, ci), lj = gpu_cells_is_leaf(gc, cj);
+  if (!gpu_list_accept(&gc->box[ci->index], &gc->box[cj->index], shift, jb->growth, !(li && lj)))
+    return;
+  if (!li && (lj || ci->count >= cj->count)) {
     for (int k = 0; k < 8; k++)
       if (ci->progeny[k]) gpu_cells_walk(jb, ci->progeny[k], cj, shift);
-  } else if (cj->split) {
+  } else if (!lj) {
     for (int k = 0; k < 8; k++)
       if (cj->progeny[k]) gpu_cells_walk(jb, ci, cj->progeny[k], shift);
   } else {
-    gpu_cells_job_add(jb, jb->gc->leaf_of_cell[ci->index], jb->gc->leaf_of_cell[cj->index], shift);
+    gpu_cells_job_add(jb, gc->leaf_of_cell[ci->index], gc->leaf_of_cell[cj->index], shift);
   }
 }
 
 /** Set h_list_cap of the leaves below c. */
 static void gpu_cells_caps(struct gpu_cells *gc, const struct cell *c, double growth) {
   if (c->count == 0) return;
-  if (c->split) {
+  if (!gpu_cells_is_leaf(gc, c)) {
     for (int k = 0; k < 8; k++)
       if (c->progeny[k]) gpu_cells_caps(gc, c->progeny[k], growth);
     return;
@@ -206,6 +214,12 @@ void gpu_cells_build(struct gpu_cells *gc, const struct space *s, struct cell *c
     gc->leaf_of_cell = error_realloc(gc->leaf_of_cell, gc->cells_cap * sizeof(int), "GPU leaves");
   }
   for (int k = 0; k < s->nr_cells; k++) gc->leaf_of_cell[k] = -1;
+  /* the bounds of every cell as the acceptance test reads them */
+  if (s->nr_cells > gc->box_cap) {
+    gc->box_cap = gc->cells_cap;
+    gc->box = error_realloc(gc->box, gc->box_cap * sizeof(struct gpu_list_box), "GPU leaves");
+  }
+  for (int k = 0; k < s->nr_cells; k++) gpu_cells_box(&gc->box[k], &s->cells[k]);
   gc->n = 0;
   int *first_leaf = error_malloc((nr + 1) * sizeof(int), "GPU leaves");
   for (int t = 0; t < nr; t++) {
@@ -276,7 +290,99 @@ void gpu_cells_build(struct gpu_cells *gc, const struct space *s, struct cell *c
   free(first_leaf);
 }
 
+/** Number the list leaves below c (task cell top) as gpu_cells_collect,
+ *  set their caps as gpu_cells_caps, and write the non-empty cells down to
+ *  the list leaves to node[] depth first. */
+static void gpu_cells_flatten(struct gpu_cells *gc, struct gpu_list_node *node,
+                              const struct cell *c, int top, double growth) {
+  if (c->count == 0) return;
+  const int q = gc->nr_nodes++;
+  gpu_cells_box(&node[q].box, c);
+  if (gpu_cells_is_leaf(gc, c)) {
+    gpu_cells_reserve(gc, gc->n + 1);
+    const int l = gc->n++;
+    gc->leaf_of_cell[c->index] = l;
+    gc->offset[l] = c->offset;
+    gc->count[l] = (int)c->count;
+    gc->top[l] = top;
+    gc->leaf_cell[l] = c;
+    gc->leaf_node[l] = q;
+    gc->h_list_cap[l] = growth * c->h_max;
+    gc->dx_allow[l] = c->dx_max + GPU_LIST_SLACK * kernel_gamma * c->h_max;
+    node[q].leaf = l;
+  } else {
+    node[q].leaf = -1;
+    for (int k = 0; k < 8; k++)
+      if (c->progeny[k]) gpu_cells_flatten(gc, node, c->progeny[k], top, growth);
+  }
+  node[q].skip = gc->nr_nodes;
+}
+
+void gpu_cells_build_dev(struct gpu *g, struct gpu_cells *gc, const struct space *s,
+                         struct cell *const *tcells, int nr, const struct engine_cell_tasks *ct,
+                         const double *tc_h_cap, double growth) {
+  if (!gc->dev) gc->dev = gpu_lists_new(g);
+  if (s->nr_cells > gc->cells_cap) {
+    gc->cells_cap = s->nr_cells + s->nr_cells / 2;
+    gc->leaf_of_cell = error_realloc(gc->leaf_of_cell, gc->cells_cap * sizeof(int), "GPU leaves");
+  }
+  for (int k = 0; k < s->nr_cells; k++) gc->leaf_of_cell[k] = -1;
+  if (nr + 1 > gc->tc_cap) {
+    gc->tc_cap = nr + 1 + nr / 2;
+    gc->tc_node = error_realloc(gc->tc_node, gc->tc_cap * sizeof(int), "GPU task cells");
+    gc->tc_ngb_start = error_realloc(gc->tc_ngb_start, gc->tc_cap * sizeof(int), "GPU task cells");
+  }
+  /* the neighbours of the task cells, as one array */
+  int nk = 0;
+  for (int t = 0; t < nr; t++) nk += ct[t].nr_ngb;
+  if (nk > gc->tc_ngb_cap) {
+    gc->tc_ngb_cap = nk + nk / 2;
+    gc->tc_ngb = error_realloc(gc->tc_ngb, gc->tc_ngb_cap * sizeof(int), "GPU task cells");
+    gc->tc_ngb_shift = error_realloc(gc->tc_ngb_shift, 3 * (size_t)gc->tc_ngb_cap * sizeof(double),
+                                     "GPU task cells");
+  }
+  nk = 0;
+  for (int t = 0; t < nr; t++) {
+    gc->tc_ngb_start[t] = nk;
+    for (int k = 0; k < ct[t].nr_ngb; k++, nk++) {
+      gc->tc_ngb[nk] = ct[t].ngb[k];
+      for (int d = 0; d < 3; d++) gc->tc_ngb_shift[3 * (size_t)nk + d] = ct[t].ngb_shift[k][d];
+    }
+  }
+  gc->tc_ngb_start[nr] = nk;
+  /* the cells below the task cells, written straight to the pinned staging */
+  struct gpu_list_node *node = gpu_lists_nodes(gc->dev, s->nr_cells);
+  gc->n = 0;
+  gc->nr_nodes = 0;
+  for (int t = 0; t < nr; t++) {
+    gc->tc_node[t] = gc->nr_nodes;
+    gpu_cells_flatten(gc, node, tcells[t], t, growth);
+  }
+  gc->tc_node[nr] = gc->nr_nodes;
+  gpu_cells_reserve(gc, gc->n + 1);
+  const struct gpu_list_input in = {.nr_leaves = gc->n,
+                                    .leaf_node = gc->leaf_node,
+                                    .leaf_tc = gc->top,
+                                    .nr_tc = nr,
+                                    .tc_node = gc->tc_node,
+                                    .tc_ngb_start = gc->tc_ngb_start,
+                                    .tc_ngb = gc->tc_ngb,
+                                    .tc_ngb_shift = gc->tc_ngb_shift,
+                                    .nr_nodes = gc->nr_nodes,
+                                    .growth = growth};
+  gc->nr_ngb = (int)gpu_lists_build(gc->dev, &in);
+  for (int l = 0; l < gc->n; l++) gc->h_cap[l] = tc_h_cap[gc->top[l]];
+  gc->growth = growth;
+}
+
 void gpu_cells_free(struct gpu_cells *gc) {
+  gpu_lists_free(gc->dev);
+  free(gc->box);
+  free(gc->leaf_node);
+  free(gc->tc_node);
+  free(gc->tc_ngb_start);
+  free(gc->tc_ngb);
+  free(gc->tc_ngb_shift);
   for (int w = 0; w < gc->nr_jobs; w++) gpu_cells_job_free(&gc->jobs[w]);
   free(gc->jobs);
   free(gc->offset);
@@ -321,7 +427,10 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
   for (int attempt = 0;; attempt++) {
     if (attempt > 0 || !gpu_cells_valid(gc, s, tcells, nr)) {
       const double w0 = error_walltime();
-      gpu_cells_build(gc, s, tcells, nr, ct, tc_h_cap, growth, gc->nr_threads);
+      if (gc->host_lists)
+        gpu_cells_build(gc, s, tcells, nr, ct, tc_h_cap, growth, gc->nr_threads);
+      else
+        gpu_cells_build_dev(g, gc, s, tcells, nr, ct, tc_h_cap, growth);
       gc->t_build += error_walltime() - w0;
       gc->builds++;
       gc->built_rebuild = s->nr_rebuilds;
@@ -334,7 +443,8 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
     leaf_dt = error_realloc(leaf_dt, (gc->n + 1) * sizeof(double), "GPU leaf time steps");
     const struct gpu_leaves lv = {gc->n,        gc->offset,     gc->count,
                                   gc->h_cap,    gc->h_list_cap, gc->ngb_start,
-                                  gc->ngb_leaf, gc->ngb_shift,  gc->nr_ngb};
+                                  gc->ngb_leaf, gc->ngb_shift,  gc->nr_ngb,
+                                  gc->host_lists ? NULL : gc->dev};
     gpu_force_phase(g, p, &lv, hp, mats, dmg, grav, dt_kick, leaf_dt, resident, &out);
     if (!out.overflow) break;
     if (attempt > 30)
@@ -408,6 +518,8 @@ void gpu_engine_init(struct engine *e) {
   ge->gpu = g;
   ge->mode = mode;
   e->gpu = ge;
+  ge->cells.leaf_size = (int)params_get_int(e->params, "Scheduler:gpu_leaf_size");
+  ge->cells.host_lists = params_get_enum(e->params, "Scheduler:gpu_lists") == 1;
   if (e->gp.enabled && mode != GPU_MODE_CPU_GRAV) {
     ge->grav = gpu_grav_new(g);
     ge->grav_host.built_rebuild = -1;
@@ -691,12 +803,16 @@ void gpu_engine_print(const struct engine *e, FILE *f) {
   const struct gpu_engine *ge = e->gpu;
   if (!ge) return;
   gpu_print_timers(ge->gpu, f);
-  if (ge->steps)
+  if (ge->steps) {
+    long nb = 0;
+    const double dev_ms = ge->cells.dev ? gpu_lists_device_ms(ge->cells.dev, &nb) : 0.0;
     fprintf(f,
-            "GPU host side, ms per step: neighbour lists %.3f (built %ld times, widened %ld), cell "
-            "bounds %.3f\n",
-            1e3 * ge->cells.t_build / ge->steps, ge->cells.builds, ge->cells.widenings,
-            1e3 * ge->t_bounds / ge->steps);
+            "GPU host side, ms per step: neighbour lists %.3f (built %ld times on the %s, widened "
+            "%ld; %d leaves, %d entries; device part %.3f ms per build), cell bounds %.3f\n",
+            1e3 * ge->cells.t_build / ge->steps, ge->cells.builds,
+            ge->cells.host_lists ? "host" : "device", ge->cells.widenings, ge->cells.n,
+            ge->cells.nr_ngb, nb ? dev_ms / nb : 0.0, 1e3 * ge->t_bounds / ge->steps);
+  }
   if (ge->phases) {
     static const char *const mode_name[3] = {"serial", "hybrid", "gravity on the CPU"};
     fprintf(f, "GPU runner (%s), ms per FORCE phase: %.3f", mode_name[ge->mode],
