@@ -6,8 +6,8 @@
 # Problems (-p):
 #   basalt   issue 7's solid reference (shared/bench, "Solid-body impact,
 #            GPU"): a basalt sphere of radius 50 km hit by a basalt sphere of
-#            6.25 km at 5 km/s and 45 degrees (bolide-ic impact: SEA shells,
-#            not miluphcuda's cubic lattice); Tillotson, Collins strength,
+#            6.25 km at 5 km/s and 45 degrees, both on a simple cubic lattice
+#            (tools/bench/basalt_ic.py); Tillotson, Collins strength,
 #            Grady-Kipp damage with Weibull flaws (N ln N), self-gravity with
 #            opening angle 0.5; cubic spline with the support 2.8 spacings
 #            (resolution_eta 1.534, about 90 neighbours)
@@ -94,11 +94,8 @@ for prob in $problems; do
         nt=$(awk -v n=$n 'BEGIN {printf "%d", n * 10 / 11}'); ni=$(awk -v n=$n 'BEGIN {printf "%d", n / 11}')
         "$python" "$gen" "$nt" "$ni" ic.hdf5 >/dev/null ;;
       basalt)
-        # volumes 1 : 1/512; equal spacing
-        nt=$(awk -v n=$n 'BEGIN {printf "%d", n * 512 / 513}'); ni=$(awk -v n=$n -v t=$nt 'BEGIN {printf "%d", n - t}')
-        "$build/bolide-ic" impact --target "sphere,material=basalt,radius=5e4,n=$nt" \
-          --impactor "sphere,material=basalt,radius=6250,n=$ni" --v-contact 5000 --angle 45 \
-          --time 0.1 -o ic.hdf5 >/dev/null
+        "$python" "$top/tools/bench/basalt_ic.py" "$n" ic.hdf5 1.534 >/dev/null
+        nt=$(awk -v n=$n 'BEGIN {printf "%d", n * 512 / 513}')
         soft=$(awk -v n=$nt 'BEGIN {printf "%.4g", 0.5 * 5e4 * (4.18879 / n) ^ (1 / 3)}')
         eta=1.534; visc=1.0
         mats=$'Materials:\n  103: {name: basalt, strength: collins, yield_stress: 1e7, yield_stress_max: 3.5e9, friction_intact: 1.2, cohesion_damaged: 1e5, friction_damaged: 0.6, weibull_k: 5e34, weibull_m: 8}\nDamage:\n  seed: 1\nGravity:\n  enabled: true\n  theta_cr: 0.5\n  softening: '"$soft" ;;
