@@ -41,7 +41,15 @@ def deviation(pos):
     n = len(pos)
     k = min(n, 120)
     if n <= 100000:
-        rs, _ = sph_density.density(pos, np.ones(n), k=k)
+        rs, h = sph_density.density(pos, np.ones(n), k=k)
+        if n <= 1000:  # h solves h^3 sum_j W(r_ij, h) = eta^3 (not stuck at a bracket end)
+            from scipy.spatial import cKDTree
+            dist, _ = cKDTree(pos).query(pos, k)
+            H = sph_density.GAMMA * h
+            res = np.abs(sph_density.w_cubic(dist / H[:, None]).sum(1) / H**3 * h**3
+                         / 1.2348**3 - 1).max()
+            if res > 1e-6:
+                check(False, f"shell N={n}: smoothing lengths not converged ({res:.1e})")
     else:
         from scipy.spatial import cKDTree
         tree = cKDTree(pos)

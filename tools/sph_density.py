@@ -10,6 +10,7 @@ from scipy.spatial import cKDTree
 
 GAMMA = np.sqrt(10.0 / 3.0)
 NORM = 16.0 / np.pi
+N_BRACKET = 64.0
 
 
 def w_cubic(q):
@@ -27,6 +28,12 @@ def density(pos, mass, eta=1.2348, k=100):
     dist, idx = tree.query(pos, k)
     lo = np.full(len(pos), 1e-300)
     hi = dist[:, -1] / GAMMA
+    if k == len(pos):
+        # every point is a neighbour: the kernel may have to reach beyond
+        # the farthest one (a few points, e.g. an isolated shell of N < 26);
+        # h^3 sum_j W -> N w(0) / gamma^3 > eta^3 as h grows, so a large
+        # enough bracket holds the solution
+        hi = np.maximum(hi, (N_BRACKET * eta / GAMMA) * (dist[:, -1] + 1e-300))
     for _ in range(32):
         h = 0.5 * (lo + hi)
         H = GAMMA * h

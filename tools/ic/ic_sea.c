@@ -27,6 +27,15 @@
 #include "error.h"
 #include "ic_planet.h"
 
+/* Isolated shells (ic_sea_shell): the resolution_eta of the SPH density
+ * whose spread the choice of stretching and collar count minimises, the
+ * largest N searched, and the grid of a searched. */
+#define SEA_ETA 1.2348
+#define SEA_FIT_NMAX 20000
+#define SEA_FIT_A0 0.10
+#define SEA_FIT_DA 0.01
+#define SEA_FIT_NA 22
+
 /** Colatitude of the cap of area `area` on the unit sphere. */
 static double sea_cap_angle(double area) {
   double s = sqrt(area / (4 * M_PI));
@@ -68,28 +77,34 @@ static double sea_lon_gap(double phi, double off, int m) {
   return fmin(t, d - t);
 }
 
-void ic_sea_shell_a(int N, double a, double *x, double *y, double *z, uint64_t *rng) {
-  if (N <= 0) return;
-  if (N <= 4) {
-    /* the regular configurations: point, segment, triangle, tetrahedron */
-    static const double pts[4][4][3] = {
-        {{0, 0, 1}},
-        {{0, 0, 1}, {0, 0, -1}},
-        {{1, 0, 0}, {-0.5, 0.8660254037844386, 0}, {-0.5, -0.8660254037844386, 0}},
-        {{0.5773502691896258, 0.5773502691896258, 0.5773502691896258},
-         {0.5773502691896258, -0.5773502691896258, -0.5773502691896258},
-         {-0.5773502691896258, 0.5773502691896258, -0.5773502691896258},
-         {-0.5773502691896258, -0.5773502691896258, 0.5773502691896258}}};
-    for (int i = 0; i < N; i++)
-      x[i] = pts[N - 1][i][0], y[i] = pts[N - 1][i][1], z[i] = pts[N - 1][i][2];
-    sea_rotate(N, x, y, z, rng);
-    return;
-  }
+/** The regular configurations for N <= 4: point, segment, triangle,
+ *  tetrahedron (unrotated). */
+static void sea_shell_small(int N, double *x, double *y, double *z) {
+  static const double pts[4][4][3] = {
+      {{0, 0, 1}},
+      {{0, 0, 1}, {0, 0, -1}},
+      {{1, 0, 0}, {-0.5, 0.8660254037844386, 0}, {-0.5, -0.8660254037844386, 0}},
+      {{0.5773502691896258, 0.5773502691896258, 0.5773502691896258},
+       {0.5773502691896258, -0.5773502691896258, -0.5773502691896258},
+       {-0.5773502691896258, 0.5773502691896258, -0.5773502691896258},
+       {-0.5773502691896258, -0.5773502691896258, 0.5773502691896258}}};
+  for (int i = 0; i < N; i++)
+    x[i] = pts[N - 1][i][0], y[i] = pts[N - 1][i][1], z[i] = pts[N - 1][i][2];
+}
+
+/** One unrotated SEA shell of N > 4 points with stretching parameter a
+ *  (b = 10 a) and dcol collars more than the rounded ideal number.
+ *  Returns 0 (nothing usable written) where that collar count leaves the
+ *  last collar fewer than zero regions, 1 otherwise. */
+static int sea_shell_place(int N, double a, int dcol, double *x, double *y, double *z) {
   const double area = 4 * M_PI / N;
   const double th_c = sea_cap_angle(area);
   /* Leopardi 2006, Sect. 3: ideal collar width sqrt(area), number of collars */
-  int n_col = (int)lround((M_PI - 2 * th_c) / sqrt(area));
-  if (n_col < 1) n_col = 1;
+  int n_col = (int)lround((M_PI - 2 * th_c) / sqrt(area)) + dcol;
+  if (n_col < 1) {
+    if (dcol != 0) return 0;
+    n_col = 1;
+  }
   const double d_f = (M_PI - 2 * th_c) / n_col;
   int i = 0;
   x[i] = 0, y[i] = 0, z[i] = 1, i++;
@@ -102,37 +117,89 @@ void ic_sea_shell_a(int N, double a, double *x, double *y, double *z, uint64_t *
     int m = (int)lround(y_j + carry);
     if (j == n_col) m = N - 1 - cum; /* the last collar takes what is left for the south cap */
     carry += y_j - m;
-    if (m < 0) m = 0;
+    if (m < 0) return 0;
     /* colatitude of the collar's lower edge so that it holds exactly m regions */
     cum += m;
     const double th_hi = j == n_col ? M_PI - th_c : sea_cap_angle(cum * area);
-    if (m > 0) {
-      const double th = sea_stretch(0.5 * (th_lo + th_hi), N, a);
-      /* rotate the collar to maximise the smallest longitude gap to the
-       * previous collar: try 32 offsets over one region width */
-      double off = 0, best = -1;
-      for (int c = 0; c < 32 && prev_m > 0; c++) {
-        const double o = (c + 0.5) / 32 * 2 * M_PI / m;
-        double g = INFINITY;
-        for (int q = 0; q < m && g > best; q++)
-          g = fmin(g, sea_lon_gap(o + 2 * M_PI * q / m, prev_off, prev_m));
-        if (g > best) best = g, off = o;
-      }
-      for (int q = 0; q < m; q++, i++) {
-        const double phi = off + 2 * M_PI * q / m;
-        x[i] = sin(th) * cos(phi), y[i] = sin(th) * sin(phi), z[i] = cos(th);
-      }
-      prev_off = off, prev_m = m;
+    if (m == 0) { /* an empty collar (never seen for dcol = 0; kept as before) */
+      th_lo = th_hi;
+      continue;
     }
+    const double th = sea_stretch(0.5 * (th_lo + th_hi), N, a);
+    /* rotate the collar to maximise the smallest longitude gap to the
+     * previous collar: try 32 offsets over one region width */
+    double off = 0, best = -1;
+    for (int c = 0; c < 32 && prev_m > 0; c++) {
+      const double o = (c + 0.5) / 32 * 2 * M_PI / m;
+      double g = INFINITY;
+      for (int q = 0; q < m && g > best; q++)
+        g = fmin(g, sea_lon_gap(o + 2 * M_PI * q / m, prev_off, prev_m));
+      if (g > best) best = g, off = o;
+    }
+    for (int q = 0; q < m; q++, i++) {
+      const double phi = off + 2 * M_PI * q / m;
+      x[i] = sin(th) * cos(phi), y[i] = sin(th) * sin(phi), z[i] = cos(th);
+    }
+    prev_off = off, prev_m = m;
     th_lo = th_hi;
   }
   x[i] = 0, y[i] = 0, z[i] = -1, i++;
   if (i != N) error_bug("SEA shell of %d points placed %d", N, i);
+  return 1;
+}
+
+void ic_sea_shell_a(int N, double a, double *x, double *y, double *z, uint64_t *rng) {
+  if (N <= 0) return;
+  if (N <= 4)
+    sea_shell_small(N, x, y, z);
+  else if (!sea_shell_place(N, a, 0, x, y, z))
+    error_bug("SEA shell of %d points: no room for the last collar", N);
   sea_rotate(N, x, y, z, rng);
 }
 
+static int sea_cmp_double(const void *p, const void *q) {
+  const double a = *(const double *)p, b = *(const double *)q;
+  return (a > b) - (a < b);
+}
+
+/** Largest |rho_SPH / median - 1| of N points of unit mass (Bolide's SPH
+ *  density, ic_sph_density, resolution_eta SEA_ETA); work: 3 N doubles. */
+static double sea_shell_spread(int N, const double *x, const double *y, const double *z,
+                               double *work) {
+  double *m = work, *h = work + N, *rho = work + 2 * N;
+  for (int i = 0; i < N; i++) m[i] = 1, h[i] = SEA_ETA * sqrt(4 * M_PI / N);
+  ic_sph_density((size_t)N, x, y, z, m, SEA_ETA, h, rho);
+  memcpy(h, rho, N * sizeof(double));
+  qsort(h, N, sizeof(double), sea_cmp_double);
+  const double med = N % 2 ? h[N / 2] : 0.5 * (h[N / 2 - 1] + h[N / 2]);
+  double d = 0;
+  for (int i = 0; i < N; i++) d = fmax(d, fabs(rho[i] / med - 1));
+  return d;
+}
+
 void ic_sea_shell(int N, double *x, double *y, double *z, uint64_t *rng) {
-  ic_sea_shell_a(N, 0.2, x, y, z, rng);
+  if (N <= 4 || N > SEA_FIT_NMAX) {
+    ic_sea_shell_a(N, 0.2, x, y, z, rng);
+    return;
+  }
+  /* the stretching a (b = 10 a) and the collar count (the rounded ideal
+   * one, or one fewer or more) that give the smallest SPH density spread;
+   * theory/planets.md, "One shell of N points" */
+  double *work = error_malloc(3 * (size_t)N * sizeof(double), "SEA shell");
+  double best = INFINITY, best_a = 0.2;
+  int best_dcol = 0;
+  for (int dcol = 0; dcol <= 2; dcol++) {
+    const int dc = dcol == 2 ? -1 : dcol;
+    for (int k = 0; k <= SEA_FIT_NA; k++) {
+      const double a = SEA_FIT_A0 + k * SEA_FIT_DA;
+      if (!sea_shell_place(N, a, dc, x, y, z)) break;
+      const double d = sea_shell_spread(N, x, y, z, work);
+      if (d < best) best = d, best_a = a, best_dcol = dc;
+    }
+  }
+  free(work);
+  if (!sea_shell_place(N, best_a, best_dcol, x, y, z)) error_bug("SEA shell of %d points", N);
+  sea_rotate(N, x, y, z, rng);
 }
 
 /** Index j of the profile segment [r_j, r_j+1] holding r. */
