@@ -82,7 +82,10 @@ void ic_planet_profile_free(struct ic_planet_profile *prof);
 void ic_planet_spec_free(struct ic_planet_spec *s);
 
 /** N points on the unit sphere by stretched equal-area regions (Kegerreis
- *  et al. 2019, Sect. 2.1), randomly rotated with the generator state rng. */
+ *  et al. 2019, Sect. 2.1), randomly rotated with the generator state rng.
+ *  For 4 < N <= 20000 the stretching (a, b) and the collar count are those
+ *  of a small search that minimise the spread of the shell's SPH density
+ *  (theory/planets.md, "One shell of N points"); a = 0.2, b = 2 above. */
 void ic_sea_shell(int N, double *x, double *y, double *z, uint64_t *rng);
 /** The same with stretching parameter a (b = 10 a). */
 void ic_sea_shell_a(int N, double a, double *x, double *y, double *z, uint64_t *rng);

@@ -7,7 +7,10 @@
  * collar rounded with the remainder carried; a particle at the centre of
  * each region, each collar rotated to be as far as possible in longitude
  * from the collar before it, the colatitudes stretched away from the poles,
- * then the whole shell rotated at random.
+ * then the whole shell rotated at random.  An isolated shell (ic_sea_shell)
+ * of up to 20000 points takes the stretching and collar count that make its
+ * SPH density most uniform (the paper fits a for N < 80 by hand); shells of
+ * a planet (ic_sea_shell_a) keep the given a, b = 10 a.
  *
  * A planet: a tetrahedron of four particles at the centre, then nested
  * shells whose thickness follows the density, dr ∝ rho^(-1/3), with every
@@ -28,8 +31,9 @@
 #include "ic_planet.h"
 
 /* Isolated shells (ic_sea_shell): the resolution_eta of the SPH density
- * whose spread the choice of stretching and collar count minimises, the
- * largest N searched, and the grid of a searched. */
+ * whose spread the choice of stretching and collar count minimises (Bolide's
+ * default), the largest N searched (~7 s at 20000 on one core), and the grid
+ * of a searched, a = 0.10, 0.11, ..., 0.32. */
 #define SEA_ETA 1.2348
 #define SEA_FIT_NMAX 20000
 #define SEA_FIT_A0 0.10
@@ -61,11 +65,10 @@ static void sea_rotate(int n, double *x, double *y, double *z, uint64_t *rng) {
 }
 
 /** Latitude stretching of Kegerreis et al. (2019, eq. 3) of colatitude th
- *  for N particles, b = 10 a (a = 0.2, b = 2 in the paper): pushes collars
- *  near the poles towards the equator, where the equal-area regions are too
- *  tall. */
-static double sea_stretch(double th, int N, double a) {
-  const double b = 10 * a, s = 1.0 / sqrt((double)N);
+ *  for N particles (a = 0.2, b = 2 in the paper): pushes collars near the
+ *  poles towards the equator, where the equal-area regions are too tall. */
+static double sea_stretch(double th, int N, double a, double b) {
+  const double s = 1.0 / sqrt((double)N);
   return th + (M_PI / 2 - th) * a * s * exp(-(M_PI / 2 - fabs(M_PI / 2 - th)) / (M_PI * b * s));
 }
 
@@ -92,11 +95,11 @@ static void sea_shell_small(int N, double *x, double *y, double *z) {
     x[i] = pts[N - 1][i][0], y[i] = pts[N - 1][i][1], z[i] = pts[N - 1][i][2];
 }
 
-/** One unrotated SEA shell of N > 4 points with stretching parameter a
- *  (b = 10 a) and dcol collars more than the rounded ideal number.
+/** One unrotated SEA shell of N > 4 points with stretching parameters a,
+ *  b and dcol collars more than the rounded ideal number.
  *  Returns 0 (nothing usable written) where that collar count leaves the
  *  last collar fewer than zero regions, 1 otherwise. */
-static int sea_shell_place(int N, double a, int dcol, double *x, double *y, double *z) {
+static int sea_shell_place(int N, double a, double b, int dcol, double *x, double *y, double *z) {
   const double area = 4 * M_PI / N;
   const double th_c = sea_cap_angle(area);
   /* Leopardi 2006, Sect. 3: ideal collar width sqrt(area), number of collars */
@@ -125,7 +128,7 @@ static int sea_shell_place(int N, double a, int dcol, double *x, double *y, doub
       th_lo = th_hi;
       continue;
     }
-    const double th = sea_stretch(0.5 * (th_lo + th_hi), N, a);
+    const double th = sea_stretch(0.5 * (th_lo + th_hi), N, a, b);
     /* rotate the collar to maximise the smallest longitude gap to the
      * previous collar: try 32 offsets over one region width */
     double off = 0, best = -1;
@@ -152,7 +155,7 @@ void ic_sea_shell_a(int N, double a, double *x, double *y, double *z, uint64_t *
   if (N <= 0) return;
   if (N <= 4)
     sea_shell_small(N, x, y, z);
-  else if (!sea_shell_place(N, a, 0, x, y, z))
+  else if (!sea_shell_place(N, a, 10 * a, 0, x, y, z))
     error_bug("SEA shell of %d points: no room for the last collar", N);
   sea_rotate(N, x, y, z, rng);
 }
@@ -182,23 +185,27 @@ void ic_sea_shell(int N, double *x, double *y, double *z, uint64_t *rng) {
     ic_sea_shell_a(N, 0.2, x, y, z, rng);
     return;
   }
-  /* the stretching a (b = 10 a) and the collar count (the rounded ideal
-   * one, or one fewer or more) that give the smallest SPH density spread;
-   * theory/planets.md, "One shell of N points" */
+  /* the stretching a, b and the collar count (the rounded ideal one, or
+   * one fewer or more) that give the smallest spread of the SPH density
+   * (the shell's random rotation does not change it); theory/planets.md,
+   * "One shell of N points" */
   double *work = error_malloc(3 * (size_t)N * sizeof(double), "SEA shell");
-  double best = INFINITY, best_a = 0.2;
+  double best = INFINITY, best_a = 0.2, best_b = 2;
   int best_dcol = 0;
-  for (int dcol = 0; dcol <= 2; dcol++) {
-    const int dc = dcol == 2 ? -1 : dcol;
+  /* first b = 10 a (Kegerreis et al.) and the three collar counts, then,
+   * with the best collar count, b = 7 a and b = 14 a */
+  for (int pass = 0; pass < 5; pass++) {
+    const int dc = pass < 3 ? (pass == 2 ? -1 : pass) : best_dcol;
+    const double bf = pass < 3 ? 10 : pass == 3 ? 7 : 14;
     for (int k = 0; k <= SEA_FIT_NA; k++) {
-      const double a = SEA_FIT_A0 + k * SEA_FIT_DA;
-      if (!sea_shell_place(N, a, dc, x, y, z)) break;
+      const double a = SEA_FIT_A0 + k * SEA_FIT_DA, b = bf * a;
+      if (!sea_shell_place(N, a, b, dc, x, y, z)) break;
       const double d = sea_shell_spread(N, x, y, z, work);
-      if (d < best) best = d, best_a = a, best_dcol = dc;
+      if (d < best) best = d, best_a = a, best_b = b, best_dcol = dc;
     }
   }
   free(work);
-  if (!sea_shell_place(N, best_a, best_dcol, x, y, z)) error_bug("SEA shell of %d points", N);
+  if (!sea_shell_place(N, best_a, best_b, best_dcol, x, y, z)) error_bug("SEA shell of %d points", N);
   sea_rotate(N, x, y, z, rng);
 }
 
