@@ -138,4 +138,7 @@ print(f"     Bolide worse than seagen at {np.sum(nb[both] > ns_[both])} of {both
 
 check(nb.max() < BAR, f"every N in {Ns[0]}..{Ns[-1]} ({len(Ns)} values): max |rho / median - 1| "
       f"{nb.max():.4f} < {BAR} (worst N={Na[np.argmax(nb)]}, {np.sum(nb >= BAR)} N miss)")
+if both.any():
+    check(nb.max() <= np.nanmax(ns_), f"Bolide's worst ({nb.max():.4f}) no worse than seagen's "
+          f"worst ({np.nanmax(ns_):.4f}, N={Na[np.nanargmax(ns_)]})")
 sys.exit(1 if failures else 0)
