@@ -6,7 +6,9 @@
 # Exits 1 unless v_rms / v_esc of the last snapshot is below 1% (the bar of
 # shared/VALIDATION.md: "after several dynamical times"; theory/planets.md
 # "Sitting still" for measurements).  Also prints the largest v_rms / v_esc
-# of the whole run, from E_kin of the statistics (every 100 s).
+# of the whole run, from E_kin of the statistics (every 100 s), and per
+# snapshot v_rms / sqrt(<P/rho>_m), the measure of the particle noise
+# (theory/planets.md "What drives the first transient").
 # Usage: tools/ic/planet_settle.sh N T_END [bolide-ic planet options...]
 #   e.g. tools/ic/planet_settle.sh 1e4 6000
 # Environment: BOLIDE_BUILD (default _build), THREADS (default 2),
@@ -63,6 +65,7 @@ for f in sorted(glob.glob("settle_*.hdf5")):
         m = h["PartType0/Masses"][:]
         x = h["PartType0/Coordinates"][:]
         v = h["PartType0/Velocities"][:]
+        P_rho = h["PartType0/Pressures"][:] / h["PartType0/Densities"][:]
     xc = x - (m[:, None] * x).sum(0) / m.sum()
     vc = v - (m[:, None] * v).sum(0) / m.sum()
     r = np.linalg.norm(xc, axis=1)
@@ -73,7 +76,8 @@ for f in sorted(glob.glob("settle_*.hdf5")):
     outer = r > 0.97 * R
     print(f"t = {t:7.0f} s  v_rms/v_esc = {v_rms / v_esc:.4f}  (r < 0.97 r_max: "
           f"{np.sqrt((m[~outer] * sp[~outer]**2).sum() / m[~outer].sum()) / v_esc:.4f}, "
-          f"max {sp.max() / v_esc:.4f})  r_max {R:.4e} m")
+          f"max {sp.max() / v_esc:.4f})  r_max {R:.4e} m  "
+          f"v_rms/sqrt(<P/rho>) {v_rms / np.sqrt((m * P_rho).sum() / m.sum()):.4f}")
 # the whole run: v_rms = sqrt(2 E_kin / M) from the statistics (centre-of-mass
 # motion included, zero to round-off), v_esc from the first snapshot's r_max
 st = np.loadtxt("statistics.txt", ndmin=2)
