@@ -29,6 +29,7 @@
 #include "restart.h"
 #include "timestep/timestep.h"
 #include "version.h"
+#include "gpu/gpu_policy.h"
 #ifdef HAVE_CUDA
 #include "gpu/gpu_engine.h"
 #endif
@@ -473,6 +474,8 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   e->sched.fixed_costs = params_get_bool(params, "Scheduler:deterministic");
 #ifdef HAVE_CUDA
   gpu_engine_init(e);
+#else
+  (void)gpu_policy_read(params); /* checked in every build; every task runs on the CPU */
 #endif
 }
 
@@ -705,7 +708,10 @@ void engine_run(struct engine *e) {
       rebuilt = 1;
     }
     engine_gravity_reuse_decide(e, rebuilt);
+    const double wf = error_walltime();
     engine_run_phase(e, ENGINE_PHASE_FORCE);
+    e->t_eval += error_walltime() - wf;
+    e->nr_eval++;
     engine_gravity_reuse_remember(e);
     e->step++;
     e->updates += (long long)e->parts.count;
@@ -744,6 +750,9 @@ void engine_run(struct engine *e) {
   error_log(0, "done: %ld steps to t = %g in %.2f s (%.3g particle updates per second)", e->step, e->time, wall,
             wall > 0 ? (double)e->updates / wall : 0.0);
   if (e->nr_removed) error_log(0, "%lld particles left the open box and were removed", e->nr_removed);
+  if (e->nr_eval)
+    error_log(0, "derivative evaluations (FORCE phases of the steps): %ld, %.4f s each on average",
+              e->nr_eval, e->t_eval / e->nr_eval);
   if (e->gp.enabled && e->gp.reuse_steps > 0)
     error_log(0, "gravity: %ld of %ld steps reused the far field (Gravity:reuse_steps %d, reuse_tolerance %g)",
               e->grav_replays, e->step, e->gp.reuse_steps, e->gp.reuse_tol);

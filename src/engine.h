@@ -98,6 +98,8 @@ struct engine {
   double *cell_dt_min;            /**< smallest new time step per task cell */
   int need_rebuild;               /**< set by tasks (atomic): h outgrew the cells */
   int first_force;                /**< 1 while computing the initial forces */
+  double t_eval;                  /**< wall seconds of the steps' FORCE phases (derivative evaluations) */
+  long nr_eval;                   /**< their number */
 
   double time;                    /**< current simulation time */
   double time_end;                /**< end of the run */

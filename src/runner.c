@@ -147,3 +147,10 @@ void runner_wait(struct scheduler *s) {
   while (s->nr_finished < s->nr_threads - 1) pthread_cond_wait(&s->done_cond, &s->run_mutex);
   pthread_mutex_unlock(&s->run_mutex);
 }
+
+void runner_unpin_self(const struct scheduler *s) {
+  const struct runner_pinning *p = s->pinning;
+  if (!p || !p->saved) return;
+  if (hwloc_set_cpubind(p->topo, p->saved, HWLOC_CPUBIND_THREAD) != 0)
+    runner_warn_once("hwloc_set_cpubind");
+}

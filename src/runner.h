@@ -34,4 +34,11 @@ void runner_launch(struct scheduler *s);
 /** Wait until every worker has finished the current run. */
 void runner_wait(struct scheduler *s);
 
+/** Bind the calling thread to the CPU set the process had before
+ *  runner_start() pinned thread 0 (nothing when the threads are not
+ *  pinned).  For a helper thread started by thread 0, which inherits its
+ *  one core: it, and the threads it starts, then spread over the
+ *  process's cores. */
+void runner_unpin_self(const struct scheduler *s);
+
 #endif

@@ -31,6 +31,7 @@ static void print_key(const struct params *p, const char *name) {
       printf("%d", params_get_bool(p, name));
       break;
     case PARAM_STRING:
+    case PARAM_WORDS:
       printf("%s", params_get_string(p, name));
       break;
     case PARAM_ENUM:

@@ -38,6 +38,7 @@
 #include "gravity/gravity_cpu.h"
 #include "gravity_sets.h"
 #include "gpu/gpu_engine.h"
+#include "gpu/gpu_lists.h"
 #include "hydro_parts.h"
 #include "kernel.h"
 #include "kick/kick_cpu.h"
@@ -96,6 +97,109 @@ static double max_abs(double *const *a, int k, size_t n) {
   for (int c = 0; c < k; c++)
     for (size_t i = 0; i < n; i++) m = fmax(m, fabs(a[c][i]));
   return m;
+}
+
+/** A list entry: neighbouring leaf and shift. */
+struct list_entry {
+  int leaf;
+  double shift[3];
+};
+
+/** Order of list entries (leaf, then shift). */
+static int list_entry_cmp(const void *a, const void *b) {
+  const struct list_entry *x = a, *y = b;
+  if (x->leaf != y->leaf) return x->leaf < y->leaf ? -1 : 1;
+  for (int k = 0; k < 3; k++)
+    if (x->shift[k] != y->shift[k]) return x->shift[k] < y->shift[k] ? -1 : 1;
+  return 0;
+}
+
+/** The neighbour lists built on the device (gpu_cells_build_dev) against
+ *  those of the host's dual tree walk (gpu_cells_build) over the task cells
+ *  tcells[0..nr) of sp: the same leaves and caps, and for every leaf the
+ *  same entries as sets.  Also fails when the lists are degenerate: no
+ *  entries, with must_prune every candidate pair kept (the acceptance test
+ *  not exercised), or, in a periodic box, no entry with a shift.  Returns
+ *  the failures. */
+static int compare_lists(struct gpu *g, const struct space *sp, struct cell *const *tcells, int nr,
+                         const struct engine_cell_tasks *ct, const double *tc_h_cap,
+                         double growth, int leaf_size, int must_prune) {
+  struct gpu_cells gh, gd;
+  memset(&gh, 0, sizeof gh);
+  memset(&gd, 0, sizeof gd);
+  gh.nr_threads = 3;
+  gh.leaf_size = gd.leaf_size = leaf_size;
+  gpu_cells_build(&gh, sp, tcells, nr, ct, tc_h_cap, growth, gh.nr_threads);
+  gpu_cells_build_dev(g, &gd, sp, tcells, nr, ct, tc_h_cap, growth);
+  int fail = 0;
+  if (gh.n != gd.n || gh.nr_ngb != gd.nr_ngb) {
+    printf("  FAIL lists: host %d leaves, %d entries; device %d leaves, %d entries\n", gh.n,
+           gh.nr_ngb, gd.n, gd.nr_ngb);
+    fail++;
+  }
+  for (int l = 0; l < gh.n && l < gd.n && !fail; l++)
+    if (gh.offset[l] != gd.offset[l] || gh.count[l] != gd.count[l] || gh.top[l] != gd.top[l] ||
+        gh.h_cap[l] != gd.h_cap[l] || gh.h_list_cap[l] != gd.h_list_cap[l] ||
+        gh.dx_allow[l] != gd.dx_allow[l]) {
+      printf("  FAIL lists: leaf %d differs between host and device builds\n", l);
+      fail++;
+    }
+  int *start = malloc((gd.n + 1) * sizeof(int)), *leaf = malloc((gd.nr_ngb + 1) * sizeof(int));
+  double *shift = malloc(3 * ((size_t)gd.nr_ngb + 1) * sizeof(double));
+  gpu_lists_download(gd.dev, start, leaf, shift);
+  long candidates = 0, shifted = 0, same_order = 1, bad_leaves = 0;
+  int *tc_leaves = calloc(nr, sizeof(int));
+  for (int l = 0; l < gd.n; l++) tc_leaves[gd.top[l]]++;
+  for (int l = 0; l < gd.n && !fail; l++) {
+    const int t = gd.top[l];
+    for (int k = 0; k < ct[t].nr_ngb; k++) candidates += tc_leaves[ct[t].ngb[k]];
+    const int nh = gh.ngb_start[l + 1] - gh.ngb_start[l], nd = start[l + 1] - start[l];
+    if (start[l] != gh.ngb_start[l] || nh != nd) {
+      bad_leaves++;
+      continue;
+    }
+    struct list_entry *eh = malloc((nh + 1) * sizeof *eh), *ed = malloc((nd + 1) * sizeof *ed);
+    for (int e = 0; e < nh; e++) {
+      eh[e].leaf = gh.ngb_leaf[gh.ngb_start[l] + e];
+      ed[e].leaf = leaf[start[l] + e];
+      for (int d = 0; d < 3; d++) {
+        eh[e].shift[d] = gh.ngb_shift[3 * (size_t)(gh.ngb_start[l] + e) + d];
+        ed[e].shift[d] = shift[3 * (size_t)(start[l] + e) + d];
+      }
+      if (list_entry_cmp(&eh[e], &ed[e])) same_order = 0;
+      if (ed[e].shift[0] != 0.0 || ed[e].shift[1] != 0.0 || ed[e].shift[2] != 0.0) shifted++;
+    }
+    qsort(eh, nh, sizeof *eh, list_entry_cmp);
+    qsort(ed, nd, sizeof *ed, list_entry_cmp);
+    for (int e = 0; e < nh; e++)
+      if (list_entry_cmp(&eh[e], &ed[e])) {
+        bad_leaves++;
+        break;
+      }
+    free(eh);
+    free(ed);
+  }
+  if (bad_leaves) {
+    printf("  FAIL lists: %ld of %d leaves have different entries on the host and the device\n",
+           bad_leaves, gd.n);
+    fail++;
+  }
+  const int periodic = sp->periodic;
+  printf("  lists (growth %.2f, leaves of at most %d particles): %d leaves, %d entries of %ld "
+         "candidate leaf pairs, %ld shifted; device = host as sets%s%s\n",
+         growth, leaf_size, gd.n, gd.nr_ngb, candidates, shifted,
+         same_order ? " and in order" : "", fail ? "  FAIL" : "");
+  if (gd.nr_ngb == 0 || (must_prune && gd.nr_ngb >= candidates) || (periodic && shifted == 0)) {
+    printf("  FAIL lists: degenerate test (no entry, every candidate kept, or no periodic image)\n");
+    fail++;
+  }
+  free(tc_leaves);
+  free(start);
+  free(leaf);
+  free(shift);
+  gpu_cells_free(&gh);
+  gpu_cells_free(&gd);
+  return fail;
 }
 
 /** The three cases. */
@@ -417,6 +521,11 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
       : granite ? "Tillotson granite"
                 : "ideal gas",
       t_cpu, t_gpu, gc.n, gc.nr_ngb);
+  /* the lists built on the device equal the host's (at the h the phase
+   * left): at the leaves of the tree, and on coarser cells with wider lists
+   * (in the periodic box these are the top-level cells: every candidate kept) */
+  fail += compare_lists(g, &sp, tcells, sp.nr_top, ct, top_h_cap, 1.25, 0, 1);
+  fail += compare_lists(g, &sp, tcells, sp.nr_top, ct, top_h_cap, 1.9, 250, !periodic);
   for (size_t k = 0; k < sizeof cmp / sizeof cmp[0]; k++) {
     const double w = worst_rel(cmp[k].gpu, cmp[k].cpu, n, cmp[k].floor);
     const int bad = !(w < 1e-10);

@@ -73,6 +73,7 @@ static int same_value(const struct params *a, const struct params *b, const char
     case PARAM_BOOL:
       return params_get_bool(a, name) == params_get_bool(b, name);
     case PARAM_STRING:
+    case PARAM_WORDS:
       return strcmp(params_get_string(a, name), params_get_string(b, name)) == 0;
     case PARAM_ENUM:
       return params_get_enum(a, name) == params_get_enum(b, name);

@@ -4,9 +4,10 @@
  * density, ghost (h iteration, EOS), with solids gradient and extra ghost,
  * force, with brittle materials damage, and kick2.
  *
- * Stream 0 carries the particle fields and the kernels; stream 1 uploads the
- * leaves and their neighbour lists at the same time, and stream 0 waits for
- * it on an event before the first kernel.  The host waits only where it must
+ * Stream 0 carries the particle fields and the kernels; stream 1 builds the
+ * neighbour lists (gpu_lists.cu, or uploads the host's) and uploads the
+ * leaves at the same time, and stream 0 waits for it on an event before the
+ * first kernel.  The host waits only where it must
  * read something: the counter of particles still iterating h after each
  * round of the ghost, and the results at the end of the phase. */
 #include <stdlib.h>
@@ -18,6 +19,7 @@ extern "C" {
 }
 #include "gpu.h"
 #include "gpu_kernels.h"
+#include "gpu_lists.h"
 #include "material.h"
 
 /** Fields the FORCE phase reads (copied to the device before it when the
@@ -66,16 +68,19 @@ enum gpu_stage {
   GPU_T_GRADIENT,
   GPU_T_FORCE,
   GPU_T_DAMAGE,
+  GPU_T_WAIT,
   GPU_T_KICK,
   GPU_T_DOWNLOAD,
   GPU_T_N
 };
 static const char *const gpu_stage_names[GPU_T_N] = {
-    "upload", "density", "ghost", "gradient(+extra ghost)", "force", "damage", "kick2", "download"};
+    "upload", "density", "ghost", "gradient(+extra ghost)", "force", "damage",
+    "gravity(hybrid: wait + device part)", "kick2", "download"};
 
 struct gpu {
   int device;                  /**< CUDA device number */
   char name[512];              /**< description for the log */
+  size_t mem_base;             /**< device memory in use when the context was made (not the run's) */
   cudaStream_t stream[2];      /**< 0: fields and kernels; 1: cell data */
   cudaEvent_t ev[GPU_T_N + 1]; /**< stage boundaries of the last phase */
   cudaEvent_t cells_ready;     /**< stream 1 finished its upload */
@@ -102,6 +107,8 @@ struct gpu {
   long full_up, full_down;           /**< copies of every field (rebuilds, outputs) */
   void *pinned[PART_NR_FIELDS];      /**< host arrays registered as pinned memory, by field */
   size_t pinned_bytes;               /**< bytes per field registered */
+  void (*kick_wait)(void *);         /**< called before the kick reads ga (gpu_set_kick_wait) */
+  void *kick_wait_ctx;               /**< its argument */
 };
 
 void gpu_check_fail(cudaError_t err, const char *what, const char *file, int line) {
@@ -155,6 +162,11 @@ extern "C" struct gpu *gpu_init(char *why, size_t len) {
            prop.minor);
   for (int k = 0; k < 2; k++)
     gpu_check(cudaStreamCreateWithFlags(&g->stream[k], cudaStreamNonBlocking));
+  {
+    size_t free_b = 0, total_b = 0;
+    gpu_check(cudaMemGetInfo(&free_b, &total_b));
+    g->mem_base = total_b - free_b;
+  }
   for (int k = 0; k <= GPU_T_N; k++) gpu_check(cudaEventCreate(&g->ev[k]));
   gpu_check(cudaEventCreateWithFlags(&g->cells_ready, cudaEventDisableTiming));
   for (int k = 0; k < 2; k++) gpu_check(cudaEventCreate(&g->ev_drift[k]));
@@ -193,9 +205,10 @@ static size_t gpu_align(size_t b) {
 /** Pack the leaf data into pinned memory, upload it on stream 1 and return
  *  the device view. */
 static struct gpu_leaves_dev gpu_upload_cells(struct gpu *g, const struct gpu_leaves *lv) {
-  const size_t n = (size_t)lv->n, nn = (size_t)lv->nr_ngb;
+  /* lists built on the device stay there */
+  const size_t n = (size_t)lv->n, nn = lv->lists ? 0 : (size_t)lv->nr_ngb;
   const size_t sz[8] = {n * sizeof(size_t),      n * sizeof(int),       n * sizeof(double),
-                        n * sizeof(double),      (n + 1) * sizeof(int), nn * sizeof(int),
+                        n * sizeof(double),      (lv->lists ? 0 : n + 1) * sizeof(int), nn * sizeof(int),
                         3 * nn * sizeof(double), n * sizeof(double)};
   size_t off[8], total = 0;
   for (int k = 0; k < 8; k++) {
@@ -230,6 +243,7 @@ static struct gpu_leaves_dev gpu_upload_cells(struct gpu *g, const struct gpu_le
   dv.ngb_start = (const int *)(d + off[4]);
   dv.ngb_leaf = (const int *)(d + off[5]);
   dv.ngb_shift = (const double *)(d + off[6]);
+  if (lv->lists) gpu_lists_view(lv->lists, &dv.ngb_start, &dv.ngb_leaf, &dv.ngb_shift);
   g->leaf_dt = (double *)(d + off[7]);
   return dv;
 }
@@ -371,6 +385,8 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
   if (g->counters_host[GPU_OVERFLOW]) {
     /* the lists were too short for the new h: hand h back for new lists */
     out->overflow = 1;
+    /* the host's h changes below: let whatever runs beside this phase finish first */
+    if (g->kick_wait) g->kick_wait(g->kick_wait_ctx);
     const int ih = gpu_field_index("h");
     gpu_copy_fields(g, p, &ih, 1, 0);
     gpu_check(cudaStreamSynchronize(s));
@@ -389,16 +405,20 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
   /* force -> damage -> kick2 */
   if (damage) damage_gpu_launch(s, g->dev, g->mats_dev, g->flaws_dev, dmg->dt);
   gpu_check(cudaEventRecord(g->ev[6], s));
+  /* hybrid runs: ga is being computed beside this phase; complete on the
+   * device once this returns (its device part, if any, queued on stream 0) */
+  if (g->kick_wait) g->kick_wait(g->kick_wait_ctx);
+  gpu_check(cudaEventRecord(g->ev[7], s));
   double *leaf_dt = g->leaf_dt;
   struct gpu_gravity gr = {0, 0.0, 0.0};
   if (grav) gr = *grav;
   kick2_gpu_launch(s, g->dev, dv, *hp, g->mats_dev, dt_kick, damage ? dmg->max_change : 0.0, gr,
                    leaf_dt);
-  gpu_check(cudaEventRecord(g->ev[7], s));
+  gpu_check(cudaEventRecord(g->ev[8], s));
   if (!resident) gpu_copy_fields(g, p, g->out, nr_out, 0);
   gpu_check(cudaMemcpyAsync(leaf_dt_min, leaf_dt, (size_t)lv->n * sizeof(double),
                             cudaMemcpyDeviceToHost, s));
-  gpu_check(cudaEventRecord(g->ev[8], s));
+  gpu_check(cudaEventRecord(g->ev[9], s));
   gpu_check(cudaStreamSynchronize(s));
   for (int k = 0; k < GPU_T_N; k++) {
     float ms = 0.0f;
@@ -406,6 +426,27 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
     g->t[k] += ms;
   }
   g->calls++;
+}
+
+extern "C" void gpu_set_kick_wait(struct gpu *g, void (*fn)(void *), void *ctx) {
+  g->kick_wait = fn;
+  g->kick_wait_ctx = ctx;
+}
+
+extern "C" void gpu_upload_gravity(struct gpu *g, struct parts *p) {
+  static const char *const names[4] = {"gax", "gay", "gaz", "pot"};
+  if (p->count != g->dev.count) error_bug("GPU and host particle counts differ");
+  gpu_copy_named(g, p, names, 4, 1);
+}
+
+extern "C" int gpu_set_blocking_sync(struct gpu *g) {
+  (void)g;
+  const cudaError_t err = cudaSetDeviceFlags(cudaDeviceScheduleBlockingSync);
+  if (err != cudaSuccess) {
+    cudaGetLastError();
+    return 0;
+  }
+  return 1;
 }
 
 cudaStream_t gpu_stream(struct gpu *g, int k) {
@@ -508,6 +549,13 @@ extern "C" void gpu_print_timers(const struct gpu *g, FILE *f) {
   fprintf(f, "; %ld full uploads, %ld full downloads", g->full_up, g->full_down);
   fprintf(f, "; bus %.1f MB up, %.1f MB down per step\n", g->bytes_h2d / g->calls / 1e6,
           g->bytes_d2h / g->calls / 1e6);
+}
+
+extern "C" void gpu_memory_used(const struct gpu *g, double *run, double *total) {
+  size_t free_b = 0, total_b = 0;
+  gpu_check(cudaMemGetInfo(&free_b, &total_b));
+  *run = (double)(total_b - free_b) - (double)g->mem_base;
+  *total = (double)total_b;
 }
 
 extern "C" void gpu_bytes_moved(const struct gpu *g, double *h2d, double *d2h) {

@@ -22,6 +22,7 @@ extern "C" {
 #endif
 
 struct material_table;
+struct gpu_lists;
 /** A device with its streams, buffers and timers (opaque). */
 struct gpu;
 
@@ -39,6 +40,9 @@ struct gpu_leaves {
   const int *ngb_leaf; /**< neighbouring leaf of each entry (the leaf itself included) */
   const double *ngb_shift; /**< 3 per entry: added to the neighbour's positions */
   int nr_ngb;              /**< number of entries */
+  const struct gpu_lists *lists; /**< non-NULL: the lists were built on the device
+                                      (gpu_lists.h); ngb_start, ngb_leaf and ngb_shift
+                                      above are then unused */
 };
 
 /** Damage in a FORCE phase (brittle materials, tasks/damage). */
@@ -108,6 +112,19 @@ void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu_leaves *lv
                      const struct hydro_props *hp, const struct material_table *mats,
                      const struct gpu_damage *dmg, const struct gpu_gravity *grav, double dt_kick,
                      double *leaf_dt_min, int resident, struct gpu_force_out *out);
+/** Have gpu_force_phase call fn(ctx) before its kick reads ga, and before
+ *  it writes the host's h when the lists overflow (fn NULL: nothing).  The
+ *  hybrid runner's hook: it waits there for the self-gravity computed
+ *  beside the phase (CPU tasks), then completes ga on the device (the
+ *  device part of gravity on stream 0, or gpu_upload_gravity). */
+void gpu_set_kick_wait(struct gpu *g, void (*fn)(void *), void *ctx);
+/** Copy gax, gay, gaz and pot of the resident particles from the host to
+ *  the device on stream 0 (self-gravity computed on the CPU). */
+void gpu_upload_gravity(struct gpu *g, struct parts *p);
+/** Let host threads waiting for the device sleep instead of spinning (the
+ *  hybrid runner: the CPU workers need the cores).  Returns 0 when the
+ *  driver refuses (the waits then keep spinning). */
+int gpu_set_blocking_sync(struct gpu *g);
 /** Self-gravity's device state on g (freed by gpu_grav_free, before gpu_free). */
 struct gpu_grav *gpu_grav_new(struct gpu *g);
 void gpu_grav_free(struct gpu_grav *gg);
@@ -148,6 +165,9 @@ void gpu_unpin(struct gpu *g);
 void gpu_print_timers(const struct gpu *g, FILE *f);
 /** Bytes copied host -> device and device -> host so far. */
 void gpu_bytes_moved(const struct gpu *g, double *h2d, double *d2h);
+/** Device memory the run holds now (in use minus what the context took at
+ *  gpu_init) and the device's total, in bytes. */
+void gpu_memory_used(const struct gpu *g, double *run, double *total);
 /** Free everything. */
 void gpu_free(struct gpu *g);
 

@@ -8,11 +8,23 @@
 
 #include "engine_tasks.h"
 #include "error.h"
+#include "gpu_policy.h"
+#include "gpu_lists.h"
 #include "kernel.h"
 #include "params.h"
+#include "runner.h"
+
+/** Where the work of a FORCE phase runs (Scheduler:gpu, gpu_policy.h). */
+enum gpu_engine_mode {
+  GPU_MODE_SERIAL,  /**< all: gravity's CPU part, its device part, then the hydrodynamics */
+  GPU_MODE_HYBRID,  /**< the walks on the CPU beside the GPU's hydrodynamics, then gravity's
+                         device part, then the kick */
+  GPU_MODE_CPU_GRAV /**< the whole of self-gravity on the CPU beside the GPU's hydrodynamics */
+};
 
 /** The engine's GPU state. */
 struct gpu_engine {
+  int mode;               /**< enum gpu_engine_mode */
   struct gpu *gpu;        /**< the device */
   struct gpu_cells cells; /**< leaves and lists */
   int dev_valid;          /**< the device holds the current particles */
@@ -29,6 +41,12 @@ struct gpu_engine {
   double t_grav_walk;             /**< host seconds of the gravity tasks (up, walks) */
   double t_grav_gpu;              /**< seconds of the device part (copies included) */
   long grav_evals;                /**< gravity evaluations */
+  double t_phase;                 /**< host seconds of the FORCE phases */
+  long phases;                    /**< FORCE phases */
+  double t_cpu_side;              /**< hybrid: seconds of the CPU's gravity tasks */
+  double t_gpu_side;              /**< hybrid: seconds of the hydro thread until the kick */
+  double t_waited;                /**< hybrid: seconds the kick waited for the CPU */
+  long hybrid_phases;             /**< FORCE phases run hybrid (with CPU work beside) */
 };
 
 /** Grow the per-leaf arrays to n. */
@@ -43,12 +61,31 @@ static void gpu_cells_reserve(struct gpu_cells *gc, int n) {
   gc->ngb_start = error_realloc(gc->ngb_start, (gc->cap + 1) * sizeof(int), "GPU leaves");
   gc->leaf_cell = error_realloc(gc->leaf_cell, gc->cap * sizeof(struct cell *), "GPU leaves");
   gc->dx_allow = error_realloc(gc->dx_allow, gc->cap * sizeof(double), "GPU leaves");
+  gc->leaf_node = error_realloc(gc->leaf_node, gc->cap * sizeof(int), "GPU leaves");
+}
+
+/** 1 if the lists stop at c: a leaf of the tree, or a cell of at most
+ *  leaf_size particles (Scheduler:gpu_leaf_size). */
+static int gpu_cells_is_leaf(const struct gpu_cells *gc, const struct cell *c) {
+  return !c->split || (size_t)gc->leaf_size >= c->count;
+}
+
+/** The bounds of c as the acceptance test reads them. */
+static void gpu_cells_box(struct gpu_list_box *b, const struct cell *c) {
+  for (int k = 0; k < 3; k++) {
+    b->bmin[k] = c->bmin[k];
+    b->bmax[k] = c->bmax[k];
+    b->loc[k] = c->loc[k];
+    b->width[k] = c->width[k];
+  }
+  b->h_max = c->h_max;
+  b->dx_max = c->dx_max;
 }
 
 /** Number the non-empty leaves below c. */
 static void gpu_cells_collect(struct gpu_cells *gc, const struct cell *c, int top) {
   if (c->count == 0) return;
-  if (c->split) {
+  if (!gpu_cells_is_leaf(gc, c)) {
     for (int k = 0; k < 8; k++)
       if (c->progeny[k]) gpu_cells_collect(gc, c->progeny[k], top);
     return;
@@ -61,11 +98,6 @@ static void gpu_cells_collect(struct gpu_cells *gc, const struct cell *c, int to
   gc->leaf_cell[gc->n] = c;
   gc->n++;
 }
-
-/** Fraction of its kernel support a leaf may drift after the lists were
- *  built before they are built again: a margin in the lists' reach that lets
- *  most steps reuse them. */
-#define GPU_LIST_SLACK 0.1
 
 /** One worker of the list build: the task cells [t0, t1), whose leaves are
  *  the contiguous range [l0, l1), and the entries it found. */
@@ -99,38 +131,31 @@ static void gpu_cells_job_add(struct gpu_cells_job *jb, int li, int lj, const do
 }
 
 /** Dual walk of the trees below ci and cj (cj at shift): every pair of
- *  leaves whose bounding boxes come within growth * kernel_gamma * the
- *  larger h_max plus both drifts, pruning whole sub-trees on both sides
- *  (the test of the CPU loops, iact_loop.h, with the lists' margin). */
+ *  list leaves that gpu_list_accept keeps, pruning whole sub-trees on both
+ *  sides (internal pairs with the loosened bound: the pairs kept are exactly
+ *  the leaf pairs that pass the exact test, as on the device). */
 static void gpu_cells_walk(struct gpu_cells_job *jb, const struct cell *ci, const struct cell *cj,
                            const double shift[3]) {
   if (ci->count == 0 || cj->count == 0) return;
-  const double hm = ci->h_max > cj->h_max ? ci->h_max : cj->h_max;
-  /* each side may drift GPU_LIST_SLACK kernel supports further before the
-   * lists must be built again (gpu_cells_valid) */
-  const double R = jb->growth * kernel_gamma * hm + ci->dx_max + cj->dx_max +
-                   GPU_LIST_SLACK * kernel_gamma * (ci->h_max + cj->h_max);
-  /* widened as the CPU loops' pruning: never drop a pair the particle test keeps */
-  double scale = 0.0;
-  for (int k = 0; k < 3; k++)
-    scale += fabs(ci->loc[k]) + ci->width[k] + fabs(cj->loc[k]) + cj->width[k] + fabs(shift[k]);
-  const double Rs = R * (1.0 + 1e-10) + 1e-13 * scale;
-  if (cell_bbox_dist2(ci, cj, shift) > Rs * Rs) return;
-  if (ci->split && (!cj->split || ci->count >= cj->count)) {
+  const struct gpu_cells *gc = jb->gc;
+  const int li = gpu_cells_is_leaf(gc, ci), lj = gpu_cells_is_leaf(gc, cj);
+  if (!gpu_list_accept(&gc->box[ci->index], &gc->box[cj->index], shift, jb->growth, !(li && lj)))
+    return;
+  if (!li && (lj || ci->count >= cj->count)) {
     for (int k = 0; k < 8; k++)
       if (ci->progeny[k]) gpu_cells_walk(jb, ci->progeny[k], cj, shift);
-  } else if (cj->split) {
+  } else if (!lj) {
     for (int k = 0; k < 8; k++)
       if (cj->progeny[k]) gpu_cells_walk(jb, ci, cj->progeny[k], shift);
   } else {
-    gpu_cells_job_add(jb, jb->gc->leaf_of_cell[ci->index], jb->gc->leaf_of_cell[cj->index], shift);
+    gpu_cells_job_add(jb, gc->leaf_of_cell[ci->index], gc->leaf_of_cell[cj->index], shift);
   }
 }
 
 /** Set h_list_cap of the leaves below c. */
 static void gpu_cells_caps(struct gpu_cells *gc, const struct cell *c, double growth) {
   if (c->count == 0) return;
-  if (c->split) {
+  if (!gpu_cells_is_leaf(gc, c)) {
     for (int k = 0; k < 8; k++)
       if (c->progeny[k]) gpu_cells_caps(gc, c->progeny[k], growth);
     return;
@@ -189,6 +214,12 @@ void gpu_cells_build(struct gpu_cells *gc, const struct space *s, struct cell *c
     gc->leaf_of_cell = error_realloc(gc->leaf_of_cell, gc->cells_cap * sizeof(int), "GPU leaves");
   }
   for (int k = 0; k < s->nr_cells; k++) gc->leaf_of_cell[k] = -1;
+  /* the bounds of every cell as the acceptance test reads them */
+  if (s->nr_cells > gc->box_cap) {
+    gc->box_cap = gc->cells_cap;
+    gc->box = error_realloc(gc->box, gc->box_cap * sizeof(struct gpu_list_box), "GPU leaves");
+  }
+  for (int k = 0; k < s->nr_cells; k++) gpu_cells_box(&gc->box[k], &s->cells[k]);
   gc->n = 0;
   int *first_leaf = error_malloc((nr + 1) * sizeof(int), "GPU leaves");
   for (int t = 0; t < nr; t++) {
@@ -259,7 +290,99 @@ void gpu_cells_build(struct gpu_cells *gc, const struct space *s, struct cell *c
   free(first_leaf);
 }
 
+/** Number the list leaves below c (task cell top) as gpu_cells_collect,
+ *  set their caps as gpu_cells_caps, and write the non-empty cells down to
+ *  the list leaves to node[] depth first. */
+static void gpu_cells_flatten(struct gpu_cells *gc, struct gpu_list_node *node,
+                              const struct cell *c, int top, double growth) {
+  if (c->count == 0) return;
+  const int q = gc->nr_nodes++;
+  gpu_cells_box(&node[q].box, c);
+  if (gpu_cells_is_leaf(gc, c)) {
+    gpu_cells_reserve(gc, gc->n + 1);
+    const int l = gc->n++;
+    gc->leaf_of_cell[c->index] = l;
+    gc->offset[l] = c->offset;
+    gc->count[l] = (int)c->count;
+    gc->top[l] = top;
+    gc->leaf_cell[l] = c;
+    gc->leaf_node[l] = q;
+    gc->h_list_cap[l] = growth * c->h_max;
+    gc->dx_allow[l] = c->dx_max + GPU_LIST_SLACK * kernel_gamma * c->h_max;
+    node[q].leaf = l;
+  } else {
+    node[q].leaf = -1;
+    for (int k = 0; k < 8; k++)
+      if (c->progeny[k]) gpu_cells_flatten(gc, node, c->progeny[k], top, growth);
+  }
+  node[q].skip = gc->nr_nodes;
+}
+
+void gpu_cells_build_dev(struct gpu *g, struct gpu_cells *gc, const struct space *s,
+                         struct cell *const *tcells, int nr, const struct engine_cell_tasks *ct,
+                         const double *tc_h_cap, double growth) {
+  if (!gc->dev) gc->dev = gpu_lists_new(g);
+  if (s->nr_cells > gc->cells_cap) {
+    gc->cells_cap = s->nr_cells + s->nr_cells / 2;
+    gc->leaf_of_cell = error_realloc(gc->leaf_of_cell, gc->cells_cap * sizeof(int), "GPU leaves");
+  }
+  for (int k = 0; k < s->nr_cells; k++) gc->leaf_of_cell[k] = -1;
+  if (nr + 1 > gc->tc_cap) {
+    gc->tc_cap = nr + 1 + nr / 2;
+    gc->tc_node = error_realloc(gc->tc_node, gc->tc_cap * sizeof(int), "GPU task cells");
+    gc->tc_ngb_start = error_realloc(gc->tc_ngb_start, gc->tc_cap * sizeof(int), "GPU task cells");
+  }
+  /* the neighbours of the task cells, as one array */
+  int nk = 0;
+  for (int t = 0; t < nr; t++) nk += ct[t].nr_ngb;
+  if (nk > gc->tc_ngb_cap) {
+    gc->tc_ngb_cap = nk + nk / 2;
+    gc->tc_ngb = error_realloc(gc->tc_ngb, gc->tc_ngb_cap * sizeof(int), "GPU task cells");
+    gc->tc_ngb_shift = error_realloc(gc->tc_ngb_shift, 3 * (size_t)gc->tc_ngb_cap * sizeof(double),
+                                     "GPU task cells");
+  }
+  nk = 0;
+  for (int t = 0; t < nr; t++) {
+    gc->tc_ngb_start[t] = nk;
+    for (int k = 0; k < ct[t].nr_ngb; k++, nk++) {
+      gc->tc_ngb[nk] = ct[t].ngb[k];
+      for (int d = 0; d < 3; d++) gc->tc_ngb_shift[3 * (size_t)nk + d] = ct[t].ngb_shift[k][d];
+    }
+  }
+  gc->tc_ngb_start[nr] = nk;
+  /* the cells below the task cells, written straight to the pinned staging */
+  struct gpu_list_node *node = gpu_lists_nodes(gc->dev, s->nr_cells);
+  gc->n = 0;
+  gc->nr_nodes = 0;
+  for (int t = 0; t < nr; t++) {
+    gc->tc_node[t] = gc->nr_nodes;
+    gpu_cells_flatten(gc, node, tcells[t], t, growth);
+  }
+  gc->tc_node[nr] = gc->nr_nodes;
+  gpu_cells_reserve(gc, gc->n + 1);
+  const struct gpu_list_input in = {.nr_leaves = gc->n,
+                                    .leaf_node = gc->leaf_node,
+                                    .leaf_tc = gc->top,
+                                    .nr_tc = nr,
+                                    .tc_node = gc->tc_node,
+                                    .tc_ngb_start = gc->tc_ngb_start,
+                                    .tc_ngb = gc->tc_ngb,
+                                    .tc_ngb_shift = gc->tc_ngb_shift,
+                                    .nr_nodes = gc->nr_nodes,
+                                    .growth = growth};
+  gc->nr_ngb = (int)gpu_lists_build(gc->dev, &in);
+  for (int l = 0; l < gc->n; l++) gc->h_cap[l] = tc_h_cap[gc->top[l]];
+  gc->growth = growth;
+}
+
 void gpu_cells_free(struct gpu_cells *gc) {
+  gpu_lists_free(gc->dev);
+  free(gc->box);
+  free(gc->leaf_node);
+  free(gc->tc_node);
+  free(gc->tc_ngb_start);
+  free(gc->tc_ngb);
+  free(gc->tc_ngb_shift);
   for (int w = 0; w < gc->nr_jobs; w++) gpu_cells_job_free(&gc->jobs[w]);
   free(gc->jobs);
   free(gc->offset);
@@ -304,7 +427,10 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
   for (int attempt = 0;; attempt++) {
     if (attempt > 0 || !gpu_cells_valid(gc, s, tcells, nr)) {
       const double w0 = error_walltime();
-      gpu_cells_build(gc, s, tcells, nr, ct, tc_h_cap, growth, gc->nr_threads);
+      if (gc->host_lists)
+        gpu_cells_build(gc, s, tcells, nr, ct, tc_h_cap, growth, gc->nr_threads);
+      else
+        gpu_cells_build_dev(g, gc, s, tcells, nr, ct, tc_h_cap, growth);
       gc->t_build += error_walltime() - w0;
       gc->builds++;
       gc->built_rebuild = s->nr_rebuilds;
@@ -317,7 +443,8 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
     leaf_dt = error_realloc(leaf_dt, (gc->n + 1) * sizeof(double), "GPU leaf time steps");
     const struct gpu_leaves lv = {gc->n,        gc->offset,     gc->count,
                                   gc->h_cap,    gc->h_list_cap, gc->ngb_start,
-                                  gc->ngb_leaf, gc->ngb_shift,  gc->nr_ngb};
+                                  gc->ngb_leaf, gc->ngb_shift,  gc->nr_ngb,
+                                  gc->host_lists ? NULL : gc->dev};
     gpu_force_phase(g, p, &lv, hp, mats, dmg, grav, dt_kick, leaf_dt, resident, &out);
     if (!out.overflow) break;
     if (attempt > 30)
@@ -341,18 +468,19 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
 }
 
 void gpu_engine_init(struct engine *e) {
-  const char *policy = params_get_string(e->params, "Scheduler:gpu");
-  if (strcmp(policy, "auto") && strcmp(policy, "all") && strcmp(policy, "off"))
-    params_error(e->params, "Scheduler:gpu",
-                 "expected auto, off or all, got '%s' (lists of task families are "
-                 "not implemented yet)",
-                 policy);
-  const int required = e->opt.use_gpu == 2 || strcmp(policy, "all") == 0;
-  if (e->opt.use_gpu == 0 || strcmp(policy, "off") == 0) {
+  const struct gpu_policy pol = gpu_policy_read(e->params);
+  char asked[300];
+  snprintf(asked, sizeof asked, "Scheduler:gpu: %s%s", pol.text,
+           e->opt.use_gpu == 2 ? ", --gpu" : "");
+  if (e->opt.use_gpu == 0 || pol.kind == GPU_POLICY_OFF ||
+      (pol.kind == GPU_POLICY_LIST && pol.families == 0)) {
     error_log(0, "GPU off (%s): every task runs on the CPU",
-              e->opt.use_gpu == 0 ? "--no-gpu" : "Scheduler:gpu: off");
+              e->opt.use_gpu == 0 ? "--no-gpu" : asked);
     return;
   }
+  /* a GPU asked for by name (--gpu, all, a list) must be there */
+  const int required =
+      e->opt.use_gpu == 2 || pol.kind == GPU_POLICY_ALL || pol.kind == GPU_POLICY_LIST;
   char why[256];
   /* the GPU runs the hydrodynamic phase as a whole (solids, damage, XSPH
    * and the continuity equation included) and self-gravity's interactions
@@ -365,9 +493,7 @@ void gpu_engine_init(struct engine *e) {
                                   "implementation yet"
                                 : NULL;
   if (unsupported) {
-    if (required)
-      error_exit("a GPU was required (%s) but %s", e->opt.use_gpu == 2 ? "--gpu" : "Scheduler:gpu: all",
-                 unsupported);
+    if (required) error_exit("a GPU was required (%s) but %s", asked, unsupported);
     error_log(0, "GPU not used (%s): every task runs on the CPU", unsupported);
     return;
   }
@@ -375,29 +501,54 @@ void gpu_engine_init(struct engine *e) {
    * a GPU path: the shared inline functions */
   struct gpu *g = gpu_init(why, sizeof why);
   if (!g) {
-    if (required)
-      error_exit("a GPU was required (%s) but cannot be used: %s",
-                 e->opt.use_gpu == 2 ? "--gpu" : "Scheduler:gpu: all", why);
+    if (required) error_exit("a GPU was required (%s) but cannot be used: %s", asked, why);
     error_log(0, "no GPU (%s): every task runs on the CPU", why);
     return;
   }
+  /* auto: the measured best, the hybrid (BENCHMARKS.md, "Hybrid") */
+  int mode = GPU_MODE_HYBRID;
+  if (pol.kind == GPU_POLICY_ALL)
+    mode = GPU_MODE_SERIAL;
+  else if (pol.kind == GPU_POLICY_LIST && !(pol.families & (1u << GPU_FAMILY_GRAVITY)))
+    mode = GPU_MODE_CPU_GRAV;
+  /* exact summation has no GPU part: it runs on the CPU beside the hydrodynamics */
+  if (e->gp.enabled && e->gp.direct) mode = GPU_MODE_CPU_GRAV;
+  if (!e->gp.enabled) mode = GPU_MODE_SERIAL; /* nothing to run beside the hydrodynamics */
   struct gpu_engine *ge = error_calloc(1, sizeof *ge, "GPU state");
   ge->gpu = g;
+  ge->mode = mode;
   e->gpu = ge;
-  if (e->gp.enabled) {
+  ge->cells.leaf_size = (int)params_get_int(e->params, "Scheduler:gpu_leaf_size");
+  ge->cells.host_lists = params_get_enum(e->params, "Scheduler:gpu_lists") == 1;
+  if (e->gp.enabled && mode != GPU_MODE_CPU_GRAV) {
     ge->grav = gpu_grav_new(g);
     ge->grav_host.built_rebuild = -1;
   }
+  /* the host thread driving the GPU then sleeps while it waits: the CPU
+   * workers have every core */
+  if (mode != GPU_MODE_SERIAL && !gpu_set_blocking_sync(g))
+    error_log(1, "GPU: the driver refused blocking waits; the thread driving the GPU spins");
   /* the flaw thresholds never change during a run: on the device once */
   if (e->damage) gpu_set_flaws(g, e->flaw_eps, (size_t)e->nr_flaws);
+  const char *grav = "";
+  if (e->gp.enabled && mode == GPU_MODE_SERIAL)
+    grav = "; self-gravity: multipoles and walks on the CPU, M2L, L2L, L2P, M2P and P2P on the GPU "
+           "(one after the other: the CPU part, the GPU part, then the hydrodynamics)";
+  else if (mode == GPU_MODE_HYBRID)
+    grav = "; self-gravity: multipoles and walks on the CPU, M2L, L2L, L2P, M2P and P2P on the GPU "
+           "(hybrid: the CPU workers walk while the GPU computes the hydrodynamics; then gravity's "
+           "GPU part and the kick)";
+  else if (mode == GPU_MODE_CPU_GRAV)
+    grav = e->gp.direct ? "; self-gravity (Gravity:direct, no GPU implementation) on the CPU "
+                          "workers while the GPU computes the hydrodynamics; ga goes up for the kick"
+                        : "; self-gravity entirely on the CPU workers (multipoles, walks, M2L, "
+                          "P2P, L2P) while the GPU computes the hydrodynamics; ga goes up for the "
+                          "kick";
   error_log(0,
-            "GPU %s: drift, density, ghost, %sforce, %skick2 of every cell run on it, the "
+            "GPU %s (%s): drift, density, ghost, %sforce, %skick2 of every cell run on it, the "
             "particles stay on it between steps%s",
-            gpu_name(g), e->hp.solids ? "gradient, extra ghost (plasticity, dS/dt), " : "",
-            e->damage ? "damage, " : "",
-            e->gp.enabled ? "; self-gravity: multipoles and walks on the CPU, M2L, L2L, L2P, M2P and P2P "
-                            "on the GPU"
-                          : "");
+            gpu_name(g), asked, e->hp.solids ? "gradient, extra ghost (plasticity, dS/dt), " : "",
+            e->damage ? "damage, " : "", grav);
 }
 
 /** Scheduler callback of the gravity pass: the engine's task, with the
@@ -411,53 +562,115 @@ static void gpu_engine_grav_task(void *ctx, struct task *t, int thread_id) {
   if (t->type == task_type_grav_up) gpu_grav_pack_multipoles(e->gpu->mp, t->ci, e->gcells);
 }
 
-/** Self-gravity of the FORCE phase: the gravity tasks of the graph on the
- *  CPU workers (multipoles, and the walks, which record their interactions
- *  instead of computing them; grav_down is the GPU's), then everything
- *  else on the GPU (gpu_grav_run: grouping included), which leaves ga and pot complete on both sides for the
- *  kick.  A step that reuses the far field (Gravity:reuse_steps) runs on
- *  the GPU alone: the device kept the multipoles, the local expansions and
- *  the interactions of the last full evaluation. */
-static void gpu_engine_gravity(struct engine *e) {
+/** Self-gravity of the FORCE phase, in three parts.  Prepare (here): the
+ *  tree on the device after a rebuild, the staging of the multipoles, the
+ *  workers' lists emptied, the gravity tasks of the graph activated (with
+ *  on_gpu, grav_down, the GPU's, skipped).  Returns 0 when the step reuses
+ *  the far field (Gravity:reuse_steps): the GPU alone then, nothing on the
+ *  CPU.  These make CUDA calls: before any thread drives the GPU beside. */
+static int gpu_engine_grav_prepare(struct engine *e, int on_gpu) {
   struct gpu_engine *ge = e->gpu;
-  const struct gravity_props *gp = &e->gp;
-  struct gpu_grav_host *h = &ge->grav_host;
-  const double w0 = error_walltime();
-  ge->grav_evals++;
-  if (gp->replay) {
-    gpu_grav_run(ge->grav, &e->parts, NULL, 0, gp->G, gp->eps, gp->softening,
-                 gp->eps2_expansion, gp->order, 1, 1);
-    ge->t_grav_gpu += error_walltime() - w0;
-    return;
+  if (on_gpu) {
+    ge->grav_evals++;
+    if (e->gp.replay) return 0;
+    struct gpu_grav_host *h = &ge->grav_host;
+    if (h->built_rebuild != e->space.nr_rebuilds || h->built_cells != e->space.cells) {
+      gpu_grav_tree_build(h, &e->space);
+      gpu_grav_set_tree(ge->grav, &h->tree);
+    }
+    ge->mp = gpu_grav_multipoles(ge->grav, e->space.nr_cells);
+    const int nw = e->sched.nr_threads > 0 ? e->sched.nr_threads : 1;
+    if (nw > ge->nr_rec) {
+      ge->rec = error_realloc(ge->rec, nw * sizeof *ge->rec, "gravity lists");
+      memset(ge->rec + ge->nr_rec, 0, (nw - ge->nr_rec) * sizeof *ge->rec);
+      ge->nr_rec = nw;
+    }
+    for (int w = 0; w < ge->nr_rec; w++)
+      ge->rec[w].part.n = ge->rec[w].field.n = ge->rec[w].part_sym.n = ge->rec[w].field_sym.n = 0;
   }
-  if (h->built_rebuild != e->space.nr_rebuilds || h->built_cells != e->space.cells) {
-    gpu_grav_tree_build(h, &e->space);
-    gpu_grav_set_tree(ge->grav, &h->tree);
-  }
-  ge->mp = gpu_grav_multipoles(ge->grav, e->space.nr_cells);
-  const int nw = e->sched.nr_threads > 0 ? e->sched.nr_threads : 1;
-  if (nw > ge->nr_rec) {
-    ge->rec = error_realloc(ge->rec, nw * sizeof *ge->rec, "gravity lists");
-    memset(ge->rec + ge->nr_rec, 0, (nw - ge->nr_rec) * sizeof *ge->rec);
-    ge->nr_rec = nw;
-  }
-  for (int w = 0; w < ge->nr_rec; w++)
-    ge->rec[w].part.n = ge->rec[w].field.n = ge->rec[w].part_sym.n = ge->rec[w].field_sym.n = 0;
   engine_activate_phase(e, ENGINE_PHASE_FORCE);
   for (int k = 0; k < e->sched.nr_tasks; k++) {
     struct task *t = scheduler_task(&e->sched, k);
-    if (t->subtype != task_subtype_grav || t->type == task_type_grav_down) t->skip = 1;
+    if (t->subtype != task_subtype_grav || (on_gpu && t->type == task_type_grav_down)) t->skip = 1;
   }
-  scheduler_run(&e->sched, gpu_engine_grav_task, e);
-  const double w1 = error_walltime();
-  gpu_grav_run(ge->grav, &e->parts, ge->rec, ge->nr_rec, gp->G, gp->eps, gp->softening,
-               gp->eps2_expansion, gp->order, 1, 0);
-  ge->t_grav_walk += w1 - w0;
-  ge->t_grav_gpu += error_walltime() - w1;
+  return 1;
+}
+
+/** The CPU part: the gravity tasks on the CPU workers, the calling thread
+ *  as thread 0.  on_gpu: multipoles, and walks that record their
+ *  interactions instead of computing them; else the CPU's own gravity
+ *  (grav_down included), which leaves ga and pot complete on the host. */
+static void gpu_engine_grav_cpu(struct engine *e, int on_gpu) {
+  const double w0 = error_walltime();
+  scheduler_run(&e->sched, on_gpu ? gpu_engine_grav_task : engine_run_task, e);
+  e->gpu->t_grav_walk += error_walltime() - w0;
+}
+
+/** The device part (gpu_grav_run: grouping included, or the replay of a
+ *  step that reuses the far field), which leaves ga and pot complete on
+ *  both sides for the kick, on stream 0 after whatever is queued there. */
+static void gpu_engine_grav_device(struct engine *e) {
+  struct gpu_engine *ge = e->gpu;
+  const struct gravity_props *gp = &e->gp;
+  const double w0 = error_walltime();
+  gpu_grav_run(ge->grav, &e->parts, gp->replay ? NULL : ge->rec, gp->replay ? 0 : ge->nr_rec,
+               gp->G, gp->eps, gp->softening, gp->eps2_expansion, gp->order, 1, gp->replay);
+  ge->t_grav_gpu += error_walltime() - w0;
+}
+
+/** The hydrodynamic phase on the GPU driven by a host thread beside the
+ *  CPU's gravity (hybrid modes), or alone (serial). */
+struct gpu_hydro_job {
+  struct engine *e;          /**< the engine */
+  struct gpu_damage dmg;     /**< damage of this phase */
+  struct gpu_gravity grav;   /**< gravity in the kick */
+  double dt_kick;            /**< second half kick */
+  int capped;                /**< gpu_cells_force's result */
+  pthread_mutex_t mutex;     /**< guards cpu_done */
+  pthread_cond_t cond;       /**< signalled when cpu_done is set */
+  int cpu_done;              /**< the CPU's gravity tasks have finished */
+  int ga_ready;              /**< ga is complete on the device (the hook ran) */
+  double t_start, t_hook;    /**< wall clock: the thread started, it reached the hook */
+  double t_waited;           /**< seconds the hook waited for the CPU */
+};
+
+/** gpu_set_kick_wait's hook in the hybrid modes: wait until the CPU's
+ *  gravity tasks are done, then complete ga on the device (gravity's device
+ *  part, or the CPU's ga uploaded); at once when already done. */
+static void gpu_engine_kick_wait(void *ctx) {
+  struct gpu_hydro_job *jb = ctx;
+  if (jb->ga_ready) return;
+  struct engine *e = jb->e;
+  jb->t_hook = error_walltime();
+  pthread_mutex_lock(&jb->mutex);
+  while (!jb->cpu_done) pthread_cond_wait(&jb->cond, &jb->mutex);
+  pthread_mutex_unlock(&jb->mutex);
+  jb->t_waited = error_walltime() - jb->t_hook;
+  if (e->gpu->mode == GPU_MODE_HYBRID)
+    gpu_engine_grav_device(e);
+  else
+    gpu_upload_gravity(e->gpu->gpu, &e->parts);
+  jb->ga_ready = 1;
+}
+
+/** Thread body: the hydrodynamic phase (lists, density, ghost, gradient,
+ *  force, damage, kick2) on the GPU.  Unpinned from thread 0's core, so
+ *  that it and the list build's threads spread over the process's cores. */
+static void *gpu_engine_hydro_run(void *arg) {
+  struct gpu_hydro_job *jb = arg;
+  struct engine *e = jb->e;
+  struct gpu_engine *ge = e->gpu;
+  runner_unpin_self(&e->sched);
+  jb->t_start = error_walltime();
+  jb->capped = gpu_cells_force(ge->gpu, &ge->cells, &e->parts, &e->space, e->tcells, e->nr_tcells,
+                               e->ct, ge->tc_h_cap, &e->hp, e->mats, &jb->dmg, &jb->grav,
+                               jb->dt_kick, 1, e->cell_dt_min);
+  return NULL;
 }
 
 void gpu_engine_force(struct engine *e) {
   struct gpu_engine *ge = e->gpu;
+  const double w_phase = error_walltime();
   if (e->nr_tcells > ge->nr_tc) {
     ge->tc_h_cap = error_realloc(ge->tc_h_cap, e->nr_tcells * sizeof(double), "GPU caps");
     ge->nr_tc = e->nr_tcells;
@@ -471,21 +684,61 @@ void gpu_engine_force(struct engine *e) {
       if (e->tcells[e->ct[t].ngb[k]]->dx_max > dx_max) dx_max = e->tcells[e->ct[t].ngb[k]]->dx_max;
     ge->tc_h_cap[t] = (H_limit - 2.0 * dx_max) / kernel_gamma;
   }
-  const double dt_kick = e->first_force ? 0.0 : 0.5 * e->dt;
   ge->cells.nr_threads = e->nr_threads;
   if (!ge->dev_valid) {
     gpu_upload_all(ge->gpu, &e->parts);
     ge->dev_valid = 1;
   }
   ge->host_stale = 1;
-  if (e->gp.enabled) gpu_engine_gravity(e);
+  struct gpu_hydro_job jb;
+  memset(&jb, 0, sizeof jb);
+  jb.e = e;
+  jb.dt_kick = e->first_force ? 0.0 : 0.5 * e->dt;
   /* no damage before Damage:start_time (engine_damage does the same) */
-  const struct gpu_damage dmg = {e->damage && !(e->time < e->damage_start),
-                                 e->first_force ? 0.0 : e->dt, e->damage_max_change};
-  const struct gpu_gravity grav = {e->gp.enabled, e->gp.eps, e->gp.eta};
-  if (gpu_cells_force(ge->gpu, &ge->cells, &e->parts, &e->space, e->tcells, e->nr_tcells, e->ct,
-                      ge->tc_h_cap, &e->hp, e->mats, &dmg, &grav, dt_kick, 1, e->cell_dt_min))
-    e->need_rebuild = 1;
+  jb.dmg = (struct gpu_damage){e->damage && !(e->time < e->damage_start),
+                               e->first_force ? 0.0 : e->dt, e->damage_max_change};
+  jb.grav = (struct gpu_gravity){e->gp.enabled, e->gp.eps, e->gp.eta};
+  const int hybrid = e->gp.enabled && ge->mode != GPU_MODE_SERIAL;
+  const int on_gpu = ge->mode != GPU_MODE_CPU_GRAV;
+  /* serial: gravity's CPU part and device part first */
+  if (e->gp.enabled && !hybrid && gpu_engine_grav_prepare(e, 1)) gpu_engine_grav_cpu(e, 1);
+  if (e->gp.enabled && !hybrid) gpu_engine_grav_device(e);
+  /* hybrid: prepare gravity (CUDA calls) before the hydro thread starts */
+  int cpu_work = 0;
+  if (hybrid) {
+    cpu_work = gpu_engine_grav_prepare(e, on_gpu);
+    pthread_mutex_init(&jb.mutex, NULL);
+    pthread_cond_init(&jb.cond, NULL);
+    jb.cpu_done = !cpu_work;
+    gpu_set_kick_wait(ge->gpu, gpu_engine_kick_wait, &jb);
+  }
+  /* the hydrodynamics on the GPU, driven by a thread off thread 0's core */
+  pthread_t tid;
+  if (pthread_create(&tid, NULL, gpu_engine_hydro_run, &jb))
+    error_exit("cannot start the thread that drives the GPU");
+  if (cpu_work) {
+    /* the CPU workers, this thread as thread 0, while the GPU works */
+    const double w0 = error_walltime();
+    gpu_engine_grav_cpu(e, on_gpu);
+    ge->t_cpu_side += error_walltime() - w0;
+    pthread_mutex_lock(&jb.mutex);
+    jb.cpu_done = 1;
+    pthread_cond_signal(&jb.cond);
+    pthread_mutex_unlock(&jb.mutex);
+  }
+  pthread_join(tid, NULL);
+  if (hybrid) {
+    gpu_set_kick_wait(ge->gpu, NULL, NULL);
+    if (!jb.ga_ready) error_bug("the GPU's kick did not wait for self-gravity");
+    pthread_mutex_destroy(&jb.mutex);
+    pthread_cond_destroy(&jb.cond);
+    ge->t_gpu_side += jb.t_hook - jb.t_start;
+    ge->t_waited += jb.t_waited;
+    ge->hybrid_phases++;
+  }
+  ge->t_phase += error_walltime() - w_phase;
+  ge->phases++;
+  if (jb.capped) e->need_rebuild = 1;
 }
 
 /** A range of top-level cells whose bounds one thread updates. */
@@ -550,13 +803,34 @@ void gpu_engine_print(const struct engine *e, FILE *f) {
   const struct gpu_engine *ge = e->gpu;
   if (!ge) return;
   gpu_print_timers(ge->gpu, f);
-  if (ge->steps)
+  if (ge->steps) {
+    long nb = 0;
+    const double dev_ms = ge->cells.dev ? gpu_lists_device_ms(ge->cells.dev, &nb) : 0.0;
     fprintf(f,
-            "GPU host side, ms per step: neighbour lists %.3f (built %ld times, widened %ld), cell "
-            "bounds %.3f\n",
-            1e3 * ge->cells.t_build / ge->steps, ge->cells.builds, ge->cells.widenings,
-            1e3 * ge->t_bounds / ge->steps);
+            "GPU host side, ms per step: neighbour lists %.3f (built %ld times on the %s, widened "
+            "%ld; %d leaves, %d entries; device part %.3f ms per build), cell bounds %.3f\n",
+            1e3 * ge->cells.t_build / ge->steps, ge->cells.builds,
+            ge->cells.host_lists ? "host" : "device", ge->cells.widenings, ge->cells.n,
+            ge->cells.nr_ngb, nb ? dev_ms / nb : 0.0, 1e3 * ge->t_bounds / ge->steps);
+  }
+  if (ge->phases) {
+    static const char *const mode_name[3] = {"serial", "hybrid", "gravity on the CPU"};
+    fprintf(f, "GPU runner (%s), ms per FORCE phase: %.3f", mode_name[ge->mode],
+            1e3 * ge->t_phase / ge->phases);
+    if (ge->hybrid_phases)
+      fprintf(f,
+              "; at the same time (%ld phases): CPU gravity tasks %.3f, GPU hydrodynamics until "
+              "the kick %.3f, the kick waited %.3f for the CPU",
+              ge->hybrid_phases, 1e3 * ge->t_cpu_side / ge->hybrid_phases,
+              1e3 * ge->t_gpu_side / ge->hybrid_phases, 1e3 * ge->t_waited / ge->hybrid_phases);
+    fprintf(f, "\n");
+  }
   gpu_grav_print(ge->grav, f);
+  double run = 0.0, total = 0.0;
+  gpu_memory_used(ge->gpu, &run, &total);
+  fprintf(f, "GPU memory: %.1f MiB held by the run (%.0f bytes per particle) of %.1f GiB\n",
+          run / 1048576.0, e->parts.count ? run / (double)e->parts.count : 0.0,
+          total / 1073741824.0);
   if (ge->grav_evals)
     fprintf(f,
             "GPU gravity host side, ms per evaluation: multipoles + walks on the CPU %.3f, "

@@ -9,6 +9,7 @@
 #include "gravity/gravity_cpu.h"
 
 struct gpu_cells_job;
+struct gpu_list_box;
 
 /** Host-side leaf cells and neighbour lists, grown and reused between steps. */
 struct gpu_cells {
@@ -36,6 +37,20 @@ struct gpu_cells {
   int built_rebuild;                /**< space.nr_rebuilds when the lists were built */
   struct cell *const *built_tcells; /**< the task cells they were built on */
   int built_nr;                     /**< their number */
+  int leaf_size;                    /**< lists on cells of at most this many particles
+                                         (Scheduler:gpu_leaf_size; 0: the tree's leaves) */
+  int host_lists;                   /**< 1: build the lists on the host (gpu_cells_build,
+                                         Scheduler:gpu_lists: host), 0: on the device */
+  struct gpu_lists *dev;            /**< the device lists and their build (gpu_lists.h) */
+  int *leaf_node;                   /**< node of each leaf (device build) */
+  int nr_nodes;                     /**< nodes of the last device build */
+  int *tc_node, *tc_ngb_start;      /**< by task cell + 1: first node, first neighbour */
+  int tc_cap;                       /**< their allocated length */
+  int *tc_ngb;                      /**< neighbouring task cells, all in one array */
+  double *tc_ngb_shift;             /**< 3 per entry */
+  int tc_ngb_cap;                   /**< allocated entries */
+  struct gpu_list_box *box;         /**< bounds of each cell (host build) */
+  int box_cap;                      /**< their allocated length */
 };
 
 /** Build the leaves below the task cells tcells[0..nr) (the engine's, or the
@@ -47,6 +62,12 @@ struct gpu_cells {
 void gpu_cells_build(struct gpu_cells *gc, const struct space *s, struct cell *const *tcells,
                      int nr, const struct engine_cell_tasks *ct, const double *tc_h_cap,
                      double growth, int nr_threads);
+/** The same leaves and caps as gpu_cells_build, and the same lists built on
+ *  the device g (gpu_lists.h), where they stay: gc->ngb_start, ngb_leaf
+ *  and ngb_shift are not set (gpu_lists_download copies them back). */
+void gpu_cells_build_dev(struct gpu *g, struct gpu_cells *gc, const struct space *s,
+                         struct cell *const *tcells, int nr, const struct engine_cell_tasks *ct,
+                         const double *tc_h_cap, double growth);
 /** Free the arrays of gc. */
 void gpu_cells_free(struct gpu_cells *gc);
 

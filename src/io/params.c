@@ -471,6 +471,40 @@ static int parse_array(const struct param_spec *s, const struct param_node *n,
   return 1;
 }
 
+/** Parse a WORDS value: one scalar, kept as it is, or a sequence of
+ *  scalars, kept as the text "[a, b, c]". */
+static int parse_words(const struct param_spec *s, const struct param_node *n,
+                       struct param_value *v, char *err, size_t len) {
+  if (n->kind == NODE_SCALAR) {
+    v->s = strdup(n->text);
+    if (!v->s) error_exit("out of memory copying a parameter");
+    return 1;
+  }
+  size_t total = 3;
+  for (int k = 0; n->kind == NODE_SEQUENCE && k < n->n; k++) {
+    if (n->child[k]->kind != NODE_SCALAR) {
+      snprintf(err, len, "%s: element %d: expected a word, got %s", s->name, k + 1,
+               node_kind_name(n->child[k]));
+      return 0;
+    }
+    total += strlen(n->child[k]->text) + 2;
+  }
+  if (n->kind != NODE_SEQUENCE) {
+    snprintf(err, len, "%s: expected a word or a list of words such as [a, b], got %s", s->name,
+             node_kind_name(n));
+    return 0;
+  }
+  char *t = error_malloc(total, "parameter text");
+  strcpy(t, "[");
+  for (int k = 0; k < n->n; k++) {
+    if (k) strcat(t, ", ");
+    strcat(t, n->child[k]->text);
+  }
+  strcat(t, "]");
+  v->s = t;
+  return 1;
+}
+
 /** Release what a value owns. */
 static void value_clear(struct param_value *v) {
   free(v->s);
@@ -535,6 +569,8 @@ static int value_parse(const struct param_spec *s, const struct param_node *n,
     out.node = n;
   } else if (s->type == PARAM_REAL_ARRAY) {
     ok = parse_array(s, n, &out, err, len);
+  } else if (s->type == PARAM_WORDS) {
+    ok = parse_words(s, n, &out, err, len);
   } else if (n->kind != NODE_SCALAR) {
     snprintf(err, len, "%s: expected a single value, got %s", s->name, node_kind_name(n));
     ok = 0;
@@ -554,7 +590,7 @@ static int value_parse(const struct param_spec *s, const struct param_node *n,
  *  "[1, 2, 3]" works), one scalar holding the text otherwise. */
 static struct param_node *node_from_text(const struct param_spec *s, const char *text,
                                          const char *where) {
-  if (s->type == PARAM_REAL_ARRAY) return tree_load_text(text, where);
+  if (s->type == PARAM_REAL_ARRAY || s->type == PARAM_WORDS) return tree_load_text(text, where);
   struct param_node *n = node_new(NODE_SCALAR, 0);
   n->text = strdup(text);
   if (!n->text) error_exit("out of memory copying a parameter");
@@ -719,7 +755,10 @@ int params_get_bool(const struct params *p, const char *name) {
 }
 
 const char *params_get_string(const struct params *p, const char *name) {
-  const char *s = value_get(p, name, PARAM_STRING)->s;
+  const int i = spec_find(name);
+  const char *s =
+      value_get(p, name, i >= 0 && params_table[i].type == PARAM_WORDS ? PARAM_WORDS : PARAM_STRING)
+          ->s;
   return s ? s : "";
 }
 
@@ -917,6 +956,7 @@ static void emit_value(yaml_emitter_t *e, const struct param_spec *s, const stru
       emit_scalar(e, buf, 0);
       break;
     case PARAM_STRING:
+    case PARAM_WORDS: /* a list as its text "[a, b]": quoted, it reads back the same */
       emit_scalar(e, v->s ? v->s : "", 0);
       break;
     case PARAM_REAL_ARRAY:
@@ -1071,7 +1111,7 @@ static void reference_comment(FILE *f, const struct param_spec *s) {
   static const char *const type_name[] = {
       [PARAM_INT] = "integer",    [PARAM_REAL] = "real",   [PARAM_BOOL] = "boolean",
       [PARAM_STRING] = "text",    [PARAM_ENUM] = "one of", [PARAM_REAL_ARRAY] = "list of reals",
-      [PARAM_SECTION] = "section"};
+      [PARAM_SECTION] = "section",  [PARAM_WORDS] = "word or [list of words]"};
   char range[96] = "", list[512] = "", unit[128] = "", text[2048];
   if (s->type == PARAM_INT || s->type == PARAM_REAL || s->type == PARAM_REAL_ARRAY)
     range_text(s, range, sizeof range);
@@ -1119,7 +1159,7 @@ void params_write_reference(FILE *f) {
       if (!spec_same_section(i, j)) continue;
       reference_comment(f, &params_table[j]);
       fprintf(f, "  %s: ", params_table[j].name + len + 1);
-      if (params_table[j].type == PARAM_STRING)
+      if (params_table[j].type == PARAM_STRING || params_table[j].type == PARAM_WORDS)
         reference_scalar(f, reference_value(&params_table[j]));
       else
         fputs(reference_value(&params_table[j]), f);

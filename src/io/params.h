@@ -22,6 +22,8 @@ enum param_type {
   PARAM_ENUM,       /**< one of a '|'-separated list of choices */
   PARAM_REAL_ARRAY, /**< [a, b, c] of reals */
   PARAM_SECTION,    /**< a free-form mapping validated by its own module */
+  PARAM_WORDS,      /**< a word, or a [list, of, words]: read as text (params_get_string),
+                         a list as "[list, of, words]"; its module checks the words */
 };
 
 /** One known key (an entry of BOLIDE_PARAMS). */
@@ -61,7 +63,7 @@ int params_given(const struct params *p, const char *name);
 long params_get_int(const struct params *p, const char *name);
 double params_get_real(const struct params *p, const char *name);
 int params_get_bool(const struct params *p, const char *name);
-const char *params_get_string(const struct params *p, const char *name);
+const char *params_get_string(const struct params *p, const char *name); /* STRING, WORDS */
 /** Index of the chosen value in the spec's choices list. */
 int params_get_enum(const struct params *p, const char *name);
 /** Fill up to maxn reals, return the count. */

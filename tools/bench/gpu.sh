@@ -1,52 +1,88 @@
 #!/usr/bin/env bash
-# CPU-only (every host core) against the GPU runner, seconds per step with
-# every particle active, for a uniform periodic box, a Sedov blast, the
-# planetary reference impact of shared/bench (make_impact_ic.py, Tillotson
-# granite, hydro only) and the same initial conditions as solids ("solid":
-# Tillotson basalt with Collins strength and Grady-Kipp damage with Weibull
-# flaws; no self-gravity) and with self-gravity ("gravity": granite, hydro +
-# tree gravity, softening 30 km; on the GPU runner the multipoles and the walks
-# stay on the CPU, which record the interactions, and M2L, L2L, L2P, M2P and
-# P2P run on the GPU), at each size; median over REPEAT runs of STEPS steps
-# (each run's mean step).  Prints one table (markdown) and the GPU's stage
-# times of the last GPU run of each case.
+# CPU-only (every host core), GPU-only and hybrid (CPU workers beside the
+# GPU) runs of the same problems, seconds per step and per derivative
+# evaluation with every particle active, bus traffic and GPU memory.
 #
-# Usage: tools/bench/gpu.sh [-n "1e5 1e6"] [-p "box sedov impact solid gravity"] [-r 3] [-s 4] [-g "GPU ARGS"]
-#   -g  extra bolide arguments for the GPU runs only, e.g.
-#       "-P Scheduler:cell_split_size:64" (smaller leaves: shorter GPU loops)
+# Problems (-p):
+#   basalt   issue 7's solid reference (shared/bench, "Solid-body impact,
+#            GPU"): a basalt sphere of radius 50 km hit by a basalt sphere of
+#            6.25 km at 5 km/s and 45 degrees, both on a simple cubic lattice
+#            (tools/bench/basalt_ic.py); Tillotson, Collins strength,
+#            Grady-Kipp damage with Weibull flaws (N ln N), self-gravity with
+#            opening angle 0.5; cubic spline with the support 2.8 spacings
+#            (resolution_eta 1.534, about 90 neighbours)
+#   gravity  the planetary reference impact of shared/bench (make_impact_ic.py,
+#            Tillotson granite), hydro + self-gravity (softening 30 km)
+#   impact   the same, hydro only
+#   solid    the same ICs as basalt with Collins strength and damage, no gravity
+#   box, sedov  periodic hydro tests
+# Modes (-m): cpu (--no-gpu), gpu (Scheduler:gpu all: everything the GPU
+#   can do, the CPU only where the GPU has no implementation), hybrid
+#   (Scheduler:gpu auto: CPU workers run tasks while the GPU works).
+# Median over REPEAT runs of STEPS steps (each run's mean step, the first
+# force computation excluded); the evaluation time, the bus traffic and the
+# GPU memory are those of the last run.  Prints a markdown table and the
+# GPU's stage times.
+#
+# Usage: tools/bench/gpu.sh [-n "1e5 1e6"] [-p "basalt gravity"] [-m "cpu gpu hybrid"]
+#                           [-r 3] [-s 4] [-g "GPU ARGS"] [-T SECONDS]
+#   -g  extra bolide arguments for the GPU runs only
+#   -T  time limit of each bolide run (default 0: none); a run over it is
+#       reported as "timeout" and the script goes on
 # Env:   BOLIDE_BUILD (build folder), BOLIDE_BENCH_IC (make_impact_ic.py),
-#        PYTHON (with numpy and h5py, for the impact IC)
+#        PYTHON (with numpy and h5py, for the reference impact IC),
+#        BENCH_OUT (file the table lines are also appended to, as they come)
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 build=${BOLIDE_BUILD:-$top/_build}
 python=${PYTHON:-python3}
 gen=${BOLIDE_BENCH_IC:-$top/../shared/bench/make_impact_ic.py}
-sizes="1e5 1e6"; problems="box sedov impact"; repeat=3; steps=4; gpu_args=""
-while getopts "n:p:r:s:g:" o; do
-  case $o in n) sizes=$OPTARG ;; p) problems=$OPTARG ;; r) repeat=$OPTARG ;; s) steps=$OPTARG ;;
-             g) gpu_args=$OPTARG ;; *) exit 2 ;; esac
+sizes="1e5 1e6"; problems="basalt gravity"; modes="cpu gpu hybrid"; repeat=3; steps=4; gpu_args=""; tlimit=0
+while getopts "n:p:m:r:s:g:T:" o; do
+  case $o in n) sizes=$OPTARG ;; p) problems=$OPTARG ;; m) modes=$OPTARG ;; r) repeat=$OPTARG ;;
+             s) steps=$OPTARG ;; g) gpu_args=$OPTARG ;; T) tlimit=$OPTARG ;; *) exit 2 ;; esac
 done
+out=${BENCH_OUT:-/dev/null}
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
 ncpu=$(nproc)
-printf "# %s on %s (%s, %d cores); GPU: %s\n" "$("$build/bolide" --version | head -1)" "$(uname -n)" \
+say() { printf "%s\n" "$*"; printf "%s\n" "$*" >>"$out"; }
+say "$(printf "# %s on %s (%s, %d cores); GPU: %s" "$("$build/bolide" --version | head -1)" "$(uname -n)" \
   "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')" "$ncpu" \
-  "$(nvidia-smi --query-gpu=name --format=csv,noheader 2>/dev/null | head -1)"
-printf "# median of %d runs of %d steps, every particle active\n" "$repeat" "$steps"
-printf "| problem | N | CPU %d threads s/step | GPU %s s/step | speed-up |\n|---|---|---|---|---|\n" "$ncpu" "$gpu_args"
+  "$(nvidia-smi --query-gpu=name --format=csv,noheader 2>/dev/null | head -1)")"
+say "# median of $repeat runs of $steps steps, every particle active; cpu: --no-gpu -t $ncpu; gpu: --gpu -P Scheduler:gpu:all; hybrid: --gpu -P Scheduler:gpu:auto"
+say "| problem | N | mode | s/step | s/evaluation | vs cpu | bus MB/step | bus share at 25 GB/s | GPU bytes/particle |"
+say "|---|---|---|---|---|---|---|---|---|"
 stages=""
 
-# run FLAG: median over the repeats of the mean wall time per step
-run() {
+# one run of bolide with the arguments "$@"; prints "step eval" or "timeout"
+one() {
+  local lim=()
+  [ "$tlimit" = 0 ] || lim=(timeout "$tlimit")
+  if ! "${lim[@]}" "$build/bolide" -n "$steps" -t "$ncpu" "$@" p.yml >run.log 2>&1; then
+    if grep -q "error" run.log; then tail -3 run.log >&2; exit 1; fi
+    echo timeout; return
+  fi
+  awk '$1 ~ /^[0-9]+$/ && NF == 6 {s += $5; n++} END {printf "%.6f ", s / n}' run.log
+  awk '/derivative evaluations/ {for (k = 1; k <= NF; k++) if ($k == "s" && $(k + 1) == "each") print $(k - 1)}' run.log
+}
+
+# median over the repeats of "$@"; sets med_step, last_eval
+measure() {
+  local res=() r
   for r in $(seq "$repeat"); do
-    "$build/bolide" -n "$steps" -t "$ncpu" $1 p.yml >run.log 2>&1 || { tail -3 run.log >&2; exit 1; }
-    awk '$1 ~ /^[0-9]+$/ && NF == 6 {s += $5; n++} END {printf "%.6f\n", s / n}' run.log
-  done | sort -g | awk '{a[NR] = $1} END {print a[int((NR + 1) / 2)]}'
+    r=$(one "$@")
+    [ "$r" = timeout ] && { med_step=timeout; last_eval=-; return; }
+    res+=("$r")
+  done
+  med_step=$(printf "%s\n" "${res[@]}" | awk '{print $1}' | sort -g | awk '{a[NR] = $1} END {print a[int((NR + 1) / 2)]}')
+  last_eval=$(printf "%s\n" "${res[@]}" | tail -1 | awk '{print $2}')
 }
 
 for prob in $problems; do
   for n in $sizes; do
     side=$(awk -v n=$n 'BEGIN {printf "%d", n ^ (1 / 3) + 0.5}')
+    eta=1.2348; visc=1.5; mats=""; extra="  periodic: false"
     case $prob in
       box)
         "$build/bolide-ic" box --n "$side" --perturb 0.1 -o ic.hdf5 >/dev/null
@@ -56,10 +92,16 @@ for prob in $problems; do
         extra="  periodic: true" ;;
       impact|solid|gravity)
         nt=$(awk -v n=$n 'BEGIN {printf "%d", n * 10 / 11}'); ni=$(awk -v n=$n 'BEGIN {printf "%d", n / 11}')
-        "$python" "$gen" "$nt" "$ni" ic.hdf5 >/dev/null
-        extra="  periodic: false" ;;
+        "$python" "$gen" "$nt" "$ni" ic.hdf5 >/dev/null ;;
+      basalt)
+        "$python" "$top/tools/bench/basalt_ic.py" "$n" ic.hdf5 1.534 >/dev/null
+        nt=$(awk -v n=$n 'BEGIN {printf "%d", n * 512 / 513}')
+        soft=$(awk -v n=$nt 'BEGIN {printf "%.4g", 0.5 * 5e4 * (4.18879 / n) ^ (1 / 3)}')
+        eta=1.534; visc=1.0
+        mats=$'Materials:\n  103: {name: basalt, strength: collins, yield_stress: 1e7, yield_stress_max: 3.5e9, friction_intact: 1.2, cohesion_damaged: 1e5, friction_damaged: 0.6, weibull_k: 5e34, weibull_m: 8}\nDamage:\n  seed: 1\nGravity:\n  enabled: true\n  theta_cr: 0.5\n  softening: '"$soft" ;;
+      *) echo "gpu.sh: unknown problem $prob" >&2; exit 2 ;;
     esac
-    mats=""; [ $prob = impact ] && mats=$'Materials:\n  101: {}'
+    [ $prob = impact ] && mats=$'Materials:\n  101: {}'
     [ $prob = gravity ] && mats=$'Materials:\n  101: {}\nGravity:\n  enabled: true\n  softening: 3e4'
     [ $prob = solid ] && mats=$'Materials:\n  101: {name: basalt, strength: collins, yield_stress: 1e7, yield_stress_max: 3.5e9, friction_intact: 1.2, cohesion_damaged: 1e5, friction_damaged: 0.6, weibull_k: 1e61, weibull_m: 16}\nDamage:\n  seed: 1'
     cat >p.yml <<YML
@@ -76,18 +118,35 @@ Statistics:
   delta_time: 1e30
 $mats
 SPH:
-  resolution_eta: 1.2348
+  resolution_eta: $eta
   CFL_condition: 0.2
-  viscosity_alpha: 1.5
+  viscosity_alpha: $visc
 Scheduler:
   max_top_level_cells: 16
 YML
     N=$(awk '/read [0-9]+ particles/ {for (k = 1; k <= NF; k++) if ($k == "read") print $(k + 1)}' \
         <("$build/bolide" --check p.yml 2>&1 || true) | head -1)
-    cpu=$(run --no-gpu)
-    gpu=$(run "--gpu $gpu_args")
-    stages="$stages$prob $N: $(grep '^GPU (' run.log | sed 's/^GPU ([^)]*), //' | tr '\n' ' '); $(grep '^GPU host\|^GPU gravity' run.log | tr '\n' ' ')"$'\n'
-    printf "| %s | %s | %.4f | %.4f | %.1f |\n" "$prob" "$N" "$cpu" "$gpu" "$(awk -v a=$cpu -v b=$gpu 'BEGIN {print a / b}')"
+    cpu_step=""
+    for mode in $modes; do
+      case $mode in
+        cpu) measure --no-gpu ;;
+        gpu) measure --gpu -P Scheduler:gpu:all $gpu_args ;;
+        hybrid) measure --gpu -P Scheduler:gpu:auto $gpu_args ;;
+        *) echo "gpu.sh: unknown mode $mode" >&2; exit 2 ;;
+      esac
+      [ $mode = cpu ] && cpu_step=$med_step
+      ratio=-; bus=-; share=-; mem=-
+      if [ "$med_step" != timeout ] && [ -n "$cpu_step" ] && [ "$cpu_step" != timeout ]; then
+        ratio=$(awk -v a=$cpu_step -v b=$med_step 'BEGIN {printf "%.2f", a / b}')
+      fi
+      if [ $mode != cpu ] && [ "$med_step" != timeout ]; then
+        bus=$(awk '/^GPU \(/ {for (k = 1; k <= NF; k++) if ($k == "bus") {u = $(k + 1); d = $(k + 4)}} END {printf "%.1f", u + d}' run.log)
+        share=$(awk -v b=$bus -v t=$med_step 'BEGIN {printf "%.1f%%", 100 * b * 1e6 / 25e9 / t}')
+        mem=$(awk '/^GPU memory:/ {gsub(/\(/, ""); for (k = 1; k <= NF; k++) if ($k == "bytes") print $(k - 1)}' run.log)
+        stages="$stages$prob $N $mode: $(grep '^GPU (' run.log | sed 's/^GPU ([^)]*), //' | tr '\n' ' '); $(grep '^GPU host\|^GPU gravity' run.log | tr '\n' ' ')"$'\n'
+      fi
+      say "| $prob | $N | $mode | $med_step | $last_eval | $ratio | $bus | $share | $mem |"
+    done
   done
 done
-printf "\nGPU stage times of the last run of each case:\n%s" "$stages"
+printf "\nGPU stage times of the last run of each case:\n%s" "$stages" | tee -a "$out"
