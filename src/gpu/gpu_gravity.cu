@@ -139,34 +139,9 @@ __global__ void gg_count_kernel(const int *__restrict__ t, size_t n, int *cnt) {
     atomicAdd(cnt + t[k], 1);
 }
 
-/** In place: the counts c[0..n) become their exclusive prefix sums, c[n]
- *  the total.  One block: each thread sums a chunk, thread 0 scans the
- *  chunks' sums, each thread then writes its chunk. */
+/** The counts c[0..n) become their exclusive prefix sums, c[n] the total (one block). */
 __global__ void gg_scan_kernel(int *c, int n) {
-  __shared__ int part[1024];
-  const int t = threadIdx.x, nt = blockDim.x;
-  const int chunk = (n + nt - 1) / nt;
-  const int b = min(t * chunk, n), e = min(b + chunk, n);
-  int sum = 0;
-  for (int i = b; i < e; i++) sum += c[i];
-  part[t] = sum;
-  __syncthreads();
-  if (t == 0) {
-    int run = 0;
-    for (int k = 0; k < nt; k++) {
-      const int v = part[k];
-      part[k] = run;
-      run += v;
-    }
-    c[n] = run;
-  }
-  __syncthreads();
-  int run = part[t];
-  for (int i = b; i < e; i++) {
-    const int v = c[i];
-    c[i] = run;
-    run += v;
-  }
+  gpu_block_exclusive_scan(c, n);
 }
 
 /** Entry k < n goes to the next free place of cell t[k]: out = s[k]. */

@@ -82,34 +82,9 @@ __global__ void gpu_lists_walk_kernel(struct gpu_lists_args a, int *start, int *
   if (!FILL) start[L] = c;
 }
 
-/** In place: c[0..n) become their exclusive prefix sums, c[n] the total.
- *  One block: each thread sums a chunk, the chunk sums are scanned, each
- *  thread then writes its chunk. */
+/** The counts c[0..n) become their exclusive prefix sums, c[n] the total (one block). */
 __global__ void gpu_lists_scan_kernel(int *c, int n) {
-  __shared__ int part[1024];
-  const int t = threadIdx.x, nt = blockDim.x;
-  const int chunk = (n + nt - 1) / nt;
-  const int b = min(t * chunk, n), e = min(b + chunk, n);
-  int sum = 0;
-  for (int i = b; i < e; i++) sum += c[i];
-  part[t] = sum;
-  __syncthreads();
-  if (t == 0) {
-    int run = 0;
-    for (int k = 0; k < nt; k++) {
-      const int v = part[k];
-      part[k] = run;
-      run += v;
-    }
-    c[n] = run;
-  }
-  __syncthreads();
-  int run = part[t];
-  for (int i = b; i < e; i++) {
-    const int v = c[i];
-    c[i] = run;
-    run += v;
-  }
+  gpu_block_exclusive_scan(c, n);
 }
 
 extern "C" struct gpu_lists *gpu_lists_new(struct gpu *g) {
