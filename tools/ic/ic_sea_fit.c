@@ -10,11 +10,16 @@
  *   the gradient of rho_SPH / rho_profile, so that the density scatter of
  *   the SEA collars evens out.
  *
- * Neighbours come from a uniform grid of cubic cells. */
+ * Neighbours come from a uniform grid of cubic cells.  The loops over
+ * particles run on all online cores (BOLIDE_IC_THREADS sets the number);
+ * every particle's result depends on the inputs only, so the output does
+ * not depend on the thread count. */
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "error.h"
 #include "ic_planet.h"
@@ -73,6 +78,45 @@ struct sea_ngb {
   size_t n, cap, *j;
   double *r;
 };
+
+/** Threads of the particle loops: BOLIDE_IC_THREADS, else the online cores. */
+static int sea_threads(void) {
+  const char *env = getenv("BOLIDE_IC_THREADS");
+  long t = env ? strtol(env, NULL, 10) : sysconf(_SC_NPROCESSORS_ONLN);
+  if (env && t < 1) error_exit("bolide-ic: BOLIDE_IC_THREADS must be a positive integer, not '%s'", env);
+  return t < 1 ? 1 : t > 256 ? 256 : (int)t;
+}
+
+/** One slice [lo, hi) of a particle loop, with its own neighbour buffer. */
+struct sea_slice {
+  size_t lo, hi;
+  void (*body)(void *ctx, size_t i, struct sea_ngb *b);
+  void *ctx;
+};
+
+static void *sea_slice_run(void *arg) {
+  struct sea_slice *s = arg;
+  struct sea_ngb b = {0};
+  for (size_t i = s->lo; i < s->hi; i++) s->body(s->ctx, i, &b);
+  free(b.j), free(b.r);
+  return NULL;
+}
+
+/** body(ctx, i, buffer) for every i < n, in parallel slices. */
+static void sea_for(size_t n, void (*body)(void *, size_t, struct sea_ngb *), void *ctx) {
+  int t = sea_threads();
+  if ((size_t)t > n / 256 + 1) t = (int)(n / 256 + 1);
+  struct sea_slice sl[256];
+  pthread_t th[256];
+  for (int k = 0; k < t; k++)
+    sl[k] = (struct sea_slice){n * (size_t)k / (size_t)t, n * (size_t)(k + 1) / (size_t)t, body, ctx};
+  int started = 1;
+  for (int k = 1; k < t; k++, started++)
+    if (pthread_create(&th[k], NULL, sea_slice_run, &sl[k])) break;
+  sea_slice_run(&sl[0]);
+  for (int k = started; k < t; k++) sea_slice_run(&sl[k]); /* threads that could not start */
+  for (int k = 1; k < started; k++) pthread_join(th[k], NULL);
+}
 
 static void sea_gather(const struct sea_grid *g, const double *x, const double *y, const double *z,
                        size_t i, double rad, struct sea_ngb *b) {
@@ -156,62 +200,74 @@ static double sea_density_one(const struct sea_grid *g, const double *x, const d
   }
 }
 
+/** What the parallel loops of this file read and write. */
+struct sea_ctx {
+  const struct sea_grid *g;
+  const double *x, *y, *z, *m, *rho_t;
+  double eta, *h, *rho, *e, *dx;
+};
+
+static void sea_density_body(void *arg, size_t i, struct sea_ngb *b) {
+  struct sea_ctx *c = arg;
+  c->rho[i] = sea_density_one(c->g, c->x, c->y, c->z, c->m, i, c->eta, &c->h[i], b);
+  if (c->e) c->e[i] = c->rho[i] / c->rho_t[i];
+}
+
 void ic_sph_density(size_t n, const double *x, const double *y, const double *z, const double *m,
                     double eta, double *h, double *rho) {
   double hmax = 0;
   for (size_t i = 0; i < n; i++) hmax = fmax(hmax, h[i]);
   struct sea_grid g;
   sea_grid_build(&g, n, x, y, z, kernel_gamma * hmax);
-  struct sea_ngb b = {0};
-  for (size_t i = 0; i < n; i++) rho[i] = sea_density_one(&g, x, y, z, m, i, eta, &h[i], &b);
-  free(b.j), free(b.r);
+  struct sea_ctx c = {.g = &g, .x = x, .y = y, .z = z, .m = m, .eta = eta, .h = h, .rho = rho};
+  sea_for(n, sea_density_body, &c);
   sea_grid_free(&g);
+}
+
+/** displacement -beta h^2 sum_j V_j (e_j - e_i) grad_i W_ij (the SPH
+ *  pressure force with P proportional to rho_SPH / rho_profile), along the
+ *  shell only, at most a tenth of the particle spacing */
+static void sea_relax_body(void *arg, size_t i, struct sea_ngb *b) {
+  struct sea_ctx *c = arg;
+  const double *x = c->x, *y = c->y, *z = c->z, *m = c->m, *rho = c->rho, *e = c->e;
+  const double beta = 0.3, hs = c->h[i];
+  sea_gather(c->g, x, y, z, i, kernel_gamma * hs, b);
+  double f[3] = {0, 0, 0};
+  for (size_t k = 0; k < b->n; k++) {
+    const size_t j = b->j[k];
+    if (j == i || b->r[k] <= 0) continue;
+    const double w = m[j] / rho[j] * (e[j] - e[i]) * kernel_dW_dr(b->r[k], hs) / b->r[k];
+    f[0] += w * (x[i] - x[j]), f[1] += w * (y[i] - y[j]), f[2] += w * (z[i] - z[j]);
+  }
+  const double r = sqrt(x[i] * x[i] + y[i] * y[i] + z[i] * z[i]);
+  double d[3] = {-beta * hs * hs * f[0], -beta * hs * hs * f[1], -beta * hs * hs * f[2]};
+  if (r > 0) {
+    const double u[3] = {x[i] / r, y[i] / r, z[i] / r};
+    const double dr = d[0] * u[0] + d[1] * u[1] + d[2] * u[2];
+    for (int k = 0; k < 3; k++) d[k] -= dr * u[k];
+  }
+  const double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]), cap = 0.1 * hs / c->eta;
+  const double f_cap = len > cap ? cap / len : 1;
+  for (int k = 0; k < 3; k++) c->dx[3 * i + k] = d[k] * f_cap;
 }
 
 void ic_sea_relax(size_t n, double *x, double *y, double *z, const double *m, const double *rho_t,
                   double eta, double *h, double *rho, int steps) {
   double *dx = error_malloc(3 * (n ? n : 1) * sizeof(double), "SEA relaxation");
   double *e = error_malloc((n ? n : 1) * sizeof(double), "SEA relaxation");
-  struct sea_ngb b = {0};
   for (int s = 0; s <= steps; s++) {
     double hmax = 0;
     for (size_t i = 0; i < n; i++) hmax = fmax(hmax, h[i]);
     struct sea_grid g;
     sea_grid_build(&g, n, x, y, z, kernel_gamma * hmax);
-    for (size_t i = 0; i < n; i++) {
-      rho[i] = sea_density_one(&g, x, y, z, m, i, eta, &h[i], &b);
-      e[i] = rho[i] / rho_t[i];
-    }
+    struct sea_ctx c = {.g = &g, .x = x, .y = y, .z = z, .m = m, .rho_t = rho_t, .eta = eta,
+                        .h = h, .rho = rho, .e = e, .dx = dx};
+    sea_for(n, sea_density_body, &c);
     if (s == steps) { /* the last pass only measures */
       sea_grid_free(&g);
       break;
     }
-    /* displacement -beta h^2 sum_j V_j (e_i + e_j) grad_i W_ij (the SPH
-     * pressure force with P proportional to rho_SPH / rho_profile), along
-     * the shell only */
-    const double beta = 0.3;
-    for (size_t i = 0; i < n; i++) {
-      const double hs = h[i];
-      sea_gather(&g, x, y, z, i, kernel_gamma * hs, &b);
-      double f[3] = {0, 0, 0};
-      for (size_t k = 0; k < b.n; k++) {
-        const size_t j = b.j[k];
-        if (j == i || b.r[k] <= 0) continue;
-        const double c = m[j] / rho[j] * (e[j] - e[i]) * kernel_dW_dr(b.r[k], hs) / b.r[k];
-        f[0] += c * (x[i] - x[j]), f[1] += c * (y[i] - y[j]), f[2] += c * (z[i] - z[j]);
-      }
-      const double r = sqrt(x[i] * x[i] + y[i] * y[i] + z[i] * z[i]);
-      double d[3] = {-beta * hs * hs * f[0], -beta * hs * hs * f[1], -beta * hs * hs * f[2]};
-      if (r > 0) {
-        const double u[3] = {x[i] / r, y[i] / r, z[i] / r};
-        const double dr = d[0] * u[0] + d[1] * u[1] + d[2] * u[2];
-        for (int k = 0; k < 3; k++) d[k] -= dr * u[k];
-      }
-      /* at most a tenth of the particle spacing per step */
-      const double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]), cap = 0.1 * h[i] / eta;
-      const double f_cap = len > cap ? cap / len : 1;
-      for (int k = 0; k < 3; k++) dx[3 * i + k] = d[k] * f_cap;
-    }
+    sea_for(n, sea_relax_body, &c);
     sea_grid_free(&g);
     for (size_t i = 0; i < n; i++) {
       const double r = sqrt(x[i] * x[i] + y[i] * y[i] + z[i] * z[i]);
@@ -237,5 +293,5 @@ void ic_sea_relax(size_t n, double *x, double *y, double *z, const double *m, co
       if (r > 0 && r1 > 0) x[i] = p[0] * r / r1, y[i] = p[1] * r / r1, z[i] = p[2] * r / r1;
     }
   }
-  free(b.j), free(b.r), free(dx), free(e);
+  free(dx), free(e);
 }

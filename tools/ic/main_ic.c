@@ -124,7 +124,10 @@ static void icgen_usage(FILE *f) {
       "  --weighting W         kernel (cubic spline in r/R, default) or uniform [sedov]\n"
       "  --gamma G             adiabatic index turning P into u (default 5/3) [sod]\n"
       "  -h, --help            this help\n"
-      "  --version             version\n");
+      "  --version             version\n"
+      "Environment: BOLIDE_IC_THREADS  threads of the SPH density and relaxation passes of\n"
+      "  planet, impact and sphere bodies (default: all online cores; the output does\n"
+      "  not depend on it)\n");
 }
 
 /** Parse "a[,b,c]" into n values (1 value: all three the same). */
