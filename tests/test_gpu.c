@@ -588,6 +588,35 @@ static int gravity_report(const char *what, const struct parts *p, const struct 
   return !(wa < 1e-10) + !(wp < 1e-10);
 }
 
+/** Worst difference of the upward pass on the device (gd) from the CPU's
+ *  (gc) over the cells of sp: moments of order n relative to M0 r_max^n of
+ *  the CPU's cell, centres relative to the cell's width, r_max, a_min and
+ *  h_support relative to their own size; printed, a failure above 1e-12. */
+static int gravity_up_report(const struct space *sp, const struct gravity_cell *gc,
+                             const struct gravity_cell *gd, int order) {
+  double wm = 0.0, wc = 0.0, wr = 0.0, wa = 0.0, wh = 0.0;
+  for (int k = 0; k < sp->nr_cells; k++) {
+    const struct gravity_multipole *a = &gc[k].mp, *b = &gd[k].mp;
+    const double w = sp->cells[k].width[0];
+    int i = 0;
+    for (int n = 0; n <= order; n++) {
+      const double scale = fabs(a->M[0]) * pow(a->r_max > 0.0 ? a->r_max : w, n) + 1e-300;
+      for (int j = 0; j < (n + 1) * (n + 2) / 2; j++, i++)
+        wm = fmax(wm, fabs(b->M[i] - a->M[i]) / scale);
+    }
+    for (int d = 0; d < 3; d++) wc = fmax(wc, fabs(b->com[d] - a->com[d]) / w);
+    wr = fmax(wr, fabs(b->r_max - a->r_max) / w);
+    wa = fmax(wa, fabs(gd[k].a_min - gc[k].a_min) / (fabs(gc[k].a_min) + 1e-300));
+    wh = fmax(wh, fabs(gd[k].h_support - gc[k].h_support) / (fabs(gc[k].h_support) + 1e-300));
+    if (isnan(b->M[0]) || isnan(b->r_max) || isnan(gd[k].a_min)) wm = INFINITY;
+  }
+  const int bad = !(wm <= 1e-12) + !(wc <= 1e-12) + !(wr <= 1e-12) + !(wa <= 1e-12) + !(wh <= 1e-12);
+  printf("  multipoles on the GPU vs the CPU, %d cells: moments %.2e, centres %.2e, r_max %.2e, "
+         "a_min %.2e, h_support %.2e%s\n",
+         sp->nr_cells, wm, wc, wr, wa, wh, bad ? " FAIL (> 1e-12)" : "");
+  return bad;
+}
+
 /** Self-gravity: the tree method on the CPU (gravity_tree_all) against the
  *  same method with the far field on the GPU (gpu_grav_tree_all: the CPU
  *  computes the multipoles and walks the trees, recording every
@@ -658,7 +687,7 @@ static int run_gravity_case(struct gpu *g, size_t n, int softening, unsigned lon
   gravity_tree_all(&p, sp.cells, sp.nr_top, gcp, &gp);
   const double t_cpu = error_walltime() - t0;
   t0 = error_walltime();
-  gpu_grav_tree_all(gg, &h, &rec, &q, &sp, gcq, &gp, 0);
+  gpu_grav_tree_all(gg, &h, &rec, &q, &sp, gcq, &gp, 0, 0);
   const double t_gpu = error_walltime() - t0;
   /* the interactions, a mutual one counted in each direction */
   size_t n_m2p = 0, n_p2l = 0;
@@ -681,18 +710,32 @@ static int run_gravity_case(struct gpu *g, size_t n, int softening, unsigned lon
   }
 
   /* 2: adaptive criterion on |ga| of the first (the CPU's on both sides) */
+  double *ga1 = malloc(3 * n * sizeof(double));
   for (size_t i = 0; i < n; i++) {
-    q.gax[i] = p.gax[i];
-    q.gay[i] = p.gay[i];
-    q.gaz[i] = p.gaz[i];
+    q.gax[i] = ga1[3 * i] = p.gax[i];
+    q.gay[i] = ga1[3 * i + 1] = p.gay[i];
+    q.gaz[i] = ga1[3 * i + 2] = p.gaz[i];
   }
   struct gravity_ilist il;
   memset(&il, 0, sizeof il);
   gravity_record_begin(&il);
   gravity_tree_all(&p, sp.cells, sp.nr_top, gcp, &gp);
   gravity_record_end();
-  gpu_grav_tree_all(gg, &h, &rec, &q, &sp, gcq, &gp, 0);
+  gpu_grav_tree_all(gg, &h, &rec, &q, &sp, gcq, &gp, 0, 0);
   fail += gravity_report("second (adaptive) evaluation", &p, &q);
+
+  /* 2b: the same evaluation with the upward pass on the device
+   * (Scheduler:gpu_multipoles: device): the same multipoles to round-off,
+   * the same walks, the same accelerations */
+  int capd = 0;
+  struct gravity_cell *gcd = gravity_cells_reserve(NULL, &capd, sp.cells_capacity);
+  memset(gcd, 0, (size_t)capd * sizeof *gcd);
+  for (size_t i = 0; i < n; i++) q.gax[i] = ga1[3 * i], q.gay[i] = ga1[3 * i + 1], q.gaz[i] = ga1[3 * i + 2];
+  gpu_grav_tree_all(gg, &h, &rec, &q, &sp, gcd, &gp, 0, 1);
+  fail += gravity_up_report(&sp, gcq, gcd, gp.order);
+  fail += gravity_report("second, multipoles on the GPU", &p, &q);
+  free(gcd);
+  free(ga1);
 
   /* 3: replay at positions moved by up to 1e-3 (of a unit radius) */
   for (size_t i = 0; i < n; i++) {

@@ -82,6 +82,7 @@ struct gpu_grav_tree {
   const int *level_start; /**< nr_levels + 1: level L's pairs are [level_start[L], [L+1]) */
   int nr_leaves;          /**< non-empty leaves */
   const int *leaf;        /**< their cell indices */
+  const double *centre;   /**< 3 per cell: the centre of its box */
 };
 
 /** Self-gravity's device state (buffers of the tree, the multipoles, the
@@ -134,6 +135,17 @@ void gpu_grav_set_tree(struct gpu_grav *gg, const struct gpu_grav_tree *t);
  *  enough): the caller writes each cell's multipole (gravity_up's) at its
  *  index before gpu_grav_run. */
 struct gravity_multipole *gpu_grav_multipoles(struct gpu_grav *gg, int nr_cells);
+/** The upward pass on the device (P2M, M2M; gravity_up_leaf and
+ *  gravity_up_node of gravity_iact.h, as the CPU's gravity_up): every
+ *  cell's multipole, a_min (from the device's gax, gay, gaz of the last
+ *  evaluation) and h_support, left on the device for the next
+ *  gpu_grav_run (which then uploads no multipoles) and copied back for the
+ *  CPU's walks: *mp, *a_min, *h_support point to pinned host arrays by
+ *  cell index, valid until the next call.  resident = 0: upload x, y, z,
+ *  m, h, gax, gay, gaz first. */
+void gpu_grav_up(struct gpu_grav *gg, struct parts *p, int order, double h_factor, int resident,
+                 const struct gravity_multipole **mp, const double **a_min,
+                 const double **h_support);
 /** One gravity evaluation on the device, ending with p's pot, gax, gay, gaz
  *  complete on the device and on the host.  replay = 0: the multipoles
  *  (gpu_grav_multipoles) and the interactions that the walks recorded in

@@ -38,6 +38,7 @@ struct gpu_engine {
   struct gpu_grav *grav;          /**< self-gravity's device state */
   struct gpu_grav_host grav_host; /**< its host side: the tree as index arrays */
   struct gravity_multipole *mp;   /**< pinned staging of the multipoles (grav_up tasks fill it) */
+  int up_on_device;               /**< Scheduler:gpu_multipoles: device (P2M, M2M on the GPU) */
   double t_grav_walk;             /**< host seconds of the gravity tasks (up, walks) */
   double t_grav_gpu;              /**< seconds of the device part (copies included) */
   long grav_evals;                /**< gravity evaluations */
@@ -520,6 +521,7 @@ void gpu_engine_init(struct engine *e) {
   e->gpu = ge;
   ge->cells.leaf_size = (int)params_get_int(e->params, "Scheduler:gpu_leaf_size");
   ge->cells.host_lists = params_get_enum(e->params, "Scheduler:gpu_lists") == 1;
+  ge->up_on_device = params_get_enum(e->params, "Scheduler:gpu_multipoles") == 1;
   if (e->gp.enabled && mode != GPU_MODE_CPU_GRAV) {
     ge->grav = gpu_grav_new(g);
     ge->grav_host.built_rebuild = -1;
@@ -579,6 +581,9 @@ static int gpu_engine_grav_prepare(struct engine *e, int on_gpu) {
       gpu_grav_set_tree(ge->grav, &h->tree);
     }
     ge->mp = gpu_grav_multipoles(ge->grav, e->space.nr_cells);
+    /* Scheduler:gpu_multipoles: device: P2M and M2M on the GPU, the
+     * multipoles back for the walks; the grav_up tasks are skipped below */
+    if (ge->up_on_device) gpu_grav_up_cells(ge->grav, &e->parts, &e->space, e->gcells, &e->gp, 1);
     const int nw = e->sched.nr_threads > 0 ? e->sched.nr_threads : 1;
     if (nw > ge->nr_rec) {
       ge->rec = error_realloc(ge->rec, nw * sizeof *ge->rec, "gravity lists");
@@ -591,7 +596,9 @@ static int gpu_engine_grav_prepare(struct engine *e, int on_gpu) {
   engine_activate_phase(e, ENGINE_PHASE_FORCE);
   for (int k = 0; k < e->sched.nr_tasks; k++) {
     struct task *t = scheduler_task(&e->sched, k);
-    if (t->subtype != task_subtype_grav || (on_gpu && t->type == task_type_grav_down)) t->skip = 1;
+    if (t->subtype != task_subtype_grav || (on_gpu && t->type == task_type_grav_down) ||
+        (on_gpu && ge->up_on_device && t->type == task_type_grav_up))
+      t->skip = 1;
   }
   return 1;
 }

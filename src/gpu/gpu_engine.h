@@ -90,6 +90,7 @@ struct gpu_grav_host {
   struct gpu_grav_tree tree;            /**< the tree, as gpu_grav_set_tree reads it */
   size_t *offset;                       /**< storage of the tree: by cell */
   int *count, cells_cap;                /**< by cell; allocated cells */
+  double *centre;                       /**< by cell: its box centre (3 doubles) */
   int *l2l_tmp;                         /**< (child, parent, level) while building */
   int *l2l_child, *l2l_parent;          /**< pairs by level */
   int nr_l2l, l2l_cap;                  /**< pairs and allocated length */
@@ -105,15 +106,22 @@ void gpu_grav_pack_multipoles(struct gravity_multipole *dst, const struct cell *
                               const struct gravity_cell *gc);
 /** Free the arrays of h and zero it. */
 void gpu_grav_host_free(struct gpu_grav_host *h);
+/** The upward pass of every cell of s on the device (gpu_grav_up), copied
+ *  into gc (multipole, a_min, h_support; the field zeroed) for the CPU's
+ *  walks, as gravity_up of every top-level cell would leave it (host ga
+ *  and pot are not zeroed: the device's evaluation overwrites them). */
+void gpu_grav_up_cells(struct gpu_grav *gg, struct parts *p, const struct space *s,
+                       struct gravity_cell *gc, const struct gravity_props *gp, int resident);
 /** The whole tree method with the far field on the GPU, without tasks, in
  *  the order of gravity_tree_all: gravity_up of every top-level cell on
  *  the CPU, the walks recorded (gravity_gpu_record) into rec (emptied
  *  first; the caller keeps it, e.g. to count the interactions) and run on
  *  the device (gpu_grav_run; resident as there).  Sets p's ga and pot.
+ *  up_on_device: the upward pass on the device instead (gpu_grav_up_cells).
  *  For tests; h->built_rebuild must start at -1. */
 void gpu_grav_tree_all(struct gpu_grav *gg, struct gpu_grav_host *h, struct gravity_gpu_rec *rec,
                        struct parts *p, const struct space *s, struct gravity_cell *gc,
-                       const struct gravity_props *gp, int resident);
+                       const struct gravity_props *gp, int resident, int up_on_device);
 
 /** Choose where tasks run from Scheduler:gpu and --gpu/--no-gpu, set
  *  e->gpu when the FORCE phase goes to a device, and say so in one line. */

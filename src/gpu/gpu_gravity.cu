@@ -36,6 +36,14 @@ struct gpu_grav {
   struct gpu_grav_buf start[2];      /**< part and field: counts, then start of each cell */
   struct gpu_grav_buf src[2];        /**< part and field: the sources grouped by cell */
   struct gpu_grav_buf cursor;        /**< scatter positions of each cell */
+  struct gpu_grav_buf centre;        /**< box centre of each cell (3 doubles) */
+  struct gpu_grav_buf scale;         /**< a_min then h_support of each cell (upward pass) */
+  double *scale_host;                /**< pinned copy of scale */
+  int scale_host_cap;                /**< its cells */
+  int mp_on_device;                  /**< gpu_grav_up left this evaluation's multipoles */
+  cudaEvent_t ev_up[2];              /**< the upward pass, copy back included */
+  double t_up;                       /**< its accumulated milliseconds */
+  long calls_up;                     /**< upward passes on the device */
   struct gravity_gpu_groups gl[2];   /**< device views of them (last full evaluation) */
   struct gravity_multipole *mp_host; /**< pinned staging of the multipoles */
   int mp_host_cap;                   /**< its length */
@@ -73,19 +81,22 @@ extern "C" struct gpu_grav *gpu_grav_new(struct gpu *g) {
   struct gpu_grav *gg = (struct gpu_grav *)error_calloc(1, sizeof *gg, "GPU gravity state");
   gg->g = g;
   for (int k = 0; k <= GG_N; k++) gpu_check(cudaEventCreate(&gg->ev[k]));
+  for (int k = 0; k < 2; k++) gpu_check(cudaEventCreate(&gg->ev_up[k]));
   return gg;
 }
 
 extern "C" void gpu_grav_free(struct gpu_grav *gg) {
   if (!gg) return;
-  struct gpu_grav_buf *bufs[13] = {&gg->mp,       &gg->field,    &gg->offset,   &gg->count,
+  struct gpu_grav_buf *bufs[15] = {&gg->mp,       &gg->field,    &gg->offset,   &gg->count,
                                    &gg->l2l,      &gg->leaf,     &gg->raw[0],   &gg->raw[1],
                                    &gg->start[0], &gg->start[1], &gg->src[0],   &gg->src[1],
-                                   &gg->cursor};
-  for (int k = 0; k < 13; k++)
+                                   &gg->cursor,   &gg->centre,   &gg->scale};
+  for (int k = 0; k < 15; k++)
     if (bufs[k]->ptr) gpu_check(cudaFree(bufs[k]->ptr));
   if (gg->mp_host) gpu_check(cudaFreeHost(gg->mp_host));
+  if (gg->scale_host) gpu_check(cudaFreeHost(gg->scale_host));
   for (int k = 0; k <= GG_N; k++) gpu_check(cudaEventDestroy(gg->ev[k]));
+  for (int k = 0; k < 2; k++) gpu_check(cudaEventDestroy(gg->ev_up[k]));
   free(gg->level_start);
   free(gg);
 }
@@ -105,6 +116,8 @@ extern "C" void gpu_grav_set_tree(struct gpu_grav *gg, const struct gpu_grav_tre
   gg_up(gg, s, l2l + nl, t->l2l_parent, nl * sizeof(int));
   gg_up(gg, s, gg_reserve(&gg->leaf, (size_t)t->nr_leaves * sizeof(int), "gravity leaves"),
         t->leaf, (size_t)t->nr_leaves * sizeof(int));
+  gg_up(gg, s, gg_reserve(&gg->centre, 3 * nc * sizeof(double), "gravity cell centres"),
+        t->centre, 3 * nc * sizeof(double));
   gg->level_start =
       (int *)error_realloc(gg->level_start, (t->nr_levels + 1) * sizeof(int), "gravity levels");
   memcpy(gg->level_start, t->level_start, (t->nr_levels + 1) * sizeof(int));
@@ -118,6 +131,7 @@ extern "C" void gpu_grav_set_tree(struct gpu_grav *gg, const struct gpu_grav_tre
   gg->block = mean <= 40.0 ? 32 : (mean <= 96.0 ? 64 : GPU_BLOCK);
   gg->have_tree = 1;
   gg->have_eval = 0;
+  gg->mp_on_device = 0;
   /* the host arrays may change once this returns */
   gpu_check(cudaStreamSynchronize(s));
 }
@@ -130,6 +144,57 @@ extern "C" struct gravity_multipole *gpu_grav_multipoles(struct gpu_grav *gg, in
                              (size_t)gg->mp_host_cap * sizeof(struct gravity_multipole)));
   }
   return gg->mp_host;
+}
+
+extern "C" void gpu_grav_up(struct gpu_grav *gg, struct parts *p, int order, double h_factor,
+                            int resident, const struct gravity_multipole **mp,
+                            const double **a_min, const double **h_support) {
+  if (!gg->have_tree) error_bug("gpu_grav_up before gpu_grav_set_tree");
+  cudaStream_t s = gpu_stream(gg->g, 0);
+  struct parts dp = gpu_device_parts(gg->g, p->count);
+  gpu_check(cudaEventRecord(gg->ev_up[0], s));
+  if (!resident) {
+    static const char *const in[8] = {"x", "y", "z", "m", "h", "gax", "gay", "gaz"};
+    gpu_copy_named(gg->g, p, in, 8, 1);
+    gg->bytes += 8.0 * (double)p->count * sizeof(double);
+  }
+  const size_t nc = (size_t)gg->nr_cells;
+  double *scale = (double *)gg_reserve(&gg->scale, 2 * nc * sizeof(double) + 16, "gravity cell scales");
+  struct gravity_gpu_up u;
+  u.mp = (struct gravity_multipole *)gg->mp.ptr;
+  u.a_min = scale;
+  u.h_support = scale + nc;
+  u.centre = (const double *)gg->centre.ptr;
+  u.offset = (const size_t *)gg->offset.ptr;
+  u.count = (const int *)gg->count.ptr;
+  u.h_factor = h_factor;
+  u.order = order;
+  const int nl = gg->level_start[gg->nr_levels];
+  const int *l2l = (const int *)gg->l2l.ptr;
+  gravity_up_gpu_launch(s, dp, u, (int)nc, (const int *)gg->leaf.ptr, gg->nr_leaves, l2l, l2l + nl,
+                        gg->level_start, gg->nr_levels);
+  /* back for the walks, into pinned staging */
+  struct gravity_multipole *mh = gpu_grav_multipoles(gg, (int)nc);
+  if ((int)nc > gg->scale_host_cap || !gg->scale_host) {
+    if (gg->scale_host) gpu_check(cudaFreeHost(gg->scale_host));
+    gg->scale_host_cap = (int)nc + (int)nc / 4 + 16;
+    gpu_check(cudaMallocHost((void **)&gg->scale_host, 2 * (size_t)gg->scale_host_cap * sizeof(double)));
+  }
+  gpu_check(cudaMemcpyAsync(mh, u.mp, nc * sizeof(struct gravity_multipole), cudaMemcpyDeviceToHost, s));
+  gpu_check(cudaMemcpyAsync(gg->scale_host, scale, 2 * nc * sizeof(double), cudaMemcpyDeviceToHost, s));
+  const double down = (double)nc * (sizeof(struct gravity_multipole) + 2 * sizeof(double));
+  gpu_bytes_add(gg->g, 0.0, down);
+  gg->bytes += down;
+  gpu_check(cudaEventRecord(gg->ev_up[1], s));
+  gpu_check(cudaStreamSynchronize(s));
+  float ms = 0.0f;
+  gpu_check(cudaEventElapsedTime(&ms, gg->ev_up[0], gg->ev_up[1]));
+  gg->t_up += ms;
+  gg->calls_up++;
+  gg->mp_on_device = 1;
+  *mp = mh;
+  *a_min = gg->scale_host;
+  *h_support = gg->scale_host + nc;
 }
 
 /** Add 1 to cnt[t[k]] for k < n. */
@@ -240,7 +305,9 @@ extern "C" void gpu_grav_run(struct gpu_grav *gg, struct parts *p,
   d.softening = softening;
   d.order = order;
   const size_t nc = (size_t)gg->nr_cells;
-  if (!replay) gg_up(gg, s, gg->mp.ptr, gg->mp_host, nc * sizeof(struct gravity_multipole));
+  if (!replay && !gg->mp_on_device)
+    gg_up(gg, s, gg->mp.ptr, gg->mp_host, nc * sizeof(struct gravity_multipole));
+  gg->mp_on_device = 0;
   gpu_check(cudaEventRecord(gg->ev[GG_GROUP], s));
   if (!replay) {
     gg->gl[0] = gg_group(gg, 0, rec, nr_rec, s);
@@ -283,6 +350,9 @@ extern "C" void gpu_grav_print(const struct gpu_grav *gg, FILE *f) {
   fprintf(f, "GPU gravity, %ld evaluations (%ld replays), ms per evaluation:", gg->calls,
           gg->replays);
   for (int k = 0; k < GG_N; k++) fprintf(f, " %s %.3f", gg_stage_names[k], gg->t[k] / gg->calls);
+  if (gg->calls_up)
+    fprintf(f, "; %ld upward passes (P2M, M2M) on the device, %.3f ms each (copy back included)",
+            gg->calls_up, gg->t_up / gg->calls_up);
   fprintf(f, "; bus %.1f MB per evaluation; last full evaluation %.3g P2P/M2P, %.3g M2L/P2L\n",
           gg->bytes / gg->calls / 1e6, gg->n_entries[0], gg->n_entries[1]);
 }

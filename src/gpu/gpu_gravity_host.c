@@ -42,11 +42,14 @@ void gpu_grav_tree_build(struct gpu_grav_host *h, const struct space *s) {
     h->cells_cap = nc + nc / 4 + 16;
     h->offset = error_realloc(h->offset, h->cells_cap * sizeof(size_t), "GPU gravity tree");
     h->count = error_realloc(h->count, h->cells_cap * sizeof(int), "GPU gravity tree");
+    h->centre = error_realloc(h->centre, 3 * (size_t)h->cells_cap * sizeof(double), "GPU gravity tree");
   }
   for (int k = 0; k < nc; k++) {
-    if (s->cells[k].index != k) error_bug("cell %d has index %d", k, s->cells[k].index);
-    h->offset[k] = s->cells[k].offset;
-    h->count[k] = (int)s->cells[k].count;
+    const struct cell *c = &s->cells[k];
+    if (c->index != k) error_bug("cell %d has index %d", k, c->index);
+    h->offset[k] = c->offset;
+    h->count[k] = (int)c->count;
+    for (int d = 0; d < 3; d++) h->centre[3 * k + d] = c->loc[d] + 0.5 * c->width[d];
   }
   h->nr_l2l = h->nr_leaf = 0;
   for (int c = 0; c < s->nr_top; c++) tree_visit(h, &s->cells[c], 0);
@@ -76,6 +79,7 @@ void gpu_grav_tree_build(struct gpu_grav_host *h, const struct space *s) {
   t->level_start = h->level_start;
   t->nr_leaves = h->nr_leaf;
   t->leaf = h->leaf;
+  t->centre = h->centre;
   h->built_rebuild = s->nr_rebuilds;
   h->built_cells = s->cells;
 }
@@ -91,6 +95,7 @@ void gpu_grav_pack_multipoles(struct gravity_multipole *dst, const struct cell *
 void gpu_grav_host_free(struct gpu_grav_host *h) {
   free(h->offset);
   free(h->count);
+  free(h->centre);
   free(h->l2l_tmp);
   free(h->l2l_child);
   free(h->l2l_parent);
@@ -99,21 +104,38 @@ void gpu_grav_host_free(struct gpu_grav_host *h) {
   memset(h, 0, sizeof *h);
 }
 
+void gpu_grav_up_cells(struct gpu_grav *gg, struct parts *p, const struct space *s,
+                       struct gravity_cell *gc, const struct gravity_props *gp, int resident) {
+  const struct gravity_multipole *mp;
+  const double *a_min, *h_support;
+  gpu_grav_up(gg, p, gp->order, gp->h_factor, resident, &mp, &a_min, &h_support);
+  for (int k = 0; k < s->nr_cells; k++) {
+    gc[k].mp = mp[k];
+    gc[k].a_min = a_min[k];
+    gc[k].h_support = h_support[k];
+    gravity_field_zero(&gc[k].field);
+  }
+}
+
 /* ------------------------------------------------------------------ serial */
 
 void gpu_grav_tree_all(struct gpu_grav *gg, struct gpu_grav_host *h, struct gravity_gpu_rec *rec,
                        struct parts *p, const struct space *s, struct gravity_cell *gc,
-                       const struct gravity_props *gp, int resident) {
+                       const struct gravity_props *gp, int resident, int up_on_device) {
   const struct cell *tops = s->cells;
   const int nr_top = s->nr_top;
   if (h->built_rebuild != s->nr_rebuilds || h->built_cells != s->cells || !h->tree.offset) {
     gpu_grav_tree_build(h, s);
     gpu_grav_set_tree(gg, &h->tree);
   }
-  struct gravity_multipole *mp = gpu_grav_multipoles(gg, s->nr_cells);
-  for (int i = 0; i < nr_top; i++) {
-    gravity_up(p, tops + i, gc, gp);
-    gpu_grav_pack_multipoles(mp, tops + i, gc);
+  if (up_on_device) {
+    gpu_grav_up_cells(gg, p, s, gc, gp, resident);
+  } else {
+    struct gravity_multipole *mp = gpu_grav_multipoles(gg, s->nr_cells);
+    for (int i = 0; i < nr_top; i++) {
+      gravity_up(p, tops + i, gc, gp);
+      gpu_grav_pack_multipoles(mp, tops + i, gc);
+    }
   }
   rec->part.n = rec->field.n = rec->part_sym.n = rec->field_sym.n = 0;
   gravity_gpu_record(rec);

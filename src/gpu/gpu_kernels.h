@@ -41,6 +41,17 @@ struct gravity_gpu_dev {
   int softening, order;               /**< enum gravity_softening, expansion order */
 };
 
+/** The upward pass on the device (gravity_up_gpu_launch): by cell index. */
+struct gravity_gpu_up {
+  struct gravity_multipole *mp; /**< multipoles (out) */
+  double *a_min, *h_support;    /**< struct gravity_cell's a_min and h_support (out) */
+  const double *centre;         /**< 3 per cell: the box centre (a massless cell's centre) */
+  const size_t *offset;         /**< first particle of each cell */
+  const int *count;             /**< its particles */
+  double h_factor;              /**< Gravity:softening_h_factor */
+  int order;                    /**< expansion order */
+};
+
 /** Recorded interactions grouped by receiving cell (src/gpu/gpu_gravity.cu). */
 struct gravity_gpu_groups {
   int nr_cells;      /**< cells */
@@ -74,6 +85,15 @@ void extra_ghost_gpu_launch(cudaStream_t s, struct parts p, struct hydro_props h
  *  (tasks/damage/damage_gpu.cu). */
 void damage_gpu_launch(cudaStream_t s, struct parts p, const struct material_table *mats,
                        const double *eps, double dt);
+/** Gravity (tasks/gravity/gravity_gpu.cu): the upward pass, P2M at the
+ *  leaves, then M2M level by level from the deepest (level_start on the
+ *  host: the pairs (child, parent) of level L are [level_start[L],
+ *  level_start[L + 1]), a parent's children consecutive, in progeny
+ *  order); every cell of nr_cells written (empty ones: zero at their
+ *  centre). */
+void gravity_up_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_up u, int nr_cells,
+                           const int *leaf, int nr_leaves, const int *child, const int *parent,
+                           const int *level_start, int nr_levels);
 /** Gravity (tasks/gravity/gravity_gpu.cu): M2L and P2L of every cell
  *  with sources in l, stored as its field. */
 void gravity_field_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_dev d,

@@ -53,76 +53,37 @@ struct gravity_cell *gravity_cells_reserve(struct gravity_cell *gc, int *capacit
 
 /* ------------------------------------------------------------------ up */
 
-/** Multipole of c from its particles (leaf) or its progeny (split cell). */
+/** Multipole of c from its particles (leaf) or its progeny (split cell):
+ *  gravity_up_leaf and gravity_up_node, shared with the GPU's kernels. */
 static void up_rec(struct parts *p, const struct cell *c, struct gravity_cell *gc, int order,
                    double h_factor) {
   struct gravity_cell *g = gc + c->index;
-  struct gravity_multipole *mp = &g->mp;
   gravity_field_zero(&g->field);
-  gravity_multipole_zero(mp);
-  mp->r_max = 0.0;
-  g->a_min = 0.0;
-  g->h_support = 0.0;
-  for (int k = 0; k < 3; k++) mp->com[k] = c->loc[k] + 0.5 * c->width[k];
-  if (c->count == 0) return;
-
-  double mass = 0.0, s[3] = {0.0, 0.0, 0.0};
+  const double centre[3] = {c->loc[0] + 0.5 * c->width[0], c->loc[1] + 0.5 * c->width[1],
+                            c->loc[2] + 0.5 * c->width[2]};
+  if (c->count == 0) {
+    gravity_up_leaf(&g->mp, &g->a_min, &g->h_support, p->x, p->y, p->z, p->m, p->h, p->gax,
+                    p->gay, p->gaz, 0, 0, order, h_factor, centre);
+    return;
+  }
   if (c->split) {
-    double a_min = HUGE_VAL;
+    const struct gravity_multipole *ch[8];
+    double ch_a[8], ch_h[8];
+    int n = 0;
     for (int q = 0; q < 8; q++) {
       const struct cell *cp = c->progeny[q];
       if (cp == NULL || cp->count == 0) continue;
       up_rec(p, cp, gc, order, h_factor);
-      const struct gravity_multipole *mq = &gc[cp->index].mp;
-      mass += mq->M[0];
-      if (gc[cp->index].h_support > g->h_support) g->h_support = gc[cp->index].h_support;
-      for (int k = 0; k < 3; k++) s[k] += mq->M[0] * mq->com[k];
-      if (gc[cp->index].a_min < a_min) a_min = gc[cp->index].a_min;
+      ch[n] = &gc[cp->index].mp, ch_a[n] = gc[cp->index].a_min, ch_h[n] = gc[cp->index].h_support;
+      n++;
     }
-    g->a_min = a_min;
+    gravity_up_node(&g->mp, &g->a_min, &g->h_support, ch, ch_a, ch_h, n, order, centre);
   } else {
-    /* |ga| of the previous pass (0 for a particle never computed: then the
-     * cell's a_min is 0, "unknown"), then a fresh start of the sums. */
-    double a2_min = HUGE_VAL, h_max = 0.0;
-    for (size_t i = c->offset; i < c->offset + c->count; i++) {
-      mass += p->m[i];
-      if (p->h[i] > h_max) h_max = p->h[i];
-      s[0] += p->m[i] * p->x[i];
-      s[1] += p->m[i] * p->y[i];
-      s[2] += p->m[i] * p->z[i];
-      const double a2 = p->gax[i] * p->gax[i] + p->gay[i] * p->gay[i] + p->gaz[i] * p->gaz[i];
-      if (a2 < a2_min) a2_min = a2;
+    /* |ga| of the previous pass read, then a fresh start of the sums */
+    gravity_up_leaf(&g->mp, &g->a_min, &g->h_support, p->x, p->y, p->z, p->m, p->h, p->gax,
+                    p->gay, p->gaz, c->offset, c->offset + c->count, order, h_factor, centre);
+    for (size_t i = c->offset; i < c->offset + c->count; i++)
       p->gax[i] = p->gay[i] = p->gaz[i] = p->pot[i] = 0.0;
-    }
-    g->a_min = sqrt(a2_min);
-    /* softening tied to h: the largest support of the leaf's particles
-     * (a pair's support is the larger of its two particles') */
-    if (h_factor > 0.0) g->h_support = GRAVITY_SPLINE_H_OVER_EPS * h_factor * h_max;
-  }
-  /* A massless cell keeps its box centre as expansion centre. */
-  if (mass > 0.0)
-    for (int k = 0; k < 3; k++) mp->com[k] = s[k] / mass;
-
-  if (c->split) {
-    for (int q = 0; q < 8; q++) {
-      const struct cell *cp = c->progeny[q];
-      if (cp == NULL || cp->count == 0) continue;
-      const struct gravity_multipole *mq = &gc[cp->index].mp;
-      const double t[3] = {mq->com[0] - mp->com[0], mq->com[1] - mp->com[1],
-                           mq->com[2] - mp->com[2]};
-      gravity_m2m(mp, mq, t, order);
-      const double r = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]) + mq->r_max;
-      if (r > mp->r_max) mp->r_max = r;
-    }
-  } else {
-    double r2max = 0.0;
-    for (size_t i = c->offset; i < c->offset + c->count; i++) {
-      const double d[3] = {p->x[i] - mp->com[0], p->y[i] - mp->com[1], p->z[i] - mp->com[2]};
-      gravity_p2m(mp, d, p->m[i], order);
-      const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-      if (r2 > r2max) r2max = r2;
-    }
-    mp->r_max = sqrt(r2max);
   }
 }
 

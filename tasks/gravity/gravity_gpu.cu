@@ -1,5 +1,6 @@
-/* Self-gravity on the GPU: every operator of the fast multipole method
- * after P2M and M2M, on interactions that the CPU walks recorded
+/* Self-gravity on the GPU: every operator of the fast multipole method,
+ * the upward pass (P2M, M2M: gravity_up_leaf and gravity_up_node, as the
+ * CPU's gravity_up) and, on interactions that the CPU walks recorded
  * (gravity_gpu_record) and on the cell tree as index arrays
  * (src/gpu/gpu_gravity.cu uploads both).  Each kernel calls the inline
  * operators of gravity_iact.h that the CPU walk calls (gravity_derivatives,
@@ -7,6 +8,9 @@
  * with the expansion order a template constant so that nvcc unrolls their
  * loops as gcc does for gravity_cpu.c's M2L_ORDER.
  *
+ *   up kernels:   every cell set empty (one thread each), then one thread
+ *                 per leaf (P2M), then one launch per tree level from the
+ *                 deepest, one thread per parent (M2M of its children)
  *   field kernel: one thread per cell, its M2L and P2L summed in
  *                 registers, then stored (the cells' expansions start at 0)
  *   L2L kernel:   one thread per parent-child pair of one tree level, the
@@ -23,6 +27,47 @@
 #define GRAVITY_UNROLL_LOOPS 1
 #include "gpu_kernels.h"
 #include "gravity_iact.h"
+
+/** Every cell as an empty one (zero moments at its box centre). */
+__global__ void gravity_up_empty_gpu_kernel(struct gravity_gpu_up u, int nr_cells) {
+  const int c = blockIdx.x * blockDim.x + threadIdx.x;
+  if (c >= nr_cells) return;
+  gravity_up_leaf(u.mp + c, u.a_min + c, u.h_support + c, NULL, NULL, NULL, NULL, NULL, NULL, NULL,
+                  NULL, 0, 0, 1, 0.0, u.centre + 3 * (size_t)c);
+}
+
+/** P2M of every non-empty leaf (one thread each). */
+template <int P>
+__global__ void gravity_up_leaf_gpu_kernel(struct parts p, struct gravity_gpu_up u,
+                                           const int *__restrict__ leaf, int nr_leaves) {
+  const int k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= nr_leaves) return;
+  const int c = leaf[k];
+  const size_t i0 = u.offset[c];
+  gravity_up_leaf(u.mp + c, u.a_min + c, u.h_support + c, p.x, p.y, p.z, p.m, p.h, p.gax, p.gay,
+                  p.gaz, i0, i0 + (size_t)u.count[c], P, u.h_factor, u.centre + 3 * (size_t)c);
+}
+
+/** M2M of one level: the thread of the first pair of each parent sums
+ *  that parent's children (the pairs that follow with the same parent). */
+template <int P>
+__global__ void gravity_up_node_gpu_kernel(struct gravity_gpu_up u, const int *__restrict__ child,
+                                           const int *__restrict__ parent, int k0, int k1) {
+  const int k = k0 + blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= k1 || (k > k0 && parent[k - 1] == parent[k])) return;
+  const int q = parent[k];
+  const struct gravity_multipole *ch[8];
+  double ch_a[8], ch_h[8];
+  int n = 0;
+  for (int j = k; j < k1 && parent[j] == q && n < 8; j++, n++) {
+    const int c = child[j];
+    ch[n] = u.mp + c;
+    ch_a[n] = u.a_min[c];
+    ch_h[n] = u.h_support[c];
+  }
+  gravity_up_node(u.mp + q, u.a_min + q, u.h_support + q, ch, ch_a, ch_h, n, P,
+                  u.centre + 3 * (size_t)q);
+}
 
 /** Every cell c with sources: the M2L of its multipole sources and the P2L
  *  of its leaf sources (struct gravity_gpu_rec.field), stored as its field. */
@@ -177,6 +222,27 @@ __global__ void gravity_l2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
     default: K<GRAVITY_ORDER_MAX><<<(grid), (block), 0, s>>>(__VA_ARGS__); break;           \
   }                                                                                         \
   gpu_check_launch(K)
+
+void gravity_up_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_up u, int nr_cells,
+                           const int *leaf, int nr_leaves, const int *child, const int *parent,
+                           const int *level_start, int nr_levels) {
+  if (nr_cells == 0) return;
+  const int B = GRAVITY_GPU_CELL_BLOCK;
+  gravity_up_empty_gpu_kernel<<<(nr_cells + B - 1) / B, B, 0, s>>>(u, nr_cells);
+  gpu_check_launch(gravity_up_empty_gpu_kernel);
+  struct gravity_gpu_dev d; /* GRAVITY_GPU_DISPATCH reads d.order */
+  d.order = u.order;
+  if (nr_leaves > 0) {
+    GRAVITY_GPU_DISPATCH(gravity_up_leaf_gpu_kernel, (nr_leaves + B - 1) / B, B, p, u, leaf,
+                         nr_leaves);
+  }
+  for (int L = nr_levels - 1; L >= 0; L--) {
+    const int k0 = level_start[L], k1 = level_start[L + 1];
+    if (k1 <= k0) continue;
+    GRAVITY_GPU_DISPATCH(gravity_up_node_gpu_kernel, (k1 - k0 + B - 1) / B, B, u, child, parent,
+                         k0, k1);
+  }
+}
 
 void gravity_field_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_dev d,
                               struct gravity_gpu_groups l) {

@@ -166,6 +166,83 @@ BOLIDE_INLINE void gravity_m2m(struct gravity_multipole *BOLIDE_RESTRICT parent,
       }
 }
 
+/** The upward pass of one cell (the CPU's gravity_up and the GPU's
+ *  gravity_up kernels call these two; theory/gravity.md G1, G2).
+ *
+ *  Leaf: mass, centre of mass, moments and r_max of the particles
+ *  [i0, i1); a_min = the smallest |ga| of their previous pass (0 when a
+ *  particle was never computed: "unknown"); h_support = GRAVITY_SPLINE_H_OVER_EPS
+ *  h_factor max h (0 when h_factor = 0).  A massless cell keeps centre[]
+ *  as its expansion centre. */
+BOLIDE_INLINE void gravity_up_leaf(struct gravity_multipole *BOLIDE_RESTRICT mp, double *a_min,
+                                   double *h_support, const double *BOLIDE_RESTRICT x,
+                                   const double *BOLIDE_RESTRICT y, const double *BOLIDE_RESTRICT z,
+                                   const double *BOLIDE_RESTRICT m, const double *BOLIDE_RESTRICT h,
+                                   const double *BOLIDE_RESTRICT gax,
+                                   const double *BOLIDE_RESTRICT gay,
+                                   const double *BOLIDE_RESTRICT gaz, size_t i0, size_t i1,
+                                   int order, double h_factor, const double centre[3]) {
+  gravity_multipole_zero(mp);
+  for (int k = 0; k < 3; k++) mp->com[k] = centre[k];
+  mp->r_max = 0.0;
+  *a_min = 0.0;
+  *h_support = 0.0;
+  if (i1 <= i0) return;
+  double mass = 0.0, s[3] = {0.0, 0.0, 0.0}, a2_min = HUGE_VAL, h_max = 0.0;
+  for (size_t i = i0; i < i1; i++) {
+    mass += m[i];
+    if (h[i] > h_max) h_max = h[i];
+    s[0] += m[i] * x[i];
+    s[1] += m[i] * y[i];
+    s[2] += m[i] * z[i];
+    const double a2 = gax[i] * gax[i] + gay[i] * gay[i] + gaz[i] * gaz[i];
+    if (a2 < a2_min) a2_min = a2;
+  }
+  *a_min = sqrt(a2_min);
+  if (h_factor > 0.0) *h_support = GRAVITY_SPLINE_H_OVER_EPS * h_factor * h_max;
+  if (mass > 0.0)
+    for (int k = 0; k < 3; k++) mp->com[k] = s[k] / mass;
+  double r2max = 0.0;
+  for (size_t i = i0; i < i1; i++) {
+    const double d[3] = {x[i] - mp->com[0], y[i] - mp->com[1], z[i] - mp->com[2]};
+    gravity_p2m(mp, d, m[i], order);
+    const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    if (r2 > r2max) r2max = r2;
+  }
+  mp->r_max = sqrt(r2max);
+}
+
+/** Split cell from its n > 0 non-empty children (in progeny order):
+ *  child k's multipole ch[k], a_min ch_a[k], h_support ch_h[k]. */
+BOLIDE_INLINE void gravity_up_node(struct gravity_multipole *BOLIDE_RESTRICT mp, double *a_min,
+                                   double *h_support,
+                                   const struct gravity_multipole *const *ch, const double *ch_a,
+                                   const double *ch_h, int n, int order, const double centre[3]) {
+  gravity_multipole_zero(mp);
+  for (int k = 0; k < 3; k++) mp->com[k] = centre[k];
+  mp->r_max = 0.0;
+  *h_support = 0.0;
+  double mass = 0.0, s[3] = {0.0, 0.0, 0.0}, amin = HUGE_VAL;
+  for (int q = 0; q < n; q++) {
+    const struct gravity_multipole *mq = ch[q];
+    mass += mq->M[0];
+    if (ch_h[q] > *h_support) *h_support = ch_h[q];
+    for (int k = 0; k < 3; k++) s[k] += mq->M[0] * mq->com[k];
+    if (ch_a[q] < amin) amin = ch_a[q];
+  }
+  *a_min = n > 0 ? amin : 0.0;
+  if (mass > 0.0)
+    for (int k = 0; k < 3; k++) mp->com[k] = s[k] / mass;
+  for (int q = 0; q < n; q++) {
+    const struct gravity_multipole *mq = ch[q];
+    const double t[3] = {mq->com[0] - mp->com[0], mq->com[1] - mp->com[1],
+                         mq->com[2] - mp->com[2]};
+    gravity_m2m(mp, mq, t, order);
+    const double r = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]) + mq->r_max;
+    if (r > mp->r_max) mp->r_max = r;
+  }
+}
+
 /** Derivatives D_n(R) = d^n f(|R|) for |n| <= q of f = 1/sqrt(|R|^2 + eps2)
  *  (eps2 = 0: Newtonian 1/r; eps2 = eps^2: Plummer-softened).  For a radial
  *  function f(u), u = r^2/2, (G4):
