@@ -440,6 +440,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
              (int)params_get_int(params, "Scheduler:max_top_level_cells"));
   e->space.max_drift_fraction = params_get_real(params, "Scheduler:rebuild_fraction");
   e->nr_threads = opt->nr_threads > 0 ? opt->nr_threads : engine_nr_cores();
+  e->space.nr_threads = e->nr_threads;
   error_log(0, "Bolide %s (git %s), kernel %s, %d threads, %s", PACKAGE_VERSION, BOLIDE_GIT_HASH,
             BOLIDE_KERNEL_NAME, e->nr_threads,
 #ifdef HAVE_CUDA

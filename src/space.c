@@ -7,6 +7,7 @@
 
 #include <limits.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -38,6 +39,7 @@ void space_init(struct space *s, struct parts *parts, const double box[3], int p
   s->max_depth = SPACE_MAX_DEPTH;
   s->cell_stretch = 1.1;
   s->max_drift_fraction = 0.25;
+  s->nr_threads = 1;
 }
 
 void space_free(struct space *s) {
@@ -212,23 +214,80 @@ static void space_split(struct space *s, int c, size_t *idx, size_t *buf) {
  *  array buf of n 8-byte words: parts_permute with one typed gather loop per
  *  field (no per-element memcpy of a run-time size), about twice as fast. */
 _Static_assert(sizeof(size_t) >= 8, "space_permute reuses a size_t array for 8-byte fields");
-static void space_permute(struct parts *p, const size_t *perm, void *buf) {
-  const size_t n = p->count;
+/** Gather field k's elements [lo, hi) through perm into buf. */
+static void space_gather(struct parts *p, int k, const size_t *perm, void *buf, size_t lo,
+                         size_t hi) {
+  const struct part_field *f = &part_fields[k];
+  const void *a = part_field_array(p, f);
+  if (f->size == 8) {
+    uint64_t *dst = buf;
+    const uint64_t *src = a;
+    for (size_t i = lo; i < hi; i++) dst[i] = src[perm[i]];
+  } else if (f->size == 4) {
+    uint32_t *dst = buf;
+    const uint32_t *src = a;
+    for (size_t i = lo; i < hi; i++) dst[i] = src[perm[i]];
+  } else {
+    error_bug("particle field %s has an element size of %zu bytes", f->name, f->size);
+  }
+}
+
+/** One thread's share of space_permute: elements [lo, hi) of every field. */
+struct space_permute_job {
+  struct parts *p;
+  const size_t *perm;
+  void *buf;
+  size_t lo, hi;
+  pthread_barrier_t *bar;
+};
+
+static void *space_permute_run(void *arg) {
+  struct space_permute_job *j = arg;
   for (int k = 0; k < part_nr_fields; k++) {
-    const struct part_field *f = &part_fields[k];
-    void *a = part_field_array(p, f);
-    if (f->size == 8) {
-      uint64_t *dst = buf;
-      const uint64_t *src = a;
-      for (size_t i = 0; i < n; i++) dst[i] = src[perm[i]];
-    } else if (f->size == 4) {
-      uint32_t *dst = buf;
-      const uint32_t *src = a;
-      for (size_t i = 0; i < n; i++) dst[i] = src[perm[i]];
-    } else {
-      error_bug("particle field %s has an element size of %zu bytes", f->name, f->size);
+    const size_t sz = part_fields[k].size;
+    space_gather(j->p, k, j->perm, j->buf, j->lo, j->hi);
+    pthread_barrier_wait(j->bar); /* every gather of field k read the old order */
+    memcpy((char *)part_field_array(j->p, &part_fields[k]) + j->lo * sz, (char *)j->buf + j->lo * sz,
+           (j->hi - j->lo) * sz);
+    pthread_barrier_wait(j->bar); /* buf is free for the next field */
+  }
+  return NULL;
+}
+
+/** Reorder every particle field: new element i = old element perm[i];
+ *  buf: n words.  On up to nr_threads threads, each a range of elements
+ *  (the result does not depend on the count); the random gathers of the
+ *  first rebuild after reading a file dominate a rebuild (about 2 s for
+ *  1e6 particles on one core). */
+static void space_permute(struct parts *p, const size_t *perm, void *buf, int nr_threads) {
+  const size_t n = p->count;
+  int t = nr_threads;
+  if ((size_t)t > n / 65536 + 1) t = (int)(n / 65536 + 1);
+  if (t > 256) t = 256;
+  if (t > 1) {
+    struct space_permute_job job[256];
+    pthread_t th[256];
+    pthread_barrier_t bar;
+    if (pthread_barrier_init(&bar, NULL, (unsigned)t) == 0) {
+      for (int k = 0; k < t; k++)
+        job[k] = (struct space_permute_job){p, perm, buf, n * (size_t)k / (size_t)t,
+                                            n * (size_t)(k + 1) / (size_t)t, &bar};
+      int started = 1;
+      for (; started < t; started++)
+        if (pthread_create(&th[started], NULL, space_permute_run, &job[started])) break;
+      if (started == t) {
+        space_permute_run(&job[0]);
+        for (int k = 1; k < t; k++) pthread_join(th[k], NULL);
+        pthread_barrier_destroy(&bar);
+        return;
+      }
+      /* a thread could not start: the barrier would wait for ever */
+      error_exit("space: cannot start the threads of the rebuild (pthread_create)");
     }
-    memcpy(a, buf, n * f->size);
+  }
+  for (int k = 0; k < part_nr_fields; k++) {
+    space_gather(p, k, perm, buf, 0, n);
+    memcpy(part_field_array(p, &part_fields[k]), buf, n * part_fields[k].size);
   }
 }
 
@@ -341,7 +400,7 @@ size_t space_rebuild(struct space *s) {
     const size_t o = s->cells[c].offset;
     space_split(s, c, idx + o, buf + o);
   }
-  if (n) space_permute(p, idx, buf); /* buf (n words) is free after the split */
+  if (n) space_permute(p, idx, buf, s->nr_threads); /* buf (n words) is free after the split */
   memcpy(p->x0, p->x, n * sizeof(double));
   memcpy(p->y0, p->y, n * sizeof(double));
   memcpy(p->z0, p->z, n * sizeof(double));

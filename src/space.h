@@ -53,6 +53,7 @@ struct space {
   int nr_rebuilds;           /**< number of calls of space_rebuild */
   size_t *sort_index;        /**< work array of the rebuild (capacity sort_capacity) */
   size_t sort_capacity;      /**< allocated length of sort_index */
+  int nr_threads;            /**< threads of the rebuild's reordering of the fields (1) */
 };
 
 /** One pair of top-level cells that can interact: the particles of cj are

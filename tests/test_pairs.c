@@ -444,6 +444,51 @@ static void run(const struct config *cf, unsigned seed) {
   parts_free(&p);
 }
 
+/** The rebuild's reordering of the fields on several threads
+ *  (space.nr_threads) gives the particles of the one-thread rebuild, bit
+ *  for bit, in every field. */
+static void check_threaded_rebuild(void) {
+  const size_t n = 300000;
+  const double L[3] = {1.0, 1.0, 1.0};
+  struct parts a, b;
+  parts_alloc(&a, n);
+  parts_alloc(&b, n);
+  srand(77);
+  for (size_t i = 0; i < n; i++) {
+    a.x[i] = urand(), a.y[i] = urand(), a.z[i] = urand();
+    a.m[i] = 1.0 + urand();
+    a.h[i] = 0.01 * (1.0 + urand());
+    a.u[i] = urand();
+    a.id[i] = (int64_t)i;
+    a.mat[i] = rand() % 3;
+  }
+  for (int f = 0; f < part_nr_fields; f++)
+    memcpy(part_field_array(&b, &part_fields[f]), part_field_array(&a, &part_fields[f]),
+           n * part_fields[f].size);
+  struct space sa, sb;
+  space_init(&sa, &a, L, 0, 32, 16);
+  space_init(&sb, &b, L, 0, 32, 16);
+  sb.nr_threads = 5;
+  space_rebuild(&sa);
+  space_rebuild(&sb);
+  int differ = 0;
+  for (int f = 0; f < part_nr_fields; f++)
+    if (memcmp(part_field_array(&a, &part_fields[f]), part_field_array(&b, &part_fields[f]),
+               n * part_fields[f].size)) {
+      printf("  field %s differs\n", part_fields[f].name);
+      differ++;
+    }
+  CHECK(a.count == b.count && differ == 0 && sa.nr_cells == sb.nr_cells,
+        "the rebuild on 5 threads reordered %d of %d fields differently from 1 thread", differ,
+        part_nr_fields);
+  printf("threaded rebuild: %zu particles, %d fields, 1 and 5 threads identical: %s\n", n,
+         part_nr_fields, differ ? "no" : "yes");
+  space_free(&sa);
+  space_free(&sb);
+  parts_free(&a);
+  parts_free(&b);
+}
+
 int main(int argc, char **argv) {
   error_init(argc > 0 ? argv[0] : "test_pairs");
   /* supports H relative to the box (1 x 1.3 x 0.8); H_max must stay below
@@ -468,6 +513,7 @@ int main(int argc, char **argv) {
   };
   const int nconf = sizeof configs / sizeof configs[0];
   for (int c = 0; c < nconf; c++) run(&configs[c], 1234u + (unsigned)c);
+  check_threaded_rebuild();
   free(rec);
   printf("%s\n", failures ? "FAIL" : "PASS");
   return failures ? 1 : 0;
