@@ -3,6 +3,7 @@
 /* the M2L operators unrolled for each expansion order (gravity_iact.h) */
 #define GRAVITY_UNROLL_LOOPS 1
 #include "gravity/gravity_cpu.h"
+#include "gravity/gravity_walk.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -414,15 +415,6 @@ static void p2p_pair(struct parts *p, const struct cell *a, const struct cell *b
 
 /* ------------------------------------------------------------------ walks */
 
-/** A leaf meeting a cell GRAVITY_LOPSIDED times smaller (radius) interacts
- *  particle by particle (walk_pair). */
-#define GRAVITY_LOPSIDED 2.0
-
-/** Opening angle of the first pass, when the adaptive criterion has no
- *  acceleration scale yet, in units of Gravity:theta_cr (tests/test_gravity:
- *  0.7 brings the 99th percentile of the first pass under 1e-3). */
-#define GRAVITY_THETA_FIRST 0.7
-
 /** The M2L of walk_pair with the expansion order a compile-time constant:
  *  gravity_derivatives and gravity_m2l(_sym) of gravity_iact.h, inlined
  *  once per order so that the compiler unrolls their loops and folds the
@@ -520,72 +512,45 @@ static void m2l_cells(struct gravity_cell *ga, struct gravity_cell *gb, const do
   }
 }
 
-/** Acceptance of the interaction between cells a and b, the same in both
- *  directions (mutual interactions conserve momentum): the geometric
- *  criterion and, where the previous pass gave a scale, the adaptive one
- *  for a and for b. */
-static int accept(const struct gravity_cell *a, const struct gravity_cell *b, double r2,
-                  const struct gravity_props *gp) {
-  /* No acceleration scale yet (a run's first step) while the adaptive
-   * criterion is on: a tighter geometric angle stands in for it, so that the
-   * first step meets the accuracy of the following ones. */
-  const double theta = (gp->epsilon_fmm > 0.0 && (a->a_min <= 0.0 || b->a_min <= 0.0))
-                           ? GRAVITY_THETA_FIRST * gp->theta
-                           : gp->theta;
-  /* the support beyond which every pair of a and b is Newtonian: the
-   * constant one, or with the softening tied to h the larger of the two
-   * cells' largest supports (max over pairs of max(H_i, H_j)) */
-  const double h_support = gp->h_factor > 0.0 ? fmax(a->h_support, b->h_support) : gp->h_support;
-  if (!gravity_mac(a->mp.r_max, b->mp.r_max, r2, theta, h_support)) return 0;
-  const double rs = a->mp.r_max + b->mp.r_max;
-  return gravity_mac_adaptive(gp->G, b->mp.M[0], rs, r2, gp->order, gp->epsilon_fmm, a->a_min) &&
-         gravity_mac_adaptive(gp->G, a->mp.M[0], rs, r2, gp->order, gp->epsilon_fmm, b->a_min);
+/** The acceptance parameters of gp (gravity_walk.h). */
+static struct gravity_walk_params walk_params(const struct gravity_props *gp) {
+  const struct gravity_walk_params wp = {gp->G,         gp->theta,    gp->epsilon_fmm,
+                                         gp->h_support, gp->h_factor, gp->order};
+  return wp;
 }
 
-/** Dual-tree walk between disjoint cells a and b (Dehnen 2002):
- *  M2L where the criterion accepts, P2P between leaves, else open the
- *  larger cell that can be opened (a leaf meeting a split cell opens the
- *  split one: its pieces then meet the leaf through M2L or P2P, never one
- *  particle at a time).  symmetric: both cells receive (pair task), else
- *  only a (long-range task).  The decisions are symmetric in a and b, so
- *  the walk from b's side pairs the same interactions (momentum). */
+/** Dual-tree walk between disjoint cells a and b (Dehnen 2002): each step
+ *  is gravity_walk_choose's (gravity_walk.h, shared with the GPU's walk).
+ *  symmetric: both cells receive (pair task), else only a (long-range
+ *  task).  The decisions are symmetric in a and b, so the walk from b's
+ *  side pairs the same interactions (momentum). */
 static void walk_pair(struct parts *p, const struct cell *a, const struct cell *b, int symmetric,
                       struct gravity_cell *gc, const struct gravity_props *gp) {
   if (a->count == 0 || b->count == 0) return;
   struct gravity_cell *ga = gc + a->index, *gb = gc + b->index;
-  const double R[3] = {gb->mp.com[0] - ga->mp.com[0], gb->mp.com[1] - ga->mp.com[1],
-                       gb->mp.com[2] - ga->mp.com[2]};
-  const double r2 = R[0] * R[0] + R[1] * R[1] + R[2] * R[2];
+  const struct gravity_walk_params wp = walk_params(gp);
+  int a_big = 0;
+  double r2 = 0.0;
   counters.mac++;
-  if (accept(ga, gb, r2, gp)) {
-    /* A leaf much larger than the cell it meets: its particles see the
-     * cell one by one (M2P, and P2L back), instead of through one local
-     * expansion as large as the leaf, whose truncation errors would add up
-     * coherently over the many small cells such a leaf meets. */
-    const int a_big = ga->mp.r_max >= gb->mp.r_max;
-    const struct cell *big = a_big ? a : b;
-    struct gravity_cell *gbig = a_big ? ga : gb, *gsmall = a_big ? gb : ga;
-    if (!big->split && gbig->mp.r_max > GRAVITY_LOPSIDED * gsmall->mp.r_max) {
-      const struct cell *small = a_big ? b : a;
-      if (!small->split) {
-        /* two leaves: exact P2P costs less than a point-cell interaction
-         * per particle (a few ns per pair against ~100 ns per M2P) */
-        p2p_pair(p, a, b, symmetric, gp);
-        return;
-      }
-      counters.m2p += big->count;
-      record_distance(r2);
-      if (recording && (symmetric || a_big)) record(big, small, 1, 0);
-      if (gpu_sink) {
-        /* M2P to big's particles, P2L to small's local expansion */
-        if (symmetric || a_big) rec_add(&gpu_sink->part, big->index, -1 - small->index);
-        if (symmetric || !a_big) rec_add(&gpu_sink->field, small->index, -1 - big->index);
-        return;
-      }
-      m2p_leaf(p, big, gsmall, symmetric || a_big, symmetric || !a_big, gp->eps2_expansion, gp->G,
-               gp->order);
+  const int d = gravity_walk_choose((int)a->count, (int)b->count, a->split, b->split, &ga->mp,
+                                    &gb->mp, ga->a_min, gb->a_min, ga->h_support, gb->h_support,
+                                    &wp, &a_big, &r2);
+  if (d == GRAVITY_WALK_P2P) {
+    p2p_pair(p, a, b, symmetric, gp);
+  } else if (d == GRAVITY_WALK_M2P) {
+    const struct cell *big = a_big ? a : b, *small = a_big ? b : a;
+    counters.m2p += big->count;
+    record_distance(r2);
+    if (recording && (symmetric || a_big)) record(big, small, 1, 0);
+    if (gpu_sink) {
+      /* M2P to big's particles, P2L to small's local expansion */
+      if (symmetric || a_big) rec_add(&gpu_sink->part, big->index, -1 - small->index);
+      if (symmetric || !a_big) rec_add(&gpu_sink->field, small->index, -1 - big->index);
       return;
     }
+    m2p_leaf(p, big, gc + small->index, symmetric || a_big, symmetric || !a_big,
+             gp->eps2_expansion, gp->G, gp->order);
+  } else if (d == GRAVITY_WALK_M2L) {
     counters.m2l++;
     record_distance(r2);
     if (gpu_sink) {
@@ -597,23 +562,21 @@ static void walk_pair(struct parts *p, const struct cell *a, const struct cell *
       return;
     }
     /* one-way: target a, source b, the tensor at z_a - z_b */
+    const double R[3] = {gb->mp.com[0] - ga->mp.com[0], gb->mp.com[1] - ga->mp.com[1],
+                         gb->mp.com[2] - ga->mp.com[2]};
     m2l_cells(ga, gb, R, gp->eps2_expansion, gp->order, symmetric);
-    return;
-  }
-  if (!a->split && !b->split) {
-    p2p_pair(p, a, b, symmetric, gp);
-    return;
-  }
-  /* the larger cell that is split (ties: a), as in Dehnen 2002 */
-  const int open_a = a->split && (!b->split || ga->mp.r_max >= gb->mp.r_max);
-  const struct cell *big = open_a ? a : b;
-  for (int q = 0; q < 8; q++) {
-    const struct cell *c = big->progeny[q];
-    if (c == NULL) continue;
-    if (open_a)
-      walk_pair(p, c, b, symmetric, gc, gp);
-    else
-      walk_pair(p, a, c, symmetric, gc, gp);
+  } else if (d != GRAVITY_WALK_NONE) {
+    /* the larger cell that is split: its progeny meet the other */
+    const int open_a = d == GRAVITY_WALK_OPEN_A;
+    const struct cell *big = open_a ? a : b;
+    for (int q = 0; q < 8; q++) {
+      const struct cell *c = big->progeny[q];
+      if (c == NULL) continue;
+      if (open_a)
+        walk_pair(p, c, b, symmetric, gc, gp);
+      else
+        walk_pair(p, a, c, symmetric, gc, gp);
+    }
   }
 }
 
@@ -643,16 +606,19 @@ void gravity_interact_cells(struct parts *p, const struct cell *ci, const struct
 
 int gravity_top_pair_is_near(const struct cell *ci, const struct cell *cj,
                              const struct gravity_props *gp) {
-  double ri2 = 0.0, rj2 = 0.0, d2 = 0.0;
-  for (int k = 0; k < 3; k++) {
-    const double wi = ci->bmax[k] - ci->bmin[k];
-    const double wj = cj->bmax[k] - cj->bmin[k];
-    const double d = 0.5 * (cj->bmin[k] + cj->bmax[k] - ci->bmin[k] - ci->bmax[k]);
-    ri2 += 0.25 * wi * wi;
-    rj2 += 0.25 * wj * wj;
-    d2 += d * d;
+  return gravity_walk_top_near(ci->bmin, ci->bmax, cj->bmin, cj->bmax, gp->theta, gp->h_support);
+}
+
+void gravity_walk_tree_arrays(const struct cell *cells, int nr_cells, int *progeny, int *count,
+                              unsigned char *split) {
+  for (int k = 0; k < nr_cells; k++) {
+    const struct cell *c = cells + k;
+    if (c->index != k) error_bug("cell %d has index %d", k, c->index);
+    count[k] = (int)c->count;
+    split[k] = (unsigned char)(c->split != 0);
+    for (int q = 0; q < 8; q++)
+      progeny[8 * k + q] = c->split && c->progeny[q] ? c->progeny[q]->index : -1;
   }
-  return !gravity_mac(sqrt(ri2), sqrt(rj2), d2, gp->theta, gp->h_support);
 }
 
 void gravity_long_range(struct parts *p, const struct cell *ci, const struct cell *tops, int nr_top,

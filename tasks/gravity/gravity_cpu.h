@@ -216,6 +216,11 @@ struct gravity_gpu_rec {
   struct gravity_rec_list part_sym;  /**< P2P of two distinct leaves, both receiving */
   struct gravity_rec_list field_sym; /**< M2L of two cells, both receiving */
 };
+/** The tree of the cells [0, nr_cells) (cells[k].index == k) as the
+ *  walk of gravity_walk.h reads it: 8 progeny indices per cell (-1: none),
+ *  particle counts, split flags. */
+void gravity_walk_tree_arrays(const struct cell *cells, int nr_cells, int *progeny, int *count,
+                              unsigned char *split);
 /** From now on the calling thread's walks record their interactions in r
  *  (appending) instead of computing them; NULL: compute them again. */
 void gravity_gpu_record(struct gravity_gpu_rec *r);

@@ -1,0 +1,219 @@
+/* The tree walks of self-gravity as inline functions on index arrays, for
+ * a walk that records its interactions (what gravity_gpu_record makes the
+ * CPU's recursive walks of gravity_cpu.c do): the decisions of walk_pair
+ * (gravity_walk_decide), the near test of two top-level cells
+ * (gravity_walk_top_near) and a walk with an explicit stack from one root
+ * (gravity_walk_run).  The GPU's walk kernel (tasks/gravity/gravity_gpu.cu)
+ * runs gravity_walk_run from every root; tests/test_gravity_walk.c runs it
+ * on the CPU and checks that it records the same interactions as the
+ * recursive walks.  theory/gravity.md, "On the GPU". */
+#ifndef BOLIDE_GRAVITY_WALK_H
+#define BOLIDE_GRAVITY_WALK_H
+
+#include "gravity_iact.h"
+
+/** A leaf meeting a cell GRAVITY_LOPSIDED times smaller (radius) interacts
+ *  particle by particle (gravity_walk_decide). */
+#define GRAVITY_LOPSIDED 2.0
+
+/** Opening angle of the first pass, when the adaptive criterion has no
+ *  acceleration scale yet, in units of Gravity:theta_cr (tests/test_gravity:
+ *  0.7 brings the 99th percentile of the first pass under 1e-3). */
+#define GRAVITY_THETA_FIRST 0.7
+
+/** Entries of the walk's stack (3 ints each); a deeper walk stops and
+ *  reports it (gravity_walk_run returns 0). */
+#define GRAVITY_WALK_STACK 1024
+
+/** The cell tree as the walk reads it, by cell index. */
+struct gravity_walk_tree {
+  const int *progeny;                   /**< 8 per cell: child cell or -1 */
+  const int *count;                     /**< particles of each cell */
+  const unsigned char *split;           /**< 1: the cell has progeny */
+  const struct gravity_multipole *mp;   /**< multipoles (com, r_max, M[0]) */
+  const double *a_min, *h_support;      /**< struct gravity_cell's (gravity_up) */
+};
+
+/** The acceptance parameters of struct gravity_props. */
+struct gravity_walk_params {
+  double G, theta, epsilon_fmm, h_support, h_factor;
+  int order;
+};
+
+/** What the walk records: four lists of (target, source) cell pairs, in
+ *  the encoding of struct gravity_gpu_rec (source < 0: -1 - cell, an M2P
+ *  or P2L source).  0: part, 1: field, 2: part_sym, 3: field_sym.  Entries
+ *  past cap[k] are counted but not written (the caller grows and walks
+ *  again). */
+struct gravity_walk_lists {
+  int *target[4], *source[4];
+  unsigned long long *n; /**< 4 counters */
+  unsigned long long cap[4];
+};
+
+enum { GRAVITY_REC_PART, GRAVITY_REC_FIELD, GRAVITY_REC_PART_SYM, GRAVITY_REC_FIELD_SYM };
+
+/** Append (t, s) to list k (atomically on the GPU). */
+BOLIDE_INLINE void gravity_walk_emit(const struct gravity_walk_lists *L, int k, int t, int s) {
+#ifdef __CUDA_ARCH__
+  const unsigned long long i = atomicAdd(L->n + k, 1ULL);
+#else
+  const unsigned long long i = L->n[k]++;
+#endif
+  if (i < L->cap[k]) {
+    L->target[k][i] = t;
+    L->source[k][i] = s;
+  }
+}
+
+/** Outcomes of gravity_walk_decide. */
+enum {
+  GRAVITY_WALK_NONE,   /**< an empty cell: nothing */
+  GRAVITY_WALK_M2L,    /**< multipole to local expansion */
+  GRAVITY_WALK_P2P,    /**< two leaves, particle by particle */
+  GRAVITY_WALK_M2P,    /**< a leaf much larger than a split cell: M2P to it, P2L back */
+  GRAVITY_WALK_OPEN_A, /**< open a (its children meet b) */
+  GRAVITY_WALK_OPEN_B  /**< open b */
+};
+
+/** Acceptance of the interaction between cells a and b (multipoles ma,
+ *  mb, previous-pass scales a_min, largest supports hs), the same in both
+ *  directions (mutual interactions conserve momentum): the geometric
+ *  criterion and, where the previous pass gave a scale, the adaptive one
+ *  for a and for b.  Without a scale yet (a run's first step) while the
+ *  adaptive criterion is on, a tighter geometric angle stands in for it.
+ *  The support beyond which every pair of a and b is Newtonian is the
+ *  constant one or, with the softening tied to h, the larger of the two
+ *  cells' largest supports. */
+BOLIDE_INLINE int gravity_walk_accept(const struct gravity_multipole *ma,
+                                      const struct gravity_multipole *mb, double a_min_a,
+                                      double a_min_b, double hs_a, double hs_b, double r2,
+                                      const struct gravity_walk_params *wp) {
+  const double theta = (wp->epsilon_fmm > 0.0 && (a_min_a <= 0.0 || a_min_b <= 0.0))
+                           ? GRAVITY_THETA_FIRST * wp->theta
+                           : wp->theta;
+  const double hs = wp->h_factor > 0.0 ? fmax(hs_a, hs_b) : wp->h_support;
+  if (!gravity_mac(ma->r_max, mb->r_max, r2, theta, hs)) return 0;
+  const double rs = ma->r_max + mb->r_max;
+  return gravity_mac_adaptive(wp->G, mb->M[0], rs, r2, wp->order, wp->epsilon_fmm, a_min_a) &&
+         gravity_mac_adaptive(wp->G, ma->M[0], rs, r2, wp->order, wp->epsilon_fmm, a_min_b);
+}
+
+/** The dual-tree walk's step between disjoint cells a and b (Dehnen 2002),
+ *  from what it reads of them (particle counts, split flags, multipoles,
+ *  a_min, h_support): M2L where the criterion accepts, unless one side is
+ *  a leaf GRAVITY_LOPSIDED times larger than the other (then P2P if the
+ *  other is a leaf too, else M2P to the big leaf's particles and P2L back:
+ *  a local expansion as large as the leaf would add up the truncation
+ *  errors of the many small cells it meets); P2P between two leaves; else
+ *  open the larger cell that can be opened (ties: a).  *a_big: for M2P,
+ *  whether a is the big leaf; *r2: the squared distance of the centres. */
+BOLIDE_INLINE int gravity_walk_choose(int count_a, int count_b, int split_a, int split_b,
+                                      const struct gravity_multipole *ma,
+                                      const struct gravity_multipole *mb, double a_min_a,
+                                      double a_min_b, double hs_a, double hs_b,
+                                      const struct gravity_walk_params *wp, int *a_big,
+                                      double *r2) {
+  if (count_a == 0 || count_b == 0) return GRAVITY_WALK_NONE;
+  const double R[3] = {mb->com[0] - ma->com[0], mb->com[1] - ma->com[1], mb->com[2] - ma->com[2]};
+  *r2 = R[0] * R[0] + R[1] * R[1] + R[2] * R[2];
+  if (gravity_walk_accept(ma, mb, a_min_a, a_min_b, hs_a, hs_b, *r2, wp)) {
+    *a_big = ma->r_max >= mb->r_max;
+    const int split_big = *a_big ? split_a : split_b, split_small = *a_big ? split_b : split_a;
+    const double r_big = *a_big ? ma->r_max : mb->r_max, r_small = *a_big ? mb->r_max : ma->r_max;
+    if (!split_big && r_big > GRAVITY_LOPSIDED * r_small)
+      return split_small ? GRAVITY_WALK_M2P : GRAVITY_WALK_P2P;
+    return GRAVITY_WALK_M2L;
+  }
+  if (!split_a && !split_b) return GRAVITY_WALK_P2P;
+  return split_a && (!split_b || ma->r_max >= mb->r_max) ? GRAVITY_WALK_OPEN_A
+                                                          : GRAVITY_WALK_OPEN_B;
+}
+
+/** gravity_walk_choose for cells a and b of the tree T. */
+BOLIDE_INLINE int gravity_walk_decide(const struct gravity_walk_tree *T,
+                                      const struct gravity_walk_params *wp, int a, int b,
+                                      int *a_big) {
+  double r2;
+  return gravity_walk_choose(T->count[a], T->count[b], T->split[a], T->split[b], T->mp + a,
+                             T->mp + b, T->a_min[a], T->a_min[b], T->h_support[a],
+                             T->h_support[b], wp, a_big, &r2);
+}
+
+/** Whether two top-level cells, with bounding boxes lo/hi (3 each), are
+ *  near: their walk is a pair task's (symmetric) rather than a long-range
+ *  one (gravity_top_pair_is_near). */
+BOLIDE_INLINE int gravity_walk_top_near(const double *lo_i, const double *hi_i,
+                                        const double *lo_j, const double *hi_j, double theta,
+                                        double h_support) {
+  double ri2 = 0.0, rj2 = 0.0, d2 = 0.0;
+  for (int k = 0; k < 3; k++) {
+    const double wi = hi_i[k] - lo_i[k];
+    const double wj = hi_j[k] - lo_j[k];
+    const double d = 0.5 * (lo_j[k] + hi_j[k] - lo_i[k] - hi_i[k]);
+    ri2 += 0.25 * wi * wi;
+    rj2 += 0.25 * wj * wj;
+    d2 += d * d;
+  }
+  return !gravity_mac(sqrt(ri2), sqrt(rj2), d2, theta, h_support);
+}
+
+/** The walk from one root, recorded in L: root_a == root_b: every
+ *  interaction within the cell (the self walk: each child's own and each
+ *  pair of children, symmetric); else the pair walk of root_a with root_b,
+ *  both receiving (sym) or only root_a (a long-range walk).  stack: room
+ *  for GRAVITY_WALK_STACK entries of 3 ints.  Returns 0 if the stack was
+ *  too small (the walk is then incomplete), 1 otherwise. */
+BOLIDE_INLINE int gravity_walk_run(const struct gravity_walk_tree *T,
+                                   const struct gravity_walk_params *wp,
+                                   const struct gravity_walk_lists *L, int root_a, int root_b,
+                                   int sym, int *stack) {
+  int n = 0;
+  stack[0] = root_a, stack[1] = root_b, stack[2] = sym, n = 1;
+  while (n > 0) {
+    n--;
+    const int a = stack[3 * n], b = stack[3 * n + 1], s = stack[3 * n + 2];
+    if (a == b) { /* self */
+      if (T->count[a] < 2) continue;
+      if (!T->split[a]) {
+        gravity_walk_emit(L, GRAVITY_REC_PART, a, a);
+        continue;
+      }
+      for (int q = 0; q < 8; q++) {
+        const int cq = T->progeny[8 * a + q];
+        if (cq < 0) continue;
+        if (n + 8 > GRAVITY_WALK_STACK) return 0;
+        stack[3 * n] = cq, stack[3 * n + 1] = cq, stack[3 * n + 2] = 1, n++;
+        for (int r = q + 1; r < 8; r++) {
+          const int cr = T->progeny[8 * a + r];
+          if (cr < 0) continue;
+          stack[3 * n] = cq, stack[3 * n + 1] = cr, stack[3 * n + 2] = 1, n++;
+        }
+      }
+      continue;
+    }
+    int a_big = 0;
+    const int d = gravity_walk_decide(T, wp, a, b, &a_big);
+    if (d == GRAVITY_WALK_P2P) {
+      gravity_walk_emit(L, s ? GRAVITY_REC_PART_SYM : GRAVITY_REC_PART, a, b);
+    } else if (d == GRAVITY_WALK_M2P) {
+      const int big = a_big ? a : b, small = a_big ? b : a;
+      if (s || a_big) gravity_walk_emit(L, GRAVITY_REC_PART, big, -1 - small);
+      if (s || !a_big) gravity_walk_emit(L, GRAVITY_REC_FIELD, small, -1 - big);
+    } else if (d == GRAVITY_WALK_M2L) {
+      gravity_walk_emit(L, s ? GRAVITY_REC_FIELD_SYM : GRAVITY_REC_FIELD, a, b);
+    } else if (d != GRAVITY_WALK_NONE) { /* open a or b: its children meet the other */
+      const int open_a = d == GRAVITY_WALK_OPEN_A, big = open_a ? a : b;
+      if (n + 8 > GRAVITY_WALK_STACK) return 0;
+      for (int q = 0; q < 8; q++) {
+        const int c = T->progeny[8 * big + q];
+        if (c < 0) continue;
+        stack[3 * n] = open_a ? c : a, stack[3 * n + 1] = open_a ? b : c, stack[3 * n + 2] = s;
+        n++;
+      }
+    }
+  }
+  return 1;
+}
+
+#endif

@@ -1,0 +1,176 @@
+/* The walk with an explicit stack on index arrays (gravity_walk.h, the one
+ * the GPU's walk kernel runs) against the CPU's recursive walks, both
+ * recording instead of computing: every root as gpu_grav_tree_all walks
+ * them (the self walk of each top-level cell, the symmetric walk of each
+ * near pair, the long-range walk of each far pair), and the four lists
+ * (part, field, part_sym, field_sym) must hold the same (target, source)
+ * entries, as multisets.  Sets: a uniform sphere and two clustered Plummer
+ * spheres (lopsided M2P and P2L), each at the first pass (no acceleration
+ * scale: the tighter geometric angle) and at a second pass (the adaptive
+ * criterion on |ga| of the first), with the constant softening and with
+ * the softening tied to h.  Exit 0 pass, 1 fail. */
+#ifdef HAVE_CONFIG_H
+#include "config.h"
+#endif
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "error.h"
+#include "gravity/gravity_cpu.h"
+#include "gravity/gravity_walk.h"
+#include "gravity_sets.h"
+#include "part.h"
+#include "space.h"
+
+#define BOX 4.0
+
+static int failures = 0;
+
+/** (target, source) entries as 64-bit keys, for sorting. */
+static int cmp_u64(const void *a, const void *b) {
+  const unsigned long long x = *(const unsigned long long *)a, y = *(const unsigned long long *)b;
+  return x < y ? -1 : x > y;
+}
+
+static unsigned long long *keys(const int *t, const int *s, size_t n) {
+  unsigned long long *k = malloc((n ? n : 1) * sizeof *k);
+  for (size_t i = 0; i < n; i++)
+    k[i] = ((unsigned long long)(unsigned)t[i] << 32) | (unsigned long long)(unsigned)s[i];
+  qsort(k, n, sizeof *k, cmp_u64);
+  return k;
+}
+
+/** Compare list k of the recursive walks (a) with the stack walk's (b). */
+static void compare(const char *what, const char *kind, const struct gravity_rec_list *a,
+                    const int *bt, const int *bs, unsigned long long bn) {
+  int ok = a->n == bn;
+  if (ok) {
+    unsigned long long *ka = keys(a->target, a->source, a->n), *kb = keys(bt, bs, bn);
+    ok = memcmp(ka, kb, a->n * sizeof *ka) == 0;
+    free(ka);
+    free(kb);
+  }
+  printf("  %-44s %-10s %9zu recursive, %9llu stack: %s\n", what, kind, a->n, bn,
+         ok ? "same" : "FAIL");
+  failures += !ok;
+}
+
+static void run(const char *name, int two_bodies, double h_factor) {
+  const size_t n = 30000;
+  struct parts p;
+  parts_alloc(&p, n);
+  p.count = n;
+  srand48(7);
+  const double c[3] = {0.5 * BOX, 0.5 * BOX, 0.5 * BOX};
+  for (size_t i = 0; i < n; i++) {
+    double x[3];
+    if (two_bodies)
+      gset_two_bodies(i, n, c, x);
+    else
+      gset_place(cbrt(drand48()), c, x);
+    p.x[i] = x[0], p.y[i] = x[1], p.z[i] = x[2];
+    p.m[i] = 1.0 / n;
+    p.h[i] = 0.01 * (1.0 + drand48());
+    p.id[i] = (int64_t)i;
+  }
+  const double box[3] = {BOX, BOX, BOX};
+  struct space sp;
+  space_init(&sp, &p, box, 0, 16, 8);
+  space_rebuild(&sp);
+  struct gravity_props gp;
+  gravity_props_set(&gp, 1.0, 0.5, 2e-3, GRAVITY_SOFTENING_SPLINE, GRAVITY_ORDER_DEFAULT);
+  gp.epsilon_fmm = GRAVITY_EPSILON_FMM_DEFAULT;
+  gp.h_factor = h_factor;
+  int cap = 0;
+  struct gravity_cell *gc = gravity_cells_reserve(NULL, &cap, sp.cells_capacity);
+  memset(gc, 0, (size_t)cap * sizeof *gc);
+  const int nc = sp.nr_cells, nt = sp.nr_top;
+  /* the tree as index arrays */
+  int *progeny = malloc(8 * (size_t)nc * sizeof(int)), *count = malloc((size_t)nc * sizeof(int));
+  unsigned char *split = malloc((size_t)nc);
+  gravity_walk_tree_arrays(sp.cells, nc, progeny, count, split);
+  struct gravity_multipole *mp = malloc((size_t)nc * sizeof *mp);
+  double *a_min = malloc((size_t)nc * sizeof(double)), *hs = malloc((size_t)nc * sizeof(double));
+  int *stack = malloc(3 * GRAVITY_WALK_STACK * sizeof(int));
+  for (int pass = 0; pass < 2; pass++) {
+    if (pass == 1) gravity_tree_all(&p, sp.cells, nt, gc, &gp); /* |ga| for the adaptive pass */
+    for (int i = 0; i < nt; i++) gravity_up(&p, sp.cells + i, gc, &gp);
+    /* the recursive walks, recorded */
+    struct gravity_gpu_rec rec;
+    memset(&rec, 0, sizeof rec);
+    gravity_gpu_record(&rec);
+    for (int i = 0; i < nt; i++) {
+      gravity_interact_cells(&p, sp.cells + i, sp.cells + i, gc, &gp);
+      for (int j = i + 1; j < nt; j++)
+        if (gravity_top_pair_is_near(sp.cells + i, sp.cells + j, &gp))
+          gravity_interact_cells(&p, sp.cells + i, sp.cells + j, gc, &gp);
+    }
+    for (int i = 0; i < nt; i++) gravity_long_range(&p, sp.cells + i, sp.cells, nt, gc, &gp);
+    gravity_gpu_record(NULL);
+    /* the stack walk from every root */
+    for (int k = 0; k < nc; k++) mp[k] = gc[k].mp, a_min[k] = gc[k].a_min, hs[k] = gc[k].h_support;
+    const struct gravity_walk_tree T = {progeny, count, split, mp, a_min, hs};
+    const struct gravity_walk_params wp = {gp.G, gp.theta, gp.epsilon_fmm, gp.h_support,
+                                           gp.h_factor, gp.order};
+    unsigned long long cnt[4] = {0, 0, 0, 0};
+    struct gravity_walk_lists L;
+    L.n = cnt;
+    const size_t capk = 4 * (rec.part.n + rec.field.n + rec.part_sym.n + rec.field_sym.n) + 16;
+    for (int k = 0; k < 4; k++) {
+      L.target[k] = malloc(capk * sizeof(int));
+      L.source[k] = malloc(capk * sizeof(int));
+      L.cap[k] = capk;
+    }
+    int deep = 0;
+    for (int i = 0; i < nt; i++)
+      for (int j = 0; j < nt; j++) {
+        const struct cell *ci = sp.cells + i, *cj = sp.cells + j;
+        if (ci->count == 0 || cj->count == 0) continue;
+        const int near = i == j || gravity_walk_top_near(ci->bmin, ci->bmax, cj->bmin, cj->bmax,
+                                                         gp.theta, gp.h_support);
+        if (i == j)
+          deep += !gravity_walk_run(&T, &wp, &L, i, i, 1, stack);
+        else if (near && j > i)
+          deep += !gravity_walk_run(&T, &wp, &L, i, j, 1, stack);
+        else if (!near)
+          deep += !gravity_walk_run(&T, &wp, &L, i, j, 0, stack);
+      }
+    char what[128];
+    snprintf(what, sizeof what, "%s, %s, %s", name, pass ? "adaptive pass" : "first pass",
+             h_factor > 0.0 ? "eps tied to h" : "constant eps");
+    if (deep) {
+      printf("  %s: %d walks ran out of stack: FAIL\n", what, deep);
+      failures++;
+    }
+    compare(what, "part", &rec.part, L.target[0], L.source[0], cnt[0]);
+    compare(what, "field", &rec.field, L.target[1], L.source[1], cnt[1]);
+    compare(what, "part_sym", &rec.part_sym, L.target[2], L.source[2], cnt[2]);
+    compare(what, "field_sym", &rec.field_sym, L.target[3], L.source[3], cnt[3]);
+    size_t n_m2p = 0;
+    for (size_t k = 0; k < rec.part.n; k++) n_m2p += rec.part.source[k] < 0;
+    if (rec.field_sym.n == 0 || rec.part_sym.n == 0 || rec.field.n == 0 ||
+        (two_bodies && n_m2p == 0)) {
+      printf("  %s: a list the case must exercise is empty: FAIL\n", what);
+      failures++;
+    }
+    for (int k = 0; k < 4; k++) free(L.target[k]), free(L.source[k]);
+    gravity_gpu_rec_free(&rec);
+  }
+  free(progeny), free(count), free(split), free(mp), free(a_min), free(hs), free(stack);
+  free(gc);
+  space_free(&sp);
+  parts_free(&p);
+}
+
+int main(int argc, char **argv) {
+  error_init(argc > 0 ? argv[0] : "test_gravity_walk");
+  printf("stack walk (gravity_walk.h) against the recursive walks, recorded:\n");
+  run("uniform sphere", 0, 0.0);
+  run("two Plummer spheres", 1, 0.0);
+  run("two Plummer spheres", 1, 1.0);
+  printf(failures ? "FAIL\n" : "PASS\n");
+  return failures ? 1 : 0;
+}
