@@ -687,7 +687,7 @@ static int run_gravity_case(struct gpu *g, size_t n, int softening, unsigned lon
   gravity_tree_all(&p, sp.cells, sp.nr_top, gcp, &gp);
   const double t_cpu = error_walltime() - t0;
   t0 = error_walltime();
-  gpu_grav_tree_all(gg, &h, &rec, &q, &sp, gcq, &gp, 0, 0);
+  gpu_grav_tree_all(gg, &h, &rec, &q, &sp, gcq, &gp, 0, 0, 0);
   const double t_gpu = error_walltime() - t0;
   /* the interactions, a mutual one counted in each direction */
   size_t n_m2p = 0, n_p2l = 0;
@@ -721,7 +721,7 @@ static int run_gravity_case(struct gpu *g, size_t n, int softening, unsigned lon
   gravity_record_begin(&il);
   gravity_tree_all(&p, sp.cells, sp.nr_top, gcp, &gp);
   gravity_record_end();
-  gpu_grav_tree_all(gg, &h, &rec, &q, &sp, gcq, &gp, 0, 0);
+  gpu_grav_tree_all(gg, &h, &rec, &q, &sp, gcq, &gp, 0, 0, 0);
   fail += gravity_report("second (adaptive) evaluation", &p, &q);
 
   /* 2b: the same evaluation with the upward pass on the device
@@ -731,9 +731,14 @@ static int run_gravity_case(struct gpu *g, size_t n, int softening, unsigned lon
   struct gravity_cell *gcd = gravity_cells_reserve(NULL, &capd, sp.cells_capacity);
   memset(gcd, 0, (size_t)capd * sizeof *gcd);
   for (size_t i = 0; i < n; i++) q.gax[i] = ga1[3 * i], q.gay[i] = ga1[3 * i + 1], q.gaz[i] = ga1[3 * i + 2];
-  gpu_grav_tree_all(gg, &h, &rec, &q, &sp, gcd, &gp, 0, 1);
+  gpu_grav_tree_all(gg, &h, &rec, &q, &sp, gcd, &gp, 0, 1, 0);
   fail += gravity_up_report(&sp, gcq, gcd, gp.order);
   fail += gravity_report("second, multipoles on the GPU", &p, &q);
+  /* 2c: and the walks on the device too (Scheduler:gpu_walks: device):
+   * the same decisions on the same multipoles */
+  for (size_t i = 0; i < n; i++) q.gax[i] = ga1[3 * i], q.gay[i] = ga1[3 * i + 1], q.gaz[i] = ga1[3 * i + 2];
+  gpu_grav_tree_all(gg, &h, &rec, &q, &sp, gcd, &gp, 0, 1, 1);
+  fail += gravity_report("second, multipoles and walks on the GPU", &p, &q);
   free(gcd);
   free(ga1);
 

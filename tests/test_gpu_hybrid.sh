@@ -15,6 +15,9 @@
 #   updev   auto with Scheduler:gpu_multipoles: device (P2M and M2M on the
 #           GPU, the multipoles back for the CPU's walks)
 #   alldev  all with the same
+#   walkdev auto with Scheduler:gpu_walks: device (multipoles and walks on
+#           the GPU: self-gravity entirely on the device)
+#   allwalk all with the same
 #  1. Evrard collapse (7,208 particles, hydro + tree gravity), 40 steps.
 #  2. The same with Gravity:reuse_steps 2 (replayed steps), auto and nograv.
 #  3. The basalt impact of test_gpu_run.sh (Collins strength, Grady-Kipp
@@ -39,6 +42,8 @@ run() {
     nograv) flag=(--gpu -P "Scheduler:gpu:[$hydro]") ;;
     updev) flag=(--gpu -P Scheduler:gpu_multipoles:device) ;;
     alldev) flag=(--gpu -P Scheduler:gpu:all -P Scheduler:gpu_multipoles:device) ;;
+    walkdev) flag=(--gpu -P Scheduler:gpu_walks:device) ;;
+    allwalk) flag=(--gpu -P Scheduler:gpu:all -P Scheduler:gpu_walks:device) ;;
   esac
   (cd "$c/$m" && "$B/bolide" "${flag[@]}" -n "$n" params.yml >run.log 2>&1) ||
     { tail -5 "$c/$m/run.log"; exit 1; }
@@ -74,7 +79,7 @@ compare() {
 mkdir -p evrard/cpu
 "${PYTHON:-python3}" "$S/examples/EvrardCollapse/make_ic.py" 24 evrard/cpu/evrard.hdf5 >/dev/null
 cp "$S/examples/EvrardCollapse/params.yml" evrard/cpu/
-for m in cpu all auto list nograv updev alldev; do run evrard $m 40; done
+for m in cpu all auto list nograv updev alldev walkdev allwalk; do run evrard $m 40; done
 expect evrard all "(one after the other: the CPU part, the GPU part, then the hydrodynamics)"
 expect evrard all "GPU runner (serial)"
 for m in auto list; do
@@ -88,9 +93,14 @@ for m in auto list nograv; do
     { echo "FAIL: evrard/$m: its FORCE phases did not run the CPU beside the GPU"; exit 1; }
 done
 grep -h "^GPU runner" evrard/*/run.log
-for m in updev alldev; do
+for m in updev alldev walkdev allwalk; do
   grep -q "upward passes (P2M, M2M) on the device" evrard/$m/run.log ||
     { echo "FAIL: evrard/$m: no upward pass ran on the device"; exit 1; }
+done
+for m in walkdev allwalk; do
+  grep -q "walks on the device" evrard/$m/run.log ||
+    { echo "FAIL: evrard/$m: no walk ran on the device"; exit 1; }
+  expect evrard $m "self-gravity entirely on the GPU (Scheduler:gpu_walks: device"
 done
 
 # 2. reuse of the far field
@@ -136,15 +146,15 @@ Materials:
 Damage:
   seed: 11
 YML
-for m in cpu all auto updev; do run impact $m 40; done
+for m in cpu all auto updev walkdev; do run impact $m 40; done
 expect impact auto "gradient, extra ghost (plasticity, dS/dt), force, damage, kick2"
 expect impact auto "GPU runner (hybrid)"
 
 fail=0
-for m in all auto list nograv updev alldev; do compare evrard cpu $m || fail=1; done
-for m in auto list updev alldev; do compare evrard all $m || fail=1; done
+for m in all auto list nograv updev alldev walkdev allwalk; do compare evrard cpu $m || fail=1; done
+for m in auto list updev alldev walkdev allwalk; do compare evrard all $m || fail=1; done
 for m in auto nograv updev; do compare reuse cpu $m || fail=1; done
-for m in all auto updev; do compare impact cpu $m || fail=1; done
+for m in all auto updev walkdev; do compare impact cpu $m || fail=1; done
 compare impact all auto || fail=1
 [ $fail -eq 0 ] && echo PASS
 exit $fail

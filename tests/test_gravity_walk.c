@@ -125,6 +125,8 @@ static void run(const char *name, int two_bodies, double h_factor) {
       L.cap[k] = capk;
     }
     int deep = 0;
+    struct gravity_walk_buf B;
+    memset(B.n, 0, sizeof B.n);
     for (int i = 0; i < nt; i++)
       for (int j = 0; j < nt; j++) {
         const struct cell *ci = sp.cells + i, *cj = sp.cells + j;
@@ -132,12 +134,13 @@ static void run(const char *name, int two_bodies, double h_factor) {
         const int near = i == j || gravity_walk_top_near(ci->bmin, ci->bmax, cj->bmin, cj->bmax,
                                                          gp.theta, gp.h_support);
         if (i == j)
-          deep += !gravity_walk_run(&T, &wp, &L, i, i, 1, stack);
+          deep += !gravity_walk_run(&T, &wp, &L, &B, i, i, 1, stack);
         else if (near && j > i)
-          deep += !gravity_walk_run(&T, &wp, &L, i, j, 1, stack);
+          deep += !gravity_walk_run(&T, &wp, &L, &B, i, j, 1, stack);
         else if (!near)
-          deep += !gravity_walk_run(&T, &wp, &L, i, j, 0, stack);
+          deep += !gravity_walk_run(&T, &wp, &L, &B, i, j, 0, stack);
       }
+    for (int k = 0; k < 4; k++) gravity_walk_flush(&L, &B, k);
     char what[128];
     snprintf(what, sizeof what, "%s, %s, %s", name, pass ? "adaptive pass" : "first pass",
              h_factor > 0.0 ? "eps tied to h" : "constant eps");

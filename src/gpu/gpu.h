@@ -83,6 +83,8 @@ struct gpu_grav_tree {
   int nr_leaves;          /**< non-empty leaves */
   const int *leaf;        /**< their cell indices */
   const double *centre;   /**< 3 per cell: the centre of its box */
+  const int *progeny;     /**< 8 per cell: child cell or -1 (gravity_walk_tree_arrays) */
+  const unsigned char *split; /**< 1 per cell: it has progeny */
 };
 
 /** Self-gravity's device state (buffers of the tree, the multipoles, the
@@ -146,6 +148,15 @@ struct gravity_multipole *gpu_grav_multipoles(struct gpu_grav *gg, int nr_cells)
 void gpu_grav_up(struct gpu_grav *gg, struct parts *p, int order, double h_factor, int resident,
                  const struct gravity_multipole **mp, const double **a_min,
                  const double **h_support);
+/** The walks on the device (gravity_walk.h, the CPU's decisions) from
+ *  every pair of the nr_top top-level cells (cells 0 .. nr_top - 1, boxes
+ *  lo_hi: 6 doubles each, as now on the host), on the multipoles of this
+ *  evaluation's gpu_grav_up (required before): the interactions stay on
+ *  the device for the next gpu_grav_run, which then uploads no records.
+ *  theta, h_support (the constant support), G, epsilon_fmm, h_factor,
+ *  order: as struct gravity_props. */
+void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_top, double theta,
+                   double h_support, double G, double epsilon_fmm, double h_factor, int order);
 /** One gravity evaluation on the device, ending with p's pot, gax, gay, gaz
  *  complete on the device and on the host.  replay = 0: the multipoles
  *  (gpu_grav_multipoles) and the interactions that the walks recorded in

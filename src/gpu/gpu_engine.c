@@ -39,6 +39,7 @@ struct gpu_engine {
   struct gpu_grav_host grav_host; /**< its host side: the tree as index arrays */
   struct gravity_multipole *mp;   /**< pinned staging of the multipoles (grav_up tasks fill it) */
   int up_on_device;               /**< Scheduler:gpu_multipoles: device (P2M, M2M on the GPU) */
+  int walk_on_device;             /**< Scheduler:gpu_walks: device (the walks on the GPU too) */
   double t_grav_walk;             /**< host seconds of the gravity tasks (up, walks) */
   double t_grav_gpu;              /**< seconds of the device part (copies included) */
   long grav_evals;                /**< gravity evaluations */
@@ -522,6 +523,20 @@ void gpu_engine_init(struct engine *e) {
   ge->cells.leaf_size = (int)params_get_int(e->params, "Scheduler:gpu_leaf_size");
   ge->cells.host_lists = params_get_enum(e->params, "Scheduler:gpu_lists") == 1;
   ge->up_on_device = params_get_enum(e->params, "Scheduler:gpu_multipoles") == 1;
+  ge->walk_on_device = params_get_enum(e->params, "Scheduler:gpu_walks") == 1;
+  if (ge->walk_on_device && !ge->up_on_device) {
+    if (params_given(e->params, "Scheduler:gpu_multipoles"))
+      error_exit("%s: Scheduler:gpu_walks: device needs Scheduler:gpu_multipoles: device (the "
+                 "walks read the multipoles where they are computed)",
+                 params_filename(e->params));
+    ge->up_on_device = 1;
+  }
+  /* the far-field reuse decides on the shortest M2L/M2P distance, which
+   * the CPU's walks measure */
+  if (ge->walk_on_device && e->gp.enabled && e->gp.reuse_steps > 0 && mode != GPU_MODE_CPU_GRAV)
+    error_exit("%s: Scheduler:gpu_walks: device cannot be combined with Gravity:reuse_steps > 0 "
+               "yet (the reuse's tolerance is measured by the CPU's walks)",
+               params_filename(e->params));
   if (e->gp.enabled && mode != GPU_MODE_CPU_GRAV) {
     ge->grav = gpu_grav_new(g);
     ge->grav_host.built_rebuild = -1;
@@ -546,6 +561,18 @@ void gpu_engine_init(struct engine *e) {
                         : "; self-gravity entirely on the CPU workers (multipoles, walks, M2L, "
                           "P2P, L2P) while the GPU computes the hydrodynamics; ga goes up for the "
                           "kick";
+  if (e->gp.enabled && mode != GPU_MODE_CPU_GRAV && !e->gp.direct && ge->up_on_device)
+    grav = ge->walk_on_device
+               ? "; self-gravity entirely on the GPU (Scheduler:gpu_walks: device: multipoles, "
+                 "walks, M2L, L2L, L2P, M2P and P2P), before the hydrodynamics"
+               : mode == GPU_MODE_SERIAL
+                     ? "; self-gravity: multipoles on the GPU (Scheduler:gpu_multipoles: device), "
+                       "walks on the CPU, M2L, L2L, L2P, M2P and P2P on the GPU (one after the "
+                       "other)"
+                     : "; self-gravity: multipoles on the GPU (Scheduler:gpu_multipoles: device), "
+                       "walks on the CPU, M2L, L2L, L2P, M2P and P2P on the GPU (hybrid: the CPU "
+                       "workers walk while the GPU computes the hydrodynamics; then gravity's GPU "
+                       "part and the kick)";
   error_log(0,
             "GPU %s (%s): drift, density, ghost, %sforce, %skick2 of every cell run on it, the "
             "particles stay on it between steps%s",
@@ -584,6 +611,11 @@ static int gpu_engine_grav_prepare(struct engine *e, int on_gpu) {
     /* Scheduler:gpu_multipoles: device: P2M and M2M on the GPU, the
      * multipoles back for the walks; the grav_up tasks are skipped below */
     if (ge->up_on_device) gpu_grav_up_cells(ge->grav, &e->parts, &e->space, e->gcells, &e->gp, 1);
+    /* Scheduler:gpu_walks: device: the walks too; nothing left for the CPU */
+    if (ge->walk_on_device) {
+      gpu_grav_walk_cells(ge->grav, h, &e->space, &e->gp);
+      return 0;
+    }
     const int nw = e->sched.nr_threads > 0 ? e->sched.nr_threads : 1;
     if (nw > ge->nr_rec) {
       ge->rec = error_realloc(ge->rec, nw * sizeof *ge->rec, "gravity lists");

@@ -91,6 +91,10 @@ struct gpu_grav_host {
   size_t *offset;                       /**< storage of the tree: by cell */
   int *count, cells_cap;                /**< by cell; allocated cells */
   double *centre;                       /**< by cell: its box centre (3 doubles) */
+  int *progeny;                         /**< by cell: 8 children or -1 (walks) */
+  unsigned char *split;                 /**< by cell: split flag (walks) */
+  double *lo_hi;                        /**< by top-level cell: its box (6 doubles, walks) */
+  int lo_hi_cap;                        /**< top-level cells it holds */
   int *l2l_tmp;                         /**< (child, parent, level) while building */
   int *l2l_child, *l2l_parent;          /**< pairs by level */
   int nr_l2l, l2l_cap;                  /**< pairs and allocated length */
@@ -112,16 +116,22 @@ void gpu_grav_host_free(struct gpu_grav_host *h);
  *  and pot are not zeroed: the device's evaluation overwrites them). */
 void gpu_grav_up_cells(struct gpu_grav *gg, struct parts *p, const struct space *s,
                        struct gravity_cell *gc, const struct gravity_props *gp, int resident);
+/** The walks of every top-level cell of s on the device (gpu_grav_walk,
+ *  after gpu_grav_up_cells), with the cells' boxes as they are now. */
+void gpu_grav_walk_cells(struct gpu_grav *gg, struct gpu_grav_host *h, const struct space *s,
+                         const struct gravity_props *gp);
 /** The whole tree method with the far field on the GPU, without tasks, in
  *  the order of gravity_tree_all: gravity_up of every top-level cell on
  *  the CPU, the walks recorded (gravity_gpu_record) into rec (emptied
  *  first; the caller keeps it, e.g. to count the interactions) and run on
  *  the device (gpu_grav_run; resident as there).  Sets p's ga and pot.
- *  up_on_device: the upward pass on the device instead (gpu_grav_up_cells).
- *  For tests; h->built_rebuild must start at -1. */
+ *  up_on_device: the upward pass on the device instead (gpu_grav_up_cells);
+ *  walk_on_device (with up_on_device): the walks too (gpu_grav_walk_cells;
+ *  rec then stays empty).  For tests; h->built_rebuild must start at -1. */
 void gpu_grav_tree_all(struct gpu_grav *gg, struct gpu_grav_host *h, struct gravity_gpu_rec *rec,
                        struct parts *p, const struct space *s, struct gravity_cell *gc,
-                       const struct gravity_props *gp, int resident, int up_on_device);
+                       const struct gravity_props *gp, int resident, int up_on_device,
+                       int walk_on_device);
 
 /** Choose where tasks run from Scheduler:gpu and --gpu/--no-gpu, set
  *  e->gpu when the FORCE phase goes to a device, and say so in one line. */

@@ -44,6 +44,16 @@ struct gpu_grav {
   cudaEvent_t ev_up[2];              /**< the upward pass, copy back included */
   double t_up;                       /**< its accumulated milliseconds */
   long calls_up;                     /**< upward passes on the device */
+  struct gpu_grav_buf progeny, split; /**< the tree for the walks (gravity_walk_tree_arrays) */
+  struct gpu_grav_buf lo_hi;         /**< boxes of the top-level cells (walks) */
+  struct gpu_grav_buf wcount;        /**< 4 list counters, then the out-of-stack counter */
+  struct gpu_grav_buf wlist[4];      /**< the walks' lists: targets, then sources (cap each) */
+  unsigned long long wcap[4];        /**< their capacities (entries) */
+  unsigned long long wn[4];          /**< entries of the last walk */
+  int walk_on_device;                /**< gpu_grav_walk left this evaluation's lists */
+  cudaEvent_t ev_walk[2];            /**< the walks */
+  double t_walk;                     /**< their accumulated milliseconds */
+  long calls_walk, walk_retries;     /**< walks on the device; repeated for longer lists */
   struct gravity_gpu_groups gl[2];   /**< device views of them (last full evaluation) */
   struct gravity_multipole *mp_host; /**< pinned staging of the multipoles */
   int mp_host_cap;                   /**< its length */
@@ -82,21 +92,24 @@ extern "C" struct gpu_grav *gpu_grav_new(struct gpu *g) {
   gg->g = g;
   for (int k = 0; k <= GG_N; k++) gpu_check(cudaEventCreate(&gg->ev[k]));
   for (int k = 0; k < 2; k++) gpu_check(cudaEventCreate(&gg->ev_up[k]));
+  for (int k = 0; k < 2; k++) gpu_check(cudaEventCreate(&gg->ev_walk[k]));
   return gg;
 }
 
 extern "C" void gpu_grav_free(struct gpu_grav *gg) {
   if (!gg) return;
-  struct gpu_grav_buf *bufs[15] = {&gg->mp,       &gg->field,    &gg->offset,   &gg->count,
-                                   &gg->l2l,      &gg->leaf,     &gg->raw[0],   &gg->raw[1],
-                                   &gg->start[0], &gg->start[1], &gg->src[0],   &gg->src[1],
-                                   &gg->cursor,   &gg->centre,   &gg->scale};
-  for (int k = 0; k < 15; k++)
+  struct gpu_grav_buf *bufs[23] = {
+      &gg->mp,       &gg->field,    &gg->offset,   &gg->count,    &gg->l2l,      &gg->leaf,
+      &gg->raw[0],   &gg->raw[1],   &gg->start[0], &gg->start[1], &gg->src[0],   &gg->src[1],
+      &gg->cursor,   &gg->centre,   &gg->scale,    &gg->progeny,  &gg->split,    &gg->lo_hi,
+      &gg->wcount,   &gg->wlist[0], &gg->wlist[1], &gg->wlist[2], &gg->wlist[3]};
+  for (int k = 0; k < 23; k++)
     if (bufs[k]->ptr) gpu_check(cudaFree(bufs[k]->ptr));
   if (gg->mp_host) gpu_check(cudaFreeHost(gg->mp_host));
   if (gg->scale_host) gpu_check(cudaFreeHost(gg->scale_host));
   for (int k = 0; k <= GG_N; k++) gpu_check(cudaEventDestroy(gg->ev[k]));
   for (int k = 0; k < 2; k++) gpu_check(cudaEventDestroy(gg->ev_up[k]));
+  for (int k = 0; k < 2; k++) gpu_check(cudaEventDestroy(gg->ev_walk[k]));
   free(gg->level_start);
   free(gg);
 }
@@ -118,6 +131,9 @@ extern "C" void gpu_grav_set_tree(struct gpu_grav *gg, const struct gpu_grav_tre
         t->leaf, (size_t)t->nr_leaves * sizeof(int));
   gg_up(gg, s, gg_reserve(&gg->centre, 3 * nc * sizeof(double), "gravity cell centres"),
         t->centre, 3 * nc * sizeof(double));
+  gg_up(gg, s, gg_reserve(&gg->progeny, 8 * nc * sizeof(int), "gravity tree"), t->progeny,
+        8 * nc * sizeof(int));
+  gg_up(gg, s, gg_reserve(&gg->split, nc + 16, "gravity tree"), t->split, nc);
   gg->level_start =
       (int *)error_realloc(gg->level_start, (t->nr_levels + 1) * sizeof(int), "gravity levels");
   memcpy(gg->level_start, t->level_start, (t->nr_levels + 1) * sizeof(int));
@@ -132,6 +148,7 @@ extern "C" void gpu_grav_set_tree(struct gpu_grav *gg, const struct gpu_grav_tre
   gg->have_tree = 1;
   gg->have_eval = 0;
   gg->mp_on_device = 0;
+  gg->walk_on_device = 0;
   /* the host arrays may change once this returns */
   gpu_check(cudaStreamSynchronize(s));
 }
@@ -197,6 +214,78 @@ extern "C" void gpu_grav_up(struct gpu_grav *gg, struct parts *p, int order, dou
   *h_support = gg->scale_host + nc;
 }
 
+extern "C" void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_top, double theta,
+                              double h_support, double G, double epsilon_fmm, double h_factor,
+                              int order) {
+  if (!gg->mp_on_device) error_bug("gpu_grav_walk without this evaluation's gpu_grav_up");
+  cudaStream_t s = gpu_stream(gg->g, 0);
+  const size_t nc = (size_t)gg->nr_cells;
+  gpu_check(cudaEventRecord(gg->ev_walk[0], s));
+  double *dlo = (double *)gg_reserve(&gg->lo_hi, 6 * (size_t)nr_top * sizeof(double) + 16,
+                                     "gravity top-level boxes");
+  gg_up(gg, s, dlo, lo_hi, 6 * (size_t)nr_top * sizeof(double));
+  struct gravity_walk_tree T;
+  T.progeny = (const int *)gg->progeny.ptr;
+  T.count = (const int *)gg->count.ptr;
+  T.split = (const unsigned char *)gg->split.ptr;
+  T.mp = (const struct gravity_multipole *)gg->mp.ptr;
+  T.a_min = (const double *)gg->scale.ptr;
+  T.h_support = (const double *)gg->scale.ptr + nc;
+  struct gravity_walk_params wp;
+  wp.G = G;
+  wp.theta = theta;
+  wp.epsilon_fmm = epsilon_fmm;
+  wp.h_support = h_support;
+  wp.h_factor = h_factor;
+  wp.order = order;
+  unsigned long long *cnt = (unsigned long long *)gg_reserve(
+      &gg->wcount, 4 * sizeof(unsigned long long) + sizeof(int) + 16, "gravity walk counters");
+  int *deep = (int *)(cnt + 4);
+  /* first capacities: those of the last walk, or 64 entries per cell */
+  for (int k = 0; k < 4; k++)
+    if (gg->wcap[k] == 0) gg->wcap[k] = 64 * (unsigned long long)nc + 1024;
+  for (int attempt = 0;; attempt++) {
+    struct gravity_walk_lists L;
+    for (int k = 0; k < 4; k++) {
+      int *b = (int *)gg_reserve(&gg->wlist[k], 2 * gg->wcap[k] * sizeof(int), "gravity walk lists");
+      L.target[k] = b;
+      L.source[k] = b + gg->wcap[k];
+      L.cap[k] = gg->wcap[k];
+    }
+    L.n = cnt;
+    gpu_check(cudaMemsetAsync(cnt, 0, 4 * sizeof(unsigned long long) + sizeof(int), s));
+    gravity_walk_gpu_launch(s, T, wp, L, dlo, nr_top, h_support, deep);
+    unsigned long long hn[5];
+    gpu_check(cudaMemcpyAsync(hn, cnt, 4 * sizeof(unsigned long long) + sizeof(int),
+                              cudaMemcpyDeviceToHost, s));
+    gpu_check(cudaStreamSynchronize(s));
+    int hdeep;
+    memcpy(&hdeep, hn + 4, sizeof(int));
+    if (hdeep)
+      error_exit("gravity on the GPU: %d walks needed more than the %d entries of their stack "
+                 "(GRAVITY_WALK_STACK; Scheduler:gpu_walks: host walks on the CPU)",
+                 hdeep, GRAVITY_WALK_STACK);
+    int grown = 0;
+    for (int k = 0; k < 4; k++) {
+      gg->wn[k] = hn[k];
+      if (hn[k] > gg->wcap[k]) {
+        gg->wcap[k] = hn[k] + hn[k] / 4 + 1024;
+        grown = 1;
+      }
+    }
+    if (!grown) break;
+    if (attempt > 2) error_bug("the GPU walk's lists did not fit after growing");
+    gg->walk_retries++;
+  }
+  gpu_check(cudaEventRecord(gg->ev_walk[1], s));
+  gpu_check(cudaEventSynchronize(gg->ev_walk[1]));
+  float ms = 0.0f;
+  gpu_check(cudaEventElapsedTime(&ms, gg->ev_walk[0], gg->ev_walk[1]));
+  gg->t_walk += ms;
+  gg->calls_walk++;
+  gg->walk_on_device = 1;
+}
+
 /** Add 1 to cnt[t[k]] for k < n. */
 __global__ void gg_count_kernel(const int *__restrict__ t, size_t n, int *cnt) {
   for (size_t k = blockIdx.x * (size_t)blockDim.x + threadIdx.x; k < n;
@@ -223,33 +312,14 @@ static int gg_grid(size_t n) {
   return g > 4096 ? 4096 : (g ? (int)g : 1);
 }
 
-/** Upload the lists of kind k (0: part, 1: field) of the workers' records
- *  and group them by receiving cell on the device; the device view. */
-static struct gravity_gpu_groups gg_group(struct gpu_grav *gg, int k,
-                                          const struct gravity_gpu_rec *rec, int nr_rec,
-                                          cudaStream_t s) {
-  size_t n1 = 0, n2 = 0;
-  for (int w = 0; w < nr_rec; w++) {
-    n1 += (k ? rec[w].field : rec[w].part).n;
-    n2 += (k ? rec[w].field_sym : rec[w].part_sym).n;
-  }
+/** Group the interactions of kind k (0: part, 1: field), given on the
+ *  device as n1 one-way (t1[i] receives from s1[i]) and n2 mutual (a2[i]
+ *  and b2[i] receive from each other), by receiving cell; the device view. */
+static struct gravity_gpu_groups gg_group_dev(struct gpu_grav *gg, int k, const int *t1,
+                                              const int *s1, size_t n1, const int *a2,
+                                              const int *b2, size_t n2, cudaStream_t s) {
   const size_t ntot = n1 + 2 * n2;
   if (ntot > (size_t)INT_MAX) error_exit("%zu recorded gravity interactions: more than the GPU lists hold", ntot);
-  /* raw: one-way targets, sources; mutual firsts, seconds */
-  int *raw = (int *)gg_reserve(&gg->raw[k], (2 * n1 + 2 * n2) * sizeof(int) + 16,
-                               k ? "recorded M2L/P2L" : "recorded P2P/M2P");
-  int *t1 = raw, *s1 = raw + n1, *a2 = raw + 2 * n1, *b2 = raw + 2 * n1 + n2;
-  size_t o1 = 0, o2 = 0;
-  for (int w = 0; w < nr_rec; w++) {
-    const struct gravity_rec_list *l = k ? &rec[w].field : &rec[w].part;
-    const struct gravity_rec_list *m = k ? &rec[w].field_sym : &rec[w].part_sym;
-    gg_up(gg, s, t1 + o1, l->target, l->n * sizeof(int));
-    gg_up(gg, s, s1 + o1, l->source, l->n * sizeof(int));
-    gg_up(gg, s, a2 + o2, m->target, m->n * sizeof(int));
-    gg_up(gg, s, b2 + o2, m->source, m->n * sizeof(int));
-    o1 += l->n;
-    o2 += m->n;
-  }
   const int nc = gg->nr_cells;
   int *start = (int *)gg_reserve(&gg->start[k], ((size_t)nc + 1) * sizeof(int), "gravity lists");
   int *cursor = (int *)gg_reserve(&gg->cursor, ((size_t)nc + 1) * sizeof(int), "gravity lists");
@@ -276,6 +346,41 @@ static struct gravity_gpu_groups gg_group(struct gpu_grav *gg, int k,
   v.source = out;
   gg->n_entries[k] = (double)ntot;
   return v;
+}
+
+/** Upload the lists of kind k (0: part, 1: field) of the workers' records
+ *  and group them by receiving cell on the device; the device view. */
+static struct gravity_gpu_groups gg_group(struct gpu_grav *gg, int k,
+                                          const struct gravity_gpu_rec *rec, int nr_rec,
+                                          cudaStream_t s) {
+  if (gg->walk_on_device) {
+    /* the device's walk: part/field one-way in list k, mutual in list k + 2 */
+    const struct gpu_grav_buf *one = &gg->wlist[k], *mut = &gg->wlist[k + 2];
+    const int *o = (const int *)one->ptr, *m = (const int *)mut->ptr;
+    return gg_group_dev(gg, k, o, o + gg->wcap[k], gg->wn[k], m, m + gg->wcap[k + 2],
+                        gg->wn[k + 2], s);
+  }
+  size_t n1 = 0, n2 = 0;
+  for (int w = 0; w < nr_rec; w++) {
+    n1 += (k ? rec[w].field : rec[w].part).n;
+    n2 += (k ? rec[w].field_sym : rec[w].part_sym).n;
+  }
+  /* raw: one-way targets, sources; mutual firsts, seconds */
+  int *raw = (int *)gg_reserve(&gg->raw[k], (2 * n1 + 2 * n2) * sizeof(int) + 16,
+                               k ? "recorded M2L/P2L" : "recorded P2P/M2P");
+  int *t1 = raw, *s1 = raw + n1, *a2 = raw + 2 * n1, *b2 = raw + 2 * n1 + n2;
+  size_t o1 = 0, o2 = 0;
+  for (int w = 0; w < nr_rec; w++) {
+    const struct gravity_rec_list *l = k ? &rec[w].field : &rec[w].part;
+    const struct gravity_rec_list *m = k ? &rec[w].field_sym : &rec[w].part_sym;
+    gg_up(gg, s, t1 + o1, l->target, l->n * sizeof(int));
+    gg_up(gg, s, s1 + o1, l->source, l->n * sizeof(int));
+    gg_up(gg, s, a2 + o2, m->target, m->n * sizeof(int));
+    gg_up(gg, s, b2 + o2, m->source, m->n * sizeof(int));
+    o1 += l->n;
+    o2 += m->n;
+  }
+  return gg_group_dev(gg, k, t1, s1, n1, a2, b2, n2, s);
 }
 
 extern "C" void gpu_grav_run(struct gpu_grav *gg, struct parts *p,
@@ -308,10 +413,12 @@ extern "C" void gpu_grav_run(struct gpu_grav *gg, struct parts *p,
   if (!replay && !gg->mp_on_device)
     gg_up(gg, s, gg->mp.ptr, gg->mp_host, nc * sizeof(struct gravity_multipole));
   gg->mp_on_device = 0;
+  if (replay) gg->walk_on_device = 0;
   gpu_check(cudaEventRecord(gg->ev[GG_GROUP], s));
   if (!replay) {
     gg->gl[0] = gg_group(gg, 0, rec, nr_rec, s);
     gg->gl[1] = gg_group(gg, 1, rec, nr_rec, s);
+    gg->walk_on_device = 0;
     gpu_check(cudaMemsetAsync(gg->field.ptr, 0, nc * sizeof(struct gravity_field), s));
   }
   gpu_check(cudaEventRecord(gg->ev[GG_FIELD], s));
@@ -353,6 +460,9 @@ extern "C" void gpu_grav_print(const struct gpu_grav *gg, FILE *f) {
   if (gg->calls_up)
     fprintf(f, "; %ld upward passes (P2M, M2M) on the device, %.3f ms each (copy back included)",
             gg->calls_up, gg->t_up / gg->calls_up);
+  if (gg->calls_walk)
+    fprintf(f, "; %ld walks on the device, %.3f ms each (%ld repeated with longer lists)",
+            gg->calls_walk, gg->t_walk / gg->calls_walk, gg->walk_retries);
   fprintf(f, "; bus %.1f MB per evaluation; last full evaluation %.3g P2P/M2P, %.3g M2L/P2L\n",
           gg->bytes / gg->calls / 1e6, gg->n_entries[0], gg->n_entries[1]);
 }

@@ -43,6 +43,8 @@ void gpu_grav_tree_build(struct gpu_grav_host *h, const struct space *s) {
     h->offset = error_realloc(h->offset, h->cells_cap * sizeof(size_t), "GPU gravity tree");
     h->count = error_realloc(h->count, h->cells_cap * sizeof(int), "GPU gravity tree");
     h->centre = error_realloc(h->centre, 3 * (size_t)h->cells_cap * sizeof(double), "GPU gravity tree");
+    h->progeny = error_realloc(h->progeny, 8 * (size_t)h->cells_cap * sizeof(int), "GPU gravity tree");
+    h->split = error_realloc(h->split, (size_t)h->cells_cap, "GPU gravity tree");
   }
   for (int k = 0; k < nc; k++) {
     const struct cell *c = &s->cells[k];
@@ -51,6 +53,7 @@ void gpu_grav_tree_build(struct gpu_grav_host *h, const struct space *s) {
     h->count[k] = (int)c->count;
     for (int d = 0; d < 3; d++) h->centre[3 * k + d] = c->loc[d] + 0.5 * c->width[d];
   }
+  gravity_walk_tree_arrays(s->cells, nc, h->progeny, h->count, h->split);
   h->nr_l2l = h->nr_leaf = 0;
   for (int c = 0; c < s->nr_top; c++) tree_visit(h, &s->cells[c], 0);
   /* the pairs by level (counting sort; within a level, in visiting order) */
@@ -80,6 +83,8 @@ void gpu_grav_tree_build(struct gpu_grav_host *h, const struct space *s) {
   t->nr_leaves = h->nr_leaf;
   t->leaf = h->leaf;
   t->centre = h->centre;
+  t->progeny = h->progeny;
+  t->split = h->split;
   h->built_rebuild = s->nr_rebuilds;
   h->built_cells = s->cells;
 }
@@ -96,6 +101,9 @@ void gpu_grav_host_free(struct gpu_grav_host *h) {
   free(h->offset);
   free(h->count);
   free(h->centre);
+  free(h->progeny);
+  free(h->split);
+  free(h->lo_hi);
   free(h->l2l_tmp);
   free(h->l2l_child);
   free(h->l2l_parent);
@@ -117,11 +125,28 @@ void gpu_grav_up_cells(struct gpu_grav *gg, struct parts *p, const struct space 
   }
 }
 
+void gpu_grav_walk_cells(struct gpu_grav *gg, struct gpu_grav_host *h, const struct space *s,
+                         const struct gravity_props *gp) {
+  const int nt = s->nr_top;
+  if (nt > h->lo_hi_cap) {
+    h->lo_hi_cap = nt;
+    h->lo_hi = error_realloc(h->lo_hi, 6 * (size_t)nt * sizeof(double), "GPU gravity walks");
+  }
+  for (int i = 0; i < nt; i++)
+    for (int d = 0; d < 3; d++) {
+      h->lo_hi[6 * i + d] = s->cells[i].bmin[d];
+      h->lo_hi[6 * i + 3 + d] = s->cells[i].bmax[d];
+    }
+  gpu_grav_walk(gg, h->lo_hi, nt, gp->theta, gp->h_support, gp->G, gp->epsilon_fmm, gp->h_factor,
+                gp->order);
+}
+
 /* ------------------------------------------------------------------ serial */
 
 void gpu_grav_tree_all(struct gpu_grav *gg, struct gpu_grav_host *h, struct gravity_gpu_rec *rec,
                        struct parts *p, const struct space *s, struct gravity_cell *gc,
-                       const struct gravity_props *gp, int resident, int up_on_device) {
+                       const struct gravity_props *gp, int resident, int up_on_device,
+                       int walk_on_device) {
   const struct cell *tops = s->cells;
   const int nr_top = s->nr_top;
   if (h->built_rebuild != s->nr_rebuilds || h->built_cells != s->cells || !h->tree.offset) {
@@ -138,6 +163,12 @@ void gpu_grav_tree_all(struct gpu_grav *gg, struct gpu_grav_host *h, struct grav
     }
   }
   rec->part.n = rec->field.n = rec->part_sym.n = rec->field_sym.n = 0;
+  if (up_on_device && walk_on_device) {
+    gpu_grav_walk_cells(gg, h, s, gp);
+    gpu_grav_run(gg, p, rec, 1, gp->G, gp->eps, gp->softening, gp->eps2_expansion, gp->order,
+                 resident, 0);
+    return;
+  }
   gravity_gpu_record(rec);
   /* the walks of gravity_tree_all, recorded */
   for (int i = 0; i < nr_top; i++) {

@@ -7,6 +7,7 @@
 
 #include "gpu.h"
 #include "gpu_check.h"
+#include "gravity/gravity_walk.h"
 #include "hydro_props.h"
 #include "part.h"
 
@@ -94,6 +95,13 @@ void damage_gpu_launch(cudaStream_t s, struct parts p, const struct material_tab
 void gravity_up_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_up u, int nr_cells,
                            const int *leaf, int nr_leaves, const int *child, const int *parent,
                            const int *level_start, int nr_levels);
+/** Gravity (tasks/gravity/gravity_gpu.cu): the walks of gravity_walk.h from
+ *  every pair of the nt top-level cells (boxes lo_hi: 6 doubles each;
+ *  h_support_top: the constant support of the near test), recorded in L
+ *  (counters on the device); *deep (device) counts walks out of stack. */
+void gravity_walk_gpu_launch(cudaStream_t s, struct gravity_walk_tree T,
+                             struct gravity_walk_params wp, struct gravity_walk_lists L,
+                             const double *lo_hi, int nt, double h_support_top, int *deep);
 /** Gravity (tasks/gravity/gravity_gpu.cu): M2L and P2L of every cell
  *  with sources in l, stored as its field. */
 void gravity_field_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_dev d,

@@ -11,6 +11,10 @@
  *   up kernels:   every cell set empty (one thread each), then one thread
  *                 per leaf (P2M), then one launch per tree level from the
  *                 deepest, one thread per parent (M2M of its children)
+ *   walk kernel:  the walks of gravity_walk.h (the CPU's decisions) from
+ *                 every root (pair of top-level cells), a few roots per
+ *                 thread, each with its own stack, appending to the
+ *                 recorded lists in groups of GRAVITY_WALK_BUF
  *   field kernel: one thread per cell, its M2L and P2L summed in
  *                 registers, then stored (the cells' expansions start at 0)
  *   L2L kernel:   one thread per parent-child pair of one tree level, the
@@ -27,6 +31,7 @@
 #define GRAVITY_UNROLL_LOOPS 1
 #include "gpu_kernels.h"
 #include "gravity_iact.h"
+#include "gravity_walk.h"
 
 /** Every cell as an empty one (zero moments at its box centre). */
 __global__ void gravity_up_empty_gpu_kernel(struct gravity_gpu_up u, int nr_cells) {
@@ -67,6 +72,57 @@ __global__ void gravity_up_node_gpu_kernel(struct gravity_gpu_up u, const int *_
   }
   gravity_up_node(u.mp + q, u.a_min + q, u.h_support + q, ch, ch_a, ch_h, n, P,
                   u.centre + 3 * (size_t)q);
+}
+
+/** Roots (pairs of top-level cells) per thread of the walk kernel. */
+#define GRAVITY_WALK_ROOTS 16
+
+/** The walks from the roots [r0, r0 + GRAVITY_WALK_ROOTS) of the nt x nt
+ *  pairs (i, j) of top-level cells: i == j the self walk, a near pair
+ *  (gravity_walk_top_near on the boxes lo_hi, 6 per top cell) with j > i
+ *  the symmetric walk, a far pair the long-range walk of i; as the CPU's
+ *  tasks.  *deep counts walks that ran out of stack. */
+__global__ void __launch_bounds__(64)
+gravity_walk_gpu_kernel(struct gravity_walk_tree T, struct gravity_walk_params wp,
+                        struct gravity_walk_lists L, const double *__restrict__ lo_hi, int nt,
+                        double h_support_top, int *deep) {
+  const long long r0 =
+      ((long long)blockIdx.x * blockDim.x + threadIdx.x) * (long long)GRAVITY_WALK_ROOTS;
+  const long long nroots = (long long)nt * nt;
+  if (r0 >= nroots) return;
+  int stack[3 * GRAVITY_WALK_STACK];
+  struct gravity_walk_buf B;
+  for (int k = 0; k < 4; k++) B.n[k] = 0;
+  const long long r1 = r0 + GRAVITY_WALK_ROOTS < nroots ? r0 + GRAVITY_WALK_ROOTS : nroots;
+  for (long long r = r0; r < r1; r++) {
+    const int i = (int)(r / nt), j = (int)(r % nt);
+    if (T.count[i] == 0 || T.count[j] == 0) continue;
+    int ok = 1;
+    if (i == j) {
+      ok = gravity_walk_run(&T, &wp, &L, &B, i, i, 1, stack);
+    } else {
+      const int near = gravity_walk_top_near(lo_hi + 6 * i, lo_hi + 6 * i + 3, lo_hi + 6 * j,
+                                             lo_hi + 6 * j + 3, wp.theta, h_support_top);
+      if (near && j > i)
+        ok = gravity_walk_run(&T, &wp, &L, &B, i, j, 1, stack);
+      else if (!near)
+        ok = gravity_walk_run(&T, &wp, &L, &B, i, j, 0, stack);
+    }
+    if (!ok) atomicAdd(deep, 1);
+  }
+  for (int k = 0; k < 4; k++) gravity_walk_flush(&L, &B, k);
+}
+
+void gravity_walk_gpu_launch(cudaStream_t s, struct gravity_walk_tree T,
+                             struct gravity_walk_params wp, struct gravity_walk_lists L,
+                             const double *lo_hi, int nt, double h_support_top, int *deep) {
+  const long long nroots = (long long)nt * nt;
+  const long long threads = (nroots + GRAVITY_WALK_ROOTS - 1) / GRAVITY_WALK_ROOTS;
+  if (threads == 0) return;
+  const int block = 64;
+  gravity_walk_gpu_kernel<<<(unsigned)((threads + block - 1) / block), block, 0, s>>>(
+      T, wp, L, lo_hi, nt, h_support_top, deep);
+  gpu_check_launch(gravity_walk_gpu_kernel);
 }
 
 /** Every cell c with sources: the M2L of its multipole sources and the P2L

@@ -43,8 +43,8 @@ struct gravity_walk_params {
 /** What the walk records: four lists of (target, source) cell pairs, in
  *  the encoding of struct gravity_gpu_rec (source < 0: -1 - cell, an M2P
  *  or P2L source).  0: part, 1: field, 2: part_sym, 3: field_sym.  Entries
- *  past cap[k] are counted but not written (the caller grows and walks
- *  again). */
+ *  past cap[k] are counted but not written (the caller grows the lists and
+ *  walks again). */
 struct gravity_walk_lists {
   int *target[4], *source[4];
   unsigned long long *n; /**< 4 counters */
@@ -53,17 +53,42 @@ struct gravity_walk_lists {
 
 enum { GRAVITY_REC_PART, GRAVITY_REC_FIELD, GRAVITY_REC_PART_SYM, GRAVITY_REC_FIELD_SYM };
 
-/** Append (t, s) to list k (atomically on the GPU). */
-BOLIDE_INLINE void gravity_walk_emit(const struct gravity_walk_lists *L, int k, int t, int s) {
+/** Entries a walker keeps of each list before it appends them (one atomic
+ *  add on the GPU per so many entries, not one per entry). */
+#define GRAVITY_WALK_BUF 16
+
+/** A walker's entries not yet appended. */
+struct gravity_walk_buf {
+  int t[4][GRAVITY_WALK_BUF], s[4][GRAVITY_WALK_BUF];
+  int n[4];
+};
+
+/** Append the kept entries of list k (atomically on the GPU). */
+BOLIDE_INLINE void gravity_walk_flush(const struct gravity_walk_lists *L,
+                                      struct gravity_walk_buf *B, int k) {
+  const int m = B->n[k];
+  if (m == 0) return;
 #ifdef __CUDA_ARCH__
-  const unsigned long long i = atomicAdd(L->n + k, 1ULL);
+  const unsigned long long i0 = atomicAdd(L->n + k, (unsigned long long)m);
 #else
-  const unsigned long long i = L->n[k]++;
+  const unsigned long long i0 = L->n[k];
+  L->n[k] += (unsigned long long)m;
 #endif
-  if (i < L->cap[k]) {
-    L->target[k][i] = t;
-    L->source[k][i] = s;
-  }
+  for (int q = 0; q < m; q++)
+    if (i0 + (unsigned long long)q < L->cap[k]) {
+      L->target[k][i0 + q] = B->t[k][q];
+      L->source[k][i0 + q] = B->s[k][q];
+    }
+  B->n[k] = 0;
+}
+
+/** Add (t, s) to list k. */
+BOLIDE_INLINE void gravity_walk_emit(const struct gravity_walk_lists *L,
+                                     struct gravity_walk_buf *B, int k, int t, int s) {
+  if (B->n[k] == GRAVITY_WALK_BUF) gravity_walk_flush(L, B, k);
+  B->t[k][B->n[k]] = t;
+  B->s[k][B->n[k]] = s;
+  B->n[k]++;
 }
 
 /** Outcomes of gravity_walk_decide. */
@@ -161,13 +186,15 @@ BOLIDE_INLINE int gravity_walk_top_near(const double *lo_i, const double *hi_i,
 /** The walk from one root, recorded in L: root_a == root_b: every
  *  interaction within the cell (the self walk: each child's own and each
  *  pair of children, symmetric); else the pair walk of root_a with root_b,
- *  both receiving (sym) or only root_a (a long-range walk).  stack: room
- *  for GRAVITY_WALK_STACK entries of 3 ints.  Returns 0 if the stack was
- *  too small (the walk is then incomplete), 1 otherwise. */
+ *  both receiving (sym) or only root_a (a long-range walk); entries go to
+ *  B (B->n zeroed by the caller once, gravity_walk_flush of each list when
+ *  the walker is done).  stack: room for GRAVITY_WALK_STACK entries of 3
+ *  ints.  Returns 0 if the stack was too small (the walk is then
+ *  incomplete), 1 otherwise. */
 BOLIDE_INLINE int gravity_walk_run(const struct gravity_walk_tree *T,
                                    const struct gravity_walk_params *wp,
-                                   const struct gravity_walk_lists *L, int root_a, int root_b,
-                                   int sym, int *stack) {
+                                   const struct gravity_walk_lists *L, struct gravity_walk_buf *B,
+                                   int root_a, int root_b, int sym, int *stack) {
   int n = 0;
   stack[0] = root_a, stack[1] = root_b, stack[2] = sym, n = 1;
   while (n > 0) {
@@ -176,7 +203,7 @@ BOLIDE_INLINE int gravity_walk_run(const struct gravity_walk_tree *T,
     if (a == b) { /* self */
       if (T->count[a] < 2) continue;
       if (!T->split[a]) {
-        gravity_walk_emit(L, GRAVITY_REC_PART, a, a);
+        gravity_walk_emit(L, B, GRAVITY_REC_PART, a, a);
         continue;
       }
       for (int q = 0; q < 8; q++) {
@@ -195,13 +222,13 @@ BOLIDE_INLINE int gravity_walk_run(const struct gravity_walk_tree *T,
     int a_big = 0;
     const int d = gravity_walk_decide(T, wp, a, b, &a_big);
     if (d == GRAVITY_WALK_P2P) {
-      gravity_walk_emit(L, s ? GRAVITY_REC_PART_SYM : GRAVITY_REC_PART, a, b);
+      gravity_walk_emit(L, B, s ? GRAVITY_REC_PART_SYM : GRAVITY_REC_PART, a, b);
     } else if (d == GRAVITY_WALK_M2P) {
       const int big = a_big ? a : b, small = a_big ? b : a;
-      if (s || a_big) gravity_walk_emit(L, GRAVITY_REC_PART, big, -1 - small);
-      if (s || !a_big) gravity_walk_emit(L, GRAVITY_REC_FIELD, small, -1 - big);
+      if (s || a_big) gravity_walk_emit(L, B, GRAVITY_REC_PART, big, -1 - small);
+      if (s || !a_big) gravity_walk_emit(L, B, GRAVITY_REC_FIELD, small, -1 - big);
     } else if (d == GRAVITY_WALK_M2L) {
-      gravity_walk_emit(L, s ? GRAVITY_REC_FIELD_SYM : GRAVITY_REC_FIELD, a, b);
+      gravity_walk_emit(L, B, s ? GRAVITY_REC_FIELD_SYM : GRAVITY_REC_FIELD, a, b);
     } else if (d != GRAVITY_WALK_NONE) { /* open a or b: its children meet the other */
       const int open_a = d == GRAVITY_WALK_OPEN_A, big = open_a ? a : b;
       if (n + 8 > GRAVITY_WALK_STACK) return 0;
