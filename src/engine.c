@@ -483,6 +483,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
 /* ------------------------------------------------------------------------ */
 
 void engine_rebuild(struct engine *e) {
+  const double w0 = error_walltime();
 #ifdef HAVE_CUDA
   gpu_engine_to_host(e);
   gpu_engine_host_modified(e);
@@ -490,6 +491,8 @@ void engine_rebuild(struct engine *e) {
   const size_t removed = space_rebuild(&e->space);
   e->nr_removed += (long long)removed;
   engine_make_graph(e);
+  e->t_rebuild += error_walltime() - w0;
+  e->nr_rebuild++;
 }
 
 /** 1 if the cells or the task graph no longer hold every interaction: the
@@ -754,6 +757,9 @@ void engine_run(struct engine *e) {
   if (e->nr_eval)
     error_log(0, "derivative evaluations (FORCE phases of the steps): %ld, %.4f s each on average",
               e->nr_eval, e->t_eval / e->nr_eval);
+  if (e->nr_rebuild)
+    error_log(0, "rebuilds (cells, particle order, task graph): %ld, %.4f s each on average",
+              e->nr_rebuild, e->t_rebuild / e->nr_rebuild);
   if (e->gp.enabled && e->gp.reuse_steps > 0)
     error_log(0, "gravity: %ld of %ld steps reused the far field (Gravity:reuse_steps %d, reuse_tolerance %g)",
               e->grav_replays, e->step, e->gp.reuse_steps, e->gp.reuse_tol);

@@ -100,6 +100,8 @@ struct engine {
   int first_force;                /**< 1 while computing the initial forces */
   double t_eval;                  /**< wall seconds of the steps' FORCE phases (derivative evaluations) */
   long nr_eval;                   /**< their number */
+  double t_rebuild;               /**< wall seconds of the rebuilds (cells, sort, task graph) */
+  long nr_rebuild;                /**< rebuilds, the first one included */
 
   double time;                    /**< current simulation time */
   double time_end;                /**< end of the run */

@@ -143,7 +143,7 @@ YML
         bus=$(awk '/^GPU \(/ {for (k = 1; k <= NF; k++) if ($k == "bus") {u = $(k + 1); d = $(k + 4)}} END {printf "%.1f", u + d}' run.log)
         share=$(awk -v b=$bus -v t=$med_step 'BEGIN {printf "%.1f%%", 100 * b * 1e6 / 25e9 / t}')
         mem=$(awk '/^GPU memory:/ {gsub(/\(/, ""); for (k = 1; k <= NF; k++) if ($k == "bytes") print $(k - 1)}' run.log)
-        stages="$stages$prob $N $mode: $(grep '^GPU (' run.log | sed 's/^GPU ([^)]*), //' | tr '\n' ' '); $(grep '^GPU host\|^GPU gravity' run.log | tr '\n' ' ')"$'\n'
+        stages="$stages$prob $N $mode: $(grep '^GPU (' run.log | sed 's/^GPU ([^)]*), //' | tr '\n' ' '); $(grep '^GPU host\|^GPU gravity' run.log | tr '\n' ' ') $(grep -o 'rebuilds (cells.*' run.log | tr '\n' ' ')"$'\n'
       fi
       say "| $prob | $N | $mode | $med_step | $last_eval | $ratio | $bus | $share | $mem |"
     done
