@@ -60,7 +60,12 @@ BOLIDE_INLINE void ghost_part_finish(struct parts *BOLIDE_RESTRICT p, size_t i,
                                      const struct material_table *mats) {
   const double rho = p->rho[i];
   const double h = p->h[i];
-  p->f_gradh[i] = 1.0 / (1.0 + h * p->rho_dh[i] / (3.0 * rho));
+  /* at SPH:h_max the h of a particle no longer follows its neighbours, and
+   * one alone within its support has rho_dh = -3 rho / h (the self term):
+   * the factor 1 / (1 + h rho_dh / (3 rho)) would be infinite.  No grad-h
+   * correction there (f = 1), as SWIFT does at its h_max. */
+  const double gradh_den = 1.0 + h * p->rho_dh[i] / (3.0 * rho);
+  p->f_gradh[i] = (h >= hp->h_max || !(gradh_den > 1e-3)) ? 1.0 : 1.0 / gradh_den;
   const double rho_inv = 1.0 / rho;
   p->div_v[i] *= rho_inv;
   p->curl_vx[i] *= rho_inv;
