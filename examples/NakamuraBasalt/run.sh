@@ -2,6 +2,8 @@
 # NakamuraBasalt: initial conditions, run, fragments and intact core.
 # Usage: ./run.sh [N] [THREADS]   (N: target particles, default 20000, about
 # ten minutes on 2 cores; the bullet gets particles of the same spacing)
+# BOLIDE_ARGS (optional): more bolide options, e.g. the 1e6 run of README.md:
+#   BOLIDE_ARGS="-P Damage:max_change:1 -P SPH:continuity_min_density_ratio:0.5 -P SPH:h_max:0.0012" ./run.sh 1000000 2
 # WEIBULL_K, WEIBULL_M (optional) replace the target's Weibull k and m of
 # params.yml (e.g. WEIBULL_M=8.5, the value of miluphcuda's Nakamura test
 # case, README.md); the run folder is then run_N_m<M>_k<K>.
@@ -32,7 +34,8 @@ sed -e "s/weibull_k: 5e34/weibull_k: ${WEIBULL_K:-5e34}/" -e "s/weibull_m: 8}/we
 grep -q "weibull_k: ${WEIBULL_K:-5e34}, weibull_m: ${WEIBULL_M:-8}}" "$dir/params.yml" \
   || { echo "run.sh: could not set the Weibull parameters in $dir/params.yml"; exit 1; }
 t0=$(date +%s)
-( cd "$dir" && "$build/bolide" -t "$threads" params.yml >bolide.log 2>&1 ) \
+# shellcheck disable=SC2086
+( cd "$dir" && "$build/bolide" -t "$threads" ${BOLIDE_ARGS:-} params.yml >bolide.log 2>&1 ) \
   || { tail -5 "$dir/bolide.log"; exit 1; }
 echo "run: $(( $(date +%s) - t0 )) s wall on $threads threads ($(nproc) cores here)" | tee "$dir/wall.txt"
 grep -E "Weibull flaws|done:" "$dir/bolide.log"
