@@ -163,6 +163,16 @@ extern "C" struct gravity_multipole *gpu_grav_multipoles(struct gpu_grav *gg, in
   return gg->mp_host;
 }
 
+/** End a stage timed by ev[0] (recorded at its start) on stream s: record
+ *  ev[1], wait for it, return the milliseconds between the two. */
+static double gg_stage_end(const cudaEvent_t ev[2], cudaStream_t s) {
+  gpu_check(cudaEventRecord(ev[1], s));
+  gpu_check(cudaEventSynchronize(ev[1]));
+  float ms = 0.0f;
+  gpu_check(cudaEventElapsedTime(&ms, ev[0], ev[1]));
+  return ms;
+}
+
 extern "C" void gpu_grav_up(struct gpu_grav *gg, struct parts *p, int order, double h_factor,
                             int resident, const struct gravity_multipole **mp,
                             const double **a_min, const double **h_support) {
@@ -202,11 +212,7 @@ extern "C" void gpu_grav_up(struct gpu_grav *gg, struct parts *p, int order, dou
   const double down = (double)nc * (sizeof(struct gravity_multipole) + 2 * sizeof(double));
   gpu_bytes_add(gg->g, 0.0, down);
   gg->bytes += down;
-  gpu_check(cudaEventRecord(gg->ev_up[1], s));
-  gpu_check(cudaStreamSynchronize(s));
-  float ms = 0.0f;
-  gpu_check(cudaEventElapsedTime(&ms, gg->ev_up[0], gg->ev_up[1]));
-  gg->t_up += ms;
+  gg->t_up += gg_stage_end(gg->ev_up, s);
   gg->calls_up++;
   gg->mp_on_device = 1;
   *mp = mh;
@@ -277,11 +283,7 @@ extern "C" void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_t
     if (attempt > 2) error_bug("the GPU walk's lists did not fit after growing");
     gg->walk_retries++;
   }
-  gpu_check(cudaEventRecord(gg->ev_walk[1], s));
-  gpu_check(cudaEventSynchronize(gg->ev_walk[1]));
-  float ms = 0.0f;
-  gpu_check(cudaEventElapsedTime(&ms, gg->ev_walk[0], gg->ev_walk[1]));
-  gg->t_walk += ms;
+  gg->t_walk += gg_stage_end(gg->ev_walk, s);
   gg->calls_walk++;
   gg->walk_on_device = 1;
 }
