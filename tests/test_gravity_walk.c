@@ -27,6 +27,10 @@
 
 #define BOX 4.0
 
+/** Entries a walker takes from its stack before it hands the rest on, in
+ *  the test of the GPU's division of the walks (small: many rounds). */
+#define GRAVITY_TEST_BUDGET 5
+
 static int failures = 0;
 
 /** (target, source) entries as 64-bit keys, for sorting. */
@@ -110,56 +114,95 @@ static void run(const char *name, int two_bodies, double h_factor) {
     }
     for (int i = 0; i < nt; i++) gravity_long_range(&p, sp.cells + i, sp.cells, nt, gc, &gp);
     gravity_gpu_record(NULL);
-    /* the stack walk from every root */
+    /* the stack walk from every root: as one walker per root (budget
+     * unlimited), and as the GPU's kernels divide it (gravity_gpu.cu):
+     * walkers of GRAVITY_TEST_BUDGET entries that hand what is left on
+     * their stack to a queue (one too small to take it all: the rest stays
+     * with its walker), the queue then walked by the next round */
     for (int k = 0; k < nc; k++) mp[k] = gc[k].mp, a_min[k] = gc[k].a_min, hs[k] = gc[k].h_support;
     const struct gravity_walk_tree T = {progeny, count, split, mp, a_min, hs};
     const struct gravity_walk_params wp = {gp.G, gp.theta, gp.epsilon_fmm, gp.h_support,
                                            gp.h_factor, gp.order};
-    unsigned long long cnt[4] = {0, 0, 0, 0};
-    struct gravity_walk_lists L;
-    L.n = cnt;
-    const size_t capk = 4 * (rec.part.n + rec.field.n + rec.part_sym.n + rec.field_sym.n) + 16;
-    for (int k = 0; k < 4; k++) {
-      L.target[k] = malloc(capk * sizeof(int));
-      L.source[k] = malloc(capk * sizeof(int));
-      L.cap[k] = capk;
-    }
-    int deep = 0;
-    struct gravity_walk_buf B;
-    memset(B.n, 0, sizeof B.n);
+    double *lo_hi = malloc(6 * (size_t)nt * sizeof(double));
     for (int i = 0; i < nt; i++)
-      for (int j = 0; j < nt; j++) {
-        const struct cell *ci = sp.cells + i, *cj = sp.cells + j;
-        if (ci->count == 0 || cj->count == 0) continue;
-        const int near = i == j || gravity_walk_top_near(ci->bmin, ci->bmax, cj->bmin, cj->bmax,
-                                                         gp.theta, gp.h_support);
-        if (i == j)
-          deep += !gravity_walk_run(&T, &wp, &L, &B, i, i, 1, stack);
-        else if (near && j > i)
-          deep += !gravity_walk_run(&T, &wp, &L, &B, i, j, 1, stack);
-        else if (!near)
-          deep += !gravity_walk_run(&T, &wp, &L, &B, i, j, 0, stack);
+      for (int d = 0; d < 3; d++)
+        lo_hi[6 * i + d] = sp.cells[i].bmin[d], lo_hi[6 * i + 3 + d] = sp.cells[i].bmax[d];
+    const size_t capk = 4 * (rec.part.n + rec.field.n + rec.part_sym.n + rec.field_sym.n) + 16;
+    for (int mode = 0; mode < 2; mode++) {
+      unsigned long long cnt[4] = {0, 0, 0, 0};
+      struct gravity_walk_lists L;
+      L.n = cnt;
+      for (int k = 0; k < 4; k++) {
+        L.target[k] = malloc(capk * sizeof(int));
+        L.source[k] = malloc(capk * sizeof(int));
+        L.cap[k] = capk;
       }
-    for (int k = 0; k < 4; k++) gravity_walk_flush(&L, &B, k);
-    char what[128];
-    snprintf(what, sizeof what, "%s, %s, %s", name, pass ? "adaptive pass" : "first pass",
-             h_factor > 0.0 ? "eps tied to h" : "constant eps");
-    if (deep) {
-      printf("  %s: %d walks ran out of stack: FAIL\n", what, deep);
-      failures++;
+      int deep = 0, rounds = 0;
+      unsigned long long handed = 0, kept = 0;
+      struct gravity_walk_buf B;
+      memset(B.n, 0, sizeof B.n);
+      const long long budget = mode ? GRAVITY_TEST_BUDGET : (long long)1 << 62;
+      const unsigned long long qcap = 64;
+      int *qi[2] = {malloc(3 * qcap * sizeof(int)), malloc(3 * qcap * sizeof(int))};
+      unsigned long long qn[2] = {0, 0};
+      /* walk: the stack's n entries with the budget, the rest to queue o */
+      #define WALK_ITEMS(n0, o)                                                      \
+        do {                                                                         \
+          const struct gravity_walk_queue Q = {qi[o], qn + (o), qcap};               \
+          int nw = gravity_walk_run(&T, &wp, &L, &B, stack, (n0), budget);            \
+          if (nw > 0) {                                                              \
+            const int left = gravity_walk_spill(&Q, stack, nw);                      \
+            handed += (unsigned long long)(nw - left), kept += (unsigned long long)left; \
+            nw = left > 0 ? gravity_walk_run(&T, &wp, &L, &B, stack, left, (long long)1 << 62) : 0; \
+          }                                                                          \
+          deep += nw < 0;                                                            \
+        } while (0)
+      for (long long r = 0; r < (long long)nt * nt; r++)
+        if (gravity_walk_root(count, lo_hi, nt, gp.theta, gp.h_support, r, stack))
+          WALK_ITEMS(1, 0);
+      for (int cur = 0; qn[cur] > 0; cur ^= 1, rounds++) {
+        const unsigned long long m = qn[cur] < qcap ? qn[cur] : qcap;
+        qn[cur ^ 1] = 0;
+        for (unsigned long long q = 0; q < m; q++) {
+          memcpy(stack, qi[cur] + 3 * q, 3 * sizeof(int));
+          WALK_ITEMS(1, cur ^ 1);
+        }
+        qn[cur] = 0;
+      }
+      #undef WALK_ITEMS
+      for (int k = 0; k < 4; k++) gravity_walk_flush(&L, &B, k);
+      char what[160];
+      snprintf(what, sizeof what, "%s, %s, %s, %s", name, pass ? "adaptive pass" : "first pass",
+               h_factor > 0.0 ? "eps tied to h" : "constant eps",
+               mode ? "handed on" : "one walker per root");
+      if (deep) {
+        printf("  %s: %d walks ran out of stack: FAIL\n", what, deep);
+        failures++;
+      }
+      if (mode) {
+        printf("  %s: %d rounds, %llu entries handed on, %llu kept for want of room\n", what,
+               rounds, handed, kept);
+        if (rounds < 2 || kept == 0) {
+          printf("  %s: the hand-on scheme was not exercised (rounds, a full queue): FAIL\n", what);
+          failures++;
+        }
+      }
+      compare(what, "part", &rec.part, L.target[0], L.source[0], cnt[0]);
+      compare(what, "field", &rec.field, L.target[1], L.source[1], cnt[1]);
+      compare(what, "part_sym", &rec.part_sym, L.target[2], L.source[2], cnt[2]);
+      compare(what, "field_sym", &rec.field_sym, L.target[3], L.source[3], cnt[3]);
+      for (int k = 0; k < 4; k++) free(L.target[k]), free(L.source[k]);
+      free(qi[0]), free(qi[1]);
     }
-    compare(what, "part", &rec.part, L.target[0], L.source[0], cnt[0]);
-    compare(what, "field", &rec.field, L.target[1], L.source[1], cnt[1]);
-    compare(what, "part_sym", &rec.part_sym, L.target[2], L.source[2], cnt[2]);
-    compare(what, "field_sym", &rec.field_sym, L.target[3], L.source[3], cnt[3]);
+    free(lo_hi);
     size_t n_m2p = 0;
     for (size_t k = 0; k < rec.part.n; k++) n_m2p += rec.part.source[k] < 0;
     if (rec.field_sym.n == 0 || rec.part_sym.n == 0 || rec.field.n == 0 ||
         (two_bodies && n_m2p == 0)) {
-      printf("  %s: a list the case must exercise is empty: FAIL\n", what);
+      printf("  %s, %s: a list the case must exercise is empty: FAIL\n", name,
+             pass ? "adaptive pass" : "first pass");
       failures++;
     }
-    for (int k = 0; k < 4; k++) free(L.target[k]), free(L.source[k]);
     gravity_gpu_rec_free(&rec);
   }
   free(progeny), free(count), free(split), free(mp), free(a_min), free(hs), free(stack);

@@ -49,6 +49,9 @@ struct gpu_grav {
   struct gpu_grav_buf wcount;        /**< 4 list counters, then the out-of-stack counter */
   struct gpu_grav_buf wlist[4];      /**< the walks' lists: targets, then sources (cap each) */
   unsigned long long wcap[4];        /**< their capacities (entries) */
+  struct gpu_grav_buf wqueue[2];     /**< the walks' hand-on queues (3 ints per entry) */
+  unsigned long long qcap;           /**< their capacity (entries) */
+  long walk_rounds;                  /**< rounds of walkers, all walks */
   unsigned long long wn[4];          /**< entries of the last walk */
   int walk_on_device;                /**< gpu_grav_walk left this evaluation's lists */
   cudaEvent_t ev_walk[2];            /**< the walks */
@@ -98,12 +101,13 @@ extern "C" struct gpu_grav *gpu_grav_new(struct gpu *g) {
 
 extern "C" void gpu_grav_free(struct gpu_grav *gg) {
   if (!gg) return;
-  struct gpu_grav_buf *bufs[23] = {
+  struct gpu_grav_buf *bufs[25] = {
       &gg->mp,       &gg->field,    &gg->offset,   &gg->count,    &gg->l2l,      &gg->leaf,
       &gg->raw[0],   &gg->raw[1],   &gg->start[0], &gg->start[1], &gg->src[0],   &gg->src[1],
       &gg->cursor,   &gg->centre,   &gg->scale,    &gg->progeny,  &gg->split,    &gg->lo_hi,
-      &gg->wcount,   &gg->wlist[0], &gg->wlist[1], &gg->wlist[2], &gg->wlist[3]};
-  for (int k = 0; k < 23; k++)
+      &gg->wcount,   &gg->wlist[0], &gg->wlist[1], &gg->wlist[2], &gg->wlist[3],
+      &gg->wqueue[0], &gg->wqueue[1]};
+  for (int k = 0; k < 25; k++)
     if (bufs[k]->ptr) gpu_check(cudaFree(bufs[k]->ptr));
   if (gg->mp_host) gpu_check(cudaFreeHost(gg->mp_host));
   if (gg->scale_host) gpu_check(cudaFreeHost(gg->scale_host));
@@ -244,12 +248,14 @@ extern "C" void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_t
   wp.h_support = h_support;
   wp.h_factor = h_factor;
   wp.order = order;
+  /* counters: the 4 lists', the two queues', then the out-of-stack count */
   unsigned long long *cnt = (unsigned long long *)gg_reserve(
-      &gg->wcount, 4 * sizeof(unsigned long long) + sizeof(int) + 16, "gravity walk counters");
-  int *deep = (int *)(cnt + 4);
+      &gg->wcount, 6 * sizeof(unsigned long long) + sizeof(int) + 16, "gravity walk counters");
+  int *deep = (int *)(cnt + 6);
   /* first capacities: those of the last walk, or 64 entries per cell */
   for (int k = 0; k < 4; k++)
     if (gg->wcap[k] == 0) gg->wcap[k] = 64 * (unsigned long long)nc + 1024;
+  if (gg->qcap == 0) gg->qcap = 4 * (unsigned long long)nc + 65536;
   for (int attempt = 0;; attempt++) {
     struct gravity_walk_lists L;
     for (int k = 0; k < 4; k++) {
@@ -259,14 +265,37 @@ extern "C" void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_t
       L.cap[k] = gg->wcap[k];
     }
     L.n = cnt;
-    gpu_check(cudaMemsetAsync(cnt, 0, 4 * sizeof(unsigned long long) + sizeof(int), s));
-    gravity_walk_gpu_launch(s, T, wp, L, dlo, nr_top, h_support, deep);
-    unsigned long long hn[5];
-    gpu_check(cudaMemcpyAsync(hn, cnt, 4 * sizeof(unsigned long long) + sizeof(int),
-                              cudaMemcpyDeviceToHost, s));
+    struct gravity_walk_queue Q[2];
+    for (int k = 0; k < 2; k++) {
+      Q[k].item = (int *)gg_reserve(&gg->wqueue[k], 3 * gg->qcap * sizeof(int), "gravity walk queues");
+      Q[k].n = cnt + 4 + k;
+      Q[k].cap = gg->qcap;
+    }
+    gpu_check(cudaMemsetAsync(cnt, 0, 6 * sizeof(unsigned long long) + sizeof(int), s));
+    gravity_walk_roots_gpu_launch(s, T, wp, L, Q[0], dlo, nr_top, h_support, deep);
+    /* rounds on what the walkers handed on, until none is left */
+    unsigned long long hn[7], q_most = 0;
+    for (int cur = 0;; cur ^= 1) {
+      gpu_check(cudaMemcpyAsync(hn + 4 + cur, cnt + 4 + cur, sizeof(unsigned long long),
+                                cudaMemcpyDeviceToHost, s));
+      gpu_check(cudaStreamSynchronize(s));
+      const unsigned long long m = hn[4 + cur];
+      if (m > q_most) q_most = m;
+      if (m == 0) break;
+      gpu_check(cudaMemsetAsync(cnt + 4 + (cur ^ 1), 0, sizeof(unsigned long long), s));
+      gravity_walk_queue_gpu_launch(s, T, wp, L, Q[cur], m < gg->qcap ? m : gg->qcap, Q[cur ^ 1],
+                                    deep);
+      gpu_check(cudaMemsetAsync(cnt + 4 + cur, 0, sizeof(unsigned long long), s));
+      gg->walk_rounds++;
+    }
+    /* a queue that was too small slowed the walk (its walkers kept what
+     * did not fit): the next walk gets room for all */
+    if (q_most > gg->qcap) gg->qcap = q_most + q_most / 4;
+    gpu_check(cudaMemcpyAsync(hn, cnt, 4 * sizeof(unsigned long long), cudaMemcpyDeviceToHost, s));
+    gpu_check(cudaMemcpyAsync(hn + 6, deep, sizeof(int), cudaMemcpyDeviceToHost, s));
     gpu_check(cudaStreamSynchronize(s));
     int hdeep;
-    memcpy(&hdeep, hn + 4, sizeof(int));
+    memcpy(&hdeep, hn + 6, sizeof(int));
     if (hdeep)
       error_exit("gravity on the GPU: %d walks needed more than the %d entries of their stack "
                  "(GRAVITY_WALK_STACK; Scheduler:gpu_walks: host walks on the CPU)",
@@ -463,8 +492,11 @@ extern "C" void gpu_grav_print(const struct gpu_grav *gg, FILE *f) {
     fprintf(f, "; %ld upward passes (P2M, M2M) on the device, %.3f ms each (copy back included)",
             gg->calls_up, gg->t_up / gg->calls_up);
   if (gg->calls_walk)
-    fprintf(f, "; %ld walks on the device, %.3f ms each (%ld repeated with longer lists)",
-            gg->calls_walk, gg->t_walk / gg->calls_walk, gg->walk_retries);
+    fprintf(f, "; %ld walks on the device, %.3f ms each (%.1f rounds of walkers; %ld repeated "
+            "with longer lists)",
+            gg->calls_walk, gg->t_walk / gg->calls_walk,
+            1.0 + (double)gg->walk_rounds / (double)(gg->calls_walk + gg->walk_retries),
+            gg->walk_retries);
   fprintf(f, "; bus %.1f MB per evaluation; last full evaluation %.3g P2P/M2P, %.3g M2L/P2L\n",
           gg->bytes / gg->calls / 1e6, gg->n_entries[0], gg->n_entries[1]);
 }

@@ -32,6 +32,21 @@ struct gpu_leaves_dev {
   const double *ngb_shift;  /**< 3 per entry */
 };
 
+/** Threads per block of the one-thread-per-cell kernels. */
+#define GRAVITY_GPU_CELL_BLOCK 64
+
+/** Instantiate kernel K for the orders 1..GRAVITY_ORDER_MAX and launch the
+ *  one of d.order on stream s (the gravity kernels). */
+#define GRAVITY_GPU_DISPATCH(K, grid, block, ...)                                           \
+  switch (d.order) {                                                                        \
+    case 1: K<1><<<(grid), (block), 0, s>>>(__VA_ARGS__); break;                            \
+    case 2: K<2><<<(grid), (block), 0, s>>>(__VA_ARGS__); break;                            \
+    case 3: K<3><<<(grid), (block), 0, s>>>(__VA_ARGS__); break;                            \
+    case 4: K<4><<<(grid), (block), 0, s>>>(__VA_ARGS__); break;                            \
+    default: K<GRAVITY_ORDER_MAX><<<(grid), (block), 0, s>>>(__VA_ARGS__); break;           \
+  }                                                                                         \
+  gpu_check_launch(K)
+
 /** The gravity tree on the device (src/gpu/gpu_gravity.cu), by cell index. */
 struct gravity_gpu_dev {
   const struct gravity_multipole *mp; /**< multipole of each cell (CPU's gravity_up) */
@@ -86,7 +101,7 @@ void extra_ghost_gpu_launch(cudaStream_t s, struct parts p, struct hydro_props h
  *  (tasks/damage/damage_gpu.cu). */
 void damage_gpu_launch(cudaStream_t s, struct parts p, const struct material_table *mats,
                        const double *eps, double dt);
-/** Gravity (tasks/gravity/gravity_gpu.cu): the upward pass, P2M at the
+/** Gravity (tasks/gravity/gravity_tree_gpu.cu): the upward pass, P2M at the
  *  leaves, then M2M level by level from the deepest (level_start on the
  *  host: the pairs (child, parent) of level L are [level_start[L],
  *  level_start[L + 1]), a parent's children consecutive, in progeny
@@ -95,13 +110,21 @@ void damage_gpu_launch(cudaStream_t s, struct parts p, const struct material_tab
 void gravity_up_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_up u, int nr_cells,
                            const int *leaf, int nr_leaves, const int *child, const int *parent,
                            const int *level_start, int nr_levels);
-/** Gravity (tasks/gravity/gravity_gpu.cu): the walks of gravity_walk.h from
- *  every pair of the nt top-level cells (boxes lo_hi: 6 doubles each;
- *  h_support_top: the constant support of the near test), recorded in L
- *  (counters on the device); *deep (device) counts walks out of stack. */
-void gravity_walk_gpu_launch(cudaStream_t s, struct gravity_walk_tree T,
-                             struct gravity_walk_params wp, struct gravity_walk_lists L,
-                             const double *lo_hi, int nt, double h_support_top, int *deep);
+/** Gravity (tasks/gravity/gravity_tree_gpu.cu): the first round of the
+ *  walks of gravity_walk.h, from every pair of the nt top-level cells
+ *  (boxes lo_hi: 6 doubles each; h_support_top: the constant support of
+ *  the near test), recorded in L (counters on the device); what the
+ *  walkers leave goes to out; *deep (device) counts walks out of stack. */
+void gravity_walk_roots_gpu_launch(cudaStream_t s, struct gravity_walk_tree T,
+                                   struct gravity_walk_params wp, struct gravity_walk_lists L,
+                                   struct gravity_walk_queue out, const double *lo_hi, int nt,
+                                   double h_support_top, int *deep);
+/** A later round: the entries of in (n_in on the host: the device's *in.n
+ *  as read after the last round), what is left again to out. */
+void gravity_walk_queue_gpu_launch(cudaStream_t s, struct gravity_walk_tree T,
+                                   struct gravity_walk_params wp, struct gravity_walk_lists L,
+                                   struct gravity_walk_queue in, unsigned long long n_in,
+                                   struct gravity_walk_queue out, int *deep);
 /** Gravity (tasks/gravity/gravity_gpu.cu): M2L and P2L of every cell
  *  with sources in l, stored as its field. */
 void gravity_field_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_dev d,

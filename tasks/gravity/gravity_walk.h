@@ -183,21 +183,42 @@ BOLIDE_INLINE int gravity_walk_top_near(const double *lo_i, const double *hi_i,
   return !gravity_mac(sqrt(ri2), sqrt(rj2), d2, theta, h_support);
 }
 
-/** The walk from one root, recorded in L: root_a == root_b: every
- *  interaction within the cell (the self walk: each child's own and each
- *  pair of children, symmetric); else the pair walk of root_a with root_b,
- *  both receiving (sym) or only root_a (a long-range walk); entries go to
+/** Root r of the nt x nt pairs (i, j) = (r / nt, r % nt) of top-level
+ *  cells (particle counts count[], boxes lo_hi: lo then hi, 6 doubles per
+ *  cell), as the CPU's tasks divide the walks: i == j the self walk, a
+ *  near pair (gravity_walk_top_near) with j > i the symmetric walk, a far
+ *  pair the long-range walk of i.  Returns 1 with the walk's stack entry
+ *  (a, b, sym) in item, 0 where the root has no walk (an empty cell, a
+ *  near pair with j < i). */
+BOLIDE_INLINE int gravity_walk_root(const int *count, const double *lo_hi, int nt, double theta,
+                                    double h_support_top, long long r, int item[3]) {
+  const int i = (int)(r / nt), j = (int)(r % nt);
+  if (count[i] == 0 || count[j] == 0) return 0;
+  item[0] = i, item[1] = j, item[2] = 1;
+  if (i == j) return 1;
+  const int near = gravity_walk_top_near(lo_hi + 6 * i, lo_hi + 6 * i + 3, lo_hi + 6 * j,
+                                         lo_hi + 6 * j + 3, theta, h_support_top);
+  if (near) return j > i;
+  item[2] = 0;
+  return 1;
+}
+
+/** The walk from the n entries (a, b, sym) on stack, recorded in L:
+ *  a == b: every interaction within the cell (the self walk: each child's
+ *  own and each pair of children, symmetric); else the pair walk of a with
+ *  b, both receiving (sym) or only a (a long-range walk).  Entries go to
  *  B (B->n zeroed by the caller once, gravity_walk_flush of each list when
  *  the walker is done).  stack: room for GRAVITY_WALK_STACK entries of 3
- *  ints.  Returns 0 if the stack was too small (the walk is then
- *  incomplete), 1 otherwise. */
+ *  ints.  At most budget entries are taken from the stack; returns the
+ *  number left on it (0: the walk is complete; on the GPU the rest goes to
+ *  other threads, gravity_walk_spill), or -1 if the stack was too small
+ *  (the walk is then incomplete).  The entries are independent: any
+ *  division of them among walkers records the same interactions. */
 BOLIDE_INLINE int gravity_walk_run(const struct gravity_walk_tree *T,
                                    const struct gravity_walk_params *wp,
                                    const struct gravity_walk_lists *L, struct gravity_walk_buf *B,
-                                   int root_a, int root_b, int sym, int *stack) {
-  int n = 0;
-  stack[0] = root_a, stack[1] = root_b, stack[2] = sym, n = 1;
-  while (n > 0) {
+                                   int *stack, int n, long long budget) {
+  for (long long step = 0; n > 0 && step < budget; step++) {
     n--;
     const int a = stack[3 * n], b = stack[3 * n + 1], s = stack[3 * n + 2];
     if (a == b) { /* self */
@@ -206,10 +227,10 @@ BOLIDE_INLINE int gravity_walk_run(const struct gravity_walk_tree *T,
         gravity_walk_emit(L, B, GRAVITY_REC_PART, a, a);
         continue;
       }
+      if (n + 36 > GRAVITY_WALK_STACK) return -1;
       for (int q = 0; q < 8; q++) {
         const int cq = T->progeny[8 * a + q];
         if (cq < 0) continue;
-        if (n + 8 > GRAVITY_WALK_STACK) return 0;
         stack[3 * n] = cq, stack[3 * n + 1] = cq, stack[3 * n + 2] = 1, n++;
         for (int r = q + 1; r < 8; r++) {
           const int cr = T->progeny[8 * a + r];
@@ -231,7 +252,7 @@ BOLIDE_INLINE int gravity_walk_run(const struct gravity_walk_tree *T,
       gravity_walk_emit(L, B, s ? GRAVITY_REC_FIELD_SYM : GRAVITY_REC_FIELD, a, b);
     } else if (d != GRAVITY_WALK_NONE) { /* open a or b: its children meet the other */
       const int open_a = d == GRAVITY_WALK_OPEN_A, big = open_a ? a : b;
-      if (n + 8 > GRAVITY_WALK_STACK) return 0;
+      if (n + 8 > GRAVITY_WALK_STACK) return -1;
       for (int q = 0; q < 8; q++) {
         const int c = T->progeny[8 * big + q];
         if (c < 0) continue;
@@ -240,7 +261,34 @@ BOLIDE_INLINE int gravity_walk_run(const struct gravity_walk_tree *T,
       }
     }
   }
-  return 1;
+  return n;
+}
+
+/** A queue of walk entries (a, b, sym) that walkers hand on: item holds
+ *  cap entries of 3 ints; *n counts those offered (it may pass cap: the
+ *  entries that did not fit stayed with their walker). */
+struct gravity_walk_queue {
+  int *item;
+  unsigned long long *n;
+  unsigned long long cap;
+};
+
+/** Move the top entries of the n on stack to Q (atomically on the GPU) as
+ *  far as Q has room; those that do not fit stay at the bottom of stack.
+ *  Returns the number that stayed. */
+BOLIDE_INLINE int gravity_walk_spill(const struct gravity_walk_queue *Q, int *stack, int n) {
+  if (n <= 0) return n;
+#ifdef __CUDA_ARCH__
+  const unsigned long long i0 = atomicAdd(Q->n, (unsigned long long)n);
+#else
+  const unsigned long long i0 = *Q->n;
+  *Q->n += (unsigned long long)n;
+#endif
+  const unsigned long long room = i0 >= Q->cap ? 0 : Q->cap - i0;
+  const int fit = room < (unsigned long long)n ? (int)room : n;
+  for (int q = 0; q < fit; q++)
+    for (int k = 0; k < 3; k++) Q->item[3 * (i0 + q) + k] = stack[3 * (n - 1 - q) + k];
+  return n - fit;
 }
 
 #endif
