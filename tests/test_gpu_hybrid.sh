@@ -8,6 +8,9 @@
 #           walks), its GPU part, then the hydrodynamics on the GPU
 #   auto    the hybrid: the CPU workers walk while the GPU computes the
 #           hydrodynamics; then gravity's GPU part and the kick
+#           (all, auto, list: Scheduler:gpu_multipoles and gpu_walks host)
+#   default no options: the defaults (multipoles and walks on the device;
+#           with Gravity:reuse_steps, walks on the CPU)
 #   list    [density, gradient, force, damage, drift, kick, gravity]: the same
 #   nograv  [density, gradient, force, damage, drift, kick]: the whole of
 #           self-gravity on the CPU workers while the GPU computes the
@@ -29,6 +32,8 @@ B=${BOLIDE_BUILDDIR:?}; S=${BOLIDE_SRCDIR:?}
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
 hydro="density, gradient, force, damage, drift, kick"
+# gravity's multipoles and walks on the CPU (the hybrid's CPU share)
+host=(-P Scheduler:gpu_multipoles:host -P Scheduler:gpu_walks:host)
 
 # run CASE MODE STEPS: bolide in CASE/MODE (a copy of CASE/cpu's files)
 run() {
@@ -36,12 +41,13 @@ run() {
   mkdir -p "$c/$m"; [ "$m" = cpu ] || cp "$c/cpu/"* "$c/$m/"
   case $m in
     cpu) flag=(--no-gpu) ;;
-    all) flag=(--gpu -P Scheduler:gpu:all) ;;
-    auto) flag=(--gpu) ;;
-    list) flag=(--gpu -P "Scheduler:gpu:[$hydro, gravity]") ;;
+    all) flag=(--gpu -P Scheduler:gpu:all "${host[@]}") ;;
+    auto) flag=(--gpu "${host[@]}") ;;
+    list) flag=(--gpu -P "Scheduler:gpu:[$hydro, gravity]" "${host[@]}") ;;
     nograv) flag=(--gpu -P "Scheduler:gpu:[$hydro]") ;;
-    updev) flag=(--gpu -P Scheduler:gpu_multipoles:device) ;;
-    alldev) flag=(--gpu -P Scheduler:gpu:all -P Scheduler:gpu_multipoles:device) ;;
+    default) flag=(--gpu) ;;
+    updev) flag=(--gpu -P Scheduler:gpu_multipoles:device -P Scheduler:gpu_walks:host) ;;
+    alldev) flag=(--gpu -P Scheduler:gpu:all -P Scheduler:gpu_multipoles:device -P Scheduler:gpu_walks:host) ;;
     walkdev) flag=(--gpu -P Scheduler:gpu_walks:device) ;;
     allwalk) flag=(--gpu -P Scheduler:gpu:all -P Scheduler:gpu_walks:device) ;;
   esac
@@ -79,7 +85,7 @@ compare() {
 mkdir -p evrard/cpu
 "${PYTHON:-python3}" "$S/examples/EvrardCollapse/make_ic.py" 24 evrard/cpu/evrard.hdf5 >/dev/null
 cp "$S/examples/EvrardCollapse/params.yml" evrard/cpu/
-for m in cpu all auto list nograv updev alldev walkdev allwalk; do run evrard $m 40; done
+for m in cpu all auto list nograv default updev alldev walkdev allwalk; do run evrard $m 40; done
 expect evrard all "(one after the other: the CPU part, the GPU part, then the hydrodynamics)"
 expect evrard all "GPU runner (serial)"
 for m in auto list; do
@@ -93,11 +99,11 @@ for m in auto list nograv; do
     { echo "FAIL: evrard/$m: its FORCE phases did not run the CPU beside the GPU"; exit 1; }
 done
 grep -h "^GPU runner" evrard/*/run.log
-for m in updev alldev walkdev allwalk; do
+for m in default updev alldev walkdev allwalk; do
   grep -q "upward passes (P2M, M2M) on the device" evrard/$m/run.log ||
     { echo "FAIL: evrard/$m: no upward pass ran on the device"; exit 1; }
 done
-for m in walkdev allwalk; do
+for m in default walkdev allwalk; do
   grep -q "walks on the device" evrard/$m/run.log ||
     { echo "FAIL: evrard/$m: no walk ran on the device"; exit 1; }
   expect evrard $m "self-gravity entirely on the GPU (Scheduler:gpu_walks: device"
@@ -108,9 +114,12 @@ mkdir -p reuse/cpu
 cp evrard/cpu/evrard.hdf5 reuse/cpu/
 sed 's/^Gravity:$/Gravity:\n  reuse_steps: 2\n  reuse_tolerance: 0.05/' "$S/examples/EvrardCollapse/params.yml" >reuse/cpu/params.yml
 grep -q "reuse_steps: 2" reuse/cpu/params.yml || { echo "FAIL: test set-up (reuse)"; exit 1; }
-for m in cpu auto nograv updev; do run reuse $m 40; done
-grep -q "GPU gravity, .* evaluations ([1-9][0-9]* replays)" reuse/auto/run.log ||
-  { echo "FAIL: the hybrid reuse run replayed no step on the GPU"; exit 1; }
+for m in cpu auto nograv default updev; do run reuse $m 40; done
+for m in auto default; do
+  grep -q "GPU gravity, .* evaluations ([1-9][0-9]* replays)" reuse/$m/run.log ||
+    { echo "FAIL: the reuse run reuse/$m replayed no step on the GPU"; exit 1; }
+done
+expect reuse default "walks on the CPU"
 grep -q "steps reused the far field" reuse/nograv/run.log ||
   { echo "FAIL: the reuse run with gravity on the CPU did not report its reuse"; exit 1; }
 grep -h "reused the far field" reuse/*/run.log
@@ -146,15 +155,15 @@ Materials:
 Damage:
   seed: 11
 YML
-for m in cpu all auto updev walkdev; do run impact $m 40; done
+for m in cpu all auto default updev walkdev; do run impact $m 40; done
 expect impact auto "gradient, extra ghost (plasticity, dS/dt), force, damage, kick2"
 expect impact auto "GPU runner (hybrid)"
 
 fail=0
-for m in all auto list nograv updev alldev walkdev allwalk; do compare evrard cpu $m || fail=1; done
-for m in auto list updev alldev walkdev allwalk; do compare evrard all $m || fail=1; done
-for m in auto nograv updev; do compare reuse cpu $m || fail=1; done
-for m in all auto updev walkdev; do compare impact cpu $m || fail=1; done
+for m in all auto list nograv default updev alldev walkdev allwalk; do compare evrard cpu $m || fail=1; done
+for m in auto list default updev alldev walkdev allwalk; do compare evrard all $m || fail=1; done
+for m in auto nograv default updev; do compare reuse cpu $m || fail=1; done
+for m in all auto default updev walkdev; do compare impact cpu $m || fail=1; done
 compare impact all auto || fail=1
 [ $fail -eq 0 ] && echo PASS
 exit $fail

@@ -524,16 +524,22 @@ void gpu_engine_init(struct engine *e) {
   ge->cells.host_lists = params_get_enum(e->params, "Scheduler:gpu_lists") == 1;
   ge->up_on_device = params_get_enum(e->params, "Scheduler:gpu_multipoles") == 1;
   ge->walk_on_device = params_get_enum(e->params, "Scheduler:gpu_walks") == 1;
+  const int walks_given = params_given(e->params, "Scheduler:gpu_walks");
+  const int up_given = params_given(e->params, "Scheduler:gpu_multipoles");
+  /* the far-field reuse decides on the shortest M2L/M2P distance, which
+   * the CPU's walks measure: there the walks stay on the CPU unless asked
+   * for on the device (an error); so do they where the multipoles were
+   * asked for on the host */
+  const int reuse = e->gp.enabled && e->gp.reuse_steps > 0 && mode != GPU_MODE_CPU_GRAV;
+  if (!walks_given && (reuse || (up_given && !ge->up_on_device))) ge->walk_on_device = 0;
   if (ge->walk_on_device && !ge->up_on_device) {
-    if (params_given(e->params, "Scheduler:gpu_multipoles"))
+    if (up_given)
       error_exit("%s: Scheduler:gpu_walks: device needs Scheduler:gpu_multipoles: device (the "
                  "walks read the multipoles where they are computed)",
                  params_filename(e->params));
     ge->up_on_device = 1;
   }
-  /* the far-field reuse decides on the shortest M2L/M2P distance, which
-   * the CPU's walks measure */
-  if (ge->walk_on_device && e->gp.enabled && e->gp.reuse_steps > 0 && mode != GPU_MODE_CPU_GRAV)
+  if (ge->walk_on_device && reuse)
     error_exit("%s: Scheduler:gpu_walks: device cannot be combined with Gravity:reuse_steps > 0 "
                "yet (the reuse's tolerance is measured by the CPU's walks)",
                params_filename(e->params));
