@@ -31,6 +31,10 @@
  *  the test of the GPU's division of the walks (small: many rounds). */
 #define GRAVITY_TEST_BUDGET 5
 
+/** Stack of a walker that walks a root to its end (the GPU's walkers
+ *  hold GRAVITY_WALK_STACK entries and hand on what does not fit). */
+#define TEST_STACK 8192
+
 static int failures = 0;
 
 /** (target, source) entries as 64-bit keys, for sorting. */
@@ -98,7 +102,7 @@ static void run(const char *name, int two_bodies, double h_factor) {
   gravity_walk_tree_arrays(sp.cells, nc, progeny, count, split);
   struct gravity_multipole *mp = malloc((size_t)nc * sizeof *mp);
   double *a_min = malloc((size_t)nc * sizeof(double)), *hs = malloc((size_t)nc * sizeof(double));
-  int *stack = malloc(3 * GRAVITY_WALK_STACK * sizeof(int));
+  int *stack = malloc(3 * (size_t)TEST_STACK * sizeof(int));
   for (int pass = 0; pass < 2; pass++) {
     if (pass == 1) gravity_tree_all(&p, sp.cells, nt, gc, &gp); /* |ga| for the adaptive pass */
     for (int i = 0; i < nt; i++) gravity_up(&p, sp.cells + i, gc, &gp);
@@ -116,8 +120,8 @@ static void run(const char *name, int two_bodies, double h_factor) {
     gravity_gpu_record(NULL);
     /* the stack walk from every root: as one walker per root (budget
      * unlimited), and as the GPU's kernels divide it (gravity_gpu.cu):
-     * walkers of GRAVITY_TEST_BUDGET entries that hand what is left on
-     * their stack to a queue (one too small to take it all: the rest stays
+     * walkers of GRAVITY_TEST_BUDGET entries (or fewer: a full stack) that
+     * hand what is left on their stack to a queue (one too small to take it all: the rest stays
      * with its walker), the queue then walked by the next round */
     for (int k = 0; k < nc; k++) mp[k] = gc[k].mp, a_min[k] = gc[k].a_min, hs[k] = gc[k].h_support;
     const struct gravity_walk_tree T = {progeny, count, split, mp, a_min, hs};
@@ -142,20 +146,23 @@ static void run(const char *name, int two_bodies, double h_factor) {
       struct gravity_walk_buf B;
       memset(B.n, 0, sizeof B.n);
       const long long budget = mode ? GRAVITY_TEST_BUDGET : (long long)1 << 62;
-      const unsigned long long qcap = 64;
+      /* handed on: a stack of 48 entries (one self entry's 36 successors
+       * fill it), so that walkers also stop and hand on for want of room */
+      const int scap = mode ? 48 : TEST_STACK;
+      const unsigned long long qcap = 2048;
       int *qi[2] = {malloc(3 * qcap * sizeof(int)), malloc(3 * qcap * sizeof(int))};
       unsigned long long qn[2] = {0, 0};
       /* walk: the stack's n entries with the budget, the rest to queue o */
       #define WALK_ITEMS(n0, o)                                                      \
         do {                                                                         \
           const struct gravity_walk_queue Q = {qi[o], qn + (o), qcap};               \
-          int nw = gravity_walk_run(&T, &wp, &L, &B, stack, (n0), budget);            \
+          int nw = gravity_walk_run(&T, &wp, &L, &B, stack, scap, (n0), budget);      \
           if (nw > 0) {                                                              \
             const int left = gravity_walk_spill(&Q, stack, nw);                      \
             handed += (unsigned long long)(nw - left), kept += (unsigned long long)left; \
-            nw = left > 0 ? gravity_walk_run(&T, &wp, &L, &B, stack, left, (long long)1 << 62) : 0; \
+            nw = left > 0 ? gravity_walk_run(&T, &wp, &L, &B, stack, TEST_STACK, left, (long long)1 << 62) : 0; \
           }                                                                          \
-          deep += nw < 0;                                                            \
+          deep += nw > 0;                                                            \
         } while (0)
       for (long long r = 0; r < (long long)nt * nt; r++)
         if (gravity_walk_root(count, lo_hi, nt, gp.theta, gp.h_support, r, stack))

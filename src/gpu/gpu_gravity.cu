@@ -297,8 +297,9 @@ extern "C" void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_t
     int hdeep;
     memcpy(&hdeep, hn + 6, sizeof(int));
     if (hdeep)
-      error_exit("gravity on the GPU: %d walks needed more than the %d entries of their stack "
-                 "(GRAVITY_WALK_STACK; Scheduler:gpu_walks: host walks on the CPU)",
+      error_exit("gravity on the GPU: %d walkers found their stack (%d entries, "
+                 "GRAVITY_WALK_STACK) and the hand-on queue full; Scheduler:gpu_walks: host walks "
+                 "on the CPU",
                  hdeep, GRAVITY_WALK_STACK);
     int grown = 0;
     for (int k = 0; k < 4; k++) {

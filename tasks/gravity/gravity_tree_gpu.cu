@@ -100,20 +100,21 @@ void gravity_up_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_up
 #define GRAVITY_WALK_BLOCK 64
 
 /** One walker's share: the n entries on its stack for at most
- *  GRAVITY_WALK_BUDGET steps, the rest to out (what does not fit there it
- *  walks to the end itself). */
+ *  GRAVITY_WALK_BUDGET steps (fewer where the stack fills), the rest to
+ *  out; what does not fit there it walks to the end itself, and entries
+ *  left then (its stack full, the queue too) count in *deep. */
 __device__ static void gravity_walk_share(const struct gravity_walk_tree *T,
                                           const struct gravity_walk_params *wp,
                                           const struct gravity_walk_lists *L,
                                           struct gravity_walk_buf *B,
                                           const struct gravity_walk_queue *out, int *stack, int n,
                                           int *deep) {
-  n = gravity_walk_run(T, wp, L, B, stack, n, GRAVITY_WALK_BUDGET);
+  n = gravity_walk_run(T, wp, L, B, stack, GRAVITY_WALK_STACK, n, GRAVITY_WALK_BUDGET);
   if (n > 0) {
     n = gravity_walk_spill(out, stack, n);
-    if (n > 0) n = gravity_walk_run(T, wp, L, B, stack, n, LLONG_MAX);
+    if (n > 0) n = gravity_walk_run(T, wp, L, B, stack, GRAVITY_WALK_STACK, n, LLONG_MAX);
   }
-  if (n < 0) atomicAdd(deep, 1);
+  if (n > 0) atomicAdd(deep, 1);
 }
 
 /** The first round: the roots [r0, r0 + GRAVITY_WALK_ROOTS) of the nt x nt

@@ -21,9 +21,11 @@
  *  0.7 brings the 99th percentile of the first pass under 1e-3). */
 #define GRAVITY_THETA_FIRST 0.7
 
-/** Entries of the walk's stack (3 ints each); a deeper walk stops and
- *  reports it (gravity_walk_run returns 0). */
-#define GRAVITY_WALK_STACK 1024
+/** Entries of a GPU walker's stack (3 ints each, in local memory, which
+ *  the device reserves for every thread it can hold at once: 132 x 2048
+ *  threads of an H200 x 3 kB = 0.8 GB).  A walker whose stack fills hands
+ *  it on (gravity_walk_spill); the CPU's test gives its walkers more. */
+#define GRAVITY_WALK_STACK 256
 
 /** The cell tree as the walk reads it, by cell index. */
 struct gravity_walk_tree {
@@ -208,16 +210,16 @@ BOLIDE_INLINE int gravity_walk_root(const int *count, const double *lo_hi, int n
  *  own and each pair of children, symmetric); else the pair walk of a with
  *  b, both receiving (sym) or only a (a long-range walk).  Entries go to
  *  B (B->n zeroed by the caller once, gravity_walk_flush of each list when
- *  the walker is done).  stack: room for GRAVITY_WALK_STACK entries of 3
- *  ints.  At most budget entries are taken from the stack; returns the
- *  number left on it (0: the walk is complete; on the GPU the rest goes to
- *  other threads, gravity_walk_spill), or -1 if the stack was too small
- *  (the walk is then incomplete).  The entries are independent: any
- *  division of them among walkers records the same interactions. */
+ *  the walker is done).  stack: room for cap entries of 3 ints.  At most
+ *  budget entries are taken from the stack, and none whose successors
+ *  would not fit on it; returns the number left on it (0: the walk is
+ *  complete; on the GPU the rest goes to other threads,
+ *  gravity_walk_spill).  The entries are independent: any division of
+ *  them among walkers records the same interactions. */
 BOLIDE_INLINE int gravity_walk_run(const struct gravity_walk_tree *T,
                                    const struct gravity_walk_params *wp,
                                    const struct gravity_walk_lists *L, struct gravity_walk_buf *B,
-                                   int *stack, int n, long long budget) {
+                                   int *stack, int cap, int n, long long budget) {
   for (long long step = 0; n > 0 && step < budget; step++) {
     n--;
     const int a = stack[3 * n], b = stack[3 * n + 1], s = stack[3 * n + 2];
@@ -227,7 +229,7 @@ BOLIDE_INLINE int gravity_walk_run(const struct gravity_walk_tree *T,
         gravity_walk_emit(L, B, GRAVITY_REC_PART, a, a);
         continue;
       }
-      if (n + 36 > GRAVITY_WALK_STACK) return -1;
+      if (n + 36 > cap) return n + 1; /* the entry stays */
       for (int q = 0; q < 8; q++) {
         const int cq = T->progeny[8 * a + q];
         if (cq < 0) continue;
@@ -252,7 +254,7 @@ BOLIDE_INLINE int gravity_walk_run(const struct gravity_walk_tree *T,
       gravity_walk_emit(L, B, s ? GRAVITY_REC_FIELD_SYM : GRAVITY_REC_FIELD, a, b);
     } else if (d != GRAVITY_WALK_NONE) { /* open a or b: its children meet the other */
       const int open_a = d == GRAVITY_WALK_OPEN_A, big = open_a ? a : b;
-      if (n + 8 > GRAVITY_WALK_STACK) return -1;
+      if (n + 8 > cap) return n + 1;
       for (int q = 0; q < 8; q++) {
         const int c = T->progeny[8 * big + q];
         if (c < 0) continue;
