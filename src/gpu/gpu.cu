@@ -104,6 +104,7 @@ struct gpu {
   double t[GPU_T_N];                 /**< accumulated milliseconds per stage */
   long calls;                        /**< FORCE phases run */
   double bytes_h2d, bytes_d2h;       /**< traffic over the bus */
+  double bytes_full;                 /**< of which the full copies (both ways) */
   long full_up, full_down;           /**< copies of every field (rebuilds, outputs) */
   void *pinned[PART_NR_FIELDS];      /**< host arrays registered as pinned memory, by field */
   size_t pinned_bytes;               /**< bytes per field registered */
@@ -507,6 +508,7 @@ extern "C" void gpu_upload_all(struct gpu *g, const struct parts *p) {
     gpu_check(cudaMemcpyAsync(*gpu_field_slot(&g->dev, f), *gpu_field_slot((struct parts *)p, f),
                               bytes, cudaMemcpyHostToDevice, g->stream[0]));
     g->bytes_h2d += (double)bytes;
+    g->bytes_full += (double)bytes;
   }
   gpu_check(cudaStreamSynchronize(g->stream[0]));
 }
@@ -520,6 +522,7 @@ extern "C" void gpu_download_all(struct gpu *g, struct parts *p) {
     gpu_check(cudaMemcpyAsync(*gpu_field_slot(p, f), *gpu_field_slot(&g->dev, f), bytes,
                               cudaMemcpyDeviceToHost, g->stream[0]));
     g->bytes_d2h += (double)bytes;
+    g->bytes_full += (double)bytes;
   }
   gpu_check(cudaStreamSynchronize(g->stream[0]));
 }
@@ -547,8 +550,12 @@ extern "C" void gpu_print_timers(const struct gpu *g, FILE *f) {
   for (int k = 0; k < GPU_T_N; k++) fprintf(f, " %s %.3f", gpu_stage_names[k], g->t[k] / g->calls);
   if (g->drifts) fprintf(f, " drift(+x,h back) %.3f", g->t_drift / g->drifts);
   fprintf(f, "; %ld full uploads, %ld full downloads", g->full_up, g->full_down);
-  fprintf(f, "; bus %.1f MB up, %.1f MB down per step\n", g->bytes_h2d / g->calls / 1e6,
+  fprintf(f, "; bus %.1f MB up, %.1f MB down per step", g->bytes_h2d / g->calls / 1e6,
           g->bytes_d2h / g->calls / 1e6);
+  /* what a run moves between its outputs and rebuilds, which copy every
+   * field (start, rebuild, snapshot, end) */
+  fprintf(f, "; between the full copies %.1f MB per step\n",
+          (g->bytes_h2d + g->bytes_d2h - g->bytes_full) / g->calls / 1e6);
 }
 
 extern "C" void gpu_memory_used(const struct gpu *g, double *run, double *total) {

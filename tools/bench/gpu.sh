@@ -21,8 +21,11 @@
 #   (Scheduler:gpu auto: CPU workers run tasks while the GPU works).
 # Median over REPEAT runs of STEPS steps (each run's mean step, the first
 # force computation excluded); the evaluation time, the bus traffic and the
-# GPU memory are those of the last run.  Prints a markdown table and the
-# GPU's stage times.
+# GPU memory are those of the last run.  Bus: everything the run moved
+# per step, and the part between the full copies of every field (start,
+# rebuilds, snapshots, end), which a long run repeats every step; shares
+# at 25 GB/s (PCIe 5 x16) of the median step.  Prints a markdown table and
+# the GPU's stage times.
 #
 # Usage: tools/bench/gpu.sh [-n "1e5 1e6"] [-p "basalt gravity"] [-m "cpu gpu hybrid"]
 #                           [-r 3] [-s 4] [-g "GPU ARGS"] [-T SECONDS]
@@ -51,7 +54,7 @@ say "$(printf "# %s on %s (%s, %d cores); GPU: %s" "$("$build/bolide" --version 
   "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')" "$ncpu" \
   "$(nvidia-smi --query-gpu=name --format=csv,noheader 2>/dev/null | head -1)")"
 say "# median of $repeat runs of $steps steps, every particle active; cpu: --no-gpu -t $ncpu; gpu: --gpu -P Scheduler:gpu:all; hybrid: --gpu -P Scheduler:gpu:auto"
-say "| problem | N | mode | s/step | s/evaluation | vs cpu | bus MB/step | bus share at 25 GB/s | GPU bytes/particle |"
+say "| problem | N | mode | s/step | s/evaluation | vs cpu | bus MB/step | bus share at 25 GB/s | between full copies MB/step (share) | GPU bytes/particle |"
 say "|---|---|---|---|---|---|---|---|---|"
 stages=""
 
@@ -135,17 +138,19 @@ YML
         *) echo "gpu.sh: unknown mode $mode" >&2; exit 2 ;;
       esac
       [ $mode = cpu ] && cpu_step=$med_step
-      ratio=-; bus=-; share=-; mem=-
+      ratio=-; bus=-; share=-; mem=-; rec=-
       if [ "$med_step" != timeout ] && [ -n "$cpu_step" ] && [ "$cpu_step" != timeout ]; then
         ratio=$(awk -v a=$cpu_step -v b=$med_step 'BEGIN {printf "%.2f", a / b}')
       fi
       if [ $mode != cpu ] && [ "$med_step" != timeout ]; then
         bus=$(awk '/^GPU \(/ {for (k = 1; k <= NF; k++) if ($k == "bus") {u = $(k + 1); d = $(k + 4)}} END {printf "%.1f", u + d}' run.log)
         share=$(awk -v b=$bus -v t=$med_step 'BEGIN {printf "%.1f%%", 100 * b * 1e6 / 25e9 / t}')
+        rec=$(awk -v t=$med_step '/^GPU \(/ {for (k = 1; k <= NF; k++) if ($k == "copies") r = $(k + 1)}
+              END {if (r == "") print "-"; else printf "%.1f (%.1f%%)", r, 100 * r * 1e6 / 25e9 / t}' run.log)
         mem=$(awk '/^GPU memory:/ {gsub(/\(/, ""); for (k = 1; k <= NF; k++) if ($k == "bytes") print $(k - 1)}' run.log)
         stages="$stages$prob $N $mode: $(grep '^GPU (' run.log | sed 's/^GPU ([^)]*), //' | tr '\n' ' '); $(grep '^GPU host\|^GPU gravity' run.log | tr '\n' ' ') $(grep -o 'rebuilds (cells.*' run.log | tr '\n' ' ')"$'\n'
       fi
-      say "| $prob | $N | $mode | $med_step | $last_eval | $ratio | $bus | $share | $mem |"
+      say "| $prob | $N | $mode | $med_step | $last_eval | $ratio | $bus | $share | $rec | $mem |"
     done
   done
 done
