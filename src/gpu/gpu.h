@@ -143,8 +143,9 @@ struct gravity_multipole *gpu_grav_multipoles(struct gpu_grav *gg, int nr_cells)
  *  evaluation) and h_support, left on the device for the next
  *  gpu_grav_run (which then uploads no multipoles) and copied back for the
  *  CPU's walks: *mp, *a_min, *h_support point to pinned host arrays by
- *  cell index, valid until the next call.  resident = 0: upload x, y, z,
- *  m, h, gax, gay, gaz first. */
+ *  cell index, valid until the next call (mp NULL: nothing comes back,
+ *  the walks being on the device too).  resident = 0: upload x, y, z, m,
+ *  h, gax, gay, gaz first. */
 void gpu_grav_up(struct gpu_grav *gg, struct parts *p, int order, double h_factor, int resident,
                  const struct gravity_multipole **mp, const double **a_min,
                  const double **h_support);

@@ -615,8 +615,11 @@ static int gpu_engine_grav_prepare(struct engine *e, int on_gpu) {
     }
     ge->mp = gpu_grav_multipoles(ge->grav, e->space.nr_cells);
     /* Scheduler:gpu_multipoles: device: P2M and M2M on the GPU, the
-     * multipoles back for the walks; the grav_up tasks are skipped below */
-    if (ge->up_on_device) gpu_grav_up_cells(ge->grav, &e->parts, &e->space, e->gcells, &e->gp, 1);
+     * multipoles back where the CPU walks; the grav_up tasks are skipped
+     * below */
+    if (ge->up_on_device)
+      gpu_grav_up_cells(ge->grav, &e->parts, &e->space, ge->walk_on_device ? NULL : e->gcells,
+                        &e->gp, 1);
     /* Scheduler:gpu_walks: device: the walks too; nothing left for the CPU */
     if (ge->walk_on_device) {
       gpu_grav_walk_cells(ge->grav, h, &e->space, &e->gp);

@@ -113,7 +113,8 @@ void gpu_grav_host_free(struct gpu_grav_host *h);
 /** The upward pass of every cell of s on the device (gpu_grav_up), copied
  *  into gc (multipole, a_min, h_support; the field zeroed) for the CPU's
  *  walks, as gravity_up of every top-level cell would leave it (host ga
- *  and pot are not zeroed: the device's evaluation overwrites them). */
+ *  and pot are not zeroed: the device's evaluation overwrites them); gc
+ *  NULL: nothing copied back (the walks on the device too). */
 void gpu_grav_up_cells(struct gpu_grav *gg, struct parts *p, const struct space *s,
                        struct gravity_cell *gc, const struct gravity_props *gp, int resident);
 /** The walks of every top-level cell of s on the device (gpu_grav_walk,

@@ -204,24 +204,29 @@ extern "C" void gpu_grav_up(struct gpu_grav *gg, struct parts *p, int order, dou
   const int *l2l = (const int *)gg->l2l.ptr;
   gravity_up_gpu_launch(s, dp, u, (int)nc, (const int *)gg->leaf.ptr, gg->nr_leaves, l2l, l2l + nl,
                         gg->level_start, gg->nr_levels);
-  /* back for the walks, into pinned staging */
-  struct gravity_multipole *mh = gpu_grav_multipoles(gg, (int)nc);
-  if ((int)nc > gg->scale_host_cap || !gg->scale_host) {
-    if (gg->scale_host) gpu_check(cudaFreeHost(gg->scale_host));
-    gg->scale_host_cap = (int)nc + (int)nc / 4 + 16;
-    gpu_check(cudaMallocHost((void **)&gg->scale_host, 2 * (size_t)gg->scale_host_cap * sizeof(double)));
+  gg->mp_on_device = 1;
+  if (mp) {
+    /* back for the walks, into pinned staging */
+    struct gravity_multipole *mh = gpu_grav_multipoles(gg, (int)nc);
+    if ((int)nc > gg->scale_host_cap || !gg->scale_host) {
+      if (gg->scale_host) gpu_check(cudaFreeHost(gg->scale_host));
+      gg->scale_host_cap = (int)nc + (int)nc / 4 + 16;
+      gpu_check(cudaMallocHost((void **)&gg->scale_host,
+                               2 * (size_t)gg->scale_host_cap * sizeof(double)));
+    }
+    gpu_check(cudaMemcpyAsync(mh, u.mp, nc * sizeof(struct gravity_multipole),
+                              cudaMemcpyDeviceToHost, s));
+    gpu_check(cudaMemcpyAsync(gg->scale_host, scale, 2 * nc * sizeof(double),
+                              cudaMemcpyDeviceToHost, s));
+    const double down = (double)nc * (sizeof(struct gravity_multipole) + 2 * sizeof(double));
+    gpu_bytes_add(gg->g, 0.0, down);
+    gg->bytes += down;
+    *mp = mh;
+    *a_min = gg->scale_host;
+    *h_support = gg->scale_host + nc;
   }
-  gpu_check(cudaMemcpyAsync(mh, u.mp, nc * sizeof(struct gravity_multipole), cudaMemcpyDeviceToHost, s));
-  gpu_check(cudaMemcpyAsync(gg->scale_host, scale, 2 * nc * sizeof(double), cudaMemcpyDeviceToHost, s));
-  const double down = (double)nc * (sizeof(struct gravity_multipole) + 2 * sizeof(double));
-  gpu_bytes_add(gg->g, 0.0, down);
-  gg->bytes += down;
   gg->t_up += gg_stage_end(gg->ev_up, s);
   gg->calls_up++;
-  gg->mp_on_device = 1;
-  *mp = mh;
-  *a_min = gg->scale_host;
-  *h_support = gg->scale_host + nc;
 }
 
 extern "C" void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_top, double theta,

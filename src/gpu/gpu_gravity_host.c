@@ -114,6 +114,10 @@ void gpu_grav_host_free(struct gpu_grav_host *h) {
 
 void gpu_grav_up_cells(struct gpu_grav *gg, struct parts *p, const struct space *s,
                        struct gravity_cell *gc, const struct gravity_props *gp, int resident) {
+  if (!gc) {
+    gpu_grav_up(gg, p, gp->order, gp->h_factor, resident, NULL, NULL, NULL);
+    return;
+  }
   const struct gravity_multipole *mp;
   const double *a_min, *h_support;
   gpu_grav_up(gg, p, gp->order, gp->h_factor, resident, &mp, &a_min, &h_support);
@@ -154,7 +158,8 @@ void gpu_grav_tree_all(struct gpu_grav *gg, struct gpu_grav_host *h, struct grav
     gpu_grav_set_tree(gg, &h->tree);
   }
   if (up_on_device) {
-    gpu_grav_up_cells(gg, p, s, gc, gp, resident);
+    /* the host's copy only where the host walks */
+    gpu_grav_up_cells(gg, p, s, walk_on_device ? NULL : gc, gp, resident);
   } else {
     struct gravity_multipole *mp = gpu_grav_multipoles(gg, s->nr_cells);
     for (int i = 0; i < nr_top; i++) {
