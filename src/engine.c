@@ -488,10 +488,16 @@ void engine_rebuild(struct engine *e) {
   gpu_engine_to_host(e);
   gpu_engine_host_modified(e);
 #endif
+  const double w1 = error_walltime();
   const size_t removed = space_rebuild(&e->space);
   e->nr_removed += (long long)removed;
+  const double w2 = error_walltime();
   engine_make_graph(e);
-  e->t_rebuild += error_walltime() - w0;
+  const double w3 = error_walltime();
+  e->t_rebuild += w3 - w0;
+  e->t_rebuild_part[0] += w1 - w0;
+  e->t_rebuild_part[1] += w2 - w1;
+  e->t_rebuild_part[2] += w3 - w2;
   e->nr_rebuild++;
 }
 
@@ -758,8 +764,10 @@ void engine_run(struct engine *e) {
     error_log(0, "derivative evaluations (FORCE phases of the steps): %ld, %.4f s each on average",
               e->nr_eval, e->t_eval / e->nr_eval);
   if (e->nr_rebuild)
-    error_log(0, "rebuilds (cells, particle order, task graph): %ld, %.4f s each on average",
-              e->nr_rebuild, e->t_rebuild / e->nr_rebuild);
+    error_log(0, "rebuilds (cells, particle order, task graph): %ld, %.4f s each on average "
+              "(particles back from the GPU %.4f, cells and order %.4f, task graph %.4f)",
+              e->nr_rebuild, e->t_rebuild / e->nr_rebuild, e->t_rebuild_part[0] / e->nr_rebuild,
+              e->t_rebuild_part[1] / e->nr_rebuild, e->t_rebuild_part[2] / e->nr_rebuild);
   if (e->gp.enabled && e->gp.reuse_steps > 0)
     error_log(0, "gravity: %ld of %ld steps reused the far field (Gravity:reuse_steps %d, reuse_tolerance %g)",
               e->grav_replays, e->step, e->gp.reuse_steps, e->gp.reuse_tol);

@@ -101,6 +101,7 @@ struct engine {
   double t_eval;                  /**< wall seconds of the steps' FORCE phases (derivative evaluations) */
   long nr_eval;                   /**< their number */
   double t_rebuild;               /**< wall seconds of the rebuilds (cells, sort, task graph) */
+  double t_rebuild_part[3];       /**< of which: particles back from the GPU, space_rebuild, task graph */
   long nr_rebuild;                /**< rebuilds, the first one included */
 
   double time;                    /**< current simulation time */

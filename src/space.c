@@ -232,18 +232,46 @@ static void space_gather(struct parts *p, int k, const size_t *perm, void *buf, 
   }
 }
 
-/** One thread's share of space_permute: elements [lo, hi) of every field. */
+/** 1 if the elements [lo, hi) of field k are all bits zero. */
+static int space_field_zero(struct parts *p, int k, size_t lo, size_t hi) {
+  const struct part_field *f = &part_fields[k];
+  const void *a = part_field_array(p, f);
+  if (f->size == 8) {
+    const uint64_t *v = a;
+    uint64_t any = 0;
+    for (size_t i = lo; i < hi; i++) any |= v[i];
+    return any == 0;
+  }
+  const uint32_t *v = a;
+  uint32_t any = 0;
+  for (size_t i = lo; i < hi; i++) any |= v[i];
+  return any == 0;
+}
+
+/** One thread's share of space_permute: elements [lo, hi) of every field.
+ *  A field whose elements are all zero (many at the first rebuild after
+ *  reading a file: stresses, damage, derivatives not yet computed) stays
+ *  as it is: its permutation is itself, and the random gathers it would
+ *  cost are most of a first rebuild. */
 struct space_permute_job {
   struct parts *p;
   const size_t *perm;
   void *buf;
   size_t lo, hi;
   pthread_barrier_t *bar;
+  unsigned char *nonzero; /**< [field][thread]: whether the thread's range of it is not all zero */
+  int thread, nr_threads;
 };
 
 static void *space_permute_run(void *arg) {
   struct space_permute_job *j = arg;
+  for (int k = 0; k < part_nr_fields; k++)
+    j->nonzero[k * j->nr_threads + j->thread] = !space_field_zero(j->p, k, j->lo, j->hi);
+  pthread_barrier_wait(j->bar); /* every range scanned */
   for (int k = 0; k < part_nr_fields; k++) {
+    int any = 0;
+    for (int t = 0; t < j->nr_threads; t++) any |= j->nonzero[k * j->nr_threads + t];
+    if (!any) continue; /* the same decision in every thread */
     const size_t sz = part_fields[k].size;
     space_gather(j->p, k, j->perm, j->buf, j->lo, j->hi);
     pthread_barrier_wait(j->bar); /* every gather of field k read the old order */
@@ -258,37 +286,30 @@ static void *space_permute_run(void *arg) {
  *  buf: n words.  On up to nr_threads threads, each a range of elements
  *  (the result does not depend on the count); the random gathers of the
  *  first rebuild after reading a file dominate a rebuild (about 2 s for
- *  1e6 particles on one core). */
+ *  1e6 particles on one core before all-zero fields were skipped). */
 static void space_permute(struct parts *p, const size_t *perm, void *buf, int nr_threads) {
   const size_t n = p->count;
   int t = nr_threads;
   if ((size_t)t > n / 65536 + 1) t = (int)(n / 65536 + 1);
   if (t > 256) t = 256;
-  if (t > 1) {
-    struct space_permute_job job[256];
-    pthread_t th[256];
-    pthread_barrier_t bar;
-    if (pthread_barrier_init(&bar, NULL, (unsigned)t) == 0) {
-      for (int k = 0; k < t; k++)
-        job[k] = (struct space_permute_job){p, perm, buf, n * (size_t)k / (size_t)t,
-                                            n * (size_t)(k + 1) / (size_t)t, &bar};
-      int started = 1;
-      for (; started < t; started++)
-        if (pthread_create(&th[started], NULL, space_permute_run, &job[started])) break;
-      if (started == t) {
-        space_permute_run(&job[0]);
-        for (int k = 1; k < t; k++) pthread_join(th[k], NULL);
-        pthread_barrier_destroy(&bar);
-        return;
-      }
+  if (t < 1) t = 1;
+  struct space_permute_job job[256];
+  pthread_t th[256];
+  pthread_barrier_t bar;
+  unsigned char *nonzero = error_malloc((size_t)part_nr_fields * (size_t)t, "rebuild field flags");
+  if (pthread_barrier_init(&bar, NULL, (unsigned)t) != 0)
+    error_exit("space: cannot set up the threads of the rebuild (pthread_barrier_init)");
+  for (int k = 0; k < t; k++)
+    job[k] = (struct space_permute_job){p, perm, buf, n * (size_t)k / (size_t)t,
+                                        n * (size_t)(k + 1) / (size_t)t, &bar, nonzero, k, t};
+  for (int k = 1; k < t; k++)
+    if (pthread_create(&th[k], NULL, space_permute_run, &job[k]))
       /* a thread could not start: the barrier would wait for ever */
       error_exit("space: cannot start the threads of the rebuild (pthread_create)");
-    }
-  }
-  for (int k = 0; k < part_nr_fields; k++) {
-    space_gather(p, k, perm, buf, 0, n);
-    memcpy(part_field_array(p, &part_fields[k]), buf, n * part_fields[k].size);
-  }
+  space_permute_run(&job[0]);
+  for (int k = 1; k < t; k++) pthread_join(th[k], NULL);
+  pthread_barrier_destroy(&bar);
+  free(nonzero);
 }
 
 /** Progeny and parent pointers from progeny_index; h_max, bounding boxes
@@ -346,6 +367,7 @@ static void space_finish_cell(struct space *s, int c) {
 
 size_t space_rebuild(struct space *s) {
   struct parts *p = s->parts;
+  const double w0 = error_walltime();
   const size_t removed = space_wrap_or_remove(s);
   space_choose_grid(s);
   s->nr_rebuilds++;
@@ -396,17 +418,23 @@ size_t space_rebuild(struct space *s) {
   free(topc);
 
   /* the octrees, then one reordering of every particle field */
+  const double w1 = error_walltime();
   for (int c = 0; c < s->nr_top; c++) {
     const size_t o = s->cells[c].offset;
     space_split(s, c, idx + o, buf + o);
   }
+  const double w2 = error_walltime();
   if (n) space_permute(p, idx, buf, s->nr_threads); /* buf (n words) is free after the split */
   memcpy(p->x0, p->x, n * sizeof(double));
   memcpy(p->y0, p->y, n * sizeof(double));
   memcpy(p->z0, p->z, n * sizeof(double));
+  const double w3 = error_walltime();
   for (int c = 0; c < s->nr_top; c++) space_finish_cell(s, c);
-  error_log(1, "space: rebuild %d: %zu particles, %d x %d x %d top-level cells, %d cells",
-            s->nr_rebuilds, n, s->cdim[0], s->cdim[1], s->cdim[2], s->nr_cells);
+  const double w4 = error_walltime();
+  error_log(1, "space: rebuild %d: %zu particles, %d x %d x %d top-level cells, %d cells; "
+            "s: wrap and sort by top-level cell %.3f, octrees %.3f, reorder %.3f, boxes %.3f",
+            s->nr_rebuilds, n, s->cdim[0], s->cdim[1], s->cdim[2], s->nr_cells, w1 - w0, w2 - w1,
+            w3 - w2, w4 - w3);
   return removed;
 }
 
