@@ -336,6 +336,78 @@ static void engine_make_pair_tasks(struct engine *e, int a, int b, const double 
   }
 }
 
+/** Candidate pairs of task cells (engine_make_graph): indices into
+ *  e->tcells, gathered by engine_pairs_descend, then sorted. */
+struct engine_pair_list {
+  int *ab; /**< 2 per pair */
+  size_t n, cap;
+};
+
+/** Every pair (a, b) of task cells below A and below B (B seen at x +
+ *  shift) whose boxes come closer than reach (squared: reach2), added to
+ *  L.  A pair of cells farther apart is pruned whole: a child's box lies
+ *  inside its parent's (space_finish_cell), so no pair below it is
+ *  closer, and the test at the task cells is the one of the pair loops
+ *  it replaces.  tc[i]: the task-cell index of cell i, or -1 above the
+ *  task cells (such a cell holds particles and is split). */
+static void engine_pairs_descend(const int *tc, struct cell *A, struct cell *B,
+                                 const double shift[3], double reach2,
+                                 struct engine_pair_list *L) {
+  if (cell_bbox_dist2(A, B, shift) >= reach2) return;
+  const int ta = tc[A->index], tb = tc[B->index];
+  if (ta >= 0 && tb >= 0) {
+    if (L->n == L->cap) {
+      L->cap = L->cap ? 2 * L->cap : 4096;
+      L->ab = error_realloc(L->ab, 2 * L->cap * sizeof(int), "task cell pairs");
+    }
+    L->ab[2 * L->n] = ta;
+    L->ab[2 * L->n + 1] = tb;
+    L->n++;
+    return;
+  }
+  if (ta < 0) {
+    for (int q = 0; q < 8; q++)
+      if (A->progeny[q] && A->progeny[q]->count > 0)
+        engine_pairs_descend(tc, A->progeny[q], B, shift, reach2, L);
+  } else {
+    for (int q = 0; q < 8; q++)
+      if (B->progeny[q] && B->progeny[q]->count > 0)
+        engine_pairs_descend(tc, A, B->progeny[q], shift, reach2, L);
+  }
+}
+
+/** The pairs of distinct task cells within cell C (C above the task
+ *  cells): those of each child, and those between two children. */
+static void engine_pairs_within(const int *tc, struct cell *C, double reach2,
+                                struct engine_pair_list *L) {
+  if (tc[C->index] >= 0) return;
+  static const double zero[3] = {0, 0, 0};
+  for (int q = 0; q < 8; q++) {
+    struct cell *cq = C->progeny[q];
+    if (!cq || cq->count == 0) continue;
+    engine_pairs_within(tc, cq, reach2, L);
+    for (int r = q + 1; r < 8; r++)
+      if (C->progeny[r] && C->progeny[r]->count > 0)
+        engine_pairs_descend(tc, cq, C->progeny[r], zero, reach2, L);
+  }
+}
+
+static int engine_pair_cmp(const void *x, const void *y) {
+  const int *a = x, *b = y;
+  if (a[0] != b[0]) return a[0] < b[0] ? -1 : 1;
+  return (a[1] > b[1]) - (a[1] < b[1]);
+}
+
+/** The tasks of the pairs in L, in the order of (a, b): the order of the
+ *  loops over all pairs of task cells that the descent replaces, so that
+ *  the graph does not change. */
+static void engine_make_listed_pairs(struct engine *e, struct engine_pair_list *L,
+                                     const double shift[3], int *cap) {
+  qsort(L->ab, L->n, 2 * sizeof(int), engine_pair_cmp);
+  for (size_t k = 0; k < L->n; k++) engine_make_pair_tasks(e, L->ab[2 * k], L->ab[2 * k + 1], shift, cap);
+  L->n = 0;
+}
+
 void engine_make_graph(struct engine *e) {
   struct space *s = &e->space;
   struct scheduler *sched = &e->sched;
@@ -435,12 +507,20 @@ void engine_make_graph(struct engine *e) {
     return;
   }
 
-  /* pairs of task cells inside one top-level cell */
-  for (int c = 0; c < s->nr_top; c++)
-    for (int a = first[c]; a < first[c + 1]; a++)
-      for (int b = a + 1; b < first[c + 1]; b++)
-        if (cell_bbox_dist2(e->tcells[a], e->tcells[b], zero) < reach2)
-          engine_make_pair_tasks(e, a, b, zero, cap);
+  /* task-cell index of every cell (-1: above the task cells, or empty) */
+  int *tc = error_malloc((s->nr_cells ? s->nr_cells : 1) * sizeof(int), "task cell map");
+  for (int i = 0; i < s->nr_cells; i++) tc[i] = -1;
+  for (int t = 0; t < nt; t++) tc[e->tcells[t]->index] = t;
+  struct engine_pair_list L = {NULL, 0, 0};
+
+  /* pairs of task cells inside one top-level cell, a < b, within reach:
+   * found by descending the octree (a dense top-level cell holds
+   * thousands of task cells, whose all-pairs test was quadratic) */
+  for (int c = 0; c < s->nr_top; c++) {
+    if (first[c + 1] - first[c] < 2) continue;
+    engine_pairs_within(tc, &s->cells[c], reach2, &L);
+    engine_make_listed_pairs(e, &L, zero, cap);
+  }
 
   /* pairs of task cells in neighbouring top-level cells (or a cell and its
    * periodic image: then every ordered pair, a == b included) */
@@ -448,11 +528,12 @@ void engine_make_graph(struct engine *e) {
   const size_t ntop = space_top_pairs(s, &top);
   for (size_t k = 0; k < ntop; k++) {
     const int ci = top[k].ci, cj = top[k].cj;
-    for (int a = first[ci]; a < first[ci + 1]; a++)
-      for (int b = first[cj]; b < first[cj + 1]; b++)
-        if (cell_bbox_dist2(e->tcells[a], e->tcells[b], top[k].shift) < reach2)
-          engine_make_pair_tasks(e, a, b, top[k].shift, cap);
+    if (first[ci] == first[ci + 1] || first[cj] == first[cj + 1]) continue;
+    engine_pairs_descend(tc, &s->cells[ci], &s->cells[cj], top[k].shift, reach2, &L);
+    engine_make_listed_pairs(e, &L, top[k].shift, cap);
   }
+  free(L.ab);
+  free(tc);
   free(top);
   free(first);
   scheduler_finalize(sched);
