@@ -279,28 +279,26 @@ extern "C" void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_t
     gpu_check(cudaMemsetAsync(cnt, 0, 6 * sizeof(unsigned long long) + sizeof(int), s));
     gravity_walk_roots_gpu_launch(s, T, wp, L, Q[0], dlo, nr_top, h_support, deep);
     /* rounds on what the walkers handed on, until none is left */
-    unsigned long long hn[7], q_most = 0;
+    unsigned long long hn[4], q_most = 0;
     for (int cur = 0;; cur ^= 1) {
-      gpu_check(cudaMemcpyAsync(hn + 4 + cur, cnt + 4 + cur, sizeof(unsigned long long),
-                                cudaMemcpyDeviceToHost, s));
+      unsigned long long m;
+      gpu_check(cudaMemcpyAsync(&m, cnt + 4 + cur, sizeof m, cudaMemcpyDeviceToHost, s));
       gpu_check(cudaStreamSynchronize(s));
-      const unsigned long long m = hn[4 + cur];
       if (m > q_most) q_most = m;
       if (m == 0) break;
+      /* the other queue (empty, or walked by the round before) takes what is left */
       gpu_check(cudaMemsetAsync(cnt + 4 + (cur ^ 1), 0, sizeof(unsigned long long), s));
       gravity_walk_queue_gpu_launch(s, T, wp, L, Q[cur], m < gg->qcap ? m : gg->qcap, Q[cur ^ 1],
                                     deep);
-      gpu_check(cudaMemsetAsync(cnt + 4 + cur, 0, sizeof(unsigned long long), s));
       gg->walk_rounds++;
     }
     /* a queue that was too small slowed the walk (its walkers kept what
      * did not fit): the next walk gets room for all */
     if (q_most > gg->qcap) gg->qcap = q_most + q_most / 4;
-    gpu_check(cudaMemcpyAsync(hn, cnt, 4 * sizeof(unsigned long long), cudaMemcpyDeviceToHost, s));
-    gpu_check(cudaMemcpyAsync(hn + 6, deep, sizeof(int), cudaMemcpyDeviceToHost, s));
-    gpu_check(cudaStreamSynchronize(s));
     int hdeep;
-    memcpy(&hdeep, hn + 6, sizeof(int));
+    gpu_check(cudaMemcpyAsync(hn, cnt, sizeof hn, cudaMemcpyDeviceToHost, s));
+    gpu_check(cudaMemcpyAsync(&hdeep, deep, sizeof hdeep, cudaMemcpyDeviceToHost, s));
+    gpu_check(cudaStreamSynchronize(s));
     if (hdeep)
       error_exit("gravity on the GPU: %d walkers found their stack (%d entries, "
                  "GRAVITY_WALK_STACK) and the hand-on queue full; Scheduler:gpu_walks: host walks "

@@ -46,14 +46,13 @@ void gpu_grav_tree_build(struct gpu_grav_host *h, const struct space *s) {
     h->progeny = error_realloc(h->progeny, 8 * (size_t)h->cells_cap * sizeof(int), "GPU gravity tree");
     h->split = error_realloc(h->split, (size_t)h->cells_cap, "GPU gravity tree");
   }
+  /* counts, split flags and progeny as the walks read them (index checked there) */
+  gravity_walk_tree_arrays(s->cells, nc, h->progeny, h->count, h->split);
   for (int k = 0; k < nc; k++) {
     const struct cell *c = &s->cells[k];
-    if (c->index != k) error_bug("cell %d has index %d", k, c->index);
     h->offset[k] = c->offset;
-    h->count[k] = (int)c->count;
     for (int d = 0; d < 3; d++) h->centre[3 * k + d] = c->loc[d] + 0.5 * c->width[d];
   }
-  gravity_walk_tree_arrays(s->cells, nc, h->progeny, h->count, h->split);
   h->nr_l2l = h->nr_leaf = 0;
   for (int c = 0; c < s->nr_top; c++) tree_visit(h, &s->cells[c], 0);
   /* the pairs by level (counting sort; within a level, in visiting order) */
