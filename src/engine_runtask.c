@@ -117,7 +117,7 @@ void engine_run_task(void *ctx, struct task *t, int thread_id) {
   (void)thread_id;
   switch (t->type) {
     case task_type_drift:
-      drift_cell_cpu(p, ci, 0.5 * e->dt, e->dt, e->hp.xsph);
+      drift_cell_cpu(p, ci, 0.5 * e->dt, e->dt, e->hp.xsph, e->hp.h_max);
       break;
     case task_type_self:
       /* the accumulators were zeroed by the drift (density) and the ghost (force) */

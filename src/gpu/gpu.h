@@ -182,7 +182,7 @@ void gpu_download_all(struct gpu *g, struct parts *p);
 /** First half kick by dt_kick and drift by dt of the resident particles;
  *  copy back the positions and smoothing lengths (what the CPU needs to
  *  decide on a rebuild and to build the neighbour lists). */
-void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt, double xsph);
+void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt, double xsph, double h_max);
 /** Unregister the pinned particle arrays (before they are freed). */
 void gpu_unpin(struct gpu *g);
 /** Print the accumulated time of each stage. */

@@ -52,10 +52,12 @@ BOLIDE_INLINE void kick_sync_predicted(struct parts *BOLIDE_RESTRICT p, size_t i
  *  the half-step velocity; the velocity and energy used by the next force
  *  computation are predicted to the end of the step; h follows the
  *  velocity divergence (dh/dt = h div v / 3) as a first guess for the
- *  iteration.  With XSPH (xsph > 0) positions move with v + xsph * sum
+ *  iteration, never above h_max (SPH:h_max: in a uniform expansion the
+ *  prediction is exact, and the ghost would accept it).  With XSPH (xsph > 0) positions move with v + xsph * sum
  *  m_j/rho_ij (v_j - v_i) W_ij (Monaghan 1989; theory/sph.md eq. S15), the sum from the
  *  last force loop. */
-BOLIDE_INLINE void drift_part(struct parts *BOLIDE_RESTRICT p, size_t i, double dt, double xsph) {
+BOLIDE_INLINE void drift_part(struct parts *BOLIDE_RESTRICT p, size_t i, double dt, double xsph,
+                              double h_max) {
   p->x[i] += (p->vx[i] + xsph * p->xsphx[i]) * dt;
   p->y[i] += (p->vy[i] + xsph * p->xsphy[i]) * dt;
   p->z[i] += (p->vz[i] + xsph * p->xsphz[i]) * dt;
@@ -78,7 +80,8 @@ BOLIDE_INLINE void drift_part(struct parts *BOLIDE_RESTRICT p, size_t i, double 
   double w = p->div_v[i] * dt / 3.0;
   if (w > 0.2) w = 0.2;
   if (w < -0.2) w = -0.2;
-  p->h[i] *= exp(w);
+  const double h = p->h[i] * exp(w);
+  p->h[i] = h < h_max ? h : h_max;
 }
 
 #endif

@@ -7,6 +7,7 @@
 
 /** First half kick by dt_kick, then drift by dt, of every particle of c;
  *  updates the cell's h_max and dx_max. */
-void drift_cell_cpu(struct parts *p, struct cell *c, double dt_kick, double dt, double xsph);
+void drift_cell_cpu(struct parts *p, struct cell *c, double dt_kick, double dt, double xsph,
+                    double h_max);
 
 #endif

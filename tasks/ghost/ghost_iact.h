@@ -25,6 +25,10 @@ enum ghost_h_result {
 BOLIDE_INLINE int ghost_h_iterate(double *h, double *h_lo, double *h_hi, double n, double dn_dh,
                                   double eta, double tol, double h_max) {
   const double h0 = *h;
+  if (h0 > h_max) { /* a first guess above the cap (the drift's, or the cells'): redo the sums at it */
+    *h = h_max;
+    return GHOST_H_AGAIN;
+  }
   const double eta3 = eta * eta * eta;
   const double h03 = h0 * h0 * h0;
   const double f = n * h03 - eta3;
