@@ -2,7 +2,7 @@
 # Aluminium sphere on a plate (Hiermaier et al. 1997): initial conditions,
 # run, hole diameter and debris-cloud length/width, picture plate.png.
 # Usage: ./run.sh [DX] [THREADS]  (lattice spacing in m, default 0.0008:
-# 5 layers through the plate, 52,069 particles, to 20 us: about 6 minutes on 2 cores)
+# 5 layers through the plate, 52,069 particles, to 20 us: about 80 s on 2 cores)
 # The smoothing length is capped at 2.5 DX (SPH:h_max): the debris shell's
 # particles would otherwise grow h to 15 DX and reach thousands of plate
 # particles; the cap changes none of the measured numbers (README.md).
