@@ -52,10 +52,11 @@ BOLIDE_INLINE void kick_sync_predicted(struct parts *BOLIDE_RESTRICT p, size_t i
  *  the half-step velocity; the velocity and energy used by the next force
  *  computation are predicted to the end of the step; h follows the
  *  velocity divergence (dh/dt = h div v / 3) as a first guess for the
- *  iteration, never above h_max (SPH:h_max: in a uniform expansion the
- *  prediction is exact, and the ghost would accept it).  With XSPH (xsph > 0) positions move with v + xsph * sum
- *  m_j/rho_ij (v_j - v_i) W_ij (Monaghan 1989; theory/sph.md eq. S15), the sum from the
- *  last force loop. */
+ *  iteration, never above h_max (SPH:h_max; a larger guess would widen
+ *  the cells' reach at the next rebuild check).  With XSPH (xsph > 0)
+ *  positions move with v + xsph * sum m_j/rho_ij (v_j - v_i) W_ij
+ *  (Monaghan 1989; theory/sph.md eq. S15), the sum from the last force
+ *  loop. */
 BOLIDE_INLINE void drift_part(struct parts *BOLIDE_RESTRICT p, size_t i, double dt, double xsph,
                               double h_max) {
   p->x[i] += (p->vx[i] + xsph * p->xsphx[i]) * dt;

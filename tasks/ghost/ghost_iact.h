@@ -25,7 +25,10 @@ enum ghost_h_result {
 BOLIDE_INLINE int ghost_h_iterate(double *h, double *h_lo, double *h_hi, double n, double dn_dh,
                                   double eta, double tol, double h_max) {
   const double h0 = *h;
-  if (h0 > h_max) { /* a first guess above the cap (the drift's, or the cells'): redo the sums at it */
+  /* a first guess above the cap (an h of the initial conditions, a cap
+   * lowered by the cells) is never accepted, even where its sums happen to
+   * fit: in a homologous expansion they do.  Redo the sums at the cap. */
+  if (h0 > h_max) {
     *h = h_max;
     return GHOST_H_AGAIN;
   }
