@@ -439,6 +439,10 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   space_init(&e->space, &e->parts, box, periodic, split_size,
              (int)params_get_int(params, "Scheduler:max_top_level_cells"));
   e->space.max_drift_fraction = params_get_real(params, "Scheduler:rebuild_fraction");
+  if (e->restarted) {
+    e->space.removed = rs.removed;
+    e->budget0 = rs.start;
+  }
   e->nr_threads = opt->nr_threads > 0 ? opt->nr_threads : engine_nr_cores();
   e->space.nr_threads = e->nr_threads;
   error_log(0, "Bolide %s (git %s), kernel %s, %d threads, %s", PACKAGE_VERSION, BOLIDE_GIT_HASH,
@@ -577,6 +581,8 @@ static void engine_write_restart(struct engine *e) {
   st.next_stats = e->next_stats;
   for (int k = 0; k < 3; k++) st.box[k] = e->space.dim[k];
   st.periodic = e->space.periodic;
+  st.removed = e->space.removed;
+  st.start = e->budget0;
   engine_mkdir(e->restart_dir);
   restart_write(e->restart_dir, &st, &e->parts, e->flaw_eps);
   e->restart_last_wall = error_walltime();
@@ -755,6 +761,7 @@ void engine_run(struct engine *e) {
     engine_snapshot(e);
   }
   engine_stats_write(e);
+  engine_budget_summary(e);
   if (e->restarts) engine_write_restart(e);
   const double wall = error_walltime() - e->wall_start;
   error_log(0, "done: %ld steps to t = %g in %.2f s (%.3g particle updates per second)", e->step, e->time, wall,

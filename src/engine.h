@@ -128,6 +128,7 @@ struct engine {
   int restarted;                  /**< 1 when this run resumed from a restart file */
   double restart_dt_next;         /**< smallest particle time step saved in the restart file */
 
+  struct budget_start budget0;    /**< totals at the start of the run (engine_io.c) */
   FILE *stats;                    /**< statistics file */
   double stats_dt, next_stats;    /**< its interval */
   long dump_tasks;                /**< dump a task timeline every this many steps */

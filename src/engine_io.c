@@ -12,10 +12,20 @@
 #include "gpu/gpu_engine.h"
 #endif
 
-/** Columns of the statistics file: one list for the header and the rows. */
+/** Columns of the statistics file: one list for the header and the rows.
+ *  The budget (theory/sph.md, "Conservation budget"): E_tot = E_kin + E_int
+ *  + E_pot of the particles in the box; *_removed what the particles that
+ *  left an open box took with them (their share m phi of the potential
+ *  included); E_clamp the energy the kick's floor on u added (counted, not
+ *  exchanged); W_plastic the plastic work of the radial returns (already a
+ *  part of E_int: where the stress power went, not a term of the sum);
+ *  dE = E_tot + E_removed - E_clamp - E_tot(start), which a conservative
+ *  run keeps at the level of its time-integration error. */
 #define ENGINE_STATS_COLUMNS(X)                                                    \
   X(step) X(time) X(dt) X(mass) X(px) X(py) X(pz) X(Lx) X(Ly) X(Lz) X(E_kin) X(E_int) \
-  X(E_pot) X(E_tot) X(n_particles) X(n_removed)
+  X(E_pot) X(E_tot) X(n_particles) X(n_removed) X(m_removed) X(E_removed) X(px_removed) \
+  X(py_removed) X(pz_removed) X(Lx_removed) X(Ly_removed) X(Lz_removed) X(E_clamp) \
+  X(W_plastic) X(dE)
 
 void engine_stats_open(struct engine *e) {
   char path[2048];
@@ -38,31 +48,100 @@ void engine_stats_open(struct engine *e) {
   e->next_stats = e->time;
 }
 
-void engine_stats_write(struct engine *e) {
-#ifdef HAVE_CUDA
-  gpu_engine_to_host(e); /* the particles may be resident on the GPU */
-#endif
+/** The totals of the particles in the box, and what the counters hold. */
+struct engine_totals {
+  double mass, p[3], L[3], E_kin, E_int, E_pot, p_abs, E_clamp, W_plastic;
+};
+
+/** Sum the particles' totals (the particles must be on the host). */
+static void engine_totals(const struct engine *e, struct engine_totals *t) {
   const struct parts *p = &e->parts;
-  double mass = 0, px = 0, py = 0, pz = 0, Lx = 0, Ly = 0, Lz = 0, ekin = 0, eint = 0;
+  memset(t, 0, sizeof *t);
   for (size_t i = 0; i < p->count; i++) {
     const double m = p->m[i];
     const double vx = p->vx[i], vy = p->vy[i], vz = p->vz[i];
     const double x = p->x[i], y = p->y[i], z = p->z[i];
-    mass += m;
-    px += m * vx;
-    py += m * vy;
-    pz += m * vz;
-    Lx += m * (y * vz - z * vy);
-    Ly += m * (z * vx - x * vz);
-    Lz += m * (x * vy - y * vx);
-    ekin += 0.5 * m * (vx * vx + vy * vy + vz * vz);
-    eint += m * p->u[i];
+    t->mass += m;
+    t->p[0] += m * vx;
+    t->p[1] += m * vy;
+    t->p[2] += m * vz;
+    t->L[0] += m * (y * vz - z * vy);
+    t->L[1] += m * (z * vx - x * vz);
+    t->L[2] += m * (x * vy - y * vx);
+    const double v2 = vx * vx + vy * vy + vz * vz;
+    t->E_kin += 0.5 * m * v2;
+    t->p_abs += m * sqrt(v2);
+    t->E_int += m * p->u[i];
+    t->E_clamp += m * p->e_clamp[i];
+    t->W_plastic += m * p->w_plastic[i];
   }
-  const double epot = e->gp.enabled ? gravity_potential_energy(p) : 0.0;
-  fprintf(e->stats, "%ld %.12e %.6e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %zu %lld\n",
-          e->step, e->time, e->dt, mass, px, py, pz, Lx, Ly, Lz, ekin, eint, epot, ekin + eint + epot, p->count,
-          e->nr_removed);
+  t->E_pot = e->gp.enabled ? gravity_potential_energy(p) : 0.0;
+  t->E_clamp += e->space.removed.E_clamp;
+  t->W_plastic += e->space.removed.W_plastic;
+}
+
+/** Remember the totals of the start (the first statistics line of a run
+ *  that does not resume one). */
+static void engine_budget_start(struct engine *e, const struct engine_totals *t) {
+  struct budget_start *b = &e->budget0;
+  b->E_tot = t->E_kin + t->E_int + t->E_pot;
+  b->E_pot = t->E_pot;
+  b->E_abs = fabs(t->E_kin) + fabs(t->E_int) + fabs(t->E_pot);
+  for (int k = 0; k < 3; k++) {
+    b->p[k] = t->p[k];
+    b->L[k] = t->L[k];
+  }
+  b->p_abs = t->p_abs;
+  b->set = 1.0;
+}
+
+void engine_stats_write(struct engine *e) {
+#ifdef HAVE_CUDA
+  gpu_engine_to_host(e); /* the particles may be resident on the GPU */
+#endif
+  struct engine_totals t;
+  engine_totals(e, &t);
+  if (!(e->budget0.set > 0.0)) engine_budget_start(e, &t);
+  const struct budget_removed *r = &e->space.removed;
+  const double etot = t.E_kin + t.E_int + t.E_pot;
+  const double dE = etot + r->E - t.E_clamp - e->budget0.E_tot;
+  fprintf(e->stats,
+          "%ld %.12e %.6e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %zu %lld"
+          " %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.6e\n",
+          e->step, e->time, e->dt, t.mass, t.p[0], t.p[1], t.p[2], t.L[0], t.L[1], t.L[2], t.E_kin, t.E_int,
+          t.E_pot, etot, e->parts.count, e->nr_removed, r->m, r->E, r->p[0], r->p[1], r->p[2], r->L[0],
+          r->L[1], r->L[2], t.E_clamp, t.W_plastic, dE);
   if (fflush(e->stats)) error_exit("cannot write the statistics file (disk full?)");
+}
+
+void engine_budget_summary(struct engine *e) {
+#ifdef HAVE_CUDA
+  gpu_engine_to_host(e);
+#endif
+  struct engine_totals t;
+  engine_totals(e, &t);
+  const struct budget_start *b = &e->budget0;
+  const struct budget_removed *r = &e->space.removed;
+  if (!(b->set > 0.0)) return;
+  const double etot = t.E_kin + t.E_int + t.E_pot;
+  const double dE = etot + r->E - t.E_clamp - b->E_tot;
+  /* the scale of energy errors: |E_pot(0)| with self-gravity (as SWIFT's
+   * planetary runs report it), else the sum of the magnitudes of the parts */
+  const double Escale = fabs(b->E_pot) > 0.0 ? fabs(b->E_pot) : b->E_abs;
+  double dp2 = 0.0, dL2 = 0.0, L02 = 0.0;
+  for (int k = 0; k < 3; k++) {
+    const double dp = t.p[k] + r->p[k] - b->p[k], dL = t.L[k] + r->L[k] - b->L[k];
+    dp2 += dp * dp;
+    dL2 += dL * dL;
+    L02 += b->L[k] * b->L[k];
+  }
+  error_log(0,
+            "conservation budget against the start: dE / |%s| = %.3e (E_tot %+.6e -> %+.6e; removed "
+            "with %lld particles %+.3e; kick's floor on u %+.3e; plastic work %.3e, part of E_int)",
+            fabs(b->E_pot) > 0.0 ? "E_pot(0)" : "E(0)", Escale > 0.0 ? dE / Escale : 0.0, b->E_tot, etot,
+            e->nr_removed, r->E, t.E_clamp, t.W_plastic);
+  error_log(0, "conservation budget against the start: |dL| / |L(0)| = %.3e, |dp| / sum m|v|(0) = %.3e",
+            L02 > 0.0 ? sqrt(dL2 / L02) : 0.0, b->p_abs > 0.0 ? sqrt(dp2) / b->p_abs : 0.0);
 }
 
 void engine_stats_maybe(struct engine *e) {

@@ -71,7 +71,7 @@ static void engine_kick2(struct engine *e, int t) {
    * kick, and the kicked state back on the crush curve (kick_porous.h) */
   if (e->porous)
     for (size_t i = c->offset; i < end; i++) kick2_porous_rate(p, i, e->mats);
-  double dt = kick2_cell_cpu(p, c, e->first_force ? 0.0 : 0.5 * e->dt, &e->hp);
+  double dt = kick2_cell_cpu(p, c, e->first_force ? 0.0 : 0.5 * e->dt, &e->hp, e->mats);
   if (e->porous && !e->first_force)
     for (size_t i = c->offset; i < end; i++) kick2_porous_return(p, i, e->mats, e->hp.continuity);
   if (!e->hp.enabled) dt = 1e300;

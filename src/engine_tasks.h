@@ -20,6 +20,7 @@ void engine_run_task(void *ctx, struct task *t, int thread_id);
 void engine_stats_open(struct engine *e);
 void engine_stats_write(struct engine *e);
 void engine_stats_maybe(struct engine *e);
+void engine_budget_summary(struct engine *e);
 void engine_snapshot(struct engine *e);
 void engine_dump_tasks(struct engine *e);
 

@@ -52,6 +52,7 @@ enum part_flags {
   X(double,  up,  NULL,               0, 1, 0,  2, -2, 0, "predicted specific internal energy")   \
   X(double,  P,   "Pressures",        0, 1, 1, -1, -2, PART_SNAP, "pressure")                     \
   X(double,  cs,  "SoundSpeeds",      0, 1, 0,  1, -1, PART_SNAP, "sound speed")                  \
+  X(double,  cl,  NULL,               0, 1, 0,  1, -1, 0, "longitudinal wave speed sqrt(c_s^2 + 4 (1-D) G / (3 rho)) of a solid, the time step's signal speed (set only in runs with strength)") \
   X(double,  balsara, NULL,           0, 1, 0,  0,  0, 0, "Balsara switch")                       \
   X(double,  f_gradh, NULL,           0, 1, 0,  0,  0, 0, "grad-h correction factor")             \
   X(int32_t, mat, "MaterialIDs",      0, 1, 0,  0,  0, PART_IC_OPT | PART_SNAP, "material id")    \
@@ -125,6 +126,8 @@ enum part_flags {
   X(double,  dSyz, NULL,              4, 6, 1, -1, -3, 0, "dS/dt yz")                            \
   X(double,  dSzz, NULL,              5, 6, 1, -1, -3, 0, "dS/dt zz")                            \
   X(double,  eps_p, "PlasticStrains", 0, 1, 0,  0,  0, PART_IC_OPT | PART_SNAP, "accumulated equivalent plastic strain") \
+  X(double,  w_plastic, NULL,          0, 1, 0,  2, -2, 0, "specific plastic work sum Y d eps_p / rho of the radial returns (statistics: W_plastic)") \
+  X(double,  e_clamp, NULL,            0, 1, 0,  2, -2, 0, "specific energy added by the kick's floor on u, which halves an energy that would go negative (statistics: E_clamp)") \
   /* fracture (tasks/damage): Grady-Kipp damage with Weibull flaws */                              \
   X(double,  dmg, "Damage",           0, 1, 0,  0,  0, PART_IC_OPT | PART_SNAP, "tensile damage d in [0, 1] (Grady & Kipp 1980; Benz & Asphaug 1995)") \
   X(double,  dcbrt, "DamageCubeRoot", 0, 1, 0,  0,  0, PART_IC_OPT | PART_SNAP, "d^(1/3), the integrated variable of the damage model") \
@@ -158,6 +161,8 @@ enum part_state {
   PART_ACTIVE = 1,       /**< updated in the current step */
   PART_H_CONVERGED = 2,  /**< smoothing length iteration converged */
   PART_RHO_FLOOR = 4,    /**< continuity density held at its floor (continuity_floor.h) */
+  PART_U_FLOOR = 8,      /**< its material's EOS needs u >= 0: the kick halves a u that would go
+                              negative (material.u_floor, set by the ghost; drift.h) */
 };
 
 /** All particles, one array per field. */

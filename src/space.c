@@ -71,6 +71,26 @@ static int space_new_cell(struct space *s) {
   return c;
 }
 
+/** Add what particle i takes with it out of the box to the budget r: its
+ *  kinetic and internal energy, its potential energy m phi (both halves of
+ *  its pair terms leave with it), momentum, angular momentum, and what the
+ *  kick's floor and the plastic returns had counted on it. */
+static void space_count_removed(struct budget_removed *r, const struct parts *p, size_t i) {
+  const double m = p->m[i];
+  const double x = p->x[i], y = p->y[i], z = p->z[i];
+  const double vx = p->vx[i], vy = p->vy[i], vz = p->vz[i];
+  r->m += m;
+  r->E += m * (0.5 * (vx * vx + vy * vy + vz * vz) + p->u[i] + p->pot[i]);
+  r->p[0] += m * vx;
+  r->p[1] += m * vy;
+  r->p[2] += m * vz;
+  r->L[0] += m * (y * vz - z * vy);
+  r->L[1] += m * (z * vx - x * vz);
+  r->L[2] += m * (x * vy - y * vx);
+  r->E_clamp += m * p->e_clamp[i];
+  r->W_plastic += m * p->w_plastic[i];
+}
+
 /** Wrap positions into the periodic box, or remove the particles outside the
  *  open box (logged by id); check positions and smoothing lengths. Returns
  *  the number removed. */
@@ -105,6 +125,7 @@ static size_t space_wrap_or_remove(struct space *s) {
       continue;
     }
     removed++;
+    space_count_removed(&s->removed, p, i);
     error_log(removed <= SPACE_LOG_REMOVED ? 0 : 1,
               "space: removed particle id %lld at (%g, %g, %g), outside the open box",
               (long long)p->id[i], p->x[i], p->y[i], p->z[i]);

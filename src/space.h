@@ -20,6 +20,7 @@
 
 #include <stddef.h>
 
+#include "budget.h"
 #include "cell.h"
 
 struct parts;
@@ -50,6 +51,7 @@ struct space {
                                   top-level cell width (0.25) */
   double h_max;              /**< largest smoothing length at the last rebuild */
   size_t nr_removed;         /**< particles removed from an open box since space_init */
+  struct budget_removed removed; /**< what they took with them (the engine sets it on restart) */
   int nr_rebuilds;           /**< number of calls of space_rebuild */
   size_t *sort_index;        /**< work array of the rebuild (capacity sort_capacity) */
   size_t sort_capacity;      /**< allocated length of sort_index */

@@ -83,6 +83,7 @@ BOLIDE_INLINE void hydro_force_load(const struct parts *BOLIDE_RESTRICT p, size_
   in->rho = p->rho[i];
   in->P = p->P[i];
   in->cs = p->cs[i];
+  in->cl = solids ? p->cl[i] : in->cs;
   in->u = p->up[i];
   in->f = p->f_gradh[i];
   in->balsara = p->balsara[i];

@@ -63,7 +63,6 @@ static struct eos_tillotson granite(void) {
   p.Ecv = 1.8e7;
   p.alpha = 5.0;
   p.beta = 5.0;
-  p.P_min = -INFINITY;
   return p;
 }
 

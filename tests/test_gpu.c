@@ -453,7 +453,7 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
   for (size_t k = 0; k < n && solid; k++) damage_part(&p, k, &mats, fl.eps, dt_damage);
   double *dt_cpu = malloc(sp.nr_top * sizeof(double)), *dt_gpu = malloc(sp.nr_top * sizeof(double));
   for (int c = 0; c < sp.nr_top; c++) {
-    dt_cpu[c] = sp.cells[c].count ? kick2_cell_cpu(&p, &sp.cells[c], dt_kick, &hp) : 1e300;
+    dt_cpu[c] = sp.cells[c].count ? kick2_cell_cpu(&p, &sp.cells[c], dt_kick, &hp, &mats) : 1e300;
     for (size_t k = sp.cells[c].offset; k < sp.cells[c].offset + sp.cells[c].count && solid; k++)
       dt_cpu[c] = fmin(dt_cpu[c], damage_part_timestep(&p, k, damage_max_change));
   }

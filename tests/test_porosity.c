@@ -94,7 +94,6 @@ static struct matrix tillotson(void) {
   struct eos_tillotson *t = &m.till;
   t->rho0 = 2700.0, t->A = 2.67e10, t->B = 2.67e10, t->E0 = 4.87e8, t->Eiv = 4.72e6;
   t->Ecv = 1.82e7, t->a = 0.5, t->b = 1.5, t->alpha = 5.0, t->beta = 5.0;
-  t->P_min = -INFINITY;
   return m;
 }
 

@@ -26,27 +26,27 @@ extern "C" {
  *  particles are not resident). */
 static const char *const gpu_fields_in[] = {"x",  "y",   "z",  "vpx", "vpy", "vpz", "m",    "h",
                                             "up", "mat", "vx", "vy",  "vz",  "u",   "flags",
-                                            "rho_full", "rho_fp", "alpha", "alpha_p"};
+                                            "rho_full", "rho_fp", "alpha", "alpha_p", "e_clamp"};
 /** Fields the FORCE phase writes (copied back after it). */
 static const char *const gpu_fields_out[] = {
     "h",       "rho", "rho_dh", "wcount",  "wcount_dh", "div_v", "curl_vx", "curl_vy",
-    "curl_vz", "P",   "cs",     "balsara", "f_gradh",   "flags", "h_lo",    "h_hi",
+    "curl_vz", "P",   "cs",     "cl",      "balsara", "f_gradh",   "flags", "h_lo",    "h_hi",
     "ax",      "ay",  "az",     "du_dt",   "drho_dt",   "v_sig", "vx",      "vy",
     "vz",      "u",   "vpx",    "vpy",     "vpz",       "up",      "rho_full", "rho_fp",
-    "xsphx",   "xsphy", "xsphz", "alpha", "alpha_p", "dalpha_dt"};
+    "xsphx",   "xsphy", "xsphz", "alpha", "alpha_p", "dalpha_dt", "e_clamp"};
 /** Fields the gradient loop, the extra ghost and the stress terms read, and
  *  the kick integrates (solids). */
 static const char *const gpu_fields_solid_in[] = {"Sxx",  "Sxy",  "Sxz",   "Syy",  "Syz",
                                                   "Szz",  "Spxx", "Spxy",  "Spxz", "Spyy",
                                                   "Spyz", "Spzz", "eps_p", "dmg",
-                                                  "dmg_shear"};
+                                                  "dmg_shear", "w_plastic"};
 /** Fields they write. */
 static const char *const gpu_fields_solid_out[] = {
     "gmxx", "gmxy", "gmxz", "gmyy", "gmyz", "gmzz", "gvxx", "gvxy", "gvxz", "gvyx",
     "gvyy", "gvyz", "gvzx", "gvzy", "gvzz", "Sxx",  "Sxy",  "Sxz",  "Syy",  "Syz",
     "Szz",  "Spxx", "Spxy", "Spxz", "Spyy", "Spyz", "Spzz", "dSxx", "dSxy", "dSxz",
     "dSyy", "dSyz", "dSzz", "Rxx",  "Rxy",  "Rxz",  "Ryy",  "Ryz",  "Rzz",  "eps_p",
-    "dmg_shear"};
+    "dmg_shear", "w_plastic"};
 /** Fields the damage task reads (besides the above). */
 static const char *const gpu_fields_damage_in[] = {"dmg", "dcbrt", "n_act", "n_flaws",
                                                    "flaw_first"};

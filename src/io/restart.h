@@ -8,6 +8,7 @@
 
 #include <stdint.h>
 
+#include "budget.h"
 #include "part.h"
 
 /** The engine's scalars saved with the particles. */
@@ -23,6 +24,8 @@ struct restart_state {
   double next_stats;   /**< next statistics time */
   double box[3];       /**< box size */
   int64_t periodic;    /**< periodic box */
+  struct budget_removed removed; /**< what particles removed from the box took with them */
+  struct budget_start start;     /**< the run's totals at its start */
 };
 
 /** Write the state to DIR/restart.bin (through DIR/restart.bin.tmp; the

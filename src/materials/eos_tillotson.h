@@ -15,8 +15,10 @@
  *    P_h = [ (u - Eiv) P_e + (Ecv - u) P_c ] / (Ecv - Eiv)          (T3)
  *
  * In the cold expanded state T1 gives negative pressures (tension), which
- * is what a solid with strength needs (Benz & Asphaug 1999); pure
- * hydrodynamics clamps them with P_min (SWIFT uses P_min = 0.01 Pa).
+ * is what a solid with strength needs (Benz & Asphaug 1999); a fluid
+ * without strength does not carry it: the material's P_min floor
+ * (material.h; 0 by default without strength, as SWIFT's planetary
+ * Tillotson's 0.01 Pa) is applied by material_eos().
  * Optional low-density ramp (SWIFT's planetary Tillotson): P_c is multiplied
  * by (eta - eta_zero)/(eta_min - eta_zero) for eta_zero < eta < eta_min and
  * set to 0 below eta_zero (eta_min = eta_zero = 0: off).
@@ -57,8 +59,6 @@
     "upper end of the low-density ramp of P_c (SWIFT; 0: off)")                                        \
   X(eos_tillotson, eta_zero, "eta_zero", 0.0, 0.0, 0, 1.0, MATERIAL_UNIT_NONE,                         \
     "P_c = 0 below rho/rho0 = eta_zero (SWIFT; <= eta_min)")                                           \
-  X(eos_tillotson, P_min, "P_min", -INFINITY, -INFINITY, 0, INFINITY, MATERIAL_UNIT_PRESSURE,          \
-    "pressure floor (default: none, tension allowed)")                                                 \
   X(eos_tillotson, cv, "cv", 0.0, 0.0, 0, INFINITY, MATERIAL_UNIT_HEAT_CAPACITY,                       \
     "specific heat capacity for T = u / cv (0: no temperature)")
 /* clang-format on */
@@ -141,7 +141,7 @@ BOLIDE_INLINE void eos_tillotson_expanded(const struct eos_tillotson *p, double 
 }
 
 /** Pressure and c^2 = (dP/drho)_u + P/rho^2 (dP/du)_rho of the Tillotson EOS
- *  (T1-T3, P_min floor).  u < 0 is treated as u = 0. */
+ *  (T1-T3).  u < 0 is treated as u = 0. */
 BOLIDE_INLINE void eos_tillotson_eval(const struct eos_tillotson *p, double rho, double u,
                                       double *P, double *c2) {
   double Pt, dr, du;
@@ -160,10 +160,6 @@ BOLIDE_INLINE void eos_tillotson_eval(const struct eos_tillotson *p, double rho,
     Pt = we * Pe + wc * Pc;                     /* T3 */
     dr = we * dre + wc * drc;                   /* d(T3)/drho at constant u */
     du = we * due + wc * duc + (Pe - Pc) * inv; /* d(T3)/du at constant rho */
-  }
-  if (Pt < p->P_min) {
-    Pt = p->P_min;
-    dr = du = 0.0;
   }
   *P = Pt;
   *c2 = dr + Pt / (rho * rho) * du;

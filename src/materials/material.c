@@ -106,7 +106,8 @@ static const struct material_key *material_find_key(const struct material *mat, 
 /** Range check of one value: NULL, or what is wrong ("must be positive"). */
 static const char *material_range(const struct material_key *k, double v, char *buf, size_t len) {
   if (isnan(v)) return "must be a number";
-  if (isinf(v) && !(v == k->def)) return "must be finite";
+  /* infinities only as a default, and P_min = -inf: no floor (tension allowed) */
+  if (isinf(v) && !(v == k->def) && !(v < 0.0 && strcmp(k->key, "P_min") == 0)) return "must be finite";
   if (k->lo_open ? !(v > k->lo) : !(v >= k->lo)) {
     if (k->lo == 0.0) return k->lo_open ? "must be positive" : "must not be negative";
     if (k->lo == 1.0 && k->lo_open) return "must be larger than 1";
@@ -296,6 +297,16 @@ int material_has_temperature(const struct material *mat) {
 int material_finalize(struct material *mat, char *msg, size_t len) {
   if (material_check(mat, msg, len)) return -1;
   mat->rho0 = material_eos_rho0(mat);
+  /* u < 0, the undershoot of a cold body's energy in one step, is as u = 0
+   * for Tillotson (and does not enter the cold EOS), but would give the
+   * ideal gas a negative pressure and fall off a table's grid */
+  mat->u_floor = mat->eos_type == EOS_IDEAL_GAS || mat->eos_type == EOS_TABLE;
+  if (isnan(mat->P_min)) {
+    /* a fluid carries no tension (SWIFT's planetary Tillotson materials
+     * floor P at 0.01 Pa, its ice at 0); a solid keeps the EOS's tension
+     * (Benz & Asphaug 1999): theory/eos.md, "Pressure floor" */
+    mat->P_min = mat->strength == STRENGTH_NONE ? 0.0 : -INFINITY;
+  }
   if (isnan(mat->cs_min)) {
     /* Tillotson: c^2 falls to zero and below in tension and in the expanded
      * states; a floor of 10% of the bulk sound speed sqrt(A/rho0) keeps the

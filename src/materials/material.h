@@ -104,10 +104,12 @@ enum material_strength_type {
 
 /* Material-level keys (besides name, reference, eos, strength, swift_id and
  * the EOS parameters), in the format of the EOS lists (eos_common.h).
- * A NAN default on cs_min and bulk_modulus means "derived": see
+ * A NAN default on P_min, cs_min and bulk_modulus means "derived": see
  * material_finalize(). */
 /* clang-format off */
 #define MATERIAL_PARAMS(X)                                                                             \
+  X(material, P_min, "P_min", NAN, -INFINITY, 0, INFINITY, MATERIAL_UNIT_PRESSURE,                     \
+    "pressure floor of the EOS (default: 0 for a material without strength, which carries no tension, as SWIFT's planetary fluids; -inf, tension allowed, for a material with strength)") \
   X(material, density_floor, "density_floor", 0.0, 0.0, 0, INFINITY, MATERIAL_UNIT_DENSITY,            \
     "smallest density used by the EOS (0: none)")                                                      \
   X(material, cs_min, "cs_min", NAN, 0.0, 0, INFINITY, MATERIAL_UNIT_SPEED,                            \
@@ -181,6 +183,8 @@ struct material {
   enum material_strength_type strength;   /**< strength model */
   struct porosity porosity;               /**< porosity model (porosity.h; none by default) */
   double rho0;                            /**< reference density (copied from the EOS) */
+  int u_floor;                            /**< 1 when the EOS has no meaning at u < 0 (ideal gas,
+                                               tables): the kick keeps u >= 0 (drift.h) */
   MATERIAL_PARAMS(EOS_PARAM_FIELD)        /**< the keys of MATERIAL_PARAMS, see there */
 };
 
@@ -205,7 +209,10 @@ BOLIDE_INLINE const struct material *material_table_find(const struct material_t
 
 /** Pressure P and sound speed cs of material `mat` at density rho and
  *  specific internal energy u: clamps rho to the density floor, switches
- *  once on the EOS type and applies the cs_min floor. */
+ *  once on the EOS type, applies the pressure floor P_min (where it acts the
+ *  pressure does not change with rho or u: c^2 = 0) and the cs_min floor.
+ *  The floors change only what the force and energy equations are given;
+ *  both use the same P, so the pairwise exchange still conserves energy. */
 BOLIDE_INLINE void material_eos(const struct material *mat, double rho, double u, double *P,
                                 double *cs) {
   double c2 = 0.0, p = 0.0;
@@ -221,6 +228,10 @@ BOLIDE_INLINE void material_eos(const struct material *mat, double rho, double u
       default:
         break;
     }
+  }
+  if (p < mat->P_min) {
+    p = mat->P_min;
+    c2 = 0.0;
   }
   *P = p;
   *cs = sqrt(c2 > mat->cs_min * mat->cs_min ? c2 : mat->cs_min * mat->cs_min);

@@ -8,16 +8,27 @@
 #include "inline.h"
 #include "part.h"
 
-/** Half kick of particle i by dt_kick: v += a dt, u += du/dt dt (u kept
- *  non-negative: an energy that would go negative is halved instead, as
- *  SWIFT's planetary scheme does); the deviatoric stress and the continuity
- *  density are integrated like u (theory/solids.md, "Time integration"). */
+/** Half kick of particle i by dt_kick: v += a dt, u += du/dt dt; the
+ *  deviatoric stress and the continuity density are integrated like u
+ *  (theory/solids.md, "Time integration").  u may undershoot below 0 (a
+ *  cold body's elastic oscillation in one step; the EOS take it as u = 0)
+ *  and energy stays exactly conserved; for materials whose EOS needs
+ *  u >= 0 (PART_U_FLOOR: ideal gas, tables) an energy that would go
+ *  negative is halved instead, as SWIFT's planetary scheme does, and the
+ *  energy this adds, exchanged with no neighbour, is counted in e_clamp
+ *  (the statistics' E_clamp; theory/sph.md, "Conservation budget"). */
 BOLIDE_INLINE void kick_part(struct parts *BOLIDE_RESTRICT p, size_t i, double dt_kick) {
   p->vx[i] += p->ax[i] * dt_kick;
   p->vy[i] += p->ay[i] * dt_kick;
   p->vz[i] += p->az[i] * dt_kick;
   const double u1 = p->u[i] + p->du_dt[i] * dt_kick;
-  p->u[i] = (u1 >= 0.0) ? u1 : 0.5 * p->u[i];
+  if (u1 >= 0.0 || !(p->flags[i] & PART_U_FLOOR)) {
+    p->u[i] = u1;
+  } else {
+    const double uh = 0.5 * p->u[i];
+    p->e_clamp[i] += uh - u1;
+    p->u[i] = uh;
+  }
   p->Sxx[i] += p->dSxx[i] * dt_kick;
   p->Sxy[i] += p->dSxy[i] * dt_kick;
   p->Sxz[i] += p->dSxz[i] * dt_kick;
@@ -77,7 +88,7 @@ BOLIDE_INLINE void drift_part(struct parts *BOLIDE_RESTRICT p, size_t i, double 
   p->vpy[i] = p->vy[i] + p->ay[i] * half;
   p->vpz[i] = p->vz[i] + p->az[i] * half;
   const double up = p->u[i] + p->du_dt[i] * half;
-  p->up[i] = (up >= 0.0) ? up : 0.5 * p->u[i];
+  p->up[i] = (up >= 0.0 || !(p->flags[i] & PART_U_FLOOR)) ? up : 0.5 * p->u[i];
   double w = p->div_v[i] * dt / 3.0;
   if (w > 0.2) w = 0.2;
   if (w < -0.2) w = -0.2;

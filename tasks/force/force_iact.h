@@ -45,6 +45,7 @@ struct force_in {
   double rho;     /**< density */
   double P;       /**< pressure */
   double cs;      /**< sound speed */
+  double cl;      /**< longitudinal wave speed of a solid (= cs for fluids): the time step's */
   double u;       /**< specific internal energy (conduction) */
   double f;       /**< grad-h factor f = 1 / (1 + h/(3 rho) drho/dh) */
   double balsara; /**< Balsara switch value (1 when the switch is off) */
@@ -58,7 +59,7 @@ struct force_acc {
   double a[3];    /**< acceleration */
   double du_dt;   /**< rate of change of specific internal energy */
   double drho_dt; /**< rate of change of density (continuity equation) */
-  double v_sig;   /**< largest signal velocity met */
+  double v_sig;   /**< largest signal velocity met, with the longitudinal speeds (time step) */
   double xsph[3]; /**< XSPH sum m_j/rho_ij (v_j - v_i) W_ij (Monaghan 1989) */
 };
 
@@ -175,7 +176,10 @@ BOLIDE_INLINE void force_iact(double r2, const double dx[3], const double dv[3],
    * gradient_cspm_drho_dt in gradient_finish.h) */
   if (!hp->continuity_cspm) acc->drho_dt += pj->m * dvdr * r_inv * wi_dr;
 
-  if (v_sig > acc->v_sig) acc->v_sig = v_sig;
+  /* the time step's signal velocity: with the longitudinal wave speeds of
+   * solids (equal to v_sig for fluids) */
+  const double v_sig_dt = pi->cl + pj->cl - hp->beta * mu_ij;
+  if (v_sig_dt > acc->v_sig) acc->v_sig = v_sig_dt;
 }
 
 #endif

@@ -8,6 +8,7 @@
 #include <math.h>
 
 #include "continuity_floor.h"
+#include "damage/damage_iact.h"
 #include "ghost_iact.h"
 #include "hydro_parts.h"
 #include "hydro_props.h"
@@ -93,6 +94,21 @@ BOLIDE_INLINE void ghost_part_finish(struct parts *BOLIDE_RESTRICT p, size_t i,
   }
   p->P[i] = P;
   p->cs[i] = cs;
+  if (mat->u_floor)
+    p->flags[i] |= PART_U_FLOOR;
+  else
+    p->flags[i] &= ~PART_U_FLOOR;
+  if (hp->solids) {
+    /* the time step of a solid follows its fastest wave, the longitudinal
+     * one: c_l^2 = (K + 4 G / 3) / rho = c_s^2 + 4 G / (3 rho), with the
+     * shear modulus of the damaged material (1 - D) G (theory/solids.md,
+     * "Time step"); c_s alone would give an effective Courant number
+     * c_l / c_s times the one asked for (1.46 for basalt) */
+    double G = 0.0;
+    if (mat->strength != STRENGTH_NONE && mat->shear_modulus > 0.0)
+      G = (1.0 - damage_total(p->dmg[i], p->dmg_shear[i])) * mat->shear_modulus;
+    p->cl[i] = sqrt(cs * cs + 4.0 * G / (3.0 * p->rho[i]));
+  }
   const double curl = sqrt(p->curl_vx[i] * p->curl_vx[i] + p->curl_vy[i] * p->curl_vy[i] +
                            p->curl_vz[i] * p->curl_vz[i]);
   p->balsara[i] = hp->balsara ? ghost_balsara(p->div_v[i], curl, cs, h) : 1.0;

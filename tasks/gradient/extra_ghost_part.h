@@ -28,6 +28,40 @@
     (p)->pre##yy[i] = (T)[3], (p)->pre##yz[i] = (T)[4], (p)->pre##zz[i] = (T)[5]; \
   } while (0)
 
+/** The radial return of particle i's stress S (the integrated or the
+ *  kicked one, 6 components) onto the yield surface of material mat (not
+ *  elastic), with eps_rate the equivalent strain rate of its velocity
+ *  gradient: the yield stress of the damaged material (Collins et al. 2004:
+ *  tensile and shear damage together, min(1, d + D_s)), the plastic strain
+ *  of the return added to eps_p, its plastic work Y d eps_p / rho to
+ *  w_plastic (the statistics' W_plastic: already in u, which receives the
+ *  whole stress power S:eps'/rho), and the Johnson & Cook (1985) fracture
+ *  (theory/solids.md E6f) or else the shear damage (Collins et al. 2004),
+ *  both growing with the plastic strain.  Called by the extra ghost and,
+ *  so that every kicked state a snapshot or the statistics see lies on the
+ *  yield surface, by the second kick (kick.h).  Returns the yield stress
+ *  (of the state before the return's updates). */
+BOLIDE_INLINE double extra_ghost_plastic_return(struct parts *BOLIDE_RESTRICT p, size_t i,
+                                              const struct material *mat, double S[6],
+                                              double eps_rate) {
+  const double mu = mat->shear_modulus;
+  const struct strength_state st = {p->P[i], p->rho[i], p->up[i], p->eps_p[i], eps_rate,
+                                    damage_total(p->dmg[i], p->dmg_shear[i])};
+  const double Y = strength_yield(mat, &st);
+  const double seq = sqrt(3.0 * strength_J2(S)); /* trial stress: triaxiality of E6f */
+  const double deps_p = strength_radial_return(S, Y, mu);
+  if (!(deps_p > 0.0)) return Y;
+  p->eps_p[i] += deps_p;
+  if (p->rho[i] > 0.0) p->w_plastic[i] += Y * deps_p / p->rho[i];
+  if (strength_jc_fracture(mat))
+    p->dmg_shear[i] = strength_jc_damage_update(mat, p->dmg_shear[i], deps_p, seq, p->P[i], p->rho[i],
+                                                p->up[i], eps_rate);
+  else if (mat->shear_failure_strain > 0.0)
+    p->dmg_shear[i] = damage_shear_update(p->dmg_shear[i], deps_p, p->P[i], mat->shear_failure_strain,
+                                          mat->shear_failure_slope, mat->shear_failure_pressure);
+  return Y;
+}
+
 /** Finish solid particle i: gv = G M^-1 (Randles & Libersky 1996; the
  *  identity without SPH:gradient_correction), plasticity, dS/dt and R.
  *  Particles of materials without strength get zero stress, rates and R.
@@ -74,22 +108,9 @@ BOLIDE_INLINE void extra_ghost_part(struct parts *BOLIDE_RESTRICT p, size_t i,
   const double mu = mat->shear_modulus;
   const double eps_rate = gradient_stress_rate(gv, Sp, mu, dS);
   if (mat->strength != STRENGTH_ELASTIC) {
-    /* the yield curve of the damaged material (Collins et al. 2004): tensile
-     * and shear damage together, min(1, d + D_s) */
-    const struct strength_state st = {p->P[i], p->rho[i], p->up[i], p->eps_p[i], eps_rate,
-                                      damage_total(p->dmg[i], p->dmg_shear[i])};
-    const double Y = strength_yield(mat, &st);
-    const double seq = sqrt(3.0 * strength_J2(S)); /* trial stress: triaxiality of E6f */
-    const double deps_p = strength_radial_return(S, Y, mu);
-    p->eps_p[i] += deps_p;
-    /* Johnson & Cook (1985) fracture (theory/solids.md E6f), else shear
-     * damage (Collins et al. 2004): both grow with the plastic strain */
-    if (strength_jc_fracture(mat))
-      p->dmg_shear[i] = strength_jc_damage_update(mat, p->dmg_shear[i], deps_p, seq, p->P[i], p->rho[i],
-                                                  p->up[i], eps_rate);
-    else if (mat->shear_failure_strain > 0.0)
-      p->dmg_shear[i] = damage_shear_update(p->dmg_shear[i], deps_p, p->P[i], mat->shear_failure_strain,
-                                            mat->shear_failure_slope, mat->shear_failure_pressure);
+    const double Y = extra_ghost_plastic_return(p, i, mat, S, eps_rate);
+    /* the predicted stress onto the same yield surface (its plastic strain
+     * is that of S, counted once) */
     strength_radial_return(Sp, Y, mu);
     EXTRA_GHOST_PUT6(S, p, S, i);
     EXTRA_GHOST_PUT6(Sp, p, Sp, i);

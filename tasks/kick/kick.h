@@ -7,20 +7,44 @@
 
 #include "drift/drift.h"
 #include "ghost/continuity_floor.h"
+#include "gradient/extra_ghost_part.h"
 #include "hydro_props.h"
 #include "inline.h"
+#include "material.h"
 #include "part.h"
 #include "timestep/timestep.h"
 
-/** Kick particle i by dt_kick, make the predicted state the kicked one
- *  (kick_sync_predicted), and return its new time step (timestep_hydro and,
- *  with SPH:max_relative_change, the relative-change limits).  With the
- *  continuity equation a particle on its density floor does not expand
- *  further (continuity_floor.h). */
+/** The kicked stress of a plastic particle back onto its yield surface
+ *  (extra_ghost_plastic_return, with the yield stress of this step's
+ *  state and the velocity gradient of this step's extra ghost), so that
+ *  the state after the kick, which snapshots, statistics and restart files
+ *  hold, never lies outside the yield surface. */
+BOLIDE_INLINE void kick2_plastic_return(struct parts *BOLIDE_RESTRICT p, size_t i,
+                                        const struct material_table *mats) {
+  const struct material *mat = material_table_find(mats, p->mat[i]);
+  if (!mat || mat->strength == STRENGTH_NONE || mat->strength == STRENGTH_ELASTIC ||
+      !(mat->shear_modulus > 0.0))
+    return;
+  double S[6], dS[6];
+  EXTRA_GHOST_GET6(S, p, S, i);
+  const double gv[9] = {p->gvxx[i], p->gvxy[i], p->gvxz[i], p->gvyx[i], p->gvyy[i],
+                        p->gvyz[i], p->gvzx[i], p->gvzy[i], p->gvzz[i]};
+  const double eps_rate = gradient_stress_rate(gv, S, mat->shear_modulus, dS);
+  extra_ghost_plastic_return(p, i, mat, S, eps_rate);
+  EXTRA_GHOST_PUT6(S, p, S, i);
+}
+
+/** Kick particle i by dt_kick, bring a plastic particle's stress back onto
+ *  its yield surface (kick2_plastic_return), make the predicted state the
+ *  kicked one (kick_sync_predicted), and return its new time step
+ *  (timestep_hydro and, with SPH:max_relative_change, the relative-change
+ *  limits).  With the continuity equation a particle on its density floor
+ *  does not expand further (continuity_floor.h). */
 BOLIDE_INLINE double kick2_part(struct parts *BOLIDE_RESTRICT p, size_t i, double dt_kick,
-                                const struct hydro_props *hp) {
+                                const struct hydro_props *hp, const struct material_table *mats) {
   if (hp->continuity) continuity_floor_rate(p, i);
   kick_part(p, i, dt_kick);
+  if (hp->solids) kick2_plastic_return(p, i, mats);
   kick_sync_predicted(p, i);
   const double a = sqrt(p->ax[i] * p->ax[i] + p->ay[i] * p->ay[i] + p->az[i] * p->az[i]);
   double dt = timestep_hydro(hp, p->h[i], p->v_sig[i], a, p->div_v[i]);

@@ -28,7 +28,7 @@ __global__ void kick2_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, struc
     /* porous materials (kick_porous.h; no-ops for the others); dt_kick is
      * 0 exactly after the first force computation, which has no return */
     kick2_porous_rate(&p, i, mats);
-    const double d = kick2_part(&p, i, dt_kick, &hp);
+    const double d = kick2_part(&p, i, dt_kick, &hp, mats);
     if (dt_kick > 0.0) kick2_porous_return(&p, i, mats, hp.continuity);
     if (d < dt) dt = d;
     if (damage_max_change > 0.0) {

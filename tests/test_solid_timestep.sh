@@ -1,0 +1,90 @@
+#!/usr/bin/env bash
+# The time step of a solid follows its longitudinal wave speed
+# c_l = sqrt(c_s^2 + 4 G / (3 rho)) (issue 17 item 3; theory/solids.md,
+# "Time step"), with a material of high G/K at the stability limit.
+#
+# A plane longitudinal wave (v_x = 1 m/s sin(2 pi x / L)) in a periodic
+# 24 x 8 x 8 lattice of an elastic solid: Tillotson basalt (K = A =
+# 26.7 GPa at rho0) with G = 40 GPa, G/K = 1.5, so c_l = 1.50 c_s at
+# u = 1 MJ/kg (1.73 at u = 0), run at SPH:CFL_condition 0.3 for about six
+# wave periods.  Asserts
+#  - the first step is dt = 2 C H / v_sig with v_sig = 2 c_l (the lattice
+#    is nearly at rest): dt c_l / (C h) = kernel_gamma within 1%;
+#  - the wave stays stable: E_kin at the end <= 2 E_kin(0) and the total
+#    energy within 0.1 E_kin(0) (measured 0.44 and 0.054).  With the bulk
+#    sound speed in the signal velocity the same run is unstable (E_kin
+#    x 3500 by t = 1 ms), as it is from CFL 0.3 up with c_l: 0.3 is the
+#    limit of this lattice.
+set -uo pipefail
+B=${BOLIDE_BUILDDIR:?}
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+cd "$work"
+fail() { echo "FAIL: $*"; exit 1; }
+"${PYTHON:?}" - <<'PY' || fail "initial conditions"
+import h5py, numpy as np
+nx, ny, L, rho = 24, 8, 1.0, 2700.0
+dx = L / nx
+gx = (np.arange(nx) + 0.5) * dx
+gy = (np.arange(ny) + 0.5) * dx
+x, y, z = np.meshgrid(gx, gy, gy, indexing="ij")
+pos = np.stack([x.ravel(), y.ravel(), z.ravel()], axis=1)
+N = len(pos)
+vel = np.zeros_like(pos)
+vel[:, 0] = 1.0 * np.sin(2 * np.pi * pos[:, 0] / L)
+with h5py.File("wave.hdf5", "w") as f:
+    h = f.create_group("Header")
+    h.attrs["BoxSize"] = [L, ny * dx, ny * dx]
+    h.attrs["NumPart_Total"] = [N, 0, 0, 0, 0, 0]
+    p = f.create_group("PartType0")
+    p["Coordinates"] = pos
+    p["Velocities"] = vel
+    p["Masses"] = np.full(N, rho * dx**3)
+    p["SmoothingLengths"] = np.full(N, 1.2348 * dx)
+    p["InternalEnergies"] = np.full(N, 1.0e6)
+    p["ParticleIDs"] = np.arange(1, N + 1)
+    p["MaterialIDs"] = np.zeros(N, dtype=np.int32)
+PY
+cat >wave.yml <<'YML'
+InitialConditions:
+  file_name: wave.hdf5
+  periodic: true
+TimeIntegration:
+  time_end: 1e-3
+Snapshots:
+  delta_time: 1
+Statistics:
+  delta_time: 2e-5
+SPH:
+  CFL_condition: 0.3
+Materials:
+  0: {name: basalt, strength: elastic, shear_modulus: 40e9}
+YML
+"$B/bolide" --no-gpu -t 2 wave.yml >run.log 2>&1 || { tail -3 run.log; fail "run"; }
+kernel=$("$B/bolide" --version | sed -n 's/^kernel: //p')
+KERNEL="$kernel" "$PYTHON" - <<'PY' || fail "time step or stability"
+import os, h5py, numpy as np
+gamma = {"cubic-spline": 1.825742, "quartic-spline": 2.018932, "wendland-C2": 1.936492,
+         "wendland-C4": 2.207940, "wendland-C6": 2.449490}[os.environ["KERNEL"]]
+names = None
+for line in open("statistics.txt"):
+    if line.startswith("# step"):
+        names = line[1:].split()
+d = np.loadtxt("statistics.txt", comments="#", ndmin=2)
+c = {k: d[:, i] for i, k in enumerate(names)}
+with h5py.File("snapshot_0000.hdf5", "r") as f:
+    g = f["PartType0"]
+    cs, rho, h = g["SoundSpeeds"][:], g["Densities"][:], g["SmoothingLengths"][:]
+G, C = 40e9, 0.3
+cl = np.sqrt(cs**2 + 4 * G / (3 * rho))
+ratio = (c["dt"][1] * cl / (C * h)).min()
+print(f"first step {c['dt'][1]:.6e} s: dt c_l / (C h) = {ratio:.5f}, kernel_gamma {gamma} "
+      f"(c_l / c_s = {np.median(cl / cs):.3f})")
+assert abs(ratio / gamma - 1) < 0.01, "the time step does not follow c_l"
+k0, k1 = c["E_kin"][0], c["E_kin"][-1]
+dE = np.max(np.abs(c["E_tot"] - c["E_tot"][0]))
+print(f"t = {c['time'][-1]:.3g} s: E_kin / E_kin(0) = {k1 / k0:.3f} (<= 2), max |dE| / E_kin(0) = "
+      f"{dE / k0:.3e} (<= 0.1)")
+assert abs(c["time"][-1] - 1e-3) < 1e-12
+assert k1 <= 2 * k0 and dE <= 0.1 * k0, "unstable"
+PY
+echo PASS

@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# The conservation budget of the planetary reference impact of shared/bench
+# (two Tillotson granite spheres, 2 km/s at 45 degrees, hydro + self-gravity,
+# SWIFT's settings: cubic spline eta 1.2348, CFL 0.2, alpha 1.5, theta 0.5,
+# softening = lattice spacing, `101: {}` with the library's defaults) run to
+# time_end: |dE| / |E_pot(0)| (E_tot plus what left the box, nothing else
+# added back) and |dL| / |L| at each statistics time, on the CPU and/or the
+# GPU.  SWIFT's figures (shared/bench/README.md): 3.6e-4 at 2000 s, 5.6e-4
+# at 4000 s, |dL| / L 2.5e-4.
+#
+# Usage: tools/bench/energy.sh [-n "2.2e4 1.1e5"] [-m "cpu gpu"] [-t THREADS]
+#                              [-T 4000] [-o OUTDIR]
+#   -m  cpu: --no-gpu; gpu: the defaults with a GPU (the build must have CUDA)
+set -euo pipefail
+top="$(cd "$(dirname "$0")/../.." && pwd)"
+build=${BOLIDE_BUILD:-$top/_build}
+python=${PYTHON:-$build/.venv/bin/python}
+gen=${BOLIDE_BENCH_IC:-$top/../shared/bench/make_impact_ic.py}
+sizes="2.2e4"; modes="cpu"; threads=$(nproc); tend=4000; out=""
+while getopts "n:m:t:T:o:" o; do
+  case $o in n) sizes=$OPTARG ;; m) modes=$OPTARG ;; t) threads=$OPTARG ;; T) tend=$OPTARG ;;
+             o) out=$OPTARG ;; *) exit 2 ;; esac
+done
+[ -f "$gen" ] || { echo "energy.sh: error: $gen not found (set BOLIDE_BENCH_IC)" >&2; exit 1; }
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+cd "$work"
+printf "# %s on %s (%s), %s threads\n" "$("$build/bolide" --version | head -1)" "$(uname -n)" \
+  "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')" "$threads"
+printf "%-8s %-4s %8s %14s %12s %10s %8s %10s\n" N mode t dE/abs_Epot0 abs_dL/L removed steps wall_s
+for n in $sizes; do
+  nt=$(awk -v n=$n 'BEGIN {printf "%d", n * 10 / 11}'); ni=$(awk -v n=$n 'BEGIN {printf "%d", n / 11}')
+  "$python" "$gen" "$nt" "$ni" impact.hdf5 >ic.log
+  soft=$(awk '/suggested softening/ {print $NF * 1e6}' ic.log)
+  N=$(awk '/N_target=/ {sub(/.*N=/, ""); print}' ic.log)
+  for m in $modes; do
+    gpu="--no-gpu"; [ "$m" = gpu ] && gpu=""
+    cat >p.yml <<YML
+InitialConditions:
+  file_name: impact.hdf5
+TimeIntegration:
+  time_end: $tend
+Snapshots:
+  subdir: out_$m
+  delta_time: 1e30
+Statistics:
+  delta_time: 100
+Materials:
+  101: {}
+SPH:
+  resolution_eta: 1.2348
+  CFL_condition: 0.2
+  viscosity_alpha: 1.5
+Gravity:
+  enabled: true
+  theta_cr: 0.5
+  softening: $soft
+Scheduler:
+  max_top_level_cells: 16
+YML
+    w0=$(date +%s.%N)
+    "$build/bolide" $gpu -t "$threads" p.yml >run_$m.log 2>&1 || { tail -3 run_$m.log >&2; exit 1; }
+    w1=$(date +%s.%N)
+    [ -n "$out" ] && { mkdir -p "$out"; cp out_$m/statistics.txt "$out/stats_${N}_$m.txt"; cp run_$m.log "$out/run_${N}_$m.log"; }
+    steps=$(awk '/^\[.*done:/ {print $5}' run_$m.log)
+    "$python" - "$N" "$m" "$steps" "$(awk -v a=$w0 -v b=$w1 'BEGIN {print b - a}')" out_$m/statistics.txt <<'PY'
+import sys
+import numpy as np
+N, mode, steps, wall, path = sys.argv[1:6]
+names = None
+for line in open(path):
+    if line.startswith("# step"):
+        names = line[1:].split()
+d = np.loadtxt(path, comments="#", ndmin=2)
+c = {k: d[:, i] for i, k in enumerate(names)}
+Ep = abs(c["E_pot"][0])
+dE = np.abs(c["E_tot"] + c["E_removed"] - c["E_tot"][0]) / Ep
+L = np.stack([c[k] + c[k + "_removed"] for k in ("Lx", "Ly", "Lz")], 1)
+dL = np.linalg.norm(L - L[0], axis=1) / np.linalg.norm(L[0])
+for t in sorted({1000.0, 2000.0, 3000.0, 4000.0, float(c["time"][-1])}):
+    k = np.argmin(np.abs(c["time"] - t))
+    if abs(c["time"][k] - t) > 60:
+        continue
+    print(f"{N:8s} {mode:4s} {c['time'][k]:8.0f} {dE[k]:14.3e} {dL[k]:12.3e} {int(c['n_removed'][k]):10d} "
+          f"{steps:>8s} {float(wall):10.1f}")
+PY
+  done
+done
