@@ -8,6 +8,12 @@ skipped.  Prints
     max_rel_energy_drift X      max_t |E_tot(t) - E_tot(0)| / E_scale
     max_rel_momentum_drift X    max_t |p(t) - p(0)| / p_scale
     max_rel_angular_momentum_drift X   max_t |L(t) - L(0)| / L_scale
+    max_rel_energy_budget X     max_t |dE(t)| / |E_pot(0)| (or / E_scale without
+                                gravity), dE = E_tot + E_removed - E_clamp - E_tot(0),
+                                when the file has the budget columns
+
+The momenta include what left an open box (the *_removed columns) when the
+file has them.
 
 E_scale is |E_tot(0)|, or |E_kin(0)| + |E_int(0)| + |E_pot(0)| when E_tot(0)
 is less than 1e-3 of that sum (a system whose energies cancel).  The total
@@ -68,6 +74,15 @@ def main(argv=None):
     if e_drift is not None:
         print("max_rel_energy_drift %.6g" % np.max(np.abs(e_drift)))
     p_drift = None
+    for k in ("px", "py", "pz", "Lx", "Ly", "Lz"):
+        if k in cols and k + "_removed" in cols:
+            cols[k] = cols[k] + cols[k + "_removed"]
+    budget = None
+    if "dE" in cols:
+        b_scale = abs(cols["E_pot"][0]) if "E_pot" in cols and cols["E_pot"][0] != 0 else e_scale
+        if b_scale > 0:
+            budget = cols["dE"] / b_scale
+            print("max_rel_energy_budget %.6g" % np.max(np.abs(budget)))
     if all(k in cols for k in ("px", "py", "pz")):
         p = np.stack([cols["px"], cols["py"], cols["pz"]], axis=1)
         dp = np.sqrt(np.sum((p - p[0]) ** 2, axis=1))
@@ -106,6 +121,9 @@ def main(argv=None):
     floor = 1e-16
     if e_drift is not None:
         ax2.semilogy(t, np.maximum(np.abs(e_drift), floor), label=r"$|E_{tot} - E_{tot,0}| / E_{scale}$")
+    if budget is not None:
+        ax2.semilogy(t, np.maximum(np.abs(budget), floor),
+                     label=r"budget $|dE| / |E_{pot,0}|$ (removed and clamps counted)")
     if p_drift is not None:
         ax2.semilogy(t, np.maximum(p_drift, floor), label=r"$|p - p_0| / p_{scale}$")
     if l_drift is not None:
