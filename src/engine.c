@@ -385,14 +385,23 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   int periodic = params_get_bool(params, "InitialConditions:periodic");
   char icname[PATH_MAX];
   struct restart_state rs;
+  memset(&rs, 0, sizeof rs);
   if (opt->restart) {
-    restart_read(e->restart_dir, &rs, &e->parts, &e->flaw_eps, &e->nr_flaws);
-    if (e->nr_flaws == 0) {
-      free(e->flaw_eps);
-      e->flaw_eps = NULL;
-    }
+    /* the output times from time_begin: the file's output index counts in this list */
+    engine_init_outputs(e, e->time);
+    e->params_text = params_to_string(params);
+    int32_t *ids = error_malloc((e->mats->n ? e->mats->n : 1) * sizeof(int32_t), "material ids");
+    for (int k = 0; k < e->mats->n; k++) ids[k] = e->mats->mats[k].id;
+    const struct restart_expect ex = {e->params_text, ids, e->mats->n, e->nr_out, e->time, e->time_end};
+    struct restart_data rd;
+    restart_read(e->restart_dir, &ex, &rd, icname, sizeof icname);
+    free(ids);
+    rs = rd.st;
+    e->parts = rd.p;
+    e->flaw_eps = rd.flaw_eps;
+    e->nr_flaws = rd.nr_flaws;
+    e->restart_cells = rd.cells;
     e->flaws_from = "the restart file";
-    snprintf(icname, sizeof icname, "%s/restart.bin", e->restart_dir);
     for (int k = 0; k < 3; k++) box[k] = rs.box[k];
     periodic = (int)rs.periodic;
     e->time = rs.time;
@@ -402,6 +411,9 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     e->nr_removed = rs.nr_removed;
     e->snap_index = (int)rs.snap_index;
     e->restart_dt_next = rs.dt_next;
+    e->restart_h_max = rs.rebuild_h_max;
+    e->need_rebuild = (int)rs.need_rebuild;
+    e->restart_stats_offset = rs.stats_offset;
     e->restarted = 1;
   } else {
     engine_read_ics(e, icname, sizeof icname, box);
@@ -425,7 +437,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   e->dump_tasks = params_get_int(params, "Scheduler:dump_tasks");
   e->cell_task_size = (int)params_get_int(params, "Scheduler:cell_task_size");
   e->grav_task_size = (int)params_get_int(params, "Scheduler:gravity_task_size");
-  engine_init_outputs(e, e->time);
+  if (!e->restarted) engine_init_outputs(e, e->time);
   if (e->restarted) {
     e->next_out = (int)rs.next_out;
     e->next_stats = rs.next_stats;
@@ -472,7 +484,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   char path[2048];
   snprintf(path, sizeof path, "%s/used_parameters.yml", e->outdir);
   params_write_used(params, path);
-  e->params_text = params_to_string(params);
+  if (!e->params_text) e->params_text = params_to_string(params);
   engine_stats_open(e);
 
   scheduler_init(&e->sched, e->nr_threads);
@@ -493,7 +505,18 @@ void engine_rebuild(struct engine *e) {
   gpu_engine_host_modified(e);
 #endif
   const double w1 = error_walltime();
-  const size_t removed = space_rebuild(&e->space);
+  size_t removed = 0;
+  if (e->restart_h_max > 0.0) {
+    /* resumed: the cells of the uninterrupted run's last rebuild */
+    space_restore(&e->space, e->restart_h_max, e->restart_cells.h_max, e->restart_cells.dx_max,
+                  (int)e->restart_cells.n, "restart file");
+    e->restart_h_max = 0.0;
+    free(e->restart_cells.h_max);
+    free(e->restart_cells.dx_max);
+    memset(&e->restart_cells, 0, sizeof e->restart_cells);
+  } else {
+    removed = space_rebuild(&e->space);
+  }
   e->nr_removed += (long long)removed;
   const double w2 = error_walltime();
   engine_make_graph(e);
@@ -583,8 +606,22 @@ static void engine_write_restart(struct engine *e) {
   st.periodic = e->space.periodic;
   st.removed = e->space.removed;
   st.start = e->budget0;
+  st.rebuild_h_max = e->space.h_max;
+  st.need_rebuild = atomic_load((_Atomic int *)&e->need_rebuild) ? 1 : 0;
+  if (e->stats) {
+    if (fflush(e->stats)) error_exit("cannot write the statistics file (disk full?)");
+    st.stats_offset = ftell(e->stats);
+  }
+  const int nc = e->space.nr_cells;
+  struct restart_cells cells = {nc, error_malloc(2 * (size_t)nc * sizeof(double) + 1, "restart cells"), NULL};
+  cells.dx_max = cells.h_max + nc;
+  for (int c = 0; c < nc; c++) {
+    cells.h_max[c] = e->space.cells[c].h_max;
+    cells.dx_max[c] = e->space.cells[c].dx_max;
+  }
   engine_mkdir(e->restart_dir);
-  restart_write(e->restart_dir, &st, &e->parts, e->flaw_eps);
+  restart_write(e->restart_dir, &st, &e->parts, e->flaw_eps, &cells, e->params_text);
+  free(cells.h_max);
   e->restart_last_wall = error_walltime();
   error_log(0, "restart file %s/restart.bin at step %ld, t = %g", e->restart_dir, e->step, e->time);
 }
@@ -745,24 +782,20 @@ void engine_run(struct engine *e) {
     /* (not at the last step: the file written after the loop follows) */
     if (e->restarts && w1 - e->restart_last_wall >= e->restart_dt_wall && e->time < e->time_end &&
         (e->opt.max_steps < 0 || e->step < e->opt.max_steps)) {
+      /* (the run goes on without a rebuild: a run resumed from the file
+       * restores the cells of the last one, space_restore) */
       engine_write_restart(e);
-      /* rebuild here, as a run resumed from this file does before its first
-       * step: both then continue from the same cells and particle order, and
-       * (with one thread and Scheduler:deterministic) bit for bit alike */
-      double dt_next = e->dt_max;
-      for (int t = 0; t < e->nr_tcells; t++)
-        if (e->cell_dt_min[t] < dt_next) dt_next = e->cell_dt_min[t];
-      engine_rebuild(e);
-      for (int t = 0; t < e->nr_tcells; t++) e->cell_dt_min[t] = dt_next;
     }
   }
   if (!e->restarts && e->next_out < e->nr_out && e->out_times[e->nr_out - 1] > e->time) {
     /* stopped by --steps without restart files: keep the last state */
     engine_snapshot(e);
   }
+  /* the restart file first: a run resumed from it truncates the statistics
+   * file to its length then, dropping the closing line written now */
+  if (e->restarts) engine_write_restart(e);
   engine_stats_write(e);
   engine_budget_summary(e);
-  if (e->restarts) engine_write_restart(e);
   const double wall = error_walltime() - e->wall_start;
   error_log(0, "done: %ld steps to t = %g in %.2f s (%.3g particle updates per second)", e->step, e->time, wall,
             wall > 0 ? (double)e->updates / wall : 0.0);
