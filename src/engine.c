@@ -4,6 +4,7 @@
 
 #include <errno.h>
 #include <sched.h>
+#include <signal.h>
 #include <float.h>
 #include <libgen.h>
 #include <limits.h>
@@ -348,6 +349,66 @@ static void engine_init_flaws(struct engine *e, const char *icname) {
 }
 
 /* ------------------------------------------------------------------------ */
+/* signals and batch limits (issue 18 item 2)                                */
+
+/** The signal received (0: none): the step loop writes a restart file and
+ *  stops after the step in progress; a second signal stops at once. */
+static volatile sig_atomic_t engine_signal;
+
+static void engine_on_signal(int sig) {
+  if (engine_signal) {
+    static const char msg[] = "bolide: second signal: stopping at once, without a restart file\n";
+    ssize_t r = write(STDERR_FILENO, msg, sizeof msg - 1);
+    (void)r;
+    _exit(128 + sig);
+  }
+  engine_signal = sig;
+}
+
+/** SIGTERM, SIGINT, SIGHUP and SIGUSR1 ask the run to stop with a restart file. */
+static void engine_signals_install(void) {
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = engine_on_signal;
+  sa.sa_flags = SA_RESTART;
+  sigemptyset(&sa.sa_mask);
+  const int sigs[] = {SIGTERM, SIGINT, SIGHUP, SIGUSR1};
+  for (int k = 0; k < 4; k++) sigaction(sigs[k], &sa, NULL);
+}
+
+static const char *engine_signal_name(int sig) {
+  switch (sig) {
+    case SIGTERM: return "SIGTERM";
+    case SIGINT: return "SIGINT";
+    case SIGHUP: return "SIGHUP";
+    case SIGUSR1: return "SIGUSR1";
+    default: return "a signal";
+  }
+}
+
+/** Why the run must stop now with a restart file (a signal, the stop file
+ *  in the restart folder, Restarts:max_run_time), written into why; 0: go
+ *  on.  The stop file is removed. */
+static int engine_must_stop(struct engine *e, char *why, size_t len) {
+  if (engine_signal) {
+    snprintf(why, len, "%s received", engine_signal_name(engine_signal));
+    return 1;
+  }
+  char stop[1100];
+  snprintf(stop, sizeof stop, "%s/stop", e->restart_dir);
+  if (access(stop, F_OK) == 0) {
+    if (unlink(stop)) error_warning("%s: cannot remove the stop file: %s", stop, strerror(errno));
+    snprintf(why, len, "stop file %.1000s found", stop);
+    return 1;
+  }
+  if (e->restart_max_wall > 0.0 && error_walltime() >= e->restart_max_wall) {
+    snprintf(why, len, "Restarts:max_run_time of %g h reached", e->restart_max_wall / 3600.0);
+    return 1;
+  }
+  return 0;
+}
+
+/* ------------------------------------------------------------------------ */
 
 void engine_init(struct engine *e, const struct params *params, const struct engine_options *opt) {
   memset(e, 0, sizeof *e);
@@ -361,6 +422,10 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   e->restarts = params_get_bool(params, "Restarts:enable");
   e->restart_dt_wall = 3600.0 * params_get_real(params, "Restarts:delta_hours");
   snprintf(e->restart_dir, sizeof e->restart_dir, "%s", params_get_string(params, "Restarts:subdir"));
+  e->restart_delta_steps = params_get_int(params, "Restarts:delta_steps");
+  e->restart_max_wall = 3600.0 * params_get_real(params, "Restarts:max_run_time");
+  engine_signals_install();
+  restart_remove_stale(e->restart_dir);
 
   e->mats = error_calloc(1, sizeof(struct material_table), "material table");
   material_table_init(e->mats);
@@ -481,6 +546,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   }
 
   engine_mkdir(e->outdir);
+  if (e->restarts) engine_mkdir(e->restart_dir); /* where the stop file goes */
   char path[2048];
   snprintf(path, sizeof path, "%s/used_parameters.yml", e->outdir);
   params_write_used(params, path);
@@ -745,6 +811,7 @@ void engine_run(struct engine *e) {
   }
   e->wall_start = error_walltime();
   e->restart_last_wall = e->wall_start;
+  char stop_why[1300] = "";
   printf("#   step           time             dt      updates    wall[s]     ETA[s]\n");
   while (e->time < e->time_end && (e->opt.max_steps < 0 || e->step < e->opt.max_steps)) {
     const double w0 = error_walltime();
@@ -779,21 +846,28 @@ void engine_run(struct engine *e) {
     const double eta = frac > 0 ? (w1 - e->wall_start) * (1.0 - frac) / frac : 0.0;
     printf("%8ld %14.6e %14.6e %12zu %10.4f %10.1f\n", e->step, e->time, e->dt, e->parts.count, w1 - w0, eta);
     fflush(stdout);
+    if (e->time < e->time_end && engine_must_stop(e, stop_why, sizeof stop_why)) break;
     /* (not at the last step: the file written after the loop follows) */
-    if (e->restarts && w1 - e->restart_last_wall >= e->restart_dt_wall && e->time < e->time_end &&
-        (e->opt.max_steps < 0 || e->step < e->opt.max_steps)) {
+    if (e->restarts &&
+        (w1 - e->restart_last_wall >= e->restart_dt_wall ||
+         (e->restart_delta_steps > 0 && e->step % e->restart_delta_steps == 0)) &&
+        e->time < e->time_end && (e->opt.max_steps < 0 || e->step < e->opt.max_steps)) {
       /* (the run goes on without a rebuild: a run resumed from the file
        * restores the cells of the last one, space_restore) */
       engine_write_restart(e);
     }
   }
-  if (!e->restarts && e->next_out < e->nr_out && e->out_times[e->nr_out - 1] > e->time) {
+  const int stopped = stop_why[0] != '\0';
+  if (!stopped && !e->restarts && e->next_out < e->nr_out && e->out_times[e->nr_out - 1] > e->time) {
     /* stopped by --steps without restart files: keep the last state */
     engine_snapshot(e);
   }
   /* the restart file first: a run resumed from it truncates the statistics
    * file to its length then, dropping the closing line written now */
-  if (e->restarts) engine_write_restart(e);
+  if (e->restarts || stopped) engine_write_restart(e);
+  if (stopped)
+    fprintf(stderr, "bolide: %s: wrote %s/restart.bin at step %ld (t = %g) and stopped; resume with --restart\n",
+            stop_why, e->restart_dir, e->step, e->time);
   engine_stats_write(e);
   engine_budget_summary(e);
   const double wall = error_walltime() - e->wall_start;
