@@ -460,6 +460,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     const struct restart_expect ex = {e->params_text, ids, e->mats->n, e->nr_out, e->time, e->time_end};
     struct restart_data rd;
     restart_read(e->restart_dir, &ex, &rd, icname, sizeof icname);
+    snprintf(e->restart_file, sizeof e->restart_file, "%s", icname);
     free(ids);
     rs = rd.st;
     e->parts = rd.p;
@@ -807,7 +808,7 @@ void engine_run(struct engine *e) {
      * restart file: recomputing them now would use corrected instead of
      * predicted velocities and change the run */
     for (int t = 0; t < e->nr_tcells; t++) e->cell_dt_min[t] = e->restart_dt_next;
-    error_log(0, "resumed from %s/restart.bin at step %ld, t = %g", e->restart_dir, e->step, e->time);
+    error_log(0, "resumed from %s at step %ld, t = %g", e->restart_file, e->step, e->time);
   }
   e->wall_start = error_walltime();
   e->restart_last_wall = e->wall_start;

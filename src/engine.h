@@ -130,6 +130,7 @@ struct engine {
   double restart_dt_next;         /**< smallest particle time step saved in the restart file */
   double restart_h_max;           /**< > 0: the first rebuild restores the cells of the file (space_restore) */
   struct restart_cells restart_cells; /**< the cells' h_max and dx_max from the file */
+  char restart_file[4096];        /**< the restart file this run resumed from */
   long restart_delta_steps;       /**< Restarts:delta_steps */
   double restart_max_wall;        /**< Restarts:max_run_time in seconds (0: none) */
   long restart_stats_offset;      /**< length of the statistics file when the restart file was written */

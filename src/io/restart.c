@@ -545,6 +545,7 @@ void restart_read(const char *dir, const struct restart_expect *ex, struct resta
   }
   if (access(path, F_OK) && access(prev, F_OK))
     error_exit("%s: no restart file to resume from (neither restart.bin nor restart.prev.bin)", dir);
+  if (access(prev, F_OK)) error_exit("%s", err);
   error_exit("%s (the previous file: %s)", err, err2);
 }
 
