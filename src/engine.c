@@ -409,6 +409,128 @@ static int engine_must_stop(struct engine *e, char *why, size_t len) {
 }
 
 /* ------------------------------------------------------------------------ */
+/* the watchdog (issue 18 item 7)                                            */
+
+/** Index of the top-level cell that holds particle i (cells own contiguous
+ *  ranges), -1 if none. */
+static int engine_cell_of(const struct engine *e, size_t i) {
+  for (int c = 0; c < e->space.nr_top; c++)
+    if (i >= e->space.cells[c].offset && i < e->space.cells[c].offset + e->space.cells[c].count) return c;
+  return -1;
+}
+
+/** Stop the run: one line naming the particle, the field, the step and the
+ *  cell; the state goes to a crash snapshot OUTDIR/crash_stepNNNNNN.hdf5 (no
+ *  restart file: the last one stays the one to resume from). */
+static void engine_watchdog_fail(struct engine *e, size_t i, const char *what) {
+  const int c = engine_cell_of(e, i);
+  char path[2100];
+  snprintf(path, sizeof path, "%s/crash_step%06ld.hdf5", e->outdir, e->step);
+  fflush(stdout);
+  engine_snapshot_to(e, path);
+  error_exit("watchdog: step %ld (t = %g): particle id %lld (index %zu, top-level cell %d at (%g, %g, %g)): %s; "
+             "crash snapshot %s, the last restart file stays the one to resume from",
+             e->step, e->time, (long long)e->parts.id[i], i, c, c >= 0 ? e->space.cells[c].loc[0] : 0.0,
+             c >= 0 ? e->space.cells[c].loc[1] : 0.0, c >= 0 ? e->space.cells[c].loc[2] : 0.0, what, path);
+}
+
+/** BOLIDE_TEST_INJECT=STEP:FIELD:VALUE (for the tests only): at the end of
+ *  step STEP, particle field FIELD of the particle in the middle of the array
+ *  is set to VALUE (nan, inf, -1, 1e9...). */
+static void engine_watchdog_init(struct engine *e) {
+  const char *s = getenv("BOLIDE_TEST_INJECT");
+  if (!s || !*s) return;
+  char field[32];
+  long step;
+  char value[64];
+  if (sscanf(s, "%ld:%31[^:]:%63s", &step, field, value) != 3 || step < 1)
+    error_exit("BOLIDE_TEST_INJECT '%s': expected STEP:FIELD:VALUE", s);
+  char *end;
+  e->wd_inject_value = strtod(value, &end);
+  if (*end) error_exit("BOLIDE_TEST_INJECT '%s': '%s' is not a number", s, value);
+  int k = 0;
+  while (k < part_nr_fields && (strcmp(part_fields[k].name, field) || part_fields[k].type != PART_DOUBLE)) k++;
+  if (k == part_nr_fields) error_exit("BOLIDE_TEST_INJECT '%s': no double particle field '%s'", s, field);
+  snprintf(e->wd_inject_field, sizeof e->wd_inject_field, "%s", field);
+  e->wd_inject_step = step;
+  error_warning("BOLIDE_TEST_INJECT: %s of one particle set to %g at the end of step %ld", field,
+                e->wd_inject_value, step);
+}
+
+/** Remember the positions before the drift (the displacement check). */
+static void engine_watchdog_before_drift(struct engine *e) {
+  if (e->gpu) return;
+  const struct parts *p = &e->parts;
+  e->wd_x = error_realloc(e->wd_x, 3 * (p->count ? p->count : 1) * sizeof(double), "watchdog positions");
+  memcpy(e->wd_x, p->x, p->count * sizeof(double));
+  memcpy(e->wd_x + p->count, p->y, p->count * sizeof(double));
+  memcpy(e->wd_x + 2 * p->count, p->z, p->count * sizeof(double));
+}
+
+/** After the drift: no particle may have moved more than the width of a
+ *  top-level cell (the neighbour search would miss its neighbours). */
+static void engine_watchdog_after_drift(struct engine *e) {
+  if (e->gpu || !e->wd_x) return;
+  const struct parts *p = &e->parts;
+  const size_t n = p->count;
+  double w = e->space.width[0];
+  for (int k = 1; k < 3; k++)
+    if (e->space.width[k] < w) w = e->space.width[k];
+  for (size_t i = 0; i < n; i++) {
+    const double dx = p->x[i] - e->wd_x[i], dy = p->y[i] - e->wd_x[n + i], dz = p->z[i] - e->wd_x[2 * n + i];
+    const double d = sqrt(dx * dx + dy * dy + dz * dz);
+    if (!(d <= w)) {
+      char what[256];
+      snprintf(what, sizeof what, "moved %g in one step (dt %g), more than its cell (width %g)", d, e->dt, w);
+      e->step++; /* the step in progress */
+      engine_watchdog_fail(e, i, what);
+    }
+  }
+}
+
+/** After the step: every field finite, no negative density, no negative
+ *  internal energy where the EOS forbids it (u_floor). */
+static void engine_watchdog_after_step(struct engine *e) {
+  struct parts *p = &e->parts;
+  if (e->wd_inject_step == e->step && p->count) {
+    double *a = NULL;
+    for (int k = 0; k < part_nr_fields; k++)
+      if (!strcmp(part_fields[k].name, e->wd_inject_field)) a = part_field_array(p, &part_fields[k]);
+    a[p->count / 2] = e->wd_inject_value;
+  }
+  if (e->gpu) return;
+  for (int k = 0; k < part_nr_fields; k++) {
+    const struct part_field *f = &part_fields[k];
+    if (f->type != PART_DOUBLE) continue;
+    const double *a = part_field_array(p, f);
+    int bad = 0;
+    for (size_t i = 0; i < p->count; i++) bad |= !isfinite(a[i]);
+    if (!bad) continue;
+    for (size_t i = 0; i < p->count; i++)
+      if (!isfinite(a[i])) {
+        char what[256];
+        snprintf(what, sizeof what, "field %s is %g", f->name, a[i]);
+        engine_watchdog_fail(e, i, what);
+      }
+  }
+  for (size_t i = 0; i < p->count; i++) {
+    char what[256];
+    if (p->rho[i] < 0.0) {
+      snprintf(what, sizeof what, "field rho is %g (negative density)", p->rho[i]);
+      engine_watchdog_fail(e, i, what);
+    }
+    if (p->u[i] < 0.0) {
+      const struct material *m = material_table_find(e->mats, p->mat[i]);
+      if (m && m->u_floor) {
+        snprintf(what, sizeof what, "field u is %g (negative internal energy; material '%s' needs u >= 0)", p->u[i],
+                 m->name);
+        engine_watchdog_fail(e, i, what);
+      }
+    }
+  }
+}
+
+/* ------------------------------------------------------------------------ */
 
 void engine_init(struct engine *e, const struct params *params, const struct engine_options *opt) {
   memset(e, 0, sizeof *e);
@@ -426,6 +548,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   e->restart_max_wall = 3600.0 * params_get_real(params, "Restarts:max_run_time");
   engine_signals_install();
   restart_remove_stale(e->restart_dir);
+  engine_watchdog_init(e);
 
   e->mats = error_calloc(1, sizeof(struct material_table), "material table");
   material_table_init(e->mats);
@@ -818,7 +941,9 @@ void engine_run(struct engine *e) {
     const double w0 = error_walltime();
     e->dt = engine_next_dt(e);
     if (!(e->dt > 0.0)) break;
+    engine_watchdog_before_drift(e);
     engine_run_phase(e, ENGINE_PHASE_DRIFT);
+    engine_watchdog_after_drift(e);
     e->time += e->dt;
     if (e->next_out < e->nr_out && fabs(e->time - e->out_times[e->next_out]) <= 1e-12 * fabs(e->time))
       e->time = e->out_times[e->next_out];
@@ -836,6 +961,7 @@ void engine_run(struct engine *e) {
     engine_gravity_reuse_remember(e);
     e->step++;
     e->updates += (long long)e->parts.count;
+    engine_watchdog_after_step(e);
     if (e->dump_tasks > 0 && e->step % e->dump_tasks == 0) engine_dump_tasks(e);
     engine_stats_maybe(e);
     if (e->next_out < e->nr_out && e->time >= e->out_times[e->next_out]) {
@@ -906,6 +1032,7 @@ void engine_clean(struct engine *e) {
   free(e->cell_dt_min);
   free(e->gcells);
   free(e->grav_x0);
+  free(e->wd_x);
   free(e->flaw_eps);
   free(e->params_text);
   if (e->mats) material_table_free(e->mats);

@@ -169,11 +169,16 @@ void engine_stats_maybe(struct engine *e) {
 }
 
 void engine_snapshot(struct engine *e) {
+  char path[2048];
+  snprintf(path, sizeof path, "%s/%s_%04d.hdf5", e->outdir, e->snap_basename, e->snap_index);
+  engine_snapshot_to(e, path);
+  e->snap_index++;
+}
+
+void engine_snapshot_to(struct engine *e, const char *path) {
 #ifdef HAVE_CUDA
   gpu_engine_to_host(e);
 #endif
-  char path[2048];
-  snprintf(path, sizeof path, "%s/%s_%04d.hdf5", e->outdir, e->snap_basename, e->snap_index);
   struct snapshot_meta meta;
   memset(&meta, 0, sizeof meta);
   meta.time = e->time;
@@ -186,7 +191,6 @@ void engine_snapshot(struct engine *e) {
   meta.compression = e->compression;
   snapshot_write(path, &meta, &e->parts, &e->us, e->write_acc);
   error_log(0, "snapshot %s at t = %g", path, e->time);
-  e->snap_index++;
 }
 
 void engine_dump_tasks(struct engine *e) {
