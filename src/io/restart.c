@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "damage/flaws.h"
@@ -83,6 +84,14 @@ void restart_write(const char *dir, const struct restart_state *st, const struct
   error_unregister_tmpfile(tmp);
 }
 
+/** Bytes from the current position to the end of the file. */
+static uint64_t restart_bytes_left(FILE *f) {
+  const long pos = ftell(f);
+  struct stat sb;
+  if (pos < 0 || fstat(fileno(f), &sb) || sb.st_size < pos) return 0;
+  return (uint64_t)(sb.st_size - pos);
+}
+
 void restart_read(const char *dir, struct restart_state *st, struct parts *p, double **flaw_eps,
                   int64_t *nr_flaws) {
   char path[2048];
@@ -116,12 +125,21 @@ void restart_read(const char *dir, struct restart_state *st, struct parts *p, do
   restart_get(f, st, sizeof *st, 1, path);
   uint64_t n;
   restart_get(f, &n, sizeof n, 1, path);
+  /* counts are checked against the bytes left before anything is allocated */
+  const uint64_t left = restart_bytes_left(f);
+  size_t per_part = sizeof(int64_t); /* the particle's flaw offset */
+  for (int k = 0; k < part_nr_fields; k++) per_part += part_fields[k].size;
+  if (n > left / per_part) {
+    fclose(f);
+    error_exit("%s: corrupt restart file (%llu particles in %llu bytes)", path,
+               (unsigned long long)n, (unsigned long long)left);
+  }
   parts_alloc(p, (size_t)n);
   for (int k = 0; k < part_nr_fields; k++)
     restart_get(f, part_field_array(p, &part_fields[k]), part_fields[k].size, p->count, path);
   uint64_t nflaws;
   restart_get(f, &nflaws, sizeof nflaws, 1, path);
-  if (nflaws > (uint64_t)1 << 48) {
+  if (nflaws > restart_bytes_left(f) / sizeof(double)) {
     fclose(f);
     error_exit("%s: corrupt restart file (%llu flaws)", path, (unsigned long long)nflaws);
   }
