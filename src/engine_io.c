@@ -147,8 +147,13 @@ void engine_budget_summary(struct engine *e) {
 void engine_stats_maybe(struct engine *e) {
   if (e->time >= e->next_stats || e->time >= e->time_end) {
     engine_stats_write(e);
+    /* where adding stats_dt no longer changes a time of large magnitude,
+     * the next double after now (the loop would never end) */
     if (e->stats_dt > 0.0)
-      while (e->next_stats <= e->time) e->next_stats += e->stats_dt;
+      while (e->next_stats <= e->time) {
+        const double next = e->next_stats + e->stats_dt;
+        e->next_stats = next > e->next_stats ? next : nextafter(e->time, INFINITY);
+      }
   }
 }
 

@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Hostile inputs that used to hang, take minutes or slip through (issue 18
+# item 6), run through bolide itself: each must stop within seconds with one
+# line "bolide: error: ..." naming the problem, or (an open box) follow its
+# documented behaviour.
+set -u
+B=${BOLIDE_BUILDDIR:?}
+[ -x "${PYTHON:-}" ] || { echo "no Python venv: skip"; exit 77; }
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+cd "$work"
+"$B/bolide-ic" box --n 12 -o box.hdf5 >/dev/null || exit 1
+"$PYTHON" - <<'PY' || exit 1
+import shutil
+import h5py
+def variant(name, edit):
+    shutil.copy("box.hdf5", name + ".hdf5")
+    with h5py.File(name + ".hdf5", "r+") as f:
+        edit(f["PartType0"])
+variant("far", lambda g: g["Coordinates"].__setitem__((3, 0), 1e300))
+variant("fast", lambda g: g["Velocities"].__setitem__(slice(None), 1e200))
+variant("one_point", lambda g: g["Coordinates"].__setitem__(slice(None), 0.5))
+PY
+cat >p.yml <<'YML'
+InitialConditions:
+  file_name: box.hdf5
+  periodic: true
+TimeIntegration:
+  time_end: 0.01
+Statistics:
+  delta_time: 0.001
+YML
+fail=0
+# expect NAME REGEX ARGS...: bolide ARGS p.yml fails within 10 s with one matching line
+expect() {
+  local name=$1 regex=$2; shift 2
+  local start rc ms
+  start=$(date +%s%N)
+  timeout 10 "$B/bolide" -t 1 "$@" p.yml >out.txt 2>err.txt
+  rc=$?
+  ms=$(( ($(date +%s%N) - start) / 1000000 ))
+  if [ $rc -eq 0 ] || [ $rc -eq 124 ] || [ "$(wc -l <err.txt)" -ne 1 ] || ! grep -Eq "^bolide: error: $regex" err.txt; then
+    echo "FAIL $name: exit $rc after $ms ms:"; cat err.txt; fail=1
+  else
+    echo "ok   $name ($ms ms): $(cat err.txt)"
+  fi
+}
+expect time_begin 'time step .* cannot advance the time t = -1e\+17' -P TimeIntegration:time_begin:-1e17
+expect far_periodic 'far.hdf5: particle 3 \(id 4\): position x = 1e\+300 is more than a box size outside the periodic box' \
+  -P InitialConditions:file_name:far.hdf5
+expect fast 'fast.hdf5: particle 0 \(id 1\): speed 1.7[0-9]*e\+200 is above the speed of light' \
+  -P InitialConditions:file_name:fast.hdf5
+expect one_point 'one_point.hdf5: particles 0 \(id 1\) and 1 \(id 2\) are at the same position' \
+  -P InitialConditions:file_name:one_point.hdf5
+# an open box removes a particle outside it, with a log line (documented)
+if ! timeout 20 "$B/bolide" -t 1 -P InitialConditions:file_name:far.hdf5 -P InitialConditions:periodic:false p.yml >out.txt 2>err.txt ||
+   ! grep -q 'removed particle id 4 at (1e+300' out.txt; then
+  echo "FAIL far_open: not removed with a log line"; tail -3 out.txt err.txt; fail=1
+else
+  echo "ok   far_open: $(grep 'removed particle id 4' out.txt)"
+fi
+exit $fail
