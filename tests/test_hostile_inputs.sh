@@ -58,4 +58,64 @@ if ! timeout 20 "$B/bolide" -t 1 -P InitialConditions:file_name:far.hdf5 -P Init
 else
   echo "ok   far_open: $(grep 'removed particle id 4' out.txt)"
 fi
+
+# a full disk during a snapshot (item 5): tests/faultfs.so fails HDF5's
+# writes with ENOSPC after FAULTFS_BYTES, at a dataset or at the flush on
+# closing (which crashed in HDF5's exit handler).  One line, exit 1, no
+# temporary file; the earlier snapshots equal the uninterrupted run's and
+# the last restart file (written every step; none before the snapshot at
+# t = 0) resumes the run to its end.
+cat >d.yml <<'YML'
+InitialConditions:
+  file_name: box.hdf5
+  periodic: true
+TimeIntegration:
+  time_end: 0.02
+  dt_max: 0.001
+Snapshots:
+  subdir: ref
+  delta_time: 0.005
+Scheduler:
+  deterministic: true
+Restarts:
+  enable: true
+  delta_hours: 0
+  subdir: ref/restart
+YML
+"$B/bolide" -t 1 d.yml >ref.log 2>&1 || { echo "FAIL: the run without faults"; tail -3 ref.log; exit 1; }
+S=$(stat -c %s ref/snapshot_0000.hdf5)
+export ASAN_OPTIONS="${ASAN_OPTIONS:-}:verify_asan_link_order=0"
+for k in 0 1 2; do
+  for frac in 25 90; do
+    bytes=$(( k * S + S * frac / 100 ))
+    rm -rf full
+    (trap '' XFSZ; LD_PRELOAD="$B/tests/faultfs.so" FAULTFS_BYTES=$bytes timeout 30 "$B/bolide" -t 1 \
+       -P Snapshots:subdir:full -P Restarts:subdir:full/restart d.yml >full.log 2>err.txt)
+    rc=$?
+    snap=$(printf 'full/snapshot_%04d.hdf5' $k)
+    if [ $rc -ne 1 ] || [ "$(wc -l <err.txt)" -ne 1 ] ||
+       ! grep -q "^bolide: error: $snap: cannot write .*No space left on device" err.txt ||
+       [ -n "$(ls full | grep tmp)" ] || [ -e "$snap" ]; then
+      echo "FAIL disk full after $bytes bytes: exit $rc, left: $(ls full | tr '\n' ' ')"; cat err.txt; fail=1; continue
+    fi
+    "$PYTHON" - "$k" <<'PY' || { echo "FAIL disk full after $bytes bytes: earlier snapshots differ"; fail=1; }
+import sys
+import h5py
+import numpy as np
+for j in range(int(sys.argv[1])):
+    with h5py.File(f"ref/snapshot_{j:04d}.hdf5") as a, h5py.File(f"full/snapshot_{j:04d}.hdf5") as b:
+        for name in a["PartType0"]:
+            if not np.array_equal(a["PartType0"][name][...], b["PartType0"][name][...]):
+                sys.exit(f"snapshot {j}: {name} differs")
+PY
+    if [ $k -eq 0 ]; then # at t = 0, before any restart file
+      echo "ok   disk full after $bytes bytes: $(cat err.txt)"
+    elif ! timeout 60 "$B/bolide" -t 1 --restart -P Snapshots:subdir:full -P Restarts:subdir:full/restart d.yml >res.log 2>&1 ||
+       ! grep -q "^done: .* to t = 0.02 " <(sed 's/^\[ *[0-9.]* s\] //' res.log); then
+      echo "FAIL disk full after $bytes bytes: the restart file does not resume the run"; tail -3 res.log; fail=1
+    else
+      echo "ok   disk full after $bytes bytes: $(cat err.txt); resumed to the end"
+    fi
+  done
+done
 exit $fail
