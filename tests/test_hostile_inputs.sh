@@ -51,6 +51,13 @@ expect fast 'fast.hdf5: particle 0 \(id 1\): speed 1.7[0-9]*e\+200 is above the 
   -P InitialConditions:file_name:fast.hdf5
 expect one_point 'one_point.hdf5: particles 0 \(id 1\) and 1 \(id 2\) are at the same position' \
   -P InitialConditions:file_name:one_point.hdf5
+# a statistics interval of 1e-308 (2e305 lines between two steps) is legal:
+# one line per step that crosses its times, no endless loop
+if ! timeout 10 "$B/bolide" -t 1 -P Statistics:delta_time:1e-308 p.yml >out.txt 2>err.txt; then
+  echo "FAIL stats_dt: Statistics:delta_time 1e-308 did not finish"; tail -2 err.txt; fail=1
+else
+  echo "ok   stats_dt 1e-308: $(grep -vc '^#' statistics.txt) statistics lines"
+fi
 # an open box removes a particle outside it, with a log line (documented)
 if ! timeout 20 "$B/bolide" -t 1 -P InitialConditions:file_name:far.hdf5 -P InitialConditions:periodic:false p.yml >out.txt 2>err.txt ||
    ! grep -q 'removed particle id 4 at (1e+300' out.txt; then
