@@ -176,8 +176,8 @@ void gravity_tree_all(struct parts *p, const struct cell *tops, int nr_top, stru
                       const struct gravity_props *gp);
 
 /** Opening angle and highest expansion order of gravity_estimate's pass. */
-#define GRAVITY_ESTIMATE_THETA 0.5
-#define GRAVITY_ESTIMATE_ORDER 3
+#define GRAVITY_ESTIMATE_THETA 0.8
+#define GRAVITY_ESTIMATE_ORDER 2
 
 /** 1 if the adaptive criterion (epsilon_fmm > 0, tree, full evaluation)
  *  lacks its scale: some particle has ga = 0 (a run's first step). */
