@@ -937,6 +937,14 @@ static void engine_first_force(struct engine *e) {
   e->dt = 0.0;
   for (size_t i = 0; i < e->parts.count; i++) hydro_density_reset(&e->parts, i);
   e->gp.replay = 0;
+  /* the adaptive criterion's scale |ga| for the first evaluation (issue 25):
+   * one cheaper geometric pass on the host, uploaded with the particles */
+  if (e->gp.enabled && gravity_estimate(&e->parts, e->space.cells, e->space.nr_top, e->gcells,
+                                        &e->gp, e->nr_threads)) {
+#ifdef HAVE_CUDA
+    if (e->gpu) gpu_engine_host_modified(e);
+#endif
+  }
   engine_run_phase(e, ENGINE_PHASE_FORCE);
   engine_gravity_reuse_remember(e);
   e->first_force = 0;
