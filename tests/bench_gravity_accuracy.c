@@ -9,7 +9,10 @@
  * clustered Plummer spheres of tests/gravity_sets.h), plummer:N, uniform:N.
  * Options:
  *   -s EPS      softening (Plummer-equivalent, spline kernel; in the file's
- *               length unit; default: the built-in sets' 0.1 N^(-1/3) x box 1)
+ *               length unit; default: the built-in sets' 0.1 N^(-1/3) x box 1);
+ *               -s auto: the median particle spacing (m / rho)^(1/3) of the
+ *               file's masses and densities (the reference impact's
+ *               "softening = lattice spacing")
  *   -c E,T,P    a configuration: Gravity:epsilon_fmm E, theta_cr T, order P
  *               (repeat; default: the defaults)
  *   -e K        evaluations per configuration (default 2): the first from
@@ -158,7 +161,8 @@ int main(int argc, char **argv) {
   for (int a = 1; a < argc; a++) {
     const int more = a + 1 < argc;
     if (strcmp(argv[a], "-s") == 0 && more) {
-      eps = atof(argv[++a]);
+      eps = strcmp(argv[++a], "auto") == 0 ? 0.0 : atof(argv[a]);
+      if (!(eps >= 0.0)) error_exit("bench_gravity_accuracy: -s wants a softening > 0 or auto");
     } else if (strcmp(argv[a], "-c") == 0 && more) {
       if (ncfg == MAX_CONFIGS) error_exit("bench_gravity_accuracy: at most %d -c", MAX_CONFIGS);
       double *c = cfg[ncfg++];
@@ -218,7 +222,16 @@ int main(int argc, char **argv) {
     ic_read(source, &file_us, NULL, 0, &p, &info);
     if (info.has_box_size)
       for (int d = 0; d < 3; d++) box[d] = info.box_size[d];
-    if (eps <= 0.0) error_exit("bench_gravity_accuracy: -s EPS (softening) wanted with a file");
+    if (eps == 0.0) {
+      double *sp = error_malloc(p.count * sizeof(double), "spacings");
+      for (size_t i = 0; i < p.count; i++)
+        sp[i] = p.rho[i] > 0.0 ? cbrt(p.m[i] / p.rho[i]) : 0.0;
+      qsort(sp, p.count, sizeof(double), cmp_double);
+      eps = pct(sp, p.count, 0.5);
+      free(sp);
+      if (!(eps > 0.0)) error_exit("bench_gravity_accuracy: -s auto: %s has no densities", source);
+    }
+    if (eps < 0.0) error_exit("bench_gravity_accuracy: -s EPS (softening) wanted with a file");
   }
   const size_t n = p.count;
   struct space s;
