@@ -239,6 +239,28 @@ static void engine_init_porosity(struct engine *e, const char *icname, int has_a
   }
 }
 
+/** Positions and velocities that no run can follow, refused with one line
+ *  (issue 18): in a periodic box, a position more than one box size outside
+ *  [0, L) after the shift (wrapping 1e300 would silently give 0); a speed
+ *  above that of light (1e200 moved every particle to one point in the first
+ *  step, and the smoothing lengths were blamed minutes later). */
+static void engine_check_ic_motion(const struct engine *e, const char *icname, const double box[3],
+                                   int periodic) {
+  const struct parts *p = &e->parts;
+  const double c_light = 2.99792458e10 / units_cgs_factor(&e->us, 0, 1, -1);
+  for (size_t i = 0; i < p->count; i++) {
+    const double x[3] = {p->x[i], p->y[i], p->z[i]};
+    for (int k = 0; periodic && k < 3; k++)
+      if (!(x[k] >= -box[k] && x[k] < 2.0 * box[k]))
+        error_exit("%s: particle %zu (id %lld): position %c = %g is more than a box size outside the "
+                   "periodic box [0, %g)", icname, i, (long long)p->id[i], "xyz"[k], x[k], box[k]);
+    const double v = hypot(hypot(p->vx[i], p->vy[i]), p->vz[i]);
+    if (!(v < c_light))
+      error_exit("%s: particle %zu (id %lld): speed %g is above the speed of light (%g in internal units)",
+                 icname, i, (long long)p->id[i], v, c_light);
+  }
+}
+
 /** Read the initial conditions named by the parameters into e->parts, with
  *  the box size (from the file or InitialConditions:box_size), the shift and
  *  the smoothing-length scaling applied. */
@@ -275,6 +297,7 @@ static void engine_read_ics(struct engine *e, char *icname, size_t len, double b
     e->parts.rho_full[i] = e->parts.rho_fp[i] = e->parts.rho[i];
     kick_sync_predicted(&e->parts, i);
   }
+  engine_check_ic_motion(e, icname, box, params_get_bool(params, "InitialConditions:periodic"));
   engine_init_porosity(e, icname, ic_field_read(&hdr, engine_field_index("alpha")));
   /* Weibull flaws stored in the ICs (bolide-flaws; FlawThresholds and
    * FlawOffsets in the particle order of the file) */
@@ -920,6 +943,12 @@ static double engine_next_dt(struct engine *e) {
     else if (to_out > 0.0 && dt > 0.5 * to_out && dt < to_out) dt = 0.5 * to_out; /* no sliver steps */
   }
   if (e->time + dt > e->time_end) dt = e->time_end - e->time;
+  /* a time so large in magnitude that the step is below its spacing would
+   * loop for ever at the same t */
+  if (dt > 0.0 && e->time + dt == e->time)
+    error_exit("time step %g cannot advance the time t = %g (the spacing of doubles there is %g): "
+               "TimeIntegration:time_begin or time_end too large in magnitude for the run's time steps",
+               dt, e->time, nextafter(fabs(e->time), INFINITY) - fabs(e->time));
   return dt;
 }
 
@@ -929,6 +958,14 @@ static void engine_first_force(struct engine *e) {
   e->dt = 0.0;
   for (size_t i = 0; i < e->parts.count; i++) hydro_density_reset(&e->parts, i);
   e->gp.replay = 0;
+  /* the adaptive criterion's scale |ga| for the first evaluation (issue 25):
+   * one cheaper geometric pass on the host, uploaded with the particles */
+  if (e->gp.enabled && gravity_estimate(&e->parts, e->space.cells, e->space.nr_top, e->gcells,
+                                        &e->gp, e->nr_threads)) {
+#ifdef HAVE_CUDA
+    if (e->gpu) gpu_engine_host_modified(e);
+#endif
+  }
   engine_run_phase(e, ENGINE_PHASE_FORCE);
   engine_gravity_reuse_remember(e);
   e->first_force = 0;

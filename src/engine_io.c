@@ -163,8 +163,16 @@ void engine_budget_summary(struct engine *e) {
 void engine_stats_maybe(struct engine *e) {
   if (e->time >= e->next_stats || e->time >= e->time_end) {
     engine_stats_write(e);
+    /* the next multiple of stats_dt after now: by addition as always, but
+     * after 1000 additions in one jump (a stats_dt of 1e-308 would take for
+     * ever), and at least the next double (at a time of large magnitude
+     * adding stats_dt changes nothing) */
     if (e->stats_dt > 0.0)
-      while (e->next_stats <= e->time) e->next_stats += e->stats_dt;
+      for (int k = 0; e->next_stats <= e->time; k++) {
+        double next = e->next_stats + e->stats_dt;
+        if (k == 1000) next = e->next_stats + e->stats_dt * (floor((e->time - e->next_stats) / e->stats_dt) + 1.0);
+        e->next_stats = next > e->next_stats ? next : nextafter(e->time, INFINITY);
+      }
   }
 }
 

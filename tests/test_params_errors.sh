@@ -75,6 +75,29 @@ expect_error "'$valid' -P 'InitialConditions:shift:[1, 2'" "-P InitialConditions
 expect_error "'$valid' -P nonsense" "-P nonsense: expected Section:key:value"
 expect_error "'$valid' -P Materials:rock:1" "-P Materials:rock:1: section 'Materials' cannot be set with -P"
 
+# hostile values (issue 18): arrays of the wrong length, texts too long or empty
+for v in '[]' '[1]' '[1, 2]' '[1, 2, 3, 4]'; do
+  n=$(echo "$v" | tr -cd ',' | wc -c); [ "$v" = '[]' ] && n=-1
+  expect_error "'$valid' -P 'InitialConditions:shift:$v'" "InitialConditions:shift: $((n + 1)) value" "(expected 3)"
+done
+expect_error "'$valid' -P 'InitialConditions:box_size:[1, 2]'" "InitialConditions:box_size: 2 values given (expected 0, 1 or 3)"
+long=$(printf 'd%.0s' $(seq 1 1100))
+expect_error "'$valid' -P Snapshots:subdir:$long" "Snapshots:subdir: 'dddd" "is 1100 bytes long (at most 1023)"
+expect_error "'$valid' -P Restarts:subdir:$long" "Restarts:subdir: 'dddd" "is 1100 bytes long (at most 1023)"
+expect_error "'$valid' -P 'Snapshots:basename:'" "Snapshots:basename: must not be empty"
+printf 'Snapshots:\n  basename: ""\n' >"${TMPDIR:-/tmp}/empty_basename.$$.yml"
+expect_error "'${TMPDIR:-/tmp}/empty_basename.$$.yml'" "empty_basename.$$.yml:2: Snapshots:basename: must not be empty"
+rm -f "${TMPDIR:-/tmp}/empty_basename.$$.yml"
+# 90,000 keys with a duplicate at the end: refused within seconds (the
+# duplicate check was quadratic: 90,000^2 / 2 comparisons)
+big="${TMPDIR:-/tmp}/many_keys.$$.yml"
+{ echo 'SPH:'; seq 1 90000 | sed 's/.*/  k&: 1/'; echo '  k7: 2'; } >"$big"
+start=$(date +%s%N)
+expect_error "'$big'" "many_keys.$$.yml:90002: duplicate key 'SPH:k7' (first given at line 8)"
+ms=$(( ($(date +%s%N) - start) / 1000000 ))
+[ "$ms" -lt 3000 ] || { echo "FAIL: 90,000 keys took $ms ms"; fails=$((fails + 1)); }
+rm -f "$big"
+
 # and the valid file passes, with a -P value holding ':'
 out=$("$check" "$valid" -P "MetaData:run_name:a:b" MetaData:run_name SPH:CFL_condition 2>&1)
 if [ "$out" != "$(printf 'MetaData:run_name=a:b\nSPH:CFL_condition=0.29999999999999999')" ]; then
