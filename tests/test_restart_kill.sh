@@ -80,15 +80,17 @@ for sig in KILL TERM; do
     if [ $sig = KILL ]; then
       [ $rc -eq 137 ] || { echo "FAIL: SIGKILL: run $runs exit $rc"; tail -3 log.$runs; bad=1; break; }
       [ -e out/restart/restart.bin.tmp ] && intmp=$((intmp + 1))
-      # the newest snapshot written by this run but not logged: killed while writing it
-      last=$(ls -t out/*.hdf5 2>/dev/null | head -1)
-      if [ -n "$last" ] && [ "$last" -nt .start ] && ! grep -q "snapshot $last " log.$runs; then insnap=$((insnap + 1)); fi
+      # a snapshot's temporary file: killed while writing it (removed by the next run)
+      ls out/*.hdf5.tmp out/*.xmf.tmp >/dev/null 2>&1 && insnap=$((insnap + 1))
     else
       if [ $rc -ne 0 ] || ! grep -q "SIGTERM received" log.$runs; then
         echo "FAIL: SIGTERM: run $runs exit $rc"; tail -3 log.$runs; bad=1; break
       fi
     fi
   done
+  if [ $bad -eq 0 ] && ls out/*.tmp out/restart/*.tmp >/dev/null 2>&1; then
+    echo "FAIL: SIG$sig: temporary files left: $(ls out/*.tmp out/restart/*.tmp 2>/dev/null)"; bad=1
+  fi
   if [ $bad -eq 0 ]; then
     if "$PY" "$S/restart_compare.py" ../A/out out >cmp.txt; then
       cycles=$((cycles + 1))
