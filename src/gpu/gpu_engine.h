@@ -128,7 +128,9 @@ void gpu_grav_walk_cells(struct gpu_grav *gg, struct gpu_grav_host *h, const str
  *  the device (gpu_grav_run; resident as there).  Sets p's ga and pot.
  *  up_on_device: the upward pass on the device instead (gpu_grav_up_cells);
  *  walk_on_device (with up_on_device): the walks too (gpu_grav_walk_cells;
- *  rec then stays empty).  For tests; h->built_rebuild must start at -1. */
+ *  rec then stays empty).  resident = 0: gravity_estimate on the host
+ *  first where needed (a first evaluation), as gravity_tree_all.  For
+ *  tests; h->built_rebuild must start at -1. */
 void gpu_grav_tree_all(struct gpu_grav *gg, struct gpu_grav_host *h, struct gravity_gpu_rec *rec,
                        struct parts *p, const struct space *s, struct gravity_cell *gc,
                        const struct gravity_props *gp, int resident, int up_on_device,

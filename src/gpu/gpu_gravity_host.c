@@ -152,6 +152,9 @@ void gpu_grav_tree_all(struct gpu_grav *gg, struct gpu_grav_host *h, struct grav
                        int walk_on_device) {
   const struct cell *tops = s->cells;
   const int nr_top = s->nr_top;
+  /* a first evaluation: the adaptive criterion's scale from the host's
+   * estimate, uploaded with ga (gravity_tree_all does the same) */
+  if (!resident) gravity_estimate(p, tops, nr_top, gc, gp, 1);
   if (h->built_rebuild != s->nr_rebuilds || h->built_cells != s->cells || !h->tree.offset) {
     gpu_grav_tree_build(h, s);
     gpu_grav_set_tree(gg, &h->tree);

@@ -111,6 +111,8 @@
   X("Restarts:enable", PARAM_BOOL, "false", 0, 0, NULL, "-", "write restart files") \
   X("Restarts:delta_hours", PARAM_REAL, "1", 0, PARAM_INF, NULL, "h", "wall-clock hours between restart files") \
   X("Restarts:subdir", PARAM_STRING, "restart", 1, 1023, NULL, "-", "folder of the restart files") \
+  X("Restarts:delta_steps", PARAM_INT, "0", 0, 1000000000, NULL, "-", "steps between restart files, besides delta_hours (0: none)") \
+  X("Restarts:max_run_time", PARAM_REAL, "0", 0, PARAM_INF, NULL, "h", "wall-clock hours after which the run writes a restart file and stops with status 0, for the time limit of a batch queue (0: no limit)") \
                                                                                                          \
   X("Materials", PARAM_SECTION, "", 0, 0, NULL, "-", "material table: see examples/parameters.yml")
 /* clang-format on */

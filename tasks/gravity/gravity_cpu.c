@@ -706,8 +706,80 @@ void gravity_replay(struct parts *p, const struct gravity_ilist *il, struct grav
   }
 }
 
+/** Work of the threads of gravity_estimate: one phase over the top-level
+ *  cells, each taken by one thread (next: the first not yet taken). */
+struct estimate_job {
+  struct parts *p;
+  const struct cell *tops;
+  int nr_top, phase; /**< phase 0: up, 1: walks (gather form), 2: down */
+  int next;
+  struct gravity_cell *gc;
+  const struct gravity_props *gp;
+};
+
+static void *estimate_worker(void *arg) {
+  struct estimate_job *job = arg;
+  for (;;) {
+    const int i = __atomic_fetch_add(&job->next, 1, __ATOMIC_RELAXED);
+    if (i >= job->nr_top) break;
+    const struct cell *ci = job->tops + i;
+    if (job->phase == 0) {
+      gravity_up(job->p, ci, job->gc, job->gp);
+    } else if (job->phase == 1) {
+      /* every interaction ci receives, one way: writes ci's cells only */
+      if (ci->count == 0) continue;
+      walk_self(job->p, ci, job->gc, job->gp);
+      for (int j = 0; j < job->nr_top; j++)
+        if (j != i) walk_pair(job->p, ci, job->tops + j, 0, job->gc, job->gp);
+    } else {
+      gravity_down(job->p, ci, job->gc, job->gp);
+    }
+  }
+  return NULL;
+}
+
+int gravity_estimate_needed(const struct parts *p, const struct gravity_props *gp) {
+  if (!gp->enabled || gp->direct || gp->replay || !(gp->epsilon_fmm > 0.0)) return 0;
+  for (size_t i = 0; i < p->count; i++)
+    if (p->gax[i] == 0.0 && p->gay[i] == 0.0 && p->gaz[i] == 0.0) return 1;
+  return 0;
+}
+
+int gravity_estimate(struct parts *p, const struct cell *tops, int nr_top, struct gravity_cell *gc,
+                     const struct gravity_props *gp, int nthreads) {
+  if (!gravity_estimate_needed(p, gp)) return 0;
+  struct gravity_props ge = *gp;
+  ge.epsilon_fmm = 0.0; /* the geometric criterion alone */
+  ge.theta = GRAVITY_ESTIMATE_THETA;
+  if (ge.order > GRAVITY_ESTIMATE_ORDER) ge.order = GRAVITY_ESTIMATE_ORDER;
+  if (nthreads < 1) nthreads = 1;
+  if (nthreads > 64) nthreads = 64;
+  /* the calling thread computes (neither records for the GPU nor for a reuse) */
+  struct gravity_gpu_rec *sink = gpu_sink;
+  struct gravity_ilist *rec = recording;
+  gpu_sink = NULL;
+  recording = NULL;
+  struct estimate_job job = {p, tops, nr_top, 0, 0, gc, &ge};
+  for (job.phase = 0; job.phase < 3; job.phase++) {
+    job.next = 0;
+    if (nthreads == 1) {
+      estimate_worker(&job);
+      continue;
+    }
+    pthread_t tid[64];
+    for (int t = 0; t < nthreads; t++)
+      if (pthread_create(&tid[t], NULL, estimate_worker, &job) != 0)
+        error_exit("gravity_estimate: cannot start thread %d", t);
+    for (int t = 0; t < nthreads; t++) pthread_join(tid[t], NULL);
+  }
+  gpu_sink = sink;
+  recording = rec;
+  return 1;
+}
+
 void gravity_tree_all(struct parts *p, const struct cell *tops, int nr_top, struct gravity_cell *gc,
                       const struct gravity_props *gp) {
+  gravity_estimate(p, tops, nr_top, gc, gp, 1);
   for (int i = 0; i < nr_top; i++) gravity_up(p, tops + i, gc, gp);
   for (int i = 0; i < nr_top; i++) {
     gravity_interact_cells(p, tops + i, tops + i, gc, gp);

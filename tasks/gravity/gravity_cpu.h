@@ -170,10 +170,30 @@ int gravity_top_pair_is_near(const struct cell *ci, const struct cell *cj,
                              const struct gravity_props *gp);
 
 /** The whole tree method without tasks, in the order the task graph runs
- *  it: up for every top-level cell, self and near pairs, long range, down.
- *  For tests and a serial fallback. */
+ *  it: gravity_estimate (when needed), up for every top-level cell, self
+ *  and near pairs, long range, down.  For tests and a serial fallback. */
 void gravity_tree_all(struct parts *p, const struct cell *tops, int nr_top, struct gravity_cell *gc,
                       const struct gravity_props *gp);
+
+/** Opening angle and highest expansion order of gravity_estimate's pass. */
+#define GRAVITY_ESTIMATE_THETA 0.8
+#define GRAVITY_ESTIMATE_ORDER 2
+
+/** 1 if the adaptive criterion (epsilon_fmm > 0, tree, full evaluation)
+ *  lacks its scale: some particle has ga = 0 (a run's first step). */
+int gravity_estimate_needed(const struct parts *p, const struct gravity_props *gp);
+
+/** A run's first evaluation gives the adaptive criterion the scale it
+ *  lacks (theory/gravity.md, "The first evaluation"): when
+ *  gravity_estimate_needed, one cheaper pass (the geometric criterion at
+ *  GRAVITY_ESTIMATE_THETA, order at most GRAVITY_ESTIMATE_ORDER, every top-level
+ *  cell gathering its interactions one way, over nthreads POSIX threads)
+ *  sets every particle's ga and pot, whose |ga| the following full
+ *  evaluation's gravity_up reads as a_min.  Returns 1 if it ran.
+ *  gravity_tree_all calls it first (one thread); the engine before its
+ *  first FORCE phase. */
+int gravity_estimate(struct parts *p, const struct cell *tops, int nr_top, struct gravity_cell *gc,
+                     const struct gravity_props *gp, int nthreads);
 
 /** Exact O(N^2) summation over all pairs (Gravity:direct, and the reference
  *  of the tests): sets ga and pot.  nthreads > 1

@@ -87,6 +87,8 @@ struct gravity_multipole {
   double M[GRAVITY_NM]; /**< moments (G1); M[0] is the mass, M[1..3] vanish (centre of mass) */
   double com[3];        /**< centre of mass z_A (expansion centre) */
   double r_max;         /**< radius about com enclosing every particle of the cell */
+  double power[GRAVITY_ORDER_MAX + 1]; /**< power P_n of the moments of order n <= p (G15;
+                                            P_0 the mass, P_1 = 0), for the opening criterion */
 };
 
 /** Local expansion (field tensor) of one cell about its centre of mass. */
@@ -122,6 +124,34 @@ BOLIDE_INLINE void gravity_scaled_powers(double t, int q, double *BOLIDE_RESTRIC
 /** Zero every coefficient of a multipole (com and r_max untouched). */
 BOLIDE_INLINE void gravity_multipole_zero(struct gravity_multipole *mp) {
   for (int i = 0; i < GRAVITY_NM; i++) mp->M[i] = 0.0;
+  for (int n = 0; n <= GRAVITY_ORDER_MAX; n++) mp->power[n] = 0.0;
+}
+
+/** The power of the moments of each order n <= p (Dehnen 2014, section
+ *  3.2.2), (G15):
+ *    P_n^2 = n! sum_{|k| = n} k! M_k^2
+ *  the Frobenius norm of the order-n moment tensor sum_j m_j d_j^(x n)
+ *  (M_k carry 1/k!, (G1)): m s^n for one mass m at distance s, at most
+ *  sum_j m_j |d_j|^n, and 0 for n = 1 about the centre of mass.  Orders
+ *  above p are left 0. */
+BOLIDE_INLINE void gravity_multipole_power(struct gravity_multipole *mp, int p) {
+  int i = 0;
+  double nfact = 1.0;
+  for (int n = 0; n <= GRAVITY_ORDER_MAX; n++) {
+    if (n > 0) nfact *= n;
+    if (n > p) {
+      mp->power[n] = 0.0;
+      continue;
+    }
+    double s = 0.0;
+    for (int nx = n; nx >= 0; nx--)
+      for (int ny = n - nx; ny >= 0; ny--, i++) {
+        const double kf =
+            gravity_factorial(nx) * gravity_factorial(ny) * gravity_factorial(n - nx - ny);
+        s += kf * mp->M[i] * mp->M[i];
+      }
+    mp->power[n] = sqrt(nfact * s);
+  }
 }
 
 /** Zero a field tensor. */
@@ -210,6 +240,7 @@ BOLIDE_INLINE void gravity_up_leaf(struct gravity_multipole *BOLIDE_RESTRICT mp,
     if (r2 > r2max) r2max = r2;
   }
   mp->r_max = sqrt(r2max);
+  gravity_multipole_power(mp, order);
 }
 
 /** Split cell from its n > 0 non-empty children (in progeny order):
@@ -241,6 +272,7 @@ BOLIDE_INLINE void gravity_up_node(struct gravity_multipole *BOLIDE_RESTRICT mp,
     const double r = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]) + mq->r_max;
     if (r > mp->r_max) mp->r_max = r;
   }
+  gravity_multipole_power(mp, order);
 }
 
 /** Derivatives D_n(R) = d^n f(|R|) for |n| <= q of f = 1/sqrt(|R|^2 + eps2)
@@ -544,21 +576,37 @@ BOLIDE_INLINE int gravity_mac(double r_max_a, double r_max_b, double r2, double 
 }
 
 /** Error-based (adaptive) acceptance, one direction (Dehnen 2014, Comput.
- *  Astrophys. Cosmol. 1, 1; SWIFT's epsilon_fmm, Schaller et al. 2024): the
- *  truncated terms of the acceleration that cell B (mass m_b) exerts on
- *  cell A are estimated as (G13)
- *    E = G m_b (r_max_a + r_max_b)^p / R^(p+2)
- *  and the interaction is accepted when E < eps_fmm * a_min, a_min the
- *  smallest gravitational acceleration of A's particles at the previous
- *  pass.  a_min <= 0 (not known yet) or eps_fmm <= 0 accepts: the geometric
- *  criterion then decides alone. */
-BOLIDE_INLINE int gravity_mac_adaptive(double G, double m_b, double r_sum, double r2, int p,
-                                       double eps_fmm, double a_min) {
+ *  Astrophys. Cosmol. 1, 1, section 3.2; the idea of SWIFT's epsilon_fmm,
+ *  Schaller et al. 2024, MNRAS 530, 2378): the acceleration error that
+ *  the truncation at order p makes at any point of the sink cell A (radius
+ *  rho_a about its centre) from the multipole of the source cell B (radius
+ *  rho_b, powers pw_b[n] = P_n, G15) is estimated as (G13)
+ *    E_{B->A} = 8 max(rho_a, rho_b) / (rho_a + rho_b)
+ *               G sum_{n=0}^{p} C(p, n) P_n rho_a^(p-n) / R^(p+2)
+ *  (the bound G sum_j m_j (rho_a + |d_j|)^p / R^(p+2) of the first omitted
+ *  term, expanded binomially, with sum_j m_j |d_j|^n replaced by the power
+ *  P_n of the moments: cancellations in B count), and the interaction is
+ *  accepted when E < eps_fmm * a_min, a_min the smallest gravitational
+ *  acceleration of A's particles (the previous pass's, or the first pass's
+ *  estimate).  a_min <= 0 (not known) or eps_fmm <= 0 accepts: the
+ *  geometric criterion then decides alone. */
+BOLIDE_INLINE int gravity_mac_power(double G, const double *BOLIDE_RESTRICT pw_b, double rho_a,
+                                    double rho_b, double r2, int p, double eps_fmm,
+                                    double a_min) {
   if (eps_fmm <= 0.0 || a_min <= 0.0) return 1;
-  double num = G * m_b, den = r2;
-  for (int k = 0; k < p; k++) num *= r_sum;
-  for (int k = 0; k < p; k += 2) den *= (k + 1 < p) ? r2 : sqrt(r2);
-  return num < eps_fmm * a_min * den;
+  const double rs = rho_a + rho_b;
+  if (rs <= 0.0) return 1; /* two points: no truncation error */
+  /* sum_n C(p, n) P_n rho_a^(p-n) by Horner in rho_a, from n = 0 up */
+  double sum = 0.0, c = 1.0; /* c = C(p, n) */
+  for (int n = 0; n <= p; n++) {
+    sum = sum * rho_a + c * pw_b[n];
+    c = c * (p - n) / (n + 1);
+  }
+  const double r = sqrt(r2);
+  double den = r2;
+  for (int k = 0; k < p; k++) den *= r;
+  const double f = 8.0 * fmax(rho_a, rho_b) / rs;
+  return f * G * sum < eps_fmm * a_min * den;
 }
 
 /** Gravitational time step (Power et al. 2003, MNRAS 338, 14, in

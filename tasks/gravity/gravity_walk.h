@@ -121,9 +121,10 @@ BOLIDE_INLINE int gravity_walk_accept(const struct gravity_multipole *ma,
                            : wp->theta;
   const double hs = wp->h_factor > 0.0 ? fmax(hs_a, hs_b) : wp->h_support;
   if (!gravity_mac(ma->r_max, mb->r_max, r2, theta, hs)) return 0;
-  const double rs = ma->r_max + mb->r_max;
-  return gravity_mac_adaptive(wp->G, mb->M[0], rs, r2, wp->order, wp->epsilon_fmm, a_min_a) &&
-         gravity_mac_adaptive(wp->G, ma->M[0], rs, r2, wp->order, wp->epsilon_fmm, a_min_b);
+  return gravity_mac_power(wp->G, mb->power, ma->r_max, mb->r_max, r2, wp->order,
+                           wp->epsilon_fmm, a_min_a) &&
+         gravity_mac_power(wp->G, ma->power, mb->r_max, ma->r_max, r2, wp->order,
+                           wp->epsilon_fmm, a_min_b);
 }
 
 /** The dual-tree walk's step between disjoint cells a and b (Dehnen 2002),
