@@ -426,10 +426,11 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   e->cell_task_size = (int)params_get_int(params, "Scheduler:cell_task_size");
   e->grav_task_size = (int)params_get_int(params, "Scheduler:gravity_task_size");
   engine_init_outputs(e, e->time);
-  if (e->restarted) {
-    e->next_out = (int)rs.next_out;
-    e->next_stats = rs.next_stats;
-  }
+  /* after a restart the output list holds only the times after the restart
+   * time, so its first entry is the next output (rs.next_out indexed the
+   * list of the run that wrote the file: taking it here skipped the
+   * outputs between the restart time and the first written after it) */
+  if (e->restarted) e->next_stats = rs.next_stats;
 
   /* cells and workers */
   /* self-gravity wants small leaves (P2P between neighbouring leaves is most of

@@ -2,7 +2,10 @@
 # Restart files: a run stopped after 4 steps and resumed with --restart ends
 # in the same state as the run that was never stopped (to round-off: the
 # order of the sums over neighbours may differ), and the resumed run appends
-# to the statistics file; a corrupt restart file is refused with one line.
+# to the statistics file; a corrupt restart file is refused with one line;
+# the resumed run writes every snapshot the uninterrupted run writes (at the
+# same times: before, the outputs between the restart time and the first
+# one written after it were skipped).
 set -uo pipefail
 B=${BOLIDE_BUILDDIR:?}
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
@@ -41,6 +44,26 @@ for k in ("Coordinates", "Velocities", "Densities", "InternalEnergies", "Smoothi
     worst = max(worst, d)
 sys.exit(0 if worst < 1e-12 else 1)
 PY
+# snapshots every 0.01: the stopped-and-resumed run writes the same ones
+set -- -P Snapshots:delta_time:0.01
+"$B/bolide" -t 2 "$@" -P Snapshots:subdir:C -P Restarts:subdir:C/restart p.yml >c1.log 2>&1 || { echo "FAIL: run C"; exit 1; }
+"$B/bolide" -t 2 -n 4 "$@" -P Snapshots:subdir:D -P Restarts:subdir:D/restart p.yml >d1.log 2>&1 || { echo "FAIL: run D"; exit 1; }
+"$B/bolide" -t 2 --restart "$@" -P Snapshots:subdir:D -P Restarts:subdir:D/restart p.yml >d2.log 2>&1 \
+  || { echo "FAIL: run D resumed"; exit 1; }
+"$PYTHON" - <<'PY' || fail=1
+import glob, sys, h5py, numpy as np
+def times(d):
+    return [(f.split("/")[-1], float(np.ravel(h5py.File(f, "r")["Header"].attrs["Time"])[0]))
+            for f in sorted(glob.glob(d + "/snapshot_*.hdf5"))]
+c, d = times("C"), times("D")
+print("snapshots, uninterrupted:", " ".join("%s@%g" % x for x in c))
+print("snapshots, resumed:      ", " ".join("%s@%g" % x for x in d))
+ok = [n for n, _ in c] == [n for n, _ in d] and np.allclose([t for _, t in c], [t for _, t in d], rtol=1e-12)
+if not ok:
+    print("FAIL: the resumed run's snapshots differ from the uninterrupted run's")
+sys.exit(0 if ok and len(c) >= 4 else 1)
+PY
+set -- -P Snapshots:subdir:B -P Restarts:subdir:B/restart
 # a truncated restart file: one line, non-zero exit
 head -c 1000 B/restart/restart.bin >B/restart/cut && mv B/restart/cut B/restart/restart.bin
 "$B/bolide" --restart "$@" p.yml >c.log 2>err.txt
