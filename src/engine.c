@@ -2,8 +2,10 @@
 /* The engine: initialisation and the time-step loop (see engine.h). */
 #include "engine.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <sched.h>
+#include <signal.h>
 #include <float.h>
 #include <libgen.h>
 #include <limits.h>
@@ -151,6 +153,25 @@ static void engine_init_outputs(struct engine *e, double t0) {
   e->next_out = 0;
 }
 
+/** Remove the temporary snapshot files (BASENAME_*.tmp, crash_step*.tmp) that
+ *  a killed run left in the output folder. */
+static void engine_remove_stale_snapshots(const struct engine *e) {
+  DIR *d = opendir(e->outdir);
+  if (!d) return;
+  const size_t nb = strlen(e->snap_basename);
+  struct dirent *ent;
+  while ((ent = readdir(d))) {
+    const char *n = ent->d_name;
+    const size_t l = strlen(n);
+    if (l < 4 || strcmp(n + l - 4, ".tmp")) continue;
+    if (!((!strncmp(n, e->snap_basename, nb) && n[nb] == '_') || !strncmp(n, "crash_step", 10))) continue;
+    char path[2400];
+    snprintf(path, sizeof path, "%s/%s", e->outdir, n);
+    if (unlink(path) == 0) error_log(0, "removed %s, left by a run that stopped while writing it", path);
+  }
+  closedir(d);
+}
+
 /** Create the output folder (and parents) if missing. */
 static void engine_mkdir(const char *dir) {
   char tmp[1024];
@@ -218,6 +239,28 @@ static void engine_init_porosity(struct engine *e, const char *icname, int has_a
   }
 }
 
+/** Positions and velocities that no run can follow, refused with one line
+ *  (issue 18): in a periodic box, a position more than one box size outside
+ *  [0, L) after the shift (wrapping 1e300 would silently give 0); a speed
+ *  above that of light (1e200 moved every particle to one point in the first
+ *  step, and the smoothing lengths were blamed minutes later). */
+static void engine_check_ic_motion(const struct engine *e, const char *icname, const double box[3],
+                                   int periodic) {
+  const struct parts *p = &e->parts;
+  const double c_light = 2.99792458e10 / units_cgs_factor(&e->us, 0, 1, -1);
+  for (size_t i = 0; i < p->count; i++) {
+    const double x[3] = {p->x[i], p->y[i], p->z[i]};
+    for (int k = 0; periodic && k < 3; k++)
+      if (!(x[k] >= -box[k] && x[k] < 2.0 * box[k]))
+        error_exit("%s: particle %zu (id %lld): position %c = %g is more than a box size outside the "
+                   "periodic box [0, %g)", icname, i, (long long)p->id[i], "xyz"[k], x[k], box[k]);
+    const double v = hypot(hypot(p->vx[i], p->vy[i]), p->vz[i]);
+    if (!(v < c_light))
+      error_exit("%s: particle %zu (id %lld): speed %g is above the speed of light (%g in internal units)",
+                 icname, i, (long long)p->id[i], v, c_light);
+  }
+}
+
 /** Read the initial conditions named by the parameters into e->parts, with
  *  the box size (from the file or InitialConditions:box_size), the shift and
  *  the smoothing-length scaling applied. */
@@ -254,6 +297,7 @@ static void engine_read_ics(struct engine *e, char *icname, size_t len, double b
     e->parts.rho_full[i] = e->parts.rho_fp[i] = e->parts.rho[i];
     kick_sync_predicted(&e->parts, i);
   }
+  engine_check_ic_motion(e, icname, box, params_get_bool(params, "InitialConditions:periodic"));
   engine_init_porosity(e, icname, ic_field_read(&hdr, engine_field_index("alpha")));
   /* Weibull flaws stored in the ICs (bolide-flaws; FlawThresholds and
    * FlawOffsets in the particle order of the file) */
@@ -348,6 +392,188 @@ static void engine_init_flaws(struct engine *e, const char *icname) {
 }
 
 /* ------------------------------------------------------------------------ */
+/* signals and batch limits (issue 18 item 2)                                */
+
+/** The signal received (0: none): the step loop writes a restart file and
+ *  stops after the step in progress; a second signal stops at once. */
+static volatile sig_atomic_t engine_signal;
+
+static void engine_on_signal(int sig) {
+  if (engine_signal) {
+    static const char msg[] = "bolide: second signal: stopping at once, without a restart file\n";
+    ssize_t r = write(STDERR_FILENO, msg, sizeof msg - 1);
+    (void)r;
+    _exit(128 + sig);
+  }
+  engine_signal = sig;
+}
+
+/** SIGTERM, SIGINT, SIGHUP and SIGUSR1 ask the run to stop with a restart file. */
+static void engine_signals_install(void) {
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = engine_on_signal;
+  sa.sa_flags = SA_RESTART;
+  sigemptyset(&sa.sa_mask);
+  const int sigs[] = {SIGTERM, SIGINT, SIGHUP, SIGUSR1};
+  for (int k = 0; k < 4; k++) sigaction(sigs[k], &sa, NULL);
+}
+
+static const char *engine_signal_name(int sig) {
+  switch (sig) {
+    case SIGTERM: return "SIGTERM";
+    case SIGINT: return "SIGINT";
+    case SIGHUP: return "SIGHUP";
+    case SIGUSR1: return "SIGUSR1";
+    default: return "a signal";
+  }
+}
+
+/** Why the run must stop now with a restart file (a signal, the stop file
+ *  in the restart folder, Restarts:max_run_time), written into why; 0: go
+ *  on.  The stop file is removed. */
+static int engine_must_stop(struct engine *e, char *why, size_t len) {
+  if (engine_signal) {
+    snprintf(why, len, "%s received", engine_signal_name(engine_signal));
+    return 1;
+  }
+  char stop[1100];
+  snprintf(stop, sizeof stop, "%s/stop", e->restart_dir);
+  if (access(stop, F_OK) == 0) {
+    if (unlink(stop)) error_warning("%s: cannot remove the stop file: %s", stop, strerror(errno));
+    snprintf(why, len, "stop file %.1000s found", stop);
+    return 1;
+  }
+  if (e->restart_max_wall > 0.0 && error_walltime() >= e->restart_max_wall) {
+    snprintf(why, len, "Restarts:max_run_time of %g h reached", e->restart_max_wall / 3600.0);
+    return 1;
+  }
+  return 0;
+}
+
+/* ------------------------------------------------------------------------ */
+/* the watchdog (issue 18 item 7)                                            */
+
+/** Index of the top-level cell that holds particle i (cells own contiguous
+ *  ranges), -1 if none. */
+static int engine_cell_of(const struct engine *e, size_t i) {
+  for (int c = 0; c < e->space.nr_top; c++)
+    if (i >= e->space.cells[c].offset && i < e->space.cells[c].offset + e->space.cells[c].count) return c;
+  return -1;
+}
+
+/** Stop the run: one line naming the particle, the field, the step and the
+ *  cell; the state goes to a crash snapshot OUTDIR/crash_stepNNNNNN.hdf5 (no
+ *  restart file: the last one stays the one to resume from). */
+static void engine_watchdog_fail(struct engine *e, size_t i, const char *what) {
+  const int c = engine_cell_of(e, i);
+  char path[2100];
+  snprintf(path, sizeof path, "%s/crash_step%06ld.hdf5", e->outdir, e->step);
+  fflush(stdout);
+  engine_snapshot_to(e, path);
+  error_exit("watchdog: step %ld (t = %g): particle id %lld (index %zu, top-level cell %d at (%g, %g, %g)): %s; "
+             "crash snapshot %s, the last restart file stays the one to resume from",
+             e->step, e->time, (long long)e->parts.id[i], i, c, c >= 0 ? e->space.cells[c].loc[0] : 0.0,
+             c >= 0 ? e->space.cells[c].loc[1] : 0.0, c >= 0 ? e->space.cells[c].loc[2] : 0.0, what, path);
+}
+
+/** BOLIDE_TEST_INJECT=STEP:FIELD:VALUE (for the tests only): at the end of
+ *  step STEP, particle field FIELD of the particle in the middle of the array
+ *  is set to VALUE (nan, inf, -1, 1e9...). */
+static void engine_watchdog_init(struct engine *e) {
+  const char *s = getenv("BOLIDE_TEST_INJECT");
+  if (!s || !*s) return;
+  char field[32];
+  long step;
+  char value[64];
+  if (sscanf(s, "%ld:%31[^:]:%63s", &step, field, value) != 3 || step < 1)
+    error_exit("BOLIDE_TEST_INJECT '%s': expected STEP:FIELD:VALUE", s);
+  char *end;
+  e->wd_inject_value = strtod(value, &end);
+  if (*end) error_exit("BOLIDE_TEST_INJECT '%s': '%s' is not a number", s, value);
+  int k = 0;
+  while (k < part_nr_fields && (strcmp(part_fields[k].name, field) || part_fields[k].type != PART_DOUBLE)) k++;
+  if (k == part_nr_fields) error_exit("BOLIDE_TEST_INJECT '%s': no double particle field '%s'", s, field);
+  snprintf(e->wd_inject_field, sizeof e->wd_inject_field, "%s", field);
+  e->wd_inject_step = step;
+  error_warning("BOLIDE_TEST_INJECT: %s of one particle set to %g at the end of step %ld", field,
+                e->wd_inject_value, step);
+}
+
+/** Remember the positions before the drift (the displacement check). */
+static void engine_watchdog_before_drift(struct engine *e) {
+  if (e->gpu) return;
+  const struct parts *p = &e->parts;
+  e->wd_x = error_realloc(e->wd_x, 3 * (p->count ? p->count : 1) * sizeof(double), "watchdog positions");
+  memcpy(e->wd_x, p->x, p->count * sizeof(double));
+  memcpy(e->wd_x + p->count, p->y, p->count * sizeof(double));
+  memcpy(e->wd_x + 2 * p->count, p->z, p->count * sizeof(double));
+}
+
+/** After the drift: no particle may have moved more than the width of a
+ *  top-level cell (the neighbour search would miss its neighbours). */
+static void engine_watchdog_after_drift(struct engine *e) {
+  if (e->gpu || !e->wd_x) return;
+  const struct parts *p = &e->parts;
+  const size_t n = p->count;
+  double w = e->space.width[0];
+  for (int k = 1; k < 3; k++)
+    if (e->space.width[k] < w) w = e->space.width[k];
+  for (size_t i = 0; i < n; i++) {
+    const double dx = p->x[i] - e->wd_x[i], dy = p->y[i] - e->wd_x[n + i], dz = p->z[i] - e->wd_x[2 * n + i];
+    const double d = sqrt(dx * dx + dy * dy + dz * dz);
+    if (!(d <= w)) {
+      char what[256];
+      snprintf(what, sizeof what, "moved %g in one step (dt %g), more than its cell (width %g)", d, e->dt, w);
+      e->step++; /* the step in progress */
+      engine_watchdog_fail(e, i, what);
+    }
+  }
+}
+
+/** After the step: every field finite, no negative density, no negative
+ *  internal energy where the EOS forbids it (u_floor). */
+static void engine_watchdog_after_step(struct engine *e) {
+  struct parts *p = &e->parts;
+  if (e->wd_inject_step == e->step && p->count) {
+    double *a = NULL;
+    for (int k = 0; k < part_nr_fields; k++)
+      if (!strcmp(part_fields[k].name, e->wd_inject_field)) a = part_field_array(p, &part_fields[k]);
+    a[p->count / 2] = e->wd_inject_value;
+  }
+  if (e->gpu) return;
+  for (int k = 0; k < part_nr_fields; k++) {
+    const struct part_field *f = &part_fields[k];
+    if (f->type != PART_DOUBLE) continue;
+    const double *a = part_field_array(p, f);
+    int bad = 0;
+    for (size_t i = 0; i < p->count; i++) bad |= !isfinite(a[i]);
+    if (!bad) continue;
+    for (size_t i = 0; i < p->count; i++)
+      if (!isfinite(a[i])) {
+        char what[256];
+        snprintf(what, sizeof what, "field %s is %g", f->name, a[i]);
+        engine_watchdog_fail(e, i, what);
+      }
+  }
+  for (size_t i = 0; i < p->count; i++) {
+    char what[256];
+    if (p->rho[i] < 0.0) {
+      snprintf(what, sizeof what, "field rho is %g (negative density)", p->rho[i]);
+      engine_watchdog_fail(e, i, what);
+    }
+    if (p->u[i] < 0.0) {
+      const struct material *m = material_table_find(e->mats, p->mat[i]);
+      if (m && m->u_floor) {
+        snprintf(what, sizeof what, "field u is %g (negative internal energy; material '%s' needs u >= 0)", p->u[i],
+                 m->name);
+        engine_watchdog_fail(e, i, what);
+      }
+    }
+  }
+}
+
+/* ------------------------------------------------------------------------ */
 
 void engine_init(struct engine *e, const struct params *params, const struct engine_options *opt) {
   memset(e, 0, sizeof *e);
@@ -361,6 +587,11 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   e->restarts = params_get_bool(params, "Restarts:enable");
   e->restart_dt_wall = 3600.0 * params_get_real(params, "Restarts:delta_hours");
   snprintf(e->restart_dir, sizeof e->restart_dir, "%s", params_get_string(params, "Restarts:subdir"));
+  e->restart_delta_steps = params_get_int(params, "Restarts:delta_steps");
+  e->restart_max_wall = 3600.0 * params_get_real(params, "Restarts:max_run_time");
+  engine_signals_install();
+  restart_remove_stale(e->restart_dir);
+  engine_watchdog_init(e);
 
   e->mats = error_calloc(1, sizeof(struct material_table), "material table");
   material_table_init(e->mats);
@@ -385,14 +616,24 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   int periodic = params_get_bool(params, "InitialConditions:periodic");
   char icname[PATH_MAX];
   struct restart_state rs;
+  memset(&rs, 0, sizeof rs);
   if (opt->restart) {
-    restart_read(e->restart_dir, &rs, &e->parts, &e->flaw_eps, &e->nr_flaws);
-    if (e->nr_flaws == 0) {
-      free(e->flaw_eps);
-      e->flaw_eps = NULL;
-    }
+    /* the output times from time_begin: the file's output index counts in this list */
+    engine_init_outputs(e, e->time);
+    e->params_text = params_to_string(params);
+    int32_t *ids = error_malloc((e->mats->n ? e->mats->n : 1) * sizeof(int32_t), "material ids");
+    for (int k = 0; k < e->mats->n; k++) ids[k] = e->mats->mats[k].id;
+    const struct restart_expect ex = {e->params_text, ids, e->mats->n, e->nr_out, e->time, e->time_end};
+    struct restart_data rd;
+    restart_read(e->restart_dir, &ex, &rd, icname, sizeof icname);
+    snprintf(e->restart_file, sizeof e->restart_file, "%s", icname);
+    free(ids);
+    rs = rd.st;
+    e->parts = rd.p;
+    e->flaw_eps = rd.flaw_eps;
+    e->nr_flaws = rd.nr_flaws;
+    e->restart_cells = rd.cells;
     e->flaws_from = "the restart file";
-    snprintf(icname, sizeof icname, "%s/restart.bin", e->restart_dir);
     for (int k = 0; k < 3; k++) box[k] = rs.box[k];
     periodic = (int)rs.periodic;
     e->time = rs.time;
@@ -402,6 +643,9 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     e->nr_removed = rs.nr_removed;
     e->snap_index = (int)rs.snap_index;
     e->restart_dt_next = rs.dt_next;
+    e->restart_h_max = rs.rebuild_h_max;
+    e->need_rebuild = (int)rs.need_rebuild;
+    e->restart_stats_offset = rs.stats_offset;
     e->restarted = 1;
   } else {
     engine_read_ics(e, icname, sizeof icname, box);
@@ -425,7 +669,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   e->dump_tasks = params_get_int(params, "Scheduler:dump_tasks");
   e->cell_task_size = (int)params_get_int(params, "Scheduler:cell_task_size");
   e->grav_task_size = (int)params_get_int(params, "Scheduler:gravity_task_size");
-  engine_init_outputs(e, e->time);
+  if (!e->restarted) engine_init_outputs(e, e->time);
   if (e->restarted) {
     e->next_out = (int)rs.next_out;
     e->next_stats = rs.next_stats;
@@ -469,10 +713,12 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   }
 
   engine_mkdir(e->outdir);
+  engine_remove_stale_snapshots(e);
+  if (e->restarts) engine_mkdir(e->restart_dir); /* where the stop file goes */
   char path[2048];
   snprintf(path, sizeof path, "%s/used_parameters.yml", e->outdir);
   params_write_used(params, path);
-  e->params_text = params_to_string(params);
+  if (!e->params_text) e->params_text = params_to_string(params);
   engine_stats_open(e);
 
   scheduler_init(&e->sched, e->nr_threads);
@@ -493,7 +739,18 @@ void engine_rebuild(struct engine *e) {
   gpu_engine_host_modified(e);
 #endif
   const double w1 = error_walltime();
-  const size_t removed = space_rebuild(&e->space);
+  size_t removed = 0;
+  if (e->restart_h_max > 0.0) {
+    /* resumed: the cells of the uninterrupted run's last rebuild */
+    space_restore(&e->space, e->restart_h_max, e->restart_cells.h_max, e->restart_cells.dx_max,
+                  (int)e->restart_cells.n, "restart file");
+    e->restart_h_max = 0.0;
+    free(e->restart_cells.h_max);
+    free(e->restart_cells.dx_max);
+    memset(&e->restart_cells, 0, sizeof e->restart_cells);
+  } else {
+    removed = space_rebuild(&e->space);
+  }
   e->nr_removed += (long long)removed;
   const double w2 = error_walltime();
   engine_make_graph(e);
@@ -583,8 +840,22 @@ static void engine_write_restart(struct engine *e) {
   st.periodic = e->space.periodic;
   st.removed = e->space.removed;
   st.start = e->budget0;
+  st.rebuild_h_max = e->space.h_max;
+  st.need_rebuild = atomic_load((_Atomic int *)&e->need_rebuild) ? 1 : 0;
+  if (e->stats) {
+    if (fflush(e->stats)) error_exit("cannot write the statistics file (disk full?)");
+    st.stats_offset = ftell(e->stats);
+  }
+  const int nc = e->space.nr_cells;
+  struct restart_cells cells = {nc, error_malloc(2 * (size_t)nc * sizeof(double) + 1, "restart cells"), NULL};
+  cells.dx_max = cells.h_max + nc;
+  for (int c = 0; c < nc; c++) {
+    cells.h_max[c] = e->space.cells[c].h_max;
+    cells.dx_max[c] = e->space.cells[c].dx_max;
+  }
   engine_mkdir(e->restart_dir);
-  restart_write(e->restart_dir, &st, &e->parts, e->flaw_eps);
+  restart_write(e->restart_dir, &st, &e->parts, e->flaw_eps, &cells, e->params_text);
+  free(cells.h_max);
   e->restart_last_wall = error_walltime();
   error_log(0, "restart file %s/restart.bin at step %ld, t = %g", e->restart_dir, e->step, e->time);
 }
@@ -672,6 +943,12 @@ static double engine_next_dt(struct engine *e) {
     else if (to_out > 0.0 && dt > 0.5 * to_out && dt < to_out) dt = 0.5 * to_out; /* no sliver steps */
   }
   if (e->time + dt > e->time_end) dt = e->time_end - e->time;
+  /* a time so large in magnitude that the step is below its spacing would
+   * loop for ever at the same t */
+  if (dt > 0.0 && e->time + dt == e->time)
+    error_exit("time step %g cannot advance the time t = %g (the spacing of doubles there is %g): "
+               "TimeIntegration:time_begin or time_end too large in magnitude for the run's time steps",
+               dt, e->time, nextafter(fabs(e->time), INFINITY) - fabs(e->time));
   return dt;
 }
 
@@ -712,16 +989,19 @@ void engine_run(struct engine *e) {
      * restart file: recomputing them now would use corrected instead of
      * predicted velocities and change the run */
     for (int t = 0; t < e->nr_tcells; t++) e->cell_dt_min[t] = e->restart_dt_next;
-    error_log(0, "resumed from %s/restart.bin at step %ld, t = %g", e->restart_dir, e->step, e->time);
+    error_log(0, "resumed from %s at step %ld, t = %g", e->restart_file, e->step, e->time);
   }
   e->wall_start = error_walltime();
   e->restart_last_wall = e->wall_start;
+  char stop_why[1300] = "";
   printf("#   step           time             dt      updates    wall[s]     ETA[s]\n");
   while (e->time < e->time_end && (e->opt.max_steps < 0 || e->step < e->opt.max_steps)) {
     const double w0 = error_walltime();
     e->dt = engine_next_dt(e);
     if (!(e->dt > 0.0)) break;
+    engine_watchdog_before_drift(e);
     engine_run_phase(e, ENGINE_PHASE_DRIFT);
+    engine_watchdog_after_drift(e);
     e->time += e->dt;
     if (e->next_out < e->nr_out && fabs(e->time - e->out_times[e->next_out]) <= 1e-12 * fabs(e->time))
       e->time = e->out_times[e->next_out];
@@ -739,6 +1019,7 @@ void engine_run(struct engine *e) {
     engine_gravity_reuse_remember(e);
     e->step++;
     e->updates += (long long)e->parts.count;
+    engine_watchdog_after_step(e);
     if (e->dump_tasks > 0 && e->step % e->dump_tasks == 0) engine_dump_tasks(e);
     engine_stats_maybe(e);
     if (e->next_out < e->nr_out && e->time >= e->out_times[e->next_out]) {
@@ -750,27 +1031,30 @@ void engine_run(struct engine *e) {
     const double eta = frac > 0 ? (w1 - e->wall_start) * (1.0 - frac) / frac : 0.0;
     printf("%8ld %14.6e %14.6e %12zu %10.4f %10.1f\n", e->step, e->time, e->dt, e->parts.count, w1 - w0, eta);
     fflush(stdout);
+    if (e->time < e->time_end && engine_must_stop(e, stop_why, sizeof stop_why)) break;
     /* (not at the last step: the file written after the loop follows) */
-    if (e->restarts && w1 - e->restart_last_wall >= e->restart_dt_wall && e->time < e->time_end &&
-        (e->opt.max_steps < 0 || e->step < e->opt.max_steps)) {
+    if (e->restarts &&
+        (w1 - e->restart_last_wall >= e->restart_dt_wall ||
+         (e->restart_delta_steps > 0 && e->step % e->restart_delta_steps == 0)) &&
+        e->time < e->time_end && (e->opt.max_steps < 0 || e->step < e->opt.max_steps)) {
+      /* (the run goes on without a rebuild: a run resumed from the file
+       * restores the cells of the last one, space_restore) */
       engine_write_restart(e);
-      /* rebuild here, as a run resumed from this file does before its first
-       * step: both then continue from the same cells and particle order, and
-       * (with one thread and Scheduler:deterministic) bit for bit alike */
-      double dt_next = e->dt_max;
-      for (int t = 0; t < e->nr_tcells; t++)
-        if (e->cell_dt_min[t] < dt_next) dt_next = e->cell_dt_min[t];
-      engine_rebuild(e);
-      for (int t = 0; t < e->nr_tcells; t++) e->cell_dt_min[t] = dt_next;
     }
   }
-  if (!e->restarts && e->next_out < e->nr_out && e->out_times[e->nr_out - 1] > e->time) {
+  const int stopped = stop_why[0] != '\0';
+  if (!stopped && !e->restarts && e->next_out < e->nr_out && e->out_times[e->nr_out - 1] > e->time) {
     /* stopped by --steps without restart files: keep the last state */
     engine_snapshot(e);
   }
+  /* the restart file first: a run resumed from it truncates the statistics
+   * file to its length then, dropping the closing line written now */
+  if (e->restarts || stopped) engine_write_restart(e);
+  if (stopped)
+    fprintf(stderr, "bolide: %s: wrote %s/restart.bin at step %ld (t = %g) and stopped; resume with --restart\n",
+            stop_why, e->restart_dir, e->step, e->time);
   engine_stats_write(e);
   engine_budget_summary(e);
-  if (e->restarts) engine_write_restart(e);
   const double wall = error_walltime() - e->wall_start;
   error_log(0, "done: %ld steps to t = %g in %.2f s (%.3g particle updates per second)", e->step, e->time, wall,
             wall > 0 ? (double)e->updates / wall : 0.0);
@@ -806,6 +1090,7 @@ void engine_clean(struct engine *e) {
   free(e->cell_dt_min);
   free(e->gcells);
   free(e->grav_x0);
+  free(e->wd_x);
   free(e->flaw_eps);
   free(e->params_text);
   if (e->mats) material_table_free(e->mats);

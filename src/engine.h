@@ -14,6 +14,7 @@
 #include "part.h"
 #include "scheduler.h"
 #include "space.h"
+#include "restart.h"
 #include "units.h"
 
 struct params;
@@ -127,6 +128,16 @@ struct engine {
   char restart_dir[1024];         /**< Restarts:subdir */
   int restarted;                  /**< 1 when this run resumed from a restart file */
   double restart_dt_next;         /**< smallest particle time step saved in the restart file */
+  double restart_h_max;           /**< > 0: the first rebuild restores the cells of the file (space_restore) */
+  struct restart_cells restart_cells; /**< the cells' h_max and dx_max from the file */
+  char restart_file[4096];        /**< the restart file this run resumed from */
+  double *wd_x;                   /**< watchdog: positions before the drift of the step (3 per particle) */
+  long wd_inject_step;            /**< BOLIDE_TEST_INJECT: step whose end gets a bad value (0: none) */
+  char wd_inject_field[32];       /**< its particle field */
+  double wd_inject_value;         /**< its value */
+  long restart_delta_steps;       /**< Restarts:delta_steps */
+  double restart_max_wall;        /**< Restarts:max_run_time in seconds (0: none) */
+  long restart_stats_offset;      /**< length of the statistics file when the restart file was written */
 
   struct budget_start budget0;    /**< totals at the start of the run (engine_io.c) */
   FILE *stats;                    /**< statistics file */

@@ -403,7 +403,8 @@ static int engine_pair_cmp(const void *x, const void *y) {
  *  the graph does not change. */
 static void engine_make_listed_pairs(struct engine *e, struct engine_pair_list *L,
                                      const double shift[3], int *cap) {
-  qsort(L->ab, L->n, 2 * sizeof(int), engine_pair_cmp);
+  /* qsort's pointer must be valid even for no element (C11 7.22.5; UBSan) */
+  if (L->n > 1) qsort(L->ab, L->n, 2 * sizeof(int), engine_pair_cmp);
   for (size_t k = 0; k < L->n; k++) engine_make_pair_tasks(e, L->ab[2 * k], L->ab[2 * k + 1], shift, cap);
   L->n = 0;
 }

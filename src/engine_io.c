@@ -1,7 +1,10 @@
 /* The engine's outputs: the statistics file, snapshots and task dumps. */
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "engine_tasks.h"
 #include "error.h"
@@ -30,7 +33,20 @@
 void engine_stats_open(struct engine *e) {
   char path[2048];
   snprintf(path, sizeof path, "%s/%s.txt", e->outdir, params_get_string(e->params, "Statistics:energy_file_name"));
-  /* a resumed run appends to the file of the run it continues */
+  /* a resumed run appends to the file of the run it continues, cut to its
+   * length when the restart file was written (the lines of the steps after
+   * it come again) */
+  if (e->restarted) {
+    struct stat sb;
+    if (stat(path, &sb) == 0 && sb.st_size > e->restart_stats_offset) {
+      if (truncate(path, (off_t)e->restart_stats_offset))
+        error_exit("%s: cannot cut the statistics file to %ld bytes: %s", path, e->restart_stats_offset,
+                   strerror(errno));
+    } else if (stat(path, &sb) || sb.st_size < e->restart_stats_offset) {
+      error_warning("%s: shorter than when the restart file was written (%ld bytes): lines are missing", path,
+                    e->restart_stats_offset);
+    }
+  }
   e->stats = fopen(path, e->restarted ? "a" : "w");
   if (!e->stats) error_exit("%s: cannot create the statistics file", path);
   if (e->restarted) {
@@ -147,17 +163,30 @@ void engine_budget_summary(struct engine *e) {
 void engine_stats_maybe(struct engine *e) {
   if (e->time >= e->next_stats || e->time >= e->time_end) {
     engine_stats_write(e);
+    /* the next multiple of stats_dt after now: by addition as always, but
+     * after 1000 additions in one jump (a stats_dt of 1e-308 would take for
+     * ever), and at least the next double (at a time of large magnitude
+     * adding stats_dt changes nothing) */
     if (e->stats_dt > 0.0)
-      while (e->next_stats <= e->time) e->next_stats += e->stats_dt;
+      for (int k = 0; e->next_stats <= e->time; k++) {
+        double next = e->next_stats + e->stats_dt;
+        if (k == 1000) next = e->next_stats + e->stats_dt * (floor((e->time - e->next_stats) / e->stats_dt) + 1.0);
+        e->next_stats = next > e->next_stats ? next : nextafter(e->time, INFINITY);
+      }
   }
 }
 
 void engine_snapshot(struct engine *e) {
+  char path[2048];
+  snprintf(path, sizeof path, "%s/%s_%04d.hdf5", e->outdir, e->snap_basename, e->snap_index);
+  engine_snapshot_to(e, path);
+  e->snap_index++;
+}
+
+void engine_snapshot_to(struct engine *e, const char *path) {
 #ifdef HAVE_CUDA
   gpu_engine_to_host(e);
 #endif
-  char path[2048];
-  snprintf(path, sizeof path, "%s/%s_%04d.hdf5", e->outdir, e->snap_basename, e->snap_index);
   struct snapshot_meta meta;
   memset(&meta, 0, sizeof meta);
   meta.time = e->time;
@@ -170,7 +199,6 @@ void engine_snapshot(struct engine *e) {
   meta.compression = e->compression;
   snapshot_write(path, &meta, &e->parts, &e->us, e->write_acc);
   error_log(0, "snapshot %s at t = %g", path, e->time);
-  e->snap_index++;
 }
 
 void engine_dump_tasks(struct engine *e) {

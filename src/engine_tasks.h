@@ -22,6 +22,8 @@ void engine_stats_write(struct engine *e);
 void engine_stats_maybe(struct engine *e);
 void engine_budget_summary(struct engine *e);
 void engine_snapshot(struct engine *e);
+/** Write the particles to the snapshot file path (no index counted). */
+void engine_snapshot_to(struct engine *e, const char *path);
 void engine_dump_tasks(struct engine *e);
 
 #endif

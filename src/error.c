@@ -10,6 +10,7 @@
 
 const char *error_progname = "bolide";
 int error_verbosity = 0;
+void (*error_exit_hook)(void) = NULL;
 
 static struct timespec error_t0;
 #define ERROR_MAX_TMPFILES 16
@@ -54,6 +55,7 @@ void error_exit(const char *fmt, ...) {
   fprintf(stderr, "%s: error: %s\n", error_progname, msg);
   fflush(stderr);
   error_cleanup();
+  if (error_exit_hook) error_exit_hook();
   exit(1);
 }
 

@@ -23,6 +23,11 @@ void error_init(const char *argv0);
  *  files), so that nothing half-written is left behind. */
 void error_exit(const char *fmt, ...) __attribute__((format(printf, 1, 2), noreturn));
 
+/** Test hook, NULL in every program: when set, error_exit calls it after
+ *  printing and cleaning up, instead of exit(1).  It must not return (the
+ *  fuzzing harnesses in tests/fuzz longjmp back to their entry point). */
+extern void (*error_exit_hook)(void);
+
 /** Print "PROGRAM: warning: MESSAGE" to stderr. */
 void error_warning(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 

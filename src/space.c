@@ -151,6 +151,7 @@ static void space_choose_grid(struct space *s) {
       h_max = p->h[i];
       i_max = i;
     }
+  if (s->restore_h_max > 0.0) h_max = s->restore_h_max;
   s->h_max = h_max;
   const double H = kernel_gamma * h_max;
   for (int k = 0; k < 3; k++) {
@@ -457,6 +458,44 @@ size_t space_rebuild(struct space *s) {
             s->nr_rebuilds, n, s->cdim[0], s->cdim[1], s->cdim[2], s->nr_cells, w1 - w0, w2 - w1,
             w3 - w2, w4 - w3);
   return removed;
+}
+
+void space_restore(struct space *s, double h_max, const double *cell_h, const double *cell_dx, int nr_cells,
+                   const char *file) {
+  struct parts *p = s->parts;
+  const size_t n = p->count;
+  /* the cells of the positions at the last rebuild (x0), then the positions back */
+  double *keep = error_malloc(3 * n * sizeof(double) + 1, "restore positions");
+  int64_t *ids = error_malloc(n * sizeof(int64_t) + 1, "restore ids");
+  memcpy(keep, p->x, n * sizeof(double));
+  memcpy(keep + n, p->y, n * sizeof(double));
+  memcpy(keep + 2 * n, p->z, n * sizeof(double));
+  memcpy(ids, p->id, n * sizeof(int64_t));
+  memcpy(p->x, p->x0, n * sizeof(double));
+  memcpy(p->y, p->y0, n * sizeof(double));
+  memcpy(p->z, p->z0, n * sizeof(double));
+  s->restore_h_max = h_max;
+  const size_t removed = space_rebuild(s);
+  s->restore_h_max = 0.0;
+  if (removed) error_exit("%s: %zu particles were outside the box at the last rebuild", file, removed);
+  if (memcmp(ids, p->id, n * sizeof(int64_t)))
+    error_exit("%s: the particles are not in the order of the cells of their rebuild positions", file);
+  memcpy(p->x, keep, n * sizeof(double));
+  memcpy(p->y, keep + n, n * sizeof(double));
+  memcpy(p->z, keep + 2 * n, n * sizeof(double));
+  free(keep);
+  free(ids);
+  if (!cell_h || !cell_dx) {
+    for (int c = 0; c < s->nr_top; c++) cell_update_bounds(p, &s->cells[c]);
+    return;
+  }
+  if (nr_cells != s->nr_cells)
+    error_exit("%s: the restored space has %d cells, the file %d (another build or parameters?)", file,
+               s->nr_cells, nr_cells);
+  for (int c = 0; c < nr_cells; c++) {
+    s->cells[c].h_max = cell_h[c];
+    s->cells[c].dx_max = cell_dx[c];
+  }
 }
 
 int space_should_rebuild(const struct space *s) {

@@ -56,6 +56,7 @@ struct space {
   size_t *sort_index;        /**< work array of the rebuild (capacity sort_capacity) */
   size_t sort_capacity;      /**< allocated length of sort_index */
   int nr_threads;            /**< threads of the rebuild's reordering of the fields (1) */
+  double restore_h_max;      /**< > 0: space_choose_grid takes this h_max (space_restore) */
 };
 
 /** One pair of top-level cells that can interact: the particles of cj are
@@ -84,6 +85,18 @@ void space_free(struct space *s);
  *  support larger than half the box, stops with a one-line error naming the
  *  particle. */
 size_t space_rebuild(struct space *s);
+
+/** Rebuild the cells of the last rebuild of a run resumed from a restart
+ *  file (issue 18): the particles are in the order of that rebuild and x0
+ *  holds their positions then, h_max is the space's h_max then, and cell_h /
+ *  cell_dx (nr_cells values, NULL: recompute) the cells' h_max and dx_max at
+ *  the end of the step the file was written after.  The top-level grid, the
+ *  octrees and the order are those of the uninterrupted run (the counting
+ *  sorts are stable: the permutation is the identity), so that the resumed
+ *  run takes the same steps.  A cell count other than nr_cells stops with
+ *  one line (file: the restart file's name). */
+void space_restore(struct space *s, double h_max, const double *cell_h, const double *cell_dx, int nr_cells,
+                   const char *file);
 
 /** 1 if the cells no longer hold every interaction among neighbours or are
  *  too stale: some particle moved more than max_drift_fraction of a cell

@@ -44,11 +44,28 @@ check_error "unknown or incomplete option" "$eos" --bogus "$lib" basalt
 check_error "option --nrho: 'x' is not a positive integer" "$eos" "$lib" basalt --nrho x
 check_error "the energy range" "$eos" "$lib" basalt --log --u-min 0
 echo "1e3" | check_error "stdin:1: expected" "$eos" "$lib" basalt --stdin
+# hostile input (issue 18): a NUL byte is an error, not a skipped line; a
+# line longer than any buffer is one line
+printf '3000 1e6\n\0004000 1e6\n' | check_error "stdin:2: a NUL byte" "$eos" "$lib" basalt --stdin
+{ printf '3000'; printf ' %.0s' $(seq 1 600); printf '1e6\n'; } | "$eos" "$lib" basalt --stdin >"$tmp/long.txt" 2>"$tmp/e" ||
+  fail "a 604-byte line: $(cat "$tmp/e")"
+[ "$(tail -n +2 "$tmp/long.txt" | wc -l)" -eq 1 ] || fail "a 604-byte line: expected 1 row"
 
 # --plot (needs the venv's matplotlib)
 if [ -x "${PYTHON:-}" ] && "$PYTHON" -c 'import matplotlib' 2>/dev/null; then
   PYTHON="$PYTHON" "$eos" "$lib" granite --nu 4 --plot "$tmp/g.png" >/dev/null || fail "--plot"
   [ -s "$tmp/g.png" ] || fail "--plot wrote no PNG"
+  # an unwritable target: one line before any work, no traceback
+  check_error "--plot $tmp/no/g.png: $tmp/no: No such file or directory" "$eos" "$lib" granite --plot "$tmp/no/g.png"
+  check_error "--plot $tmp: Is a directory" "$eos" "$lib" granite --plot "$tmp"
+  mkdir "$tmp/ro"; chmod 555 "$tmp/ro"
+  if [ "$(id -u)" -ne 0 ]; then
+    check_error "--plot $tmp/ro/g.png: $tmp/ro: Permission denied" "$eos" "$lib" granite --plot "$tmp/ro/g.png"
+  fi
+  # the script itself, if it cannot write: one line
+  "$PYTHON" "$BOLIDE_SRCDIR/tools/plot_eos.py" "$tmp/t.txt" "$tmp/no/g.png" 2>"$tmp/e" && fail "plot_eos.py into a missing folder"
+  [ "$(wc -l <"$tmp/e")" -eq 1 ] && grep -q "^plot_eos.py: error: $tmp/no/g.png: No such file or directory" "$tmp/e" ||
+    fail "plot_eos.py: $(cat "$tmp/e")"
 else
   echo "no Python with matplotlib: --plot not tested"
 fi

@@ -41,7 +41,8 @@ static double rng_double(int positive) {
   return (positive || (rng_next() & 1)) ? v : -v;
 }
 
-/** Fill every field with random values (positive mass and h, valid ids). */
+/** Fill every field with random values (positive mass and h, valid ids and
+ *  the ranges ic_read checks). */
 static void fill_random(struct parts *p, size_t n) {
   parts_alloc(p, n);
   for (int k = 0; k < part_nr_fields; k++) {
@@ -55,6 +56,13 @@ static void fill_random(struct parts *p, size_t n) {
   for (size_t i = 0; i < n; i++) {
     p->m[i] = rng_double(1);
     p->h[i] = rng_double(1);
+    /* the fields ic_read range-checks: energies and densities >= 0, damage in [0, 1] */
+    p->u[i] = rng_double(1);
+    p->rho[i] = rng_double(1);
+    p->eps_p[i] = rng_double(1);
+    p->dmg[i] = (double)(rng_next() >> 11) / 9007199254740992.0;
+    p->dcbrt[i] = (double)(rng_next() >> 11) / 9007199254740992.0;
+    p->dmg_shear[i] = (double)(rng_next() >> 11) / 9007199254740992.0;
     p->id[i] = (int64_t)(rng_next() >> 2) + (int64_t)i; /* unique with overwhelming odds */
   }
   p->id[0] = INT64_C(1) << 40; /* needs 64 bits */

@@ -75,6 +75,39 @@ expect_error "'$valid' -P 'InitialConditions:shift:[1, 2'" "-P InitialConditions
 expect_error "'$valid' -P nonsense" "-P nonsense: expected Section:key:value"
 expect_error "'$valid' -P Materials:rock:1" "-P Materials:rock:1: section 'Materials' cannot be set with -P"
 
+# hostile values (issue 18): arrays of the wrong length, texts too long or empty
+for v in '[]' '[1]' '[1, 2]' '[1, 2, 3, 4]'; do
+  n=$(echo "$v" | tr -cd ',' | wc -c); [ "$v" = '[]' ] && n=-1
+  expect_error "'$valid' -P 'InitialConditions:shift:$v'" "InitialConditions:shift: $((n + 1)) value" "(expected 3)"
+done
+expect_error "'$valid' -P 'InitialConditions:box_size:[1, 2]'" "InitialConditions:box_size: 2 values given (expected 0, 1 or 3)"
+long=$(printf 'd%.0s' $(seq 1 1100))
+expect_error "'$valid' -P Snapshots:subdir:$long" "Snapshots:subdir: 'dddd" "is 1100 bytes long (at most 1023)"
+expect_error "'$valid' -P Restarts:subdir:$long" "Restarts:subdir: 'dddd" "is 1100 bytes long (at most 1023)"
+expect_error "'$valid' -P 'Snapshots:basename:'" "Snapshots:basename: must not be empty"
+printf 'Snapshots:\n  basename: ""\n' >"${TMPDIR:-/tmp}/empty_basename.$$.yml"
+expect_error "'${TMPDIR:-/tmp}/empty_basename.$$.yml'" "empty_basename.$$.yml:2: Snapshots:basename: must not be empty"
+rm -f "${TMPDIR:-/tmp}/empty_basename.$$.yml"
+# many keys with a duplicate at the end: the check was quadratic (90,000
+# keys: 4e9 comparisons).  Timed against a tenth as many keys, so that a
+# loaded machine does not fail it: 8x the keys must take < 25x the time
+# (quadratic: 64x).
+big="${TMPDIR:-/tmp}/many_keys.$$.yml"
+keys_ms() { # N: milliseconds to refuse N keys + a duplicate
+  { echo 'SPH:'; seq 1 "$1" | sed 's/.*/  k&: 1/'; echo '  k7: 2'; } >"$big"
+  local start=$(date +%s%N)
+  expect_error "'$big'" "many_keys.$$.yml:$(($1 + 2)): duplicate key 'SPH:k7' (first given at line 8)" >/dev/null
+  echo $(( ($(date +%s%N) - start) / 1000000 ))
+}
+ms1=$(keys_ms 10000)
+ms8=$(keys_ms 80000)
+if [ "$ms8" -gt $((25 * ms1 + 200)) ]; then
+  echo "FAIL: 80,000 keys took $ms8 ms, 10,000 keys $ms1 ms (quadratic?)"; fails=$((fails + 1))
+else
+  echo "ok: 80,000 keys refused in $ms8 ms (10,000 in $ms1 ms)"
+fi
+rm -f "$big"
+
 # and the valid file passes, with a -P value holding ':'
 out=$("$check" "$valid" -P "MetaData:run_name:a:b" MetaData:run_name SPH:CFL_condition 2>&1)
 if [ "$out" != "$(printf 'MetaData:run_name=a:b\nSPH:CFL_condition=0.29999999999999999')" ]; then

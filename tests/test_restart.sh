@@ -41,8 +41,10 @@ for k in ("Coordinates", "Velocities", "Densities", "InternalEnergies", "Smoothi
     worst = max(worst, d)
 sys.exit(0 if worst < 1e-12 else 1)
 PY
-# a truncated restart file: one line, non-zero exit
-head -c 1000 B/restart/restart.bin >B/restart/cut && mv B/restart/cut B/restart/restart.bin
+# truncated restart files (the newest and the previous one): one line, non-zero exit
+for f in restart.bin restart.prev.bin; do
+  head -c 1000 B/restart/$f >B/restart/cut && mv B/restart/cut B/restart/$f
+done
 "$B/bolide" --restart "$@" p.yml >c.log 2>err.txt
 rc=$?
 if [ $rc -eq 0 ] || [ "$(wc -l <err.txt)" -ne 1 ] || ! grep -q "restart.bin" err.txt; then

@@ -48,8 +48,14 @@ def main(argv):
     fig.suptitle(title)
     fig.tight_layout()
     tmp = png + ".tmp.png"
-    fig.savefig(tmp, dpi=110)
-    os.replace(tmp, png)
+    try:
+        fig.savefig(tmp, dpi=110)
+        os.replace(tmp, png)
+    except OSError as err:  # one line, no traceback (issue 18)
+        if os.path.exists(tmp):
+            os.remove(tmp)
+        sys.stderr.write(f"plot_eos.py: error: {png}: {err.strerror or err}\n")
+        return 1
     return 0
 
 

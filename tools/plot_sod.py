@@ -5,7 +5,16 @@ Plots density, x-velocity, pressure and specific internal energy against x
 (particles as points, their binned means, the exact solution as a line),
 writes a PNG and prints the L1 errors (bolide_tools.l1: plain mean over the
 particles of |f_i - f_exact(x_i)|, in the snapshot's units) as lines
-"L1 density X", "L1 velocity X", "L1 pressure X".
+"L1 density X", "L1 velocity X", "L1 pressure X", then the star state as
+lines "star QUANTITY MEASURED EXACT" for left_density, right_density,
+left_pressure, right_pressure and velocity: means over the particles in the
+middle half of the left star region (between the tail of the rarefaction and
+the contact) and of the right one (between the contact and the shock), of
+both interfaces of a periodic tube (velocity: of both regions, in the
+direction of the flow away from the dense gas).  The middle halves stay
+clear of the smoothed waves once the regions are several smoothing lengths
+wide; the pressure difference across the contact is
+right_pressure / left_pressure - 1.
 
 Default set-up (that of SWIFT's examples/HydroTests/SodShock_3D and of
 `bolide-ic sod`): a box periodic in x of length Lx (the snapshot's BoxSize),
@@ -49,6 +58,7 @@ def parse_args(argv):
     p.add_argument("--xrange", type=float, nargs=2, metavar=("XMIN", "XMAX"),
                    help="region of the L1 errors and of the plot (default: whole tube)")
     p.add_argument("--nbins", type=int, default=100, help="bins along x for the means (100)")
+    p.add_argument("--no-plot", action="store_true", help="print the numbers only (no PNG)")
     args = p.parse_args(argv)
     if args.x0 is not None and len(args.x0) > 2:
         p.error("--x0 takes one or two positions")
@@ -66,6 +76,38 @@ def exact_at(x, t, args, box_length):
     x_left, x_right = (0.0, 0.5 * box_length) if args.x0 is None else args.x0
     return riemann.shock_tube(x, t, args.left, args.right, args.gamma, x_left, x_right,
                               box_length)
+
+
+def star_state(x, t, rho, v, p, args, box_length):
+    """Measured and exact star state (see the module doc): a list of
+    (name, measured, exact); empty when a region holds no particle."""
+    sol = riemann.RiemannSolution(args.left, args.right, args.gamma)
+    speeds = sol.wave_speeds()
+    if args.x0 is not None and len(args.x0) == 1:
+        ifaces = [(args.x0[0], 1.0)]
+    else:
+        x_left, x_right = (0.0, 0.5 * box_length) if args.x0 is None else args.x0
+        ifaces = [(x_right, 1.0), (x_left, -1.0)]  # the mirrored problem at x_left
+    sel_l, sel_r, sign = [], [], []
+    for x0, s in ifaces:
+        d = x - x0
+        if box_length is not None:
+            d = np.mod(d + 0.5 * box_length, box_length) - 0.5 * box_length
+        xi = s * d / t  # self-similar coordinate of the forward problem
+        a, c, b = speeds["left_tail"], speeds["contact"], speeds["right_head"]
+        sel_l.append((xi > a + 0.25 * (c - a)) & (xi < c - 0.25 * (c - a)))
+        sel_r.append((xi > c + 0.25 * (b - c)) & (xi < b - 0.25 * (b - c)))
+        sign.append(np.full(x.shape, s))
+    ml, mr = np.any(sel_l, axis=0), np.any(sel_r, axis=0)
+    if not (np.any(ml) and np.any(mr)):
+        return []
+    s = np.choose(np.argmax(sel_l + sel_r, axis=0) % len(ifaces), sign)
+    flow = s * v
+    return [("left_density", np.mean(rho[ml]), sol.rho_star_left),
+            ("right_density", np.mean(rho[mr]), sol.rho_star_right),
+            ("left_pressure", np.mean(p[ml]), sol.p_star),
+            ("right_pressure", np.mean(p[mr]), sol.p_star),
+            ("velocity", np.mean(flow[ml | mr]), sol.u_star)]
 
 
 def main(argv=None):
@@ -122,6 +164,15 @@ def main(argv=None):
             print("L1 %s %.6g" % (name, l1.l1_error(values, exact, mask=region)))
         except ValueError as exc:
             common.die("%s: %s" % (args.snapshot, exc))
+
+    sel = region if args.xrange is not None else np.ones_like(x, dtype=bool)
+    for name, measured, exact in star_state(x[sel], t, np.asarray(snap["Densities"])[sel],
+                                            np.asarray(snap["Velocities"])[sel, 0],
+                                            np.asarray(snap["Pressures"])[sel], args,
+                                            box_length):
+        print("star %s %.6g %.6g" % (name, measured, exact))
+    if args.no_plot:
+        return 0
 
     import matplotlib
     matplotlib.use("Agg")

@@ -15,6 +15,15 @@ x, y; z = 0 is the plate's front face, the rear face is at z = -0.4 cm.
   no tension and no shear: the ring between the clear hole and this
   diameter is rubble, no longer attached to the plate, so this is the hole
   of the plate that would be recovered if the rubble fell out.
+- Perforation (the opening in which no plate material remains connected
+  to the plate; issue 17 item 6): the intact plate particles (ShearDamage
+  < 1) are linked friends-of-friends at --link lattice spacings (default
+  1.5: the nearest and the face-diagonal neighbours of the initial
+  lattice, with room for stretching); fractured particles (D = 1: no
+  tension, no shear) link to nothing, so material they alone hold counts
+  as separated.  The plate is the largest of the resulting components;
+  the perforation diameter is twice the median over the 32 sectors of the
+  smallest radius of condensed plate-component material in the plate.
 - Debris cloud: every particle behind the rear face by more than one
   lattice spacing (projectile and plate fragments).  Length L: from the rear
   face to the front of the cloud (the 99.5th percentile of the distance
@@ -35,6 +44,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+from scipy.spatial import cKDTree
 
 RHO0 = 2710.0
 THICK = 0.004
@@ -79,6 +91,31 @@ def rim_diameter(d, rho, mat, dmg, rho_frac):
     return 2.0 * np.median(rr)
 
 
+def plate_component(d, mat, dmg, link):
+    """Mask of the plate: the largest friends-of-friends component (linking
+    length `link`, metres) of the intact (ShearDamage < 1) plate particles.
+    Fractured particles link to nothing."""
+    intact = np.flatnonzero((mat == 0) & (dmg < 1.0))
+    pairs = cKDTree(d[intact]).query_pairs(link, output_type="ndarray")
+    n = len(intact)
+    g = coo_matrix((np.ones(len(pairs), dtype=np.int8), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+    _, lab = connected_components(g, directed=False)
+    keep = np.zeros(len(d), dtype=bool)
+    keep[intact[lab == np.bincount(lab).argmax()]] = True
+    return keep
+
+
+def perforation_diameter(d, rho, mat, dmg, rho_frac, link):
+    """Opening with no plate material connected to the plate: twice the
+    median over 32 sectors of the smallest radius of condensed material of
+    the plate component (plate_component) in the plate."""
+    inplate, k, r = in_plate(d, rho, mat, rho_frac)
+    sel = inplate & plate_component(d, mat, dmg, link)
+    rmin = np.full(32, np.inf)
+    np.minimum.at(rmin, k[sel], r[sel])
+    return 2.0 * np.median(rmin)
+
+
 def cloud(d, dx):
     behind = -THICK - d[:, 2]
     deb = behind > dx
@@ -94,6 +131,8 @@ def main():
     ap.add_argument("dir")
     ap.add_argument("--dx", type=float, default=0.0008)
     ap.add_argument("--rho-frac", type=float, default=0.5)
+    ap.add_argument("--link", type=float, default=1.5,
+                    help="friends-of-friends linking length of the perforation, in lattice spacings")
     ap.add_argument("--out", default="plate.png")
     a = ap.parse_args()
     snaps = sorted(glob.glob(os.path.join(a.dir, "plate_*.hdf5")))
@@ -101,21 +140,23 @@ def main():
         raise SystemExit(f"analyse.py: error: {a.dir}: fewer than two snapshots plate_*.hdf5")
     t0, x0, _, mat0, _ = read(snaps[0])
     origin = np.array([x0[mat0 == 1, 0].mean(), x0[mat0 == 1, 1].mean(), x0[mat0 == 0, 2].max() + 0.5 * a.dx])
-    print("   t [us]   hole [cm]   fractured rim [cm]   cloud L [cm]   cloud W [cm]    L/W")
+    print("   t [us]   hole [cm]   fractured rim [cm]   perforation [cm]   cloud L [cm]   cloud W [cm]    L/W")
     rows = []
     for s in snaps[1:]:
         t, x, rho, mat, dmg = read(s)
         d = x - origin
         D = hole_diameter(d, rho, mat, a.rho_frac)
         Di = rim_diameter(d, rho, mat, dmg, a.rho_frac)
+        Dp = perforation_diameter(d, rho, mat, dmg, a.rho_frac, a.link * a.dx)
         L, W, _ = cloud(d, a.dx)
-        rows.append((t, D, Di, L, W))
-        print(f"  {t * 1e6:7.2f}   {D * 100:9.2f}   {Di * 100:18.2f}   {L * 100:12.2f}   {W * 100:12.2f}   {L / W:5.2f}")
-    t, D, Di, L, W = rows[-1]
+        rows.append((t, D, Di, Dp, L, W))
+        print(f"  {t * 1e6:7.2f}   {D * 100:9.2f}   {Di * 100:18.2f}   {Dp * 100:16.2f}   {L * 100:12.2f}"
+              f"   {W * 100:12.2f}   {L / W:5.2f}")
+    t, D, Di, Dp, L, W = rows[-1]
     print(f"final (t = {t * 1e6:.1f} us, dx = {a.dx * 1e3:.2f} mm): hole diameter {D * 100:.2f} cm "
           f"(experiment 3.45 cm: {100 * (D / 0.0345 - 1):+.0f}%), fractured rim {Di * 100:.2f} cm "
-          f"({100 * (Di / 0.0345 - 1):+.0f}%), debris cloud L/W {L / W:.2f} "
-          f"(experiment 1.39: {100 * (L / W / 1.39 - 1):+.0f}%)")
+          f"({100 * (Di / 0.0345 - 1):+.0f}%), perforation {Dp * 100:.2f} cm ({100 * (Dp / 0.0345 - 1):+.0f}%), "
+          f"debris cloud L/W {L / W:.2f} (experiment 1.39: {100 * (L / W / 1.39 - 1):+.0f}%)")
 
     t, x, rho, mat, dmg = read(snaps[-1])
     d = x - origin
@@ -142,6 +183,8 @@ def main():
     if Di > D:
         ax[1].plot(Di / 2 * 100 * np.cos(th), Di / 2 * 100 * np.sin(th), "m-", lw=1,
                    label=f"fractured rim, {Di * 100:.2f} cm")
+    ax[1].plot(Dp / 2 * 100 * np.cos(th), Dp / 2 * 100 * np.sin(th), "c-", lw=1,
+               label=f"perforation, {Dp * 100:.2f} cm")
     frac = pl & (dmg >= 1.0)
     ax[1].scatter(d[frac, 0] * 100, d[frac, 1] * 100, s=0.5, c="tab:orange", label="fractured (D = 1)")
     ax[1].set_aspect("equal")

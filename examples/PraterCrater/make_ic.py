@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Initial conditions of the Prater crater (Prater 1970; ../../shared
-VALIDATION.md): an Al 6061 sphere of radius 6.35 mm at 7 km/s, normal
-incidence, onto a block of Al 6061, both on a cubic lattice of spacing dx,
+VALIDATION.md; Pierazzo et al. 2008): an Al 6061 sphere of 6.35 mm
+diameter (the 1/4-inch ball of the experiments; `--radius`, default
+3.175 mm) at 7 km/s, normal incidence, onto a block of aluminium, both on a cubic lattice of spacing dx,
 rho = rho0 = 2700 kg/m^3, u = 0.  The target is a block of half-width
 `--half-width` and depth `--depth` (a full 3D block: the code has no
 symmetry planes); its top face is at z = 0 and the sphere starts one lattice
@@ -21,7 +22,7 @@ import h5py
 import numpy as np
 
 RHO0 = 2700.0
-R_P = 6.35e-3
+R_P = 3.175e-3  # 6.35 mm diameter (README.md: the projectile size)
 
 
 def lattice(n_lo, n_hi, dx):
@@ -36,21 +37,23 @@ def main():
     ap.add_argument("--half-width", type=float, default=0.035, help="half-width of the target block [m]")
     ap.add_argument("--depth", type=float, default=0.045, help="depth of the target block [m]")
     ap.add_argument("--speed", type=float, default=7000.0, help="impact speed [m/s]")
+    ap.add_argument("--radius", type=float, default=R_P, help="projectile radius [m]")
     ap.add_argument("--eta", type=float, default=1.2348, help="h = eta dx")
     ap.add_argument("--lattice-mass", action="store_true",
                     help="keep rho0 dx^3 for the projectile's particles (default: scale them to the true sphere's mass)")
     ap.add_argument("-o", "--output", default="crater.hdf5")
     a = ap.parse_args()
     dx = a.dx
+    rp = a.radius
     nw = int(round(a.half_width / dx))
     nd = int(round(a.depth / dx))
     # target: cells centred on the lattice, top layer at z = -dx/2
     tgt = lattice((-nw, -nw, -nd), (nw, nw, -1), dx) + [0, 0, 0.5 * dx]
-    # projectile: lattice points within R_P of the centre, sphere bottom one dx above the top
-    npj = int(np.ceil(R_P / dx)) + 1
+    # projectile: lattice points within rp of the centre, sphere bottom one dx above the top
+    npj = int(np.ceil(rp / dx)) + 1
     pj = lattice((-npj, -npj, -npj), (npj, npj, npj), dx)
-    pj = pj[np.linalg.norm(pj, axis=1) < R_P]
-    pj[:, 2] += R_P + dx
+    pj = pj[np.linalg.norm(pj, axis=1) < rp]
+    pj[:, 2] += rp + dx
     pos = np.concatenate([tgt, pj])
     nt, npp = len(tgt), len(pj)
     vel = np.zeros_like(pos)
@@ -66,7 +69,7 @@ def main():
     if not a.lattice_mass:
         # the lattice sphere is not the sphere: give the projectile the mass of
         # the true sphere (its particles' volumes m / rho0 then sum to 4/3 pi R^3)
-        mass[-npp:] = RHO0 * 4.0 / 3.0 * np.pi * R_P**3 / npp
+        mass[-npp:] = RHO0 * 4.0 / 3.0 * np.pi * rp**3 / npp
     with h5py.File(a.output + ".tmp", "w") as f:
         h = f.create_group("Header")
         h.attrs["BoxSize"] = box
@@ -83,7 +86,7 @@ def main():
         p["ParticleIDs"] = np.arange(1, N + 1)
         p["MaterialIDs"] = mat
     os.replace(a.output + ".tmp", a.output)
-    print(f"{a.output}: {N} particles ({nt} target, {npp} projectile), dx = {dx} m, "
+    print(f"{a.output}: {N} particles ({nt} target, {npp} projectile, r/dx = {rp / dx:.2f}), dx = {dx} m, "
           f"target {2 * a.half_width * 100:.1f} x {2 * a.half_width * 100:.1f} x {a.depth * 100:.1f} cm")
 
 

@@ -121,12 +121,16 @@ static long long ic_read_header(struct ic_reader *r, struct ic_info *info) {
     double box[3];
     int nb = ic_attr_doubles(r, g, "/Header", "BoxSize", box, 3);
     if (nb == 2) error_exit("%s: /Header/BoxSize has 2 values (expected 1 or 3)", r->path);
+    for (int d = 0; d < nb; d++)
+      if (!isfinite(box[d]) || box[d] < 0)
+        error_exit("%s: /Header/BoxSize is %g (must be finite and >= 0)", r->path, box[d]);
     if (nb > 0) {
       info->has_box_size = 1;
       for (int d = 0; d < 3; d++) info->box_size[d] = box[nb == 3 ? d : 0];
     }
     double t;
     if (ic_attr_doubles(r, g, "/Header", "Time", &t, 1)) {
+      if (!isfinite(t)) error_exit("%s: /Header/Time is %g (must be finite)", r->path, t);
       info->has_time = 1;
       info->time = t;
     }
@@ -140,6 +144,10 @@ static long long ic_read_header(struct ic_reader *r, struct ic_info *info) {
     const int ntypes = ic_attr_llongs(r, g, "/Header", "NumPart_Total", tot, 16);
     if (ntypes) {
       ic_attr_llongs(r, g, "/Header", "NumPart_Total_HighWord", high, 16);
+      if (tot[0] < 0 || tot[0] > UINT32_MAX || high[0] < 0 || high[0] > INT32_MAX)
+        error_exit("%s: /Header/NumPart_Total%s[0] is %lld (must be in [0, 2^32))", r->path,
+                   tot[0] < 0 || tot[0] > UINT32_MAX ? "" : "_HighWord",
+                   tot[0] < 0 || tot[0] > UINT32_MAX ? tot[0] : high[0]);
       /* SWIFT's convention: N = HighWord * 2^32 + Total */
       count = (long long)((unsigned long long)high[0] << 32) + tot[0];
       for (int t2 = 1; t2 < ntypes; t2++)
@@ -257,6 +265,19 @@ static size_t ic_dataset_length(struct ic_reader *r, hid_t grp, const char *name
   return (size_t)dims[0];
 }
 
+/** The particles sorted by ic_cmp_pos. */
+static const struct parts *ic_sort_parts;
+
+/** Order of particle indices by position (x, then y, then z). */
+static int ic_cmp_pos(const void *a, const void *b) {
+  const struct parts *p = ic_sort_parts;
+  const size_t i = *(const size_t *)a, j = *(const size_t *)b;
+  if (p->x[i] != p->x[j]) return p->x[i] < p->x[j] ? -1 : 1;
+  if (p->y[i] != p->y[j]) return p->y[i] < p->y[j] ? -1 : 1;
+  if (p->z[i] != p->z[j]) return p->z[i] < p->z[j] ? -1 : 1;
+  return 0;
+}
+
 static int ic_cmp_int64(const void *a, const void *b) {
   const int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
   return (x > y) - (x < y);
@@ -288,6 +309,44 @@ static void ic_check_unique_ids(const char *path, const struct parts *p) {
   free(s);
 }
 
+/** Allowed ranges of the fields read (inclusive); NaN and infinities are
+ *  refused for every field.  Negative internal energies and densities have no
+ *  meaning in initial conditions (the run's floors would hide them). */
+static const struct {
+  const char *field;
+  double min, max;
+} ic_ranges[] = {
+    {"u", 0.0, INFINITY},       {"rho", 0.0, INFINITY}, {"dmg", 0.0, 1.0},
+    {"dcbrt", 0.0, 1.0},        {"dmg_shear", 0.0, 1.0}, {"eps_p", 0.0, INFINITY},
+};
+
+static int ic_cmp_pos(const void *a, const void *b);
+
+/** No two particles at the same position: their pair has no direction, and
+ *  a file with all particles at one point would cost minutes of smoothing
+ *  length iterations before failing.  Sorts the indices by position. */
+static void ic_check_distinct_positions(const char *path, const struct parts *p) {
+  const size_t n = p->count;
+  if (n < 2) return;
+  size_t *idx = error_malloc(n * sizeof *idx, "sorted positions");
+  for (size_t i = 0; i < n; i++) idx[i] = i;
+  ic_sort_parts = p;
+  qsort(idx, n, sizeof *idx, ic_cmp_pos);
+  for (size_t k = 1; k < n; k++)
+    if (ic_cmp_pos(&idx[k - 1], &idx[k]) == 0) {
+      size_t a = idx[k - 1], b = idx[k];
+      free(idx);
+      if (a > b) {
+        const size_t t = a;
+        a = b, b = t;
+      }
+      error_exit("%s: particles %zu (id %lld) and %zu (id %lld) are at the same position (%g, %g, "
+                 "%g)",
+                 path, a, (long long)p->id[a], b, (long long)p->id[b], p->x[a], p->y[a], p->z[a]);
+    }
+  free(idx);
+}
+
 /** Check every particle; stop at the first offender. */
 static void ic_validate(const char *path, const struct parts *p, const struct ic_info *info,
                         const int32_t *valid_mat, int n_valid_mat) {
@@ -297,6 +356,12 @@ static void ic_validate(const char *path, const struct parts *p, const struct ic
     if (strcmp(part_fields[k].name, "mat") == 0) kmat = k;
   }
   const int check_h = kh >= 0 && ic_field_read(info, kh);
+  int krange[sizeof ic_ranges / sizeof ic_ranges[0]];
+  for (size_t r = 0; r < sizeof ic_ranges / sizeof ic_ranges[0]; r++) {
+    krange[r] = -1;
+    for (int k = 0; k < part_nr_fields; k++)
+      if (strcmp(part_fields[k].name, ic_ranges[r].field) == 0 && ic_field_read(info, k)) krange[r] = k;
+  }
   const int check_mat = kmat >= 0 && ic_field_read(info, kmat);
   for (size_t i = 0; i < p->count; i++) {
     for (int k = 0; k < part_nr_fields; k++) {
@@ -306,6 +371,20 @@ static void ic_validate(const char *path, const struct parts *p, const struct ic
       if (!isfinite(v))
         error_exit("%s: particle %zu (id %lld): %s is %g (must be finite)", path, i,
                    (long long)p->id[i], f->description, v);
+    }
+    for (size_t r = 0; r < sizeof ic_ranges / sizeof ic_ranges[0]; r++) {
+      if (krange[r] < 0) continue;
+      const struct part_field *f = &part_fields[krange[r]];
+      const double v = ((const double *)part_field_array(p, f))[i];
+      if (v < ic_ranges[r].min || v > ic_ranges[r].max) {
+        char range[64];
+        if (isinf(ic_ranges[r].max))
+          snprintf(range, sizeof range, ">= %g", ic_ranges[r].min);
+        else
+          snprintf(range, sizeof range, "in [%g, %g]", ic_ranges[r].min, ic_ranges[r].max);
+        error_exit("%s: particle %zu (id %lld): %s is %g (must be %s)", path, i,
+                   (long long)p->id[i], f->h5name, v, range);
+      }
     }
     if (!(p->m[i] > 0))
       error_exit("%s: particle %zu (id %lld): mass is %g (must be positive)", path, i,
@@ -326,6 +405,7 @@ static void ic_validate(const char *path, const struct parts *p, const struct ic
     }
   }
   ic_check_unique_ids(path, p);
+  ic_check_distinct_positions(path, p);
 }
 
 void ic_read(const char *path, const struct unit_system *internal, const int32_t *valid_mat,
@@ -377,6 +457,7 @@ void ic_read(const char *path, const struct unit_system *internal, const int32_t
                  found[k], len, first, n);
     }
   }
+  if (n == 0) error_exit("%s: no particles in /PartType0", path);
   if (header_count >= 0 && (size_t)header_count != n)
     error_exit("%s: /Header/NumPart_Total says %lld particles but /PartType0/%s has %zu", path,
                header_count, first, n);

@@ -4,7 +4,9 @@
  *
  * X(name, type, default, min, max, choices, unit, doc)
  *   default NULL means the key is required.  Ranges are inclusive; use
- *   PARAM_INF for no bound.  Keys follow SWIFT's sections and names where
+ *   PARAM_INF for no bound.  For PARAM_STRING, min and max bound the length
+ *   of the text in bytes (max 0: no bound); for PARAM_REAL_ARRAY, choices is
+ *   the '|'-separated list of the allowed numbers of values (NULL: any).  Keys follow SWIFT's sections and names where
  *   SWIFT has the same thing. */
 #ifndef BOLIDE_PARAM_LIST_H
 #define BOLIDE_PARAM_LIST_H
@@ -13,7 +15,7 @@
 
 /* clang-format off */
 #define BOLIDE_PARAMS(X)                                                                                 \
-  X("MetaData:run_name", PARAM_STRING, "bolide", 0, 0, NULL, "-", "name of the run, recorded in every output") \
+  X("MetaData:run_name", PARAM_STRING, "bolide", 0, 1023, NULL, "-", "name of the run, recorded in every output") \
                                                                                                          \
   X("InternalUnitSystem:UnitMass_in_cgs", PARAM_REAL, "1000", 1e-300, PARAM_INF, NULL, "g", "internal mass unit (default: 1 kg)") \
   X("InternalUnitSystem:UnitLength_in_cgs", PARAM_REAL, "100", 1e-300, PARAM_INF, NULL, "cm", "internal length unit (default: 1 m)") \
@@ -21,10 +23,10 @@
   X("InternalUnitSystem:UnitCurrent_in_cgs", PARAM_REAL, "1", 1e-300, PARAM_INF, NULL, "A", "internal current unit") \
   X("InternalUnitSystem:UnitTemp_in_cgs", PARAM_REAL, "1", 1e-300, PARAM_INF, NULL, "K", "internal temperature unit") \
                                                                                                          \
-  X("InitialConditions:file_name", PARAM_STRING, NULL, 0, 0, NULL, "-", "HDF5 initial conditions (relative paths: to the parameter file's folder)") \
+  X("InitialConditions:file_name", PARAM_STRING, NULL, 1, 1023, NULL, "-", "HDF5 initial conditions (relative paths: to the parameter file's folder)") \
   X("InitialConditions:periodic", PARAM_BOOL, "false", 0, 0, NULL, "-", "periodic box (true) or open box (false)") \
-  X("InitialConditions:box_size", PARAM_REAL_ARRAY, "[]", 0, PARAM_INF, NULL, "internal length", "box size overriding /Header/BoxSize (1 or 3 values)") \
-  X("InitialConditions:shift", PARAM_REAL_ARRAY, "[0, 0, 0]", -PARAM_INF, PARAM_INF, NULL, "internal length", "shift added to every position on reading") \
+  X("InitialConditions:box_size", PARAM_REAL_ARRAY, "[]", 0, PARAM_INF, "0|1|3", "internal length", "box size overriding /Header/BoxSize (1 or 3 values)") \
+  X("InitialConditions:shift", PARAM_REAL_ARRAY, "[0, 0, 0]", -PARAM_INF, PARAM_INF, "3", "internal length", "shift added to every position on reading") \
   X("InitialConditions:smoothing_length_scaling", PARAM_REAL, "1", 1e-6, 1e6, NULL, "-", "factor applied to the smoothing lengths read") \
   X("InitialConditions:cleanup_h_factors", PARAM_BOOL, "false", 0, 0, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
                                                                                                          \
@@ -33,17 +35,17 @@
   X("TimeIntegration:dt_min", PARAM_REAL, "1e-12", 0, PARAM_INF, NULL, "internal time", "smallest allowed time step; a smaller one stops the run with an error") \
   X("TimeIntegration:dt_max", PARAM_REAL, "1e30", 0, PARAM_INF, NULL, "internal time", "largest allowed time step") \
                                                                                                          \
-  X("Snapshots:basename", PARAM_STRING, "snapshot", 0, 0, NULL, "-", "snapshot file prefix (files are BASENAME_NNNN.hdf5; relative to the output folder)") \
-  X("Snapshots:subdir", PARAM_STRING, ".", 0, 0, NULL, "-", "folder for snapshots and statistics, created if missing") \
+  X("Snapshots:basename", PARAM_STRING, "snapshot", 1, 255, NULL, "-", "snapshot file prefix (files are BASENAME_NNNN.hdf5; relative to the output folder)") \
+  X("Snapshots:subdir", PARAM_STRING, ".", 1, 1023, NULL, "-", "folder for snapshots and statistics, created if missing") \
   X("Snapshots:time_first", PARAM_REAL, "0", -PARAM_INF, PARAM_INF, NULL, "internal time", "time of the first snapshot") \
   X("Snapshots:delta_time", PARAM_REAL, "0", 0, PARAM_INF, NULL, "internal time", "time between snapshots (0: only the first and last)") \
-  X("Snapshots:output_list", PARAM_STRING, "", 0, 0, NULL, "-", "file with one output time per line (overrides time_first/delta_time)") \
+  X("Snapshots:output_list", PARAM_STRING, "", 0, 1023, NULL, "-", "file with one output time per line (overrides time_first/delta_time)") \
   X("Snapshots:int_time_label_on", PARAM_BOOL, "false", 0, 0, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
   X("Snapshots:accelerations", PARAM_BOOL, "false", 0, 0, NULL, "-", "write Accelerations (and Potentials with gravity) in every snapshot") \
   X("Snapshots:compression", PARAM_INT, "0", 0, 9, NULL, "-", "gzip level of the datasets (0: none)") \
                                                                                                          \
   X("Statistics:delta_time", PARAM_REAL, "0", 0, PARAM_INF, NULL, "internal time", "time between lines of the statistics file (0: every step)") \
-  X("Statistics:energy_file_name", PARAM_STRING, "statistics", 0, 0, NULL, "-", "statistics file name (a .txt suffix is added)") \
+  X("Statistics:energy_file_name", PARAM_STRING, "statistics", 1, 255, NULL, "-", "statistics file name (a .txt suffix is added)") \
                                                                                                          \
   X("SPH:resolution_eta", PARAM_REAL, "1.2348", 0.1, 10, NULL, "-", "target h in units of the mean inter-particle spacing (1.2348: 48 neighbours with the cubic spline)") \
   X("SPH:h_tolerance", PARAM_REAL, "1e-4", 1e-10, 0.1, NULL, "-", "relative tolerance of the smoothing length iteration") \
@@ -108,7 +110,9 @@
                                                                                                          \
   X("Restarts:enable", PARAM_BOOL, "false", 0, 0, NULL, "-", "write restart files") \
   X("Restarts:delta_hours", PARAM_REAL, "1", 0, PARAM_INF, NULL, "h", "wall-clock hours between restart files") \
-  X("Restarts:subdir", PARAM_STRING, "restart", 0, 0, NULL, "-", "folder of the restart files") \
+  X("Restarts:subdir", PARAM_STRING, "restart", 1, 1023, NULL, "-", "folder of the restart files") \
+  X("Restarts:delta_steps", PARAM_INT, "0", 0, 1000000000, NULL, "-", "steps between restart files, besides delta_hours (0: none)") \
+  X("Restarts:max_run_time", PARAM_REAL, "0", 0, PARAM_INF, NULL, "h", "wall-clock hours after which the run writes a restart file and stops with status 0, for the time limit of a batch queue (0: no limit)") \
                                                                                                          \
   X("Materials", PARAM_SECTION, "", 0, 0, NULL, "-", "material table: see examples/parameters.yml")
 /* clang-format on */

@@ -220,6 +220,39 @@ struct tree_builder {
 static struct param_node *tree_copy(struct tree_builder *b, yaml_node_t *y, const char *path,
                                     int depth);
 
+/** Order of mapping entries by key, then by position (for qsort). */
+static const struct param_node *sort_node;
+static int key_order(const void *a, const void *b) {
+  const int i = *(const int *)a, j = *(const int *)b;
+  const int c = strcmp(sort_node->keys[i], sort_node->keys[j]);
+  return c ? c : (i > j) - (i < j);
+}
+
+/** Stop on a key given twice in mapping n, naming the first repetition in
+ *  the file's order and the line of its first occurrence.  Sorting keeps it
+ *  O(n log n): a file with 1e5 keys is checked in milliseconds. */
+static void mapping_check_duplicates(struct tree_builder *b, const struct param_node *n,
+                                     const char *path) {
+  if (n->n < 2) return;
+  int *order = error_malloc((size_t)n->n * sizeof *order, "parameter keys");
+  for (int i = 0; i < n->n; i++) order[i] = i;
+  sort_node = n;
+  qsort(order, (size_t)n->n, sizeof *order, key_order);
+  int first = -1, later = n->n; /* the earliest repetition: entries first and later */
+  for (int k = 1; k < n->n; k++)
+    if (strcmp(n->keys[order[k]], n->keys[order[k - 1]]) == 0 && order[k] < later) {
+      later = order[k];
+      int g = k - 1; /* the first entry of this key */
+      while (g > 0 && strcmp(n->keys[order[g - 1]], n->keys[order[k]]) == 0) g--;
+      first = order[g];
+    }
+  free(order);
+  if (first < 0) return;
+  fail(b->where, b->with_lines ? n->key_lines[later] : 0,
+       "duplicate key '%s%s%s' (first given at line %d)", path, path[0] ? ":" : "", n->keys[later],
+       n->key_lines[first]);
+}
+
 /** Copy the pairs of a libyaml mapping into n; path names the mapping in errors. */
 static void tree_copy_mapping(struct tree_builder *b, yaml_node_t *y, struct param_node *n,
                               const char *path, int depth) {
@@ -238,15 +271,13 @@ static void tree_copy_mapping(struct tree_builder *b, yaml_node_t *y, struct par
     const char *key = (const char *)k->data.scalar.value;
     char sub[1024];
     snprintf(sub, sizeof sub, "%s%s%s", path, path[0] ? ":" : "", key);
-    for (int j = 0; j < n->n; j++)
-      if (strcmp(n->keys[j], key) == 0)
-        fail(b->where, line, "duplicate key '%s' (first given at line %d)", sub, n->key_lines[j]);
     n->keys[i] = strdup(key);
     if (!n->keys[i]) error_exit("out of memory copying parameter keys");
     n->key_lines[i] = (int)k->start_mark.line + 1;
     n->child[i] = tree_copy(b, v, sub, depth + 1);
     n->n = i + 1;
   }
+  mapping_check_duplicates(b, n, path);
 }
 
 /** Copy libyaml node y (and its children) into a new param_node. */
@@ -450,6 +481,42 @@ static int parse_array_element(const struct param_spec *s, const struct param_no
   return check_range(s, *x, n->text, err, len);
 }
 
+/** 1 if count is one of the '|'-separated numbers of choices. */
+static int count_allowed(const char *choices, int count) {
+  for (const char *c = choices; c; c = strchr(c, '|'), c = c ? c + 1 : NULL)
+    if (atoi(c) == count) return 1;
+  return 0;
+}
+
+/** The '|'-separated numbers as "3" or "0, 1 or 3". */
+static void counts_list(const char *choices, char *buf, size_t len) {
+  size_t n = 0;
+  buf[0] = '\0';
+  for (const char *c = choices; *c && n + 6 < len; c++) {
+    if (*c == '|') {
+      const char *sep = strchr(c + 1, '|') ? ", " : " or ";
+      n += (size_t)snprintf(buf + n, len - n, "%s", sep);
+    } else {
+      buf[n++] = *c;
+      buf[n] = '\0';
+    }
+  }
+}
+
+/** Check the length of a STRING value against the table's bounds. */
+static int check_length(const struct param_spec *s, const char *t, char *err, size_t len) {
+  const size_t l = strlen(t);
+  if (l < (size_t)s->min) {
+    snprintf(err, len, "%s: must not be empty", s->name);
+    return 0;
+  }
+  if (s->max > 0 && l > (size_t)s->max) {
+    snprintf(err, len, "%s: '%.32s...' is %zu bytes long (at most %.0f)", s->name, t, l, s->max);
+    return 0;
+  }
+  return 1;
+}
+
 /** Parse a REAL_ARRAY: a sequence of reals (a single number counts as one). */
 static int parse_array(const struct param_spec *s, const struct param_node *n,
                        struct param_value *v, char *err, size_t len) {
@@ -459,6 +526,13 @@ static int parse_array(const struct param_spec *s, const struct param_node *n,
     return 0;
   }
   int count = n->kind == NODE_SEQUENCE ? n->n : 1;
+  if (s->choices && !count_allowed(s->choices, count)) {
+    char list[64];
+    counts_list(s->choices, list, sizeof list);
+    snprintf(err, len, "%s: %d value%s given (expected %s)", s->name, count, count == 1 ? "" : "s",
+             list);
+    return 0;
+  }
   double *a = error_calloc((size_t)count, sizeof *a, "parameter array");
   for (int k = 0; k < count; k++)
     if (!parse_array_element(s, n->kind == NODE_SEQUENCE ? n->child[k] : n, k + 1, &a[k], err,
@@ -575,6 +649,7 @@ static int value_parse(const struct param_spec *s, const struct param_node *n,
     snprintf(err, len, "%s: expected a single value, got %s", s->name, node_kind_name(n));
     ok = 0;
   } else if (s->type == PARAM_STRING) {
+    if (!check_length(s, n->text, err, len)) return 0;
     out.s = strdup(n->text);
     if (!out.s) error_exit("out of memory copying a parameter");
   } else {
@@ -677,10 +752,11 @@ static void params_apply_override(struct params *p, const char *arg) {
   /* trim the blanks a quoted shell argument may carry */
   const char *value = c2 + 1;
   while (isspace((unsigned char)*value)) value++;
-  char text[1024];
-  snprintf(text, sizeof text, "%s", value);
+  char *text = strdup(value); /* whole: a long value must reach the length check */
+  if (!text) error_exit("out of memory copying a parameter");
   for (size_t l = strlen(text); l > 0 && isspace((unsigned char)text[l - 1]); l--) text[l - 1] = 0;
   struct param_node *n = node_from_text(&params_table[i], text, where);
+  free(text);
   if (!value_parse(&params_table[i], n, &p->values[i], err, sizeof err))
     error_exit("%s: %s", where, err);
   node_free(n);
@@ -1116,6 +1192,13 @@ static void reference_comment(FILE *f, const struct param_spec *s) {
   if (s->type == PARAM_INT || s->type == PARAM_REAL || s->type == PARAM_REAL_ARRAY)
     range_text(s, range, sizeof range);
   if (s->type == PARAM_ENUM) choices_list(s->choices, list, sizeof list);
+  if (s->type == PARAM_REAL_ARRAY && s->choices) {
+    char counts[64];
+    counts_list(s->choices, counts, sizeof counts);
+    snprintf(list, sizeof list, "of %s values", counts);
+  }
+  if (s->type == PARAM_STRING && (s->min > 0 || s->max > 0))
+    snprintf(range, sizeof range, "%.0f to %.0f bytes", s->min, s->max);
   if (strcmp(s->unit, "-") != 0) snprintf(unit, sizeof unit, " [%s]", s->unit);
   const char *def = !s->def ? NULL : s->def[0] ? s->def : "\"\"";
   snprintf(text, sizeof text, "%s%s (%s%s%s%s%s; %s%s)", s->doc, unit, type_name[s->type],

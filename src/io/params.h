@@ -31,8 +31,10 @@ struct param_spec {
   const char *name;    /**< "Section:key" */
   enum param_type type;
   const char *def;     /**< default as text; NULL = required */
-  double min, max;     /**< allowed range for INT/REAL (inclusive) */
-  const char *choices; /**< "a|b|c" for ENUM */
+  double min, max;     /**< allowed range for INT/REAL/REAL_ARRAY (inclusive); for
+                            STRING the allowed length in bytes (max 0: any) */
+  const char *choices; /**< "a|b|c" for ENUM; for REAL_ARRAY the allowed numbers
+                            of values ("0|1|3"; NULL: any) */
   const char *unit;    /**< unit, documentation only ("internal length", "s", "-") */
   const char *doc;     /**< one-line meaning */
 };

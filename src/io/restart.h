@@ -1,17 +1,35 @@
-/* Restart files: the complete state of a run (every particle field and the
- * engine's clocks) in one binary file, written under a temporary name and
- * renamed, so that `bolide --restart PARAMS.yml` resumes where the last one
- * was written.  The file records the particle-field table (names and sizes)
- * and refuses to load into a build whose table differs. */
+/* Restart files: the complete state of a run (every particle field, the
+ * engine's clocks and the cells of the last rebuild) in one binary file, so
+ * that `bolide --restart PARAMS.yml` resumes where the last one was written
+ * and takes exactly the steps of the uninterrupted run (issue 18).
+ *
+ * Format (version RESTART_VERSION, native byte order, checked): a header of
+ * RESTART_HEADER_BYTES (magic, format version, byte-order mark, build, particle
+ * count, FNV-64 hash of the parameters, payload length), the payload (the
+ * particle-field table, the state, the parameters as text, the cells' h_max
+ * and dx_max, every field array, the Weibull flaws) and a 64-bit checksum of
+ * everything before it (restart_checksum).  Every field is validated on
+ * reading; a file of another parameter set is refused with one line that
+ * names the first parameter that differs.
+ *
+ * Files in the restart folder: restart.bin (the newest), restart.prev.bin
+ * (the one before; a hard link made before the newest is replaced, so that a
+ * complete file exists at every instant) and restart.bin.tmp while writing
+ * (removed at start if a killed run left it). */
 #ifndef BOLIDE_RESTART_H
 #define BOLIDE_RESTART_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "budget.h"
 #include "part.h"
 
-/** The engine's scalars saved with the particles. */
+#define RESTART_VERSION 3
+#define RESTART_HEADER_BYTES 128
+
+/** The engine's scalars saved with the particles (every member 8 bytes: no
+ *  padding, written as it is). */
 struct restart_state {
   double time;         /**< simulation time */
   double dt;           /**< last global time step */
@@ -20,29 +38,77 @@ struct restart_state {
   int64_t updates;     /**< particle updates done */
   int64_t nr_removed;  /**< particles removed from an open box */
   int64_t snap_index;  /**< index of the next snapshot */
-  int64_t next_out;    /**< next output time (index) */
+  int64_t next_out;    /**< next output time (index in the list from time_begin) */
   double next_stats;   /**< next statistics time */
   double box[3];       /**< box size */
   int64_t periodic;    /**< periodic box */
   struct budget_removed removed; /**< what particles removed from the box took with them */
   struct budget_start start;     /**< the run's totals at its start */
+  double rebuild_h_max;  /**< the space's h_max at the last rebuild (its top-level grid) */
+  int64_t need_rebuild;  /**< 1: a task asked for a rebuild at the next step */
+  int64_t stats_offset;  /**< length of the statistics file when the file was written */
 };
 
-/** Write the state to DIR/restart.bin (through DIR/restart.bin.tmp; the
- *  previous file is kept as DIR/restart.prev.bin until the new one is in
- *  place).  flaw_eps: the engine's flat array of flaw thresholds, particle
- *  i owning flaw_eps[flaw_first[i] .. + n_flaws[i]] (NULL: no flaws); they
- *  are written as one flat array with N + 1 offsets in the particle order
- *  of the file.  Errors (disk full...) stop with one line, the old file
- *  intact. */
-void restart_write(const char *dir, const struct restart_state *st, const struct parts *p,
-                   const double *flaw_eps);
+/** The cells' h_max and dx_max at the end of the step (space.cells order). */
+struct restart_cells {
+  int64_t n;
+  double *h_max;
+  double *dx_max;
+};
 
-/** Read DIR/restart.bin into st and p (p allocated here) and the flaws into
- *  *flaw_eps (allocated here; p->flaw_first indexes it) and *nr_flaws.
- *  Stops with one line if missing, truncated, inconsistent or written by a
- *  build with other fields. */
-void restart_read(const char *dir, struct restart_state *st, struct parts *p, double **flaw_eps,
-                  int64_t *nr_flaws);
+/** What a file must match to be resumed by this run (restart_read_buffer). */
+struct restart_expect {
+  const char *params;     /**< parameters in use (params_to_string; the Restarts section is ignored) */
+  const int32_t *mat_ids; /**< material ids of the run */
+  int nr_mats;            /**< their number */
+  int64_t nr_out;         /**< number of output times of the run */
+  double time_begin;      /**< TimeIntegration:time_begin */
+  double time_end;        /**< TimeIntegration:time_end */
+};
+
+/** Everything a file holds (free with restart_data_free). */
+struct restart_data {
+  struct restart_state st;
+  struct parts p;          /**< the particles in the order of the writing run */
+  double *flaw_eps;        /**< flat flaw thresholds, p.flaw_first indexes it (NULL: none) */
+  int64_t nr_flaws;        /**< their number */
+  struct restart_cells cells;
+};
+
+/** Write the state to DIR/restart.bin through DIR/restart.bin.tmp (see the
+ *  top comment for the rotation).  flaw_eps: the engine's flat array of flaw
+ *  thresholds, particle i owning flaw_eps[flaw_first[i] .. + n_flaws[i]]
+ *  (NULL: no flaws).  params: the parameters in use (params_to_string).
+ *  Errors (disk full...) stop with one line, the older files intact. */
+void restart_write(const char *dir, const struct restart_state *st, const struct parts *p,
+                   const double *flaw_eps, const struct restart_cells *cells, const char *params);
+
+/** Parse and validate a restart file held in memory (buf, len bytes; name:
+ *  its name for messages).  ex: what the run expects (NULL: only the file's
+ *  own consistency is checked).  Returns 0 and fills *out, or -1 with one
+ *  line in err (nothing allocated).  Never exits and never reads outside
+ *  buf: the entry point of the restart fuzzer. */
+int restart_read_buffer(const void *buf, size_t len, const char *name, const struct restart_expect *ex,
+                        struct restart_data *out, char *err, size_t errlen);
+
+/** Free what restart_read_buffer or restart_read allocated. */
+void restart_data_free(struct restart_data *d);
+
+/** Read DIR/restart.bin; if it is missing or invalid, DIR/restart.prev.bin
+ *  with a warning naming the problem of the newer one (which is renamed to
+ *  restart.bin.bad).  Stops with one line if neither can be resumed.  used:
+ *  the name of the file read. */
+void restart_read(const char *dir, const struct restart_expect *ex, struct restart_data *out, char *used,
+                  size_t usedlen);
+
+/** Remove DIR/restart.bin.tmp left by a killed run (logged). */
+void restart_remove_stale(const char *dir);
+
+/** The checksum of the files: FNV-1a-64 over 64-bit little-endian words
+ *  (each followed by an xor-shift h ^= h >> 29), then the remaining bytes one
+ *  by one; h: the value so far (RESTART_HASH_INIT to start).  Chunks of a
+ *  stream must be multiples of 8 bytes except the last. */
+#define RESTART_HASH_INIT 0xcbf29ce484222325ULL
+uint64_t restart_checksum(const void *buf, size_t len, uint64_t h);
 
 #endif

@@ -503,6 +503,9 @@ void snapshot_write(const char *path, const struct snapshot_meta *meta, const st
   errno = 0;
   const herr_t rc = H5Fclose(w.file);
   w.file = H5I_INVALID_HID;
+  /* a close that failed to flush (disk full) leaves the file in HDF5's
+   * list, and its exit handler then crashes on it (issue 18) */
+  if (rc < 0) snapshot_poisoned = 1;
   if (rc < 0) snapshot_fail(&w, "the file (closing)");
   if (snapshot_fsync(w.tmp) != 0) snapshot_fail(&w, "the file (fsync)");
   if (rename(w.tmp, path) != 0) snapshot_fail(&w, "the file (rename)");

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -66,6 +67,28 @@ static void row(FILE *f, const struct material *mat, double rho, double u, int w
     fprintf(f, "%.10g %.10g %.10g %.10g %.10g\n", rho, u, P, cs, material_temperature(mat, rho, u));
   else
     fprintf(f, "%.10g %.10g %.10g %.10g\n", rho, u, P, cs);
+}
+
+/** Stop with one line unless a PNG can be written at path (plot_eos.py
+ *  writes PATH.tmp.png and renames it). */
+static void plot_check_target(const char *path) {
+  char dir[4096];
+  snprintf(dir, sizeof dir, "%s", path);
+  char *slash = strrchr(dir, '/');
+  if (!slash)
+    snprintf(dir, sizeof dir, ".");
+  else if (slash == dir)
+    dir[1] = '\0';
+  else
+    *slash = '\0';
+  struct stat st;
+  if (!path[0] || path[strlen(path) - 1] == '/')
+    error_exit("--plot %s: not a file name", path);
+  if (stat(dir, &st) != 0) error_exit("--plot %s: %s: %s", path, dir, strerror(errno));
+  if (!S_ISDIR(st.st_mode)) error_exit("--plot %s: %s: %s", path, dir, strerror(ENOTDIR));
+  if (access(dir, W_OK) != 0) error_exit("--plot %s: %s: %s", path, dir, strerror(errno));
+  if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
+    error_exit("--plot %s: %s", path, strerror(EISDIR));
 }
 
 /** Run PYTHON tools/plot_eos.py TABLE PNG NAME and wait for it. */
@@ -180,7 +203,9 @@ int main(int argc, char **argv) {
         u_min, u_max);
   const int with_T = material_has_temperature(&mat);
 
-  /* with --plot the table goes to a temporary file as well */
+  /* with --plot the table goes to a temporary file as well; the PNG's folder
+   * is checked first (the plotting script would fail at the end) */
+  if (png) plot_check_target(png);
   FILE *tmp = NULL;
   char tmpname[] = "/tmp/bolide-eos-XXXXXX";
   if (png) {
@@ -193,18 +218,25 @@ int main(int argc, char **argv) {
     fprintf(outs[o], "density specific_internal_energy pressure sound_speed%s\n",
             with_T ? " temperature" : "");
   if (from_stdin) {
-    char line[512];
+    char *line = NULL;
+    size_t cap = 0;
+    ssize_t len;
     int lineno = 0;
-    while (fgets(line, sizeof line, stdin)) {
+    while ((len = getline(&line, &cap, stdin)) >= 0) {
       lineno++;
       double rho, u;
       char extra;
+      /* a NUL would end the text early: the line would be skipped or cut */
+      if (memchr(line, '\0', (size_t)len))
+        error_exit("stdin:%d: a NUL byte in the line (not text)", lineno);
       if (line[strspn(line, " \t\r\n")] == 0 || line[strspn(line, " \t")] == '#') continue;
       if (sscanf(line, "%lf %lf %c", &rho, &u, &extra) != 2 || !isfinite(rho) || !isfinite(u) ||
           !(rho > 0.0))
         error_exit("stdin:%d: expected 'density energy' with density > 0", lineno);
       for (int o = 0; o < (tmp ? 2 : 1); o++) row(outs[o], &mat, rho, u, with_T);
     }
+    if (ferror(stdin)) error_exit("stdin:%d: cannot read: %s", lineno + 1, strerror(errno));
+    free(line);
   } else {
     for (int j = 0; j < nu; j++)
       for (int i = 0; i < nrho; i++) {

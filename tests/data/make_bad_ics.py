@@ -27,7 +27,7 @@ def good():
     }
 
 
-def write(path, data, units=True, header=True):
+def write(path, data, units=True, header=True, attrs=None):
     with h5py.File(path, "w") as f:
         if header:
             h = f.create_group("Header")
@@ -36,6 +36,8 @@ def write(path, data, units=True, header=True):
             h.attrs["NumPart_Total"] = [n, 0, 0, 0, 0, 0]
             h.attrs["NumPart_Total_HighWord"] = [0] * 6
             h.attrs["Dimension"] = [3]
+            for k, v in (attrs or {}).items():
+                h.attrs[k] = v
         if units:
             u = f.create_group("Units")
             u.attrs["Unit mass in cgs (U_M)"] = [1000.0]
@@ -115,6 +117,39 @@ def main():
         "MaterialID": d["MaterialIDs"].astype(np.int16),
     }
     write(p("aliases_no_units"), alias, units=False)
+
+    # hostile values (issue 18)
+    d = good()
+    d["InternalEnergies"][4] = -1.0
+    write(p("negative_u"), d)
+
+    d = good()
+    d["Densities"][2] = -2700.0
+    write(p("negative_density"), d)
+
+    d = good()
+    d["Damage"] = np.zeros(N)
+    d["Damage"][11] = 1.5
+    write(p("damage_above_one"), d)
+
+    d = good()
+    d["ShearDamage"] = np.zeros(N)
+    d["ShearDamage"][1] = -0.25
+    write(p("shear_damage_negative"), d)
+
+    write(p("numpart_minus_one"), good(), attrs={"NumPart_Total": [-1, 0, 0, 0, 0, 0]})
+    write(p("nan_time"), good(), attrs={"Time": [np.nan]})
+    write(p("inf_box"), good(), attrs={"BoxSize": [1.0, np.inf, 1.0]})
+
+    write(p("zero_particles"), {k: v[:0] for k, v in good().items()})
+
+    d = good()
+    d["Coordinates"][:] = 0.5
+    write(p("one_point"), d)
+
+    d = good()
+    d["Coordinates"][13] = d["Coordinates"][6]
+    write(p("same_position"), d)
 
     with open(p("not_hdf5"), "w") as f:
         f.write("this is not an HDF5 file\n")

@@ -58,8 +58,8 @@ for step in "$@"; do
   case $step in
     build) ;;
     native) build _dbuild_native --enable-native 2>&1 | tee "$out/native.log" || rc=1 ;;
-    check-gpu) (cd _dbuild && make check-gpu) 2>&1 | tee "$out/check-gpu.log" | tail -40; [ ${PIPESTATUS[0]} -eq 0 ] || rc=1 ;;
-    check-gpu-native) (cd _dbuild_native && make check-gpu) 2>&1 | tee "$out/check-gpu-native.log" | tail -40
+    check-gpu) (cd _dbuild && make check-gpu PYTHON="$PYTHON") 2>&1 | tee "$out/check-gpu.log" | tail -40; [ ${PIPESTATUS[0]} -eq 0 ] || rc=1 ;;
+    check-gpu-native) (cd _dbuild_native && make check-gpu PYTHON="$PYTHON") 2>&1 | tee "$out/check-gpu-native.log" | tail -40
                       [ ${PIPESTATUS[0]} -eq 0 ] || rc=1 ;;
     energy) tools/bench/energy.sh -n "${ENERGY_SIZES:-2.2e4 1.1e5}" -m "${ENERGY_MODES:-gpu cpu}" -t "$jobs" \
               -T 4000 -o "$out/energy" 2>&1 | tee "$out/energy.log" || rc=1 ;;

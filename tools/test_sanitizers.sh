@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# Sanitizer checks (issue 18 item 9), run by CI after tools/test.sh:
+#  1. AddressSanitizer + UndefinedBehaviorSanitizer build in ./_build_asan
+#     (without CUDA) and the fast tests of make check under it; every report
+#     fails the test (halt_on_error);
+#  2. ThreadSanitizer build of the scheduler stress test in ./_build_tsan;
+#  3. a short run of each libFuzzer harness (make fuzz, FUZZ_SECONDS, 30 s
+#     by default) when clang has libFuzzer.
+# Usage: tools/test_sanitizers.sh [asan|tsan|fuzz|all] [TEST...]
+#   (TEST...: the tests of step 1, default SAN_FAST_TESTS below; FULL runs
+#   the whole make check under ASan + UBSan.)
+# Closes with one line "sanitizers: ..." and exits non-zero on any failure.
+set -euo pipefail
+top="$(cd "$(dirname "$0")/.." && pwd)"
+what="${1:-all}"
+shift || true
+jobs="$(nproc 2>/dev/null || echo 2)"
+[ -x "$top/configure" ] || "$top/tools/setup.sh" >/dev/null
+export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1"
+# The fast tests (about 6 minutes under ASan on 2 cores): the unit tests, the
+# readers' and the CLI's error tests, the hostile inputs and the fuzz corpus,
+# and short runs of bolide (restart, porosity).
+SAN_FAST_TESTS="tests/test_graph tests/test_budget tests/test_scheduler tests/test_kernels
+  tests/test_pairs tests/test_space_errors tests/test_params tests/test_units
+  tests/test_params_reference tests/test_params_errors.sh tests/test_io_roundtrip
+  tests/test_ic_errors.sh tests/test_eos tests/test_material tests/test_bolide_eos.sh
+  tests/test_materials_yaml.sh tests/test_porosity tests/test_porosity_errors.sh
+  tests/test_damage tests/test_flaws tests/test_fof tests/test_gravity_ops tests/test_solids
+  tests/test_bolide_cli.sh tests/test_restart.sh tests/test_hostile_inputs.sh
+  tests/test_fuzz_corpus.sh"
+status=0 summary=""
+
+# configure DIR SANITIZERS: a build folder with the sanitizers, sharing _build's venv
+configure_in() {
+  local dir="$top/$1"
+  mkdir -p "$dir"
+  if [ ! -f "$dir/Makefile" ] || [ "$dir/config.status" -ot "$top/configure" ]; then
+    (cd "$dir" && "$top/configure" --enable-sanitizers="$2" --without-cuda >configure.out 2>&1) ||
+      { tail -20 "$dir/configure.out"; return 1; }
+  fi
+  if [ -d "$top/_build/.venv" ] && [ ! -e "$dir/.venv" ]; then ln -s "$top/_build/.venv" "$dir/.venv"; fi
+}
+
+if [ "$what" = all ] || [ "$what" = asan ]; then
+  configure_in _build_asan address,undefined
+  cd "$top/_build_asan"
+  tests="${*:-$SAN_FAST_TESTS}"
+  start=$(date +%s)
+  set +e
+  if [ "$tests" = FULL ]; then
+    make -j"$jobs" check-summary >check.out 2>&1
+  else
+    make -j"$jobs" check-summary TESTS="$(echo $tests)" >check.out 2>&1
+  fi
+  rc=$?
+  set -e
+  grep -E '^(FAIL|ERROR|XPASS):' check.out || true
+  if [ $rc -ne 0 ]; then
+    for f in $(grep -l -E '^:test-result: (FAIL|ERROR)' $(find . -name '*.trs') 2>/dev/null); do
+      echo "----- ${f%.trs}.log"; tail -40 "${f%.trs}.log"
+    done
+    status=1
+  fi
+  summary="$summary asan+ubsan: $(grep -E '^tests: ' check.out || echo 'build failed') in $(( $(date +%s) - start )) s;"
+fi
+
+if [ "$what" = all ] || [ "$what" = tsan ]; then
+  configure_in _build_tsan thread
+  cd "$top/_build_tsan"
+  start=$(date +%s)
+  if make -j"$jobs" tests/test_scheduler >make.out 2>&1 && ./tests/test_scheduler >tsan.out 2>&1; then
+    summary="$summary tsan: test_scheduler passed in $(( $(date +%s) - start )) s;"
+  else
+    tail -40 make.out tsan.out; status=1
+    summary="$summary tsan: test_scheduler FAILED;"
+  fi
+fi
+
+if [ "$what" = all ] || [ "$what" = fuzz ]; then
+  set +e
+  FUZZ_SECONDS="${FUZZ_SECONDS:-30}" "$top/tools/fuzz.sh" "$top/_build_asan"
+  rc=$?
+  set -e
+  if [ $rc -eq 77 ]; then summary="$summary fuzz: skipped (no clang with libFuzzer);"
+  elif [ $rc -ne 0 ]; then summary="$summary fuzz: FAILED;"; status=1
+  else summary="$summary fuzz: ${FUZZ_SECONDS:-30} s per harness, no crash;"; fi
+fi
+echo "sanitizers:$summary"
+exit $status
