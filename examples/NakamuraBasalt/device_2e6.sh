@@ -5,8 +5,10 @@
 # folder is ignored by git, so it stays on the host while it is warm).
 # Meant for tools/bench/device.sh's cmd step (BOLIDE_BUILD set, the GPU
 # build); results are copied to /tmp/dout, which device.sh returns.
-# Usage: device_2e6.sh start SECONDS    initial conditions, then run for SECONDS
-#        device_2e6.sh resume SECONDS   continue from the newest restart file
+# Usage: device_2e6.sh start SECONDS    initial conditions (run.sh IC_ONLY=1), then
+#                                       run for what is left of SECONDS
+#        device_2e6.sh resume SECONDS   continue from the newest restart file (or
+#                                       from the initial conditions if none yet)
 # When the run has reached time_end, the analysis follows (analyse.py: core.txt,
 # fragments_*.txt), within the same call if time is left, else in the next.
 set -uo pipefail
@@ -24,13 +26,18 @@ export BOLIDE_ARGS+=" -P Restarts:enable:true -P Restarts:delta_hours:${RESTART_
 out=/tmp/dout
 mkdir -p "$out"
 t0=$(date +%s)
+done_re="done: .* to t = 2.5e-05"
 if [ "$step" = start ]; then
-  # run.sh writes the initial conditions and params.yml, then runs bolide; it
-  # is stopped at the budget (the analysis of run.sh then does not run)
-  timeout "$budget" ./run.sh "$n" "$threads"
-  echo "start: rc $? after $(( $(date +%s) - t0 )) s"
-elif [ "$step" = resume ]; then
-  if ! grep -q "done:" "$dir/bolide.log" 2>/dev/null; then
+  # run.sh writes the initial conditions and params.yml (however long
+  # bolide-ic takes), then the run goes on for what is left of the budget
+  IC_ONLY=1 ./run.sh "$n" "$threads" || exit 1
+  echo "start: initial conditions after $(( $(date +%s) - t0 )) s"
+  rm -rf "$dir/restart" "$dir/bolide.log"
+  step=resume
+  budget=$(( budget - ($(date +%s) - t0) ))
+fi
+if [ "$step" = resume ]; then
+  if [ "$budget" -gt 30 ] && ! grep -q "$done_re" "$dir/bolide.log" 2>/dev/null; then
     from=""  # no restart file yet: from the initial conditions again
     [ -f "$dir/restart/restart.bin" ] && from=--restart
     # shellcheck disable=SC2086
@@ -41,8 +48,8 @@ elif [ "$step" = resume ]; then
 else
   echo "device_2e6.sh: error: start or resume"; exit 1
 fi
-grep -E "restart file|done:" "$dir/bolide.log" | tail -3
-if grep -q "done:" "$dir/bolide.log" && [ ! -s "$dir/core.txt" ]; then
+grep -E "restart file|done:" "$dir/bolide.log" 2>/dev/null | tail -3
+if grep -q "$done_re" "$dir/bolide.log" 2>/dev/null && [ ! -s "$dir/core.txt" ]; then
   left=$(( budget - ($(date +%s) - t0) ))
   [ "$left" -gt 60 ] && timeout "$left" env BOLIDE_BUILD="$BOLIDE_BUILD" "${PYTHON:-python3}" analyse.py "$dir"
 fi
