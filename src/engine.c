@@ -2,6 +2,7 @@
 /* The engine: initialisation and the time-step loop (see engine.h). */
 #include "engine.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <sched.h>
 #include <signal.h>
@@ -150,6 +151,25 @@ static void engine_init_outputs(struct engine *e, double t0) {
   e->out_times = t;
   e->nr_out = m;
   e->next_out = 0;
+}
+
+/** Remove the temporary snapshot files (BASENAME_*.tmp, crash_step*.tmp) that
+ *  a killed run left in the output folder. */
+static void engine_remove_stale_snapshots(const struct engine *e) {
+  DIR *d = opendir(e->outdir);
+  if (!d) return;
+  const size_t nb = strlen(e->snap_basename);
+  struct dirent *ent;
+  while ((ent = readdir(d))) {
+    const char *n = ent->d_name;
+    const size_t l = strlen(n);
+    if (l < 4 || strcmp(n + l - 4, ".tmp")) continue;
+    if (!((!strncmp(n, e->snap_basename, nb) && n[nb] == '_') || !strncmp(n, "crash_step", 10))) continue;
+    char path[2400];
+    snprintf(path, sizeof path, "%s/%s", e->outdir, n);
+    if (unlink(path) == 0) error_log(0, "removed %s, left by a run that stopped while writing it", path);
+  }
+  closedir(d);
 }
 
 /** Create the output folder (and parents) if missing. */
@@ -693,6 +713,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   }
 
   engine_mkdir(e->outdir);
+  engine_remove_stale_snapshots(e);
   if (e->restarts) engine_mkdir(e->restart_dir); /* where the stop file goes */
   char path[2048];
   snprintf(path, sizeof path, "%s/used_parameters.yml", e->outdir);

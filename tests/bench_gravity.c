@@ -2,7 +2,7 @@
  * is never asserted).  bench_gravity N [SET]: N particles of a Plummer
  * sphere (SET plummer, default) or a uniform sphere (uniform), the space
  * with leaves of 32 and at most 4^3 top-level cells, the defaults of
- * gravity (theta 0.5, order 4, epsilon_fmm); one untimed pass (the first
+ * gravity (theta 0.5, GRAVITY_ORDER_DEFAULT, epsilon_fmm); one untimed pass (the first
  * step: no acceleration scale), then prints "N seconds" for the second
  * (wall clock) and, on stderr, its CPU time and interaction counts. */
 #ifdef HAVE_CONFIG_H

@@ -9,7 +9,10 @@
  * clustered Plummer spheres of tests/gravity_sets.h), plummer:N, uniform:N.
  * Options:
  *   -s EPS      softening (Plummer-equivalent, spline kernel; in the file's
- *               length unit; default: the built-in sets' 0.1 N^(-1/3) x box 1)
+ *               length unit; default: the built-in sets' 0.1 N^(-1/3) x box 1);
+ *               -s auto: the median particle spacing (m / rho)^(1/3) of the
+ *               file's masses and densities (the reference impact's
+ *               "softening = lattice spacing")
  *   -c E,T,P    a configuration: Gravity:epsilon_fmm E, theta_cr T, order P
  *               (repeat; default: the defaults)
  *   -e K        evaluations per configuration (default 2): the first from
@@ -23,8 +26,11 @@
  *   -l L        leaf size (default 32, the engine's with gravity on)
  *   -m M        most top-level cells per side (default 16, the engine's)
  *   -g          evaluate on the GPU (gpu_grav_tree_all with the upward pass
- *               and the walks on the device; CUDA builds), else the CPU's
- *               serial gravity_tree_all
+ *               and the walks on the device; CUDA builds; the first
+ *               evaluation's gravity_estimate runs before, on the host's -t
+ *               threads, timed apart), else the CPU's serial
+ *               gravity_tree_all (its first evaluation's time includes the
+ *               estimate, serial)
  *
  * Prints one line per configuration and evaluation:
  *   mode eps_fmm theta order eval median p90 p99 max seconds m2l/N p2p/N
@@ -158,7 +164,8 @@ int main(int argc, char **argv) {
   for (int a = 1; a < argc; a++) {
     const int more = a + 1 < argc;
     if (strcmp(argv[a], "-s") == 0 && more) {
-      eps = atof(argv[++a]);
+      eps = strcmp(argv[++a], "auto") == 0 ? 0.0 : atof(argv[a]);
+      if (!(eps >= 0.0)) error_exit("bench_gravity_accuracy: -s wants a softening > 0 or auto");
     } else if (strcmp(argv[a], "-c") == 0 && more) {
       if (ncfg == MAX_CONFIGS) error_exit("bench_gravity_accuracy: at most %d -c", MAX_CONFIGS);
       double *c = cfg[ncfg++];
@@ -218,7 +225,16 @@ int main(int argc, char **argv) {
     ic_read(source, &file_us, NULL, 0, &p, &info);
     if (info.has_box_size)
       for (int d = 0; d < 3; d++) box[d] = info.box_size[d];
-    if (eps <= 0.0) error_exit("bench_gravity_accuracy: -s EPS (softening) wanted with a file");
+    if (eps == 0.0) {
+      double *sp = error_malloc(p.count * sizeof(double), "spacings");
+      for (size_t i = 0; i < p.count; i++)
+        sp[i] = p.rho[i] > 0.0 ? cbrt(p.m[i] / p.rho[i]) : 0.0;
+      qsort(sp, p.count, sizeof(double), cmp_double);
+      eps = pct(sp, p.count, 0.5);
+      free(sp);
+      if (!(eps > 0.0)) error_exit("bench_gravity_accuracy: -s auto: %s has no densities", source);
+    }
+    if (eps < 0.0) error_exit("bench_gravity_accuracy: -s EPS (softening) wanted with a file");
   }
   const size_t n = p.count;
   struct space s;
@@ -295,6 +311,14 @@ int main(int argc, char **argv) {
     memset(p.gax, 0, n * sizeof(double));
     memset(p.gay, 0, n * sizeof(double));
     memset(p.gaz, 0, n * sizeof(double));
+    if (gpu) {
+      /* the host's estimate on the -t threads as in the engine, outside the
+       * GPU's timed evaluation (gpu_grav_tree_all would run it serially) */
+      const double te = error_walltime();
+      if (gravity_estimate(&p, s.cells, s.nr_top, gc, &gp, nthreads))
+        printf("# first evaluation's gravity_estimate on the host: %.3f s wall, %d threads\n",
+               error_walltime() - te, nthreads);
+    }
     for (int ev = 1; ev <= nevals; ev++) {
       struct gravity_counters cnt;
       gravity_counters_get(&cnt, 1);

@@ -6,6 +6,9 @@
 set -u
 B=${BOLIDE_BUILDDIR:?}
 S=${BOLIDE_SRCDIR:?}
+# a refused input leaves what the reader had allocated (the harness jumps
+# out of error_exit, see tests/fuzz/fuzz_common.h): no leak detection
+export ASAN_OPTIONS="${ASAN_OPTIONS:-}:detect_leaks=0"
 fail=0 n=0
 for h in params ic restart; do
   for f in "$S"/tests/data/fuzz/"$h"-*; do

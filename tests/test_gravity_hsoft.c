@@ -8,7 +8,7 @@
  * tree (gravity_tree_all) is compared with direct summation with the same
  * pair softening (gravity_direct_h):
  *   - |a - a_dir| / |a_dir|: median < 1e-4, 99th percentile < 1e-3 at the
- *     defaults (theta_cr 0.5, order 4, epsilon_fmm 1e-4, first and second
+ *     defaults (theta_cr 0.5, order 5, epsilon_fmm 5e-5, first and second
  *     step), the limits of VALIDATION.md for gravity;
  *   - momentum |sum m a| / sum m |a| < 1e-12 (rounding) for the tree and
  *     the direct sum; potential energy within 1e-6;

@@ -71,7 +71,8 @@ fi
 # closing (which crashed in HDF5's exit handler).  One line, exit 1, no
 # temporary file; the earlier snapshots equal the uninterrupted run's and
 # the last restart file (written every step; none before the snapshot at
-# t = 0) resumes the run to its end.
+# t = 0) resumes the run to its end with every snapshot bit-identical to the
+# uninterrupted run's (one thread, Scheduler:deterministic).
 cat >d.yml <<'YML'
 InitialConditions:
   file_name: box.hdf5
@@ -120,8 +121,20 @@ PY
     elif ! timeout 60 "$B/bolide" -t 1 --restart -P Snapshots:subdir:full -P Restarts:subdir:full/restart d.yml >res.log 2>&1 ||
        ! grep -q "^done: .* to t = 0.02 " <(sed 's/^\[ *[0-9.]* s\] //' res.log); then
       echo "FAIL disk full after $bytes bytes: the restart file does not resume the run"; tail -3 res.log; fail=1
+    elif ! "$PYTHON" - 5 <<'PY'
+import sys
+import h5py
+import numpy as np
+for j in range(int(sys.argv[1])):
+    with h5py.File(f"ref/snapshot_{j:04d}.hdf5") as a, h5py.File(f"full/snapshot_{j:04d}.hdf5") as b:
+        for name in a["PartType0"]:
+            if not np.array_equal(a["PartType0"][name][...], b["PartType0"][name][...]):
+                sys.exit(f"snapshot {j}: {name} differs")
+PY
+    then
+      echo "FAIL disk full after $bytes bytes: the resumed run's snapshots differ from the uninterrupted run's"; fail=1
     else
-      echo "ok   disk full after $bytes bytes: $(cat err.txt); resumed to the end"
+      echo "ok   disk full after $bytes bytes: $(cat err.txt); resumed to the end, every snapshot identical"
     fi
   done
 done

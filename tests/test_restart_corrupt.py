@@ -115,11 +115,17 @@ def main():
             print("ok: fallback, %s: %s" % (what, warn[0]))
     reset()
     put("restart.bin.tmp", good[:1000])
+    with open("out/snapshot_0007.hdf5.tmp", "wb") as f:
+        f.write(b"partial")
     r = bolide("--restart", "-n", "6")
     if r.returncode or os.path.exists(R + "restart.bin.tmp") or "removed out/restart/restart.bin.tmp" not in r.stdout:
         fails.append("stale restart.bin.tmp not removed (exit %d)" % r.returncode)
     else:
         print("ok: stale restart.bin.tmp removed at start")
+    if os.path.exists("out/snapshot_0007.hdf5.tmp") or "removed out/snapshot_0007.hdf5.tmp" not in r.stdout:
+        fails.append("stale snapshot temporary file not removed")
+    else:
+        print("ok: stale snapshot_0007.hdf5.tmp removed at start")
 
     # ---- item 4: the corpus (restart.prev.bin removed: no fallback)
     L = layout(good)

@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
-# Issue 18: nothing lost to a crash.  A run is killed with SIGKILL at random
-# moments (during steps, snapshot writes and restart writes alike) N times,
-# resumed with --restart after each kill (from the start while no restart
-# file exists yet), and when it has finished every snapshot and the
-# statistics file are compared with the uninterrupted run: same file names,
-# times and particle data, bit for bit (one thread, Scheduler:deterministic;
-# tests/restart_compare.py).  Then the same with SIGTERM (each stop must exit
-# with status 0 after writing a restart file).
+# Issue 18: nothing lost to a crash.  A run is killed with SIGKILL N times,
+# at random moments and, every third kill, as soon as a snapshot file (every
+# other third: a restart file) is being written (its .tmp exists), resumed
+# with --restart after each kill (from the start while no restart file exists
+# yet), and when it has finished every snapshot and the statistics file are
+# compared with the uninterrupted run: same file names, times and particle
+# data, bit for bit (one thread, Scheduler:deterministic;
+# tests/restart_compare.py).  Then the same with SIGTERM at random moments
+# (each stop must exit with status 0 after writing a restart file).
 #
 #   BOLIDE_BUILDDIR=_build PYTHON=_build/.venv/bin/python tests/test_restart_kill.sh 50
 #                                      50 kills of each kind (about 4 min on
@@ -31,6 +32,7 @@ TimeIntegration:
 Snapshots:
   subdir: out
   delta_time: 0.003
+  compression: 9 # slower writes: a window for the kills aimed at them
 Scheduler:
   deterministic: true
 Restarts:
@@ -49,6 +51,7 @@ maxms=$(awk -v a="$t0" -v b="$t1" 'BEGIN {printf "%d", 500 * (b - a)}')
 echo "uninterrupted run: $(ls A/out/*.hdf5 | wc -l) snapshots, $(awk -v a="$t0" -v b="$t1" 'BEGIN {printf "%.2f", b - a}') s; kills after 0-$maxms ms"
 fail=0
 RANDOM=${BOLIDE_KILL_SEED:-18}
+mkfifo wait.fifo && exec 3<>wait.fifo # read -t on it: a sleep without a process
 for sig in KILL TERM; do
   d=$sig; mkdir $d; cd $d
   kills=0 runs=0 intmp=0 insnap=0 bad=0 cycles=0
@@ -66,8 +69,15 @@ for sig in KILL TERM; do
     if [ $sig = TERM ]; then # after the handlers are installed
       for _ in $(seq 400); do grep -q "particles" log.$runs 2>/dev/null && break; sleep 0.01; done
     fi
-    ms=$((RANDOM % (maxms + 1)))
-    sleep "$(awk -v m=$ms 'BEGIN {printf "%.3f", m / 1000}')"
+    aim=$([ $sig = KILL ] && echo $((kills % 3)) || echo 0)
+    if [ "$aim" -eq 0 ]; then
+      ms=$((RANDOM % (maxms + 1)))
+      sleep "$(awk -v m=$ms 'BEGIN {printf "%.3f", m / 1000}')"
+    else
+      # aimed: as soon as a snapshot (1) or a restart file (2) is being written
+      pat=$([ "$aim" -eq 1 ] && echo 'out/*.hdf5.tmp' || echo 'out/restart/restart.bin.tmp')
+      for _ in $(seq 20000); do compgen -G "$pat" >/dev/null && break; kill -0 $pid 2>/dev/null || break; read -t 0.001 -u 3; done
+    fi
     kill -s $sig $pid 2>/dev/null
     { wait $pid; } 2>/dev/null; rc=$?
     if [ $rc -eq 0 ] && grep -q "^\[.*\] done:" log.$runs && ! grep -q "received" log.$runs; then
@@ -80,15 +90,17 @@ for sig in KILL TERM; do
     if [ $sig = KILL ]; then
       [ $rc -eq 137 ] || { echo "FAIL: SIGKILL: run $runs exit $rc"; tail -3 log.$runs; bad=1; break; }
       [ -e out/restart/restart.bin.tmp ] && intmp=$((intmp + 1))
-      # the newest snapshot written by this run but not logged: killed while writing it
-      last=$(ls -t out/*.hdf5 2>/dev/null | head -1)
-      if [ -n "$last" ] && [ "$last" -nt .start ] && ! grep -q "snapshot $last " log.$runs; then insnap=$((insnap + 1)); fi
+      # a snapshot's temporary file: killed while writing it (removed by the next run)
+      compgen -G 'out/*.tmp' >/dev/null && insnap=$((insnap + 1))
     else
       if [ $rc -ne 0 ] || ! grep -q "SIGTERM received" log.$runs; then
         echo "FAIL: SIGTERM: run $runs exit $rc"; tail -3 log.$runs; bad=1; break
       fi
     fi
   done
+  if [ $bad -eq 0 ] && { compgen -G 'out/*.tmp' || compgen -G 'out/restart/*.tmp'; } >/dev/null; then
+    echo "FAIL: SIG$sig: temporary files left: $(ls out/*.tmp out/restart/*.tmp 2>/dev/null)"; bad=1
+  fi
   if [ $bad -eq 0 ]; then
     if "$PY" "$S/restart_compare.py" ../A/out out >cmp.txt; then
       cycles=$((cycles + 1))

@@ -16,7 +16,7 @@ what="${1:-all}"
 shift || true
 jobs="$(nproc 2>/dev/null || echo 2)"
 [ -x "$top/configure" ] || "$top/tools/setup.sh" >/dev/null
-export ASAN_OPTIONS="halt_on_error=1:abort_on_error=0:detect_leaks=1:allocator_may_return_null=1"
+export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1"
 # The fast tests (about 6 minutes under ASan on 2 cores): the unit tests, the

@@ -7,6 +7,7 @@
 # WEIBULL_K, WEIBULL_M (optional) replace the target's Weibull k and m of
 # params.yml (e.g. WEIBULL_M=8.5, the value of miluphcuda's Nakamura test
 # case, README.md); the run folder is then run_N_m<M>_k<K>.
+# IC_ONLY=1: write the initial conditions and params.yml, run nothing.
 # Writes, in run_N/: the snapshots, fragments_*.txt (bolide-fof tables),
 # core.txt (intact-core fraction against time), spectrum.png.
 set -euo pipefail
@@ -33,6 +34,8 @@ sed -e "s/weibull_k: 5e34/weibull_k: ${WEIBULL_K:-5e34}/" -e "s/weibull_m: 8}/we
   params.yml >"$dir/params.yml"
 grep -q "weibull_k: ${WEIBULL_K:-5e34}, weibull_m: ${WEIBULL_M:-8}}" "$dir/params.yml" \
   || { echo "run.sh: could not set the Weibull parameters in $dir/params.yml"; exit 1; }
+# IC_ONLY=1: stop here (initial conditions and params.yml written; device_2e6.sh)
+[ -z "${IC_ONLY:-}" ] || exit 0
 t0=$(date +%s)
 # shellcheck disable=SC2086
 ( cd "$dir" && "$build/bolide" -t "$threads" ${BOLIDE_ARGS:-} params.yml >bolide.log 2>&1 ) \

@@ -45,7 +45,7 @@ struct params;
 struct unit_system;
 
 /** Default of Gravity:epsilon_fmm (the same value as in src/io/param_list.h). */
-#define GRAVITY_EPSILON_FMM_DEFAULT 1e-4
+#define GRAVITY_EPSILON_FMM_DEFAULT 5e-5
 
 /** Parameters of self-gravity (section Gravity of the parameter file). */
 struct gravity_props {

@@ -65,7 +65,7 @@
 /** Highest expansion order the arrays hold (p = 5: 56 coefficients). */
 #define GRAVITY_ORDER_MAX 5
 /** Default expansion order (theory/gravity.md, "Accuracy"). */
-#define GRAVITY_ORDER_DEFAULT 4
+#define GRAVITY_ORDER_DEFAULT 5
 /** Number of multi-indices n with |n| <= p. */
 #define GRAVITY_NCOMP(p) (((p) + 1) * ((p) + 2) * ((p) + 3) / 6)
 /** Coefficients of a multipole or field tensor of the highest order. */
@@ -342,6 +342,10 @@ BOLIDE_INLINE void gravity_m2l(struct gravity_field *BOLIDE_RESTRICT fb,
         int j = 0;
         GRAVITY_UNROLL
         for (int n = 0; n <= p - k; n++) {
+          if (n == 1) { /* the dipole vanishes about the centre of mass */
+            j += 3;
+            continue;
+          }
           const double sg = gravity_sign(n);
           GRAVITY_UNROLL
           for (int nx = n; nx >= 0; nx--)
@@ -373,6 +377,10 @@ BOLIDE_INLINE void gravity_m2l_sym(struct gravity_field *BOLIDE_RESTRICT fa,
         int j = 0;
         GRAVITY_UNROLL
         for (int n = 0; n <= p - k; n++) {
+          if (n == 1) { /* the dipoles vanish about the centres of mass */
+            j += 3;
+            continue;
+          }
           const double sg = gravity_sign(n);
           GRAVITY_UNROLL
           for (int nx = n; nx >= 0; nx--)
@@ -454,6 +462,10 @@ BOLIDE_INLINE void gravity_m2p(const struct gravity_multipole *BOLIDE_RESTRICT m
   double phi = 0.0, ax = 0.0, ay = 0.0, az = 0.0;
   int i = 0;
   for (int n = 0; n <= p; n++) {
+    if (n == 1) { /* the dipole vanishes about the centre of mass */
+      i += 3;
+      continue;
+    }
     const double sg = gravity_sign(n);
     for (int nx = n; nx >= 0; nx--)
       for (int ny = n - nx; ny >= 0; ny--, i++) {
@@ -491,8 +503,8 @@ BOLIDE_INLINE void gravity_m2p_p2l(double m, const struct gravity_multipole *BOL
       GRAVITY_UNROLL
       for (int ny = n - nx; ny >= 0; ny--, i++) {
         const int nz = n - nx - ny;
-        phi += mb->M[i] * D[i];
-        if (n < p) {
+        if (n != 1) phi += mb->M[i] * D[i]; /* B's dipole vanishes (centre of mass) */
+        if (n < p && n != 1) {
           ax += mb->M[i] * D[gravity_index(nx + 1, ny, nz)];
           ay += mb->M[i] * D[gravity_index(nx, ny + 1, nz)];
           az += mb->M[i] * D[gravity_index(nx, ny, nz + 1)];

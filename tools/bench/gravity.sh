@@ -16,7 +16,7 @@ if [ ! -x "$bench" ]; then
   echo "gravity.sh: error: $bench not found (run make tests/bench_gravity in $builddir)" >&2
   exit 1
 fi
-echo "# N seconds ($set_name sphere, theta 0.5, order 4, epsilon_fmm default)"
+echo "# N seconds ($set_name sphere, theta 0.5, the default order and epsilon_fmm)"
 results=$(for n in $sizes; do "$bench" "$n" "$set_name"; done)
 echo "$results"
 echo "$results" | awk '

@@ -49,7 +49,7 @@ def main(argv=None):
                        and r["eval"] == ev]
                 if not sel:
                     continue
-                sel.sort(key=lambda r: r["t"])
+                sel.sort(key=lambda r: -r["eps"] if r["eps"] > 0 else -1e9)  # geometric first, then falling eps
                 for ax, q in zip(axes, ("median", "p99")):
                     line, = ax.plot([r["t"] for r in sel], [r[q] for r in sel], "o-" if ev == 2 else "o--",
                                     mfc=fill, label=f"{tag} theta {theta} p {order} eval {ev}")
