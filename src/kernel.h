@@ -202,21 +202,32 @@ BOLIDE_INLINE void kernel_eval_type(enum kernel_type t, double q, double *w, dou
 
 /* ------------------------------------------------------------ compiled-in kernel */
 
+/* KERNEL_ETA_DEFAULT: the default of SPH:resolution_eta (and of the initial
+ * conditions' h) for each kernel, a plain number so that the parameter list
+ * can quote it (theory/sph.md, section 1, "Choice of kernel and eta").
+ * Wendland C2: 1.7 (149 neighbours), with which the Sod tube converges on
+ * lattice and glass initial conditions; the cubic spline keeps 1.2348 (48
+ * neighbours, SWIFT's value), the other kernels the same eta. */
 #if defined(KERNEL_CUBIC_SPLINE)
 #define KERNEL_TYPE KERNEL_TYPE_CUBIC_SPLINE
 #define kernel_eval kernel_cubic_eval
+#define KERNEL_ETA_DEFAULT 1.2348
 #elif defined(KERNEL_QUARTIC_SPLINE)
 #define KERNEL_TYPE KERNEL_TYPE_QUARTIC_SPLINE
 #define kernel_eval kernel_quartic_eval
+#define KERNEL_ETA_DEFAULT 1.2348
 #elif defined(KERNEL_WENDLAND_C2)
 #define KERNEL_TYPE KERNEL_TYPE_WENDLAND_C2
 #define kernel_eval kernel_wendland_c2_eval
+#define KERNEL_ETA_DEFAULT 1.7
 #elif defined(KERNEL_WENDLAND_C4)
 #define KERNEL_TYPE KERNEL_TYPE_WENDLAND_C4
 #define kernel_eval kernel_wendland_c4_eval
+#define KERNEL_ETA_DEFAULT 1.2348
 #elif defined(KERNEL_WENDLAND_C6)
 #define KERNEL_TYPE KERNEL_TYPE_WENDLAND_C6
 #define kernel_eval kernel_wendland_c6_eval
+#define KERNEL_ETA_DEFAULT 1.2348
 #else
 #error "no SPH kernel selected: configure --with-kernel=NAME defines KERNEL_<NAME> in config.h"
 #endif
@@ -229,6 +240,10 @@ BOLIDE_INLINE void kernel_eval_type(enum kernel_type t, double q, double *w, dou
 #define KERNEL_PICK_NORM(E, f, n, g, c) (KERNEL_TYPE == KERNEL_TYPE_##E ? (c) :
 /** H / h of the compiled-in kernel. */
 #define kernel_gamma BOLIDE_KERNELS(KERNEL_PICK_GAMMA) 0.0)))))
+/** KERNEL_ETA_DEFAULT as a string literal ("1.7"), for the parameter list. */
+#define KERNEL_STR_(x) #x
+#define KERNEL_STR(x) KERNEL_STR_(x)
+#define KERNEL_ETA_DEFAULT_STR KERNEL_STR(KERNEL_ETA_DEFAULT)
 /** Name of the compiled-in kernel ("cubic-spline", ...). */
 #define kernel_name BOLIDE_KERNELS(KERNEL_PICK_NAME) "unknown")))))
 /** Normalisation constant C of the compiled-in kernel. */

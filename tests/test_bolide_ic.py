@@ -39,7 +39,8 @@ def neighbour_distances(d, k):
 
 with tempfile.TemporaryDirectory() as tmp:
     # cubic lattice: 6 neighbours at the spacing, masses rho V / N, h = eta dx
-    d = make(tmp, "cubic", "box", "--n", "8", "--size", "2", "--rho", "3", "--periodic")
+    d = make(tmp, "cubic", "box", "--n", "8", "--size", "2", "--rho", "3", "--periodic",
+             "--eta", "1.2348")
     x = d["Coordinates"]
     check(len(x) == 512, f"cubic count {len(x)}")
     check(np.all((x >= 0) & (x < 2)), "cubic: particle outside the box")

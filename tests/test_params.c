@@ -111,7 +111,7 @@ static void test_valid_file(void) {
   CHECK(params_get_real_array(p, "InitialConditions:box_size", a, 2) == 2); /* maxn honoured */
   /* defaults, from the table's text */
   CHECK(!params_given(p, "SPH:resolution_eta"));
-  CHECK(params_get_real(p, "SPH:resolution_eta") == 1.2348);
+  CHECK(params_get_real(p, "SPH:resolution_eta") == KERNEL_ETA_DEFAULT); /* the kernel's */
   CHECK(params_get_real(p, "SPH:h_tolerance") == 1e-4);
   CHECK(params_get_int(p, "SPH:max_ghost_iterations") == 30);
   CHECK(params_get_bool(p, "Restarts:enable") == 0);

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "error.h"
+#include "kernel.h"
 #include "params.h"
 
 /** Whole content of a file (malloc'd), or NULL; *len gets its size. */
@@ -36,6 +37,15 @@ int main(int argc, char **argv) {
     params_write_reference(f);
     if (fclose(f) != 0) error_exit("%s: cannot write", argv[2]);
     return 0;
+  }
+  /* the file is that of the default build: SPH:resolution_eta's default
+   * depends on the kernel (KERNEL_ETA_DEFAULT, src/kernel.h) */
+  if (KERNEL_TYPE != KERNEL_TYPE_WENDLAND_C2) {
+    printf(
+        "SKIP: examples/parameters.yml is written for the default kernel (wendland-C2), "
+        "this build has %s\n",
+        kernel_name);
+    return 77;
   }
   const char *src = getenv("BOLIDE_SRCDIR");
   if (!src) src = BOLIDE_SRCDIR;

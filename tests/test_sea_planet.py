@@ -7,9 +7,12 @@ particle spacings thick, stretching a = 0.2 -> 0.15, the shells' placement
 density iterated against their SPH density (6 iterations; the outermost
 shell takes the mass that is left) and 30 steps of relaxation along the
 shells (theory/planets.md, "SEA planet: the 1 % bar").  The SPH density is
-the one Bolide computes at start-up (cubic spline, resolution_eta 1.2348,
-48 neighbours; tools/sph_density.py is the same estimator, written
-independently of the C code that the generator uses).  The test asserts the
+the one Bolide computes at start-up with its defaults (the kernel the build
+was configured with and its default resolution_eta: Wendland C2 and 1.7,
+149 neighbours, since issue 17 item 5; the cubic spline and 1.2348, 48
+neighbours, before; tools/sph_density.py is the same estimator, written
+independently of the C code that the generator uses, and takes the kernel
+from the file's header and eta from `bolide --param-reference`).  The test asserts the
 bar as written and prints, per shell, where the deviation comes from:
 
 * surface: the SPH density of the *continuous* profile (no particles at all,
@@ -92,11 +95,15 @@ with tempfile.TemporaryDirectory() as tmp:
         d = {k: f["PartType0"][k][:] for k in f["PartType0"]}
         x = d["Coordinates"] - 0.5 * f["Header"].attrs["BoxSize"]
     rr = np.linalg.norm(x, axis=1)
-    rho_sph, h = sph_density.density(x, d["Masses"])
+    kern = sph_density.kernel_of(path)
+    eta = sph_density.eta_default(os.path.join(build, "bolide"))
+    kn = int(2 * sph_density.neighbours(eta, kern)) + 1
+    print(f"     estimator: {kern}, resolution_eta {eta}, {kn} neighbours searched")
+    rho_sph, h = sph_density.density(x, d["Masses"], eta=eta, k=max(100, kn), kernel=kern)
     radii, inv = shells_of(rr)
     outer = inv == len(radii) - 1
     dev = rho_sph / d["Densities"] - 1
-    cont = sph_density.profile_density(rr, h, r_prof, rho_prof)
+    cont = sph_density.profile_density(rr, h, r_prof, rho_prof, kernel=kern)
     surf = cont / d["Densities"] - 1  # continuum SPH vs profile
     disc = rho_sph / cont - 1  # particles vs continuum SPH
     print(f"     {len(radii)} shells; per shell: r/R, N, SPH vs profile mean [min, max],"
@@ -113,7 +120,7 @@ with tempfile.TemporaryDirectory() as tmp:
         s = seagen.GenSphere(N, r_prof[1:], rho_prof[1:], A1_mat_prof=np.zeros(len(r_prof) - 1),
                              A1_u_prof=P[1:, 5], verbosity=0)
         xs = np.c_[s.A1_x, s.A1_y, s.A1_z]
-        rs_sg, _ = sph_density.density(xs, s.A1_m)
+        rs_sg, _ = sph_density.density(xs, s.A1_m, eta=eta, k=max(100, kn), kernel=kern)
         rr_sg = np.linalg.norm(xs, axis=1)
         rad_sg, inv_sg = shells_of(rr_sg)
         dsg = np.abs(rs_sg / s.A1_rho - 1)[inv_sg < len(rad_sg) - 1]

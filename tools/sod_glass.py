@@ -2,33 +2,36 @@
 """Turn a lattice Sod tube of `bolide-ic sod` into a glass-like one.
 
 The lattice tube holds, in a box Lx x Ly x Lz periodic in all directions,
-the dense gas on a lattice of spacing a in 0 <= x < Lx/2 and the light gas
-on one of spacing 2a in Lx/2 <= x < Lx, left particles first, all of one
-mass.  This script replaces the positions of each half by a relaxed glass
-of the same box (Lx/2 x Ly x Lz, periodic) and the same number of particles,
-and keeps every other field (masses, energies, ids; h is only the first
-guess of the ghost iteration).  The two glasses are relaxed separately, so
-each is periodic on its own; where they meet, at x = 0 and x = Lx/2, the
-particle distribution is as irregular as inside a glass (no gap, no
-overlap beyond that of two independent glasses).
+the dense gas on a cubic lattice of spacing a in 0 <= x < Lx/2 and the
+light gas on one of spacing 2a in Lx/2 <= x < Lx, left particles first, all
+of one mass.  This script replaces the positions of each half by copies of
+a periodic glass cube (16^3 particles of unit spacing for the left half,
+8^3 for the right, each relaxed once from its own seeded random positions)
+scaled to the half's spacing and tiled over it, and keeps every other field
+(masses, energies, ids; h is only the first guess of the ghost iteration).
+The tiles are periodic, so each half is periodic on its own and the
+particle numbers are those of the lattice; the tile period (16 spacings)
+is several kernel diameters, so that no kernel sees the repetition.  The
+tube's lattice counts must be multiples of the cubes' (N_x a multiple of
+64 with Ly = Lz = 0.25, of 32 with 0.5).
 
 Relaxation (a discrete version of the pressure-driven settling with which
 glass initial conditions are usually made, e.g. White 1994; Price 2012,
-Sec. 5.1): from uniformly random positions (seeded: the result is
-reproducible), each particle is moved along the isothermal SPH pressure
-force of unit sound speed,
+Sec. 5.1): from uniformly random positions, each particle is moved along
+the isothermal SPH pressure force of unit sound speed,
 
     a_i = - sum_j (1/rho_i + 1/rho_j) grad_i W(r_ij, h),   rho_i = sum_j W(r_ij, h),
 
 (cubic spline, h = 1.3 a, unit masses), by dx_i = c a^2 a_i with |dx_i| at
-most 0.1 a and c = 0.1; the force vanishes for a uniform density, so the
+most 0.1 a and c = 0.3; the force vanishes for a uniform density, so the
 iteration settles into a disordered, nearly uniform arrangement (a glass)
 with no preferred direction.  Iterations stop after --iterations or when
-the rms density contrast falls below --tolerance; both numbers and the
-final contrast are printed.
+the rms density contrast falls below --tolerance (about 0.004 after the
+300 default steps); --cache keeps the cubes, so that a resolution series
+relaxes them once.
 
 Usage:
-    sod_glass.py LATTICE.hdf5 GLASS.hdf5 [--seed S] [--iterations N]
+    sod_glass.py LATTICE.hdf5 GLASS.hdf5 [--seed S] [--iterations N] [--cache DIR]
 """
 
 import argparse

@@ -28,7 +28,7 @@ while getopts "n:i:t:P:w:q" o; do
     P) over+=(-P "$OPTARG") ;;
     w) work=$OPTARG ;;
     q) plot=--no-plot ;;
-    *) sed -n '2,17p' "$0"; exit 1 ;;
+    *) sed -n '2,18p' "$0"; exit 1 ;;
   esac
 done
 [ -n "$work" ] || work=$here/convergence

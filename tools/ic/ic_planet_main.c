@@ -11,6 +11,7 @@
 #include "ic.h"
 #include "ic_impact.h"
 #include "ic_planet.h"
+#include "kernel.h"
 #include "snapshot.h"
 #include "units.h"
 #include "version.h"
@@ -135,7 +136,8 @@ static void body_init(struct body *b, const char *what) {
   b->spec.T_s = b->T = 300;
   b->spec.n_prof = 10000;
   b->n = 1e5;
-  b->eta = 1.2348;
+  /* SPH:resolution_eta's default: the SEA shells are iterated against it */
+  b->eta = KERNEL_ETA_DEFAULT;
   b->seed = 1;
   b->sea = (struct ic_sea_options)IC_SEA_OPTIONS_DEFAULT;
   b->u = -1;
@@ -280,7 +282,9 @@ static void planet_usage(FILE *f) {
       "  --n-prof N               radial steps of the profile (default 10000)\n"
       "  --profile FILE           write the profile table (r m rho P T u layer)\n"
       "  --mat-ids I,J            material ids (default: the library's swift_id)\n"
-      "  --eta ETA                h = ETA (m/rho)^(1/3) (default 1.2348)\n"
+      "  --eta ETA                h = ETA (m/rho)^(1/3) (default " KERNEL_ETA_DEFAULT_STR
+      ", as\n"
+      "                           SPH:resolution_eta)\n"
       "  --seed S                 seed of the shell rotations (default 1)\n"
       "  --shell-thickness F      SEA shell thickness in particle spacings (default 1.2;\n"
       "                           Kegerreis et al. 2019: 1)\n"

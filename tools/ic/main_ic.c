@@ -14,6 +14,7 @@
 #include "error.h"
 #include "ic_impact.h"
 #include "ic_tools.h"
+#include "kernel.h"
 #include "snapshot.h"
 #include "units.h"
 #include "version.h"
@@ -118,7 +119,9 @@ static void icgen_usage(FILE *f) {
       "  --seed S              seed of the displacement (default 1)\n"
       "  --periodic, --no-periodic  periodic box (default: box no, sod and sedov yes)\n"
       "  --mat ID              material id of every particle (default 0)\n"
-      "  --eta ETA             h = ETA x mean particle spacing (default 1.2348)\n"
+      "  --eta ETA             h = ETA x mean particle spacing (default: SPH:resolution_eta's,\n"
+      "                        " KERNEL_ETA_DEFAULT_STR
+      " with the compiled-in kernel)\n"
       "  --energy E            energy deposited (default 1) [sedov]\n"
       "  --radius R            deposit radius (default 2 h) [sedov]\n"
       "  --weighting W         kernel (cubic spline in r/R, default) or uniform [sedov]\n"
@@ -200,7 +203,7 @@ int main(int argc, char **argv) {
                          .u = cmd == CMD_SEDOV ? 1e-6 : 1,
                          .seed = 1,
                          .periodic = cmd != CMD_BOX,
-                         .eta = 1.2348,
+                         .eta = KERNEL_ETA_DEFAULT,
                          .energy = 1,
                          .kernel_weighting = 1,
                          .gamma = 5.0 / 3.0};
