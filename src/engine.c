@@ -663,12 +663,17 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     engine_init_outputs(e, e->time);
     e->params_text = params_to_string(params);
     int32_t *ids = error_malloc((e->mats->n ? e->mats->n : 1) * sizeof(int32_t), "material ids");
-    for (int k = 0; k < e->mats->n; k++) ids[k] = e->mats->mats[k].id;
-    const struct restart_expect ex = {e->params_text, ids, e->mats->n, e->nr_out, e->time, e->time_end};
+    int32_t *u_floor = error_malloc((e->mats->n ? e->mats->n : 1) * sizeof(int32_t), "material flags");
+    for (int k = 0; k < e->mats->n; k++) {
+      ids[k] = e->mats->mats[k].id;
+      u_floor[k] = e->mats->mats[k].u_floor;
+    }
+    const struct restart_expect ex = {e->params_text, ids, e->mats->n, e->nr_out, e->time, e->time_end, u_floor};
     struct restart_data rd;
     restart_read(e->restart_dir, &ex, &rd, icname, sizeof icname);
     snprintf(e->restart_file, sizeof e->restart_file, "%s", icname);
     free(ids);
+    free(u_floor);
     rs = rd.st;
     e->parts = rd.p;
     e->flaw_eps = rd.flaw_eps;
