@@ -132,6 +132,7 @@ struct engine {
   struct restart_cells restart_cells; /**< the cells' h_max and dx_max from the file */
   char restart_file[4096];        /**< the restart file this run resumed from */
   double *wd_x;                   /**< watchdog: positions before the drift of the step (3 per particle) */
+  double t_watchdog;              /**< wall seconds of the watchdog's checks */
   long wd_inject_step;            /**< BOLIDE_TEST_INJECT: step whose end gets a bad value (0: none) */
   char wd_inject_field[32];       /**< its particle field */
   double wd_inject_value;         /**< its value */

@@ -174,6 +174,7 @@ def main():
     corpus.append(("negative mass", setf(good, ar["m"][0], "<d", -1.0)))
     corpus.append(("infinite velocity", setf(good, ar["vx"][0] + 8 * 7, "<d", float("inf"))))
     corpus.append(("negative density", setf(good, ar["rho"][0] + 8 * 2, "<d", -1.0)))
+    corpus.append(("negative energy of an ideal gas", setf(good, ar["u"][0] + 8 * 4, "<d", -1.0)))
     corpus.append(("damage 2", setf(good, ar["dmg"][0], "<d", 2.0)))
     corpus.append(("negative id", setf(good, ar["id"][0], "<q", -7)))
     corpus.append(("duplicate id", setf(good, ar["id"][0] + 8, "<q", struct.unpack_from("<q", good, ar["id"][0])[0])))

@@ -11,7 +11,9 @@
 # BUILDDIR/fuzz/crash-HARNESS-*: copy it to tests/data/fuzz/HARNESS-NAME and
 # it becomes a regression input that tests/test_fuzz_corpus.sh replays.
 # Exit 77 (skip) when clang or its libFuzzer is missing.
-# Environment: FUZZ_SECONDS (default 60; 0: build only), FUZZ_JOBS (parallel jobs per
+# Environment: FUZZ_SECONDS (default 60; 0: build only), FUZZ_TIMEOUT (seconds
+# for one input before it counts as a hang; default 60: a loaded machine
+# made a 0.8 s input take over 10 s), FUZZ_JOBS (parallel jobs per
 # harness, default 1), CLANG (default clang).
 set -euo pipefail
 top="$(cd "$(dirname "$0")/.." && pwd)"
@@ -57,7 +59,7 @@ for h in $harnesses; do
   echo "fuzz: $h for $secs s (corpus $corpus)"
   set +e
   (cd "$out" && ASAN_OPTIONS=detect_leaks=0:allocator_may_return_null=1 \
-    "./fuzz_$h" -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
+    "./fuzz_$h" -max_total_time="$secs" -timeout="${FUZZ_TIMEOUT:-60}" -rss_limit_mb=2048 -max_len=65536 \
       -close_fd_mask=3 -fork="${FUZZ_JOBS:-1}" -ignore_crashes=0 -ignore_ooms=0 -ignore_timeouts=0 -artifact_prefix="$out/crash-$h-" \
       -print_final_stats=1 "$corpus" "$seeds" >"$out/fuzz-$h.log" 2>&1)
   r=$?

@@ -428,9 +428,12 @@ int restart_read_buffer(const void *buf, size_t len, const char *name, const str
       if (x0[k] < 0.0 || x0[k] >= st->box[k])
         FAIL("particle %zu: position at the last rebuild %g outside the box [0, %g)", i, x0[k], st->box[k]);
     if (ex && ex->mat_ids) {
-      int found = 0;
-      for (int k = 0; k < ex->nr_mats && !found; k++) found = ex->mat_ids[k] == p->mat[i];
-      if (!found) FAIL("particle %zu: material id %d is not a material of this run", i, (int)p->mat[i]);
+      int found = -1;
+      for (int k = 0; k < ex->nr_mats && found < 0; k++)
+        if (ex->mat_ids[k] == p->mat[i]) found = k;
+      if (found < 0) FAIL("particle %zu: material id %d is not a material of this run", i, (int)p->mat[i]);
+      if (ex->u_floor && ex->u_floor[found] && p->u[i] < 0.0)
+        FAIL("particle %zu: internal energy %g (material %d needs u >= 0)", i, p->u[i], (int)p->mat[i]);
     }
     sorted[i] = p->id[i];
   }

@@ -64,6 +64,7 @@ struct restart_expect {
   int64_t nr_out;         /**< number of output times of the run */
   double time_begin;      /**< TimeIntegration:time_begin */
   double time_end;        /**< TimeIntegration:time_end */
+  const int32_t *u_floor; /**< per material of mat_ids: 1 when its EOS needs u >= 0 (NULL: no check) */
 };
 
 /** Everything a file holds (free with restart_data_free). */

@@ -16,9 +16,11 @@
  *  particle by particle (gravity_walk_decide). */
 #define GRAVITY_LOPSIDED 2.0
 
-/** Opening angle of the first pass, when the adaptive criterion has no
- *  acceleration scale yet, in units of Gravity:theta_cr (tests/test_gravity:
- *  0.7 brings the 99th percentile of the first pass under 1e-3). */
+/** Opening angle, in units of Gravity:theta_cr, of an interaction whose
+ *  cells lack the adaptive criterion's acceleration scale (a particle with
+ *  ga = 0).  A run's first evaluation normally has the scale of
+ *  gravity_estimate's pass (gravity_cpu.h); this is the fallback where that
+ *  did not run (0.7: the 99th percentile of test_gravity's sets under 1e-3). */
 #define GRAVITY_THETA_FIRST 0.7
 
 /** Entries of a GPU walker's stack (3 ints each, in local memory, which
@@ -107,8 +109,9 @@ enum {
  *  mb, previous-pass scales a_min, largest supports hs), the same in both
  *  directions (mutual interactions conserve momentum): the geometric
  *  criterion and, where the previous pass gave a scale, the adaptive one
- *  for a and for b.  Without a scale yet (a run's first step) while the
- *  adaptive criterion is on, a tighter geometric angle stands in for it.
+ *  (gravity_mac_power, the multipoles' power) for a and for b.  Without a
+ *  scale (a particle with ga = 0 where gravity_estimate did not run) while
+ *  the adaptive criterion is on, a tighter geometric angle stands in for it.
  *  The support beyond which every pair of a and b is Newtonian is the
  *  constant one or, with the softening tied to h, the larger of the two
  *  cells' largest supports. */
