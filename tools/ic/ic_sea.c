@@ -440,6 +440,7 @@ void ic_sea_planet(const struct ic_planet_profile *prof, const int32_t *mat_id, 
   if (!opt) opt = &def;
   for (int it = 0;; it++) {
     free(sh_r), free(sh_first), free(sh_layer);
+    if (it > 0) parts_free(p); /* sea_place allocates p afresh (LeakSanitizer) */
     const int ns =
         sea_place(prof, mat_id, N, eta, seed, first_id, p, opt->shell_thickness, opt->stretch_a,
                   gr, gv, ng, &sh_r, &sh_first, &sh_layer, verbose && it == 0);
