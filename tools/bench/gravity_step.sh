@@ -22,7 +22,7 @@ while getopts "n:m:t:s:c:" o; do
              c) cfgs=$OPTARG ;; *) exit 2 ;; esac
 done
 [ -f "$gen" ] || { echo "gravity_step.sh: error: $gen not found (set BOLIDE_BENCH_IC)" >&2; exit 1; }
-work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+work=$(mktemp -d); trap '[ -n "${GS_KEEP:-}" ] || rm -rf "$work"' EXIT
 cd "$work"
 printf "# %s on %s (%s), %s threads, commit %s\n" "$("$build/bolide" --version | head -1)" "$(uname -n)" \
   "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')" "$threads" \
@@ -64,7 +64,8 @@ Scheduler:
   max_top_level_cells: 16
 YML
       "$build/bolide" $gpu -t "$threads" --steps "$steps" p.yml >run.log 2>&1 || { tail -3 run.log >&2; exit 1; }
-      t=$(awk '/^ *[0-9]+ / && $1 >= 2 {print $5}' run.log | sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : 0.5 * (v[NR / 2] + v[NR / 2 + 1])}')
+      t=$(awk '/^ *[0-9]+ +[0-9.e+-]+ +[0-9.e+-]+ +[0-9]+ +[0-9.]+/ && NF >= 6 && $1 >= 2 {print $5}' run.log | sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : 0.5 * (v[NR / 2] + v[NR / 2 + 1])}')
+      [ "$t" != 0 ] || { echo "gravity_step.sh: error: no step lines in the run's log; its end:" >&2; tail -15 run.log >&2; }
       label=$c; [ "$c" = off ] || label="$e,p$p"
       printf "%-8s %-4s %-10s %12s\n" "$N" "$m" "$label" "$t"
     done
