@@ -50,4 +50,23 @@ if check planet_geometric.txt "planet, theta only" >/dev/null; then
 else
   echo "(as required, the geometric criterion alone, theta 0.5, misses the bars)"
 fi
+
+# On a GPU (make check-gpu sets BOLIDE_GRAVITY_GPU=1): the device's tree (-g:
+# multipole power in the device's upward pass, walks and interactions on the
+# device) meets the same bars and agrees with the CPU's tree: median and p99
+# within 1% of the CPU's at each evaluation (the summation order differs).
+if [ "${BOLIDE_GRAVITY_GPU:-0}" = 1 ]; then
+  "$B/tests/bench_gravity_accuracy" -g -t 2 -c "$cfg" -e 2 plummer2:20000 >plummer2_gpu.txt
+  "$B/tests/bench_gravity_accuracy" -g -t 2 -s auto -r ref.bin -c "$cfg" -e 2 planet.hdf5 >planet_gpu.txt
+  for f in plummer2 planet_default; do
+    g=${f%_default}_gpu.txt
+    check "$g" "GPU ${f%_default}" || fail=1
+    paste <(grep -v '^#' "$f.txt") <(grep -v '^#' "$g") | awk -v what="$f" '
+      {n++; for (k = 6; k <= 8; k += 2) {d = $(k + NF / 2) / $k - 1; if (d < 0) d = -d
+         if (!(d <= 0.01)) {printf "FAIL: %s eval %d: GPU column %d %.3e against CPU %.3e\n", what, $5, k, $(k + NF / 2), $k; bad = 1}}}
+      END {if (n < 2) {print "FAIL: " what ": GPU and CPU tables do not pair"; bad = 1}
+           else if (!bad) print what ": GPU within 1% of the CPU (median, p99) at every evaluation"
+           exit bad}' || fail=1
+  done
+fi
 exit $fail
