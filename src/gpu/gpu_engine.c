@@ -511,7 +511,7 @@ void gpu_engine_init(struct engine *e) {
   int mode = GPU_MODE_HYBRID;
   if (pol.kind == GPU_POLICY_ALL)
     mode = GPU_MODE_SERIAL;
-  else if (pol.kind == GPU_POLICY_LIST && !(pol.families & (1u << GPU_FAMILY_GRAVITY)))
+  else if (pol.kind == GPU_POLICY_LIST && !(pol.families & (1u << task_family_gravity)))
     mode = GPU_MODE_CPU_GRAV;
   /* exact summation has no GPU part: it runs on the CPU beside the hydrodynamics */
   if (e->gp.enabled && e->gp.direct) mode = GPU_MODE_CPU_GRAV;
