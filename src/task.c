@@ -19,7 +19,7 @@ const char *const task_subtype_names[task_subtype_count] = {
 };
 
 const char *const task_family_names[task_family_count] = {
-#define TASK_NAME_(name, subtype, policy, place, gpu, stage, reads, writes) #name,
+#define TASK_NAME_(name, subtype, policy, place, gpu, when, stage, reads, writes) #name,
     TASK_FAMILIES(TASK_NAME_)
 #undef TASK_NAME_
 };

@@ -23,7 +23,7 @@
 
 /* clang-format off */
 
-/* TASK_FAMILIES(X): X(name, subtype, policy, place, gpu, stage, reads, writes)
+/* TASK_FAMILIES(X): X(name, subtype, policy, place, gpu, when, stage, reads, writes)
  *
  *  name     the folder tasks/<name>/, the prefix of its files, and the name
  *           Scheduler:gpu lists (src/io/param_list.h)
@@ -37,43 +37,46 @@
  *  gpu      its step of the GPU FORCE phase (gpu_kernels.h: an int
  *           fn(struct gpu_phase *)), or NOSTEP: no step there (the drift
  *           has its own phase, gpu_drift)
+ *  when     ALWAYS: the step runs in every phase; SOLIDS: only with a
+ *           material with strength (hydro_props.solids); BRITTLE: only with
+ *           damage
  *  stage    the name of that step's timer (gpu_print_timers)
  *  reads    the particle fields that step reads, (field, ...): copied to the
  *           device before the phase when the particles are not resident
  *  writes   the fields it writes, copied back after the phase
  *
- * The fields of a family whose step does not run in a phase (gradient:
- * fluids only; damage: no brittle material) are not copied.  The solid
+ * The fields of a family whose step does not run in a phase (column when)
+ * are not copied.  The solid
  * state (stress, strain, plastic work) is listed under gradient, the family
  * that solids add: the force and the kick read it only with solids. */
 #define TASK_FAMILIES(X)                                                                          \
-  X(drift,    NOSUB,         HYDRO, 0, NOSTEP, "drift",                                            \
+  X(drift, NOSUB, HYDRO, 0, NOSTEP, ALWAYS, "drift",                                              \
     (),                                                                                           \
     ())                                                                                           \
-  X(density,  SUB(density),  HYDRO, 1, STEP(density_gpu_phase), "density",                        \
+  X(density, SUB(density), HYDRO, 1, STEP(density_gpu_phase), ALWAYS, "density",                  \
     ("x", "y", "z", "vpx", "vpy", "vpz", "m", "h", "flags"),                                      \
     ("rho", "rho_dh", "wcount", "wcount_dh", "div_v", "curl_vx", "curl_vy", "curl_vz"))           \
-  X(ghost,    NOSUB,         FREE,  2, STEP(ghost_gpu_phase), "ghost",                            \
+  X(ghost, NOSUB, FREE, 2, STEP(ghost_gpu_phase), ALWAYS, "ghost",                                \
     ("up", "mat", "u", "rho_full", "rho_fp", "alpha", "alpha_p"),                                 \
     ("h", "P", "cs", "cl", "balsara", "f_gradh", "flags", "h_lo", "h_hi", "rho_full", "rho_fp"))  \
-  X(gradient, SUB(gradient), HYDRO, 3, STEP(gradient_gpu_phase), "gradient(+extra ghost)",        \
+  X(gradient, SUB(gradient), HYDRO, 3, STEP(gradient_gpu_phase), SOLIDS, "gradient(+extra ghost)",\
     ("Sxx", "Sxy", "Sxz", "Syy", "Syz", "Szz", "Spxx", "Spxy", "Spxz", "Spyy", "Spyz", "Spzz",    \
      "eps_p", "dmg", "dmg_shear", "w_plastic"),                                                   \
     ("gmxx", "gmxy", "gmxz", "gmyy", "gmyz", "gmzz", "gvxx", "gvxy", "gvxz", "gvyx", "gvyy",      \
-     "gvyz", "gvzx", "gvzy", "gvzz", "Sxx", "Sxy", "Sxz", "Syy", "Syz", "Szz", "Spxx", "Spxy",     \
-     "Spxz", "Spyy", "Spyz", "Spzz", "dSxx", "dSxy", "dSxz", "dSyy", "dSyz", "dSzz", "Rxx", "Rxy", \
-     "Rxz", "Ryy", "Ryz", "Rzz", "eps_p", "dmg_shear", "w_plastic"))                              \
-  X(force,    SUB(force),    HYDRO, 4, STEP(force_gpu_phase), "force",                            \
+     "gvyz", "gvzx", "gvzy", "gvzz", "Sxx", "Sxy", "Sxz", "Syy", "Syz", "Szz", "Spxx", "Spxy",    \
+     "Spxz", "Spyy", "Spyz", "Spzz", "dSxx", "dSxy", "dSxz", "dSyy", "dSyz", "dSzz", "Rxx",       \
+     "Rxy", "Rxz", "Ryy", "Ryz", "Rzz", "eps_p", "dmg_shear", "w_plastic"))                       \
+  X(force, SUB(force), HYDRO, 4, STEP(force_gpu_phase), ALWAYS, "force",                          \
     ("vx", "vy", "vz"),                                                                           \
     ("ax", "ay", "az", "du_dt", "drho_dt", "v_sig", "xsphx", "xsphy", "xsphz"))                   \
-  X(damage,   SUB(damage),   HYDRO, 5, STEP(damage_gpu_phase), "damage",                          \
+  X(damage, SUB(damage), HYDRO, 5, STEP(damage_gpu_phase), BRITTLE, "damage",                     \
     ("dmg", "dcbrt", "n_act", "n_flaws", "flaw_first"),                                           \
     ("dmg", "dcbrt", "n_act", "dmg_rate"))                                                        \
-  X(kick,     NOSUB,         HYDRO, 7, STEP(kick_gpu_phase), "kick2",                             \
+  X(kick, NOSUB, HYDRO, 7, STEP(kick_gpu_phase), ALWAYS, "kick2",                                 \
     ("e_clamp"),                                                                                  \
     ("vx", "vy", "vz", "u", "vpx", "vpy", "vpz", "up", "alpha", "alpha_p", "dalpha_dt",           \
      "e_clamp"))                                                                                  \
-  X(gravity,  SUB(grav),     FREE,  6, STEP(gravity_gpu_phase), "gravity(hybrid: wait + device part)", \
+  X(gravity, SUB(grav), FREE, 6, STEP(gravity_gpu_phase), ALWAYS, "gravity(hybrid: wait + device part)",\
     (),                                                                                           \
     ())
 
@@ -121,13 +124,13 @@
 
 #define TASK_FAMILY_SUBTYPE_SUB(s) TASK_FAMILY_SUBTYPE_X_(s)
 #define TASK_FAMILY_SUBTYPE_NOSUB
-#define TASK_FAMILY_SUBTYPES_ROW_(name, subtype, policy, place, gpu, stage, reads, writes) \
+#define TASK_FAMILY_SUBTYPES_ROW_(name, subtype, policy, place, gpu, when, stage, reads, writes) \
   TASK_FAMILY_SUBTYPE_##subtype
 #define TASK_FAMILY_SUBTYPES TASK_FAMILIES(TASK_FAMILY_SUBTYPES_ROW_)
 
 /** The families, by registry row (task_family_names in src/task.c). */
 enum task_family {
-#define TASK_FAMILY_ENUM_(name, subtype, policy, place, gpu, stage, reads, writes) task_family_##name,
+#define TASK_FAMILY_ENUM_(name, subtype, policy, place, gpu, when, stage, reads, writes) task_family_##name,
   TASK_FAMILIES(TASK_FAMILY_ENUM_)
 #undef TASK_FAMILY_ENUM_
   task_family_count /**< number of families */
@@ -136,7 +139,7 @@ enum task_family {
 /** The bit (1u << family) of every HYDRO family (column policy). */
 #define TASK_FAMILY_POLICY_HYDRO(name) | (1u << task_family_##name)
 #define TASK_FAMILY_POLICY_FREE(name)
-#define TASK_FAMILY_HYDRO_ROW_(name, subtype, policy, place, gpu, stage, reads, writes) \
+#define TASK_FAMILY_HYDRO_ROW_(name, subtype, policy, place, gpu, when, stage, reads, writes) \
   TASK_FAMILY_POLICY_##policy(name)
 #define TASK_FAMILIES_HYDRO (0u TASK_FAMILIES(TASK_FAMILY_HYDRO_ROW_))
 

@@ -723,7 +723,7 @@ void gpu_engine_force(struct engine *e) {
     ge->tc_h_cap = error_realloc(ge->tc_h_cap, e->nr_tcells * sizeof(double), "GPU caps");
     ge->nr_tc = e->nr_tcells;
   }
-  /* the caps of the CPU ghost (engine_runtask.c): a pair is found while
+  /* the caps of the CPU ghost (tasks/ghost/ghost_task.c): a pair is found while
    * H_i + |dx_i| + |dx_j| stays below the reach of the task graph */
   const double H_limit = engine_H_limit(e);
   for (int t = 0; t < e->nr_tcells; t++) {
@@ -742,7 +742,7 @@ void gpu_engine_force(struct engine *e) {
   memset(&jb, 0, sizeof jb);
   jb.e = e;
   jb.dt_kick = e->first_force ? 0.0 : 0.5 * e->dt;
-  /* no damage before Damage:start_time (engine_damage does the same) */
+  /* no damage before Damage:start_time (damage_task does the same) */
   jb.dmg = (struct gpu_damage){e->damage && !(e->time < e->damage_start),
                                e->first_force ? 0.0 : e->dt, e->damage_max_change};
   jb.grav = (struct gpu_gravity){e->gp.enabled, e->gp.eps, e->gp.eta};
