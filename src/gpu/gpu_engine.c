@@ -708,7 +708,7 @@ static void *gpu_engine_hydro_run(void *arg) {
   struct gpu_hydro_job *jb = arg;
   struct engine *e = jb->e;
   struct gpu_engine *ge = e->gpu;
-  runner_unpin_self(&e->sched);
+  runner_unpin_self(&e->sched.pool);
   jb->t_start = error_walltime();
   jb->capped = gpu_cells_force(ge->gpu, &ge->cells, &e->parts, &e->space, e->tcells, e->nr_tcells,
                                e->ct, ge->tc_h_cap, &e->hp, e->mats, &jb->dmg, &jb->grav,
