@@ -84,8 +84,12 @@
  * task each family adds to the graph, and the CPU function that runs one
  * (void cpu(struct engine *, struct task *), in tasks/<family>/<family>_task.c).
  *
- *  shape    self (one cell), pair (two cells) or cell (a task type of its
- *           own: one cell's bookkeeping, no neighbours)
+ *  shape    self (one cell), pair (two cells), cell (a task type of its
+ *           own: one cell's bookkeeping, no neighbours), or chain(active):
+ *           a cell type of its own that the engine places itself, one task
+ *           per task cell between its force tasks and its kick (in registry
+ *           order), in the runs where int active(const struct engine *) is
+ *           1 (engine_graph.c); its edges then need no code of their own
  *  type     the task type (task_type_<type>): self, pair, or the cell type
  *  subtype  the task subtype (task_subtype_<subtype>), none for a cell type
  *           of a family without a subtype */
@@ -99,7 +103,7 @@
   X(gradient, cell, extra_ghost,     none,     extra_ghost_task)              \
   X(force,    self, self,            force,    force_self_task)               \
   X(force,    pair, pair,            force,    force_pair_task)               \
-  X(damage,   cell, damage,          damage,   damage_task)                   \
+  X(damage,   chain(damage_active), damage, damage, damage_task)              \
   X(kick,     cell, kick2,           none,     kick2_task)                    \
   X(gravity,  cell, grav_up,         grav,     gravity_up_task)               \
   X(gravity,  self, self,            grav,     gravity_self_task)             \
@@ -117,6 +121,7 @@
  *  TASK_FAMILY_SUBTYPE_X_(s) for every SUB(s) (src/task.h defines both hooks
  *  before each expansion). */
 #define TASK_FAMILY_CELL_TYPE_cell(type) TASK_FAMILY_TYPE_X_(type)
+#define TASK_FAMILY_CELL_TYPE_chain(active) TASK_FAMILY_CELL_TYPE_cell
 #define TASK_FAMILY_CELL_TYPE_self(type)
 #define TASK_FAMILY_CELL_TYPE_pair(type)
 #define TASK_FAMILY_TYPES_ROW_(family, shape, type, subtype, cpu) TASK_FAMILY_CELL_TYPE_##shape(type)
@@ -148,8 +153,15 @@ enum task_family {
 #ifndef __cplusplus
 struct engine;
 struct task;
-/* The CPU function of every kind of task (tasks/<family>/<family>_task.c). */
-#define TASK_FAMILY_CPU_DECL_(family, shape, type, subtype, cpu) void cpu(struct engine *e, struct task *t);
+/* The CPU function of every kind of task, and the predicate of every chain
+ * (tasks/<family>/<family>_task.c). */
+#define TASK_FAMILY_ACTIVE_DECL_chain(active) int active(const struct engine *e);
+#define TASK_FAMILY_ACTIVE_DECL_cell
+#define TASK_FAMILY_ACTIVE_DECL_self
+#define TASK_FAMILY_ACTIVE_DECL_pair
+#define TASK_FAMILY_CPU_DECL_(family, shape, type, subtype, cpu) \
+  void cpu(struct engine *e, struct task *t);                    \
+  TASK_FAMILY_ACTIVE_DECL_##shape
 TASK_FAMILY_TASKS(TASK_FAMILY_CPU_DECL_)
 #undef TASK_FAMILY_CPU_DECL_
 #endif

@@ -2,6 +2,12 @@
 #include "damage/damage_part.h"
 #include "engine.h"
 
+/** The damage tasks run where a material is brittle (a chain of the
+ *  registry: force -> damage -> kick2). */
+int damage_active(const struct engine *e) {
+  return e->damage;
+}
+
 /** Flaw activation and growth of d^(1/3) in a task cell over the step just
  *  computed (damage_iact.h), from the stress the force loop used. */
 void damage_task(struct engine *e, struct task *tk) {
