@@ -3,9 +3,10 @@
 Fails (one FAIL line per finding) when
 
   registry   a folder of tasks/ is not a family of the registry
-             (tasks/task_families.h), a family has no folder, Makefile.am does
-             not include exactly the registry's tasks/<family>/local.am in its
-             order, a kind of task (TASK_FAMILY_TASKS) names a family that is
+             (tasks/task_families.h), a family has no folder, the families'
+             fragments are not included through tasks/families.am, which
+             tools/families_am.sh writes from the registry (and which must be
+             current), a kind of task (TASK_FAMILY_TASKS) names a family that is
              not in the registry, or a file of tasks/<family>/ is not listed
              in its own local.am (or listed in another fragment);
   hand list  a C or CUDA line outside the registry lists three or more family
@@ -91,14 +92,17 @@ for f in families:
         fail("family %s of the registry has no folder tasks/%s/" % (f, f))
 
 makefile = read("Makefile.am")
-included = re.findall(r"^include \$\(top_srcdir\)/tasks/(\w+)/(\S+)$", makefile, re.M)
-for d, frag in included:
-    if frag != "local.am":
-        fail("Makefile.am includes tasks/%s/%s: a family's fragment is tasks/%s/local.am" % (d, frag, d))
-inc_families = [d for d, frag in included]
-if inc_families != families:
-    fail("Makefile.am includes the fragments of %s; the registry lists %s (same families, same order)"
-         % (inc_families, families))
+for d, frag in re.findall(r"^include \$\(top_srcdir\)/tasks/(\w+)/(\S+)$", makefile, re.M):
+    fail("Makefile.am includes tasks/%s/%s: the families' fragments come from tasks/families.am" % (d, frag))
+if not re.search(r"^include \$\(top_srcdir\)/tasks/families\.am$", makefile, re.M):
+    fail("Makefile.am does not include tasks/families.am (the registry's fragments)")
+expected = ["include $(top_srcdir)/tasks/%s/local.am" % f for f in families]
+if not os.path.isfile("tasks/families.am"):
+    fail("no tasks/families.am: run ./autogen.sh (tools/families_am.sh writes it from the registry)")
+else:
+    got = [l for l in read("tasks/families.am").splitlines() if not l.startswith("#")]
+    if got != expected:
+        fail("tasks/families.am is not the registry's (%s): run tools/families_am.sh" % ", ".join(families))
 
 # every file of a family's folder listed in its own fragment, and in no other
 fragments = {}
