@@ -30,7 +30,8 @@
  *  subtype  SUB(s): the subtype its tasks carry (task_subtype_s), or NOSUB
  *  policy   HYDRO: on the GPU it runs in the hydrodynamic phase, so a list in
  *           Scheduler:gpu names it with the other HYDRO families; FREE: it
- *           may be named or not
+ *           may be named or not; CPU: it has no GPU implementation (not a
+ *           name of Scheduler:gpu; a run where it has tasks stays on the CPU)
  *  place    its rank along a step's graph (engine_graph.c): drift first;
  *           self-gravity runs beside the hydrodynamics and joins before the
  *           kick.  The GPU FORCE phase runs its steps in this order.
@@ -144,9 +145,19 @@ enum task_family {
 /** The bit (1u << family) of every HYDRO family (column policy). */
 #define TASK_FAMILY_POLICY_HYDRO(name) | (1u << task_family_##name)
 #define TASK_FAMILY_POLICY_FREE(name)
+#define TASK_FAMILY_POLICY_CPU(name)
 #define TASK_FAMILY_HYDRO_ROW_(name, subtype, policy, place, gpu, when, stage, reads, writes) \
   TASK_FAMILY_POLICY_##policy(name)
 #define TASK_FAMILIES_HYDRO (0u TASK_FAMILIES(TASK_FAMILY_HYDRO_ROW_))
+
+/** The bit of every family with a GPU implementation (policy HYDRO or FREE):
+ *  the names Scheduler:gpu knows. */
+#define TASK_FAMILY_ON_GPU_HYDRO(name) | (1u << task_family_##name)
+#define TASK_FAMILY_ON_GPU_FREE(name) | (1u << task_family_##name)
+#define TASK_FAMILY_ON_GPU_CPU(name)
+#define TASK_FAMILY_GPU_ROW_(name, subtype, policy, place, gpu, when, stage, reads, writes) \
+  TASK_FAMILY_ON_GPU_##policy(name)
+#define TASK_FAMILIES_GPU (0u TASK_FAMILIES(TASK_FAMILY_GPU_ROW_))
 
 /* clang-format on */
 

@@ -469,6 +469,37 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
   return out.capped;
 }
 
+/** The chains of the registry (tasks/task_families.h): predicate and family. */
+struct gpu_engine_chain {
+  int (*active)(const struct engine *); /**< 1: the run has the family's tasks */
+  enum task_family family;              /**< the family */
+};
+#define GPU_ENGINE_CHAIN_chain(active) {active, GPU_ENGINE_CHAIN_FAMILY_
+#define GPU_ENGINE_CHAIN_FAMILY_(family) task_family_##family},
+#define GPU_ENGINE_CHAIN_cell(family)
+#define GPU_ENGINE_CHAIN_self(family)
+#define GPU_ENGINE_CHAIN_pair(family)
+#define GPU_ENGINE_CHAIN_ROW_(family, shape, type, subtype, cpu) GPU_ENGINE_CHAIN_##shape(family)
+static const struct gpu_engine_chain gpu_engine_chains[] = {
+    TASK_FAMILY_TASKS(GPU_ENGINE_CHAIN_ROW_){NULL, task_family_count}};
+#undef GPU_ENGINE_CHAIN_ROW_
+
+/** The reason why the run's tasks cannot run on the GPU's hydrodynamic
+ *  phase: a family of the registry without a GPU implementation (policy CPU)
+ *  whose chain tasks the run has; NULL if there is none. */
+static const char *gpu_engine_cpu_only(const struct engine *e) {
+  static char why[160];
+  for (int k = 0; gpu_engine_chains[k].active; k++) {
+    const enum task_family f = gpu_engine_chains[k].family;
+    if (!(TASK_FAMILIES_GPU & (1u << f)) && gpu_engine_chains[k].active(e)) {
+      snprintf(why, sizeof why, "the task family %s has no GPU implementation",
+               task_family_names[f]);
+      return why;
+    }
+  }
+  return NULL;
+}
+
 void gpu_engine_init(struct engine *e) {
   const struct gpu_policy pol = gpu_policy_read(e->params);
   char asked[300];
@@ -493,7 +524,7 @@ void gpu_engine_init(struct engine *e) {
                             : e->gp.enabled && e->gp.h_factor > 0.0
                                 ? "Gravity:softening_h_factor > 0 (softening tied to h) has no GPU "
                                   "implementation yet"
-                                : NULL;
+                                : gpu_engine_cpu_only(e);
   if (unsupported) {
     if (required) error_exit("a GPU was required (%s) but %s", asked, unsupported);
     error_log(0, "GPU not used (%s): every task runs on the CPU", unsupported);

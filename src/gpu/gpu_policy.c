@@ -40,14 +40,15 @@ struct gpu_policy gpu_policy_read(const struct params *p) {
   const int bracket = *c == '[';
   if (bracket) c++;
   char known[256];
-  gpu_policy_names(~0u, known, sizeof known);
+  gpu_policy_names(TASK_FAMILIES_GPU, known, sizeof known);
   for (;;) {
     while (isspace((unsigned char)*c) || *c == ',') c++;
     if (*c == '\0' || (bracket && *c == ']')) break;
     const size_t n = strcspn(c, ", \t\n]");
     int f = 0;
     while (f < task_family_count &&
-           (strlen(task_family_names[f]) != n || strncmp(task_family_names[f], c, n) != 0))
+           (!(TASK_FAMILIES_GPU & (1u << f)) || strlen(task_family_names[f]) != n ||
+            strncmp(task_family_names[f], c, n) != 0))
       f++;
     if (f == task_family_count)
       params_error(p, key, "'%.*s' is not a task family: expected auto, off, all or a list of %s",
