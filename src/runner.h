@@ -14,24 +14,24 @@ struct runner_pool;
 
 /** One worker thread. */
 struct runner {
-  int id;                  /**< thread number (1 .. nr_threads-1) */
-  pthread_t thread;        /**< its pthread */
+  int id;                   /**< thread number (1 .. nr_threads-1) */
+  pthread_t thread;         /**< its pthread */
   struct runner_pool *pool; /**< the pool it belongs to */
 };
 
 /** The persistent worker threads of a scheduler. */
 struct runner_pool {
-  int nr_threads;             /**< threads, the caller (thread 0) included */
-  void (*work)(void *, int);  /**< what a worker does in a run: work(ctx, thread) */
-  void *ctx;                  /**< its context */
-  struct runner *runners;     /**< threads 1 .. nr_threads-1 */
-  void *pinning;              /**< hwloc state of runner.c (NULL: threads not pinned) */
-  pthread_mutex_t run_mutex;  /**< protects run_gen, nr_finished, shutdown */
-  pthread_cond_t run_cond;    /**< workers wait here between runs */
-  pthread_cond_t done_cond;   /**< the caller waits here for the workers to finish a run */
-  int run_gen;                /**< incremented to start a run */
-  int nr_finished;            /**< workers done with the current run */
-  int shutdown;               /**< 1: workers exit */
+  int nr_threads;            /**< threads, the caller (thread 0) included */
+  void (*work)(void *, int); /**< what a worker does in a run: work(ctx, thread) */
+  void *ctx;                 /**< its context */
+  struct runner *runners;    /**< threads 1 .. nr_threads-1 */
+  void *pinning;             /**< hwloc state of runner.c (NULL: threads not pinned) */
+  pthread_mutex_t run_mutex; /**< protects run_gen, nr_finished, shutdown */
+  pthread_cond_t run_cond;   /**< workers wait here between runs */
+  pthread_cond_t done_cond;  /**< the caller waits here for the workers to finish a run */
+  int run_gen;               /**< incremented to start a run */
+  int nr_finished;           /**< workers done with the current run */
+  int shutdown;              /**< 1: workers exit */
 };
 
 /** Pin the calling thread as thread 0 and start threads 1 .. nr_threads-1,

@@ -15,5 +15,6 @@ void damage_task(struct engine *e, struct task *tk) {
   const struct cell *c = e->tcells[tk->cell_index];
   const double dt = e->first_force ? 0.0 : e->dt;
   if (e->time < e->damage_start) return; /* Damage:start_time: not yet */
-  for (size_t i = c->offset; i < c->offset + c->count; i++) damage_part(p, i, e->mats, e->flaw_eps, dt);
+  for (size_t i = c->offset; i < c->offset + c->count; i++)
+    damage_part(p, i, e->mats, e->flaw_eps, dt);
 }
