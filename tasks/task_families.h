@@ -11,13 +11,18 @@
  *    as one phase (src/gpu/gpu_policy.c);
  *  - the GPU FORCE phase (src/gpu/gpu.cu): its steps, their order, their
  *    timers and the particle fields each step reads and writes;
- *  - the build: tasks/<family>/local.am of each family, included by
- *    Makefile.am, and tests/test_layers.sh, which fails when a folder of
- *    tasks/, a fragment or a Makefile.am line is not in this list.
+ *  - the build: tasks/families.am (tools/families_am.sh, run by autogen.sh
+ *    and by Makefile.am when this file changes) includes each family's
+ *    fragment tasks/<family>/local.am;
+ *  - the graph, for a family of shape chain (below): its tasks between the
+ *    force and the kick of every task cell (src/engine_graph.c);
+ *  - tests/test_layers.py, which fails when a folder of tasks/, a fragment
+ *    or a list of family names elsewhere disagrees with this list.
  *
- * A new family is its folder, its rows here and its edges in the graph
- * (src/engine_graph.c).  Preprocessor lists only: included by C and by
- * CUDA C++. */
+ * A new per-particle family between the force and the kick is its folder
+ * (tasks/<name>/: <name>_task.c, local.am), its two rows here and its test;
+ * a family with other edges adds them in src/engine_graph.c.  Preprocessor
+ * lists only: included by C and by CUDA C++. */
 #ifndef BOLIDE_TASK_FAMILIES_H
 #define BOLIDE_TASK_FAMILIES_H
 
@@ -60,7 +65,8 @@
   X(ghost, NOSUB, FREE, 2, STEP(ghost_gpu_phase), ALWAYS, "ghost",                                \
     ("up", "mat", "u", "rho_full", "rho_fp", "alpha", "alpha_p"),                                 \
     ("h", "P", "cs", "cl", "balsara", "f_gradh", "flags", "h_lo", "h_hi", "rho_full", "rho_fp"))  \
-  X(gradient, SUB(gradient), HYDRO, 3, STEP(gradient_gpu_phase), SOLIDS, "gradient(+extra ghost)",\
+  X(gradient, SUB(gradient), HYDRO, 3, STEP(gradient_gpu_phase), SOLIDS,                          \
+    "gradient(+extra ghost)",                                                                     \
     ("Sxx", "Sxy", "Sxz", "Syy", "Syz", "Szz", "Spxx", "Spxy", "Spxz", "Spyy", "Spyz", "Spzz",    \
      "eps_p", "dmg", "dmg_shear", "w_plastic"),                                                   \
     ("gmxx", "gmxy", "gmxz", "gmyy", "gmyz", "gmzz", "gvxx", "gvxy", "gvxz", "gvyx", "gvyy",      \
@@ -77,7 +83,8 @@
     ("e_clamp"),                                                                                  \
     ("vx", "vy", "vz", "u", "vpx", "vpy", "vpz", "up", "alpha", "alpha_p", "dalpha_dt",           \
      "e_clamp"))                                                                                  \
-  X(gravity, SUB(grav), FREE, 6, STEP(gravity_gpu_phase), ALWAYS, "gravity(hybrid: wait + device part)",\
+  X(gravity, SUB(grav), FREE, 6, STEP(gravity_gpu_phase), ALWAYS,                                 \
+    "gravity(hybrid: wait + device part)",                                                        \
     (),                                                                                           \
     ())
 
@@ -125,7 +132,8 @@
 #define TASK_FAMILY_CELL_TYPE_chain(active) TASK_FAMILY_CELL_TYPE_cell
 #define TASK_FAMILY_CELL_TYPE_self(type)
 #define TASK_FAMILY_CELL_TYPE_pair(type)
-#define TASK_FAMILY_TYPES_ROW_(family, shape, type, subtype, cpu) TASK_FAMILY_CELL_TYPE_##shape(type)
+#define TASK_FAMILY_TYPES_ROW_(family, shape, type, subtype, cpu) \
+  TASK_FAMILY_CELL_TYPE_##shape(type)
 #define TASK_FAMILY_TYPES TASK_FAMILY_TASKS(TASK_FAMILY_TYPES_ROW_)
 
 #define TASK_FAMILY_SUBTYPE_SUB(s) TASK_FAMILY_SUBTYPE_X_(s)
@@ -136,7 +144,8 @@
 
 /** The families, by registry row (task_family_names in src/task.c). */
 enum task_family {
-#define TASK_FAMILY_ENUM_(name, subtype, policy, place, gpu, when, stage, reads, writes) task_family_##name,
+#define TASK_FAMILY_ENUM_(name, subtype, policy, place, gpu, when, stage, reads, writes) \
+  task_family_##name,
   TASK_FAMILIES(TASK_FAMILY_ENUM_)
 #undef TASK_FAMILY_ENUM_
   task_family_count /**< number of families */
