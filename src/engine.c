@@ -30,7 +30,7 @@
 #include "params.h"
 #include "porosity_eos.h"
 #include "restart.h"
-#include "timestep/timestep.h"
+#include "kick/timestep.h"
 #include "version.h"
 #include "gpu/gpu_policy.h"
 #ifdef HAVE_CUDA

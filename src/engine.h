@@ -36,8 +36,7 @@ struct engine_cell_tasks {
   struct task *ghost;    /**< h iteration and equation of state */
   struct task *extra_ghost; /**< end of the gradient loop (solids only, else NULL) */
   struct task *kick2;    /**< second half kick and new time step */
-  struct task *damage;   /**< damage growth (brittle materials only, else NULL) */
-  struct task *force_done; /**< what the force tasks unlock: damage, else kick2 */
+  struct task *force_done; /**< what the force tasks unlock: the first chain task (damage), else kick2 */
   int nr_ngb;            /**< number of neighbouring task cells (itself included) */
   int *ngb;              /**< their numbers in engine.tcells */
   double (*ngb_shift)[3];/**< periodic shift to add to the neighbour's positions */

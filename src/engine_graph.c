@@ -24,6 +24,8 @@
  *
  * With brittle materials the damage task of a task cell sits between its
  * force tasks and its kick: force(t), force(t,t') -> damage(t) -> kick2(t).
+ * So does every family of shape chain in the registry (tasks/task_families.h),
+ * in its order, in the runs its predicate selects.
  *
  * Self-gravity works on the top-level cells (gravity_cpu.h):
  *
@@ -57,6 +59,25 @@
 
 #include "error.h"
 #include "kernel.h"
+
+/** The per-task-cell tasks between the force tasks and the kick: the rows
+ *  of shape chain(active) of the registry (tasks/task_families.h), in its
+ *  order. */
+struct engine_chain {
+  int (*active)(const struct engine *); /**< 1: the run has these tasks */
+  enum task_type type;                  /**< their type */
+  enum task_subtype subtype;            /**< and subtype */
+};
+#define ENGINE_CHAIN_chain(active) {active, ENGINE_CHAIN_TAIL_
+#define ENGINE_CHAIN_TAIL_(type, subtype) task_type_##type, task_subtype_##subtype},
+#define ENGINE_CHAIN_cell(type, subtype)
+#define ENGINE_CHAIN_self(type, subtype)
+#define ENGINE_CHAIN_pair(type, subtype)
+#define ENGINE_CHAIN_ROW_(family, shape, type, subtype, cpu) ENGINE_CHAIN_##shape(type, subtype)
+static const struct engine_chain engine_chain[] = {TASK_FAMILY_TASKS(ENGINE_CHAIN_ROW_){NULL, task_type_none, task_subtype_none}};
+#undef ENGINE_CHAIN_ROW_
+/** Their number (the table ends with an empty row). */
+#define ENGINE_NR_CHAIN ((int)(sizeof engine_chain / sizeof engine_chain[0]) - 1)
 
 /** Growable list of tasks. */
 static void engine_phase_add(struct engine *e, int ph, struct task *t, int *cap) {
@@ -439,14 +460,15 @@ void engine_make_graph(struct engine *e) {
     ct->ghost = scheduler_addtask(sched, task_type_ghost, task_subtype_none, c, NULL);
     ct->kick2 = scheduler_addtask(sched, task_type_kick2, task_subtype_none, c, NULL);
     ct->drift->cell_index = ct->ghost->cell_index = ct->kick2->cell_index = t;
+    /* the chains of the registry, e.g. force(t), force(t,t') -> damage(t) -> kick2(t) */
     ct->force_done = ct->kick2;
-    if (e->damage) {
-      /* force(t), force(t,t') -> damage(t) -> kick2(t) */
-      ct->damage = scheduler_addtask(sched, task_type_damage, task_subtype_damage, c, NULL);
-      ct->damage->cell_index = t;
-      scheduler_addunlock(sched, ct->damage, ct->kick2);
-      engine_phase_add(e, ENGINE_PHASE_FORCE, ct->damage, cap);
-      ct->force_done = ct->damage;
+    for (int k = ENGINE_NR_CHAIN - 1; k >= 0; k--) {
+      if (!engine_chain[k].active(e)) continue;
+      struct task *d = scheduler_addtask(sched, engine_chain[k].type, engine_chain[k].subtype, c, NULL);
+      d->cell_index = t;
+      scheduler_addunlock(sched, d, ct->force_done);
+      engine_phase_add(e, ENGINE_PHASE_FORCE, d, cap);
+      ct->force_done = d;
     }
     engine_phase_add(e, ENGINE_PHASE_DRIFT, ct->drift, cap);
     engine_phase_add(e, ENGINE_PHASE_FORCE, ct->kick2, cap);

@@ -6,7 +6,6 @@
 #include <stdlib.h>
 
 #include "error.h"
-#include "scheduler.h"
 
 /** hwloc state: the topology restricted to the process's CPU set, where each
  *  thread goes, and the caller's binding before runner_start(). */
@@ -74,7 +73,7 @@ static struct runner_pinning *runner_pinning_new(int nr_threads) {
 /** A worker: wait for a run, work, report, until shutdown. */
 static void *runner_main(void *arg) {
   struct runner *r = arg;
-  struct scheduler *s = r->s;
+  struct runner_pool *s = r->pool;
   if (s->pinning) runner_pin(s->pinning, r->id);
   int gen = 0;
   for (;;) {
@@ -84,7 +83,7 @@ static void *runner_main(void *arg) {
     gen = s->run_gen;
     pthread_mutex_unlock(&s->run_mutex);
     if (stop) break;
-    scheduler_work(s, r->id);
+    s->work(s->ctx, r->id);
     pthread_mutex_lock(&s->run_mutex);
     if (++s->nr_finished == s->nr_threads - 1) pthread_cond_signal(&s->done_cond);
     pthread_mutex_unlock(&s->run_mutex);
@@ -92,7 +91,10 @@ static void *runner_main(void *arg) {
   return NULL;
 }
 
-void runner_start(struct scheduler *s) {
+void runner_start(struct runner_pool *s, int nr_threads, void (*work)(void *, int), void *ctx) {
+  s->nr_threads = nr_threads;
+  s->work = work;
+  s->ctx = ctx;
   pthread_mutex_init(&s->run_mutex, NULL);
   pthread_cond_init(&s->run_cond, NULL);
   pthread_cond_init(&s->done_cond, NULL);
@@ -105,13 +107,12 @@ void runner_start(struct scheduler *s) {
   for (int i = 1; i < s->nr_threads; i++) {
     struct runner *r = &s->runners[i];
     r->id = i;
-    r->s = s;
+    r->pool = s;
     if (pthread_create(&r->thread, NULL, runner_main, r) != 0)
       error_exit("could not start worker thread %d of %d", i, s->nr_threads);
   }
 }
-
-void runner_stop(struct scheduler *s) {
+void runner_stop(struct runner_pool *s) {
   pthread_mutex_lock(&s->run_mutex);
   s->shutdown = 1;
   pthread_cond_broadcast(&s->run_cond);
@@ -134,7 +135,7 @@ void runner_stop(struct scheduler *s) {
   pthread_mutex_destroy(&s->run_mutex);
 }
 
-void runner_launch(struct scheduler *s) {
+void runner_launch(struct runner_pool *s) {
   pthread_mutex_lock(&s->run_mutex);
   s->nr_finished = 0;
   s->run_gen++;
@@ -142,13 +143,13 @@ void runner_launch(struct scheduler *s) {
   pthread_mutex_unlock(&s->run_mutex);
 }
 
-void runner_wait(struct scheduler *s) {
+void runner_wait(struct runner_pool *s) {
   pthread_mutex_lock(&s->run_mutex);
   while (s->nr_finished < s->nr_threads - 1) pthread_cond_wait(&s->done_cond, &s->run_mutex);
   pthread_mutex_unlock(&s->run_mutex);
 }
 
-void runner_unpin_self(const struct scheduler *s) {
+void runner_unpin_self(const struct runner_pool *s) {
   const struct runner_pinning *p = s->pinning;
   if (!p || !p->saved) return;
   if (hwloc_set_cpubind(p->topo, p->saved, HWLOC_CPUBIND_THREAD) != 0)

@@ -7,7 +7,6 @@
 #include <time.h>
 
 #include "error.h"
-#include "runner.h"
 
 /** Failed attempts to find a task before a worker goes to sleep. */
 #define SCHEDULER_SPIN 64
@@ -20,6 +19,11 @@
 static inline size_t scheduler_timer_index(int tid, enum task_type type,
                                            enum task_subtype subtype) {
   return ((size_t)tid * task_type_count + type) * task_subtype_count + subtype;
+}
+
+/** The work function of the runner pool: scheduler_work() of thread tid. */
+static void scheduler_work_cb(void *s, int tid) {
+  scheduler_work(s, tid);
 }
 
 void scheduler_init(struct scheduler *s, int nr_threads) {
@@ -41,11 +45,11 @@ void scheduler_init(struct scheduler *s, int nr_threads) {
                            sizeof(struct scheduler_timer), "task timers");
   s->busy_ns = error_calloc(nr_threads, sizeof(int64_t), "thread timers");
   s->deadlock_seconds = 60;
-  runner_start(s);
+  runner_start(&s->pool, nr_threads, scheduler_work_cb, s);
 }
 
 void scheduler_free(struct scheduler *s) {
-  runner_stop(s);
+  runner_stop(&s->pool);
   for (int i = 0; i < s->nr_threads; i++) queue_free(&s->queues[i]);
   free(s->queues);
   for (int i = 0; i < s->nr_chunks; i++) free(s->chunks[i]);
@@ -342,9 +346,9 @@ void scheduler_run(struct scheduler *s, scheduler_run_fn fn, void *ctx) {
       if (!t->skip && atomic_load_explicit(&t->wait, memory_order_relaxed) == 0)
         scheduler_enqueue(s, t);
     }
-    runner_launch(s);
+    runner_launch(&s->pool);
     scheduler_work(s, 0);
-    runner_wait(s);
+    runner_wait(&s->pool);
   }
   s->run_toc = task_now_ns();
   s->wall_ns += s->run_toc - s->run_tic;

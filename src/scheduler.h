@@ -26,6 +26,7 @@
 #include <stdio.h>
 
 #include "queue.h"
+#include "runner.h"
 #include "task.h"
 
 /** Tasks per storage chunk. */
@@ -77,14 +78,7 @@ struct scheduler {
   atomic_uint epoch;           /**< bumped on every event that may give a worker work */
 
   /* -- the persistent worker threads (runner.c) */
-  struct runner *runners;    /**< threads 1 .. nr_threads-1 */
-  void *pinning;             /**< hwloc state of runner.c (NULL: threads not pinned) */
-  pthread_mutex_t run_mutex; /**< protects run_gen, nr_finished, shutdown */
-  pthread_cond_t run_cond;   /**< workers wait here between runs */
-  pthread_cond_t done_cond;  /**< the caller waits here for the workers to finish a run */
-  int run_gen;               /**< incremented to start a run */
-  int nr_finished;           /**< workers done with the current run */
-  int shutdown;              /**< 1: workers exit */
+  struct runner_pool pool; /**< they run scheduler_work() */
 
   /* -- timers, accumulated over runs until scheduler_reset_timers() */
   struct scheduler_timer *timers; /**< [thread][type][subtype] */
@@ -142,8 +136,8 @@ void scheduler_reset_timers(struct scheduler *s);
  *  tools/plot_tasks.py draws it.  Returns 0, or -1 on a write error. */
 int scheduler_dump_tasks(const struct scheduler *s, FILE *f);
 
-/** The work loop of thread `tid` during a run (called by runner.c and by
- *  scheduler_run() as thread 0). */
+/** The work loop of thread `tid` during a run: the work function of the
+ *  runner pool (threads 1 ..), and scheduler_run()'s as thread 0. */
 void scheduler_work(struct scheduler *s, int tid);
 
 #endif

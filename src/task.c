@@ -1,15 +1,26 @@
-/* Tasks: the name tables generated from TASK_TYPES and TASK_SUBTYPES. */
+/* Tasks: the name tables generated from TASK_TYPES, TASK_SUBTYPES and the
+ * registry of task families. */
 #include "task.h"
 
 const char *const task_type_names[task_type_count] = {
 #define TASK_NAME_(name) #name,
+#define TASK_FAMILY_TYPE_X_ TASK_NAME_
     TASK_TYPES(TASK_NAME_)
+#undef TASK_FAMILY_TYPE_X_
 #undef TASK_NAME_
 };
 
 const char *const task_subtype_names[task_subtype_count] = {
 #define TASK_NAME_(name) #name,
+#define TASK_FAMILY_SUBTYPE_X_ TASK_NAME_
     TASK_SUBTYPES(TASK_NAME_)
+#undef TASK_FAMILY_SUBTYPE_X_
+#undef TASK_NAME_
+};
+
+const char *const task_family_names[task_family_count] = {
+#define TASK_NAME_(name, subtype, policy, place, gpu, when, stage, reads, writes) #name,
+    TASK_FAMILIES(TASK_NAME_)
 #undef TASK_NAME_
 };
 

@@ -16,41 +16,34 @@
 
 #include "config.h"
 
+#include "task_families.h"
+
 #include <stdatomic.h>
 #include <stdint.h>
 #include <time.h>
 
-/* One list of task types and one of subtypes; the enums and the name tables
- * (used by the timers, the task dumps and tools/plot_tasks.py through the
- * dumps) are generated from them (STYLE.md rule 5). */
+/* The task types and subtypes: the generic shapes below, and the cell types
+ * and subtypes of the task families, from their registry
+ * (tasks/task_families.h).  The enums and the name tables (used by the
+ * timers, the task dumps and tools/plot_tasks.py through the dumps) are
+ * generated from these lists (STYLE.md rule 5). */
 /* clang-format off */
-#define TASK_TYPES(X)                                                        \
-  X(none)            /* unused slot: a task never has it */                  \
-  X(self)            /* interactions within one cell */                      \
-  X(pair)            /* interactions between two neighbouring cells */       \
-  X(sub_self)        /* self task recursing into the cell's progeny */       \
-  X(sub_pair)        /* pair task recursing into the cells' progeny */       \
-  X(ghost_in)        /* implicit: fan-in before the ghost of a cell tree */  \
-  X(ghost)           /* end of the density loop: h iteration, EOS */         \
-  X(ghost_out)       /* implicit: fan-out after the ghost */                 \
-  X(extra_ghost)     /* end of the gradient loop */                          \
-  X(drift)           /* move particles to the current time */                \
-  X(kick1)           /* first half kick */                                   \
-  X(kick2)           /* second half kick */                                  \
-  X(timestep)        /* new time steps */                                    \
-  X(grav_up)         /* multipoles up the tree */                            \
-  X(grav_down)       /* far field down the tree */                           \
-  X(grav_long_range) /* cell-multipole interactions with far cells */        \
-  X(damage)          /* flaw activation and damage growth */                 \
-  X(implicit)        /* no work: only dependencies (fan-in, fan-out) */      \
-  X(test)            /* for the tests of the scheduler */
+#define TASK_TYPES(X)                                                    \
+  X(none)     /* unused slot: a task never has it */                     \
+  X(self)     /* interactions within one cell */                         \
+  X(pair)     /* interactions between two neighbouring cells */          \
+  TASK_FAMILY_TYPES /* the families' own per-cell types */               \
+  X(implicit) /* no work: only dependencies (fan-in, fan-out) */         \
+  X(test)     /* for the tests of the scheduler */
 
-#define TASK_SUBTYPES(X) X(none) X(density) X(gradient) X(force) X(grav) X(damage)
+#define TASK_SUBTYPES(X) X(none) TASK_FAMILY_SUBTYPES
 
 /** The shape of a task. */
 enum task_type {
 #define TASK_ENUM_(name) task_type_##name,
+#define TASK_FAMILY_TYPE_X_ TASK_ENUM_
   TASK_TYPES(TASK_ENUM_)
+#undef TASK_FAMILY_TYPE_X_
 #undef TASK_ENUM_
   task_type_count /**< number of types */
 };
@@ -58,7 +51,9 @@ enum task_type {
 /** The physics a task runs. */
 enum task_subtype {
 #define TASK_ENUM_(name) task_subtype_##name,
+#define TASK_FAMILY_SUBTYPE_X_ TASK_ENUM_
   TASK_SUBTYPES(TASK_ENUM_)
+#undef TASK_FAMILY_SUBTYPE_X_
 #undef TASK_ENUM_
   task_subtype_count /**< number of subtypes */
 };
@@ -67,6 +62,8 @@ enum task_subtype {
 /** Names of the types and subtypes, indexed by the enums. */
 extern const char *const task_type_names[task_type_count];
 extern const char *const task_subtype_names[task_subtype_count];
+/** Names of the task families (tasks/task_families.h), indexed by enum task_family. */
+extern const char *const task_family_names[task_family_count];
 
 /** A resource that tasks write (a cell's particles, its multipole...): a
  *  try-lock.  0 free, 1 held. */

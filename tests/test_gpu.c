@@ -449,7 +449,7 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
   for (int c = 0; c < sp.nr_top; c++) force_self_cpu(&p, &sp.cells[c], &hp);
   for (size_t k = 0; k < np; k++)
     force_pair_cpu(&p, &sp.cells[pairs[k].ci], &sp.cells[pairs[k].cj], pairs[k].shift, &hp);
-  /* force -> damage -> kick2 (engine_runtask.c) */
+  /* force -> damage -> kick2 (tasks/task_families.h) */
   for (size_t k = 0; k < n && solid; k++) damage_part(&p, k, &mats, fl.eps, dt_damage);
   double *dt_cpu = malloc(sp.nr_top * sizeof(double)), *dt_gpu = malloc(sp.nr_top * sizeof(double));
   for (int c = 0; c < sp.nr_top; c++) {

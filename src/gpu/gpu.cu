@@ -1,8 +1,10 @@
 /* The GPU runner (gpu.h): device set-up, memory that is allocated once and
  * grown, two streams, pinned staging for the per-phase cell data, and the
- * FORCE phase as a sequence of batched kernels over every leaf cell:
- * density, ghost (h iteration, EOS), with solids gradient and extra ghost,
- * force, with brittle materials damage, and kick2.
+ * FORCE phase as a sequence of batched kernels over every leaf cell: the
+ * GPU steps of the task families in the registry (tasks/task_families.h),
+ * in their order along the graph: density, ghost (h iteration, EOS), with
+ * solids gradient and extra ghost, force, with brittle materials damage,
+ * gravity joining, and kick2.
  *
  * Stream 0 carries the particle fields and the kernels; stream 1 builds the
  * neighbour lists (gpu_lists.cu, or uploads the host's) and uploads the
@@ -22,60 +24,46 @@ extern "C" {
 #include "gpu_lists.h"
 #include "material.h"
 
-/** Fields the FORCE phase reads (copied to the device before it when the
- *  particles are not resident). */
-static const char *const gpu_fields_in[] = {"x",  "y",   "z",  "vpx", "vpy", "vpz", "m",    "h",
-                                            "up", "mat", "vx", "vy",  "vz",  "u",   "flags",
-                                            "rho_full", "rho_fp", "alpha", "alpha_p", "e_clamp"};
-/** Fields the FORCE phase writes (copied back after it). */
-static const char *const gpu_fields_out[] = {
-    "h",       "rho", "rho_dh", "wcount",  "wcount_dh", "div_v", "curl_vx", "curl_vy",
-    "curl_vz", "P",   "cs",     "cl",      "balsara", "f_gradh",   "flags", "h_lo",    "h_hi",
-    "ax",      "ay",  "az",     "du_dt",   "drho_dt",   "v_sig", "vx",      "vy",
-    "vz",      "u",   "vpx",    "vpy",     "vpz",       "up",      "rho_full", "rho_fp",
-    "xsphx",   "xsphy", "xsphz", "alpha", "alpha_p", "dalpha_dt", "e_clamp"};
-/** Fields the gradient loop, the extra ghost and the stress terms read, and
- *  the kick integrates (solids). */
-static const char *const gpu_fields_solid_in[] = {"Sxx",  "Sxy",  "Sxz",   "Syy",  "Syz",
-                                                  "Szz",  "Spxx", "Spxy",  "Spxz", "Spyy",
-                                                  "Spyz", "Spzz", "eps_p", "dmg",
-                                                  "dmg_shear", "w_plastic"};
-/** Fields they write. */
-static const char *const gpu_fields_solid_out[] = {
-    "gmxx", "gmxy", "gmxz", "gmyy", "gmyz", "gmzz", "gvxx", "gvxy", "gvxz", "gvyx",
-    "gvyy", "gvyz", "gvzx", "gvzy", "gvzz", "Sxx",  "Sxy",  "Sxz",  "Syy",  "Syz",
-    "Szz",  "Spxx", "Spxy", "Spxz", "Spyy", "Spyz", "Spzz", "dSxx", "dSxy", "dSxz",
-    "dSyy", "dSyz", "dSzz", "Rxx",  "Rxy",  "Rxz",  "Ryy",  "Ryz",  "Rzz",  "eps_p",
-    "dmg_shear", "w_plastic"};
-/** Fields the damage task reads (besides the above). */
-static const char *const gpu_fields_damage_in[] = {"dmg", "dcbrt", "n_act", "n_flaws",
-                                                   "flaw_first"};
-/** Fields it writes. */
-static const char *const gpu_fields_damage_out[] = {"dmg", "dcbrt", "n_act", "dmg_rate"};
-#define GPU_NR_OF(a) ((int)(sizeof a / sizeof a[0]))
-#define GPU_NR_IN GPU_NR_OF(gpu_fields_in)
-#define GPU_NR_OUT GPU_NR_OF(gpu_fields_out)
-#define GPU_NR_SOLID_IN GPU_NR_OF(gpu_fields_solid_in)
-#define GPU_NR_SOLID_OUT GPU_NR_OF(gpu_fields_solid_out)
-#define GPU_NR_DAMAGE_IN GPU_NR_OF(gpu_fields_damage_in)
-#define GPU_NR_DAMAGE_OUT GPU_NR_OF(gpu_fields_damage_out)
-
-/** Stages timed with events. */
-enum gpu_stage {
-  GPU_T_UPLOAD,
-  GPU_T_DENSITY,
-  GPU_T_GHOST,
-  GPU_T_GRADIENT,
-  GPU_T_FORCE,
-  GPU_T_DAMAGE,
-  GPU_T_WAIT,
-  GPU_T_KICK,
-  GPU_T_DOWNLOAD,
-  GPU_T_N
+/** The steps of the FORCE phase: one per task family with a GPU step, from
+ *  the registry (tasks/task_families.h), with the particle fields each
+ *  reads and writes. */
+struct gpu_step {
+  const char *stage;                 /**< the name of its timer */
+  int place;                         /**< its rank along the graph: the order of the steps */
+  int when;                          /**< enum gpu_when: in which phases it runs */
+  int (*fn)(struct gpu_phase *);     /**< the step (NULL: the family has none) */
+  const char *const *reads, *const *writes; /**< its fields */
+  int nr_reads, nr_writes;                 /**< their numbers */
 };
-static const char *const gpu_stage_names[GPU_T_N] = {
-    "upload", "density", "ghost", "gradient(+extra ghost)", "force", "damage",
-    "gravity(hybrid: wait + device part)", "kick2", "download"};
+/** Column when of the registry. */
+enum gpu_when { GPU_WHEN_ALWAYS, GPU_WHEN_SOLIDS, GPU_WHEN_BRITTLE };
+#define GPU_STEP_FN_STEP(fn) fn
+#define GPU_STEP_FN_NOSTEP NULL
+#define GPU_STEP_ONE_STEP(fn) +1
+#define GPU_STEP_ONE_NOSTEP
+#define GPU_STEP_FIELDS_(name, subtype, policy, place, gpu, when, stage, reads, writes) \
+  static const char *const gpu_reads_##name[] = {NULL, TASK_UNPAREN reads};            \
+  static const char *const gpu_writes_##name[] = {NULL, TASK_UNPAREN writes};
+TASK_FAMILIES(GPU_STEP_FIELDS_)
+#undef GPU_STEP_FIELDS_
+#define GPU_NR_OF(a) ((int)(sizeof a / sizeof a[0]))
+/** Every family's row, by registry order (the lists start with a NULL, so
+ *  that an empty one is valid C++). */
+static const struct gpu_step gpu_steps[task_family_count] = {
+#define GPU_STEP_ROW_(name, subtype, policy, place, gpu, when, stage, reads, writes) \
+  {stage, place, GPU_WHEN_##when, GPU_STEP_FN_##gpu, gpu_reads_##name + 1, gpu_writes_##name + 1, \
+   GPU_NR_OF(gpu_reads_##name) - 1, GPU_NR_OF(gpu_writes_##name) - 1},
+    TASK_FAMILIES(GPU_STEP_ROW_)
+#undef GPU_STEP_ROW_
+};
+/** The number of steps (families with one). */
+#define GPU_STEP_COUNT_(name, subtype, policy, place, gpu, when, stage, reads, writes) \
+  GPU_STEP_ONE_##gpu
+enum { GPU_NR_STEPS = 0 TASK_FAMILIES(GPU_STEP_COUNT_) };
+#undef GPU_STEP_COUNT_
+
+/** Stages timed with events: the upload, the steps in order, the download. */
+#define GPU_T_N (GPU_NR_STEPS + 2)
 
 struct gpu {
   int device;                  /**< CUDA device number */
@@ -89,8 +77,9 @@ struct gpu {
   long drifts;                 /**< drifts run */
   struct parts dev;            /**< device arrays of every particle field */
   size_t capacity;             /**< their length */
-  int in[GPU_NR_IN + GPU_NR_SOLID_IN + GPU_NR_DAMAGE_IN];     /**< indices in part_fields */
-  int out[GPU_NR_OUT + GPU_NR_SOLID_OUT + GPU_NR_DAMAGE_OUT]; /**< indices in part_fields */
+  int in[PART_NR_FIELDS];      /**< indices in part_fields of the fields a phase reads */
+  int out[PART_NR_FIELDS];     /**< of those it writes */
+  int order[GPU_NR_STEPS];     /**< the families with a step, by place (gpu_init) */
   double *flaws_dev;                 /**< Weibull flaw thresholds (gpu_set_flaws) */
   size_t flaws_n, flaws_cap;         /**< their number and allocated length */
   void *cell_dev, *cell_host;        /**< device buffer and pinned staging of the leaf data */
@@ -146,9 +135,9 @@ static void **gpu_field_slot(struct parts *s, int k) {
 }
 
 extern "C" struct gpu *gpu_init(char *why, size_t len) {
-  int n = 0;
-  const cudaError_t err = cudaGetDeviceCount(&n);
-  if (err != cudaSuccess || n == 0) {
+  int nd = 0;
+  const cudaError_t err = cudaGetDeviceCount(&nd);
+  if (err != cudaSuccess || nd == 0) {
     snprintf(why, len, "%s", err != cudaSuccess ? cudaGetErrorString(err) : "no CUDA device");
     cudaGetLastError();
     return NULL;
@@ -175,6 +164,15 @@ extern "C" struct gpu *gpu_init(char *why, size_t len) {
   gpu_check(cudaMallocHost((void **)&g->counters_host, GPU_NR_COUNTERS * sizeof(int)));
   g->mats_dev = (struct material_table *)gpu_alloc(sizeof(struct material_table), "material table");
   gpu_check(cudaMallocHost((void **)&g->mats_host, sizeof(struct material_table)));
+  /* the steps by their place along the graph (ties: registry order) */
+  int n = 0;
+  for (int f = 0; f < task_family_count; f++)
+    if (gpu_steps[f].fn) {
+      int k = n++;
+      for (; k > 0 && gpu_steps[g->order[k - 1]].place > gpu_steps[f].place; k--)
+        g->order[k] = g->order[k - 1];
+      g->order[k] = f;
+    }
   return g;
 }
 
@@ -266,25 +264,29 @@ static void gpu_copy_fields(struct gpu *g, struct parts *p, const int *idx, int 
   }
 }
 
+/** 1 if step f runs in a phase with (solids, damage): column when. */
+static int gpu_step_runs(int f, int solids, int damage) {
+  const int w = gpu_steps[f].when;
+  return w == GPU_WHEN_ALWAYS || (w == GPU_WHEN_SOLIDS && solids) ||
+         (w == GPU_WHEN_BRITTLE && damage);
+}
+
 /** The indices (in part_fields) of the fields a FORCE phase reads (out = 0)
- *  or writes (out = 1), for fluids, solids and damage; returns their
- *  number.  A field named twice is copied once. */
-static int gpu_phase_fields(int *idx, int solids, int damage, int out) {
+ *  or writes (out = 1): those of the steps that run in it (gpu_step_runs);
+ *  returns their number.  A field named twice is copied once. */
+static int gpu_phase_fields(const struct gpu *g, int *idx, int solids, int damage, int out) {
   int n = 0;
-  const char *const *lists[3] = {out ? gpu_fields_out : gpu_fields_in,
-                                 out ? gpu_fields_solid_out : gpu_fields_solid_in,
-                                 out ? gpu_fields_damage_out : gpu_fields_damage_in};
-  const int len[3] = {out ? GPU_NR_OUT : GPU_NR_IN, out ? GPU_NR_SOLID_OUT : GPU_NR_SOLID_IN,
-                      out ? GPU_NR_DAMAGE_OUT : GPU_NR_DAMAGE_IN};
-  const int use[3] = {1, solids, damage};
-  for (int l = 0; l < 3; l++)
-    if (use[l])
-      for (int k = 0; k < len[l]; k++) {
-        const int f = gpu_field_index(lists[l][k]);
-        int seen = 0;
-        for (int q = 0; q < n; q++) seen |= idx[q] == f;
-        if (!seen) idx[n++] = f;
-      }
+  for (int k = 0; k < GPU_NR_STEPS; k++) {
+    const int f = g->order[k];
+    if (!gpu_step_runs(f, solids, damage)) continue;
+    const int len = out ? gpu_steps[f].nr_writes : gpu_steps[f].nr_reads;
+    for (int l = 0; l < len; l++) {
+      const int i = gpu_field_index(out ? gpu_steps[f].writes[l] : gpu_steps[f].reads[l]);
+      int seen = 0;
+      for (int q = 0; q < n; q++) seen |= idx[q] == i;
+      if (!seen) idx[n++] = i;
+    }
+  }
   return n;
 }
 
@@ -331,11 +333,10 @@ static void gpu_stage_materials(struct gpu *g, const struct material_table *mats
   }
 }
 
-/** Read the counters of the h iteration (waits for stream 0). */
-static void gpu_read_counters(struct gpu *g) {
-  gpu_check(cudaMemcpyAsync(g->counters_host, g->counters_dev, GPU_NR_COUNTERS * sizeof(int),
-                            cudaMemcpyDeviceToHost, g->stream[0]));
-  gpu_check(cudaStreamSynchronize(g->stream[0]));
+void gpu_phase_read_counters(struct gpu_phase *ph) {
+  gpu_check(cudaMemcpyAsync(ph->counters_host, ph->counters, GPU_NR_COUNTERS * sizeof(int),
+                            cudaMemcpyDeviceToHost, ph->s));
+  gpu_check(cudaStreamSynchronize(ph->s));
 }
 
 extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu_leaves *lv,
@@ -346,8 +347,8 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
   cudaStream_t s = g->stream[0];
   memset(out, 0, sizeof *out);
   const int damage = dmg && dmg->enabled;
-  const int nr_in = gpu_phase_fields(g->in, hp->solids, damage, 0);
-  const int nr_out = gpu_phase_fields(g->out, hp->solids, damage, 1);
+  const int nr_in = gpu_phase_fields(g, g->in, hp->solids, damage, 0);
+  const int nr_out = gpu_phase_fields(g, g->out, hp->solids, damage, 1);
   if (resident && (p->count != g->dev.count || !g->dev.x))
     error_bug("GPU particle arrays are not resident");
   gpu_reserve(g, p->count);
@@ -361,65 +362,49 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
   gpu_check(cudaStreamWaitEvent(s, g->cells_ready, 0));
   gpu_check(cudaEventRecord(g->ev[1], s));
 
-  /* density of every particle, then the h iteration: density again for the
-   * particles still iterating until none is left (ghost_cpu.c's loop) */
-  density_gpu_launch(s, g->dev, dv, 0);
-  gpu_check(cudaEventRecord(g->ev[2], s));
-  ghost_gpu_start_launch(s, g->dev, dv, *hp, g->counters_dev);
-  gpu_read_counters(g);
-  int iter = 1;
-  while (g->counters_host[GPU_LEFT] > 0 && !g->counters_host[GPU_OVERFLOW]) {
-    if (iter > hp->max_iterations)
-      error_exit(
-          "the smoothing lengths of %d particles did not converge in %d iterations on the GPU; "
-          "raise "
-          "SPH:max_ghost_iterations or check the initial conditions",
-          g->counters_host[GPU_LEFT], hp->max_iterations);
-    gpu_check(cudaMemsetAsync(g->counters_dev + GPU_LEFT, 0, sizeof(int), s));
-    density_gpu_launch(s, g->dev, dv, 1);
-    ghost_gpu_step_launch(s, g->dev, dv, *hp, g->counters_dev);
-    gpu_read_counters(g);
-    iter++;
+  /* the steps of the families, in their order along the graph (registry):
+   * density, ghost (the h iteration), with solids gradient and extra ghost,
+   * force, with damage the damage update, gravity joining (the hybrid
+   * runner's hook), kick2 and the time steps */
+  struct gpu_phase ph;
+  ph.s = s;
+  ph.dev = g->dev;
+  ph.lv = dv;
+  ph.hp = *hp;
+  ph.mats = g->mats_dev;
+  ph.flaws = g->flaws_dev;
+  ph.damage = damage;
+  ph.dmg_dt = damage ? dmg->dt : 0.0;
+  ph.dmg_max_change = damage ? dmg->max_change : 0.0;
+  ph.grav.enabled = 0;
+  ph.grav.eps = ph.grav.eta = 0.0;
+  if (grav) ph.grav = *grav;
+  ph.dt_kick = dt_kick;
+  ph.leaf_dt = g->leaf_dt;
+  ph.counters = g->counters_dev;
+  ph.counters_host = g->counters_host;
+  ph.wait = g->kick_wait;
+  ph.wait_ctx = g->kick_wait_ctx;
+  ph.out = out;
+  for (int k = 0; k < GPU_NR_STEPS; k++) {
+    const int f = g->order[k];
+    if (gpu_step_runs(f, hp->solids, damage) && gpu_steps[f].fn(&ph)) {
+      /* the lists were too short for the new h (the ghost's step): hand h
+       * back for new lists; the host's h changes here, so whatever runs
+       * beside this phase finishes first */
+      if (g->kick_wait) g->kick_wait(g->kick_wait_ctx);
+      const int ih = gpu_field_index("h");
+      gpu_copy_fields(g, p, &ih, 1, 0);
+      gpu_check(cudaStreamSynchronize(s));
+      return;
+    }
+    gpu_check(cudaEventRecord(g->ev[2 + k], s));
   }
-  out->iterations = iter;
-  out->capped = g->counters_host[GPU_CAPPED];
-  if (g->counters_host[GPU_OVERFLOW]) {
-    /* the lists were too short for the new h: hand h back for new lists */
-    out->overflow = 1;
-    /* the host's h changes below: let whatever runs beside this phase finish first */
-    if (g->kick_wait) g->kick_wait(g->kick_wait_ctx);
-    const int ih = gpu_field_index("h");
-    gpu_copy_fields(g, p, &ih, 1, 0);
-    gpu_check(cudaStreamSynchronize(s));
-    return;
-  }
-  ghost_gpu_finish_launch(s, g->dev, dv, *hp, g->mats_dev);
-  gpu_check(cudaEventRecord(g->ev[3], s));
-  if (hp->solids) {
-    /* ghost -> gradient -> extra ghost -> force (engine_graph.c) */
-    gradient_gpu_launch(s, g->dev, dv);
-    extra_ghost_gpu_launch(s, g->dev, *hp, g->mats_dev);
-  }
-  gpu_check(cudaEventRecord(g->ev[4], s));
-  force_gpu_launch(s, g->dev, dv, *hp);
-  gpu_check(cudaEventRecord(g->ev[5], s));
-  /* force -> damage -> kick2 */
-  if (damage) damage_gpu_launch(s, g->dev, g->mats_dev, g->flaws_dev, dmg->dt);
-  gpu_check(cudaEventRecord(g->ev[6], s));
-  /* hybrid runs: ga is being computed beside this phase; complete on the
-   * device once this returns (its device part, if any, queued on stream 0) */
-  if (g->kick_wait) g->kick_wait(g->kick_wait_ctx);
-  gpu_check(cudaEventRecord(g->ev[7], s));
   double *leaf_dt = g->leaf_dt;
-  struct gpu_gravity gr = {0, 0.0, 0.0};
-  if (grav) gr = *grav;
-  kick2_gpu_launch(s, g->dev, dv, *hp, g->mats_dev, dt_kick, damage ? dmg->max_change : 0.0, gr,
-                   leaf_dt);
-  gpu_check(cudaEventRecord(g->ev[8], s));
   if (!resident) gpu_copy_fields(g, p, g->out, nr_out, 0);
   gpu_check(cudaMemcpyAsync(leaf_dt_min, leaf_dt, (size_t)lv->n * sizeof(double),
                             cudaMemcpyDeviceToHost, s));
-  gpu_check(cudaEventRecord(g->ev[9], s));
+  gpu_check(cudaEventRecord(g->ev[GPU_T_N], s));
   gpu_check(cudaStreamSynchronize(s));
   for (int k = 0; k < GPU_T_N; k++) {
     float ms = 0.0f;
@@ -548,7 +533,10 @@ extern "C" void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double
 extern "C" void gpu_print_timers(const struct gpu *g, FILE *f) {
   if (g->calls == 0) return;
   fprintf(f, "GPU (%s), %ld force phases, ms per phase:", g->name, g->calls);
-  for (int k = 0; k < GPU_T_N; k++) fprintf(f, " %s %.3f", gpu_stage_names[k], g->t[k] / g->calls);
+  for (int k = 0; k < GPU_T_N; k++) {
+    const char *name = k == 0 ? "upload" : k == GPU_T_N - 1 ? "download" : gpu_steps[g->order[k - 1]].stage;
+    fprintf(f, " %s %.3f", name, g->t[k] / g->calls);
+  }
   if (g->drifts) fprintf(f, " drift(+x,h back) %.3f", g->t_drift / g->drifts);
   fprintf(f, "; %ld full uploads, %ld full downloads", g->full_up, g->full_down);
   fprintf(f, "; bus %.1f MB up, %.1f MB down per step", g->bytes_h2d / g->calls / 1e6,

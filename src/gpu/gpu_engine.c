@@ -469,6 +469,37 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
   return out.capped;
 }
 
+/** The chains of the registry (tasks/task_families.h): predicate and family. */
+struct gpu_engine_chain {
+  int (*active)(const struct engine *); /**< 1: the run has the family's tasks */
+  enum task_family family;              /**< the family */
+};
+#define GPU_ENGINE_CHAIN_chain(active) {active, GPU_ENGINE_CHAIN_FAMILY_
+#define GPU_ENGINE_CHAIN_FAMILY_(family) task_family_##family},
+#define GPU_ENGINE_CHAIN_cell(family)
+#define GPU_ENGINE_CHAIN_self(family)
+#define GPU_ENGINE_CHAIN_pair(family)
+#define GPU_ENGINE_CHAIN_ROW_(family, shape, type, subtype, cpu) GPU_ENGINE_CHAIN_##shape(family)
+static const struct gpu_engine_chain gpu_engine_chains[] = {
+    TASK_FAMILY_TASKS(GPU_ENGINE_CHAIN_ROW_){NULL, task_family_count}};
+#undef GPU_ENGINE_CHAIN_ROW_
+
+/** The reason why the run's tasks cannot run on the GPU's hydrodynamic
+ *  phase: a family of the registry without a GPU implementation (policy CPU)
+ *  whose chain tasks the run has; NULL if there is none. */
+static const char *gpu_engine_cpu_only(const struct engine *e) {
+  static char why[160];
+  for (int k = 0; gpu_engine_chains[k].active; k++) {
+    const enum task_family f = gpu_engine_chains[k].family;
+    if (!(TASK_FAMILIES_GPU & (1u << f)) && gpu_engine_chains[k].active(e)) {
+      snprintf(why, sizeof why, "the task family %s has no GPU implementation",
+               task_family_names[f]);
+      return why;
+    }
+  }
+  return NULL;
+}
+
 void gpu_engine_init(struct engine *e) {
   const struct gpu_policy pol = gpu_policy_read(e->params);
   char asked[300];
@@ -493,7 +524,7 @@ void gpu_engine_init(struct engine *e) {
                             : e->gp.enabled && e->gp.h_factor > 0.0
                                 ? "Gravity:softening_h_factor > 0 (softening tied to h) has no GPU "
                                   "implementation yet"
-                                : NULL;
+                                : gpu_engine_cpu_only(e);
   if (unsupported) {
     if (required) error_exit("a GPU was required (%s) but %s", asked, unsupported);
     error_log(0, "GPU not used (%s): every task runs on the CPU", unsupported);
@@ -511,7 +542,7 @@ void gpu_engine_init(struct engine *e) {
   int mode = GPU_MODE_HYBRID;
   if (pol.kind == GPU_POLICY_ALL)
     mode = GPU_MODE_SERIAL;
-  else if (pol.kind == GPU_POLICY_LIST && !(pol.families & (1u << GPU_FAMILY_GRAVITY)))
+  else if (pol.kind == GPU_POLICY_LIST && !(pol.families & (1u << task_family_gravity)))
     mode = GPU_MODE_CPU_GRAV;
   /* exact summation has no GPU part: it runs on the CPU beside the hydrodynamics */
   if (e->gp.enabled && e->gp.direct) mode = GPU_MODE_CPU_GRAV;
@@ -708,7 +739,7 @@ static void *gpu_engine_hydro_run(void *arg) {
   struct gpu_hydro_job *jb = arg;
   struct engine *e = jb->e;
   struct gpu_engine *ge = e->gpu;
-  runner_unpin_self(&e->sched);
+  runner_unpin_self(&e->sched.pool);
   jb->t_start = error_walltime();
   jb->capped = gpu_cells_force(ge->gpu, &ge->cells, &e->parts, &e->space, e->tcells, e->nr_tcells,
                                e->ct, ge->tc_h_cap, &e->hp, e->mats, &jb->dmg, &jb->grav,
@@ -723,7 +754,7 @@ void gpu_engine_force(struct engine *e) {
     ge->tc_h_cap = error_realloc(ge->tc_h_cap, e->nr_tcells * sizeof(double), "GPU caps");
     ge->nr_tc = e->nr_tcells;
   }
-  /* the caps of the CPU ghost (engine_runtask.c): a pair is found while
+  /* the caps of the CPU ghost (tasks/ghost/ghost_task.c): a pair is found while
    * H_i + |dx_i| + |dx_j| stays below the reach of the task graph */
   const double H_limit = engine_H_limit(e);
   for (int t = 0; t < e->nr_tcells; t++) {
@@ -742,7 +773,7 @@ void gpu_engine_force(struct engine *e) {
   memset(&jb, 0, sizeof jb);
   jb.e = e;
   jb.dt_kick = e->first_force ? 0.0 : 0.5 * e->dt;
-  /* no damage before Damage:start_time (engine_damage does the same) */
+  /* no damage before Damage:start_time (damage_task does the same) */
   jb.dmg = (struct gpu_damage){e->damage && !(e->time < e->damage_start),
                                e->first_force ? 0.0 : e->dt, e->damage_max_change};
   jb.grav = (struct gpu_gravity){e->gp.enabled, e->gp.eps, e->gp.eta};

@@ -322,19 +322,19 @@ extern "C" void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_t
 }
 
 /** Add 1 to cnt[t[k]] for k < n. */
-__global__ void gg_count_kernel(const int *__restrict__ t, size_t n, int *cnt) {
+__global__ void gpu_grav_count_kernel(const int *__restrict__ t, size_t n, int *cnt) {
   for (size_t k = blockIdx.x * (size_t)blockDim.x + threadIdx.x; k < n;
        k += (size_t)gridDim.x * blockDim.x)
     atomicAdd(cnt + t[k], 1);
 }
 
 /** The counts c[0..n) become their exclusive prefix sums, c[n] the total (one block). */
-__global__ void gg_scan_kernel(int *c, int n) {
+__global__ void gpu_grav_scan_kernel(int *c, int n) {
   gpu_block_exclusive_scan(c, n);
 }
 
 /** Entry k < n goes to the next free place of cell t[k]: out = s[k]. */
-__global__ void gg_scatter_kernel(const int *__restrict__ t, const int *__restrict__ s, size_t n,
+__global__ void gpu_grav_scatter_kernel(const int *__restrict__ t, const int *__restrict__ s, size_t n,
                                   int *cursor, int *out) {
   for (size_t k = blockIdx.x * (size_t)blockDim.x + threadIdx.x; k < n;
        k += (size_t)gridDim.x * blockDim.x)
@@ -360,21 +360,21 @@ static struct gravity_gpu_groups gg_group_dev(struct gpu_grav *gg, int k, const 
   int *cursor = (int *)gg_reserve(&gg->cursor, ((size_t)nc + 1) * sizeof(int), "gravity lists");
   int *out = (int *)gg_reserve(&gg->src[k], ntot * sizeof(int) + 16, "grouped gravity lists");
   gpu_check(cudaMemsetAsync(start, 0, ((size_t)nc + 1) * sizeof(int), s));
-  gg_count_kernel<<<gg_grid(n1), 256, 0, s>>>(t1, n1, start);
-  gpu_check_launch(gg_count_kernel);
-  gg_count_kernel<<<gg_grid(n2), 256, 0, s>>>(a2, n2, start);
-  gpu_check_launch(gg_count_kernel);
-  gg_count_kernel<<<gg_grid(n2), 256, 0, s>>>(b2, n2, start);
-  gpu_check_launch(gg_count_kernel);
-  gg_scan_kernel<<<1, 1024, 0, s>>>(start, nc);
-  gpu_check_launch(gg_scan_kernel);
+  gpu_grav_count_kernel<<<gg_grid(n1), 256, 0, s>>>(t1, n1, start);
+  gpu_check_launch(gpu_grav_count_kernel);
+  gpu_grav_count_kernel<<<gg_grid(n2), 256, 0, s>>>(a2, n2, start);
+  gpu_check_launch(gpu_grav_count_kernel);
+  gpu_grav_count_kernel<<<gg_grid(n2), 256, 0, s>>>(b2, n2, start);
+  gpu_check_launch(gpu_grav_count_kernel);
+  gpu_grav_scan_kernel<<<1, 1024, 0, s>>>(start, nc);
+  gpu_check_launch(gpu_grav_scan_kernel);
   gpu_check(cudaMemcpyAsync(cursor, start, (size_t)nc * sizeof(int), cudaMemcpyDeviceToDevice, s));
-  gg_scatter_kernel<<<gg_grid(n1), 256, 0, s>>>(t1, s1, n1, cursor, out);
-  gpu_check_launch(gg_scatter_kernel);
-  gg_scatter_kernel<<<gg_grid(n2), 256, 0, s>>>(a2, b2, n2, cursor, out);
-  gpu_check_launch(gg_scatter_kernel);
-  gg_scatter_kernel<<<gg_grid(n2), 256, 0, s>>>(b2, a2, n2, cursor, out);
-  gpu_check_launch(gg_scatter_kernel);
+  gpu_grav_scatter_kernel<<<gg_grid(n1), 256, 0, s>>>(t1, s1, n1, cursor, out);
+  gpu_check_launch(gpu_grav_scatter_kernel);
+  gpu_grav_scatter_kernel<<<gg_grid(n2), 256, 0, s>>>(a2, b2, n2, cursor, out);
+  gpu_check_launch(gpu_grav_scatter_kernel);
+  gpu_grav_scatter_kernel<<<gg_grid(n2), 256, 0, s>>>(b2, a2, n2, cursor, out);
+  gpu_check_launch(gpu_grav_scatter_kernel);
   struct gravity_gpu_groups v;
   v.nr_cells = nc;
   v.start = start;

@@ -10,6 +10,7 @@
 #include "gravity/gravity_walk.h"
 #include "hydro_props.h"
 #include "part.h"
+#include "task_families.h"
 
 struct material_table;
 
@@ -77,6 +78,42 @@ struct gravity_gpu_groups {
 
 /** Counters of the h iteration in device memory. */
 enum gpu_counter { GPU_LEFT = 0, GPU_CAPPED = 1, GPU_OVERFLOW = 2, GPU_NR_COUNTERS = 4 };
+
+/** What the steps of one GPU FORCE phase share (src/gpu/gpu.cu fills it).
+ *  The step of each task family (column gpu of tasks/task_families.h, in
+ *  tasks/<family>/<family>_gpu.cu) queues its kernels on stream s and
+ *  returns 0, or 1 to end the phase at once (the ghost's, when the h
+ *  iteration outgrew the neighbour lists: out->overflow). */
+struct gpu_phase {
+  cudaStream_t s;                    /**< stream 0: fields and kernels */
+  struct parts dev;                  /**< the device particle arrays */
+  struct gpu_leaves_dev lv;          /**< the leaves and their lists */
+  struct hydro_props hp;             /**< SPH settings */
+  const struct material_table *mats; /**< the material table on the device */
+  const double *flaws;               /**< Weibull flaw thresholds on the device */
+  int damage;                        /**< the damage step runs in this phase */
+  double dmg_dt;                     /**< step over which damage grows */
+  double dmg_max_change;             /**< Damage:max_change (0 without damage) */
+  struct gpu_gravity grav;           /**< gravity in the kick */
+  double dt_kick;                    /**< second half kick */
+  double *leaf_dt;                   /**< smallest new time step of each leaf (device) */
+  int *counters;                     /**< counters of the h iteration (device) */
+  int *counters_host;                /**< their pinned copy (gpu_phase_read_counters) */
+  void (*wait)(void *);              /**< gpu_set_kick_wait's hook (NULL: none) */
+  void *wait_ctx;                    /**< its argument */
+  struct gpu_force_out *out;         /**< what the phase reports */
+};
+
+/** The steps of the registry (one per family with column gpu STEP). */
+#define GPU_STEP_DECL_STEP(fn) int fn(struct gpu_phase *ph);
+#define GPU_STEP_DECL_NOSTEP
+#define GPU_STEP_DECL_(name, subtype, policy, place, gpu, when, stage, reads, writes) \
+  GPU_STEP_DECL_##gpu
+TASK_FAMILIES(GPU_STEP_DECL_)
+#undef GPU_STEP_DECL_
+
+/** Copy the counters of the h iteration to counters_host (waits for stream s). */
+void gpu_phase_read_counters(struct gpu_phase *ph);
 
 /** Density sums of every particle (or of those without PART_H_CONVERGED),
  *  gathered from the leaves' neighbour lists (tasks/density/density_gpu.cu). */

@@ -5,19 +5,13 @@
 #include <stdio.h>
 #include <string.h>
 
-const char *const gpu_family_names[GPU_FAMILY_COUNT] = {
-    [GPU_FAMILY_DRIFT] = "drift",       [GPU_FAMILY_DENSITY] = "density",
-    [GPU_FAMILY_GHOST] = "ghost",       [GPU_FAMILY_GRADIENT] = "gradient",
-    [GPU_FAMILY_FORCE] = "force",       [GPU_FAMILY_DAMAGE] = "damage",
-    [GPU_FAMILY_KICK] = "kick",         [GPU_FAMILY_GRAVITY] = "gravity"};
-
 /** Append the names of the families in mask to buf as "a, b, c". */
 static void gpu_policy_names(unsigned mask, char *buf, size_t len) {
   buf[0] = '\0';
-  for (int f = 0; f < GPU_FAMILY_COUNT; f++)
+  for (int f = 0; f < task_family_count; f++)
     if (mask & (1u << f)) {
       const size_t n = strlen(buf);
-      snprintf(buf + n, len - n, "%s%s", n ? ", " : "", gpu_family_names[f]);
+      snprintf(buf + n, len - n, "%s%s", n ? ", " : "", task_family_names[f]);
     }
 }
 
@@ -46,16 +40,17 @@ struct gpu_policy gpu_policy_read(const struct params *p) {
   const int bracket = *c == '[';
   if (bracket) c++;
   char known[256];
-  gpu_policy_names(~0u, known, sizeof known);
+  gpu_policy_names(TASK_FAMILIES_GPU, known, sizeof known);
   for (;;) {
     while (isspace((unsigned char)*c) || *c == ',') c++;
     if (*c == '\0' || (bracket && *c == ']')) break;
     const size_t n = strcspn(c, ", \t\n]");
     int f = 0;
-    while (f < GPU_FAMILY_COUNT &&
-           (strlen(gpu_family_names[f]) != n || strncmp(gpu_family_names[f], c, n) != 0))
+    while (f < task_family_count &&
+           (!(TASK_FAMILIES_GPU & (1u << f)) || strlen(task_family_names[f]) != n ||
+            strncmp(task_family_names[f], c, n) != 0))
       f++;
-    if (f == GPU_FAMILY_COUNT)
+    if (f == task_family_count)
       params_error(p, key, "'%.*s' is not a task family: expected auto, off, all or a list of %s",
                    (int)n, c, known);
     pol.families |= 1u << f;
@@ -64,7 +59,7 @@ struct gpu_policy gpu_policy_read(const struct params *p) {
   if (bracket && *c != ']') params_error(p, key, "the list '%s' lacks its closing ']'", v);
   if (bracket && c[1 + strspn(c + 1, " \t")] != '\0')
     params_error(p, key, "text after the list '%s'", v);
-  const unsigned hydro = GPU_FAMILIES_HYDRO;
+  const unsigned hydro = TASK_FAMILIES_HYDRO;
   if (pol.families && (pol.families & hydro) != hydro) {
     char missing[256];
     gpu_policy_names(hydro & ~pol.families, missing, sizeof missing);

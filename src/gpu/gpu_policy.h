@@ -6,28 +6,14 @@
 #define BOLIDE_GPU_POLICY_H
 
 #include "params.h"
+#include "task.h"
 
-/** The task families Scheduler:gpu can name (bits of gpu_policy.families). */
-enum gpu_family {
-  GPU_FAMILY_DRIFT,
-  GPU_FAMILY_DENSITY,
-  GPU_FAMILY_GHOST,
-  GPU_FAMILY_GRADIENT,
-  GPU_FAMILY_FORCE,
-  GPU_FAMILY_DAMAGE,
-  GPU_FAMILY_KICK,
-  GPU_FAMILY_GRAVITY,
-  GPU_FAMILY_COUNT
-};
-
-/** Their names, as written in the list. */
-extern const char *const gpu_family_names[GPU_FAMILY_COUNT];
-
-/** The hydrodynamic families: one phase on the GPU, named together (ghost,
- *  the h iteration of density's loop, may be named or not). */
-#define GPU_FAMILIES_HYDRO                                                              \
-  ((1u << GPU_FAMILY_DRIFT) | (1u << GPU_FAMILY_DENSITY) | (1u << GPU_FAMILY_GRADIENT) | \
-   (1u << GPU_FAMILY_FORCE) | (1u << GPU_FAMILY_DAMAGE) | (1u << GPU_FAMILY_KICK))
+/* The task families Scheduler:gpu can name are those of the registry
+ * (tasks/task_families.h), by their names (task_family_names); bit
+ * (1u << task_family_x) of gpu_policy.families.  The families of column
+ * policy HYDRO run on the GPU as one phase and are named together
+ * (TASK_FAMILIES_HYDRO: ghost, the h iteration of density's loop, may be
+ * named or not). */
 
 /** Kinds of value. */
 enum gpu_policy_kind { GPU_POLICY_AUTO, GPU_POLICY_OFF, GPU_POLICY_ALL, GPU_POLICY_LIST };
@@ -35,7 +21,7 @@ enum gpu_policy_kind { GPU_POLICY_AUTO, GPU_POLICY_OFF, GPU_POLICY_ALL, GPU_POLI
 /** A checked Scheduler:gpu. */
 struct gpu_policy {
   enum gpu_policy_kind kind; /**< auto, off, all or a list */
-  unsigned families;         /**< a list: bit (1u << gpu_family) of each family named */
+  unsigned families;         /**< a list: bit (1u << task_family) of each family named */
   char text[256];            /**< the value as given (for the log) */
 };
 

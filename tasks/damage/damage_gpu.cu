@@ -19,3 +19,10 @@ void damage_gpu_launch(cudaStream_t s, struct parts p, const struct material_tab
   damage_gpu_kernel<<<nb, GPU_BLOCK, 0, s>>>(p, mats, eps, dt);
   gpu_check_launch(damage_gpu_kernel);
 }
+
+/** The damage family's step of the FORCE phase (tasks/task_families.h;
+ *  brittle materials only): force -> damage -> kick2. */
+int damage_gpu_phase(struct gpu_phase *ph) {
+  damage_gpu_launch(ph->s, ph->dev, ph->mats, ph->flaws, ph->dmg_dt);
+  return 0;
+}

@@ -1,5 +1,5 @@
 /* The damage task's work on one particle, shared by the CPU task
- * (engine_runtask.c) and the CUDA kernel (damage_gpu.cu): the Grady-Kipp
+ * (damage_task.c) and the CUDA kernel (damage_gpu.cu): the Grady-Kipp
  * update of damage_iact.h from the particle's fields, and its time-step
  * limit.  Physics written once (STYLE.md rule 3). */
 #ifndef BOLIDE_DAMAGE_PART_H

@@ -48,3 +48,11 @@ void density_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv
   density_gpu_kernel<<<lv.n, lv.block, 0, s>>>(p, lv, only_unconverged);
   gpu_check_launch(density_gpu_kernel);
 }
+
+/** The density family's step of the FORCE phase (tasks/task_families.h):
+ *  the sums of every particle (the ghost's step repeats them for the
+ *  particles still iterating h). */
+int density_gpu_phase(struct gpu_phase *ph) {
+  density_gpu_launch(ph->s, ph->dev, ph->lv, 0);
+  return 0;
+}

@@ -50,3 +50,9 @@ void force_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
   force_gpu_kernel<<<lv.n, lv.block, 0, s>>>(p, lv, hp);
   gpu_check_launch(force_gpu_kernel);
 }
+
+/** The force family's step of the FORCE phase (tasks/task_families.h). */
+int force_gpu_phase(struct gpu_phase *ph) {
+  force_gpu_launch(ph->s, ph->dev, ph->lv, ph->hp);
+  return 0;
+}

@@ -1,8 +1,12 @@
 /* The ghost on the GPU: the smoothing-length iteration and the equation of
  * state for every particle, with the per-particle functions of ghost_part.h
- * that the CPU ghost calls.  The runner (src/gpu/gpu.cu) alternates
- * ghost_gpu_step with density_gpu (unconverged particles only) until no
- * particle is left, reading the counters in between. */
+ * that the CPU ghost calls.  The family's step of the FORCE phase
+ * (ghost_gpu_phase) alternates ghost_gpu_step with density_gpu (unconverged
+ * particles only) until no particle is left, reading the counters in
+ * between. */
+extern "C" {
+#include "error.h"
+}
 #include "ghost_part.h"
 #include "gpu_kernels.h"
 
@@ -69,4 +73,37 @@ void ghost_gpu_finish_launch(cudaStream_t s, struct parts p, struct gpu_leaves_d
   if (lv.n == 0) return;
   ghost_gpu_finish_kernel<<<lv.n, lv.block, 0, s>>>(p, lv, hp, mats);
   gpu_check_launch(ghost_gpu_finish_kernel);
+}
+
+/** The ghost family's step of the FORCE phase (tasks/task_families.h): the
+ *  h iteration, density again for the particles still iterating until none
+ *  is left (ghost_cpu.c's loop), then the grad-h factor and the EOS.  Ends
+ *  the phase (returns 1, out->overflow) when some h outgrew the lists. */
+int ghost_gpu_phase(struct gpu_phase *ph) {
+  const struct hydro_props *hp = &ph->hp;
+  ghost_gpu_start_launch(ph->s, ph->dev, ph->lv, *hp, ph->counters);
+  gpu_phase_read_counters(ph);
+  int iter = 1;
+  while (ph->counters_host[GPU_LEFT] > 0 && !ph->counters_host[GPU_OVERFLOW]) {
+    if (iter > hp->max_iterations)
+      error_exit(
+          "the smoothing lengths of %d particles did not converge in %d iterations on the GPU; "
+          "raise "
+          "SPH:max_ghost_iterations or check the initial conditions",
+          ph->counters_host[GPU_LEFT], hp->max_iterations);
+    gpu_check(cudaMemsetAsync(ph->counters + GPU_LEFT, 0, sizeof(int), ph->s));
+    density_gpu_launch(ph->s, ph->dev, ph->lv, 1);
+    ghost_gpu_step_launch(ph->s, ph->dev, ph->lv, *hp, ph->counters);
+    gpu_phase_read_counters(ph);
+    iter++;
+  }
+  ph->out->iterations = iter;
+  ph->out->capped = ph->counters_host[GPU_CAPPED];
+  if (ph->counters_host[GPU_OVERFLOW]) {
+    /* the lists were too short for the new h: the runner hands h back */
+    ph->out->overflow = 1;
+    return 1;
+  }
+  ghost_gpu_finish_launch(ph->s, ph->dev, ph->lv, *hp, ph->mats);
+  return 0;
 }

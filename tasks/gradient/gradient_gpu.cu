@@ -65,3 +65,11 @@ void extra_ghost_gpu_launch(cudaStream_t s, struct parts p, struct hydro_props h
   extra_ghost_gpu_kernel<<<nb, GPU_BLOCK, 0, s>>>(p, hp, mats);
   gpu_check_launch(extra_ghost_gpu_kernel);
 }
+
+/** The gradient family's step of the FORCE phase (tasks/task_families.h;
+ *  solids only): ghost -> gradient -> extra ghost -> force (engine_graph.c). */
+int gradient_gpu_phase(struct gpu_phase *ph) {
+  gradient_gpu_launch(ph->s, ph->dev, ph->lv);
+  extra_ghost_gpu_launch(ph->s, ph->dev, ph->hp, ph->mats);
+  return 0;
+}

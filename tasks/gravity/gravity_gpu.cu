@@ -192,3 +192,13 @@ void gravity_l2p_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_d
   if (nr_leaves == 0) return;
   GRAVITY_GPU_DISPATCH(gravity_l2p_gpu_kernel, nr_leaves, block, p, d, leaf);
 }
+
+/** The gravity family's step of the FORCE phase (tasks/task_families.h):
+ *  self-gravity joins before the kick.  Hybrid runs compute ga beside the
+ *  phase; the runner's hook (gpu_set_kick_wait) waits for it there and
+ *  completes it on the device (its device part, if any, queued on stream
+ *  0).  Without a hook ga is already complete. */
+int gravity_gpu_phase(struct gpu_phase *ph) {
+  if (ph->wait) ph->wait(ph->wait_ctx);
+  return 0;
+}

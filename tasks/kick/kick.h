@@ -12,7 +12,7 @@
 #include "inline.h"
 #include "material.h"
 #include "part.h"
-#include "timestep/timestep.h"
+#include "kick/timestep.h"
 
 /** The kicked stress of a plastic particle back onto its yield surface
  *  (extra_ghost_plastic_return, with the yield stress of this step's

@@ -1,7 +1,7 @@
 /* Second half kick and new time step on the GPU, with kick2_part (kick.h)
  * and, with brittle materials, damage_part_timestep (damage_part.h), with
  * self-gravity the gravitational acceleration added first and
- * gravity_timestep (gravity_iact.h), as the CPU task (engine_kick2) does; each block reduces the
+ * gravity_timestep (gravity_iact.h), as the CPU task (kick2_task) does; each block reduces the
  * smallest time step of its leaf. */
 #include "damage/damage_part.h"
 #include "gravity/gravity_iact.h"
@@ -58,4 +58,13 @@ void kick2_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
   kick2_gpu_kernel<<<lv.n, lv.block, 0, s>>>(p, lv, hp, mats, dt_kick, damage_max_change, grav,
                                              leaf_dt);
   gpu_check_launch(kick2_gpu_kernel);
+}
+
+/** The kick family's step of the FORCE phase (tasks/task_families.h): the
+ *  second half kick and the new time steps, the smallest of each leaf in
+ *  leaf_dt. */
+int kick_gpu_phase(struct gpu_phase *ph) {
+  kick2_gpu_launch(ph->s, ph->dev, ph->lv, ph->hp, ph->mats, ph->dt_kick, ph->dmg_max_change,
+                   ph->grav, ph->leaf_dt);
+  return 0;
 }

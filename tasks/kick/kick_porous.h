@@ -1,5 +1,5 @@
 /* Porous materials around the second half kick (P-alpha, theory/porosity.md
- * PA6 and PA10), shared by the CPU kick task (engine_runtask.c) and the
+ * PA6 and PA10), shared by the CPU kick task (kick_task.c) and the
  * CUDA kick kernel (kick_gpu.cu). */
 #ifndef BOLIDE_KICK_POROUS_H
 #define BOLIDE_KICK_POROUS_H

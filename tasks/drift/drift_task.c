@@ -1,0 +1,8 @@
+/* The drift family's task (tasks/task_families.h): first half kick and
+ * drift of a task cell (drift_cpu.c). */
+#include "drift/drift_cpu.h"
+#include "engine.h"
+
+void drift_task(struct engine *e, struct task *t) {
+  drift_cell_cpu(&e->parts, t->ci, 0.5 * e->dt, e->dt, e->hp.xsph, e->hp.h_max);
+}

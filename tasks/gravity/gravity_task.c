@@ -1,0 +1,47 @@
+/* The gravity family's tasks (tasks/task_families.h): the upward pass, the
+ * walks (self, near pair, long range) and the downward pass of the
+ * top-level cells and their split (engine_graph.c). */
+#include "engine.h"
+#include "gravity/gravity_cpu.h"
+
+/** A gravity walk task: self (cj == ci), near pair, or long range (cj
+ *  NULL); records its particle-level interactions when the far field may
+ *  be reused, or replays them on a step that reuses it. */
+static void gravity_walk_task(struct engine *e, const struct task *t, const struct cell *ci,
+                              const struct cell *cj) {
+  struct parts *p = &e->parts;
+  struct gravity_ilist *il = t->id < e->nr_gilists ? &e->gilists[t->id] : NULL;
+  if (e->gp.replay) {
+    gravity_replay(p, il, e->gcells, &e->gp);
+    return;
+  }
+  gravity_record_begin(il);
+  if (cj)
+    gravity_interact_cells(p, ci, cj, e->gcells, &e->gp);
+  else
+    gravity_long_range(p, ci, e->space.cells, e->space.nr_top, e->gcells, &e->gp);
+  gravity_record_end();
+}
+
+void gravity_up_task(struct engine *e, struct task *t) {
+  gravity_up(&e->parts, t->ci, e->gcells, &e->gp);
+}
+
+void gravity_self_task(struct engine *e, struct task *t) {
+  gravity_walk_task(e, t, t->ci, t->ci);
+}
+
+void gravity_pair_task(struct engine *e, struct task *t) {
+  gravity_walk_task(e, t, t->ci, t->cj);
+}
+
+void gravity_long_range_task(struct engine *e, struct task *t) {
+  if (t->ci)
+    gravity_walk_task(e, t, t->ci, NULL);
+  else /* Gravity:direct: exact summation in one task */
+    gravity_direct_h(&e->parts, e->gp.G, e->gp.eps, e->gp.softening, e->gp.h_factor, 1);
+}
+
+void gravity_down_task(struct engine *e, struct task *t) {
+  gravity_down(&e->parts, t->ci, e->gcells, &e->gp);
+}

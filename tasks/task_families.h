@@ -1,0 +1,189 @@
+/* The registry of task families: one row per folder tasks/<family>/.
+ *
+ * Everything the engine, the scheduler and the GPU runner know about a
+ * family comes from here (STYLE.md rule 5, "one list, many uses"):
+ *
+ *  - the task types and subtypes (src/task.h) and so the names of the
+ *    timers and of the task dumps (tools/plot_tasks.py);
+ *  - the CPU dispatch of the engine (src/engine_runtask.c): the function of
+ *    each kind of task, tasks/<family>/<family>_task.c;
+ *  - the families Scheduler:gpu can name, and which of them run on the GPU
+ *    as one phase (src/gpu/gpu_policy.c);
+ *  - the GPU FORCE phase (src/gpu/gpu.cu): its steps, their order, their
+ *    timers and the particle fields each step reads and writes;
+ *  - the build: tasks/families.am (tools/families_am.sh, run by autogen.sh
+ *    and by Makefile.am when this file changes) includes each family's
+ *    fragment tasks/<family>/local.am;
+ *  - the graph, for a family of shape chain (below): its tasks between the
+ *    force and the kick of every task cell (src/engine_graph.c);
+ *  - tests/test_layers.py, which fails when a folder of tasks/, a fragment
+ *    or a list of family names elsewhere disagrees with this list.
+ *
+ * A new per-particle family between the force and the kick is its folder
+ * (tasks/<name>/: <name>_task.c, local.am), its two rows here and its test;
+ * a family with other edges adds them in src/engine_graph.c.  Preprocessor
+ * lists only: included by C and by CUDA C++. */
+#ifndef BOLIDE_TASK_FAMILIES_H
+#define BOLIDE_TASK_FAMILIES_H
+
+/* clang-format off */
+
+/* TASK_FAMILIES(X): X(name, subtype, policy, place, gpu, when, stage, reads, writes)
+ *
+ *  name     the folder tasks/<name>/, the prefix of its files, and the name
+ *           Scheduler:gpu lists (src/io/param_list.h)
+ *  subtype  SUB(s): the subtype its tasks carry (task_subtype_s), or NOSUB
+ *  policy   HYDRO: on the GPU it runs in the hydrodynamic phase, so a list in
+ *           Scheduler:gpu names it with the other HYDRO families; FREE: it
+ *           may be named or not; CPU: it has no GPU implementation (not a
+ *           name of Scheduler:gpu; a run where it has tasks stays on the CPU)
+ *  place    its rank along a step's graph (engine_graph.c): drift first;
+ *           self-gravity runs beside the hydrodynamics and joins before the
+ *           kick.  The GPU FORCE phase runs its steps in this order.
+ *  gpu      its step of the GPU FORCE phase (gpu_kernels.h: an int
+ *           fn(struct gpu_phase *)), or NOSTEP: no step there (the drift
+ *           has its own phase, gpu_drift)
+ *  when     ALWAYS: the step runs in every phase; SOLIDS: only with a
+ *           material with strength (hydro_props.solids); BRITTLE: only with
+ *           damage
+ *  stage    the name of that step's timer (gpu_print_timers)
+ *  reads    the particle fields that step reads, (field, ...): copied to the
+ *           device before the phase when the particles are not resident
+ *  writes   the fields it writes, copied back after the phase
+ *
+ * The fields of a family whose step does not run in a phase (column when)
+ * are not copied.  The solid
+ * state (stress, strain, plastic work) is listed under gradient, the family
+ * that solids add: the force and the kick read it only with solids. */
+#define TASK_FAMILIES(X)                                                                          \
+  X(drift, NOSUB, HYDRO, 0, NOSTEP, ALWAYS, "drift",                                              \
+    (),                                                                                           \
+    ())                                                                                           \
+  X(density, SUB(density), HYDRO, 1, STEP(density_gpu_phase), ALWAYS, "density",                  \
+    ("x", "y", "z", "vpx", "vpy", "vpz", "m", "h", "flags"),                                      \
+    ("rho", "rho_dh", "wcount", "wcount_dh", "div_v", "curl_vx", "curl_vy", "curl_vz"))           \
+  X(ghost, NOSUB, FREE, 2, STEP(ghost_gpu_phase), ALWAYS, "ghost",                                \
+    ("up", "mat", "u", "rho_full", "rho_fp", "alpha", "alpha_p"),                                 \
+    ("h", "P", "cs", "cl", "balsara", "f_gradh", "flags", "h_lo", "h_hi", "rho_full", "rho_fp"))  \
+  X(gradient, SUB(gradient), HYDRO, 3, STEP(gradient_gpu_phase), SOLIDS,                          \
+    "gradient(+extra ghost)",                                                                     \
+    ("Sxx", "Sxy", "Sxz", "Syy", "Syz", "Szz", "Spxx", "Spxy", "Spxz", "Spyy", "Spyz", "Spzz",    \
+     "eps_p", "dmg", "dmg_shear", "w_plastic"),                                                   \
+    ("gmxx", "gmxy", "gmxz", "gmyy", "gmyz", "gmzz", "gvxx", "gvxy", "gvxz", "gvyx", "gvyy",      \
+     "gvyz", "gvzx", "gvzy", "gvzz", "Sxx", "Sxy", "Sxz", "Syy", "Syz", "Szz", "Spxx", "Spxy",    \
+     "Spxz", "Spyy", "Spyz", "Spzz", "dSxx", "dSxy", "dSxz", "dSyy", "dSyz", "dSzz", "Rxx",       \
+     "Rxy", "Rxz", "Ryy", "Ryz", "Rzz", "eps_p", "dmg_shear", "w_plastic"))                       \
+  X(force, SUB(force), HYDRO, 4, STEP(force_gpu_phase), ALWAYS, "force",                          \
+    ("vx", "vy", "vz"),                                                                           \
+    ("ax", "ay", "az", "du_dt", "drho_dt", "v_sig", "xsphx", "xsphy", "xsphz"))                   \
+  X(damage, SUB(damage), HYDRO, 5, STEP(damage_gpu_phase), BRITTLE, "damage",                     \
+    ("dmg", "dcbrt", "n_act", "n_flaws", "flaw_first"),                                           \
+    ("dmg", "dcbrt", "n_act", "dmg_rate"))                                                        \
+  X(kick, NOSUB, HYDRO, 7, STEP(kick_gpu_phase), ALWAYS, "kick2",                                 \
+    ("e_clamp"),                                                                                  \
+    ("vx", "vy", "vz", "u", "vpx", "vpy", "vpz", "up", "alpha", "alpha_p", "dalpha_dt",           \
+     "e_clamp"))                                                                                  \
+  X(gravity, SUB(grav), FREE, 6, STEP(gravity_gpu_phase), ALWAYS,                                 \
+    "gravity(hybrid: wait + device part)",                                                        \
+    (),                                                                                           \
+    ())
+
+/* TASK_FAMILY_TASKS(X): X(family, shape, type, subtype, cpu): the kinds of
+ * task each family adds to the graph, and the CPU function that runs one
+ * (void cpu(struct engine *, struct task *), in tasks/<family>/<family>_task.c).
+ *
+ *  shape    self (one cell), pair (two cells), cell (a task type of its
+ *           own: one cell's bookkeeping, no neighbours), or chain(active):
+ *           a cell type of its own that the engine places itself, one task
+ *           per task cell between its force tasks and its kick (in registry
+ *           order), in the runs where int active(const struct engine *) is
+ *           1 (engine_graph.c); its edges then need no code of their own
+ *  type     the task type (task_type_<type>): self, pair, or the cell type
+ *  subtype  the task subtype (task_subtype_<subtype>), none for a cell type
+ *           of a family without a subtype */
+#define TASK_FAMILY_TASKS(X)                                                  \
+  X(drift,    cell, drift,           none,     drift_task)                    \
+  X(density,  self, self,            density,  density_self_task)             \
+  X(density,  pair, pair,            density,  density_pair_task)             \
+  X(ghost,    cell, ghost,           none,     ghost_task)                    \
+  X(gradient, self, self,            gradient, gradient_self_task)            \
+  X(gradient, pair, pair,            gradient, gradient_pair_task)            \
+  X(gradient, cell, extra_ghost,     none,     extra_ghost_task)              \
+  X(force,    self, self,            force,    force_self_task)               \
+  X(force,    pair, pair,            force,    force_pair_task)               \
+  X(damage,   chain(damage_active), damage, damage, damage_task)              \
+  X(kick,     cell, kick2,           none,     kick2_task)                    \
+  X(gravity,  cell, grav_up,         grav,     gravity_up_task)               \
+  X(gravity,  self, self,            grav,     gravity_self_task)             \
+  X(gravity,  pair, pair,            grav,     gravity_pair_task)             \
+  X(gravity,  cell, grav_long_range, grav,     gravity_long_range_task)       \
+  X(gravity,  cell, grav_down,       grav,     gravity_down_task)
+
+/* ------------------------------------------------------------ expansions */
+
+/** (a, b, c) -> a, b, c: the field lists. */
+#define TASK_UNPAREN(...) __VA_ARGS__
+
+/** The task types the families add: TASK_FAMILY_TYPE_X_(type) for every row
+ *  of shape cell, in registry order, and the subtypes they define:
+ *  TASK_FAMILY_SUBTYPE_X_(s) for every SUB(s) (src/task.h defines both hooks
+ *  before each expansion). */
+#define TASK_FAMILY_CELL_TYPE_cell(type) TASK_FAMILY_TYPE_X_(type)
+#define TASK_FAMILY_CELL_TYPE_chain(active) TASK_FAMILY_CELL_TYPE_cell
+#define TASK_FAMILY_CELL_TYPE_self(type)
+#define TASK_FAMILY_CELL_TYPE_pair(type)
+#define TASK_FAMILY_TYPES_ROW_(family, shape, type, subtype, cpu) \
+  TASK_FAMILY_CELL_TYPE_##shape(type)
+#define TASK_FAMILY_TYPES TASK_FAMILY_TASKS(TASK_FAMILY_TYPES_ROW_)
+
+#define TASK_FAMILY_SUBTYPE_SUB(s) TASK_FAMILY_SUBTYPE_X_(s)
+#define TASK_FAMILY_SUBTYPE_NOSUB
+#define TASK_FAMILY_SUBTYPES_ROW_(name, subtype, policy, place, gpu, when, stage, reads, writes) \
+  TASK_FAMILY_SUBTYPE_##subtype
+#define TASK_FAMILY_SUBTYPES TASK_FAMILIES(TASK_FAMILY_SUBTYPES_ROW_)
+
+/** The families, by registry row (task_family_names in src/task.c). */
+enum task_family {
+#define TASK_FAMILY_ENUM_(name, subtype, policy, place, gpu, when, stage, reads, writes) \
+  task_family_##name,
+  TASK_FAMILIES(TASK_FAMILY_ENUM_)
+#undef TASK_FAMILY_ENUM_
+  task_family_count /**< number of families */
+};
+
+/** The bit (1u << family) of every HYDRO family (column policy). */
+#define TASK_FAMILY_POLICY_HYDRO(name) | (1u << task_family_##name)
+#define TASK_FAMILY_POLICY_FREE(name)
+#define TASK_FAMILY_POLICY_CPU(name)
+#define TASK_FAMILY_HYDRO_ROW_(name, subtype, policy, place, gpu, when, stage, reads, writes) \
+  TASK_FAMILY_POLICY_##policy(name)
+#define TASK_FAMILIES_HYDRO (0u TASK_FAMILIES(TASK_FAMILY_HYDRO_ROW_))
+
+/** The bit of every family with a GPU implementation (policy HYDRO or FREE):
+ *  the names Scheduler:gpu knows. */
+#define TASK_FAMILY_ON_GPU_HYDRO(name) | (1u << task_family_##name)
+#define TASK_FAMILY_ON_GPU_FREE(name) | (1u << task_family_##name)
+#define TASK_FAMILY_ON_GPU_CPU(name)
+#define TASK_FAMILY_GPU_ROW_(name, subtype, policy, place, gpu, when, stage, reads, writes) \
+  TASK_FAMILY_ON_GPU_##policy(name)
+#define TASK_FAMILIES_GPU (0u TASK_FAMILIES(TASK_FAMILY_GPU_ROW_))
+
+/* clang-format on */
+
+#ifndef __cplusplus
+struct engine;
+struct task;
+/* The CPU function of every kind of task, and the predicate of every chain
+ * (tasks/<family>/<family>_task.c). */
+#define TASK_FAMILY_ACTIVE_DECL_chain(active) int active(const struct engine *e);
+#define TASK_FAMILY_ACTIVE_DECL_cell
+#define TASK_FAMILY_ACTIVE_DECL_self
+#define TASK_FAMILY_ACTIVE_DECL_pair
+#define TASK_FAMILY_CPU_DECL_(family, shape, type, subtype, cpu) \
+  void cpu(struct engine *e, struct task *t);                    \
+  TASK_FAMILY_ACTIVE_DECL_##shape
+TASK_FAMILY_TASKS(TASK_FAMILY_CPU_DECL_)
+#undef TASK_FAMILY_CPU_DECL_
+#endif
+
+#endif
