@@ -679,6 +679,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     e->flaw_eps = rd.flaw_eps;
     e->nr_flaws = rd.nr_flaws;
     e->restart_cells = rd.cells;
+    e->restart_grav = rd.grav;
     e->flaws_from = "the restart file";
     for (int k = 0; k < 3; k++) box[k] = rs.box[k];
     periodic = (int)rs.periodic;
@@ -864,6 +865,103 @@ static void engine_gravity_reuse_remember(struct engine *e) {
   e->grav_reused = 0;
 }
 
+/** The far field that the coming steps may reuse, for the restart file
+ *  (g->present 0: none; CPU runs only, the GPU's stays on the device):
+ *  the positions and shortest distance of the last full evaluation, the
+ *  multipole and local expansion of every cell with particles (the walks
+ *  skip empty cells, and gravity_up leaves those below the top level
+ *  unset) and every task's interaction list (cells by index).  Free with restart_gravity_free. */
+static void engine_gravity_reuse_save(const struct engine *e, struct restart_gravity *g) {
+  memset(g, 0, sizeof *g);
+  if (!e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0 || !e->grav_x0 || !(e->grav_d_min < HUGE_VAL) ||
+      e->gpu || e->nr_gilists < 1)
+    return;
+  const struct parts *p = &e->parts;
+  const int nc = e->space.nr_cells;
+  g->present = 1;
+  g->reused = e->grav_reused;
+  g->replays = e->grav_replays;
+  g->d_min = e->grav_d_min;
+  g->x0 = error_malloc(3 * (p->count ? p->count : 1) * sizeof(double), "restart far field");
+  memcpy(g->x0, e->grav_x0, 3 * p->count * sizeof(double));
+  g->nr_cells = nc;
+  g->cell_doubles = sizeof(struct gravity_cell) / sizeof(double);
+  g->cell_index = error_malloc(((size_t)nc ? (size_t)nc : 1) * sizeof(int32_t), "restart far field");
+  g->cells = error_malloc(((size_t)nc ? (size_t)nc : 1) * sizeof(struct gravity_cell), "restart far field");
+  for (int c = 0; c < nc; c++)
+    if (e->space.cells[c].count > 0) {
+      g->cell_index[g->nr_saved] = c;
+      memcpy((struct gravity_cell *)g->cells + g->nr_saved++, e->gcells + c, sizeof(struct gravity_cell));
+    }
+  g->nr_lists = e->nr_gilists;
+  g->list_count = error_malloc((size_t)e->nr_gilists * sizeof(int64_t), "restart far field");
+  g->list_d_min = error_malloc((size_t)e->nr_gilists * sizeof(double), "restart far field");
+  size_t items = 0;
+  for (int k = 0; k < e->nr_gilists; k++) items += (size_t)e->gilists[k].count;
+  g->items = error_malloc(16 * (items ? items : 1), "restart far field");
+  size_t q = 0;
+  for (int k = 0; k < e->nr_gilists; k++) {
+    const struct gravity_ilist *il = &e->gilists[k];
+    g->list_count[k] = il->count;
+    g->list_d_min[k] = il->d_min;
+    for (int j = 0; j < il->count; j++, q++) {
+      const struct gravity_iitem *it = &il->item[j];
+      int32_t *o = g->items + 4 * q;
+      o[0] = it->a->index;
+      o[1] = it->b ? it->b->index : -1;
+      o[2] = it->kind;
+      o[3] = it->symmetric;
+    }
+  }
+}
+
+/** After the first rebuild of a resumed run (the cells and task graph of
+ *  the uninterrupted run, space_restore): the far field of the restart
+ *  file back in place, so that the coming steps reuse it as the
+ *  uninterrupted run does.  A GPU run drops it (its far field lives on the
+ *  device): its first step evaluates gravity in full, within the reuse
+ *  tolerance of the uninterrupted run. */
+static void engine_gravity_reuse_restore(struct engine *e) {
+  struct restart_gravity *g = &e->restart_grav;
+  if (!g->present) return;
+  if (e->gpu || !e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0) {
+    if (e->gpu)
+      error_log(0, "gravity: the far field of the restart file is not used on the GPU: the first step "
+                "evaluates it in full");
+    restart_gravity_free(g);
+    return;
+  }
+  const struct parts *p = &e->parts;
+  if (g->nr_cells != e->space.nr_cells || g->nr_lists != e->nr_gilists)
+    error_exit("%s: the far field of %lld cells and %lld gravity tasks does not match the restored cells "
+               "(%d) and task graph (%d gravity tasks)", e->restart_file, (long long)g->nr_cells,
+               (long long)g->nr_lists, e->space.nr_cells, e->nr_gilists);
+  e->grav_x0 = error_realloc(e->grav_x0, 3 * (p->count ? p->count : 1) * sizeof(double), "gravity reuse positions");
+  memcpy(e->grav_x0, g->x0, 3 * p->count * sizeof(double));
+  e->grav_d_min = g->d_min;
+  e->grav_reused = (int)g->reused;
+  e->grav_replays = (long)g->replays;
+  for (int64_t c = 0; c < g->nr_saved; c++)
+    memcpy(e->gcells + g->cell_index[c], (const struct gravity_cell *)g->cells + c, sizeof(struct gravity_cell));
+  size_t q = 0;
+  for (int k = 0; k < e->nr_gilists; k++) {
+    struct gravity_ilist *il = &e->gilists[k];
+    const int n = (int)g->list_count[k];
+    if (n > il->capacity) {
+      il->item = error_realloc(il->item, (size_t)n * sizeof *il->item, "gravity interaction list");
+      il->capacity = n;
+    }
+    il->count = n;
+    il->d_min = g->list_d_min[k];
+    for (int j = 0; j < n; j++, q++) {
+      const int32_t *it = g->items + 4 * q;
+      il->item[j] = (struct gravity_iitem){&e->space.cells[it[0]], it[1] >= 0 ? &e->space.cells[it[1]] : NULL,
+                                           it[2], it[3]};
+    }
+  }
+  restart_gravity_free(g);
+}
+
 /** Save the state for --restart. */
 static void engine_write_restart(struct engine *e) {
 #ifdef HAVE_CUDA
@@ -900,7 +998,10 @@ static void engine_write_restart(struct engine *e) {
     cells.dx_max[c] = e->space.cells[c].dx_max;
   }
   engine_mkdir(e->restart_dir);
-  restart_write(e->restart_dir, &st, &e->parts, e->flaw_eps, &cells, e->params_text);
+  struct restart_gravity grav;
+  engine_gravity_reuse_save(e, &grav);
+  restart_write(e->restart_dir, &st, &e->parts, e->flaw_eps, &cells, e->params_text, &grav);
+  restart_gravity_free(&grav);
   free(cells.h_max);
   e->restart_last_wall = error_walltime();
   error_log(0, "restart file %s/restart.bin at step %ld, t = %g", e->restart_dir, e->step, e->time);
@@ -1035,6 +1136,7 @@ void engine_run(struct engine *e) {
      * restart file: recomputing them now would use corrected instead of
      * predicted velocities and change the run */
     for (int t = 0; t < e->nr_tcells; t++) e->cell_dt_min[t] = e->restart_dt_next;
+    engine_gravity_reuse_restore(e);
     error_log(0, "resumed from %s at step %ld, t = %g", e->restart_file, e->step, e->time);
   }
   e->wall_start = error_walltime();
@@ -1138,6 +1240,7 @@ void engine_clean(struct engine *e) {
   free(e->cell_dt_min);
   free(e->gcells);
   free(e->grav_x0);
+  restart_gravity_free(&e->restart_grav);
   free(e->wd_x);
   free(e->flaw_eps);
   free(e->params_text);
