@@ -501,9 +501,17 @@ static void engine_watchdog_init(struct engine *e) {
                 e->wd_inject_value, step);
 }
 
-/** Remember the positions before the drift (the displacement check). */
+/** Remember the positions before the drift (the displacement check; on
+ *  the GPU a copy on the device). */
 static void engine_watchdog_before_drift(struct engine *e) {
-  if (e->gpu) return;
+#ifdef HAVE_CUDA
+  if (e->gpu) {
+    const double w0 = error_walltime();
+    gpu_engine_watchdog_save(e);
+    e->t_watchdog += error_walltime() - w0;
+    return;
+  }
+#endif
   const struct parts *p = &e->parts;
   e->wd_x = error_realloc(e->wd_x, 3 * (p->count ? p->count : 1) * sizeof(double), "watchdog positions");
   memcpy(e->wd_x, p->x, p->count * sizeof(double));
@@ -514,12 +522,24 @@ static void engine_watchdog_before_drift(struct engine *e) {
 /** After the drift: no particle may have moved more than the width of a
  *  top-level cell (the neighbour search would miss its neighbours). */
 static void engine_watchdog_after_drift(struct engine *e) {
-  if (e->gpu || !e->wd_x) return;
   const struct parts *p = &e->parts;
   const size_t n = p->count;
   double w = e->space.width[0];
   for (int k = 1; k < 3; k++)
     if (e->space.width[k] < w) w = e->space.width[k];
+#ifdef HAVE_CUDA
+  if (e->gpu) {
+    /* the check on the device; the host's positions are those after the
+     * drift (gpu_drift copies them back), the saved ones come back only
+     * when a particle moved too far, for the loop below to name it */
+    const double w0 = error_walltime();
+    e->wd_x = error_realloc(e->wd_x, 3 * (n ? n : 1) * sizeof(double), "watchdog positions");
+    const long bad = gpu_engine_watchdog_moved(e, w, e->wd_x);
+    e->t_watchdog += error_walltime() - w0;
+    if (bad < 0) return;
+  }
+#endif
+  if (!e->wd_x) return;
   for (size_t i = 0; i < n; i++) {
     const double dx = p->x[i] - e->wd_x[i], dy = p->y[i] - e->wd_x[n + i], dz = p->z[i] - e->wd_x[2 * n + i];
     const double d = sqrt(dx * dx + dy * dy + dz * dz);
@@ -530,6 +550,7 @@ static void engine_watchdog_after_drift(struct engine *e) {
       engine_watchdog_fail(e, i, what);
     }
   }
+  if (e->gpu) error_bug("watchdog: the GPU found a particle that moved more than its cell, the host none");
 }
 
 /** One thread's share of the finiteness check: the double fields k with
@@ -563,13 +584,29 @@ static void *engine_watchdog_scan(void *arg) {
 static void engine_watchdog_after_step(struct engine *e) {
   struct parts *p = &e->parts;
   if (e->wd_inject_step == e->step && p->count) {
+#ifdef HAVE_CUDA
+    gpu_engine_to_host(e); /* the particles of a GPU run: changed on the host, uploaded again */
+#endif
     double *a = NULL;
     for (int k = 0; k < part_nr_fields; k++)
       if (!strcmp(part_fields[k].name, e->wd_inject_field)) a = part_field_array(p, &part_fields[k]);
     a[p->count / 2] = e->wd_inject_value;
+#ifdef HAVE_CUDA
+    gpu_engine_host_modified(e);
+#endif
   }
-  if (e->gpu) return;
   const double w0 = error_walltime();
+#ifdef HAVE_CUDA
+  if (e->gpu) {
+    /* the check on the device (one pass over its arrays); only when it
+     * finds something do the particles come back, for the loops below to
+     * name the particle and write the crash snapshot */
+    const int bad = gpu_engine_watchdog_check(e);
+    e->t_watchdog += error_walltime() - w0;
+    if (!bad) return;
+    gpu_engine_to_host(e);
+  }
+#endif
   /* the fields split over the engine's threads (memory bound: one pass) */
   int nt = e->nr_threads < 1 ? 1 : e->nr_threads > 64 ? 64 : e->nr_threads;
   if (p->count < 10000) nt = 1;
@@ -612,6 +649,7 @@ static void engine_watchdog_after_step(struct engine *e) {
       }
     }
   }
+  if (e->gpu) error_bug("watchdog: the GPU found a bad particle, the host none after copying them back");
 }
 
 /* ------------------------------------------------------------------------ */
