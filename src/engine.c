@@ -527,6 +527,7 @@ static void engine_watchdog_after_drift(struct engine *e) {
   double w = e->space.width[0];
   for (int k = 1; k < 3; k++)
     if (e->space.width[k] < w) w = e->space.width[k];
+  long gpu_bad = -1;
 #ifdef HAVE_CUDA
   if (e->gpu) {
     /* the check on the device; the host's positions are those after the
@@ -534,9 +535,9 @@ static void engine_watchdog_after_drift(struct engine *e) {
      * when a particle moved too far, for the loop below to name it */
     const double w0 = error_walltime();
     e->wd_x = error_realloc(e->wd_x, 3 * (n ? n : 1) * sizeof(double), "watchdog positions");
-    const long bad = gpu_engine_watchdog_moved(e, w, e->wd_x);
+    gpu_bad = gpu_engine_watchdog_moved(e, w, e->wd_x);
     e->t_watchdog += error_walltime() - w0;
-    if (bad < 0) return;
+    if (gpu_bad < 0) return;
   }
 #endif
   if (!e->wd_x) return;
@@ -550,7 +551,13 @@ static void engine_watchdog_after_drift(struct engine *e) {
       engine_watchdog_fail(e, i, what);
     }
   }
-  if (e->gpu) error_bug("watchdog: the GPU found a particle that moved more than its cell, the host none");
+  if (gpu_bad >= 0) {
+    /* (a displacement within rounding of the width: the device's verdict) */
+    char what[256];
+    snprintf(what, sizeof what, "moved more than its cell (width %g) in one step (dt %g) on the GPU", w, e->dt);
+    e->step++;
+    engine_watchdog_fail(e, (size_t)gpu_bad, what);
+  }
 }
 
 /** One thread's share of the finiteness check: the double fields k with
