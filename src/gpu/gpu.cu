@@ -618,6 +618,7 @@ static unsigned gpu_wd_blocks(size_t n) {
 
 extern "C" void gpu_watchdog_save(struct gpu *g) {
   const size_t n = g->dev.count;
+  if (n == 0) return;
   if (n > g->wd_cap) {
     if (g->wd_x0) gpu_check(cudaFree(g->wd_x0));
     g->wd_cap = g->capacity > n ? g->capacity : n;
