@@ -554,6 +554,8 @@ int restart_read_buffer(const void *buf, size_t len, const char *name, const str
         FAIL("interaction list %lld: %lld interactions, d_min %g", (long long)k, (long long)g->list_count[k],
              g->list_d_min[k]);
       items += (uint64_t)g->list_count[k];
+      if (items > (in.len - in.pos) / 16) /* (checked as it grows: no overflow) */
+        FAIL("truncated restart file (%llu interactions)", (unsigned long long)items);
     }
     if (items > (in.len - in.pos) / 16) FAIL("truncated restart file (%llu interactions)", (unsigned long long)items);
     g->items = error_malloc(16 * (items ? items : 1), "restart: interactions");
