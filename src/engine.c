@@ -501,9 +501,17 @@ static void engine_watchdog_init(struct engine *e) {
                 e->wd_inject_value, step);
 }
 
-/** Remember the positions before the drift (the displacement check). */
+/** Remember the positions before the drift (the displacement check; on
+ *  the GPU a copy on the device). */
 static void engine_watchdog_before_drift(struct engine *e) {
-  if (e->gpu) return;
+#ifdef HAVE_CUDA
+  if (e->gpu) {
+    const double w0 = error_walltime();
+    gpu_engine_watchdog_save(e);
+    e->t_watchdog += error_walltime() - w0;
+    return;
+  }
+#endif
   const struct parts *p = &e->parts;
   e->wd_x = error_realloc(e->wd_x, 3 * (p->count ? p->count : 1) * sizeof(double), "watchdog positions");
   memcpy(e->wd_x, p->x, p->count * sizeof(double));
@@ -514,12 +522,25 @@ static void engine_watchdog_before_drift(struct engine *e) {
 /** After the drift: no particle may have moved more than the width of a
  *  top-level cell (the neighbour search would miss its neighbours). */
 static void engine_watchdog_after_drift(struct engine *e) {
-  if (e->gpu || !e->wd_x) return;
   const struct parts *p = &e->parts;
   const size_t n = p->count;
   double w = e->space.width[0];
   for (int k = 1; k < 3; k++)
     if (e->space.width[k] < w) w = e->space.width[k];
+  long gpu_bad = -1;
+#ifdef HAVE_CUDA
+  if (e->gpu) {
+    /* the check on the device; the host's positions are those after the
+     * drift (gpu_drift copies them back), the saved ones come back only
+     * when a particle moved too far, for the loop below to name it */
+    const double w0 = error_walltime();
+    e->wd_x = error_realloc(e->wd_x, 3 * (n ? n : 1) * sizeof(double), "watchdog positions");
+    gpu_bad = gpu_engine_watchdog_moved(e, w, e->wd_x);
+    e->t_watchdog += error_walltime() - w0;
+    if (gpu_bad < 0) return;
+  }
+#endif
+  if (!e->wd_x) return;
   for (size_t i = 0; i < n; i++) {
     const double dx = p->x[i] - e->wd_x[i], dy = p->y[i] - e->wd_x[n + i], dz = p->z[i] - e->wd_x[2 * n + i];
     const double d = sqrt(dx * dx + dy * dy + dz * dz);
@@ -529,6 +550,13 @@ static void engine_watchdog_after_drift(struct engine *e) {
       e->step++; /* the step in progress */
       engine_watchdog_fail(e, i, what);
     }
+  }
+  if (gpu_bad >= 0) {
+    /* (a displacement within rounding of the width: the device's verdict) */
+    char what[256];
+    snprintf(what, sizeof what, "moved more than its cell (width %g) in one step (dt %g) on the GPU", w, e->dt);
+    e->step++;
+    engine_watchdog_fail(e, (size_t)gpu_bad, what);
   }
 }
 
@@ -563,13 +591,29 @@ static void *engine_watchdog_scan(void *arg) {
 static void engine_watchdog_after_step(struct engine *e) {
   struct parts *p = &e->parts;
   if (e->wd_inject_step == e->step && p->count) {
+#ifdef HAVE_CUDA
+    gpu_engine_to_host(e); /* the particles of a GPU run: changed on the host, uploaded again */
+#endif
     double *a = NULL;
     for (int k = 0; k < part_nr_fields; k++)
       if (!strcmp(part_fields[k].name, e->wd_inject_field)) a = part_field_array(p, &part_fields[k]);
     a[p->count / 2] = e->wd_inject_value;
+#ifdef HAVE_CUDA
+    gpu_engine_host_modified(e);
+#endif
   }
-  if (e->gpu) return;
   const double w0 = error_walltime();
+#ifdef HAVE_CUDA
+  if (e->gpu) {
+    /* the check on the device (one pass over its arrays); only when it
+     * finds something do the particles come back, for the loops below to
+     * name the particle and write the crash snapshot */
+    const int bad = gpu_engine_watchdog_check(e);
+    e->t_watchdog += error_walltime() - w0;
+    if (!bad) return;
+    gpu_engine_to_host(e);
+  }
+#endif
   /* the fields split over the engine's threads (memory bound: one pass) */
   int nt = e->nr_threads < 1 ? 1 : e->nr_threads > 64 ? 64 : e->nr_threads;
   if (p->count < 10000) nt = 1;
@@ -612,6 +656,7 @@ static void engine_watchdog_after_step(struct engine *e) {
       }
     }
   }
+  if (e->gpu) error_bug("watchdog: the GPU found a bad particle, the host none after copying them back");
 }
 
 /* ------------------------------------------------------------------------ */
@@ -679,6 +724,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     e->flaw_eps = rd.flaw_eps;
     e->nr_flaws = rd.nr_flaws;
     e->restart_cells = rd.cells;
+    e->restart_grav = rd.grav;
     e->flaws_from = "the restart file";
     for (int k = 0; k < 3; k++) box[k] = rs.box[k];
     periodic = (int)rs.periodic;
@@ -864,6 +910,103 @@ static void engine_gravity_reuse_remember(struct engine *e) {
   e->grav_reused = 0;
 }
 
+/** The far field that the coming steps may reuse, for the restart file
+ *  (g->present 0: none; CPU runs only, the GPU's stays on the device):
+ *  the positions and shortest distance of the last full evaluation, the
+ *  multipole and local expansion of every cell with particles (the walks
+ *  skip empty cells, and gravity_up leaves those below the top level
+ *  unset) and every task's interaction list (cells by index).  Free with restart_gravity_free. */
+static void engine_gravity_reuse_save(const struct engine *e, struct restart_gravity *g) {
+  memset(g, 0, sizeof *g);
+  if (!e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0 || !e->grav_x0 || !(e->grav_d_min < HUGE_VAL) ||
+      e->gpu || e->nr_gilists < 1)
+    return;
+  const struct parts *p = &e->parts;
+  const int nc = e->space.nr_cells;
+  g->present = 1;
+  g->reused = e->grav_reused;
+  g->replays = e->grav_replays;
+  g->d_min = e->grav_d_min;
+  g->x0 = error_malloc(3 * (p->count ? p->count : 1) * sizeof(double), "restart far field");
+  memcpy(g->x0, e->grav_x0, 3 * p->count * sizeof(double));
+  g->nr_cells = nc;
+  g->cell_doubles = sizeof(struct gravity_cell) / sizeof(double);
+  g->cell_index = error_malloc(((size_t)nc ? (size_t)nc : 1) * sizeof(int32_t), "restart far field");
+  g->cells = error_malloc(((size_t)nc ? (size_t)nc : 1) * sizeof(struct gravity_cell), "restart far field");
+  for (int c = 0; c < nc; c++)
+    if (e->space.cells[c].count > 0) {
+      g->cell_index[g->nr_saved] = c;
+      memcpy((struct gravity_cell *)g->cells + g->nr_saved++, e->gcells + c, sizeof(struct gravity_cell));
+    }
+  g->nr_lists = e->nr_gilists;
+  g->list_count = error_malloc((size_t)e->nr_gilists * sizeof(int64_t), "restart far field");
+  g->list_d_min = error_malloc((size_t)e->nr_gilists * sizeof(double), "restart far field");
+  size_t items = 0;
+  for (int k = 0; k < e->nr_gilists; k++) items += (size_t)e->gilists[k].count;
+  g->items = error_malloc(16 * (items ? items : 1), "restart far field");
+  size_t q = 0;
+  for (int k = 0; k < e->nr_gilists; k++) {
+    const struct gravity_ilist *il = &e->gilists[k];
+    g->list_count[k] = il->count;
+    g->list_d_min[k] = il->d_min;
+    for (int j = 0; j < il->count; j++, q++) {
+      const struct gravity_iitem *it = &il->item[j];
+      int32_t *o = g->items + 4 * q;
+      o[0] = it->a->index;
+      o[1] = it->b ? it->b->index : -1;
+      o[2] = it->kind;
+      o[3] = it->symmetric;
+    }
+  }
+}
+
+/** After the first rebuild of a resumed run (the cells and task graph of
+ *  the uninterrupted run, space_restore): the far field of the restart
+ *  file back in place, so that the coming steps reuse it as the
+ *  uninterrupted run does.  A GPU run drops it (its far field lives on the
+ *  device): its first step evaluates gravity in full, within the reuse
+ *  tolerance of the uninterrupted run. */
+static void engine_gravity_reuse_restore(struct engine *e) {
+  struct restart_gravity *g = &e->restart_grav;
+  if (!g->present) return;
+  if (e->gpu || !e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0) {
+    if (e->gpu)
+      error_log(0, "gravity: the far field of the restart file is not used on the GPU: the first step "
+                "evaluates it in full");
+    restart_gravity_free(g);
+    return;
+  }
+  const struct parts *p = &e->parts;
+  if (g->nr_cells != e->space.nr_cells || g->nr_lists != e->nr_gilists)
+    error_exit("%s: the far field of %lld cells and %lld gravity tasks does not match the restored cells "
+               "(%d) and task graph (%d gravity tasks)", e->restart_file, (long long)g->nr_cells,
+               (long long)g->nr_lists, e->space.nr_cells, e->nr_gilists);
+  e->grav_x0 = error_realloc(e->grav_x0, 3 * (p->count ? p->count : 1) * sizeof(double), "gravity reuse positions");
+  memcpy(e->grav_x0, g->x0, 3 * p->count * sizeof(double));
+  e->grav_d_min = g->d_min;
+  e->grav_reused = (int)g->reused;
+  e->grav_replays = (long)g->replays;
+  for (int64_t c = 0; c < g->nr_saved; c++)
+    memcpy(e->gcells + g->cell_index[c], (const struct gravity_cell *)g->cells + c, sizeof(struct gravity_cell));
+  size_t q = 0;
+  for (int k = 0; k < e->nr_gilists; k++) {
+    struct gravity_ilist *il = &e->gilists[k];
+    const int n = (int)g->list_count[k];
+    if (n > il->capacity) {
+      il->item = error_realloc(il->item, (size_t)n * sizeof *il->item, "gravity interaction list");
+      il->capacity = n;
+    }
+    il->count = n;
+    il->d_min = g->list_d_min[k];
+    for (int j = 0; j < n; j++, q++) {
+      const int32_t *it = g->items + 4 * q;
+      il->item[j] = (struct gravity_iitem){&e->space.cells[it[0]], it[1] >= 0 ? &e->space.cells[it[1]] : NULL,
+                                           it[2], it[3]};
+    }
+  }
+  restart_gravity_free(g);
+}
+
 /** Save the state for --restart. */
 static void engine_write_restart(struct engine *e) {
 #ifdef HAVE_CUDA
@@ -900,7 +1043,10 @@ static void engine_write_restart(struct engine *e) {
     cells.dx_max[c] = e->space.cells[c].dx_max;
   }
   engine_mkdir(e->restart_dir);
-  restart_write(e->restart_dir, &st, &e->parts, e->flaw_eps, &cells, e->params_text);
+  struct restart_gravity grav;
+  engine_gravity_reuse_save(e, &grav);
+  restart_write(e->restart_dir, &st, &e->parts, e->flaw_eps, &cells, e->params_text, &grav);
+  restart_gravity_free(&grav);
   free(cells.h_max);
   e->restart_last_wall = error_walltime();
   error_log(0, "restart file %s/restart.bin at step %ld, t = %g", e->restart_dir, e->step, e->time);
@@ -1035,6 +1181,7 @@ void engine_run(struct engine *e) {
      * restart file: recomputing them now would use corrected instead of
      * predicted velocities and change the run */
     for (int t = 0; t < e->nr_tcells; t++) e->cell_dt_min[t] = e->restart_dt_next;
+    engine_gravity_reuse_restore(e);
     error_log(0, "resumed from %s at step %ld, t = %g", e->restart_file, e->step, e->time);
   }
   e->wall_start = error_walltime();
@@ -1138,6 +1285,7 @@ void engine_clean(struct engine *e) {
   free(e->cell_dt_min);
   free(e->gcells);
   free(e->grav_x0);
+  restart_gravity_free(&e->restart_grav);
   free(e->wd_x);
   free(e->flaw_eps);
   free(e->params_text);

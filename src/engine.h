@@ -87,6 +87,8 @@ struct engine {
   double grav_d_min;              /**< shortest far-field distance of that evaluation */
   int grav_reused;                /**< steps since it that reused its far field */
   long grav_replays;              /**< steps of the run that reused the far field */
+  struct restart_gravity restart_grav; /**< the far field read from the restart file, restored
+                                            after the first rebuild (grav.present 0: none) */
   int *tcell_top;                 /**< top-level cell of each task cell */
   struct engine_cell_tasks *ct;   /**< per task cell */
   int nr_ct;                      /**< number of entries of ct */

@@ -34,7 +34,8 @@ def checksum(buf):
 
 
 def layout(buf):
-    """Offsets of the parts of a version-3 file."""
+    """Offsets of the parts of a version-4 file (the far-field flag: the last
+    8 bytes before the checksum when the file holds no far field)."""
     count = struct.unpack_from("<Q", buf, 72)[0]
     nf = struct.unpack_from("<i", buf, 128)[0]
     fields, pos = [], 132
@@ -55,7 +56,8 @@ def layout(buf):
     for name, size in fields:
         arrays[name] = (pos, size)
         pos += size * count
-    return dict(count=count, state=state, params=params, cells=cells, arrays=arrays, flaws=pos)
+    return dict(count=count, state=state, params=params, cells=cells, arrays=arrays, flaws=pos,
+                grav=len(buf) - 16)
 
 
 def reseal(buf):
@@ -147,6 +149,7 @@ def main():
     corpus.append(("8 bytes appended", good + b"\0" * 8))
     corpus.append(("not a restart file", b"hello world\n" * 100))
     corpus.append(("format version 2", setf(good, 16, "<I", 2)))
+    corpus.append(("format version 3 (before the far field)", setf(good, 16, "<I", 3)))
     corpus.append(("other byte order", setf(good, 20, "<I", 0x04030201)))
     corpus.append(("particle count 1e15", setf(good, 72, "<Q", 10 ** 15)))
     corpus.append(("parameter hash", setf(good, 80, "<Q", 12345)))
@@ -182,6 +185,8 @@ def main():
     corpus.append(("negative flaw count", setf(good, ar["n_flaws"][0], "<i", -1)))
     corpus.append(("flaw count 1e18", setf(good, L["flaws"], "<Q", 10 ** 18)))
     corpus.append(("flaw offsets", setf(good, L["flaws"] + 8 + 8 * 5, "<q", 3)))
+    corpus.append(("far-field flag 2", setf(good, L["grav"], "<q", 2)))
+    corpus.append(("far-field flag without its data", setf(good, L["grav"], "<q", 1)))
     corpus.append(("empty file", b""))
     ok = 0
     for what, data in corpus:

@@ -8,6 +8,10 @@
 # cell; a crash snapshot is written; the last restart file stays valid, and
 # resuming from it (without the injection) repeats the uninterrupted run bit
 # for bit.
+# BOLIDE_WATCHDOG_GPU=1 (make check-gpu): every run with --gpu, the
+# particles resident on the device, where the watchdog checks them (a pass
+# over the device arrays after each step and each drift); the runs must say
+# that the GPU ran them.
 set -uo pipefail
 B=${BOLIDE_BUILDDIR:?}
 S=$(cd "$(dirname "$0")" && pwd)
@@ -33,10 +37,16 @@ Restarts:
   delta_steps: 2
 YML
 fail=0
-mkdir A && (cd A && "$B/bolide" -t 1 ../p.yml >log 2>err) || { echo "FAIL: uninterrupted run (a false alarm?)"; cat A/err; exit 1; }
+G=(); [ "${BOLIDE_WATCHDOG_GPU:-0}" = 1 ] && G=(--gpu)
+mkdir A && (cd A && "$B/bolide" "${G[@]}" -t 1 ../p.yml >log 2>err) || { echo "FAIL: uninterrupted run (a false alarm?)"; cat A/err; exit 1; }
+if [ ${#G[@]} -gt 0 ]; then
+  grep -q "particles stay on it between steps" A/log || { echo "FAIL: --gpu run not on the GPU"; grep -i gpu A/log; exit 1; }
+  echo "on the GPU: $(grep -o 'GPU .*(Scheduler:gpu[^)]*)' A/log | head -1)"
+fi
+grep "watchdog:" A/log
 check() { # name injection step expected-text
   local d=$1; mkdir "$d"
-  (cd "$d" && BOLIDE_TEST_INJECT=$2 "$B/bolide" -t 1 ../p.yml >log 2>err); local rc=$?
+  (cd "$d" && BOLIDE_TEST_INJECT=$2 "$B/bolide" "${G[@]}" -t 1 ../p.yml >log 2>err); local rc=$?
   local line; line=$(grep "error" "$d/err")
   if [ $rc -ne 1 ] || [ "$(grep -c error "$d/err")" -ne 1 ] || ! grep -q "watchdog: step $3 .*particle id [0-9]* .*cell .*$4" "$d/err" ||
      [ ! -e "$d/out/crash_step$(printf %06d "$3").hdf5" ]; then
@@ -50,7 +60,7 @@ check R 4:rho:-1 4 "negative density"
 check U 6:u:-1 6 "negative internal energy"
 check V 3:vx:1e9 4 "moved .* more than its cell"
 # the last restart file (step 4) resumes to the uninterrupted run
-(cd N && "$B/bolide" -t 1 --restart ../p.yml >log2 2>err2) || { echo "FAIL: resume after the watchdog"; cat N/err2; fail=1; }
+(cd N && "$B/bolide" "${G[@]}" -t 1 --restart ../p.yml >log2 2>err2) || { echo "FAIL: resume after the watchdog"; cat N/err2; fail=1; }
 grep -q "resumed from out/restart/restart.bin at step 4" N/log2 || { echo "FAIL: not resumed from step 4"; fail=1; }
 rm -f N/out/crash_step*.hdf5
 "$PY" "$S/restart_compare.py" A/out N/out || fail=1

@@ -56,10 +56,14 @@ for h in $harnesses; do
   if [ "$h" = params ]; then
     for f in "$top"/tests/data/*.yml "$top"/examples/*/params.yml; do cp "$f" "$seeds/$(basename "$(dirname "$f")")-$(basename "$f")"; done
   fi
+  # inputs up to 64 KiB; the restart harness 256 KiB, so that its far-field
+  # seed (tests/data/fuzz/restart-farfield.bin, 228 KiB) is not cut
+  maxlen=65536
+  [ "$h" = restart ] && maxlen=262144
   echo "fuzz: $h for $secs s (corpus $corpus)"
   set +e
   (cd "$out" && ASAN_OPTIONS=detect_leaks=0:allocator_may_return_null=1 \
-    "./fuzz_$h" -max_total_time="$secs" -timeout="${FUZZ_TIMEOUT:-60}" -rss_limit_mb=2048 -max_len=65536 \
+    "./fuzz_$h" -max_total_time="$secs" -timeout="${FUZZ_TIMEOUT:-60}" -rss_limit_mb=2048 -max_len="$maxlen" \
       -close_fd_mask=3 -fork="${FUZZ_JOBS:-1}" -ignore_crashes=0 -ignore_ooms=0 -ignore_timeouts=0 -artifact_prefix="$out/crash-$h-" \
       -print_final_stats=1 "$corpus" "$seeds" >"$out/fuzz-$h.log" 2>&1)
   r=$?

@@ -8,13 +8,17 @@
 #     by default) when clang has libFuzzer.
 # Usage: tools/test_sanitizers.sh [asan|tsan|fuzz|all] [TEST...]
 #   (TEST...: the tests of step 1, default SAN_FAST_TESTS below; FULL runs
-#   the whole make check under ASan + UBSan.)
+#   the whole make check under ASan + UBSan; HEAVY the tests that FAST
+#   leaves out and that take minutes each under ASan, SAN_HEAVY_TESTS below.)
+#   SAN_JOBS: tests (and compilations) at once, default the number of cores
+#   (SAN_JOBS=1 on a shared machine: one test at a time).
+# On a 16-core host the whole suite: tools/test_sanitizers.sh asan FULL
 # Closes with one line "sanitizers: ..." and exits non-zero on any failure.
 set -euo pipefail
 top="$(cd "$(dirname "$0")/.." && pwd)"
 what="${1:-all}"
 shift || true
-jobs="$(nproc 2>/dev/null || echo 2)"
+jobs="${SAN_JOBS:-$(nproc 2>/dev/null || echo 2)}"
 [ -x "$top/configure" ] || "$top/tools/setup.sh" >/dev/null
 export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
@@ -30,6 +34,12 @@ SAN_FAST_TESTS="tests/test_graph tests/test_budget tests/test_scheduler tests/te
   tests/test_damage tests/test_flaws tests/test_fof tests/test_gravity_ops tests/test_solids
   tests/test_bolide_cli.sh tests/test_restart.sh tests/test_hostile_inputs.sh
   tests/test_fuzz_corpus.sh"
+# The heavy tests (hydrodynamic forms, self-gravity, the SEA shells, the
+# Evrard collapse, the energy budget, the solid benchmarks): part of FULL,
+# or alone with HEAVY.
+SAN_HEAVY_TESTS="tests/test_hydro_forms tests/test_gravity_walk tests/test_gravity_hsoft
+  tests/test_gravity_reuse tests/test_gravity tests/test_gravity_accuracy.sh tests/test_energy_budget.sh
+  tests/test_sea_shells.py tests/test_evrard.sh tests/test_rotating_sphere.py tests/test_rubber_rings.py"
 status=0 summary=""
 
 # configure DIR SANITIZERS: a build folder with the sanitizers, sharing _build's venv
@@ -47,6 +57,7 @@ if [ "$what" = all ] || [ "$what" = asan ]; then
   configure_in _build_asan address,undefined
   cd "$top/_build_asan"
   tests="${*:-$SAN_FAST_TESTS}"
+  [ "$tests" = HEAVY ] && tests=$SAN_HEAVY_TESTS
   start=$(date +%s)
   set +e
   if [ "$tests" = FULL ]; then

@@ -99,7 +99,16 @@ struct gpu {
   size_t pinned_bytes;               /**< bytes per field registered */
   void (*kick_wait)(void *);         /**< called before the kick reads ga (gpu_set_kick_wait) */
   void *kick_wait_ctx;               /**< its argument */
+  double *wd_x0;                     /**< watchdog: positions before the drift (3 x wd_cap) */
+  size_t wd_cap;                     /**< their allocated length per coordinate */
+  unsigned long long *wd_dev;        /**< watchdog: first bad particle per check (GPU_WD_N) */
+  unsigned long long *wd_host;       /**< pinned copy of it */
 };
+
+/** Slots of the watchdog's results (gpu_watchdog_check): one per double
+ *  field (its first non-finite value), then negative density, forbidden
+ *  negative u and the displacement. */
+#define GPU_WD_N (PART_NR_FIELDS + 3)
 
 void gpu_check_fail(cudaError_t err, const char *what, const char *file, int line) {
   error_exit("CUDA call %s failed at %s:%d: %s", what, file, line, cudaGetErrorString(err));
@@ -173,6 +182,8 @@ extern "C" struct gpu *gpu_init(char *why, size_t len) {
         g->order[k] = g->order[k - 1];
       g->order[k] = f;
     }
+  g->wd_dev = (unsigned long long *)gpu_alloc(GPU_WD_N * sizeof(unsigned long long), "watchdog flags");
+  gpu_check(cudaMallocHost((void **)&g->wd_host, GPU_WD_N * sizeof(unsigned long long)));
   return g;
 }
 
@@ -530,6 +541,128 @@ extern "C" void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double
   g->drifts++;
 }
 
+/* ------------------------------------------------------------------------ */
+/* the watchdog (engine.c): the checks of the CPU's engine_watchdog_* on the  */
+/* resident particles, each a pass over the device arrays that records the    */
+/* first bad particle per check (atomicMin); the host reads GPU_WD_N words    */
+/* and, only when one is set, copies the particles back to name it.           */
+
+/** The double fields to check (pointers into the device arrays). */
+struct gpu_wd_fields {
+  const double *a[PART_NR_FIELDS];
+  int n;
+};
+
+/** Materials whose EOS forbids u < 0 (material.u_floor), by id. */
+struct gpu_wd_mats {
+  int32_t id[MATERIAL_MAX];
+  int n;
+};
+
+/** Finiteness: blockIdx.y picks the field; a particle whose value has an
+ *  exponent of all ones (Inf, NaN) is a candidate for slot blockIdx.y.
+ *  Negative density and, for the u_floor materials, negative u go to the
+ *  slots after the fields (block row 0 checks them). */
+__global__ static void gpu_wd_scan_kernel(struct gpu_wd_fields f, const double *rho, const double *u,
+                                          const int32_t *mat, struct gpu_wd_mats m, size_t n,
+                                          unsigned long long *first) {
+  const int k = blockIdx.y;
+  const double *a = f.a[k];
+  for (size_t i = blockIdx.x * (size_t)blockDim.x + threadIdx.x; i < n; i += (size_t)gridDim.x * blockDim.x) {
+    const unsigned long long w = (unsigned long long)__double_as_longlong(a[i]);
+    if ((w & 0x7ff0000000000000ULL) == 0x7ff0000000000000ULL) atomicMin(&first[k], (unsigned long long)i);
+    if (k == 0) {
+      if (rho[i] < 0.0) atomicMin(&first[PART_NR_FIELDS], (unsigned long long)i);
+      if (u[i] < 0.0)
+        for (int q = 0; q < m.n; q++)
+          if (mat[i] == m.id[q]) atomicMin(&first[PART_NR_FIELDS + 1], (unsigned long long)i);
+    }
+  }
+}
+
+/** Displacement since gpu_watchdog_save: |x - x0| (without fused
+ *  multiply-adds, as the CPU's check computes it) above width, or not a
+ *  number, is a candidate for the last slot. */
+__global__ static void gpu_wd_move_kernel(const double *x, const double *y, const double *z,
+                                          const double *x0, size_t cap, size_t n, double width,
+                                          unsigned long long *first) {
+  for (size_t i = blockIdx.x * (size_t)blockDim.x + threadIdx.x; i < n; i += (size_t)gridDim.x * blockDim.x) {
+    const double dx = __dsub_rn(x[i], x0[i]), dy = __dsub_rn(y[i], x0[cap + i]),
+                 dz = __dsub_rn(z[i], x0[2 * cap + i]);
+    const double d = __dsqrt_rn(__dadd_rn(__dadd_rn(__dmul_rn(dx, dx), __dmul_rn(dy, dy)), __dmul_rn(dz, dz)));
+    if (!(d <= width)) atomicMin(&first[PART_NR_FIELDS + 2], (unsigned long long)i);
+  }
+}
+
+/** Blocks of a grid-stride pass over n particles. */
+static unsigned gpu_wd_blocks(size_t n) {
+  size_t b = (n + 255) / 256;
+  if (b > 4096) b = 4096;
+  return b ? (unsigned)b : 1u;
+}
+
+extern "C" void gpu_watchdog_save(struct gpu *g) {
+  const size_t n = g->dev.count;
+  if (n == 0) return;
+  if (n > g->wd_cap) {
+    if (g->wd_x0) gpu_check(cudaFree(g->wd_x0));
+    g->wd_cap = g->capacity > n ? g->capacity : n;
+    g->wd_x0 = (double *)gpu_alloc(3 * g->wd_cap * sizeof(double), "watchdog positions");
+  }
+  cudaStream_t s = g->stream[0];
+  gpu_check(cudaMemcpyAsync(g->wd_x0, g->dev.x, n * sizeof(double), cudaMemcpyDeviceToDevice, s));
+  gpu_check(cudaMemcpyAsync(g->wd_x0 + g->wd_cap, g->dev.y, n * sizeof(double), cudaMemcpyDeviceToDevice, s));
+  gpu_check(cudaMemcpyAsync(g->wd_x0 + 2 * g->wd_cap, g->dev.z, n * sizeof(double), cudaMemcpyDeviceToDevice, s));
+}
+
+/** Run the queued watchdog kernels' results back: the GPU_WD_N slots. */
+static void gpu_wd_read(struct gpu *g) {
+  cudaStream_t s = g->stream[0];
+  gpu_check(cudaMemcpyAsync(g->wd_host, g->wd_dev, GPU_WD_N * sizeof(unsigned long long), cudaMemcpyDeviceToHost, s));
+  gpu_check(cudaStreamSynchronize(s));
+  g->bytes_d2h += GPU_WD_N * sizeof(unsigned long long);
+}
+
+extern "C" long gpu_watchdog_moved(struct gpu *g, double width, double *x0_host) {
+  const size_t n = g->dev.count;
+  if (!g->wd_x0 || n > g->wd_cap || n == 0) return -1;
+  cudaStream_t s = g->stream[0];
+  gpu_check(cudaMemsetAsync(g->wd_dev, 0xff, GPU_WD_N * sizeof(unsigned long long), s));
+  gpu_wd_move_kernel<<<gpu_wd_blocks(n), 256, 0, s>>>(g->dev.x, g->dev.y, g->dev.z, g->wd_x0, g->wd_cap, n,
+                                                      width, g->wd_dev);
+  gpu_check(cudaGetLastError());
+  gpu_wd_read(g);
+  const unsigned long long i = g->wd_host[PART_NR_FIELDS + 2];
+  if (i == ~0ULL) return -1;
+  for (int c = 0; c < 3; c++)
+    gpu_check(cudaMemcpyAsync(x0_host + c * n, g->wd_x0 + c * g->wd_cap, n * sizeof(double),
+                              cudaMemcpyDeviceToHost, s));
+  gpu_check(cudaStreamSynchronize(s));
+  return (long)i;
+}
+
+extern "C" int gpu_watchdog_check(struct gpu *g, const int32_t *u_floor_ids, int n_ids) {
+  const size_t n = g->dev.count;
+  if (n == 0) return 0;
+  struct gpu_wd_fields f;
+  f.n = 0;
+  for (int k = 0; k < part_nr_fields; k++)
+    if (part_fields[k].type == PART_DOUBLE) f.a[f.n++] = (const double *)*gpu_field_slot(&g->dev, k);
+  struct gpu_wd_mats m;
+  m.n = n_ids < MATERIAL_MAX ? n_ids : MATERIAL_MAX;
+  for (int q = 0; q < m.n; q++) m.id[q] = u_floor_ids[q];
+  cudaStream_t s = g->stream[0];
+  gpu_check(cudaMemsetAsync(g->wd_dev, 0xff, GPU_WD_N * sizeof(unsigned long long), s));
+  unsigned bx = gpu_wd_blocks(n);
+  if (bx > 256) bx = 256; /* times the fields: enough blocks to fill the device */
+  gpu_wd_scan_kernel<<<dim3(bx, (unsigned)f.n), 256, 0, s>>>(f, g->dev.rho, g->dev.u, g->dev.mat, m, n, g->wd_dev);
+  gpu_check(cudaGetLastError());
+  gpu_wd_read(g);
+  for (int k = 0; k < PART_NR_FIELDS + 2; k++) /* (the slots of no field stay unset) */
+    if (g->wd_host[k] != ~0ULL) return 1;
+  return 0;
+}
+
 extern "C" void gpu_print_timers(const struct gpu *g, FILE *f) {
   if (g->calls == 0) return;
   fprintf(f, "GPU (%s), %ld force phases, ms per phase:", g->name, g->calls);
@@ -575,6 +708,9 @@ extern "C" void gpu_free(struct gpu *g) {
     if (g->table_dev[k]) gpu_check(cudaFree(g->table_dev[k]));
   if (g->flaws_dev) gpu_check(cudaFree(g->flaws_dev));
   gpu_check(cudaFreeHost(g->mats_host));
+  if (g->wd_x0) gpu_check(cudaFree(g->wd_x0));
+  gpu_check(cudaFree(g->wd_dev));
+  gpu_check(cudaFreeHost(g->wd_host));
   for (int k = 0; k <= GPU_T_N; k++) gpu_check(cudaEventDestroy(g->ev[k]));
   gpu_check(cudaEventDestroy(g->cells_ready));
   for (int k = 0; k < 2; k++) gpu_check(cudaEventDestroy(g->ev_drift[k]));

@@ -183,6 +183,20 @@ void gpu_download_all(struct gpu *g, struct parts *p);
  *  copy back the positions and smoothing lengths (what the CPU needs to
  *  decide on a rebuild and to build the neighbour lists). */
 void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt, double xsph, double h_max);
+/** The watchdog (engine.c) on the resident particles.  gpu_watchdog_save:
+ *  keep the positions before the drift on the device (a device copy, queued
+ *  before the drift).  gpu_watchdog_moved: after the drift, the first
+ *  particle that moved more than width since (or whose displacement is
+ *  not a number), -1 if none; when there is one, the saved positions are
+ *  copied into x0_host (x of every particle, then y, then z).
+ *  gpu_watchdog_check: 1 if a double field of a particle is Inf or NaN, a
+ *  density is negative, or u is negative for a material whose id is one of
+ *  u_floor_ids[0..n_ids) (the host then copies the particles back and names
+ *  it).  Each check is one pass over the device arrays and a read of a few
+ *  words. */
+void gpu_watchdog_save(struct gpu *g);
+long gpu_watchdog_moved(struct gpu *g, double width, double *x0_host);
+int gpu_watchdog_check(struct gpu *g, const int32_t *u_floor_ids, int n_ids);
 /** Unregister the pinned particle arrays (before they are freed). */
 void gpu_unpin(struct gpu *g);
 /** Print the accumulated time of each stage. */

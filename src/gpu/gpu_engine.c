@@ -11,6 +11,7 @@
 #include "gpu_policy.h"
 #include "gpu_lists.h"
 #include "kernel.h"
+#include "material.h"
 #include "params.h"
 #include "runner.h"
 
@@ -865,6 +866,33 @@ void gpu_engine_drift(struct engine *e) {
   gpu_engine_bounds(e);
   ge->t_bounds += error_walltime() - w0;
   ge->steps++;
+}
+
+/** The device holds the current particles (uploaded if the host changed them). */
+static void gpu_engine_resident(struct engine *e) {
+  struct gpu_engine *ge = e->gpu;
+  if (!ge->dev_valid) {
+    gpu_upload_all(ge->gpu, &e->parts);
+    ge->dev_valid = 1;
+  }
+}
+
+void gpu_engine_watchdog_save(struct engine *e) {
+  gpu_engine_resident(e);
+  gpu_watchdog_save(e->gpu->gpu);
+}
+
+long gpu_engine_watchdog_moved(struct engine *e, double width, double *x0_host) {
+  return gpu_watchdog_moved(e->gpu->gpu, width, x0_host);
+}
+
+int gpu_engine_watchdog_check(struct engine *e) {
+  gpu_engine_resident(e);
+  int32_t ids[MATERIAL_MAX];
+  int n = 0;
+  for (int k = 0; k < e->mats->n && n < MATERIAL_MAX; k++)
+    if (e->mats->mats[k].u_floor) ids[n++] = e->mats->mats[k].id;
+  return gpu_watchdog_check(e->gpu->gpu, ids, n);
 }
 
 void gpu_engine_to_host(struct engine *e) {

@@ -144,6 +144,14 @@ void gpu_engine_force(struct engine *e);
 /** The DRIFT phase on the GPU: kick1 and drift of the resident particles;
  *  positions and h come back, the cells' bounds are updated. */
 void gpu_engine_drift(struct engine *e);
+/** The watchdog's checks on the device (engine.c; gpu_watchdog_*): keep
+ *  the positions before the drift; after it, the first particle that moved
+ *  more than width (-1: none; else the saved positions are copied into
+ *  x0_host as x, y, z arrays); after the step, 1 if a field is Inf or NaN,
+ *  a density negative or u negative where the material forbids it. */
+void gpu_engine_watchdog_save(struct engine *e);
+long gpu_engine_watchdog_moved(struct engine *e, double width, double *x0_host);
+int gpu_engine_watchdog_check(struct engine *e);
 /** Copy the particles back when the device has changed them (before
  *  statistics, snapshots, restart files and rebuilds). */
 void gpu_engine_to_host(struct engine *e);

@@ -1,4 +1,4 @@
-/* Restart files (see restart.h).  Layout of version 3:
+/* Restart files (see restart.h).  Layout of version 4:
  *
  *   header (RESTART_HEADER_BYTES = 128): magic "BOLIDE-RESTART\n\0" (16),
  *     uint32 version, uint32 byte-order mark 0x01020304, char build[48]
@@ -9,8 +9,16 @@
  *     struct restart_state; uint64 length and the parameters' text; int64
  *     number of cells, their h_max and their dx_max; every field array in
  *     the order of part_fields[]; the Weibull flaws (uint64 number of
- *     thresholds, N + 1 int64 offsets, the thresholds)
- *   uint64 checksum of everything before it (restart_checksum). */
+ *     thresholds, N + 1 int64 offsets, the thresholds); the reused far field
+ *     of self-gravity (struct restart_gravity, since version 4): int64
+ *     present, and when 1: int64 reused, int64 replays, double d_min, the
+ *     3 N positions x0, int64 number of cells, int64 number of cells saved
+ *     (those with particles), int64 doubles per cell, their int32 indices,
+ *     their gravity data, int64 number of lists, per list int64 count and
+ *     double d_min, then every list's interactions (4 int32 each)
+ *   uint64 checksum of everything before it (restart_checksum).
+ * Version 3 (before the far field) is refused with one line: a run
+ * resumed from it would not repeat the uninterrupted run's reuse. */
 #include "restart.h"
 
 #include <errno.h>
@@ -25,6 +33,7 @@
 #include <unistd.h>
 
 #include "damage/flaws.h"
+#include "gravity/gravity_cpu.h"
 #include "error.h"
 #include "version.h"
 
@@ -117,8 +126,18 @@ static void restart_sync_dir(const char *dir) {
   }
 }
 
+/** Bytes of the far-field section (g NULL or not present: the flag alone). */
+static uint64_t restart_gravity_bytes(const struct restart_gravity *g, size_t count) {
+  if (!g || !g->present) return 8;
+  uint64_t items = 0;
+  for (int64_t k = 0; k < g->nr_lists; k++) items += (uint64_t)g->list_count[k];
+  return 8 + 24 + 24 * (uint64_t)count + 24 + 4 * (uint64_t)g->nr_saved +
+         8 * (uint64_t)(g->nr_saved * g->cell_doubles) + 8 + 16 * (uint64_t)g->nr_lists + 16 * items;
+}
+
 void restart_write(const char *dir, const struct restart_state *st, const struct parts *p,
-                   const double *flaw_eps, const struct restart_cells *cells, const char *params) {
+                   const double *flaw_eps, const struct restart_cells *cells, const char *params,
+                   const struct restart_gravity *grav) {
   char path[2048], tmp[2100], prev[2100];
   snprintf(path, sizeof path, "%s/restart.bin", dir);
   snprintf(tmp, sizeof tmp, "%s.tmp", path);
@@ -135,7 +154,7 @@ void restart_write(const char *dir, const struct restart_state *st, const struct
   for (int k = 0; k < part_nr_fields; k++) per_part += part_fields[k].size;
   const uint64_t payload = 4 + (uint64_t)part_nr_fields * 36 + sizeof *st + 8 + plen + 8 +
                            16 * (uint64_t)cells->n + per_part * p->count + 8 + 8 * (p->count + 1) +
-                           8 * nflaws;
+                           8 * nflaws + restart_gravity_bytes(grav, p->count);
 
   error_register_tmpfile(tmp);
   struct restart_out *o = error_malloc(sizeof *o, "restart buffer");
@@ -179,6 +198,27 @@ void restart_write(const char *dir, const struct restart_state *st, const struct
   restart_put(o, off, 8 * (p->count + 1));
   for (size_t i = 0; i < p->count; i++)
     if (off[i + 1] > off[i]) restart_put(o, flaw_eps + p->flaw_first[i], 8 * (size_t)(off[i + 1] - off[i]));
+  const int64_t present = grav && grav->present ? 1 : 0;
+  restart_put(o, &present, 8);
+  if (present) {
+    restart_put(o, &grav->reused, 8);
+    restart_put(o, &grav->replays, 8);
+    restart_put(o, &grav->d_min, 8);
+    restart_put(o, grav->x0, 24 * p->count);
+    restart_put(o, &grav->nr_cells, 8);
+    restart_put(o, &grav->nr_saved, 8);
+    restart_put(o, &grav->cell_doubles, 8);
+    restart_put(o, grav->cell_index, 4 * (size_t)grav->nr_saved);
+    restart_put(o, grav->cells, 8 * (size_t)(grav->nr_saved * grav->cell_doubles));
+    restart_put(o, &grav->nr_lists, 8);
+    int64_t items = 0;
+    for (int64_t k = 0; k < grav->nr_lists; k++) {
+      restart_put(o, &grav->list_count[k], 8);
+      restart_put(o, &grav->list_d_min[k], 8);
+      items += grav->list_count[k];
+    }
+    restart_put(o, grav->items, 16 * (size_t)items);
+  }
   free(off);
   free(ptext);
   restart_flush(o);
@@ -295,7 +335,9 @@ int restart_read_buffer(const void *buf, size_t len, const char *name, const str
   memcpy(&bom, hdr + 20, 4);
   if (bom != RESTART_BOM) FAIL("written on a machine of the other byte order");
   if (version != RESTART_VERSION)
-    FAIL("restart format version %u, this build reads version %d", (unsigned)version, RESTART_VERSION);
+    FAIL("restart format version %u, this build reads version %d%s", (unsigned)version, RESTART_VERSION,
+         version < RESTART_VERSION ? " (an older Bolide's file: resume it with that build, or start the run again)"
+                                   : "");
   char build[RESTART_BUILD_LEN], mybuild[RESTART_BUILD_LEN];
   memcpy(build, hdr + 24, RESTART_BUILD_LEN);
   if (build[RESTART_BUILD_LEN - 1] != '\0') FAIL("corrupt header (build string not terminated)");
@@ -450,7 +492,6 @@ int restart_read_buffer(const void *buf, size_t len, const char *name, const str
   fl.eps = error_malloc((nflaws ? nflaws : 1) * sizeof *fl.eps, "restart: flaw thresholds");
   GET(fl.offset, 8 * (n + 1), "flaw offsets");
   GET(fl.eps, 8 * (size_t)nflaws, "flaw thresholds");
-  if (in.pos != in.len) FAIL("corrupt restart file (%zu bytes after the flaws)", in.len - in.pos);
   if (fl.offset[n] != (int64_t)nflaws)
     FAIL("corrupt restart file (flaw offsets end at %lld, %llu flaws)", (long long)fl.offset[n],
          (unsigned long long)nflaws);
@@ -463,6 +504,71 @@ int restart_read_buffer(const void *buf, size_t len, const char *name, const str
     if (p->n_act[i] > p->n_flaws[i]) FAIL("particle %zu: %d of %d flaws active", i, (int)p->n_act[i], (int)p->n_flaws[i]);
     p->flaw_first[i] = fl.offset[i];
   }
+
+  /* the reused far field of self-gravity */
+  struct restart_gravity *g = &out->grav;
+  GET(&g->present, 8, "far-field flag");
+  if (g->present != 0 && g->present != 1) FAIL("far-field flag %lld (must be 0 or 1)", (long long)g->present);
+  if (g->present) {
+    GET(&g->reused, 8, "far field");
+    GET(&g->replays, 8, "far field");
+    GET(&g->d_min, 8, "far field");
+    if (g->reused < 0 || g->reused > st->step) FAIL("far field reused %lld times (step %lld)", (long long)g->reused, (long long)st->step);
+    if (g->replays < 0 || g->replays > st->step) FAIL("far field reused in %lld steps (step %lld)", (long long)g->replays, (long long)st->step);
+    if (!isfinite(g->d_min) || !(g->d_min > 0.0)) FAIL("far-field distance %g (must be finite, > 0)", g->d_min);
+    if (n > (in.len - in.pos) / 24) FAIL("truncated restart file (far-field positions)");
+    g->x0 = error_malloc(24 * n, "restart: far-field positions");
+    GET(g->x0, 24 * n, "far-field positions");
+    if (!restart_finite(g->x0, 3 * n)) FAIL("non-finite far-field position");
+    GET(&g->nr_cells, 8, "far-field cells");
+    GET(&g->nr_saved, 8, "far-field cells");
+    GET(&g->cell_doubles, 8, "far-field cells");
+    if (g->nr_cells != out->cells.n) FAIL("far field of %lld cells, the file has %lld", (long long)g->nr_cells, (long long)out->cells.n);
+    if (g->nr_saved < 1 || g->nr_saved > g->nr_cells)
+      FAIL("far field of %lld cells saved of %lld", (long long)g->nr_saved, (long long)g->nr_cells);
+    if (g->cell_doubles != (int64_t)(sizeof(struct gravity_cell) / sizeof(double)))
+      FAIL("far field of %lld doubles per cell, this build has %zu (another expansion order?)",
+           (long long)g->cell_doubles, sizeof(struct gravity_cell) / sizeof(double));
+    const size_t ncd = (size_t)g->nr_saved * (size_t)g->cell_doubles;
+    if (ncd > (in.len - in.pos) / 8) FAIL("truncated restart file (far-field cells)");
+    g->cell_index = error_malloc(4 * (size_t)g->nr_saved, "restart: far-field cells");
+    GET(g->cell_index, 4 * (size_t)g->nr_saved, "far-field cells");
+    for (int64_t c = 0; c < g->nr_saved; c++)
+      if (g->cell_index[c] < 0 || g->cell_index[c] >= g->nr_cells || (c > 0 && g->cell_index[c] <= g->cell_index[c - 1]))
+        FAIL("far field: cell %lld saved is cell %d (indices must increase, below %lld)", (long long)c,
+             (int)g->cell_index[c], (long long)g->nr_cells);
+    g->cells = error_malloc(8 * ncd, "restart: far-field cells");
+    GET(g->cells, 8 * ncd, "far-field cells");
+    if (!restart_finite(g->cells, ncd)) FAIL("non-finite multipole or local expansion");
+    GET(&g->nr_lists, 8, "far-field lists");
+    if (g->nr_lists < 1 || (uint64_t)g->nr_lists > (in.len - in.pos) / 16)
+      FAIL("far field of %lld interaction lists", (long long)g->nr_lists);
+    g->list_count = error_malloc(8 * (size_t)g->nr_lists, "restart: interaction lists");
+    g->list_d_min = error_malloc(8 * (size_t)g->nr_lists, "restart: interaction lists");
+    uint64_t items = 0;
+    for (int64_t k = 0; k < g->nr_lists; k++) {
+      GET(&g->list_count[k], 8, "interaction list");
+      GET(&g->list_d_min[k], 8, "interaction list");
+      if (g->list_count[k] < 0 || (uint64_t)g->list_count[k] > (in.len - in.pos) / 16 ||
+          !(g->list_d_min[k] >= 0.0))
+        FAIL("interaction list %lld: %lld interactions, d_min %g", (long long)k, (long long)g->list_count[k],
+             g->list_d_min[k]);
+      items += (uint64_t)g->list_count[k];
+      if (items > (in.len - in.pos) / 16) /* (checked as it grows: no overflow) */
+        FAIL("truncated restart file (%llu interactions)", (unsigned long long)items);
+    }
+    if (items > (in.len - in.pos) / 16) FAIL("truncated restart file (%llu interactions)", (unsigned long long)items);
+    g->items = error_malloc(16 * (items ? items : 1), "restart: interactions");
+    GET(g->items, 16 * (size_t)items, "interactions");
+    for (uint64_t q = 0; q < items; q++) {
+      const int32_t *it = g->items + 4 * q;
+      if (it[0] < 0 || it[0] >= g->nr_cells || it[1] < -1 || it[1] >= g->nr_cells || (it[2] != 0 && it[2] != 1) ||
+          (it[3] != 0 && it[3] != 1) || (it[2] == 1 && it[1] < 0))
+        FAIL("interaction %llu: cells %d and %d, kind %d, symmetric %d", (unsigned long long)q, (int)it[0],
+             (int)it[1], (int)it[2], (int)it[3]);
+    }
+  }
+  if (in.pos != in.len) FAIL("corrupt restart file (%zu bytes after the far field)", in.len - in.pos);
   free(fl.offset);
   free(sorted);
   free(ptext);
@@ -487,11 +593,22 @@ fail:
 #undef FAIL
 #undef GET
 
+void restart_gravity_free(struct restart_gravity *g) {
+  free(g->x0);
+  free(g->cells);
+  free(g->cell_index);
+  free(g->list_count);
+  free(g->list_d_min);
+  free(g->items);
+  memset(g, 0, sizeof *g);
+}
+
 void restart_data_free(struct restart_data *d) {
   parts_free(&d->p);
   free(d->flaw_eps);
   free(d->cells.h_max);
   free(d->cells.dx_max);
+  restart_gravity_free(&d->grav);
   memset(d, 0, sizeof *d);
 }
 

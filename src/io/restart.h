@@ -7,7 +7,9 @@
  * RESTART_HEADER_BYTES (magic, format version, byte-order mark, build, particle
  * count, FNV-64 hash of the parameters, payload length), the payload (the
  * particle-field table, the state, the parameters as text, the cells' h_max
- * and dx_max, every field array, the Weibull flaws) and a 64-bit checksum of
+ * and dx_max, every field array, the Weibull flaws, the far field of the last
+ * full gravity evaluation that steps with Gravity:reuse_steps reuse) and a
+ * 64-bit checksum of
  * everything before it (restart_checksum).  Every field is validated on
  * reading; a file of another parameter set is refused with one line that
  * names the first parameter that differs.
@@ -25,7 +27,7 @@
 #include "budget.h"
 #include "part.h"
 
-#define RESTART_VERSION 3
+#define RESTART_VERSION 4
 #define RESTART_HEADER_BYTES 128
 
 /** The engine's scalars saved with the particles (every member 8 bytes: no
@@ -56,6 +58,33 @@ struct restart_cells {
   double *dx_max;
 };
 
+/** The far field of the last full gravity evaluation (Gravity:reuse_steps
+ *  > 0, CPU runs), what the steps that reuse it read (engine.c,
+ *  engine_gravity_reuse_decide; gravity_replay): saved since format 4 so
+ *  that a resumed run reuses it where the uninterrupted run does, and stays
+ *  bit-identical.  present = 0: none (no reuse, no full evaluation yet, or
+ *  a GPU run, whose far field stays on the device); the rest is then empty. */
+struct restart_gravity {
+  int64_t present;       /**< 1: the members below hold the state */
+  int64_t reused;        /**< steps since the evaluation that reused it (engine grav_reused) */
+  int64_t replays;       /**< steps of the run that reused a far field (engine grav_replays) */
+  double d_min;          /**< shortest far-field distance of the evaluation (finite, > 0) */
+  double *x0;            /**< positions at the evaluation, 3 per particle (x, y, z) */
+  int64_t nr_cells;      /**< the space's cells (restart_cells.n) */
+  int64_t nr_saved;      /**< cells whose gravity data are saved: those with particles (the
+                              walks and the replay read no other) */
+  int64_t cell_doubles;  /**< doubles per cell: sizeof(struct gravity_cell) / 8 */
+  int32_t *cell_index;   /**< nr_saved cell indices, increasing, < nr_cells */
+  double *cells;         /**< nr_saved * cell_doubles: their struct gravity_cell (multipole,
+                              local expansion, a_min, h_support) */
+  int64_t nr_lists;      /**< interaction lists: one per gravity task of the graph, by task id */
+  int64_t *list_count;   /**< interactions of each list */
+  double *list_d_min;    /**< d_min of each list (>= 0; HUGE_VAL: none; 0: a task
+                              that records nothing) */
+  int32_t *items;        /**< 4 per interaction, the lists one after the other: cell a, cell b
+                              (-1: none, a P2P within a), kind (0: P2P, 1: M2P), symmetric */
+};
+
 /** What a file must match to be resumed by this run (restart_read_buffer). */
 struct restart_expect {
   const char *params;     /**< parameters in use (params_to_string; the Restarts section is ignored) */
@@ -74,15 +103,18 @@ struct restart_data {
   double *flaw_eps;        /**< flat flaw thresholds, p.flaw_first indexes it (NULL: none) */
   int64_t nr_flaws;        /**< their number */
   struct restart_cells cells;
+  struct restart_gravity grav; /**< the reused far field (grav.present 0: none) */
 };
 
 /** Write the state to DIR/restart.bin through DIR/restart.bin.tmp (see the
  *  top comment for the rotation).  flaw_eps: the engine's flat array of flaw
  *  thresholds, particle i owning flaw_eps[flaw_first[i] .. + n_flaws[i]]
  *  (NULL: no flaws).  params: the parameters in use (params_to_string).
+ *  grav: the reused far field (NULL or grav->present 0: none).
  *  Errors (disk full...) stop with one line, the older files intact. */
 void restart_write(const char *dir, const struct restart_state *st, const struct parts *p,
-                   const double *flaw_eps, const struct restart_cells *cells, const char *params);
+                   const double *flaw_eps, const struct restart_cells *cells, const char *params,
+                   const struct restart_gravity *grav);
 
 /** Parse and validate a restart file held in memory (buf, len bytes; name:
  *  its name for messages).  ex: what the run expects (NULL: only the file's
@@ -91,6 +123,9 @@ void restart_write(const char *dir, const struct restart_state *st, const struct
  *  buf: the entry point of the restart fuzzer. */
 int restart_read_buffer(const void *buf, size_t len, const char *name, const struct restart_expect *ex,
                         struct restart_data *out, char *err, size_t errlen);
+
+/** Free the arrays of g and zero it. */
+void restart_gravity_free(struct restart_gravity *g);
 
 /** Free what restart_read_buffer or restart_read allocated. */
 void restart_data_free(struct restart_data *d);
