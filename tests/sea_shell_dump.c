@@ -6,8 +6,8 @@
  * prints one "x y z" line per point, or with -b writes the 3 N doubles
  * x0 y0 z0 x1 ... in binary (native byte order) to stdout, or with -s
  * prints "N largest |rho_SPH / median - 1| kernel" of the shell (unit
- * masses, resolution_eta 1.2348, Bolide's C estimator ic_sph_density with
- * the compiled-in kernel); -a A uses
+ * masses, the compiled-in kernel and its default resolution_eta,
+ * KERNEL_ETA_DEFAULT, Bolide's C estimator ic_sph_density); -a A uses
  * ic_sea_shell_a with stretching parameter A (b = 10 A) instead of
  * ic_sea_shell's own choice. */
 #include <math.h>
@@ -18,6 +18,7 @@
 #include "config.h"
 #include "error.h"
 #include "ic_planet.h"
+#include "kernel.h"
 
 static int cmp_double(const void *p, const void *q) {
   const double a = *(const double *)p, b = *(const double *)q;
@@ -56,8 +57,8 @@ int main(int argc, char **argv) {
   if (spread) {
     double *w = error_malloc(3 * (size_t)N * sizeof(double), "shell");
     double *m = w, *h = w + N, *rho = w + 2 * N;
-    for (long i = 0; i < N; i++) m[i] = 1, h[i] = 1.2348 * sqrt(4 * M_PI / (double)N);
-    ic_sph_density((size_t)N, x, x + N, x + 2 * N, m, 1.2348, h, rho);
+    for (long i = 0; i < N; i++) m[i] = 1, h[i] = KERNEL_ETA_DEFAULT * sqrt(4 * M_PI / (double)N);
+    ic_sph_density((size_t)N, x, x + N, x + 2 * N, m, KERNEL_ETA_DEFAULT, h, rho);
     memcpy(h, rho, (size_t)N * sizeof(double));
     qsort(h, (size_t)N, sizeof(double), cmp_double);
     const double med = N % 2 ? h[N / 2] : 0.5 * (h[N / 2 - 1] + h[N / 2]);

@@ -40,9 +40,9 @@ int main(int argc, char **argv) {
   }
   /* the file is that of the default build: SPH:resolution_eta's default
    * depends on the kernel (KERNEL_ETA_DEFAULT, src/kernel.h) */
-  if (KERNEL_TYPE != KERNEL_TYPE_CUBIC_SPLINE) {
+  if (KERNEL_TYPE != KERNEL_TYPE_WENDLAND_C2) {
     printf(
-        "SKIP: examples/parameters.yml is written for the default kernel (cubic-spline), "
+        "SKIP: examples/parameters.yml is written for the default kernel (wendland-C2), "
         "this build has %s\n",
         kernel_name);
     return 77;

@@ -74,7 +74,7 @@ def main():
     work = tempfile.mkdtemp()
     os.chdir(work)
     fails = []
-    subprocess.run([B + "/bolide-ic", "sod", "--nx", "20", "--size", "2,0.6,0.6", "-o", "sod.hdf5"],
+    subprocess.run([B + "/bolide-ic", "sod", "--nx", "16", "--size", "2,1,1", "-o", "sod.hdf5"],
                    check=True, stdout=subprocess.DEVNULL)
     with open("p.yml", "w") as f:
         f.write("InitialConditions:\n  file_name: sod.hdf5\n  periodic: true\nTimeIntegration:\n  time_end: 0.05\n"

@@ -19,7 +19,7 @@ S=$(cd "$(dirname "$0")" && pwd)
 PY=${PYTHON:-python3}
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
-"$B/bolide-ic" sod --nx 24 --size 2,0.5,0.5 -o sod.hdf5 >/dev/null
+"$B/bolide-ic" sod --nx 16 --size 2,1,1 -o sod.hdf5 >/dev/null
 cat >p.yml <<'YML'
 InitialConditions:
   file_name: sod.hdf5

@@ -11,7 +11,7 @@ S=$(cd "$(dirname "$0")" && pwd)
 PY=${PYTHON:-python3}
 work=$(mktemp -d); trap 'kill $(jobs -p) 2>/dev/null; rm -rf "$work"' EXIT
 cd "$work"
-"$B/bolide-ic" sod --nx 20 --size 2,0.6,0.6 -o sod.hdf5 >/dev/null
+"$B/bolide-ic" sod --nx 16 --size 2,1,1 -o sod.hdf5 >/dev/null
 cat >p.yml <<'YML'
 InitialConditions:
   file_name: sod.hdf5

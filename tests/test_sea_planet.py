@@ -8,8 +8,9 @@ density iterated against their SPH density (6 iterations; the outermost
 shell takes the mass that is left) and 30 steps of relaxation along the
 shells (theory/planets.md, "SEA planet: the 1 % bar").  The SPH density is
 the one Bolide computes at start-up with its defaults (the kernel the build
-was configured with and its default resolution_eta: the cubic spline and
-1.2348, 48 neighbours, or Wendland C2 and 1.7, 149; tools/sph_density.py is the same estimator, written
+was configured with and its default resolution_eta: Wendland C2 and 1.7,
+149 neighbours, since issue 17 item 5; the cubic spline and 1.2348, 48
+neighbours, before; tools/sph_density.py is the same estimator, written
 independently of the C code that the generator uses, and takes the kernel
 from the file's header and eta from `bolide --param-reference`).  The test asserts the
 bar as written and prints, per shell, where the deviation comes from:

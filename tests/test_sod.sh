@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Sod shock tube (VALIDATION.md) with Bolide's defaults for the Wendland C2
-# kernel (the example's params.yml sets no eta, viscosity or conduction;
-# builds with another kernel skip the test, exit 77): L1
+# Sod shock tube (VALIDATION.md) with Bolide's default SPH scheme (the
+# Wendland C2 kernel of a default build; the example's params.yml sets no
+# eta, viscosity or conduction; builds configured with another kernel skip
+# the test, exit 77: the tube does not converge with the cubic spline): L1
 # errors of density, velocity and pressure against the exact Riemann solution
 # at t = 0.2 on the lattice tube of `bolide-ic sod` at NX = 32 and 64
 # (9,216 and 18,432 particles; transverse size 0.5 and 0.25), each below a
@@ -25,8 +26,8 @@ for nx in 32 64; do
   "$B/bolide-ic" sod --nx $nx --size 2,$ly,$ly -o sod.hdf5 >/dev/null
   kernel=$("$PYTHON" -c "import h5py; print(h5py.File('sod.hdf5')['Header'].attrs['Kernel'].decode())")
   if [ "$kernel" != wendland-C2 ]; then
-    echo "SKIP: the Sod tube converges with the Wendland C2 kernel and its default eta 1.7"
-    echo "(configure --with-kernel=wendland-C2); this build has $kernel (theory/sph.md, section 1)"
+    echo "SKIP: the Sod tube converges with the default kernel, Wendland C2, and its default"
+    echo "eta 1.7; this build was configured with $kernel (theory/sph.md, section 1)"
     exit 77
   fi
   cp "$S/examples/SodShock3D/params.yml" .

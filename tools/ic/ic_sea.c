@@ -29,12 +29,16 @@
 
 #include "error.h"
 #include "ic_planet.h"
+#include "kernel.h"
 
 /* Isolated shells (ic_sea_shell): the resolution_eta of the SPH density
  * whose spread the choice of stretching and collar count minimises (Bolide's
- * default), the largest N searched (~7 s at 20000 on one core), and the grid
- * of a searched, a = 0.10, 0.11, ..., 0.32. */
-#define SEA_ETA 1.2348
+ * default for the compiled-in kernel: 1.7 with Wendland C2, 1.2348 with the
+ * cubic spline), the largest N searched (~7 s at 20000 on one core with the
+ * cubic spline, ~3 times that with Wendland C2 at 1.7: ~80 points in the
+ * support against ~28), and the grid of a searched, a = 0.10, 0.11, ...,
+ * 0.32. */
+#define SEA_ETA KERNEL_ETA_DEFAULT
 #define SEA_FIT_NMAX 20000
 #define SEA_FIT_A0 0.10
 #define SEA_FIT_DA 0.01
