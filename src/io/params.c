@@ -812,6 +812,22 @@ static const struct param_value *value_get(const struct params *p, const char *n
   return &p->values[i];
 }
 
+int params_section_line(const struct params *p, const char *section) {
+  const struct param_node *r = p->root;
+  for (int k = 0; r && r->kind == NODE_MAPPING && k < r->n; k++)
+    if (strcmp(r->keys[k], section) == 0) return r->key_lines[k];
+  return 0;
+}
+
+const char *params_file_text(const struct params *p, const char *name) {
+  const char *colon = strchr(name, ':');
+  if (!colon) return NULL;
+  char sec[PARAMS_MAX_NAME + 1];
+  snprintf(sec, sizeof sec, "%.*s", (int)(colon - name), name);
+  const struct param_node *s = param_node_get(p->root, sec);
+  return param_node_text(param_node_get(s, colon + 1));
+}
+
 int params_given(const struct params *p, const char *name) {
   int i = spec_find(name);
   if (i < 0) error_bug("no parameter '%s' in param_list.h", name);
