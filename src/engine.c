@@ -102,7 +102,8 @@ static int engine_cmp_double(const void *a, const void *b) {
  *  time_first + k delta_time; time_end is always an output time. */
 static void engine_init_outputs(struct engine *e, double t0) {
   const struct params *p = e->params;
-  const char *list = params_get_string(p, "Snapshots:output_list");
+  const char *list =
+      params_get_bool(p, "Snapshots:output_list_on") ? params_get_string(p, "Snapshots:output_list") : "";
   int cap = 16, n = 0;
   double *t = error_malloc(cap * sizeof(double), "output times");
   if (list[0]) {
@@ -440,7 +441,7 @@ static int engine_must_stop(struct engine *e, char *why, size_t len) {
   }
   char stop[1100];
   snprintf(stop, sizeof stop, "%s/stop", e->restart_dir);
-  if (access(stop, F_OK) == 0) {
+  if (e->step % e->restart_stop_steps == 0 && access(stop, F_OK) == 0) {
     if (unlink(stop)) error_warning("%s: cannot remove the stop file: %s", stop, strerror(errno));
     snprintf(why, len, "stop file %.1000s found", stop);
     return 1;
@@ -630,8 +631,11 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   snprintf(e->restart_dir, sizeof e->restart_dir, "%s", params_get_string(params, "Restarts:subdir"));
   e->restart_delta_steps = params_get_int(params, "Restarts:delta_steps");
   e->restart_max_wall = 3600.0 * params_get_real(params, "Restarts:max_run_time");
+  e->restart_stop_steps = params_get_int(params, "Restarts:stop_steps");
+  snprintf(e->restart_stem, sizeof e->restart_stem, "%s/%s", e->restart_dir,
+           params_get_string(params, "Restarts:basename"));
   engine_signals_install();
-  restart_remove_stale(e->restart_dir);
+  restart_remove_stale(e->restart_stem);
   engine_watchdog_init(e);
 
   e->mats = error_calloc(1, sizeof(struct material_table), "material table");
@@ -670,7 +674,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     }
     const struct restart_expect ex = {e->params_text, ids, e->mats->n, e->nr_out, e->time, e->time_end, u_floor};
     struct restart_data rd;
-    restart_read(e->restart_dir, &ex, &rd, icname, sizeof icname);
+    restart_read(e->restart_stem, &ex, &rd, icname, sizeof icname);
     snprintf(e->restart_file, sizeof e->restart_file, "%s", icname);
     free(ids);
     free(u_floor);
@@ -900,10 +904,10 @@ static void engine_write_restart(struct engine *e) {
     cells.dx_max[c] = e->space.cells[c].dx_max;
   }
   engine_mkdir(e->restart_dir);
-  restart_write(e->restart_dir, &st, &e->parts, e->flaw_eps, &cells, e->params_text);
+  restart_write(e->restart_stem, &st, &e->parts, e->flaw_eps, &cells, e->params_text);
   free(cells.h_max);
   e->restart_last_wall = error_walltime();
-  error_log(0, "restart file %s/restart.bin at step %ld, t = %g", e->restart_dir, e->step, e->time);
+  error_log(0, "restart file %s.bin at step %ld, t = %g", e->restart_stem, e->step, e->time);
 }
 
 /** Run the tasks of one phase on every worker. */
@@ -1097,8 +1101,8 @@ void engine_run(struct engine *e) {
    * file to its length then, dropping the closing line written now */
   if (e->restarts || stopped) engine_write_restart(e);
   if (stopped)
-    fprintf(stderr, "bolide: %s: wrote %s/restart.bin at step %ld (t = %g) and stopped; resume with --restart\n",
-            stop_why, e->restart_dir, e->step, e->time);
+    fprintf(stderr, "bolide: %s: wrote %s.bin at step %ld (t = %g) and stopped; resume with --restart\n",
+            stop_why, e->restart_stem, e->step, e->time);
   engine_stats_write(e);
   engine_budget_summary(e);
   const double wall = error_walltime() - e->wall_start;

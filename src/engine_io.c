@@ -61,7 +61,9 @@ void engine_stats_open(struct engine *e) {
 #undef ENGINE_STATS_NAME
   fprintf(e->stats, "\n");
   fflush(e->stats);
-  e->next_stats = e->time;
+  /* SWIFT's Statistics:time_first: the first line then, the next every
+   * delta_time after it */
+  e->next_stats = fmax(e->time, params_get_real(e->params, "Statistics:time_first"));
 }
 
 /** The totals of the particles in the box, and what the counters hold. */
