@@ -1032,7 +1032,7 @@ void engine_run(struct engine *e) {
   engine_rebuild(e);
   if (!e->restarted) {
     engine_first_force(e);
-    engine_stats_write(e);
+    engine_stats_first(e);
     engine_snapshot(e);
   } else {
     /* every force, rate and time step of the end of the last step is in the
@@ -1080,6 +1080,7 @@ void engine_run(struct engine *e) {
     const double frac = (e->time - t_begin) / fmax(e->time_end - t_begin, 1e-300);
     const double eta = frac > 0 ? (w1 - e->wall_start) * (1.0 - frac) / frac : 0.0;
     printf("%8ld %14.6e %14.6e %12zu %10.4f %10.1f\n", e->step, e->time, e->dt, e->parts.count, w1 - w0, eta);
+    engine_timesteps_write(e, w1 - w0);
     fflush(stdout);
     if (e->time < e->time_end && engine_must_stop(e, stop_why, sizeof stop_why)) break;
     /* (not at the last step: the file written after the loop follows) */
@@ -1103,7 +1104,7 @@ void engine_run(struct engine *e) {
   if (stopped)
     fprintf(stderr, "bolide: %s: wrote %s.bin at step %ld (t = %g) and stopped; resume with --restart\n",
             stop_why, e->restart_stem, e->step, e->time);
-  engine_stats_write(e);
+  engine_stats_close(e);
   engine_budget_summary(e);
   const double wall = error_walltime() - e->wall_start;
   error_log(0, "done: %ld steps to t = %g in %.2f s (%.3g particle updates per second)", e->step, e->time, wall,
@@ -1138,6 +1139,7 @@ void engine_clean(struct engine *e) {
     space_free(&e->space);
   }
   if (e->stats) fclose(e->stats);
+  if (e->timesteps) fclose(e->timesteps);
   free(e->out_times);
   free(e->cell_dt_min);
   free(e->gcells);

@@ -145,6 +145,8 @@ struct engine {
 
   struct budget_start budget0;    /**< totals at the start of the run (engine_io.c) */
   FILE *stats;                    /**< statistics file */
+  long stats_last_step;           /**< step of its last line (-1: none yet) */
+  FILE *timesteps;                /**< timesteps file: one line per step */
   double stats_dt, next_stats;    /**< its interval */
   long dump_tasks;                /**< dump a task timeline every this many steps */
   double wall_start;              /**< wall time at the first step */

@@ -128,7 +128,7 @@ static void fail(const char *where, int line, const char *fmt, ...) {
 
 /** Optimal-string-alignment edit distance (Levenshtein plus transpositions),
  *  case-insensitive: the number of typing slips between two names. */
-static int edit_distance(const char *a, const char *b) {
+int params_edit_distance(const char *a, const char *b) {
   int la = (int)strlen(a), lb = (int)strlen(b);
   if (la > PARAMS_MAX_NAME || lb > PARAMS_MAX_NAME) return 1 << 20;
   int d[PARAMS_MAX_NAME + 1][PARAMS_MAX_NAME + 1];
@@ -175,10 +175,10 @@ static int suggest(const char *name, int section, char *buf, size_t len) {
         if (k < PARAMS_N && cc) { /* the section of a key */
           char sec[PARAMS_MAX_NAME + 1];
           snprintf(sec, sizeof sec, "%.*s", (int)(cc - c), c);
-          const int d = edit_distance(name, sec);
+          const int d = params_edit_distance(name, sec);
           if (d < best && d < (int)strlen(typed)) best = d, best_k = k;
         } else if (!cc && c[strlen(c) - 1] != '*') {
-          const int d = edit_distance(name, c);
+          const int d = params_edit_distance(name, c);
           if (d < best && d < (int)strlen(typed)) best = d, best_k = k;
         }
         continue;
@@ -186,7 +186,7 @@ static int suggest(const char *name, int section, char *buf, size_t len) {
       if (!cc) continue; /* a whole section */
       const int same = (size_t)(cc - c) == seclen && strncmp(c, name, seclen) == 0;
       if (pass == 0 && !same) continue;
-      const int d = edit_distance(typed, cc + 1);
+      const int d = params_edit_distance(typed, cc + 1);
       if (d < best && d < (int)strlen(typed)) best = d, best_k = k;
     }
   if (best_k < 0) {

@@ -88,6 +88,10 @@ char *params_get_path(const struct params *p, const char *name);
 void params_error(const struct params *p, const char *name, const char *fmt, ...)
     __attribute__((format(printf, 3, 4), noreturn));
 
+/** Number of typing slips between two names (optimal-string-alignment edit
+ *  distance, case-insensitive), for "did you mean" hints. */
+int params_edit_distance(const char *a, const char *b);
+
 /** Write the full parameter set in use (given values and defaults) as YAML. */
 void params_write_yaml(const struct params *p, FILE *f);
 /** The same text in a malloc'd string (for /Parameters in snapshots). */

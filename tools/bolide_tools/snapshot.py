@@ -122,14 +122,19 @@ def snapshot_time(snap, override=None):
 def read_stats(path):
     """Read a statistics file.
 
-    The last '#' line before the first data line names the columns (names
-    separated by white space; a leading "#" is dropped).  Returns a dict
+    The '#' line of Bolide's one-word column names ("# step time dt ...")
+    names the columns; without one (another program's file), the last '#'
+    line before the first data line (names separated by white space; a
+    leading "#" is dropped).  Bolide's files are in SWIFT's layout, whose
+    last header line holds SWIFT's names (two blanks apart) for
+    swiftsimio.load_statistics.  Returns a dict
     name -> 1D float array.  Raises SnapshotError for a missing file, no
     header line, rows of the wrong length or non-numeric values.
     """
     if not os.path.exists(path):
         raise SnapshotError("%s: no such file" % path)
     names = None
+    bolide_names = False
     rows = []
     with open(path) as f:
         for lineno, line in enumerate(f, 1):
@@ -139,8 +144,10 @@ def read_stats(path):
             if text.startswith("#"):
                 if not rows:
                     tokens = text.lstrip("#").split()
-                    if tokens:
+                    if tokens and not bolide_names:
                         names = tokens
+                    if tokens and tokens[0] == "step" and len(tokens) > 1:
+                        bolide_names = True
                 continue
             if names is None:
                 raise SnapshotError("%s:%d: data before a '#' header line naming the columns"
