@@ -93,7 +93,7 @@ static void engine_stats_header(struct engine *e, FILE *f) {
   engine_stats_unit(a, b, c, unit, sizeof unit);                                     \
   fprintf(f, "# (%d)%*s%s\n", col, col < 10 ? 2 : 1, "", desc);                     \
   if (unit[0])                                                                       \
-    fprintf(f, "#      Unit = %e %s\n", units_cgs_factor(&e->us, a, b, c), unit);   \
+    fprintf(f, "#      Unit = %.16e %s\n", units_cgs_factor(&e->us, a, b, c), unit); \
   else                                                                               \
     fprintf(f, "#      Unit = dimensionless\n");                                    \
   col++;
