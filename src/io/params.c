@@ -1393,7 +1393,19 @@ void params_write_reference(FILE *f) {
       "# Materials: a mapping from material id to a mapping of material parameters\n"
       "# (equation of state, strength, damage, porosity); see the materials library\n"
       "# documentation for its keys.  Without it, every particle is the ideal gas of\n"
-      "# material id 0 (SPH:gamma).\n",
+      "# material id 0 (SPH:gamma).\n"
+      "#\n"
+      "# EoS (SWIFT's section, read as Materials entries): planetary_use_NAME: 1 enables\n"
+      "# SWIFT's planetary material NAME with SWIFT's id: idg_def 0, Til_iron 100,\n"
+      "# Til_granite 101, Til_water 102, Til_basalt 103, Til_ice 104 (the library entries\n"
+      "# with that swift_id); SESAME_iron 300, SESAME_basalt 301, SESAME_water 302,\n"
+      "# SS08_water 303, AQUA 304, CMS19_H 305, CMS19_He 306, CD21_HHe 307,\n"
+      "# ANEOS_forsterite 400, ANEOS_iron 401, ANEOS_Fe85Si15 402, custom_0..9 900-909\n"
+      "# (tables in SWIFT's format, planetary_NAME_table_file: FILE, relative to this\n"
+      "# file).  A material of the Materials section wins over the EoS entry of its id.\n"
+      "# HM80 (200-202) and Til_custom (190-199) files are not read yet: define those\n"
+      "# materials in Materials.  A SWIFT parameter file runs unchanged: the keys and\n"
+      "# sections of SWIFT's that Bolide does not use are listed at the end of this file.\n",
       f);
   for (int i = 0; i < PARAMS_N; i++) {
     if (!spec_starts_section(i)) continue;
@@ -1416,5 +1428,16 @@ void params_write_reference(FILE *f) {
         fputs(reference_value(&params_table[j]), f);
       fputc('\n', f);
     }
+  }
+  fputs("\n# SWIFT's keys and sections accepted without effect in Bolide (each one given\n"
+        "# gets one note on stderr, a warning where ignoring it changes what is\n"
+        "# simulated), and why:\n",
+        f);
+  for (int i = 0; i < PARAMS_NSWIFT; i++) {
+    char text[1024];
+    snprintf(text, sizeof text, "%s%s%s: %s", strchr(params_swift[i].name, ':') ? "" : "section ",
+             params_swift[i].name, params_swift[i].level == PARAM_SWIFT_WARN ? " (warning)" : "",
+             params_swift[i].reason);
+    reference_wrap(f, text);
   }
 }
