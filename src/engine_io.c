@@ -295,6 +295,7 @@ void engine_snapshot(struct engine *e) {
   snprintf(path, sizeof path, "%s/%s_%04d.hdf5", e->outdir, e->snap_basename, e->snap_index);
   engine_snapshot_to(e, path);
   e->snap_index++;
+  snapshot_write_series(e->outdir, e->snap_basename, e->snap_index);
 }
 
 void engine_snapshot_to(struct engine *e, const char *path) {
