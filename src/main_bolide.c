@@ -63,15 +63,7 @@ static void usage(FILE *f) {
 }
 
 static void version(void) {
-  printf("bolide %s (git %s)\n", PACKAGE_VERSION, BOLIDE_GIT_HASH);
-  printf("configured with: %s\n", BOLIDE_CONFIGURE_ARGS);
-  printf("compiler: %s\n", BOLIDE_CC_VERSION);
-  printf("kernel: %s\n", BOLIDE_KERNEL_NAME);
-#ifdef HAVE_CUDA
-  printf("CUDA: yes\n");
-#else
-  printf("CUDA: no\n");
-#endif
+  bolide_version_print("bolide");
 }
 
 /** Parse a non-negative integer option or stop. */
@@ -327,12 +319,18 @@ int main(int argc, char **argv) {
         break;
       case OPT_REFERENCE:
         params_write_reference(stdout);
+        free(overrides);
+        free(user);
         return 0;
       case 'h':
         usage(stdout);
+        free(overrides);
+        free(user);
         return 0;
       case 'V':
         version();
+        free(overrides);
+        free(user);
         return 0;
       case ':':
         error_exit("option %s needs a value (see --help)", argv[optind - 1]);

@@ -227,7 +227,7 @@ int main(int argc, char **argv) {
         fofmain_usage(stdout);
         return 0;
       case OPT_VERSION:
-        printf("bolide-fof (Bolide) %s\n", PACKAGE_VERSION);
+        bolide_version_print("bolide-fof");
         return 0;
       default:
         error_exit("unknown option (see --help)");
