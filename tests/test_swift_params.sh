@@ -136,4 +136,9 @@ printf 'InitialConditions:\n  file_name: impact.hdf5\nTimeIntegration:\n  time_e
 "$bolide" --check eos_nofile.yml >eos_nofile.out 2>&1
 grep -qE "eos_nofile.yml:6: EoS:planetary_use_ANEOS_iron: material 401 is a SWIFT table: give its file as EoS:planetary_ANEOS_iron_table_file \(or define material 401 in the Materials section\)" eos_nofile.out ||
   { echo "FAIL: EoS table without file"; "$bolide" --check eos_nofile.yml; fail=1; }
+# a table that is not there: its key and line, where SWIFT's tables come from
+printf 'InitialConditions:\n  file_name: impact.hdf5\nTimeIntegration:\n  time_end: 1\nEoS:\n  planetary_use_ANEOS_forsterite: 1\n  planetary_ANEOS_forsterite_table_file: ../EoSTables/ANEOS_forsterite_S19.txt\n' >eos_missing.yml
+"$bolide" --check eos_missing.yml >eos_missing.out 2>&1
+grep -qF "eos_missing.yml:7: EoS:planetary_ANEOS_forsterite_table_file: cannot read the table ../EoSTables/ANEOS_forsterite_S19.txt" eos_missing.out &&
+  grep -q "get_eos_tables.sh" eos_missing.out || { echo "FAIL: missing SWIFT table:"; cat eos_missing.out; fail=1; }
 exit $fail

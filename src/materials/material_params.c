@@ -14,6 +14,7 @@
  * overrides it; with neither, the library entry whose swift_id equals the
  * material id is used.  Relative paths are relative to the folder of the
  * file that names them. */
+#include <errno.h>
 #include <limits.h>
 #include <math.h>
 #include <stdarg.h>
@@ -21,6 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <unistd.h>
 
 #include "error.h"
 #include "material.h"
@@ -477,6 +479,12 @@ static void material_table_from_swift(struct material_table *t, struct material_
                              "EoS:%s: material %d is a SWIFT table: give its file as "
                              "EoS:%s (or define material %d in the Materials section)",
                              key, id, fkey, id);
+    else if (kind == MATERIAL_SWIFT_TABLE && access(file, R_OK) != 0)
+      material_swift_problem(&pr, p, fn,
+                             "EoS:%s: cannot read the table %s: %s (SWIFT's planetary tables come "
+                             "with SWIFT: examples/Planetary/EoSTables/get_eos_tables.sh; README.md, "
+                             "Coming from SWIFT)",
+                             fkey, file, strerror(errno));
     if (pr.n) continue;
     struct material mat;
     material_from_swift(&mat, libs, p, name, id, kind, file);
