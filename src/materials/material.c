@@ -619,8 +619,11 @@ void material_eos_table_load_swift(struct eos_table *tab, const char *filename) 
    * u P c s for every (rho, T), rho varying fastest; SI units */
   for (int k = 0; k < 12; k++) {
     int c;
-    while ((c = fgetc(f)) != '\n' && c != EOF) {
-    }
+    long len = 0;
+    while ((c = fgetc(f)) != '\n' && c != EOF)
+      if (++len > 65536)
+        error_exit("%s: SWIFT EOS table: header line %d is longer than 64 KiB (not a table?)",
+                   filename, k + 1);
     if (c == EOF)
       error_exit("%s: SWIFT EOS table: the file ends within its 12 header lines", filename);
   }
