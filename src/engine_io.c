@@ -147,7 +147,9 @@ void engine_stats_open(struct engine *e) {
   fflush(e->stats);
   /* SWIFT's Statistics:time_first: the first line then, the next every
    * delta_time after it */
-  e->next_stats = fmax(e->time, params_get_real(e->params, "Statistics:time_first"));
+  e->next_stats = e->time;
+  if (params_given(e->params, "Statistics:time_first"))
+    e->next_stats = fmax(e->time, params_get_real(e->params, "Statistics:time_first"));
 }
 
 void engine_timesteps_write(struct engine *e, double wall_step) {
