@@ -102,7 +102,8 @@ static int engine_cmp_double(const void *a, const void *b) {
  *  time_first + k delta_time; time_end is always an output time. */
 static void engine_init_outputs(struct engine *e, double t0) {
   const struct params *p = e->params;
-  const char *list = params_get_string(p, "Snapshots:output_list");
+  const char *list =
+      params_get_bool(p, "Snapshots:output_list_on") ? params_get_string(p, "Snapshots:output_list") : "";
   int cap = 16, n = 0;
   double *t = error_malloc(cap * sizeof(double), "output times");
   if (list[0]) {
@@ -440,7 +441,7 @@ static int engine_must_stop(struct engine *e, char *why, size_t len) {
   }
   char stop[1100];
   snprintf(stop, sizeof stop, "%s/stop", e->restart_dir);
-  if (access(stop, F_OK) == 0) {
+  if (e->step % e->restart_stop_steps == 0 && access(stop, F_OK) == 0) {
     if (unlink(stop)) error_warning("%s: cannot remove the stop file: %s", stop, strerror(errno));
     snprintf(why, len, "stop file %.1000s found", stop);
     return 1;
@@ -675,8 +676,11 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   snprintf(e->restart_dir, sizeof e->restart_dir, "%s", params_get_string(params, "Restarts:subdir"));
   e->restart_delta_steps = params_get_int(params, "Restarts:delta_steps");
   e->restart_max_wall = 3600.0 * params_get_real(params, "Restarts:max_run_time");
+  e->restart_stop_steps = params_get_int(params, "Restarts:stop_steps");
+  snprintf(e->restart_stem, sizeof e->restart_stem, "%s/%s", e->restart_dir,
+           params_get_string(params, "Restarts:basename"));
   engine_signals_install();
-  restart_remove_stale(e->restart_dir);
+  restart_remove_stale(e->restart_stem);
   engine_watchdog_init(e);
 
   e->mats = error_calloc(1, sizeof(struct material_table), "material table");
@@ -715,7 +719,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     }
     const struct restart_expect ex = {e->params_text, ids, e->mats->n, e->nr_out, e->time, e->time_end, u_floor};
     struct restart_data rd;
-    restart_read(e->restart_dir, &ex, &rd, icname, sizeof icname);
+    restart_read(e->restart_stem, &ex, &rd, icname, sizeof icname);
     snprintf(e->restart_file, sizeof e->restart_file, "%s", icname);
     free(ids);
     free(u_floor);
@@ -1045,11 +1049,11 @@ static void engine_write_restart(struct engine *e) {
   engine_mkdir(e->restart_dir);
   struct restart_gravity grav;
   engine_gravity_reuse_save(e, &grav);
-  restart_write(e->restart_dir, &st, &e->parts, e->flaw_eps, &cells, e->params_text, &grav);
+  restart_write(e->restart_stem, &st, &e->parts, e->flaw_eps, &cells, e->params_text, &grav);
   restart_gravity_free(&grav);
   free(cells.h_max);
   e->restart_last_wall = error_walltime();
-  error_log(0, "restart file %s/restart.bin at step %ld, t = %g", e->restart_dir, e->step, e->time);
+  error_log(0, "restart file %s.bin at step %ld, t = %g", e->restart_stem, e->step, e->time);
 }
 
 /** Run the tasks of one phase on every worker. */
@@ -1174,7 +1178,7 @@ void engine_run(struct engine *e) {
   engine_rebuild(e);
   if (!e->restarted) {
     engine_first_force(e);
-    engine_stats_write(e);
+    engine_stats_first(e);
     engine_snapshot(e);
   } else {
     /* every force, rate and time step of the end of the last step is in the
@@ -1223,6 +1227,7 @@ void engine_run(struct engine *e) {
     const double frac = (e->time - t_begin) / fmax(e->time_end - t_begin, 1e-300);
     const double eta = frac > 0 ? (w1 - e->wall_start) * (1.0 - frac) / frac : 0.0;
     printf("%8ld %14.6e %14.6e %12zu %10.4f %10.1f\n", e->step, e->time, e->dt, e->parts.count, w1 - w0, eta);
+    engine_timesteps_write(e, w1 - w0);
     fflush(stdout);
     if (e->time < e->time_end && engine_must_stop(e, stop_why, sizeof stop_why)) break;
     /* (not at the last step: the file written after the loop follows) */
@@ -1244,9 +1249,9 @@ void engine_run(struct engine *e) {
    * file to its length then, dropping the closing line written now */
   if (e->restarts || stopped) engine_write_restart(e);
   if (stopped)
-    fprintf(stderr, "bolide: %s: wrote %s/restart.bin at step %ld (t = %g) and stopped; resume with --restart\n",
-            stop_why, e->restart_dir, e->step, e->time);
-  engine_stats_write(e);
+    fprintf(stderr, "bolide: %s: wrote %s.bin at step %ld (t = %g) and stopped; resume with --restart\n",
+            stop_why, e->restart_stem, e->step, e->time);
+  engine_stats_close(e);
   engine_budget_summary(e);
   const double wall = error_walltime() - e->wall_start;
   error_log(0, "done: %ld steps to t = %g in %.2f s (%.3g particle updates per second)", e->step, e->time, wall,
@@ -1281,6 +1286,7 @@ void engine_clean(struct engine *e) {
     space_free(&e->space);
   }
   if (e->stats) fclose(e->stats);
+  if (e->timesteps) fclose(e->timesteps);
   free(e->out_times);
   free(e->cell_dt_min);
   free(e->gcells);

@@ -127,6 +127,9 @@ struct engine {
   double restart_dt_wall;         /**< seconds of wall time between restart files */
   double restart_last_wall;       /**< wall time of the last restart file */
   char restart_dir[1024];         /**< Restarts:subdir */
+  char restart_stem[1300];        /**< Restarts:subdir/Restarts:basename: the files are STEM.bin,
+                                       STEM.prev.bin (restart.h) */
+  long restart_stop_steps;        /**< Restarts:stop_steps: steps between looks for the stop file */
   int restarted;                  /**< 1 when this run resumed from a restart file */
   double restart_dt_next;         /**< smallest particle time step saved in the restart file */
   double restart_h_max;           /**< > 0: the first rebuild restores the cells of the file (space_restore) */
@@ -143,6 +146,8 @@ struct engine {
 
   struct budget_start budget0;    /**< totals at the start of the run (engine_io.c) */
   FILE *stats;                    /**< statistics file */
+  long stats_last_step;           /**< step of its last line (-1: none yet) */
+  FILE *timesteps;                /**< timesteps file: one line per step */
   double stats_dt, next_stats;    /**< its interval */
   long dump_tasks;                /**< dump a task timeline every this many steps */
   double wall_start;              /**< wall time at the first step */

@@ -8,6 +8,7 @@
 
 #include "engine_tasks.h"
 #include "error.h"
+#include "units.h"
 #include "params.h"
 #include "snapshot.h"
 #include "version.h"
@@ -15,7 +16,12 @@
 #include "gpu/gpu_engine.h"
 #endif
 
-/** Columns of the statistics file: one list for the header and the rows.
+/** Columns of the statistics file: one list for the header and the rows,
+ *  X(bolide_name, swift_name, description, a, b, c): Bolide's one-word name,
+ *  the name of SWIFT's column for the same quantity where SWIFT has one (its
+ *  snake case is what swiftsimio.load_statistics calls it: "Kin. Energy" ->
+ *  kin_energy), a description, and the dimension M^a L^b T^c of the unit
+ *  (the step and the counts have none).
  *  The budget (theory/sph.md, "Conservation budget"): E_tot = E_kin + E_int
  *  + E_pot of the particles in the box; *_removed what the particles that
  *  left an open box took with them (their share m phi of the potential
@@ -24,11 +30,85 @@
  *  part of E_int: where the stress power went, not a term of the sum);
  *  dE = E_tot + E_removed - E_clamp - E_tot(start), which a conservative
  *  run keeps at the level of its time-integration error. */
-#define ENGINE_STATS_COLUMNS(X)                                                    \
-  X(step) X(time) X(dt) X(mass) X(px) X(py) X(pz) X(Lx) X(Ly) X(Lz) X(E_kin) X(E_int) \
-  X(E_pot) X(E_tot) X(n_particles) X(n_removed) X(m_removed) X(E_removed) X(px_removed) \
-  X(py_removed) X(pz_removed) X(Lx_removed) X(Ly_removed) X(Lz_removed) X(E_clamp) \
-  X(W_plastic) X(dE)
+#define ENGINE_STATS_COLUMNS(X)                                                                    \
+  X(step, "Step", "Simulation step", 0, 0, 0)                                                      \
+  X(time, "Time", "Time since the start of the simulation", 0, 0, 1)                               \
+  X(dt, "dt", "Time-step of the step that ended here", 0, 0, 1)                                    \
+  X(mass, "Total mass", "Total mass in the simulation", 1, 0, 0)                                   \
+  X(px, "Mom. x", "Momentum of the simulation (x coordinate)", 1, 1, -1)                           \
+  X(py, "Mom. y", "Momentum of the simulation (y coordinate)", 1, 1, -1)                           \
+  X(pz, "Mom. z", "Momentum of the simulation (z coordinate)", 1, 1, -1)                           \
+  X(Lx, "Ang. mom. x", "Angular momentum about the origin (x coordinate)", 1, 2, -1)               \
+  X(Ly, "Ang. mom. y", "Angular momentum about the origin (y coordinate)", 1, 2, -1)               \
+  X(Lz, "Ang. mom. z", "Angular momentum about the origin (z coordinate)", 1, 2, -1)               \
+  X(E_kin, "Kin. Energy", "Total kinetic energy", 1, 2, -2)                                        \
+  X(E_int, "Int. Energy", "Total internal energy", 1, 2, -2)                                       \
+  X(E_pot, "Pot. energy", "Total potential energy of self-gravity", 1, 2, -2)                      \
+  X(E_tot, "Tot. energy", "Total energy E_kin + E_int + E_pot", 1, 2, -2)                          \
+  X(n_particles, "Particles", "Number of particles in the box", 0, 0, 0)                           \
+  X(n_removed, "Removed particles", "Number of particles that left the open box", 0, 0, 0)         \
+  X(m_removed, "Removed mass", "Mass the removed particles took with them", 1, 0, 0)               \
+  X(E_removed, "Removed energy", "Energy the removed particles took with them", 1, 2, -2)          \
+  X(px_removed, "Removed mom. x", "Momentum the removed particles took (x coordinate)", 1, 1, -1)  \
+  X(py_removed, "Removed mom. y", "Momentum the removed particles took (y coordinate)", 1, 1, -1)  \
+  X(pz_removed, "Removed mom. z", "Momentum the removed particles took (z coordinate)", 1, 1, -1)  \
+  X(Lx_removed, "Removed ang. mom. x", "Angular momentum the removed particles took (x)", 1, 2, -1) \
+  X(Ly_removed, "Removed ang. mom. y", "Angular momentum the removed particles took (y)", 1, 2, -1) \
+  X(Lz_removed, "Removed ang. mom. z", "Angular momentum the removed particles took (z)", 1, 2, -1) \
+  X(E_clamp, "Clamp energy", "Energy added by the floor on the internal energy", 1, 2, -2)         \
+  X(W_plastic, "Plastic work", "Plastic work (a part of the internal energy)", 1, 2, -2)            \
+  X(dE, "Energy error", "Energy budget error E_tot + E_removed - E_clamp - E_tot(start)", 1, 2, -2)
+
+/** The unit of dimension M^a L^b T^c in unyt's words ("gram * cm**2 *
+ *  s**-2"), "" for none. */
+static void engine_stats_unit(int a, int b, int c, char *buf, size_t len) {
+  const char *sym[3] = {"gram", "cm", "s"};
+  const int e[3] = {a, b, c};
+  buf[0] = '\0';
+  for (int k = 0; k < 3; k++) {
+    if (!e[k]) continue;
+    const size_t n = strlen(buf);
+    if (e[k] == 1)
+      snprintf(buf + n, len - n, "%s%s", n ? " * " : "", sym[k]);
+    else
+      snprintf(buf + n, len - n, "%s%s**%d", n ? " * " : "", sym[k], e[k]);
+  }
+}
+
+/** The header of the statistics file, in SWIFT's layout: "# (N) description"
+ *  and "#      Unit = FACTOR UNIT" per column (one unit each), Bolide's
+ *  names on a "# step time ..." line, SWIFT's column names last (separated by
+ *  two blanks or more), so that swiftsimio.load_statistics reads the file
+ *  and Bolide's tools find their names. */
+static void engine_stats_header(struct engine *e, FILE *f) {
+  char unit[96];
+  int col = 0;
+  fprintf(f, "# Bolide %s statistics file (SWIFT's layout: swiftsimio.load_statistics reads it)\n",
+          PACKAGE_VERSION);
+  fprintf(f, "######################################################\n");
+  fprintf(f, "# The quantities are all given in internal units: mass %g g, length %g cm, time %g s\n",
+          e->us.mass_cgs, e->us.length_cgs, e->us.time_cgs);
+  fprintf(f, "#\n");
+#define ENGINE_STATS_DESC(n, swift, desc, a, b, c)                                   \
+  engine_stats_unit(a, b, c, unit, sizeof unit);                                     \
+  fprintf(f, "# (%d)%*s%s\n", col, col < 10 ? 2 : 1, "", desc);                     \
+  if (unit[0])                                                                       \
+    fprintf(f, "#      Unit = %.16e %s\n", units_cgs_factor(&e->us, a, b, c), unit); \
+  else                                                                               \
+    fprintf(f, "#      Unit = dimensionless\n");                                    \
+  col++;
+  ENGINE_STATS_COLUMNS(ENGINE_STATS_DESC)
+#undef ENGINE_STATS_DESC
+  fprintf(f, "#\n# Bolide's names of the columns:\n#");
+#define ENGINE_STATS_NAME(n, swift, desc, a, b, c) fprintf(f, " %s", #n);
+  ENGINE_STATS_COLUMNS(ENGINE_STATS_NAME)
+#undef ENGINE_STATS_NAME
+  fprintf(f, "\n#");
+#define ENGINE_STATS_SWIFT(n, swift, desc, a, b, c) fprintf(f, "  %s", swift);
+  ENGINE_STATS_COLUMNS(ENGINE_STATS_SWIFT)
+#undef ENGINE_STATS_SWIFT
+  fprintf(f, "\n");
+}
 
 void engine_stats_open(struct engine *e) {
   char path[2048];
@@ -49,19 +129,34 @@ void engine_stats_open(struct engine *e) {
   }
   e->stats = fopen(path, e->restarted ? "a" : "w");
   if (!e->stats) error_exit("%s: cannot create the statistics file", path);
-  if (e->restarted) {
-    fprintf(e->stats, "# resumed from a restart file at step %ld\n", e->step);
-    return;
-  }
-  fprintf(e->stats, "# Bolide %s statistics, internal units (mass %g g, length %g cm, time %g s)\n", PACKAGE_VERSION,
-          e->us.mass_cgs, e->us.length_cgs, e->us.time_cgs);
-  fprintf(e->stats, "#");
-#define ENGINE_STATS_NAME(n) fprintf(e->stats, " %s", #n);
-  ENGINE_STATS_COLUMNS(ENGINE_STATS_NAME)
-#undef ENGINE_STATS_NAME
-  fprintf(e->stats, "\n");
+  e->stats_last_step = -1;
+  /* the timesteps file (SWIFT's Statistics:timestep_file_name): one line
+   * per step; a resumed run appends (the steps between the restart file
+   * and the stop come twice) */
+  snprintf(path, sizeof path, "%s/%s.txt", e->outdir, params_get_string(e->params, "Statistics:timestep_file_name"));
+  e->timesteps = fopen(path, e->restarted ? "a" : "w");
+  if (!e->timesteps) error_exit("%s: cannot create the timesteps file", path);
+  if (e->restarted) return; /* (no comment line: the file stays one table) */
+  fprintf(e->timesteps,
+          "# Bolide %s time steps, one line per step (SWIFT's timesteps file)\n"
+          "# Time and time-step in internal units (%g s); wall-clock time of the step in ms\n"
+          "# %8s %16s %16s %14s %16s\n",
+          PACKAGE_VERSION, e->us.time_cgs, "Step", "Time", "Time-step", "Updates", "Wall-clock time");
+  fflush(e->timesteps);
+  engine_stats_header(e, e->stats);
   fflush(e->stats);
+  /* SWIFT's Statistics:time_first: the first line then, the next every
+   * delta_time after it */
   e->next_stats = e->time;
+  if (params_given(e->params, "Statistics:time_first"))
+    e->next_stats = fmax(e->time, params_get_real(e->params, "Statistics:time_first"));
+}
+
+void engine_timesteps_write(struct engine *e, double wall_step) {
+  if (!e->timesteps) return;
+  fprintf(e->timesteps, "  %8ld %16.9e %16.9e %14zu %16.6f\n", e->step, e->time, e->dt, e->parts.count,
+          1e3 * wall_step);
+  if (fflush(e->timesteps)) error_exit("cannot write the timesteps file (disk full?)");
 }
 
 /** The totals of the particles in the box, and what the counters hold. */
@@ -128,6 +223,27 @@ void engine_stats_write(struct engine *e) {
           t.E_pot, etot, e->parts.count, e->nr_removed, r->m, r->E, r->p[0], r->p[1], r->p[2], r->L[0],
           r->L[1], r->L[2], t.E_clamp, t.W_plastic, dE);
   if (fflush(e->stats)) error_exit("cannot write the statistics file (disk full?)");
+  e->stats_last_step = e->step;
+}
+
+void engine_stats_close(struct engine *e) {
+  /* the closing line, unless this step has one already (-n 1 with lines
+   * every step wrote step 1 twice) */
+  if (e->stats_last_step != e->step) engine_stats_write(e);
+}
+
+void engine_stats_first(struct engine *e) {
+  /* the budget starts now, whether or not Statistics:time_first puts the
+   * first line later */
+  if (!(e->budget0.set > 0.0)) {
+#ifdef HAVE_CUDA
+    gpu_engine_to_host(e);
+#endif
+    struct engine_totals t;
+    engine_totals(e, &t);
+    engine_budget_start(e, &t);
+  }
+  engine_stats_maybe(e);
 }
 
 void engine_budget_summary(struct engine *e) {
@@ -181,6 +297,7 @@ void engine_snapshot(struct engine *e) {
   snprintf(path, sizeof path, "%s/%s_%04d.hdf5", e->outdir, e->snap_basename, e->snap_index);
   engine_snapshot_to(e, path);
   e->snap_index++;
+  snapshot_write_series(e->outdir, e->snap_basename, e->snap_index);
 }
 
 void engine_snapshot_to(struct engine *e, const char *path) {

@@ -20,6 +20,13 @@ void engine_run_task(void *ctx, struct task *t, int thread_id);
 void engine_stats_open(struct engine *e);
 void engine_stats_write(struct engine *e);
 void engine_stats_maybe(struct engine *e);
+/** At the start of a run (not a resumed one): the budget's start, and the
+ *  first line when Statistics:time_first is not later. */
+void engine_stats_first(struct engine *e);
+/** At the end: the closing line, unless this step has one already. */
+void engine_stats_close(struct engine *e);
+/** One line of the timesteps file (wall_step: wall-clock seconds of the step). */
+void engine_timesteps_write(struct engine *e, double wall_step);
 void engine_budget_summary(struct engine *e);
 void engine_snapshot(struct engine *e);
 /** Write the particles to the snapshot file path (no index counted). */

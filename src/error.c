@@ -79,6 +79,30 @@ void error_warning(const char *fmt, ...) {
   fflush(stderr);
 }
 
+void error_note(const char *fmt, ...) {
+  char msg[4096];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  fflush(stdout);
+  fprintf(stderr, "%s: note: %s\n", error_progname, msg);
+  fflush(stderr);
+}
+
+void error_report(const char *fmt, ...) {
+  char msg[4096];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  for (char *c = msg; *c; c++)
+    if (*c == '\n') *c = ' ';
+  fflush(stdout);
+  fprintf(stderr, "%s: error: %s\n", error_progname, msg);
+  fflush(stderr);
+}
+
 void error_log(int level, const char *fmt, ...) {
   if (level > error_verbosity) return;
   char msg[4096];

@@ -31,6 +31,14 @@ extern void (*error_exit_hook)(void);
 /** Print "PROGRAM: warning: MESSAGE" to stderr. */
 void error_warning(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 
+/** Print "PROGRAM: note: MESSAGE" to stderr: information about the input
+ *  (a key that has no effect, say) that needs no action. */
+void error_note(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
+/** Print "PROGRAM: error: MESSAGE" to stderr without exiting: one of several
+ *  problems reported together before error_exit() gives the last. */
+void error_report(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
 /** A log line "[  12.345 s] MESSAGE" on stdout (level 0 always printed,
  *  level 1 only with -v, 2 with -vv). */
 void error_log(int level, const char *fmt, ...) __attribute__((format(printf, 2, 3)));

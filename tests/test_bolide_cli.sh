@@ -99,6 +99,33 @@ for name in ic:
 sys.exit(1 if bad else 0)
 PY
 
+# SWIFT's command line (issue 23 item 1): its flags are listed by --help and
+# accepted; -s/-G decide the physics as in SWIFT; its options for physics
+# Bolide lacks stop with one line naming them; a Gravity section with
+# gravity off is warned about
+"$bolide" --help >help.txt
+for flag in --hydro --self-gravity --threads --steps --param --restart --task-dumps --fpe --verbose --dry-run; do
+  grep -q -- "$flag" help.txt || { echo "FAIL: --help does not list $flag"; fail=1; }
+done
+for args in "-s -v 1 --threads=1 -d" "--hydro --self-gravity -v 0 --dry-run" "-s -G -e --check" "-a -D --limiter -T 1 --check"; do
+  # shellcheck disable=SC2086
+  "$bolide" $args params.yml >swift.txt 2>&1 || { echo "FAIL: SWIFT flags $args"; cat swift.txt; fail=1; }
+done
+grep -q "note: option --pin" swift.txt || { echo "FAIL: no note for --pin"; fail=1; }
+expect_error "SWIFT option Bolide lacks" "--cosmology" "$bolide" -c params.yml
+expect_error "SWIFT long option Bolide lacks" "cooling" "$bolide" --cooling params.yml
+expect_error "bad -y" "--task-dumps" "$bolide" -y often params.yml
+expect_error "-r without a restart file" "no restart file" "$bolide" -r params.yml
+"$bolide" -G -y 1 -n 1 -P Snapshots:subdir:out_g params.yml >g.txt 2>&1 || { echo "FAIL: -G run"; cat g.txt; fail=1; }
+grep -q "enabled: true" <(sed -n '/^Gravity:/,/^[A-Z]/p' out_g/used_parameters.yml) &&
+  grep -q "hydro: false" out_g/used_parameters.yml || { echo "FAIL: -G alone is not a gravity-only run"; fail=1; }
+ls out_g/tasks_step000001.txt >/dev/null || { echo "FAIL: -y 1 wrote no task dump"; fail=1; }
+printf 'Gravity:\n  theta_cr: 0.5\n' | cat params.yml - >grav.yml
+"$bolide" --check grav.yml >grav.txt 2>&1
+grep -q "grav.yml:7: .*Gravity section but self-gravity is off.*-G" grav.txt || { echo "FAIL: no Gravity warning"; cat grav.txt; fail=1; }
+"$bolide" --check -s -G grav.yml >grav.txt 2>&1
+grep -q "self-gravity is off" grav.txt && { echo "FAIL: Gravity warning with -G"; fail=1; }
+
 # a short run: steps, statistics, final snapshot
 "$bolide" -t 2 params.yml >run.txt 2>&1 || { echo "FAIL: run"; tail -5 run.txt; fail=1; }
 [ -f out/statistics.txt ] && [ -f out/snapshot_0001.hdf5 ] || { echo "FAIL: run outputs"; ls out; fail=1; }

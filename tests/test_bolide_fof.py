@@ -6,6 +6,11 @@ numpy and scipy:
     connected components), an independent implementation;
   - --min-damage-drop leaves fully damaged particles out;
   - the escape test: bound and unbound satellites of a massive body;
+  - the default linking length (--link-local 1.5: 1.5 x the larger smoothing
+    length of a pair) keeps an intact layered planet of bolide-ic planet
+    (iron, granite, water on SEA shells) in one fragment, which the
+    median-h length (--link-h 1) cuts into many; the local lengths against
+    scipy;
   - the spectrum file and the PNG (tools/plot_fragments.py);
   - bolide-flaws: every particle of the material has flaws, the sorted
     thresholds are (j/(kV))^(1/m), reproducible from the seed;
@@ -153,6 +158,34 @@ with tempfile.TemporaryDirectory() as tmp:
     _, lines = read_table(out)
     check(r.returncode == 0 and any("linking length 0.055" in ln for ln in lines),
           "--link-h 1.1 -> L = 1.1 x median h = 0.055")
+
+    # ---- an intact layered planet is one fragment with the default
+    planet = os.path.join(tmp, "planet.hdf5")
+    r = run(os.path.join(build, "bolide-ic"), "planet", "--materials", "iron,granite,water",
+            "--mass", "5.97e24", "--mass-fractions", "0.3,0.6,0.1", "--n", "3000", "-o", planet)
+    check(r.returncode == 0, "bolide-ic planet (%s)" % r.stderr.strip()[-200:])
+    r = run(fof, planet, "--out", out)
+    t, lines = read_table(out)
+    check(r.returncode == 0 and len(t["count"]) == 1 and int(t["count"][0]) == 3000,
+          "default: the intact planet is one fragment (%d fragments)" % len(t["count"]))
+    check(any("--link-local" in ln for ln in lines), "the table names the default linking")
+    r = run(fof, planet, "--link-h", "1", "--out", out)
+    t1, _ = read_table(out)
+    check(len(t1["count"]) > 1, "--link-h 1 splits it (%d fragments): why the default changed"
+          % len(t1["count"]))
+    with h5py.File(planet, "r") as f:
+        pp, hh = f["PartType0/Coordinates"][...], f["PartType0/SmoothingLengths"][...]
+    for F in (0.9, 1.0):
+        r = run(fof, planet, "--link-local", str(F), "--out", out)
+        t, _ = read_table(out)
+        pairs = cKDTree(pp).query_pairs(F * hh.max(), output_type="ndarray")
+        d = np.linalg.norm(pp[pairs[:, 0]] - pp[pairs[:, 1]], axis=1)
+        pairs = pairs[d < F * np.maximum(hh[pairs[:, 0]], hh[pairs[:, 1]])]
+        adj = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(pp),) * 2)
+        ng, labels = connected_components(adj, directed=False)
+        check(r.returncode == 0 and np.array_equal(np.sort(t["count"])[::-1],
+                                                   np.sort(np.bincount(labels))[::-1]),
+              "--link-local %.1f: %d groups and their sizes as scipy's" % (F, ng))
 
     # ---- escape test: satellites of a massive body
     M = 1e20

@@ -5,7 +5,11 @@
  *  - against the O(N^2) brute force on random points at linking lengths
  *    around the percolation threshold, with and without a keep mask, and on
  *    a box spread over more than 2^21 cells per axis (cell keys wrap):
- *    identical partitions.
+ *    identical partitions;
+ *  - the per-particle linking lengths of bolide-fof's default (friends when
+ *    closer than the larger of the two lengths) against their brute force,
+ *    on points whose density and lengths vary by 8x across the box, and on
+ *    a uniform length equal to fof_groups with that length.
  * Exit 0 pass, 1 fail. */
 #include <math.h>
 #include <stdint.h>
@@ -125,11 +129,45 @@ static void test_brute(void) {
   check("grid = brute force, spread over 1e7 L (wrapped keys)", partition_diff(N, a, b, na, nb), 0);
 }
 
+/** Per-particle linking lengths against brute force. */
+static void test_local(void) {
+  struct flaws_rng r;
+  flaws_rng_seed(&r, 9);
+  enum { N = 3000 };
+  static double x[N], y[N], z[N], ell[N];
+  static int64_t a[N], b[N];
+  static unsigned char keep[N];
+  for (int i = 0; i < N; i++) {
+    /* denser towards x = 0: spacing and length grow with x (as the outer
+     * shells of a planet are sparser) */
+    const double u = uniform(&r);
+    x[i] = u * u * u, y[i] = uniform(&r), z[i] = uniform(&r);
+    keep[i] = uniform(&r) < 0.8;
+  }
+  const double F[] = {0.5, 0.8, 1.0, 1.3};
+  for (size_t k = 0; k < sizeof F / sizeof F[0]; k++)
+    for (int masked = 0; masked < 2; masked++) {
+      for (int i = 0; i < N; i++) ell[i] = F[k] * 0.05 * (0.25 + 1.75 * cbrt(x[i]));
+      const unsigned char *kp = masked ? keep : NULL;
+      const int64_t na = fof_groups_local(N, x, y, z, kp, ell, a);
+      const int64_t nb = fof_groups_local_brute(N, x, y, z, kp, ell, b);
+      char what[128];
+      snprintf(what, sizeof what, "local lengths = brute force, F = %.1f%s (%lld groups)", F[k],
+               masked ? ", 80% kept" : "", (long long)nb);
+      check(what, partition_diff(N, a, b, na, nb), 0);
+    }
+  for (int i = 0; i < N; i++) ell[i] = 0.03;
+  const int64_t na = fof_groups_local(N, x, y, z, NULL, ell, a);
+  const int64_t nb = fof_groups(N, x, y, z, NULL, 0.03, b);
+  check("local lengths all equal = one linking length", partition_diff(N, a, b, na, nb), 0);
+}
+
 int main(int argc, char **argv) {
   (void)argc;
   error_init(argv[0]);
   test_clumps();
   test_brute();
+  test_local();
   if (failures) printf("%d check(s) FAILED\n", failures);
   return failures ? 1 : 0;
 }

@@ -85,7 +85,7 @@ long=$(printf 'd%.0s' $(seq 1 1100))
 expect_error "'$valid' -P Snapshots:subdir:$long" "Snapshots:subdir: 'dddd" "is 1100 bytes long (at most 1023)"
 expect_error "'$valid' -P Restarts:subdir:$long" "Restarts:subdir: 'dddd" "is 1100 bytes long (at most 1023)"
 expect_error "'$valid' -P 'Snapshots:basename:'" "Snapshots:basename: must not be empty"
-printf 'Snapshots:\n  basename: ""\n' >"${TMPDIR:-/tmp}/empty_basename.$$.yml"
+printf 'Snapshots:\n  basename: ""\nInitialConditions:\n  file_name: ics.hdf5\nTimeIntegration:\n  time_end: 1\n' >"${TMPDIR:-/tmp}/empty_basename.$$.yml"
 expect_error "'${TMPDIR:-/tmp}/empty_basename.$$.yml'" "empty_basename.$$.yml:2: Snapshots:basename: must not be empty"
 rm -f "${TMPDIR:-/tmp}/empty_basename.$$.yml"
 # many keys with a duplicate at the end: the check was quadratic (90,000

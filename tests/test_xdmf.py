@@ -2,7 +2,10 @@
 the HDF5 datasets: every DataItem points to an existing dataset of the same
 dimensions and number type, and every dataset of /PartType0 is described.
 Snapshots of both kinds are checked: an initial condition from bolide-ic and
-a full snapshot (with accelerations, gzip) written by tests/ic_dump."""
+a full snapshot (with accelerations, gzip) written by tests/ic_dump.
+A run's time series (OUTDIR/BASENAME.xmf, issue 23 item 4) is a temporal
+collection of the grids of all its snapshots, in time order, each pointing
+to its own snapshot file."""
 import os
 import subprocess
 import sys
@@ -86,6 +89,32 @@ with tempfile.TemporaryDirectory() as tmp:
     with h5py.File(snap, "r") as f:
         check("Accelerations" in f["PartType0"], "no Accelerations with --acc")
         check(f["PartType0/Masses"].compression == "gzip", "not compressed")
+
+# the time series of a run
+with tempfile.TemporaryDirectory() as tmp:
+    ic = os.path.join(tmp, "box.hdf5")
+    subprocess.run([os.path.join(build, "bolide-ic"), "box", "--n", "6", "-o", ic], check=True,
+                   stdout=subprocess.DEVNULL)
+    with open(os.path.join(tmp, "p.yml"), "w") as f:
+        f.write("InitialConditions:\n  file_name: box.hdf5\nTimeIntegration:\n  time_end: 0.03\n"
+                "Snapshots:\n  subdir: out\n  basename: run\n  delta_time: 0.01\n")
+    subprocess.run([os.path.join(build, "bolide"), "p.yml"], cwd=tmp, check=True,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    out = os.path.join(tmp, "out")
+    snaps = sorted(x for x in os.listdir(out) if x.startswith("run_") and x.endswith(".hdf5"))
+    root = ET.parse(os.path.join(out, "run.xmf")).getroot()
+    coll = root.find("Domain/Grid")
+    check(coll is not None and coll.get("CollectionType") == "Temporal", "run.xmf: no temporal collection")
+    grids = coll.findall("Grid") if coll is not None else []
+    check(len(grids) == len(snaps) and len(snaps) >= 4,
+          "run.xmf: %d grids for %d snapshots" % (len(grids), len(snaps)))
+    times = [float(g.find("Time").get("Value")) for g in grids]
+    check(times == sorted(times) and times[0] == 0.0, "run.xmf: times %s" % times)
+    for g, name in zip(grids, snaps):
+        files = {d.text.split(":")[0] for d in g.iter("DataItem")}
+        check(files == {name}, "run.xmf: grid of %s points to %s" % (name, files))
+    for name in snaps:
+        check_pair(os.path.join(out, name))
 
 print("FAIL" if failures else "PASS")
 sys.exit(1 if failures else 0)

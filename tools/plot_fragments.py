@@ -1,91 +1,19 @@
 #!/usr/bin/env python3
-"""Plot the cumulative fragment mass spectrum of bolide-fof tables.
-
-Reads one or more fragment tables written by `bolide-fof --out` (the last
-'#' header line names the columns; "# total mass M kg" gives the total) and
-draws N(>= m) against m / M_total on log-log axes, one curve per table (for
-example one per resolution), with the largest fragment's mass fraction in
-the legend.  Prints "largest_fraction TABLE X" for each table.
-"""
-
-import argparse
+"""The fragments plot of Bolide: bolide.plot_fragments of the bolide Python package
+(console script bolide-plot-fragments once the package is installed); this script
+runs it from a source tree or an install.  --help lists the options."""
 import os
-import re
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-
-import numpy as np  # noqa: E402
-
-from bolide_tools import common  # noqa: E402
-
-
-def read_table(path):
-    """Columns (dict name -> array) and the total mass of a fragment table."""
+try:
+    from bolide.plot_fragments import main
+except ImportError:  # the source tree's package, beside tools/
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
     try:
-        with open(path) as f:
-            lines = f.read().splitlines()
-    except OSError as e:
-        common.die("%s: cannot read: %s" % (path, e.strerror))
-    header = [ln for ln in lines if ln.startswith("#")]
-    names = header[-1].lstrip("#").split() if header else []
-    if "mass" not in names:
-        common.die("%s: no '# rank mass ...' header line (not a bolide-fof table?)" % path)
-    total = None
-    for ln in header:
-        m = re.search(r"total mass ([0-9.eE+-]+) kg", ln)
-        if m:
-            total = float(m.group(1))
-    rows = [ln.split() for ln in lines if ln.strip() and not ln.startswith("#")]
-    if any(len(r) != len(names) for r in rows):
-        common.die("%s: a row does not have %d columns" % (path, len(names)))
-    data = np.array(rows, dtype=float).reshape(-1, len(names))
-    cols = {n: data[:, i] for i, n in enumerate(names)}
-    if total is None:
-        total = cols["mass"].sum()
-    return cols, total
-
-
-def main(argv=None):
-    """Plot; returns the exit status."""
-    p = argparse.ArgumentParser(description="Cumulative fragment mass spectrum from bolide-fof.")
-    p.add_argument("tables", nargs="+", help="fragment tables (bolide-fof --out)")
-    p.add_argument("-o", "--out", help="output PNG (default: FIRST-stem_spectrum.png)")
-    p.add_argument("--labels", help="comma-separated legend labels, one per table")
-    args = p.parse_args(sys.argv[1:] if argv is None else argv)
-    labels = args.labels.split(",") if args.labels else [os.path.basename(t) for t in args.tables]
-    if len(labels) != len(args.tables):
-        common.die("--labels has %d names for %d tables" % (len(labels), len(args.tables)))
-
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(6, 4.5))
-    for path, label in zip(args.tables, labels):
-        cols, total = read_table(path)
-        m = np.sort(cols["mass"])[::-1]
-        if m.size == 0:
-            common.warn("%s: no fragments" % path)
-            continue
-        n_ge = np.arange(1, m.size + 1)
-        frac = m[0] / total
-        print("largest_fraction %s %.6f" % (path, frac))
-        ax.step(m / total, n_ge, where="post", label="%s (largest %.1f%%)" % (label, 100 * frac))
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel(r"fragment mass $m / M_\mathrm{total}$")
-    ax.set_ylabel(r"cumulative number $N(\geq m)$")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    out = args.out or common.default_output(args.tables[0], "_spectrum.png")
-    try:
-        common.save_figure(fig, out)
-    except OSError as e:
-        common.die(str(e))
-    return 0
-
+        from bolide.plot_fragments import main
+    except ImportError as exc:
+        sys.exit("%s: error: the bolide Python package is not installed (pip install BUILD/python): %s"
+                 % (os.path.basename(sys.argv[0]), exc))
 
 if __name__ == "__main__":
     sys.exit(main())

@@ -1,47 +1,19 @@
 #!/usr/bin/env python3
-"""Plot a planet profile written by `bolide-ic planet --profile FILE`:
-density, pressure, temperature and enclosed mass against radius.
-
-usage: plot_profile.py PROFILE.txt [OUT.png]"""
+"""The profile plot of Bolide: bolide.plot_profile of the bolide Python package
+(console script bolide-plot-profile once the package is installed); this script
+runs it from a source tree or an install.  --help lists the options."""
+import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
-import numpy as np
-
-
-def main():
-    if len(sys.argv) not in (2, 3):
-        sys.exit("usage: plot_profile.py PROFILE.txt [OUT.png]")
-    path = sys.argv[1]
-    out = sys.argv[2] if len(sys.argv) == 3 else path.rsplit(".", 1)[0] + ".png"
+try:
+    from bolide.plot_profile import main
+except ImportError:  # the source tree's package, beside tools/
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
     try:
-        d = np.loadtxt(path, ndmin=2)
-    except (OSError, ValueError) as e:
-        sys.exit(f"plot_profile.py: error: {path}: {e}")
-    if d.shape[1] != 7:
-        sys.exit(f"plot_profile.py: error: {path}: expected 7 columns (r m rho P T u layer)")
-    r = d[:, 0] / 1e3
-    fig, ax = plt.subplots(2, 2, figsize=(9, 7), sharex=True)
-    for a, col, lab, log in ((ax[0, 0], 2, r"$\rho$ [kg m$^{-3}$]", False),
-                             (ax[0, 1], 3, "P [Pa]", True),
-                             (ax[1, 0], 4, "T [K]", False),
-                             (ax[1, 1], 1, "m(<r) [kg]", False)):
-        for k in np.unique(d[:, 6]):
-            s = d[:, 6] == k
-            a.plot(r[s], d[s, col], label=f"layer {int(k)}")
-        a.set_ylabel(lab)
-        if log:
-            a.set_yscale("log")
-    for a in ax[1]:
-        a.set_xlabel("r [km]")
-    ax[0, 0].legend()
-    fig.tight_layout()
-    fig.savefig(out, dpi=100)
-    print(out)
-
+        from bolide.plot_profile import main
+    except ImportError as exc:
+        sys.exit("%s: error: the bolide Python package is not installed (pip install BUILD/python): %s"
+                 % (os.path.basename(sys.argv[0]), exc))
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

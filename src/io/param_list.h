@@ -25,12 +25,13 @@
   X("InternalUnitSystem:UnitCurrent_in_cgs", PARAM_REAL, "1", 1e-300, PARAM_INF, NULL, "A", "internal current unit") \
   X("InternalUnitSystem:UnitTemp_in_cgs", PARAM_REAL, "1", 1e-300, PARAM_INF, NULL, "K", "internal temperature unit") \
                                                                                                          \
+  X("PhysicalConstants:G", PARAM_REAL, "0", 0, PARAM_INF, NULL, "internal units", "Newton's constant in internal units, as SWIFT's key (0: 6.67430e-11 m^3 kg^-1 s^-2 converted to the internal units)") \
+                                                                                                         \
   X("InitialConditions:file_name", PARAM_STRING, NULL, 1, 1023, NULL, "-", "HDF5 initial conditions (relative paths: to the parameter file's folder)") \
   X("InitialConditions:periodic", PARAM_BOOL, "false", 0, 0, NULL, "-", "periodic box (true) or open box (false)") \
   X("InitialConditions:box_size", PARAM_REAL_ARRAY, "[]", 0, PARAM_INF, "0|1|3", "internal length", "box size overriding /Header/BoxSize (1 or 3 values)") \
   X("InitialConditions:shift", PARAM_REAL_ARRAY, "[0, 0, 0]", -PARAM_INF, PARAM_INF, "3", "internal length", "shift added to every position on reading") \
   X("InitialConditions:smoothing_length_scaling", PARAM_REAL, "1", 1e-6, 1e6, NULL, "-", "factor applied to the smoothing lengths read") \
-  X("InitialConditions:cleanup_h_factors", PARAM_BOOL, "false", 0, 0, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
                                                                                                          \
   X("TimeIntegration:time_begin", PARAM_REAL, "0", -PARAM_INF, PARAM_INF, NULL, "internal time", "simulation time at the start") \
   X("TimeIntegration:time_end", PARAM_REAL, NULL, -PARAM_INF, PARAM_INF, NULL, "internal time", "simulation time at which the run stops") \
@@ -42,12 +43,14 @@
   X("Snapshots:time_first", PARAM_REAL, "0", -PARAM_INF, PARAM_INF, NULL, "internal time", "time of the first snapshot") \
   X("Snapshots:delta_time", PARAM_REAL, "0", 0, PARAM_INF, NULL, "internal time", "time between snapshots (0: only the first and last)") \
   X("Snapshots:output_list", PARAM_STRING, "", 0, 1023, NULL, "-", "file with one output time per line (overrides time_first/delta_time)") \
-  X("Snapshots:int_time_label_on", PARAM_BOOL, "false", 0, 0, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
+  X("Snapshots:output_list_on", PARAM_BOOL, "true", 0, 0, NULL, "-", "use Snapshots:output_list when it names a file (SWIFT's switch: false ignores the list)") \
   X("Snapshots:accelerations", PARAM_BOOL, "false", 0, 0, NULL, "-", "write Accelerations (and Potentials with gravity) in every snapshot") \
   X("Snapshots:compression", PARAM_INT, "0", 0, 9, NULL, "-", "gzip level of the datasets (0: none)") \
                                                                                                          \
   X("Statistics:delta_time", PARAM_REAL, "0", 0, PARAM_INF, NULL, "internal time", "time between lines of the statistics file (0: every step)") \
+  X("Statistics:time_first", PARAM_REAL, "0", -PARAM_INF, PARAM_INF, NULL, "internal time", "time of the first line of the statistics file (the start of the run when earlier); the lines follow every delta_time") \
   X("Statistics:energy_file_name", PARAM_STRING, "statistics", 1, 255, NULL, "-", "statistics file name (a .txt suffix is added)") \
+  X("Statistics:timestep_file_name", PARAM_STRING, "timesteps", 1, 255, NULL, "-", "file with one line per step (step, time, dt, active particles, wall time; a .txt suffix is added), as SWIFT's") \
                                                                                                          \
   X("SPH:resolution_eta", PARAM_REAL, KERNEL_ETA_DEFAULT_STR, 0.1, 10, NULL, "-", "target h in units of the mean inter-particle spacing; the default depends on the kernel: 1.7 with the Wendland C2 kernel (the default kernel, 149 neighbours; theory/sph.md, section 1), 1.2348 with the others (48 neighbours with the cubic spline)") \
   X("SPH:h_tolerance", PARAM_REAL, "1e-4", 1e-10, 0.1, NULL, "-", "relative tolerance of the smoothing length iteration") \
@@ -69,21 +72,17 @@
   X("SPH:artificial_stress_epsilon", PARAM_REAL, "0", 0, 1, NULL, "-", "artificial stress factor epsilon_s against the tensile instability (Monaghan 2000; 0: off)") \
   X("SPH:artificial_stress_n", PARAM_REAL, "4", 1, 20, NULL, "-", "artificial stress exponent n (Monaghan 2000)") \
   X("SPH:max_relative_change", PARAM_REAL, "0", 0, 1, NULL, "-", "time-step limit: largest relative change of density, energy and deviatoric stress in one step (0: off)") \
-  X("SPH:minimal_temperature", PARAM_REAL, "0", 0, PARAM_INF, NULL, "K", "accepted for SWIFT compatibility; has no effect") \
   X("SPH:hydro", PARAM_BOOL, "true", 0, 0, NULL, "-", "compute hydrodynamics (false: gravity-only run)") \
   X("SPH:gamma", PARAM_REAL, "1.6666666666666667", 1.0001, 10, NULL, "-", "adiabatic index of the default ideal-gas material (id 0) when no Materials section is given") \
                                                                                                          \
   X("Gravity:enabled", PARAM_BOOL, "false", 0, 0, NULL, "-", "self-gravity on or off") \
   X("Gravity:direct", PARAM_BOOL, "false", 0, 0, NULL, "-", "exact O(N^2) summation instead of multipoles") \
   X("Gravity:theta_cr", PARAM_REAL, "0.5", 0, 1, NULL, "-", "opening angle of the multipole acceptance criterion") \
+  X("Gravity:MAC", PARAM_ENUM, "adaptive", 0, 0, "adaptive|geometric|gadget", "-", "multipole acceptance criterion, as SWIFT's key: adaptive (Gravity:epsilon_fmm besides theta_cr), geometric (theta_cr alone: epsilon_fmm is taken as 0), gadget (read as adaptive)") \
   X("Gravity:eta", PARAM_REAL, "0.025", 1e-6, 10, NULL, "-", "gravitational time-step factor: dt = sqrt(2 eta eps / |a|)") \
   X("Gravity:softening", PARAM_REAL, "0", 0, PARAM_INF, NULL, "internal length", "Plummer-equivalent softening length (absolute)") \
   X("Gravity:softening_h_factor", PARAM_REAL, "0", 0, PARAM_INF, NULL, "-", "softening tied to h: eps_i = factor * h_i, pairs use max(eps_i, eps_j); 0 = off (absolute Gravity:softening); spline kernel only") \
   X("Gravity:max_physical_baryon_softening", PARAM_REAL, "0", 0, PARAM_INF, NULL, "internal length", "SWIFT's name for the softening; used when Gravity:softening is 0") \
-  X("Gravity:mesh_side_length", PARAM_INT, "0", 0, 4096, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
-  X("Gravity:comoving_DM_softening", PARAM_REAL, "0", 0, PARAM_INF, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
-  X("Gravity:max_physical_DM_softening", PARAM_REAL, "0", 0, PARAM_INF, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
-  X("Gravity:comoving_baryon_softening", PARAM_REAL, "0", 0, PARAM_INF, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
   X("Gravity:softening_kernel", PARAM_ENUM, "spline", 0, 0, "spline|plummer", "-", "pair softening: spline (Wendland C2 mass, Newtonian beyond 3 eps) or plummer (1/sqrt(r^2+eps^2)); theory/gravity.md") \
   X("Gravity:epsilon_fmm", PARAM_REAL, "5e-5", 0, 1, NULL, "-", "tolerance of the adaptive opening criterion (Dehnen 2014): a cell-cell interaction is accepted only if its acceleration error, estimated from the source's multipole power at the expansion order, is below epsilon_fmm times the smallest gravitational acceleration in the receiving cell (the previous evaluation's; on a run's first step a cheaper geometric pass's), besides theta_cr; a particle's total error sums its ~10-30 interactions: the defaults give median 2.4e-5, p99 1.0e-4 on the reference impact (SWIFT's 3.3e-5, 1.7e-4 at its epsilon_fmm 1e-3); 0: the geometric criterion alone; theory/gravity.md, BENCHMARKS.md") \
   X("Gravity:multipole_order", PARAM_INT, "5", 1, 5, NULL, "-", "order p of the multipole and local expansions (potential to order p, forces to p-1); 5 reaches a given accuracy at less cost than 4 with the adaptive criterion (BENCHMARKS.md); theory/gravity.md") \
@@ -94,7 +93,6 @@
   X("Scheduler:cell_task_size", PARAM_INT, "1000", 8, 100000000, NULL, "-", "tasks work on octree cells of at most this many particles (smaller: more, finer tasks)") \
   X("Scheduler:gravity_task_size", PARAM_INT, "2000", 8, 1000000000, NULL, "-", "the self-gravity task of a top-level cell with more particles is split into tasks on its octants (and theirs, up to 3 levels down) so that a concentrated body keeps every worker busy") \
   X("Scheduler:max_top_level_cells", PARAM_INT, "16", 1, 1024, NULL, "-", "largest number of top-level cells along one side") \
-  X("Scheduler:tasks_per_cell", PARAM_REAL, "0", 0, PARAM_INF, NULL, "-", "accepted for SWIFT compatibility; has no effect") \
   X("Scheduler:dump_tasks", PARAM_INT, "0", 0, PARAM_INF, NULL, "-", "write a task timeline (thread, start, end, type, cell) every this many steps (0: never)") \
   X("Scheduler:rebuild_fraction", PARAM_REAL, "0.25", 0.01, 1, NULL, "-", "rebuild the cells once a particle drifted this fraction of its cell's width") \
   X("Scheduler:deterministic", PARAM_BOOL, "false", 0, 0, NULL, "-", "keep the task priorities fixed instead of learning them from measured task times: with one thread (-t 1) every run, and every run resumed from a restart file, then repeats bit for bit (for tests; slightly slower)") \
@@ -115,8 +113,13 @@
   X("Restarts:subdir", PARAM_STRING, "restart", 1, 1023, NULL, "-", "folder of the restart files") \
   X("Restarts:delta_steps", PARAM_INT, "0", 0, 1000000000, NULL, "-", "steps between restart files, besides delta_hours (0: none)") \
   X("Restarts:max_run_time", PARAM_REAL, "0", 0, PARAM_INF, NULL, "h", "wall-clock hours after which the run writes a restart file and stops with status 0, for the time limit of a batch queue (0: no limit)") \
+  X("Restarts:save", PARAM_BOOL, "true", 0, 0, NULL, "-", "keep the previous restart file as restart.prev.bin (as SWIFT's key; Bolide always keeps it, false gets a note)") \
+  X("Restarts:onexit", PARAM_BOOL, "true", 0, 0, NULL, "-", "write a restart file when the run ends (with Restarts:enable; as SWIFT's key; Bolide always does, false gets a note)") \
+  X("Restarts:basename", PARAM_STRING, "restart", 1, 255, NULL, "-", "name of the restart files in Restarts:subdir: BASENAME.bin and BASENAME.prev.bin (SWIFT's key)") \
+  X("Restarts:stop_steps", PARAM_INT, "1", 1, 1000000000, NULL, "-", "steps between looks for the stop file Restarts:subdir/stop, whose presence makes the run write a restart file and stop (as SWIFT's key; SWIFT's default is 100)") \
                                                                                                          \
-  X("Materials", PARAM_SECTION, "", 0, 0, NULL, "-", "material table: see examples/parameters.yml")
+  X("Materials", PARAM_SECTION, "", 0, 0, NULL, "-", "material table: see examples/parameters.yml") \
+  X("EoS", PARAM_SECTION, "", 0, 0, NULL, "-", "SWIFT's planetary equation-of-state section, read as entries of Materials: see examples/parameters.yml")
 /* clang-format on */
 
 #endif

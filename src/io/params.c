@@ -20,6 +20,7 @@
 
 #include "error.h"
 #include "param_list.h"
+#include "param_swift.h"
 
 /* ================================================================ the table */
 
@@ -28,6 +29,36 @@
 /** Every known key, in the order of param_list.h (also the output order). */
 static const struct param_spec params_table[] = {BOLIDE_PARAMS(PARAMS_SPEC_ENTRY)};
 #define PARAMS_N ((int)(sizeof params_table / sizeof params_table[0]))
+
+/** A key or section of SWIFT's that Bolide accepts without effect. */
+struct param_swift {
+  const char *name;   /**< "Section:key", "Section" or "Prefix*" */
+  int level;          /**< PARAM_SWIFT_NOTE or PARAM_SWIFT_WARN */
+  const char *reason; /**< why it has no effect */
+};
+#define PARAMS_SWIFT_ENTRY(name, level, reason) {name, level, reason},
+/** Every entry of BOLIDE_SWIFT_IGNORED (param_swift.h). */
+static const struct param_swift params_swift[] = {BOLIDE_SWIFT_IGNORED(PARAMS_SWIFT_ENTRY)};
+#define PARAMS_NSWIFT ((int)(sizeof params_swift / sizeof params_swift[0]))
+
+/** The entry of SWIFT's key "Section:key" accepted without effect, or NULL. */
+static const struct param_swift *swift_key(const char *name) {
+  for (int i = 0; i < PARAMS_NSWIFT; i++)
+    if (strcmp(params_swift[i].name, name) == 0) return &params_swift[i];
+  return NULL;
+}
+
+/** The entry of SWIFT's section accepted without effect, or NULL. */
+static const struct param_swift *swift_section(const char *sec) {
+  for (int i = 0; i < PARAMS_NSWIFT; i++) {
+    const char *n = params_swift[i].name;
+    const size_t l = strlen(n);
+    if (strchr(n, ':')) continue;
+    if (strcmp(n, sec) == 0 || (l > 1 && n[l - 1] == '*' && strncmp(n, sec, l - 1) == 0))
+      return &params_swift[i];
+  }
+  return NULL;
+}
 
 /** Nesting deeper than this (or a recursive alias) is refused. */
 #define PARAMS_MAX_DEPTH 64
@@ -97,7 +128,7 @@ static void fail(const char *where, int line, const char *fmt, ...) {
 
 /** Optimal-string-alignment edit distance (Levenshtein plus transpositions),
  *  case-insensitive: the number of typing slips between two names. */
-static int edit_distance(const char *a, const char *b) {
+int params_edit_distance(const char *a, const char *b) {
   int la = (int)strlen(a), lb = (int)strlen(b);
   if (la > PARAMS_MAX_NAME || lb > PARAMS_MAX_NAME) return 1 << 20;
   int d[PARAMS_MAX_NAME + 1][PARAMS_MAX_NAME + 1];
@@ -117,46 +148,57 @@ static int edit_distance(const char *a, const char *b) {
   return d[la][lb];
 }
 
-/** Distance from a mistyped "Section:key" to table entry s: the smaller of
- *  the distance between full names and (the key was put in the wrong
- *  section) the distance between the key parts plus 2. */
-static int key_distance(const char *name, const struct param_spec *s) {
-  int d = edit_distance(name, s->name);
-  const char *k1 = strchr(name, ':'), *k2 = strchr(s->name, ':');
-  if (k1 && k2) {
-    int dk = edit_distance(k1 + 1, k2 + 1) + 2;
-    if (dk < d) d = dk;
-  }
-  return d;
+/** Name of candidate k for a suggestion: the entries of params_table, then
+ *  SWIFT's keys and sections accepted without effect (NULL past the end). */
+static const char *candidate_name(int k) {
+  if (k < PARAMS_N) return params_table[k].name;
+  if (k < PARAMS_N + PARAMS_NSWIFT) return params_swift[k - PARAMS_N].name;
+  return NULL;
 }
 
 /** Fill buf with " (did you mean 'X'?)" for the known name nearest to `name`
  *  (a section name when `section` is set, else a "Section:key"), or with ""
- *  when nothing is within three slips. */
-static void suggest(const char *name, int section, char *buf, size_t len) {
-  int best = 4, best_i = -1;
-  const char *typed = section ? name : (strchr(name, ':') ? strchr(name, ':') + 1 : name);
-  for (int i = 0; i < PARAMS_N; i++) {
-    const struct param_spec *s = &params_table[i];
-    int d;
-    if (section) {
-      char sec[PARAMS_MAX_NAME + 1];
-      snprintf(sec, sizeof sec, "%.*s", (int)spec_section_len(s), s->name);
-      d = edit_distance(name, sec);
-    } else {
-      if (s->type == PARAM_SECTION) continue;
-      d = key_distance(name, s);
+ *  when nothing is within three slips.  A key is looked for among the keys
+ *  of its own section first, then (put in the wrong section) among the keys
+ *  of every section, where the same key name in another section wins.
+ *  Returns the index in params_table of the key suggested, or -1. */
+static int suggest(const char *name, int section, char *buf, size_t len) {
+  int best = 4, best_k = -1;
+  const char *colon = strchr(name, ':');
+  const char *typed = section || !colon ? name : colon + 1;
+  const size_t seclen = colon ? (size_t)(colon - name) : strlen(name);
+  for (int pass = section ? 1 : 0; pass < 2 && best_k < 0; pass++)
+    for (int k = 0; candidate_name(k); k++) {
+      const char *c = candidate_name(k);
+      const char *cc = strchr(c, ':');
+      if (section) {
+        if (k < PARAMS_N && cc) { /* the section of a key */
+          char sec[PARAMS_MAX_NAME + 1];
+          snprintf(sec, sizeof sec, "%.*s", (int)(cc - c), c);
+          const int d = params_edit_distance(name, sec);
+          if (d < best && d < (int)strlen(typed)) best = d, best_k = k;
+        } else if (!cc && c[strlen(c) - 1] != '*') {
+          const int d = params_edit_distance(name, c);
+          if (d < best && d < (int)strlen(typed)) best = d, best_k = k;
+        }
+        continue;
+      }
+      if (!cc) continue; /* a whole section */
+      const int same = (size_t)(cc - c) == seclen && strncmp(c, name, seclen) == 0;
+      if (pass == 0 && !same) continue;
+      const int d = params_edit_distance(typed, cc + 1);
+      if (d < best && d < (int)strlen(typed)) best = d, best_k = k;
     }
-    if (d < best && d < (int)strlen(typed)) best = d, best_i = i;
-  }
-  if (best_i < 0) {
+  if (best_k < 0) {
     buf[0] = '\0';
-  } else if (section) {
-    const struct param_spec *s = &params_table[best_i];
-    snprintf(buf, len, " (did you mean '%.*s'?)", (int)spec_section_len(s), s->name);
-  } else {
-    snprintf(buf, len, " (did you mean '%s'?)", params_table[best_i].name);
+    return -1;
   }
+  const char *c = candidate_name(best_k);
+  if (section && strchr(c, ':'))
+    snprintf(buf, len, " (did you mean '%.*s'?)", (int)(strchr(c, ':') - c), c);
+  else
+    snprintf(buf, len, " (did you mean '%s'?)", c);
+  return section ? -1 : best_k;
 }
 
 /* ================================================================ the tree */
@@ -386,6 +428,8 @@ struct param_value {
   double *a;                     /**< PARAM_REAL_ARRAY: the values */
   int n;                         /**< PARAM_REAL_ARRAY: their number */
   const struct param_node *node; /**< PARAM_SECTION: the subtree (owned by the file's tree) */
+  int tried;                     /**< 1 when the file or -P had a problem with this key (or a
+                                      misspelling of it): it is not reported missing as well */
 };
 
 /** The parsed file. */
@@ -393,7 +437,48 @@ struct params {
   char *filename;             /**< the file read */
   struct param_node *root;    /**< its whole tree */
   struct param_value *values; /**< one per params_table entry */
+  char **problems;            /**< the problems found so far, reported together */
+  int n_problems;             /**< their number */
 };
+
+/** Remember one problem "WHERE:LINE: MESSAGE" (WHERE: MESSAGE when line
+ *  <= 0); params_read reports every problem of a file in one pass. */
+static void problem(struct params *p, const char *where, int line, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+static void problem(struct params *p, const char *where, int line, const char *fmt, ...) {
+  char msg[2048], full[2600];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  if (line > 0)
+    snprintf(full, sizeof full, "%s:%d: %s", where, line, msg);
+  else
+    snprintf(full, sizeof full, "%s: %s", where, msg);
+  p->problems = error_realloc(p->problems, (size_t)(p->n_problems + 1) * sizeof *p->problems,
+                              "parameter problems");
+  p->problems[p->n_problems] = strdup(full);
+  if (!p->problems[p->n_problems]) error_exit("out of memory");
+  p->n_problems++;
+}
+
+/** Stop when problems were found: one line each, the last through
+ *  error_exit. */
+static void problems_report(struct params *p) {
+  if (p->n_problems == 0) return;
+  for (int k = 0; k < p->n_problems - 1; k++) error_report("%s", p->problems[k]);
+  error_exit("%s%s", p->problems[p->n_problems - 1],
+             p->n_problems > 1 ? " (and the problems above)" : "");
+}
+
+/** The one line for a SWIFT key or section that has no effect. */
+static void swift_note(const char *where, int line, const char *what,
+                       const struct param_swift *s) {
+  if (s->level == PARAM_SWIFT_WARN)
+    error_warning("%s:%d: %s (SWIFT's) has no effect in Bolide: %s", where, line, what, s->reason);
+  else
+    error_note("%s:%d: %s (SWIFT's) has no effect in Bolide: %s", where, line, what, s->reason);
+}
 
 /** Parse a number: decimal digits, sign, point and exponent only (1e5,
  *  1.0e+05, .5), finite.  Returns 1 on success. */
@@ -686,23 +771,36 @@ static void params_set_defaults(struct params *p) {
   }
 }
 
-/** Check the keys of one section and take their values. */
+/** Check the keys of one section and take their values; every problem is
+ *  remembered (problem()) and the next key is looked at. */
 static void params_take_section(struct params *p, const char *sec, int line,
                                 const struct param_node *n) {
   char name[1024], err[1024], hint[160];
   if (node_is_null(n)) return; /* "Section:" with no keys */
-  if (n->kind != NODE_MAPPING)
-    fail(p->filename, line, "section '%s' must be a mapping of keys, got %s", sec,
-         node_kind_name(n));
+  if (n->kind != NODE_MAPPING) {
+    problem(p, p->filename, line, "section '%s' must be a mapping of keys, got %s", sec,
+            node_kind_name(n));
+    return;
+  }
   for (int k = 0; k < n->n; k++) {
     snprintf(name, sizeof name, "%s:%s", sec, n->keys[k]);
     int i = spec_find(name);
     if (i < 0 || params_table[i].type == PARAM_SECTION) {
-      suggest(name, 0, hint, sizeof hint);
-      fail(p->filename, n->key_lines[k], "unknown key '%s'%s", name, hint);
+      const struct param_swift *sw = swift_key(name);
+      if (sw) {
+        swift_note(p->filename, n->key_lines[k], name, sw);
+        continue;
+      }
+      const int near = suggest(name, 0, hint, sizeof hint);
+      if (near >= 0) p->values[near].tried = 1;
+      problem(p, p->filename, n->key_lines[k], "unknown key '%s'%s", name, hint);
+      continue;
     }
-    if (!value_parse(&params_table[i], n->child[k], &p->values[i], err, sizeof err))
-      fail(p->filename, n->key_lines[k], "%s", err);
+    if (!value_parse(&params_table[i], n->child[k], &p->values[i], err, sizeof err)) {
+      p->values[i].tried = 1;
+      problem(p, p->filename, n->key_lines[k], "%s", err);
+      continue;
+    }
     p->values[i].given = 1;
     p->values[i].line = n->key_lines[k];
   }
@@ -718,6 +816,7 @@ static void params_take_file(struct params *p) {
   for (int k = 0; k < root->n; k++) {
     const char *sec = root->keys[k];
     int i = spec_find(sec);
+    const struct param_swift *sw = swift_section(sec);
     if (i >= 0 && params_table[i].type == PARAM_SECTION) {
       if (node_is_null(root->child[k])) continue;
       p->values[i].node = root->child[k];
@@ -725,9 +824,13 @@ static void params_take_file(struct params *p) {
       p->values[i].line = root->key_lines[k];
     } else if (section_known(sec)) {
       params_take_section(p, sec, root->key_lines[k], root->child[k]);
+    } else if (sw) {
+      char what[300];
+      snprintf(what, sizeof what, "section '%s'", sec);
+      swift_note(p->filename, root->key_lines[k], what, sw);
     } else {
       suggest(sec, 1, hint, sizeof hint);
-      fail(p->filename, root->key_lines[k], "unknown section '%s'%s", sec, hint);
+      problem(p, p->filename, root->key_lines[k], "unknown section '%s'%s", sec, hint);
     }
   }
 }
@@ -737,17 +840,32 @@ static void params_apply_override(struct params *p, const char *arg) {
   char name[1024], where[1100], err[1024], hint[160];
   const char *c1 = strchr(arg, ':');
   const char *c2 = c1 ? strchr(c1 + 1, ':') : NULL;
-  if (!c2 || c1 == arg || c2 == c1 + 1) error_exit("-P %s: expected Section:key:value", arg);
   snprintf(where, sizeof where, "-P %s", arg);
+  if (!c2 || c1 == arg || c2 == c1 + 1) {
+    problem(p, where, 0, "expected Section:key:value");
+    return;
+  }
   snprintf(name, sizeof name, "%.*s", (int)(c2 - arg), arg);
   int i = spec_find(name);
   char section[1024];
   snprintf(section, sizeof section, "%.*s", (int)(c1 - arg), arg);
-  if (params_spec(section) && params_spec(section)->type == PARAM_SECTION)
-    error_exit("%s: section '%s' cannot be set with -P", where, section);
+  if (params_spec(section) && params_spec(section)->type == PARAM_SECTION) {
+    problem(p, where, 0, "section '%s' cannot be set with -P", section);
+    return;
+  }
   if (i < 0 || params_table[i].type == PARAM_SECTION) {
-    suggest(name, 0, hint, sizeof hint);
-    error_exit("%s: unknown key '%s'%s", where, name, hint);
+    const struct param_swift *sw = swift_key(name);
+    if (sw) {
+      if (sw->level == PARAM_SWIFT_WARN)
+        error_warning("%s: %s (SWIFT's) has no effect in Bolide: %s", where, name, sw->reason);
+      else
+        error_note("%s: %s (SWIFT's) has no effect in Bolide: %s", where, name, sw->reason);
+      return;
+    }
+    const int near = suggest(name, 0, hint, sizeof hint);
+    if (near >= 0) p->values[near].tried = 1;
+    problem(p, where, 0, "unknown key '%s'%s", name, hint);
+    return;
   }
   /* trim the blanks a quoted shell argument may carry */
   const char *value = c2 + 1;
@@ -757,11 +875,41 @@ static void params_apply_override(struct params *p, const char *arg) {
   for (size_t l = strlen(text); l > 0 && isspace((unsigned char)text[l - 1]); l--) text[l - 1] = 0;
   struct param_node *n = node_from_text(&params_table[i], text, where);
   free(text);
-  if (!value_parse(&params_table[i], n, &p->values[i], err, sizeof err))
-    error_exit("%s: %s", where, err);
+  const int ok = value_parse(&params_table[i], n, &p->values[i], err, sizeof err);
   node_free(n);
+  if (!ok) {
+    p->values[i].tried = 1;
+    problem(p, where, 0, "%s", err);
+    return;
+  }
   p->values[i].given = 1;
+  free(p->values[i].override);
   p->values[i].override = strdup(arg);
+}
+
+/** SWIFT's keys that change other keys' meaning, and the notes on SWIFT
+ *  keys Bolide understands but whose value it cannot follow. */
+static void params_apply_swift(struct params *p) {
+  const int mac = spec_find("Gravity:MAC"), eps = spec_find("Gravity:epsilon_fmm");
+  if (p->values[mac].b == 1) { /* geometric: theta_cr alone, as in SWIFT */
+    if (p->values[eps].given && p->values[eps].r != 0.0)
+      error_note("%s:%d: Gravity:epsilon_fmm has no effect with Gravity:MAC: geometric (as in SWIFT)",
+                 p->filename, p->values[eps].line);
+    p->values[eps].r = 0.0;
+  } else if (p->values[mac].b == 2) {
+    error_note("%s:%d: Gravity:MAC: gadget is read as adaptive (Bolide's adaptive criterion, "
+               "Gravity:epsilon_fmm)",
+               p->filename, p->values[mac].line);
+  }
+  const int save = spec_find("Restarts:save"), onexit = spec_find("Restarts:onexit");
+  if (p->values[save].given && !p->values[save].b)
+    error_note("%s:%d: Restarts:save: false has no effect in Bolide: the previous restart file is "
+               "always kept (BASENAME.prev.bin), so that a complete one exists at every instant",
+               p->filename, p->values[save].line);
+  if (p->values[onexit].given && !p->values[onexit].b)
+    error_note("%s:%d: Restarts:onexit: false has no effect in Bolide: with Restarts:enable a "
+               "restart file is always written when the run ends",
+               p->filename, p->values[onexit].line);
 }
 
 struct params *params_read(const char *filename, int n_overrides, char *const *overrides) {
@@ -773,9 +921,11 @@ struct params *params_read(const char *filename, int n_overrides, char *const *o
   params_take_file(p);
   for (int k = 0; k < n_overrides; k++) params_apply_override(p, overrides[k]);
   for (int i = 0; i < PARAMS_N; i++)
-    if (!params_table[i].def && !p->values[i].given)
-      error_exit("%s: missing required key '%s' (%s)", filename, params_table[i].name,
-                 params_table[i].doc);
+    if (!params_table[i].def && !p->values[i].given && !p->values[i].tried)
+      problem(p, filename, 0, "missing required key '%s' (%s)", params_table[i].name,
+              params_table[i].doc);
+  problems_report(p);
+  params_apply_swift(p);
   return p;
 }
 
@@ -792,6 +942,8 @@ void params_free(struct params *p) {
   if (!p) return;
   for (int i = 0; i < PARAMS_N; i++) value_clear(&p->values[i]);
   free(p->values);
+  for (int k = 0; k < p->n_problems; k++) free(p->problems[k]);
+  free(p->problems);
   node_free(p->root);
   free(p->filename);
   free(p);
@@ -810,6 +962,22 @@ static const struct param_value *value_get(const struct params *p, const char *n
   if (i < 0) error_bug("no parameter '%s' in param_list.h", name);
   if (params_table[i].type != type) error_bug("parameter '%s' read with the wrong type", name);
   return &p->values[i];
+}
+
+int params_section_line(const struct params *p, const char *section) {
+  const struct param_node *r = p->root;
+  for (int k = 0; r && r->kind == NODE_MAPPING && k < r->n; k++)
+    if (strcmp(r->keys[k], section) == 0) return r->key_lines[k];
+  return 0;
+}
+
+const char *params_file_text(const struct params *p, const char *name) {
+  const char *colon = strchr(name, ':');
+  if (!colon) return NULL;
+  char sec[PARAMS_MAX_NAME + 1];
+  snprintf(sec, sizeof sec, "%.*s", (int)(colon - name), name);
+  const struct param_node *s = param_node_get(p->root, sec);
+  return param_node_text(param_node_get(s, colon + 1));
 }
 
 int params_given(const struct params *p, const char *name) {
@@ -1225,7 +1393,19 @@ void params_write_reference(FILE *f) {
       "# Materials: a mapping from material id to a mapping of material parameters\n"
       "# (equation of state, strength, damage, porosity); see the materials library\n"
       "# documentation for its keys.  Without it, every particle is the ideal gas of\n"
-      "# material id 0 (SPH:gamma).\n",
+      "# material id 0 (SPH:gamma).\n"
+      "#\n"
+      "# EoS (SWIFT's section, read as Materials entries): planetary_use_NAME: 1 enables\n"
+      "# SWIFT's planetary material NAME with SWIFT's id: idg_def 0, Til_iron 100,\n"
+      "# Til_granite 101, Til_water 102, Til_basalt 103, Til_ice 104 (the library entries\n"
+      "# with that swift_id); SESAME_iron 300, SESAME_basalt 301, SESAME_water 302,\n"
+      "# SS08_water 303, AQUA 304, CMS19_H 305, CMS19_He 306, CD21_HHe 307,\n"
+      "# ANEOS_forsterite 400, ANEOS_iron 401, ANEOS_Fe85Si15 402, custom_0..9 900-909\n"
+      "# (tables in SWIFT's format, planetary_NAME_table_file: FILE, relative to this\n"
+      "# file).  A material of the Materials section wins over the EoS entry of its id.\n"
+      "# HM80 (200-202) and Til_custom (190-199) files are not read yet: define those\n"
+      "# materials in Materials.  A SWIFT parameter file runs unchanged: the keys and\n"
+      "# sections of SWIFT's that Bolide does not use are listed at the end of this file.\n",
       f);
   for (int i = 0; i < PARAMS_N; i++) {
     if (!spec_starts_section(i)) continue;
@@ -1248,5 +1428,16 @@ void params_write_reference(FILE *f) {
         fputs(reference_value(&params_table[j]), f);
       fputc('\n', f);
     }
+  }
+  fputs("\n# SWIFT's keys and sections accepted without effect in Bolide (each one given\n"
+        "# gets one note on stderr, a warning where ignoring it changes what is\n"
+        "# simulated), and why:\n",
+        f);
+  for (int i = 0; i < PARAMS_NSWIFT; i++) {
+    char text[1024];
+    snprintf(text, sizeof text, "%s%s%s: %s", strchr(params_swift[i].name, ':') ? "" : "section ",
+             params_swift[i].name, params_swift[i].level == PARAM_SWIFT_WARN ? " (warning)" : "",
+             params_swift[i].reason);
+    reference_wrap(f, text);
   }
 }

@@ -60,6 +60,13 @@ const char *params_filename(const struct params *p);
 /** 1 if the key was given in the file (or by -P), 0 if it takes its default. */
 int params_given(const struct params *p, const char *name);
 
+/** Line of a section in the file (1-based), 0 when the file has none. */
+int params_section_line(const struct params *p, const char *section);
+
+/** The text the file itself gives for "Section:key" (before any -P), or NULL
+ *  when the file does not set it or sets it to a collection. */
+const char *params_file_text(const struct params *p, const char *name);
+
 /** Typed getters: the value given, or the table's default.  Asking for a key
  *  that is not in the table, or with the wrong type, is a bug (error_bug). */
 long params_get_int(const struct params *p, const char *name);
@@ -80,6 +87,10 @@ char *params_get_path(const struct params *p, const char *name);
  *  (a value inconsistent with another, say). */
 void params_error(const struct params *p, const char *name, const char *fmt, ...)
     __attribute__((format(printf, 3, 4), noreturn));
+
+/** Number of typing slips between two names (optimal-string-alignment edit
+ *  distance, case-insensitive), for "did you mean" hints. */
+int params_edit_distance(const char *a, const char *b);
 
 /** Write the full parameter set in use (given values and defaults) as YAML. */
 void params_write_yaml(const struct params *p, FILE *f);

@@ -135,13 +135,13 @@ static uint64_t restart_gravity_bytes(const struct restart_gravity *g, size_t co
          8 * (uint64_t)(g->nr_saved * g->cell_doubles) + 8 + 16 * (uint64_t)g->nr_lists + 16 * items;
 }
 
-void restart_write(const char *dir, const struct restart_state *st, const struct parts *p,
+void restart_write(const char *stem, const struct restart_state *st, const struct parts *p,
                    const double *flaw_eps, const struct restart_cells *cells, const char *params,
                    const struct restart_gravity *grav) {
   char path[2048], tmp[2100], prev[2100];
-  snprintf(path, sizeof path, "%s/restart.bin", dir);
+  snprintf(path, sizeof path, "%s.bin", stem);
   snprintf(tmp, sizeof tmp, "%s.tmp", path);
-  snprintf(prev, sizeof prev, "%s/restart.prev.bin", dir);
+  snprintf(prev, sizeof prev, "%s.prev.bin", stem);
   char *ptext = restart_params_text(params);
   const uint64_t plen = strlen(ptext);
   /* flaws: the particles' slices of the engine's flat array, gathered in the
@@ -241,6 +241,13 @@ void restart_write(const char *dir, const struct restart_state *st, const struct
   }
   if (rename(tmp, path)) error_exit("%s: cannot rename to %s: %s", tmp, path, strerror(errno));
   error_unregister_tmpfile(tmp);
+  char dir[2048]; /* the folder of the stem */
+  snprintf(dir, sizeof dir, "%s", stem);
+  char *slash = strrchr(dir, '/');
+  if (slash)
+    *slash = '\0';
+  else
+    snprintf(dir, sizeof dir, ".");
   restart_sync_dir(dir);
 }
 
@@ -643,11 +650,11 @@ static int restart_read_file(const char *path, const struct restart_expect *ex, 
   return r;
 }
 
-void restart_read(const char *dir, const struct restart_expect *ex, struct restart_data *out, char *used,
+void restart_read(const char *stem, const struct restart_expect *ex, struct restart_data *out, char *used,
                   size_t usedlen) {
   char path[2048], prev[2048], err[1024], err2[1024];
-  snprintf(path, sizeof path, "%s/restart.bin", dir);
-  snprintf(prev, sizeof prev, "%s/restart.prev.bin", dir);
+  snprintf(path, sizeof path, "%s.bin", stem);
+  snprintf(prev, sizeof prev, "%s.prev.bin", stem);
   if (restart_read_file(path, ex, out, err, sizeof err) == 0) {
     snprintf(used, usedlen, "%s", path);
     return;
@@ -664,13 +671,13 @@ void restart_read(const char *dir, const struct restart_expect *ex, struct resta
     return;
   }
   if (access(path, F_OK) && access(prev, F_OK))
-    error_exit("%s: no restart file to resume from (neither restart.bin nor restart.prev.bin)", dir);
+    error_exit("%s: no restart file to resume from (neither %s nor %s)", path, path, prev);
   if (access(prev, F_OK)) error_exit("%s", err);
   error_exit("%s (the previous file: %s)", err, err2);
 }
 
-void restart_remove_stale(const char *dir) {
+void restart_remove_stale(const char *stem) {
   char tmp[2100];
-  snprintf(tmp, sizeof tmp, "%s/restart.bin.tmp", dir);
+  snprintf(tmp, sizeof tmp, "%s.bin.tmp", stem);
   if (unlink(tmp) == 0) error_log(0, "removed %s, left by a run that stopped while writing it", tmp);
 }

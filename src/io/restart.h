@@ -14,10 +14,12 @@
  * reading; a file of another parameter set is refused with one line that
  * names the first parameter that differs.
  *
- * Files in the restart folder: restart.bin (the newest), restart.prev.bin
- * (the one before; a hard link made before the newest is replaced, so that a
- * complete file exists at every instant) and restart.bin.tmp while writing
- * (removed at start if a killed run left it). */
+ * Files in the restart folder, named after Restarts:basename (STEM below is
+ * Restarts:subdir/Restarts:basename, "restart/restart" by default):
+ * STEM.bin (the newest), STEM.prev.bin (the one before; a hard link made
+ * before the newest is replaced, so that a complete file exists at every
+ * instant) and STEM.bin.tmp while writing (removed at start if a killed run
+ * left it). */
 #ifndef BOLIDE_RESTART_H
 #define BOLIDE_RESTART_H
 
@@ -106,13 +108,13 @@ struct restart_data {
   struct restart_gravity grav; /**< the reused far field (grav.present 0: none) */
 };
 
-/** Write the state to DIR/restart.bin through DIR/restart.bin.tmp (see the
+/** Write the state to STEM.bin through STEM.bin.tmp (see the
  *  top comment for the rotation).  flaw_eps: the engine's flat array of flaw
  *  thresholds, particle i owning flaw_eps[flaw_first[i] .. + n_flaws[i]]
  *  (NULL: no flaws).  params: the parameters in use (params_to_string).
  *  grav: the reused far field (NULL or grav->present 0: none).
  *  Errors (disk full...) stop with one line, the older files intact. */
-void restart_write(const char *dir, const struct restart_state *st, const struct parts *p,
+void restart_write(const char *stem, const struct restart_state *st, const struct parts *p,
                    const double *flaw_eps, const struct restart_cells *cells, const char *params,
                    const struct restart_gravity *grav);
 
@@ -130,15 +132,15 @@ void restart_gravity_free(struct restart_gravity *g);
 /** Free what restart_read_buffer or restart_read allocated. */
 void restart_data_free(struct restart_data *d);
 
-/** Read DIR/restart.bin; if it is missing or invalid, DIR/restart.prev.bin
+/** Read STEM.bin; if it is missing or invalid, STEM.prev.bin
  *  with a warning naming the problem of the newer one (which is renamed to
- *  restart.bin.bad).  Stops with one line if neither can be resumed.  used:
+ *  STEM.bin.bad).  Stops with one line if neither can be resumed.  used:
  *  the name of the file read. */
-void restart_read(const char *dir, const struct restart_expect *ex, struct restart_data *out, char *used,
+void restart_read(const char *stem, const struct restart_expect *ex, struct restart_data *out, char *used,
                   size_t usedlen);
 
-/** Remove DIR/restart.bin.tmp left by a killed run (logged). */
-void restart_remove_stale(const char *dir);
+/** Remove STEM.bin.tmp left by a killed run (logged). */
+void restart_remove_stale(const char *stem);
 
 /** The checksum of the files: FNV-1a-64 over 64-bit little-endian words
  *  (each followed by an xor-shift h ^= h >> 29), then the remaining bytes one

@@ -450,6 +450,43 @@ static void snapshot_write_xdmf(const char *h5path, const struct snapshot_meta *
   error_unregister_tmpfile(tmp);
 }
 
+void snapshot_write_series(const char *dir, const char *basename, int count) {
+  char path[4096], tmp[4200], xmf[4200];
+  snprintf(path, sizeof path, "%s/%s.xmf", dir, basename);
+  snprintf(tmp, sizeof tmp, "%s.tmp", path);
+  error_register_tmpfile(tmp);
+  FILE *f = fopen(tmp, "w");
+  if (!f) error_exit("%s: cannot write: %s", tmp, strerror(errno));
+  fprintf(f, "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n");
+  fprintf(f, "<Xdmf Version=\"2.0\">\n <Domain>\n");
+  fprintf(f, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", basename);
+  /* the Grid of every snapshot's own XDMF file, copied: one file that
+   * ParaView opens as the time series of the run */
+  for (int k = 0; k < count; k++) {
+    snprintf(xmf, sizeof xmf, "%s/%s_%04d.xmf", dir, basename, k);
+    FILE *in = fopen(xmf, "r");
+    if (!in) continue; /* removed by the user: the series goes on without it */
+    char line[1024];
+    int inside = 0;
+    while (fgets(line, sizeof line, in)) {
+      if (strstr(line, "<Grid ")) inside = 1;
+      if (inside) fprintf(f, "  %s", line);
+      if (strstr(line, "</Grid>")) inside = 0;
+    }
+    fclose(in);
+  }
+  fprintf(f, "  </Grid>\n </Domain>\n</Xdmf>\n");
+  if (ferror(f) | fclose(f)) {
+    unlink(tmp);
+    error_exit("%s: cannot write (disk full?)", tmp);
+  }
+  if (rename(tmp, path) != 0) {
+    unlink(tmp);
+    error_exit("%s: cannot rename to %s: %s", tmp, path, strerror(errno));
+  }
+  error_unregister_tmpfile(tmp);
+}
+
 void snapshot_write(const char *path, const struct snapshot_meta *meta, const struct parts *p,
                     const struct unit_system *us, int write_acc) {
   struct snapshot_writer w = {.path = path, .file = H5I_INVALID_HID};

@@ -37,6 +37,12 @@ void snapshot_write(const char *path, const struct snapshot_meta *meta, const st
  *  by ".xmf", otherwise ".xmf" appended); buf of length len. */
 void snapshot_xdmf_name(const char *path, char *buf, size_t len);
 
+/** Write DIR/BASENAME.xmf, the XDMF time series of a run: a temporal
+ *  collection of the grids of the snapshots BASENAME_0000 .. BASENAME_(count
+ *  - 1) (copied from their own .xmf files), so that ParaView opens the whole
+ *  run as one file.  Written to a temporary name and renamed. */
+void snapshot_write_series(const char *dir, const char *basename, int count);
+
 /** 1 if field f is written by snapshot_write with these settings. */
 int snapshot_field_written(const struct part_field *f, int ic, int write_acc);
 

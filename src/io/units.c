@@ -25,6 +25,7 @@ void units_init_si(struct unit_system *us) {
   us->time_cgs = 1.;
   us->current_cgs = 1.;
   us->temperature_cgs = 1.;
+  us->G = 0.;
 }
 
 void units_init_cgs(struct unit_system *us) {
@@ -33,6 +34,7 @@ void units_init_cgs(struct unit_system *us) {
   us->time_cgs = 1.;
   us->current_cgs = 1.;
   us->temperature_cgs = 1.;
+  us->G = 0.;
 }
 
 void units_init_from_params(struct unit_system *us, const struct params *p) {
@@ -43,6 +45,7 @@ void units_init_from_params(struct unit_system *us, const struct params *p) {
   us->time_cgs = us->length_cgs / params_get_real(p, "InternalUnitSystem:UnitVelocity_in_cgs");
   us->current_cgs = params_get_real(p, "InternalUnitSystem:UnitCurrent_in_cgs");
   us->temperature_cgs = params_get_real(p, "InternalUnitSystem:UnitTemp_in_cgs");
+  us->G = params_get_real(p, "PhysicalConstants:G");
 }
 
 /** Multiply *num or *den by the ratio (from/to)^e of one base unit, keeping
@@ -73,6 +76,7 @@ double units_cgs_factor(const struct unit_system *us, int a, int b, int c) {
 }
 
 double units_G(const struct unit_system *us) {
+  if (us->G > 0.) return us->G;
   struct unit_system cgs;
   units_init_cgs(&cgs);
   return UNITS_G_CGS * units_conversion_factor(&cgs, us, -1, 3, -2);

@@ -17,6 +17,8 @@ struct unit_system {
   double time_cgs;        /**< one internal time unit in s */
   double current_cgs;     /**< one internal current unit in A */
   double temperature_cgs; /**< one internal temperature unit in K */
+  double G;               /**< Newton's constant in these units when set by the parameter
+                               file (PhysicalConstants:G, SWIFT's key); 0: the CODATA value */
 };
 
 /** SI: kg, m, s, A, K. */
@@ -36,7 +38,7 @@ double units_conversion_factor(const struct unit_system *from, const struct unit
 double units_cgs_factor(const struct unit_system *us, int a, int b, int c);
 
 /** Physical constants in internal units. */
-double units_G(const struct unit_system *us);       /**< gravitational constant */
+double units_G(const struct unit_system *us); /**< gravitational constant (us->G when set) */
 double units_k_B(const struct unit_system *us);     /**< Boltzmann constant */
 double units_m_H(const struct unit_system *us);     /**< hydrogen mass */
 

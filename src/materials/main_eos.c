@@ -183,7 +183,7 @@ int main(int argc, char **argv) {
         usage(stdout);
         return 0;
       case O_VERSION:
-        printf("bolide-eos %s (%s)\n", PACKAGE_VERSION, BOLIDE_GIT_HASH);
+        bolide_version_print("bolide-eos");
         return 0;
       default:
         error_exit("unknown or incomplete option '%s' (see --help)", argv[optind - 1]);

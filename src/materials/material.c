@@ -472,7 +472,15 @@ static void material_table_sound_speed(struct eos_table *tab, double *c2) {
   }
 }
 
+static void material_table_build(struct eos_table *tab, const char *filename, int format, int nr,
+                                 int nu, double *rho, double *x, double *uu, double *P, double *cs,
+                                 int has_cs);
+
 void material_eos_table_load(struct eos_table *tab, const char *filename, int format) {
+  if (format == 2) {
+    material_eos_table_load_swift(tab, filename);
+    return;
+  }
   FILE *f = fopen(filename, "r");
   if (!f) error_exit("%s: cannot open the EOS table: %s", filename, strerror(errno));
   char line[1024];
@@ -513,6 +521,16 @@ void material_eos_table_load(struct eos_table *tab, const char *filename, int fo
   if (material_table_line(f, line, sizeof line, &lineno))
     error_exit("%s:%d: more rows than N_RHO x N_U = %zu", filename, lineno, nn);
   fclose(f);
+  material_table_build(tab, filename, format, nr, nu, rho, x, uu, P, cs, has_cs);
+}
+
+/** Fill tab from the nr x nu rows read from a table file (rho varies
+ *  slowest): format 0, x holds u; format 1, x holds T and uu holds u.
+ *  Takes the arrays (P and cs may be replaced, all are freed or kept). */
+static void material_table_build(struct eos_table *tab, const char *filename, int format, int nr,
+                                 int nu, double *rho, double *x, double *uu, double *P, double *cs,
+                                 int has_cs) {
+  const size_t nn = (size_t)nr * (size_t)nu;
   /* rows: rho varies slowest; the same rho within a block of n_u rows */
   for (int i = 0; i < nr; i++)
     for (int j = 1; j < nu; j++)
@@ -581,6 +599,77 @@ void material_eos_table_load(struct eos_table *tab, const char *filename, int fo
   free(rho);
   free(x);
   free(uu);
+}
+
+/** Next number of a SWIFT table (whitespace-separated, any line layout),
+ *  or a one-line error naming the file and what was being read. */
+static double material_swift_number(FILE *f, const char *file, const char *what) {
+  double v;
+  if (fscanf(f, "%lf", &v) != 1)
+    error_exit("%s: SWIFT EOS table: cannot read %s (the file ends or holds text there)", file,
+               what);
+  return v;
+}
+
+void material_eos_table_load_swift(struct eos_table *tab, const char *filename) {
+  FILE *f = fopen(filename, "r");
+  if (!f) error_exit("%s: cannot open the EOS table: %s", filename, strerror(errno));
+  /* SWIFT's planetary tables (SESAME-like, as woma writes them): 12 header
+   * lines, version date, N_RHO N_T, the densities, the temperatures, then
+   * u P c s for every (rho, T), rho varying fastest; SI units */
+  for (int k = 0; k < 12; k++) {
+    int c;
+    long len = 0;
+    while ((c = fgetc(f)) != '\n' && c != EOF)
+      if (++len > 65536)
+        error_exit("%s: SWIFT EOS table: header line %d is longer than 64 KiB (not a table?)",
+                   filename, k + 1);
+    if (c == EOF)
+      error_exit("%s: SWIFT EOS table: the file ends within its 12 header lines", filename);
+  }
+  (void)material_swift_number(f, filename, "the version date");
+  const double dnr = material_swift_number(f, filename, "N_RHO");
+  const double dnt = material_swift_number(f, filename, "N_T");
+  if (dnr < 2 || dnt < 2 || dnr > 1e5 || dnt > 1e5 || dnr != floor(dnr) || dnt != floor(dnt))
+    error_exit("%s: SWIFT EOS table: N_RHO N_T must be integers >= 2 (got %g %g)", filename, dnr,
+               dnt);
+  const int nr = (int)dnr, nt = (int)dnt;
+  const size_t nn = (size_t)nr * (size_t)nt;
+  double *rho_axis = error_malloc((size_t)nr * sizeof(double), "EOS table");
+  double *T_axis = error_malloc((size_t)nt * sizeof(double), "EOS table");
+  for (int i = 0; i < nr; i++) rho_axis[i] = material_swift_number(f, filename, "a density");
+  for (int j = 0; j < nt; j++) T_axis[j] = material_swift_number(f, filename, "a temperature");
+  /* SWIFT moves a first node of 0 to 1e-5 of the second (its axes are
+   * logarithmic); so does Bolide */
+  if (rho_axis[0] == 0.0) rho_axis[0] = 1e-5 * rho_axis[1];
+  if (T_axis[0] == 0.0) T_axis[0] = 1e-5 * T_axis[1];
+  double *rho = error_malloc(nn * sizeof(double), "EOS table");
+  double *T = error_malloc(nn * sizeof(double), "EOS table");
+  double *u = error_malloc(nn * sizeof(double), "EOS table");
+  double *P = error_malloc(nn * sizeof(double), "EOS table");
+  double *cs = error_malloc(nn * sizeof(double), "EOS table");
+  char what[96];
+  for (int j = 0; j < nt; j++)
+    for (int i = 0; i < nr; i++) {
+      const size_t k = (size_t)i * nt + j; /* Bolide's rows: rho slowest */
+      snprintf(what, sizeof what, "u P c s of density node %d, temperature node %d", i, j);
+      rho[k] = rho_axis[i];
+      T[k] = T_axis[j];
+      u[k] = material_swift_number(f, filename, what);
+      P[k] = material_swift_number(f, filename, what);
+      cs[k] = material_swift_number(f, filename, what);
+      (void)material_swift_number(f, filename, what); /* entropy: not used */
+      if (!isfinite(P[k]) || !(cs[k] >= 0.0))
+        error_exit("%s: SWIFT EOS table: %s: pressure must be finite and sound speed >= 0",
+                   filename, what);
+    }
+  double extra;
+  if (fscanf(f, "%lf", &extra) == 1)
+    error_exit("%s: SWIFT EOS table: more numbers than N_RHO x N_T = %zu rows", filename, nn);
+  fclose(f);
+  free(rho_axis);
+  free(T_axis);
+  material_table_build(tab, filename, 1, nr, nt, rho, T, u, P, cs, 1);
 }
 
 /* ------------------------------------------------------------ library */

@@ -294,9 +294,17 @@ void material_table_free(struct material_table *t);
 void material_table_convert_units(struct material_table *t, const struct unit_system *us);
 
 /** Load a tabulated EOS from a text file (format 0: columns rho u P [cs];
- *  format 1: rho T u P [cs], converted to a (rho, u) grid).  Errors stop
- *  with "FILE:LINE: ..." naming the table file. */
+ *  format 1: rho T u P [cs], converted to a (rho, u) grid; format 2: SWIFT's
+ *  planetary tables, material_eos_table_load_swift).  Errors stop with
+ *  "FILE:LINE: ..." naming the table file. */
 void material_eos_table_load(struct eos_table *tab, const char *filename, int format);
+
+/** Load a table in the format of SWIFT's planetary EOS (SESAME-like, as woma
+ *  writes them for material ids 300-307, 400-402 and 900-909): 12 header
+ *  lines, the version date, N_RHO N_T, the densities, the temperatures, then
+ *  "u P c s" for every (rho, T) with rho varying fastest, in SI.  Converted to
+ *  a (rho, u) grid as format 1 is. */
+void material_eos_table_load_swift(struct eos_table *tab, const char *filename);
 
 /** Fill the table from the parameter file's Materials section (values in SI;
  *  see examples/parameters.yml and examples/materials.yml).  Without a

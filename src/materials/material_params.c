@@ -14,10 +14,15 @@
  * overrides it; with neither, the library entry whose swift_id equals the
  * material id is used.  Relative paths are relative to the folder of the
  * file that names them. */
+#include <errno.h>
 #include <limits.h>
+#include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
+#include <unistd.h>
 
 #include "error.h"
 #include "material.h"
@@ -34,7 +39,7 @@ struct material_libraries {
 /** Extra state of one material while its keys are applied. */
 struct material_extra {
   char table_file[PATH_MAX]; /**< file: of a tabulated EOS */
-  int table_format;          /**< format: 0 rho_u, 1 rho_T */
+  int table_format;          /**< format: 0 rho_u, 1 rho_T, 2 swift */
 };
 
 /** path relative to the folder of `ref_file` unless absolute. */
@@ -139,8 +144,11 @@ static void material_apply(struct material *mat, struct material_extra *x,
         x->table_format = 0;
       else if (strcmp(s, "rho_T") == 0)
         x->table_format = 1;
+      else if (strcmp(s, "swift") == 0)
+        x->table_format = 2;
       else
-        param_node_error(owner, v, "material '%s': key 'format' must be rho_u or rho_T (got '%s')",
+        param_node_error(owner, v,
+                         "material '%s': key 'format' must be rho_u, rho_T or swift (got '%s')",
                          mat->name, s);
     } else {
       snprintf(what, sizeof what, "material '%s': key '%s'", mat->name, key);
@@ -218,12 +226,296 @@ static void material_from_node(struct material *mat, struct material_libraries *
   material_complete(mat, &x, p, m);
 }
 
+/* ---- SWIFT's EoS section ---------------------------------------------- */
+
+/** How SWIFT defines a planetary material of its EoS section. */
+enum material_swift_kind {
+  MATERIAL_SWIFT_LIBRARY, /**< fixed parameters: the library entry with its swift_id */
+  MATERIAL_SWIFT_TABLE,   /**< a SESAME-like table file (planetary_NAME_table_file) */
+  MATERIAL_SWIFT_HM80,    /**< a Hubbard & MacFarlane table file (not read yet) */
+  MATERIAL_SWIFT_TIL_FILE /**< a Tillotson parameter file (planetary_NAME_param_file; not read yet) */
+};
+
+/** SWIFT's planetary materials: NAME of its EoS:planetary_use_NAME key, the
+ *  material id (SWIFT: type * 100 + unit; its equation_of_state.h) and the
+ *  kind; the custom ids 190-199 and 900-909 follow in material_swift_find. */
+static const struct {
+  const char *name;
+  int id;
+  enum material_swift_kind kind;
+} material_swift[] = {
+    {"idg_def", 0, MATERIAL_SWIFT_LIBRARY},          {"Til_iron", 100, MATERIAL_SWIFT_LIBRARY},
+    {"Til_granite", 101, MATERIAL_SWIFT_LIBRARY},    {"Til_water", 102, MATERIAL_SWIFT_LIBRARY},
+    {"Til_basalt", 103, MATERIAL_SWIFT_LIBRARY},     {"Til_ice", 104, MATERIAL_SWIFT_LIBRARY},
+    {"HM80_HHe", 200, MATERIAL_SWIFT_HM80},          {"HM80_ice", 201, MATERIAL_SWIFT_HM80},
+    {"HM80_rock", 202, MATERIAL_SWIFT_HM80},         {"SESAME_iron", 300, MATERIAL_SWIFT_TABLE},
+    {"SESAME_basalt", 301, MATERIAL_SWIFT_TABLE},    {"SESAME_water", 302, MATERIAL_SWIFT_TABLE},
+    {"SS08_water", 303, MATERIAL_SWIFT_TABLE},       {"AQUA", 304, MATERIAL_SWIFT_TABLE},
+    {"CMS19_H", 305, MATERIAL_SWIFT_TABLE},          {"CMS19_He", 306, MATERIAL_SWIFT_TABLE},
+    {"CD21_HHe", 307, MATERIAL_SWIFT_TABLE},         {"ANEOS_forsterite", 400, MATERIAL_SWIFT_TABLE},
+    {"ANEOS_iron", 401, MATERIAL_SWIFT_TABLE},       {"ANEOS_Fe85Si15", 402, MATERIAL_SWIFT_TABLE},
+};
+#define MATERIAL_NR_SWIFT ((int)(sizeof material_swift / sizeof material_swift[0]))
+
+/** SWIFT's keys of its EoS section for equations of state chosen when SWIFT
+ *  is compiled, which Bolide sets per material instead. */
+static const char *const material_swift_compiled[] = {
+    "isothermal_internal_energy", "barotropic_vacuum_sound_speed", "barotropic_core_density"};
+
+/** Id and kind of SWIFT's material NAME (custom_0..9: 900-909 tables;
+ *  Til_custom_0..9: 190-199 Tillotson files); -1 when SWIFT has none. */
+static int material_swift_find(const char *name, enum material_swift_kind *kind) {
+  for (int k = 0; k < MATERIAL_NR_SWIFT; k++)
+    if (strcmp(material_swift[k].name, name) == 0) {
+      *kind = material_swift[k].kind;
+      return material_swift[k].id;
+    }
+  if (strncmp(name, "custom_", 7) == 0 && name[7] >= '0' && name[7] <= '9' && !name[8]) {
+    *kind = MATERIAL_SWIFT_TABLE;
+    return 900 + name[7] - '0';
+  }
+  if (strncmp(name, "Til_custom_", 11) == 0 && name[11] >= '0' && name[11] <= '9' && !name[12]) {
+    *kind = MATERIAL_SWIFT_TIL_FILE;
+    return 190 + name[11] - '0';
+  }
+  return -1;
+}
+
+/** The EoS key nearest to a misspelt one (within three slips), "" if none. */
+static void material_swift_suggest(const char *key, char *out, size_t len) {
+  int best = 4;
+  out[0] = '\0';
+  char cand[128];
+  for (int k = 0; k < MATERIAL_NR_SWIFT + 20 + 3; k++) {
+    for (int form = 0; form < 2; form++) {
+      const char *name;
+      char custom[32];
+      if (k < MATERIAL_NR_SWIFT) {
+        if (form && material_swift[k].kind == MATERIAL_SWIFT_LIBRARY) continue;
+        name = material_swift[k].name;
+      } else if (k < MATERIAL_NR_SWIFT + 20) {
+        const int c = k - MATERIAL_NR_SWIFT;
+        snprintf(custom, sizeof custom, c < 10 ? "custom_%d" : "Til_custom_%d", c % 10);
+        name = custom;
+      } else {
+        if (form) continue;
+        name = NULL;
+      }
+      if (name && form == 0)
+        snprintf(cand, sizeof cand, "planetary_use_%s", name);
+      else if (name)
+        snprintf(cand, sizeof cand, "planetary_%s_%s", name,
+                 strncmp(name, "Til_custom_", 11) == 0 ? "param_file" : "table_file");
+      else
+        snprintf(cand, sizeof cand, "%s", material_swift_compiled[k - MATERIAL_NR_SWIFT - 20]);
+      const int d = params_edit_distance(key, cand);
+      if (d < best) {
+        best = d;
+        snprintf(out, len, " (did you mean '%s'?)", cand);
+      }
+    }
+  }
+}
+
+/** The problems found in an EoS section, reported together. */
+struct material_swift_problems {
+  int n;           /**< number found */
+  char last[1024]; /**< the last one (given to error_exit) */
+};
+
+/** Report one problem of the EoS section (the previous one, if any, is
+ *  printed now: the last goes through error_exit at the end). */
+static void material_swift_problem(struct material_swift_problems *pr, const struct params *p,
+                                   const struct param_node *at, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+static void material_swift_problem(struct material_swift_problems *pr, const struct params *p,
+                                   const struct param_node *at, const char *fmt, ...) {
+  char msg[900];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  if (pr->n > 0) error_report("%s", pr->last);
+  snprintf(pr->last, sizeof pr->last, "%s:%d: %s", params_filename(p), param_node_line(at), msg);
+  pr->n++;
+}
+
+/** Reference density of a table read from SWIFT's format, which has none:
+ *  where the pressure of the coldest row crosses 0 (the density of the
+ *  uncompressed solid), else the geometric middle of the density axis. */
+static double material_swift_rho0(const struct eos_table *tab) {
+  const int nu = tab->n_u;
+  for (int i = 0; i + 1 < tab->n_rho; i++) {
+    const double p0 = tab->P[(size_t)i * nu], p1 = tab->P[(size_t)(i + 1) * nu];
+    if (p0 <= 0.0 && p1 > 0.0) {
+      const double w = -p0 / (p1 - p0);
+      return exp(tab->ln_rho_min + (i + w) * tab->dln_rho);
+    }
+  }
+  return exp(tab->ln_rho_min + 0.5 * (tab->n_rho - 1) * tab->dln_rho);
+}
+
+/** Material `id` of SWIFT's EoS section: the library entry with that
+ *  swift_id, or a SWIFT table file. */
+static void material_from_swift(struct material *mat, struct material_libraries *libs,
+                                const struct params *p, const char *name, int id,
+                                enum material_swift_kind kind, const char *table) {
+  char msg[512];
+  if (kind == MATERIAL_SWIFT_TABLE) {
+    material_init(mat, id, name, EOS_TABLE);
+    snprintf(mat->reference, sizeof mat->reference, "SWIFT planetary id %d, table %s", id, table);
+    mat->swift_id = id;
+    material_eos_table_load_swift(&mat->eos.table, table);
+    mat->eos.table.rho0 = material_swift_rho0(&mat->eos.table);
+    if (material_finalize(mat, msg, sizeof msg)) error_exit("%s: %s", table, msg);
+    return;
+  }
+  const char *libpath = material_default_library();
+  struct params *lib = material_library(libs, libpath);
+  const struct param_node *root = material_library_root(lib);
+  for (int i = 0; i < param_node_count(root); i++) {
+    const struct param_node *e = param_node_child(root, i);
+    const char *t = param_node_text(param_node_get(e, "swift_id"));
+    if (!t || strtol(t, NULL, 10) != id) continue;
+    const char *lname = param_node_key(root, i);
+    const int type = material_node_eos(lib, e, lname);
+    if (type < 0) param_node_error(lib, e, "material '%s': key 'eos' is required", lname);
+    struct material_extra x;
+    memset(&x, 0, sizeof x);
+    material_init(mat, id, lname, (enum material_eos_type)type);
+    material_apply(mat, &x, lib, e, "|eos|name|");
+    material_complete(mat, &x, lib, e);
+    return;
+  }
+  error_exit("%s: no material of the library %s has swift_id %d (SWIFT's %s)", params_filename(p),
+             libpath, id, name);
+}
+
+/** Add the materials SWIFT's EoS section enables (EoS:planetary_use_NAME)
+ *  that the Materials section does not define; every problem of the
+ *  section is reported in one pass. */
+static void material_table_from_swift(struct material_table *t, struct material_libraries *libs,
+                                      const struct params *p, const struct param_node *eos) {
+  struct material_swift_problems pr = {0, ""};
+  char hint[160], added[512] = "";
+  if (param_node_kind(eos) != 1) {
+    if (param_node_text(eos) && !param_node_text(eos)[0]) return; /* "EoS:" alone */
+    param_node_error(p, eos, "EoS must be a mapping of SWIFT's planetary keys");
+  }
+  for (int i = 0; i < param_node_count(eos); i++) {
+    const char *key = param_node_key(eos, i);
+    const struct param_node *v = param_node_child(eos, i);
+    enum material_swift_kind kind = MATERIAL_SWIFT_LIBRARY;
+    int compiled = 0;
+    for (size_t k = 0; k < sizeof material_swift_compiled / sizeof *material_swift_compiled; k++)
+      compiled |= strcmp(key, material_swift_compiled[k]) == 0;
+    if (compiled) {
+      error_warning("%s:%d: EoS:%s (SWIFT's, for an equation of state chosen when SWIFT is "
+                    "compiled) has no effect in Bolide: give the material its EOS in the "
+                    "Materials section (eos: isothermal, polytropic, ...; examples/parameters.yml)",
+                    params_filename(p), param_node_line(v), key);
+      continue;
+    }
+    if (strncmp(key, "planetary_use_", 14) == 0 && material_swift_find(key + 14, &kind) >= 0) {
+      const char *s = param_node_text(v);
+      if (!s || (strcmp(s, "0") && strcmp(s, "1") && strcasecmp(s, "true") &&
+                 strcasecmp(s, "false")))
+        material_swift_problem(&pr, p, v, "EoS:%s: expected 0 or 1 (true or false), got %s", key,
+                               s ? s : "a collection");
+      continue;
+    }
+    const size_t l = strlen(key);
+    if (strncmp(key, "planetary_", 10) == 0 && l > 21 &&
+        (strcmp(key + l - 11, "_table_file") == 0 || strcmp(key + l - 11, "_param_file") == 0)) {
+      char name[96];
+      snprintf(name, sizeof name, "%.*s", (int)(l - 21), key + 10);
+      const int id = material_swift_find(name, &kind);
+      const int want_param = kind == MATERIAL_SWIFT_TIL_FILE;
+      if (id >= 0 && kind != MATERIAL_SWIFT_LIBRARY &&
+          want_param == (strcmp(key + l - 11, "_param_file") == 0)) {
+        if (!param_node_text(v))
+          material_swift_problem(&pr, p, v, "EoS:%s: expected a file name", key);
+        continue;
+      }
+    }
+    material_swift_suggest(key, hint, sizeof hint);
+    material_swift_problem(&pr, p, v,
+                           "unknown key 'EoS:%s'%s (SWIFT's EoS section names planetary "
+                           "materials; Bolide's own is the Materials section)",
+                           key, hint);
+  }
+  if (pr.n) error_exit("%s%s", pr.last, pr.n > 1 ? " (and the problems above)" : "");
+  /* the materials enabled */
+  for (int i = 0; i < param_node_count(eos); i++) {
+    const char *key = param_node_key(eos, i);
+    const struct param_node *v = param_node_child(eos, i);
+    enum material_swift_kind kind;
+    if (strncmp(key, "planetary_use_", 14) != 0) continue;
+    const char *s = param_node_text(v);
+    if (!(strcmp(s, "1") == 0 || strcasecmp(s, "true") == 0)) continue;
+    const char *name = key + 14;
+    const int id = material_swift_find(name, &kind);
+    if (material_table_find(t, id)) {
+      error_note("%s:%d: EoS:%s: material %d is defined in the Materials section, which wins",
+                 params_filename(p), param_node_line(v), key, id);
+      continue;
+    }
+    char fkey[128], file[PATH_MAX] = "";
+    snprintf(fkey, sizeof fkey, "planetary_%s_%s", name,
+             kind == MATERIAL_SWIFT_TIL_FILE ? "param_file" : "table_file");
+    const struct param_node *fn = param_node_get(eos, fkey);
+    if (fn) material_resolve(params_filename(p), param_node_text(fn), file, sizeof file);
+    if (kind == MATERIAL_SWIFT_HM80 || kind == MATERIAL_SWIFT_TIL_FILE)
+      material_swift_problem(&pr, p, v,
+                             "EoS:%s: Bolide does not read SWIFT's %s files yet: define material "
+                             "%d in the Materials section (%s)",
+                             key, kind == MATERIAL_SWIFT_HM80 ? "HM80 table" : "Tillotson parameter",
+                             id,
+                             kind == MATERIAL_SWIFT_HM80
+                                 ? "eos: table, file: ..., format: rho_T"
+                                 : "eos: tillotson with its parameters; examples/materials.yml");
+    else if (kind == MATERIAL_SWIFT_TABLE && !fn)
+      material_swift_problem(&pr, p, v,
+                             "EoS:%s: material %d is a SWIFT table: give its file as "
+                             "EoS:%s (or define material %d in the Materials section)",
+                             key, id, fkey, id);
+    else if (kind == MATERIAL_SWIFT_TABLE && access(file, R_OK) != 0)
+      material_swift_problem(&pr, p, fn,
+                             "EoS:%s: cannot read the table %s: %s (SWIFT's planetary tables come "
+                             "with SWIFT: examples/Planetary/EoSTables/get_eos_tables.sh; README.md, "
+                             "Coming from SWIFT)",
+                             fkey, file, strerror(errno));
+    if (pr.n) continue;
+    struct material mat;
+    material_from_swift(&mat, libs, p, name, id, kind, file);
+    if (t->n >= MATERIAL_MAX)
+      param_node_error(p, v, "too many materials (at most %d)", MATERIAL_MAX);
+    material_table_add(t, &mat);
+    const size_t n = strlen(added);
+    snprintf(added + n, sizeof added - n, "%s%d (%s)", n ? ", " : "", id, mat.name);
+  }
+  if (pr.n) error_exit("%s%s", pr.last, pr.n > 1 ? " (and the problems above)" : "");
+  if (added[0])
+    error_note("%s: SWIFT's EoS section read as materials %s; Bolide's own section for materials is "
+               "Materials (examples/parameters.yml), where a run can also give strength, damage and "
+               "porosity",
+               params_filename(p), added);
+}
+
 void material_table_from_params(struct material_table *t, const struct params *p) {
   char msg[512];
   material_table_init(t);
   const struct param_node *sec = params_section(p, "Materials");
+  const struct param_node *eos = params_section(p, "EoS");
   if (!sec || (param_node_kind(sec) == 1 && param_node_count(sec) == 0) ||
       (param_node_kind(sec) == 0 && (!param_node_text(sec) || !param_node_text(sec)[0]))) {
+    if (eos) {
+      struct material_libraries libs;
+      memset(&libs, 0, sizeof libs);
+      material_table_from_swift(t, &libs, p, eos);
+      for (int i = 0; i < libs.n; i++) params_free(libs.lib[i]);
+      if (t->n > 0) return;
+    }
     struct material m;
     material_init(&m, 0, "ideal_gas", EOS_IDEAL_GAS);
     snprintf(m.reference, sizeof m.reference, "default material: ideal gas with SPH:gamma");
@@ -254,6 +546,7 @@ void material_table_from_params(struct material_table *t, const struct params *p
       param_node_error(p, m, "too many materials (at most %d)", MATERIAL_MAX);
     material_table_add(t, &mat);
   }
+  if (eos) material_table_from_swift(t, &libs, p, eos);
   for (int i = 0; i < libs.n; i++) params_free(libs.lib[i]);
 }
 

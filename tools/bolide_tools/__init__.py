@@ -1,11 +1,17 @@
-"""Bolide analysis tools: snapshot and statistics readers, analytic solutions
-(exact Riemann problem, Sedov-Taylor blast wave) and error norms.
+"""The analysis code of Bolide's tools is the `bolide` Python package
+(python/bolide; `pip install` it from a build: BUILD/python).  This name is
+kept so that scripts written for it still run: bolide_tools.snapshot is
+bolide.snapshot, and so on."""
+import os
+import sys
 
-Only numpy, scipy, h5py and matplotlib are used.  Modules:
+try:
+    import bolide
+except ImportError:  # the source tree's package, beside tools/
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+    import bolide
 
-  snapshot  load a Bolide (SWIFT-layout) HDF5 snapshot; read a statistics file
-  riemann   exact Riemann solver for an ideal gas (Toro 2009, chapter 4)
-  sedov     Sedov-Taylor point explosion in 3D (Sedov 1959; Kamm & Timmes 2007)
-  l1        L1 error of particle values against an analytic profile
-  common    small helpers shared by the command-line scripts
-"""
+from bolide import common, l1, riemann, sedov, snapshot  # noqa: E402
+
+for _m in ("common", "l1", "riemann", "sedov", "snapshot"):
+    sys.modules["bolide_tools." + _m] = sys.modules["bolide." + _m]

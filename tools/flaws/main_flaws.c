@@ -112,7 +112,7 @@ int main(int argc, char **argv) {
         flawsgen_usage(stdout);
         return 0;
       case OPT_VERSION:
-        printf("bolide-flaws (Bolide) %s\n", PACKAGE_VERSION);
+        bolide_version_print("bolide-flaws");
         return 0;
       default:
         error_exit("unknown option (see --help)");

@@ -198,6 +198,143 @@ int64_t fof_groups(size_t n, const double *x, const double *y, const double *z,
   return ng;
 }
 
+/** Index of the occupied cell with key kb among the nc sorted keys, -1. */
+static int64_t fof_cell_find(const int64_t *ckey, size_t nc, int64_t kb) {
+  size_t lo = 0, hi = nc;
+  while (lo < hi) {
+    const size_t mid = lo + (hi - lo) / 2;
+    if (ckey[mid] < kb)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return lo < nc && ckey[lo] == kb ? (int64_t)lo : -1;
+}
+
+/** Order of doubles (qsort). */
+static int fof_cmp_double(const void *a, const void *b) {
+  const double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+int64_t fof_groups_local(size_t n, const double *x, const double *y, const double *z,
+                         const unsigned char *keep, const double *ell, int64_t *group) {
+  int64_t *parent = error_malloc((n ? n : 1) * sizeof *parent, "fof parents");
+  for (size_t i = 0; i < n; i++) parent[i] = (int64_t)i;
+  double lo[3] = {INFINITY, INFINITY, INFINITY};
+  size_t m = 0;
+  for (size_t i = 0; i < n; i++) {
+    if (keep && !keep[i]) continue;
+    if (!(ell[i] > 0.0) || !isfinite(ell[i])) error_bug("fof_groups_local: linking length %g", ell[i]);
+    m++;
+    if (x[i] < lo[0]) lo[0] = x[i];
+    if (y[i] < lo[1]) lo[1] = y[i];
+    if (z[i] < lo[2]) lo[2] = z[i];
+  }
+  /* cells of the median linking length: most particles search their own
+   * and the 26 neighbouring cells, one with a k times longer reach the
+   * (2k + 1)^3 around it */
+  double *tmp = error_malloc((m ? m : 1) * sizeof *tmp, "fof lengths");
+  m = 0;
+  for (size_t i = 0; i < n; i++)
+    if (!keep || keep[i]) tmp[m++] = ell[i];
+  qsort(tmp, m, sizeof *tmp, fof_cmp_double);
+  const double c = m ? tmp[m / 2] : 1.0, invc = 1.0 / c;
+  free(tmp);
+  int64_t *key = error_malloc((m ? m : 1) * sizeof *key, "fof keys");
+  int64_t *idx = error_malloc((m ? m : 1) * sizeof *idx, "fof index");
+  m = 0;
+  for (size_t i = 0; i < n; i++) {
+    if (keep && !keep[i]) continue;
+    key[m] = fof_key(fof_cell(x[i] - lo[0], invc), fof_cell(y[i] - lo[1], invc),
+                     fof_cell(z[i] - lo[2], invc));
+    idx[m++] = (int64_t)i;
+  }
+  fof_radix_sort(m, key, idx);
+  size_t nc = 0;
+  for (size_t i = 0; i < m; i++) nc += i == 0 || key[i] != key[i - 1];
+  size_t *start = error_malloc((nc + 1) * sizeof *start, "fof cells");
+  int64_t *ckey = error_malloc((nc ? nc : 1) * sizeof *ckey, "fof cells");
+  nc = 0;
+  for (size_t i = 0; i < m; i++)
+    if (i == 0 || key[i] != key[i - 1]) {
+      ckey[nc] = key[i];
+      start[nc++] = i;
+    }
+  start[nc] = m;
+  double *xs = error_malloc((m ? m : 1) * 4 * sizeof *xs, "fof positions");
+  int64_t *sp = error_malloc((m ? m : 1) * sizeof *sp, "fof parents");
+  int64_t *ssize = error_malloc((m ? m : 1) * sizeof *ssize, "fof sizes");
+  for (size_t q = 0; q < m; q++) {
+    xs[4 * q] = x[idx[q]], xs[4 * q + 1] = y[idx[q]], xs[4 * q + 2] = z[idx[q]];
+    xs[4 * q + 3] = ell[idx[q]];
+    sp[q] = (int64_t)q;
+    ssize[q] = 1;
+  }
+  /* a pair is linked when closer than the longer of its two lengths: each
+   * particle finds every particle within its own length (cell a's stencil
+   * covers the longest length in a), the pair then being found from the
+   * side of the particle with the longer one */
+  for (size_t a = 0; a < nc; a++) {
+    double lmax = 0.0;
+    for (size_t p = start[a]; p < start[a + 1]; p++) lmax = fmax(lmax, xs[4 * p + 3]);
+    const int64_t k = (int64_t)ceil(lmax * invc);
+    const int64_t ka = ckey[a];
+    const int64_t ca[3] = {ka & FOF_MASK, (ka >> FOF_BITS) & FOF_MASK,
+                           (ka >> (2 * FOF_BITS)) & FOF_MASK};
+    for (int64_t dz = -k; dz <= k; dz++)
+      for (int64_t dy = -k; dy <= k; dy++)
+        for (int64_t dx = -k; dx <= k; dx++) {
+          const int64_t kb = fof_key((ca[0] + dx) & FOF_MASK, (ca[1] + dy) & FOF_MASK,
+                                     (ca[2] + dz) & FOF_MASK);
+          const int64_t b = kb == ka ? (int64_t)a : fof_cell_find(ckey, nc, kb);
+          if (b < 0) continue;
+          for (size_t p = start[a]; p < start[a + 1]; p++) {
+            const double lp = xs[4 * p + 3];
+            const size_t q0 = b == (int64_t)a ? p + 1 : start[b];
+            for (size_t q = q0; q < start[b + 1]; q++) {
+              const double ex = xs[4 * p] - xs[4 * q], ey = xs[4 * p + 1] - xs[4 * q + 1],
+                           ez = xs[4 * p + 2] - xs[4 * q + 2];
+              const double l = fmax(lp, xs[4 * q + 3]);
+              if (ex * ex + ey * ey + ez * ez < l * l) fof_union(sp, ssize, (int64_t)p, (int64_t)q);
+            }
+          }
+        }
+  }
+  for (size_t q = 0; q < m; q++) parent[idx[q]] = idx[fof_find(sp, (int64_t)q)];
+  free(xs);
+  free(sp);
+  free(ssize);
+  const int64_t ng = fof_label(n, keep, parent, group);
+  free(ckey);
+  free(start);
+  free(key);
+  free(idx);
+  free(parent);
+  return ng;
+}
+
+int64_t fof_groups_local_brute(size_t n, const double *x, const double *y, const double *z,
+                               const unsigned char *keep, const double *ell, int64_t *group) {
+  int64_t *parent = error_malloc((n ? n : 1) * sizeof *parent, "fof parents");
+  int64_t *size = error_malloc((n ? n : 1) * sizeof *size, "fof sizes");
+  for (size_t i = 0; i < n; i++) {
+    parent[i] = (int64_t)i;
+    size[i] = 1;
+  }
+  for (size_t i = 0; i < n; i++)
+    for (size_t j = i + 1; j < n; j++) {
+      if (keep && (!keep[i] || !keep[j])) continue;
+      const double dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
+      const double l = fmax(ell[i], ell[j]);
+      if (dx * dx + dy * dy + dz * dz < l * l) fof_union(parent, size, (int64_t)i, (int64_t)j);
+    }
+  const int64_t ng = fof_label(n, keep, parent, group);
+  free(size);
+  free(parent);
+  return ng;
+}
+
 int64_t fof_groups_brute(size_t n, const double *x, const double *y, const double *z,
                          const unsigned char *keep, double L, int64_t *group) {
   int64_t *parent = error_malloc((n ? n : 1) * sizeof *parent, "fof parents");

@@ -23,6 +23,19 @@ int64_t fof_groups(size_t n, const double *x, const double *y, const double *z,
 int64_t fof_groups_brute(size_t n, const double *x, const double *y, const double *z,
                          const unsigned char *keep, double L, int64_t *group);
 
+/** Groups with a linking length per particle: particles i and j are
+ *  friends when closer than max(ell[i], ell[j]) (ell[i] > 0, such as a
+ *  multiple of the smoothing length: the default of bolide-fof, which
+ *  follows the particle spacing through the layers of a planet).  Cells of
+ *  the median length; a particle with a k times longer one searches the
+ *  (2k + 1)^3 cells around its own.  Same numbering as fof_groups. */
+int64_t fof_groups_local(size_t n, const double *x, const double *y, const double *z,
+                         const unsigned char *keep, const double *ell, int64_t *group);
+
+/** The same by comparing every pair, O(N^2): the slow twin for the tests. */
+int64_t fof_groups_local_brute(size_t n, const double *x, const double *y, const double *z,
+                               const unsigned char *keep, const double *ell, int64_t *group);
+
 /** Sort (key, index) pairs by key (keys >= 0): LSD radix sort, 16 bits a
  *  pass, O(n), stable.  Non-negative doubles sort the same way by their
  *  bit patterns. */

@@ -28,6 +28,14 @@
 #include "units.h"
 #include "version.h"
 
+/** Default of --link-local: F x max(h_i, h_j).  An intact planet of
+ *  bolide-ic planet (SEA shells) holds together from F = 1.0 (0.9 splits it
+ *  into 13 groups), one of 5000 particles from 1.1, one with a water layer
+ *  from 1.2 (the median-h default of before, --link-h 1, cut that one into
+ *  470); SEAGen's from 0.9; 1.5 leaves a margin. */
+#define FOF_LINK_LOCAL_DEFAULT 1.5
+#define FOF_LINK_LOCAL_DEFAULT_STR "1.5"
+
 /** Most distinct materials reported as columns. */
 #define FOF_MAX_MAT 64
 
@@ -35,6 +43,7 @@
 enum {
   OPT_LINK_LENGTH = 256,
   OPT_LINK_H,
+  OPT_LINK_LOCAL,
   OPT_DROP,
   OPT_MIN_COUNT,
   OPT_SPECTRUM,
@@ -45,6 +54,7 @@ enum {
 static const struct option fofmain_longopts[] = {
     {"link-length", required_argument, NULL, OPT_LINK_LENGTH},
     {"link-h", required_argument, NULL, OPT_LINK_H},
+    {"link-local", required_argument, NULL, OPT_LINK_LOCAL},
     {"min-damage-drop", required_argument, NULL, OPT_DROP},
     {"min-count", required_argument, NULL, OPT_MIN_COUNT},
     {"out", required_argument, NULL, 'o'},
@@ -60,9 +70,16 @@ static void fofmain_usage(FILE *f) {
           "Usage: bolide-fof SNAPSHOT.hdf5 [options]\n"
           "Friends-of-friends fragments: mass, count, position, velocity, damage,\n"
           "material fractions, boundness; cumulative mass spectrum.\n\n"
-          "  --link-length L        linking length in m\n"
-          "  --link-h F             linking length F x the median smoothing length\n"
-          "                         (default: --link-h 1)\n"
+          "  --link-local F         two particles are friends when closer than F times\n"
+          "                         the larger of their smoothing lengths: the linking\n"
+          "                         length follows the particle spacing through the\n"
+          "                         layers of a body (default: --link-local " FOF_LINK_LOCAL_DEFAULT_STR ",\n"
+          "                         which keeps an intact SEA or woma/SEAGen planet,\n"
+          "                         core to outer shell, in one fragment)\n"
+          "  --link-length L        one linking length for every pair, in m\n"
+          "  --link-h F             one linking length, F x the median smoothing length\n"
+          "                         (the default of Bolide before 0.2: --link-h 1 split\n"
+          "                         the sparser outer shells off a layered planet)\n"
           "  --min-damage-drop D    leave out particles with damage >= D (Nakamura\n"
           "                         analysis; default: keep all)\n"
           "  --min-count C          list fragments of at least C particles (default 1)\n"
@@ -173,7 +190,7 @@ static void fofmain_plot(const char *table, const char *png) {
 
 int main(int argc, char **argv) {
   error_init(argv[0]);
-  double link_length = 0.0, link_h = 0.0, drop = INFINITY;
+  double link_length = 0.0, link_h = 0.0, link_local = 0.0, drop = INFINITY;
   long long min_count = 1;
   const char *out = NULL, *spectrum = NULL, *plot = NULL;
   int c;
@@ -184,6 +201,9 @@ int main(int argc, char **argv) {
         break;
       case OPT_LINK_H:
         link_h = fofmain_number("link-h", optarg, 0);
+        break;
+      case OPT_LINK_LOCAL:
+        link_local = fofmain_number("link-local", optarg, 0);
         break;
       case OPT_DROP:
         drop = fofmain_number("min-damage-drop", optarg, 1);
@@ -207,16 +227,17 @@ int main(int argc, char **argv) {
         fofmain_usage(stdout);
         return 0;
       case OPT_VERSION:
-        printf("bolide-fof (Bolide) %s\n", PACKAGE_VERSION);
+        bolide_version_print("bolide-fof");
         return 0;
       default:
         error_exit("unknown option (see --help)");
     }
   }
   if (argc - optind != 1) error_exit("expected one SNAPSHOT.hdf5 (see --help)");
-  if (link_length > 0.0 && link_h > 0.0) error_exit("give --link-length or --link-h, not both");
+  if ((link_length > 0.0) + (link_h > 0.0) + (link_local > 0.0) > 1)
+    error_exit("give one of --link-local, --link-length and --link-h");
   if (plot && !out) error_exit("--plot needs --out FILE (the table it plots)");
-  if (link_length == 0.0 && link_h == 0.0) link_h = 1.0;
+  if (link_length == 0.0 && link_h == 0.0 && link_local == 0.0) link_local = FOF_LINK_LOCAL_DEFAULT;
   const char *path = argv[optind];
 
   struct unit_system si;
@@ -237,7 +258,9 @@ int main(int argc, char **argv) {
     keep[i] = !(dmg[i] >= drop);
     nkeep += keep[i];
   }
-  if (link_h > 0.0) {
+  double *ell = NULL; /* --link-local: each particle's linking length */
+  double median_h = 0.0;
+  if (link_h > 0.0 || link_local > 0.0) {
     int kh = -1;
     for (int k = 0; k < part_nr_fields; k++)
       if (strcmp(part_fields[k].name, "h") == 0) kh = k;
@@ -249,13 +272,24 @@ int main(int argc, char **argv) {
       if (keep[i]) hs[m++] = p.h[i];
     if (m == 0) error_exit("%s: every particle is dropped (damage >= %g)", path, drop);
     qsort(hs, m, sizeof *hs, fofmain_cmp_double);
-    link_length = link_h * hs[m / 2];
+    median_h = hs[m / 2];
+    if (link_h > 0.0) link_length = link_h * median_h;
     free(hs);
+    if (link_local > 0.0) {
+      ell = error_malloc(n * sizeof *ell, "linking lengths");
+      for (size_t i = 0; i < n; i++) {
+        ell[i] = link_local * p.h[i];
+        if (keep[i] && !(ell[i] > 0.0 && isfinite(ell[i])))
+          error_exit("%s: particle %zu has smoothing length %g: give --link-length", path, i, p.h[i]);
+      }
+    }
   }
 
   int64_t *group = error_malloc(n * sizeof *group, "groups");
-  error_log(1, "linking %zu particles, L = %g", nkeep, link_length);
-  const int64_t ng = fof_groups(n, p.x, p.y, p.z, keep, link_length, group);
+  error_log(1, "linking %zu particles, L = %g", nkeep, ell ? link_local * median_h : link_length);
+  const int64_t ng = ell ? fof_groups_local(n, p.x, p.y, p.z, keep, ell, group)
+                         : fof_groups(n, p.x, p.y, p.z, keep, link_length, group);
+  free(ell);
   error_log(1, "%lld groups", (long long)ng);
 
   /* materials present */
@@ -368,8 +402,14 @@ int main(int argc, char **argv) {
   fprintf(fo, "# time %.9g s; %zu particles, %zu kept", info.time, n, nkeep);
   if (isfinite(drop)) fprintf(fo, " (damage < %g)", drop);
   fprintf(fo, "; damage %s\n", has_damage ? "from /PartType0/Damage" : "absent (0)");
-  fprintf(fo, "# linking length %.9g m%s; %lld fragments\n", link_length,
-          link_h > 0.0 ? " (from --link-h x median h)" : "", (long long)ng);
+  if (link_local > 0.0)
+    fprintf(fo,
+            "# linking length %.9g x max(h_i, h_j) (--link-local; %.9g m at the median h); %lld "
+            "fragments\n",
+            link_local, link_local * median_h, (long long)ng);
+  else
+    fprintf(fo, "# linking length %.9g m%s; %lld fragments\n", link_length,
+            link_h > 0.0 ? " (from --link-h x median h)" : "", (long long)ng);
   fprintf(fo,
           "# total mass %.9g kg, kept %.9g kg; barycentre %.9g %.9g %.9g m, %.9g %.9g %.9g m/s\n",
           M, kept_mass, xb[0], xb[1], xb[2], vb[0], vb[1], vb[2]);

@@ -14,5 +14,7 @@ double ic_impact_start(double mu, double d_c, double v_c, double theta, double d
 /** The planet and impact subcommands (argv[0] is the subcommand). */
 int icgen_planet_main(int argc, char **argv);
 int icgen_impact_main(int argc, char **argv);
+/** import-miluphcuda: a miluphcuda ASCII input file (ic_miluphcuda.c). */
+int icgen_miluphcuda_main(int argc, char **argv);
 
 #endif

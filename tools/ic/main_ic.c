@@ -104,6 +104,7 @@ static void icgen_usage(FILE *f) {
       "  sedov   Sedov-Taylor blast: energy E deposited near the centre of a box\n"
       "  planet  layered planet in hydrostatic equilibrium, SEA shells (planet --help)\n"
       "  impact  two bodies on a collision course (impact --help)\n"
+      "  import-miluphcuda  a miluphcuda ASCII input file (import-miluphcuda --help)\n"
       "\n"
       "Options (subcommands they apply to in brackets):\n"
       "  -o, --output FILE     output file (default: SUBCOMMAND.hdf5)\n"
@@ -177,24 +178,26 @@ static long icgen_parse_int(const char *opt, const char *s, long min, long max) 
 
 int main(int argc, char **argv) {
   error_init(argv[0]);
-  if (argc < 2) error_exit("missing subcommand (box, sod, sedov, planet or impact; see --help)");
+  if (argc < 2) error_exit("missing subcommand (box, sod, sedov, planet, impact or import-miluphcuda; see --help)");
   if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
     icgen_usage(stdout);
     return 0;
   }
   if (strcmp(argv[1], "--version") == 0) {
-    printf("bolide-ic (Bolide) %s\n", PACKAGE_VERSION);
+    bolide_version_print("bolide-ic");
     return 0;
   }
   const char *sub = argv[1];
   if (strcmp(sub, "planet") == 0) return icgen_planet_main(argc - 1, argv + 1);
   if (strcmp(sub, "impact") == 0) return icgen_impact_main(argc - 1, argv + 1);
+  if (strcmp(sub, "import-miluphcuda") == 0) return icgen_miluphcuda_main(argc - 1, argv + 1);
   const int cmd = strcmp(sub, "box") == 0     ? CMD_BOX
                   : strcmp(sub, "sod") == 0   ? CMD_SOD
                   : strcmp(sub, "sedov") == 0 ? CMD_SEDOV
                                               : 0;
   if (!cmd)
-    error_exit("unknown subcommand '%s' (box, sod, sedov, planet or impact; see --help)", sub);
+    error_exit("unknown subcommand '%s' (box, sod, sedov, planet, impact or import-miluphcuda; see --help)",
+               sub);
 
   struct icgen_opts o = {.lattice = ICGEN_CUBIC,
                          .n = cmd == CMD_SOD ? 64 : 32,
@@ -228,7 +231,7 @@ int main(int argc, char **argv) {
         icgen_usage(stdout);
         return 0;
       case OPT_VERSION:
-        printf("bolide-ic (Bolide) %s\n", PACKAGE_VERSION);
+        bolide_version_print("bolide-ic");
         return 0;
       case OPT_N:
         o.n = (int)icgen_parse_int("n", optarg, 1, 100000);

@@ -15,6 +15,7 @@ position.
 """
 
 import os
+import re
 
 import numpy as np
 
@@ -37,7 +38,52 @@ class SnapshotError(Exception):
     the file and what is wrong with it."""
 
 
-def load(path, fields=None, optional=()):
+#: Dimension (mass, length, time exponents) of the datasets, for files whose
+#: datasets carry no "U_M exponent" attributes (SWIFT's and Bolide's do).
+DIMENSIONS = {
+    "Coordinates": (0, 1, 0), "Velocities": (0, 1, -1), "Masses": (1, 0, 0),
+    "SmoothingLengths": (0, 1, 0), "InternalEnergies": (0, 2, -2), "Densities": (1, -3, 0),
+    "Pressures": (1, -1, -2), "SoundSpeeds": (0, 1, -1), "Accelerations": (0, 1, -2),
+    "Potentials": (0, 2, -2), "DeviatoricStress": (1, -1, -2), "Entropies": (1, -1, -2),
+    "ParticleIDs": (0, 0, 0), "MaterialIDs": (0, 0, 0), "Damage": (0, 0, 0),
+}
+
+#: One cgs base unit in SI: g -> kg, cm -> m, s -> s.
+CGS_TO_SI = (1e-3, 1e-2, 1.0)
+
+
+def _file_units(f):
+    """The file's unit of mass, length and time in cgs (/Units: U_M, U_L,
+    U_t, as SWIFT, woma and Bolide write it); cgs (1, 1, 1) without one."""
+    if "Units" not in f:
+        return None
+    a = f["Units"].attrs
+    try:
+        return tuple(float(np.ravel(a[k])[0]) for k in
+                     ("Unit mass in cgs (U_M)", "Unit length in cgs (U_L)", "Unit time in cgs (U_t)"))
+    except KeyError:
+        return None
+
+
+def _dimension(dset, name):
+    """(a, b, c) exponents of mass, length and time of a dataset: its own
+    attributes when present, else DIMENSIONS, else dimensionless."""
+    at = dset.attrs
+    if all(k in at for k in ("U_M exponent", "U_L exponent", "U_t exponent")):
+        return tuple(float(np.ravel(at[k])[0]) for k in ("U_M exponent", "U_L exponent", "U_t exponent"))
+    return DIMENSIONS.get(name, (0, 0, 0))
+
+
+def si_factor(units, dim):
+    """Factor from a file's units (mass, length, time in cgs) to SI for a
+    quantity of dimension dim = (a, b, c)."""
+    f = 1.0
+    for u, e, c in zip(units, dim, CGS_TO_SI):
+        f *= (u * c) ** e
+    return f
+
+
+def load(path, fields=None, optional=(), si=False):
     """Load a snapshot.
 
     path:   HDF5 file name.
@@ -45,9 +91,14 @@ def load(path, fields=None, optional=()):
             every dataset of /PartType0.
     optional: dataset names read when present and silently skipped when not
             (with fields given; a large snapshot is then read only in part).
+    si:     convert every dataset and the header's Time and BoxSize from
+            the file's units (its /Units group: a Bolide snapshot is in the
+            run's internal units, SWIFT's and woma's often in Earth masses
+            and radii) to SI; a file without /Units is taken as cgs.
     Returns a dict: one numpy array per dataset (keyed by Bolide's name),
     plus "header" (dict of the /Header attributes, with "Time" as a float and
-    "BoxSize" as a length-3 array when present) and "path".
+    "BoxSize" as a length-3 array when present), "dimensions" (name ->
+    (mass, length, time) exponents), "units" ("SI" or "file") and "path".
     Raises SnapshotError when the file, a group or a requested field is
     missing or malformed.
     """
@@ -69,15 +120,28 @@ def load(path, fields=None, optional=()):
         wanted = list(available) if fields is None else list(fields)
         wanted += [name for name in optional if name in available and name not in wanted]
         data = {}
+        dims = {}
+        units = _file_units(f) or (1.0, 1.0, 1.0)
         for name in wanted:
             if name not in available:
                 raise SnapshotError("%s: no dataset /PartType0/%s" % (path, name))
-            data[name] = np.asarray(group[available[name]][...])
+            dset = group[available[name]]
+            data[name] = np.asarray(dset[...])
+            dims[name] = _dimension(dset, name)
+            if si and dims[name] != (0, 0, 0):
+                data[name] = data[name] * si_factor(units, dims[name])
         header = {}
         if "Header" in f:
             for key, value in f["Header"].attrs.items():
                 header[key] = value
         data["header"] = _normalise_header(header, path)
+        if si:
+            if "Time" in data["header"]:
+                data["header"]["Time"] *= si_factor(units, (0, 0, 1))
+            if "BoxSize" in data["header"]:
+                data["header"]["BoxSize"] = data["header"]["BoxSize"] * si_factor(units, (0, 1, 0))
+        data["dimensions"] = dims
+        data["units"] = "SI" if si else "file"
         data["path"] = path
     n = None
     for name in wanted:
@@ -119,28 +183,67 @@ def snapshot_time(snap, override=None):
     return snap["header"]["Time"]
 
 
-def read_stats(path):
+def _cgs_unit_to_si(factor, unit):
+    """SI value of FACTOR x UNIT, UNIT as the statistics file writes it
+    ("gram * cm**2 * s**-2", "s", "dimensionless")."""
+    base = {"gram": 1e-3, "g": 1e-3, "cm": 1e-2, "s": 1.0, "erg": 1e-7}
+    f = factor
+    if unit.strip() in ("", "dimensionless"):
+        return f
+    for term in re.split(r"\s+\*\s+", unit.strip()):
+        term = term.strip()
+        if not term:
+            continue
+        sym, _, exp = term.partition("**") if "**" in term else (term, "", "1")
+        if sym.strip() not in base:
+            raise ValueError("unknown unit %r" % sym)
+        f *= base[sym.strip()] ** float(exp)
+    return f
+
+
+def read_stats(path, si=False):
     """Read a statistics file.
 
-    The last '#' line before the first data line names the columns (names
-    separated by white space; a leading "#" is dropped).  Returns a dict
-    name -> 1D float array.  Raises SnapshotError for a missing file, no
-    header line, rows of the wrong length or non-numeric values.
+    The '#' line of Bolide's one-word column names ("# step time dt ...")
+    names the columns; without one (another program's file), the last '#'
+    line before the first data line (names separated by white space; a
+    leading "#" is dropped).  Bolide's files are in SWIFT's layout, whose
+    last header line holds SWIFT's names (two blanks apart) for
+    swiftsimio.load_statistics.  Returns a dict
+    name -> 1D float array.  With si, every column with a "Unit = F UNIT"
+    line in the header (Bolide's files: one per numbered column) is
+    converted to SI.  Raises SnapshotError for a missing file, no header
+    line, rows of the wrong length or non-numeric values.
     """
     if not os.path.exists(path):
         raise SnapshotError("%s: no such file" % path)
     names = None
+    bolide_names = False
     rows = []
+    factors = {}  # column number -> factor to SI
+    column = None
     with open(path) as f:
         for lineno, line in enumerate(f, 1):
             text = line.strip()
             if not text:
                 continue
             if text.startswith("#"):
+                w = text.lstrip("#").split()
+                if w and w[0].startswith("(") and w[0].endswith(")") and w[0][1:-1].isdigit():
+                    column = int(w[0][1:-1])
+                elif (si and len(w) >= 3 and w[0] == "Unit" and w[1] == "=" and column is not None
+                      and column not in factors):
+                    try:
+                        factors[column] = 1.0 if w[2] == "dimensionless" else \
+                            _cgs_unit_to_si(float(w[2]), " ".join(w[3:]))
+                    except ValueError as exc:
+                        raise SnapshotError("%s:%d: %s" % (path, lineno, exc))
                 if not rows:
                     tokens = text.lstrip("#").split()
-                    if tokens:
+                    if tokens and not bolide_names:
                         names = tokens
+                    if tokens and tokens[0] == "step" and len(tokens) > 1:
+                        bolide_names = True
                 continue
             if names is None:
                 raise SnapshotError("%s:%d: data before a '#' header line naming the columns"
@@ -158,4 +261,7 @@ def read_stats(path):
     if len(set(names)) != len(names):
         raise SnapshotError("%s: repeated column name in the header" % path)
     table = np.array(rows, dtype=float).reshape(len(rows), len(names))
+    if si:
+        for i in range(len(names)):
+            table[:, i] *= factors.get(i, 1.0)
     return {name: table[:, i] for i, name in enumerate(names)}

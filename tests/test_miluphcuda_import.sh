@@ -1,0 +1,100 @@
+#!/usr/bin/env bash
+# bolide-ic import-miluphcuda (issue 23 item 7, ASCII input): files written
+# here in miluphcuda's ASCII layouts (a hydro run: x v m rho e mat; a solid,
+# porous run: x v m rho e sml mat S(9) alpha_jutzi p) come out as initial
+# conditions with the same values (h = sml / kernel_gamma, the symmetric
+# part of S, alpha as the distention), pass `bolide --check` with a
+# Materials section for their ids; a line with the wrong number of columns
+# is one error line naming the file, the line and the expected columns.
+set -uo pipefail
+B=${BOLIDE_BUILDDIR:?}; S=${BOLIDE_SRCDIR:?}
+PY=${PYTHON:-$B/.venv/bin/python}
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+cd "$work"
+fail=0
+ic="$B/bolide-ic"
+
+"$PY" - <<'PY' || exit 1
+import numpy as np
+rng = np.random.default_rng(7)
+n = 500
+# two bodies of 250 particles each, materials 0 and 1, on a 1 km lattice-ish cloud
+x = rng.uniform(-5e3, 5e3, (n, 3)); x[250:, 0] += 2e4
+v = np.zeros((n, 3)); v[250:, 0] = -3e3
+m = np.full(n, 2.7e12)
+rho = np.where(np.arange(n) < 250, 7800.0, 2700.0)
+e = np.full(n, 1e4)
+mat = (np.arange(n) >= 250).astype(int)
+with open("hydro.0000", "w") as f:
+    for i in range(n):
+        f.write("%.17e\t%.17e\t%.17e\t%.17e\t%.17e\t%.17e\t%.17e\t%.17e\t%.17e\t%d\n"
+                % (*x[i], *v[i], m[i], rho[i], e[i], mat[i]))
+sml = np.full(n, 2.5e3)
+Sm = rng.normal(0, 1e6, (n, 3, 3)); Sm = 0.5 * (Sm + Sm.transpose(0, 2, 1))
+alpha = np.full(n, 1.25)
+with open("solid.0000", "w") as f:
+    for i in range(n):
+        cols = list(x[i]) + list(v[i]) + [m[i], rho[i], e[i], sml[i]]
+        f.write(" ".join("%.17e" % c for c in cols) + " %d " % mat[i]
+                + " ".join("%.17e" % c for c in Sm[i].ravel()) + " %.17e 0\n" % alpha[i])
+np.savez("truth.npz", x=x, v=v, m=m, rho=rho, e=e, mat=mat, sml=sml, S=Sm, alpha=alpha)
+PY
+
+"$ic" import-miluphcuda hydro.0000 -o hydro.hdf5 >hydro.log 2>&1 || { echo "FAIL: import hydro"; cat hydro.log; fail=1; }
+"$ic" import-miluphcuda solid.0000 --sml --solid --palpha -o solid.hdf5 >solid.log 2>&1 ||
+  { echo "FAIL: import solid"; cat solid.log; fail=1; }
+"$PY" - <<'PY' || fail=1
+import h5py, numpy as np, sys
+t = np.load("truth.npz")
+bad = 0
+def check(c, msg):
+    global bad
+    print(("ok  " if c else "FAIL") + " " + msg)
+    bad += not c
+for name in ("hydro", "solid"):
+    with h5py.File(name + ".hdf5", "r") as f:
+        g = f["PartType0"]
+        x = g["Coordinates"][...]
+        d = x - x.mean(0) - (t["x"] - t["x"].mean(0))
+        check(np.abs(d).max() < 1e-9 * 2e4, "%s: positions (shifted into the box)" % name)
+        check(np.allclose(g["Velocities"][...], t["v"], rtol=1e-15), "%s: velocities" % name)
+        check(np.allclose(g["Masses"][...], t["m"], rtol=1e-15), "%s: masses" % name)
+        check(np.allclose(g["Densities"][...], t["rho"], rtol=1e-15), "%s: densities" % name)
+        check(np.allclose(g["InternalEnergies"][...], t["e"], rtol=1e-15), "%s: internal energies" % name)
+        check(np.array_equal(g["MaterialIDs"][...], t["mat"]), "%s: material ids" % name)
+        if name == "solid":
+            h = g["SmoothingLengths"][...]
+            gam = t["sml"][0] / h[0]
+            check(np.allclose(h * gam, t["sml"], rtol=1e-12) and 1.7 < gam < 2.5,
+                  "solid: h = sml / kernel_gamma (gamma %.4f)" % gam)
+            S6 = g["DeviatoricStress"][...]
+            S = t["S"]
+            ref = np.stack([S[:, 0, 0], S[:, 0, 1], S[:, 0, 2], S[:, 1, 1], S[:, 1, 2], S[:, 2, 2]], 1)
+            check(np.allclose(S6, ref, rtol=1e-12), "solid: deviatoric stress (6 of 9)")
+            check(np.allclose(g["Distentions"][...], t["alpha"]), "solid: distention from alpha_jutzi")
+sys.exit(1 if bad else 0)
+PY
+
+# the imported file runs through --check with materials for its ids
+cat >p.yml <<'YML'
+InitialConditions:
+  file_name: hydro.hdf5
+TimeIntegration:
+  time_end: 1
+Materials:
+  0: {name: iron}
+  1: {name: granite}
+YML
+"$B/bolide" --check p.yml >check.log 2>&1 || { echo "FAIL: bolide --check on the import"; cat check.log; fail=1; }
+
+# a wrong column count: one line naming file, line and the expected layout
+sed '3s/\t[0-9]*$//' hydro.0000 >bad.0000
+"$ic" import-miluphcuda bad.0000 -o bad.hdf5 >bad.out 2>bad.err; rc=$?
+if [ $rc -ne 0 ] && [ "$(wc -l <bad.err)" -eq 1 ] &&
+   grep -q "bolide-ic: error: bad.0000:3: 9 columns, expected 10 for these switches (x y z vx vy vz m rho e mat" bad.err; then
+  echo "ok: $(cat bad.err)"
+else
+  echo "FAIL: wrong column count (exit $rc):"; cat bad.err; fail=1
+fi
+[ ! -e bad.hdf5 ] || { echo "FAIL: output written despite the error"; fail=1; }
+exit $fail

@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# The bolide Python package (issue 23 item 5): it installs with pip into a
+# fresh virtual environment (no network: --no-deps and --no-build-isolation,
+# the project's venv providing numpy, h5py, unyt, matplotlib to it), carries
+# Bolide's version, and its functions and console scripts run on a small
+# snapshot: load_snapshot / load_statistics give SI whatever the run's
+# units, and bolide-plot-impact finds an intact planet in SWIFT's planetary
+# units (Earth mass and radius) entirely bound (it reported 0 when it
+# ignored the snapshot's units).
+set -uo pipefail
+B=${BOLIDE_BUILDDIR:?}; S=${BOLIDE_SRCDIR:?}
+PY=${PYTHON:-$B/.venv/bin/python}
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+cd "$work"
+fail=0
+version=$(sed -n 's/^AC_INIT(\[bolide\], \[\([^]]*\)\].*/\1/p' "$S/configure.ac")
+
+make -s -C "$B" python >/dev/null || { echo "FAIL: make python"; exit 1; }
+# a fresh venv that sees the project venv's packages (numpy, h5py, unyt...)
+site=$("$PY" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')
+/usr/bin/python3 -m venv --system-site-packages fresh || { echo "skip: no venv module"; exit 77; }
+fresh/bin/python -c "import wheel" 2>/dev/null || { echo "skip: no wheel package to build with (Debian python3-wheel)"; exit 77; }
+echo "$site" >"$(fresh/bin/python -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')/project.pth"
+fresh/bin/python -m pip install -q --no-deps --no-build-isolation --disable-pip-version-check "$B/python" \
+  >pip.log 2>&1 || { echo "FAIL: pip install $B/python"; cat pip.log; exit 1; }
+got=$(cd / && "$work/fresh/bin/python" -c 'import bolide; print(bolide.__version__)')
+[ "$got" = "$version" ] && echo "ok: installed, bolide.__version__ = $got" ||
+  { echo "FAIL: bolide.__version__ '$got', expected '$version'"; fail=1; }
+for s in bolide-plot-impact bolide-plot-fragments bolide-plot-profile bolide-plot-tasks; do
+  fresh/bin/$s --help >/dev/null 2>&1 || { echo "FAIL: console script $s --help"; fail=1; }
+done
+
+# an intact planet, in SI and in SWIFT's planetary units, run for one step
+"$B/bolide-ic" planet --materials iron,granite --mass 5.97e24 --mass-fractions 0.3,0.7 --n 2000 \
+  -o planet.hdf5 >/dev/null 2>&1 || { echo "FAIL: bolide-ic planet"; exit 1; }
+for sys in si earth; do
+  mkdir -p $sys
+  if [ $sys = earth ]; then
+    units="InternalUnitSystem: {UnitMass_in_cgs: 5.9724e27, UnitLength_in_cgs: 6.371e8, UnitVelocity_in_cgs: 6.371e8}"
+  else
+    units="InternalUnitSystem: {UnitMass_in_cgs: 1000, UnitLength_in_cgs: 100, UnitVelocity_in_cgs: 100}"
+  fi
+  cat >$sys/p.yml <<YML
+$units
+InitialConditions: {file_name: ../planet.hdf5}
+TimeIntegration: {time_end: 1000}
+Snapshots: {subdir: out}
+Gravity: {max_physical_baryon_softening: 0}
+Materials: {100: {name: iron}, 101: {name: granite}}
+YML
+  (cd $sys && "$B/bolide" -s -G -n 1 p.yml >run.log 2>&1) || { echo "FAIL: run in $sys units"; tail -3 $sys/run.log; fail=1; }
+  (cd $sys/out && "$work/fresh/bin/bolide-plot-impact" snapshot_0000.hdf5 --stats statistics.txt --prefix "$sys"_ \
+     >../impact.txt 2>../impact.err) || { echo "FAIL: bolide-plot-impact ($sys)"; cat $sys/impact.err; fail=1; }
+  frac=$(awk '!/^#/ {print $3; exit}' $sys/impact.txt)
+  awk -v f="$frac" 'BEGIN {exit !(f > 0.999)}' && echo "ok: $sys units: bound fraction $frac" ||
+    { echo "FAIL: $sys units: bound fraction '$frac' of an intact planet"; fail=1; }
+  [ -f $sys/out/${sys}_bound.png ] && [ -f $sys/out/${sys}_energy.png ] || { echo "FAIL: plots ($sys)"; fail=1; }
+done
+# load_snapshot / load_statistics: the same SI numbers from both unit systems
+(cd / && "$work/fresh/bin/python" - "$work" <<'PY') || fail=1
+import sys, numpy as np, bolide
+w = sys.argv[1]
+a, b = (bolide.load_snapshot("%s/%s/out/snapshot_0000.hdf5" % (w, s)) for s in ("si", "earth"))
+sa, sb = (bolide.load_statistics("%s/%s/out/statistics.txt" % (w, s)) for s in ("si", "earth"))
+ok = True
+for name in ("masses", "coordinates", "densities", "internal_energies"):
+    x, y = getattr(a, name), getattr(b, name)
+    same = str(x.units) == str(y.units) and np.allclose(x.value, y.value, rtol=1e-9, atol=0)
+    print("ok " if same else "FAIL", "load_snapshot %s: %s in both unit systems" % (name, x.units))
+    ok &= same
+for name in ("mass", "E_int", "E_pot", "time"):
+    x, y = getattr(sa, name), getattr(sb, name)
+    same = str(x.units) == str(y.units) and np.allclose(x.value[:1], y.value[:1], rtol=1e-6)
+    print("ok " if same else "FAIL", "load_statistics %s(t=0): %s in both unit systems" % (name, x.units))
+    ok &= same
+ok &= bool(abs(a.masses.sum().to("kg").value - 5.97e24) < 1e-6 * 5.97e24)
+sys.exit(0 if ok else 1)
+PY
+exit $fail

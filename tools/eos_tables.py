@@ -1,0 +1,101 @@
+#!/usr/bin/env python3
+"""Write equation-of-state tables from an analytic EOS, in the file formats
+that Bolide reads, for tests and for trying a set-up without the real tables.
+
+The real tables cannot be generated here: SWIFT's planetary tables (ANEOS
+forsterite, iron, Fe85Si15; SESAME; AQUA; CMS19; CD21) come with SWIFT
+(examples/Planetary/EoSTables/get_eos_tables.sh) and with woma; README.md
+says where.  This script writes tables of the same layout from an analytic
+EOS, so that the readers can be tested against the formula.
+
+Formats:
+  swift   SWIFT's planetary (SESAME-like) layout, material ids 300-307,
+          400-402, 900-909: 12 header lines, the version date, N_RHO N_T,
+          the densities, the temperatures, then "u P c s" for every (rho, T)
+          with rho varying fastest; SI.
+  rho_T   Bolide's own: first line N_RHO N_T, then rows "rho T u P c"
+          (rho varying slowest).
+
+EOS (SI):
+  ideal_gas  P = (gamma - 1) rho u, u = c_v T, c^2 = gamma (gamma - 1) u
+
+Usage:
+  eos_tables.py --eos ideal_gas --format swift -o table.txt
+  eos_tables.py --format rho_T --rho 100 20000 --T 10 1e5 --n 32 48 -o t.txt
+As a module: ideal_gas(rho, u), evaluate(...), write_swift(...), write_rho_T(...)."""
+import argparse
+import sys
+
+import numpy as np
+
+def ideal_gas(rho, u, gamma=5.0 / 3.0):
+    """Pressure and sound speed of the ideal gas."""
+    rho, u = np.asarray(rho, float), np.asarray(u, float)
+    return (gamma - 1.0) * rho * u, np.sqrt(gamma * (gamma - 1.0) * np.maximum(u, 0.0))
+
+
+def evaluate(eos, rho, T, gamma=5.0 / 3.0, cv=None):
+    """u, P, c on the (rho, T) nodes (arrays of shape (n_rho, n_T))."""
+    R, TT = np.meshgrid(rho, T, indexing="ij")
+    if eos != "ideal_gas":
+        raise ValueError("unknown EOS %r" % eos)
+    cv = 1000.0 if cv is None else cv
+    U = cv * TT
+    P, c = ideal_gas(R, U, gamma)
+    s = cv * np.log(np.maximum(TT, 1e-300))  # an entropy-like column (not read by Bolide)
+    return R, TT, U, P, c, s
+
+
+def write_swift(path, rho, T, U, P, c, s, title="analytic EOS"):
+    """SWIFT's planetary table layout (see the module docstring)."""
+    with open(path, "w") as f:
+        header = ["# Bolide tools/eos_tables.py: %s, in the layout of SWIFT's planetary tables" % title,
+                  "# (SESAME-like; written from a formula, for tests: not a real material table)",
+                  "# version_date", "# num_rho  num_T", "# rho[0] ... rho[num_rho-1]  (kg/m^3)",
+                  "# T[0] ... T[num_T-1]  (K)", "# u  P  c  s  for every (rho, T), rho fastest",
+                  "#   (J/kg, Pa, m/s, J/K/kg)", "#", "#", "#", "#"]
+        assert len(header) == 12
+        f.write("\n".join(header) + "\n")
+        f.write("20220714\n%d %d\n" % (len(rho), len(T)))
+        f.write(" ".join("%.9e" % x for x in rho) + "\n")
+        f.write(" ".join("%.9e" % x for x in T) + "\n")
+        for j in range(len(T)):
+            for i in range(len(rho)):
+                f.write("%.9e %.9e %.9e %.9e\n" % (U[i, j], P[i, j], c[i, j], s[i, j]))
+
+
+def write_rho_T(path, rho, T, U, P, c):
+    """Bolide's rho_T layout: N_RHO N_T, then rows rho T u P c."""
+    with open(path, "w") as f:
+        f.write("%d %d\n" % (len(rho), len(T)))
+        for i in range(len(rho)):
+            for j in range(len(T)):
+                f.write("%.12e %.12e %.12e %.12e %.12e\n" % (rho[i], T[j], U[i, j], P[i, j], c[i, j]))
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--eos", choices=["ideal_gas"], default="ideal_gas")
+    ap.add_argument("--format", choices=["swift", "rho_T"], default="swift")
+    ap.add_argument("--rho", nargs=2, type=float, default=[1.0, 1e4], metavar=("MIN", "MAX"),
+                    help="density range, kg/m^3 (log-spaced)")
+    ap.add_argument("--T", nargs=2, type=float, default=[10.0, 1e5], metavar=("MIN", "MAX"),
+                    help="temperature range, K (log-spaced)")
+    ap.add_argument("--n", nargs=2, type=int, default=[64, 64], metavar=("N_RHO", "N_T"))
+    ap.add_argument("--gamma", type=float, default=5.0 / 3.0, help="ideal gas gamma")
+    ap.add_argument("--cv", type=float, default=None, help="c_v, J/kg/K")
+    ap.add_argument("-o", "--output", required=True)
+    a = ap.parse_args(argv)
+    if min(a.n) < 2 or a.rho[0] <= 0 or a.T[0] <= 0 or a.rho[1] <= a.rho[0] or a.T[1] <= a.T[0]:
+        sys.exit("eos_tables.py: error: ranges must be positive and increasing, at least 2 nodes")
+    rho = np.geomspace(a.rho[0], a.rho[1], a.n[0])
+    T = np.geomspace(a.T[0], a.T[1], a.n[1])
+    R, TT, U, P, c, s = evaluate(a.eos, rho, T, a.gamma, a.cv)
+    if a.format == "swift":
+        write_swift(a.output, rho, T, U, P, c, s, a.eos)
+    else:
+        write_rho_T(a.output, rho, T, U, P, c)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,221 @@
+/* bolide-ic import-miluphcuda: miluphcuda's ASCII particle input files as
+ * Bolide initial conditions (issue 23 item 7, in part).
+ *
+ * miluphcuda's input columns depend on the switches it was compiled with
+ * (its parameter.h; `miluphcuda --format` prints them), so the switches are
+ * given here as options.  One line per particle, 3-D, SI units:
+ *   x y z  vx vy vz  m  [rho (INTEGRATE_DENSITY)]  [e (INTEGRATE_ENERGY)]
+ *   [sml (READ_INITIAL_SML_FROM_PARTICLE_FILE)]  material_id
+ *   [ep T (JC_PLASTICITY)]  [S: 9 values, row by row (SOLID)]
+ *   [alpha_jutzi p (PALPHA_POROSITY)]  [alpha_epspor epsilon_v (EPSALPHA_POROSITY)]
+ * FRAGMENTATION's flaw columns and SIRONO_POROSITY are not read (the flaws
+ * of Bolide come from bolide-flaws or Damage:seed).  miluphcuda's sml is the
+ * kernel's support radius: h = sml / kernel_gamma.  Without sml, h =
+ * SPH:resolution_eta's default x (m/rho)^(1/3) (Bolide iterates h anyway).
+ * Material ids are kept (miluphcuda's start at 0); theory/miluphcuda.md maps
+ * the switches and material keys to Bolide's. */
+#include <errno.h>
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "error.h"
+#include "ic_impact.h"
+#include "kernel.h"
+#include "part.h"
+#include "snapshot.h"
+#include "units.h"
+
+/** The columns a set of miluphcuda switches gives. */
+struct milu_format {
+  int density, energy, sml, jc, solid, palpha, epsalpha;
+};
+
+/** Number of columns of a line. */
+static int milu_columns(const struct milu_format *f) {
+  return 7 + f->density + f->energy + f->sml + 1 + 2 * f->jc + 9 * f->solid + 2 * f->palpha +
+         2 * f->epsalpha;
+}
+
+/** The switches as text, for messages. */
+static void milu_describe(const struct milu_format *f, char *buf, size_t len) {
+  snprintf(buf, len, "x y z vx vy vz m%s%s%s mat%s%s%s%s", f->density ? " rho" : "",
+           f->energy ? " e" : "", f->sml ? " sml" : "", f->jc ? " ep T" : "",
+           f->solid ? " S(9)" : "", f->palpha ? " alpha_jutzi p" : "",
+           f->epsalpha ? " alpha_epspor epsilon_v" : "");
+}
+
+static void milu_usage(FILE *f) {
+  fprintf(f,
+          "Usage: bolide-ic import-miluphcuda FILE [options]\n"
+          "Convert a miluphcuda ASCII input file (one particle per line, 3-D, SI) into\n"
+          "Bolide initial conditions.  Its columns follow miluphcuda's compile-time\n"
+          "switches, given here (default: a hydro run with INTEGRATE_DENSITY and\n"
+          "INTEGRATE_ENERGY: x y z vx vy vz m rho e mat):\n"
+          "  -o, --output FILE   output (default: FILE with .hdf5)\n"
+          "  --no-density        INTEGRATE_DENSITY 0: no rho column\n"
+          "  --no-energy         INTEGRATE_ENERGY 0: no e column\n"
+          "  --sml               READ_INITIAL_SML_FROM_PARTICLE_FILE 1: an sml column\n"
+          "  --jc-plasticity     JC_PLASTICITY 1: ep and T columns\n"
+          "  --solid             SOLID 1: the deviatoric stress, 9 columns\n"
+          "  --palpha            PALPHA_POROSITY 1: alpha_jutzi and p columns\n"
+          "  --epsalpha          EPSALPHA_POROSITY 1: alpha_epspor and epsilon_v columns\n"
+          "  -h, --help          this help\n"
+          "FRAGMENTATION's flaw columns are not read (bolide-flaws draws flaws).\n"
+          "The switches and material keys in Bolide's terms: theory/miluphcuda.md.\n");
+}
+
+int icgen_miluphcuda_main(int argc, char **argv) {
+  struct milu_format fmt = {1, 1, 0, 0, 0, 0, 0};
+  const char *out = NULL;
+  enum { O_NODENS = 300, O_NOENER, O_SML, O_JC, O_SOLID, O_PALPHA, O_EPSALPHA };
+  static const struct option opts[] = {{"output", required_argument, NULL, 'o'},
+                                       {"no-density", no_argument, NULL, O_NODENS},
+                                       {"no-energy", no_argument, NULL, O_NOENER},
+                                       {"sml", no_argument, NULL, O_SML},
+                                       {"jc-plasticity", no_argument, NULL, O_JC},
+                                       {"solid", no_argument, NULL, O_SOLID},
+                                       {"palpha", no_argument, NULL, O_PALPHA},
+                                       {"epsalpha", no_argument, NULL, O_EPSALPHA},
+                                       {"help", no_argument, NULL, 'h'},
+                                       {NULL, 0, NULL, 0}};
+  int c;
+  opterr = 0;
+  optind = 1;
+  while ((c = getopt_long(argc, argv, "o:h", opts, NULL)) != -1) {
+    switch (c) {
+      case 'o': out = optarg; break;
+      case O_NODENS: fmt.density = 0; break;
+      case O_NOENER: fmt.energy = 0; break;
+      case O_SML: fmt.sml = 1; break;
+      case O_JC: fmt.jc = 1; break;
+      case O_SOLID: fmt.solid = 1; break;
+      case O_PALPHA: fmt.palpha = 1; break;
+      case O_EPSALPHA: fmt.epsalpha = 1; break;
+      case 'h': milu_usage(stdout); return 0;
+      default: error_exit("import-miluphcuda: unknown option '%s' (see --help)", argv[optind - 1]);
+    }
+  }
+  if (optind != argc - 1) error_exit("import-miluphcuda: expected one input FILE (see --help)");
+  if (!fmt.sml && !fmt.density)
+    error_exit("import-miluphcuda: without an sml or a rho column h cannot be set: give --sml");
+  const char *in = argv[optind];
+  char outbuf[4096];
+  if (!out) {
+    const char *dot = strrchr(in, '.'), *slash = strrchr(in, '/');
+    const size_t stem = dot && (!slash || dot > slash) ? (size_t)(dot - in) : strlen(in);
+    snprintf(outbuf, sizeof outbuf, "%.*s.hdf5", (int)stem, in);
+    out = outbuf;
+  }
+  FILE *f = fopen(in, "r");
+  if (!f) error_exit("%s: cannot open: %s", in, strerror(errno));
+  const int ncol = milu_columns(&fmt);
+  char desc[256];
+  milu_describe(&fmt, desc, sizeof desc);
+  struct parts p;
+  parts_alloc(&p, 1024);
+  p.count = 0;
+  char *line = NULL;
+  size_t cap = 0;
+  long lineno = 0;
+  double v[32];
+  while (getline(&line, &cap, f) > 0) {
+    lineno++;
+    char *s = line, *end;
+    while (*s == ' ' || *s == '\t') s++;
+    if (*s == '#' || *s == '\n' || *s == '\0') continue;
+    int n = 0;
+    for (;;) {
+      while (*s == ' ' || *s == '\t') s++;
+      if (*s == '\n' || *s == '\r' || *s == '\0') break;
+      const double x = strtod(s, &end);
+      if (end == s || !isfinite(x))
+        error_exit("%s:%ld: column %d: not a finite number ('%.20s')", in, lineno, n + 1, s);
+      if (n < 32) v[n] = x;
+      n++;
+      s = end;
+    }
+    if (n != ncol)
+      error_exit("%s:%ld: %d columns, expected %d for these switches (%s; see --help)", in, lineno,
+                 n, ncol, desc);
+    const size_t i = p.count;
+    if (i + 1 > p.capacity) parts_reserve(&p, 2 * p.capacity);
+    p.count = i + 1;
+    int k = 0;
+    p.x[i] = v[k++], p.y[i] = v[k++], p.z[i] = v[k++];
+    p.vx[i] = v[k++], p.vy[i] = v[k++], p.vz[i] = v[k++];
+    p.m[i] = v[k++];
+    if (!(p.m[i] > 0)) error_exit("%s:%ld: mass %g must be positive", in, lineno, p.m[i]);
+    p.rho[i] = fmt.density ? v[k++] : 0.0;
+    if (fmt.density && !(p.rho[i] > 0))
+      error_exit("%s:%ld: density %g must be positive", in, lineno, p.rho[i]);
+    p.u[i] = fmt.energy ? v[k++] : 0.0;
+    if (fmt.sml) {
+      if (!(v[k] > 0)) error_exit("%s:%ld: sml %g must be positive", in, lineno, v[k]);
+      p.h[i] = v[k++] / kernel_gamma;
+    } else {
+      p.h[i] = KERNEL_ETA_DEFAULT * cbrt(p.m[i] / p.rho[i]);
+    }
+    const double mat = v[k++];
+    if (mat < 0 || mat != floor(mat) || mat > 2147483647.0)
+      error_exit("%s:%ld: material id %g must be an integer >= 0", in, lineno, mat);
+    p.mat[i] = (int32_t)mat;
+    if (fmt.jc) {
+      p.eps_p[i] = v[k++];
+      k++; /* T: Bolide's temperature follows from the EOS and u */
+    }
+    if (fmt.solid) {
+      const double *S = v + k; /* 3 x 3, row by row */
+      p.Sxx[i] = S[0], p.Sxy[i] = 0.5 * (S[1] + S[3]), p.Sxz[i] = 0.5 * (S[2] + S[6]);
+      p.Syy[i] = S[4], p.Syz[i] = 0.5 * (S[5] + S[7]), p.Szz[i] = S[8];
+      k += 9;
+    }
+    p.alpha[i] = 1.0;
+    if (fmt.palpha) {
+      p.alpha[i] = v[k];
+      k += 2; /* p: miluphcuda's previous pressure, recomputed by Bolide */
+    }
+    if (fmt.epsalpha) {
+      p.alpha[i] = v[k];
+      k += 2; /* epsilon_v: starts at 0 in Bolide */
+    }
+    if (!(p.alpha[i] >= 1.0))
+      error_exit("%s:%ld: distention %g must be >= 1", in, lineno, p.alpha[i]);
+    p.id[i] = (int64_t)i + 1;
+  }
+  free(line);
+  fclose(f);
+  if (p.count == 0) error_exit("%s: no particles", in);
+
+  /* the engine's open box is [0, L]^3: the particles' centre at its centre */
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (size_t i = 0; i < p.count; i++) {
+    const double x[3] = {p.x[i], p.y[i], p.z[i]};
+    for (int d = 0; d < 3; d++) lo[d] = fmin(lo[d], x[d]), hi[d] = fmax(hi[d], x[d]);
+  }
+  double ext = 0;
+  for (int d = 0; d < 3; d++) ext = fmax(ext, hi[d] - lo[d]);
+  const double L = fmax(2.0 * ext, 1e-300);
+  for (size_t i = 0; i < p.count; i++) {
+    p.x[i] += 0.5 * L - 0.5 * (lo[0] + hi[0]);
+    p.y[i] += 0.5 * L - 0.5 * (lo[1] + hi[1]);
+    p.z[i] += 0.5 * L - 0.5 * (lo[2] + hi[2]);
+  }
+  char command[4096] = "bolide-ic";
+  for (int a = 0; a < argc; a++) {
+    strncat(command, " ", sizeof command - strlen(command) - 1);
+    strncat(command, argv[a], sizeof command - strlen(command) - 1);
+  }
+  struct unit_system si;
+  units_init_si(&si);
+  struct snapshot_meta meta = {
+      .time = 0, .periodic = 0, .ic = 1, .run_name = "import-miluphcuda", .command = command, .hydro = 1};
+  for (int d = 0; d < 3; d++) meta.box_size[d] = L;
+  snapshot_write(out, &meta, &p, &si, 0);
+  printf("bolide-ic import-miluphcuda: %zu particles of %s (%s) written to %s\n", p.count, in, desc,
+         out);
+  parts_free(&p);
+  return 0;
+}
