@@ -46,7 +46,7 @@ static const char *const gpu_fields_solid_out[] = {
     "gvyy", "gvyz", "gvzx", "gvzy", "gvzz", "Sxx",  "Sxy",  "Sxz",  "Syy",  "Syz",
     "Szz",  "Spxx", "Spxy", "Spxz", "Spyy", "Spyz", "Spzz", "dSxx", "dSxy", "dSxz",
     "dSyy", "dSyz", "dSzz", "Rxx",  "Rxy",  "Rxz",  "Ryy",  "Ryz",  "Rzz",  "eps_p",
-    "dmg_shear", "w_plastic"};
+    "dmg_shear", "w_plastic", "wvol"};
 /** Fields the damage task reads (besides the above). */
 static const char *const gpu_fields_damage_in[] = {"dmg", "dcbrt", "n_act", "n_flaws",
                                                    "flaw_first"};

@@ -11,6 +11,7 @@
 #include "gradient_finish.h"
 #include "hydro_props.h"
 #include "inline.h"
+#include "kernel.h"
 #include "material.h"
 #include "part.h"
 #include "strength.h"
@@ -82,17 +83,37 @@ BOLIDE_INLINE void extra_ghost_velocity_gradient(struct parts *BOLIDE_RESTRICT p
   p->gvzx[i] = gv[6], p->gvzy[i] = gv[7], p->gvzz[i] = gv[8];
 }
 
+/** Free-surface detection of fluid particle i (theory/fluids.md F5): with the self term V_i W(0, h_i) added, its kernel sum
+ *  Z_i = sum_j m_j/rho_j W_ij is about 1 inside the fluid and about 1/2 on
+ *  a flat surface; below hp->free_surface_threshold the particle is on the
+ *  free surface: flagged PART_FREE_SURFACE, pressure 0 for the force loop.
+ *  Particles of materials with strength are never flagged. */
+BOLIDE_INLINE void extra_ghost_free_surface(struct parts *BOLIDE_RESTRICT p, size_t i,
+                                            const struct hydro_props *hp,
+                                            const struct material *mat) {
+  p->wvol[i] += p->m[i] / p->rho[i] * kernel_W(0.0, p->h[i]);
+  if (hp->free_surface && mat && mat->strength == STRENGTH_NONE &&
+      p->wvol[i] < hp->free_surface_threshold) {
+    p->flags[i] |= PART_FREE_SURFACE;
+    p->P[i] = 0.0;
+  } else {
+    p->flags[i] &= ~PART_FREE_SURFACE;
+  }
+}
+
 /** Finish solid particle i: gv = G M^-1 (Randles & Libersky 1996; the
  *  identity without SPH:gradient_correction), plasticity, dS/dt and R.
  *  A viscous fluid (material key viscosity) gets the Newtonian stress
  *  S = 2 eta e' of its corrected gradient (viscosity.h) and dS/dt = 0;
  *  other particles of materials without strength get zero stress, rates
- *  and R.  With SPH:continuity_correction, drho/dt of every particle (E14). */
+ *  and R.  With SPH:continuity_correction, drho/dt of every particle (E14);
+ *  with SPH:free_surface, the free-surface detection of fluid particles. */
 BOLIDE_INLINE void extra_ghost_part(struct parts *BOLIDE_RESTRICT p, size_t i,
                                     const struct hydro_props *hp,
                                     const struct material_table *mats) {
   const struct material *mat = material_table_find(mats, p->mat[i]);
   const double zero[6] = {0, 0, 0, 0, 0, 0};
+  extra_ghost_free_surface(p, i, hp, mat);
   if (hp->continuity_cspm) {
     /* CSPM continuity (theory/solids.md E14), every particle, fluids
      * included: the force loop adds no density rate of its own (force_iact.h) */
