@@ -48,6 +48,7 @@
                                                                                                          \
   X("Statistics:delta_time", PARAM_REAL, "0", 0, PARAM_INF, NULL, "internal time", "time between lines of the statistics file (0: every step)") \
   X("Statistics:energy_file_name", PARAM_STRING, "statistics", 1, 255, NULL, "-", "statistics file name (a .txt suffix is added)") \
+  X("Statistics:max_angular_momentum_change", PARAM_REAL, "0", 0, PARAM_INF, NULL, "-", "angular-momentum check, at every line of the statistics file: the run stops with exit status 3 when |L - L(0)| / |L(0)| (the particles that left an open box counted) exceeds this (0: off; open boxes only; theory/sph.md, \"Conservation budget\")") \
                                                                                                          \
   X("SPH:resolution_eta", PARAM_REAL, KERNEL_ETA_DEFAULT_STR, 0.1, 10, NULL, "-", "target h in units of the mean inter-particle spacing; the default depends on the kernel: 1.7 with the Wendland C2 kernel (149 neighbours, with which shock tubes converge; theory/sph.md, section 1), 1.2348 with the others (48 neighbours with the cubic spline, the default kernel)") \
   X("SPH:h_tolerance", PARAM_REAL, "1e-4", 1e-10, 0.1, NULL, "-", "relative tolerance of the smoothing length iteration") \
