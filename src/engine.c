@@ -687,11 +687,13 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   material_table_init(e->mats);
   material_table_from_params(e->mats, params);
   material_table_convert_units(e->mats, &e->us);
-  /* solids: the gradient tasks and stress terms run only when a material has strength */
+  /* solids: the gradient tasks and stress terms run only when a material
+   * carries a deviatoric stress (strength, or a viscous fluid) */
   for (int k = 0; k < e->mats->n; k++)
-    if (e->mats->mats[k].strength != STRENGTH_NONE) e->hp.solids = 1;
-  /* the CSPM continuity equation takes div v from the gradient tasks: run them */
-  if (e->hp.continuity_cspm) e->hp.solids = 1;
+    if (material_has_stress(&e->mats->mats[k])) e->hp.solids = 1;
+  /* the CSPM continuity equation takes div v, and the free-surface detection
+   * its kernel sum, from the gradient tasks: run them */
+  if (e->hp.continuity_cspm || e->hp.free_surface) e->hp.solids = 1;
 
   e->time = params_get_real(params, "TimeIntegration:time_begin");
   e->time_end = params_get_real(params, "TimeIntegration:time_end");

@@ -206,13 +206,61 @@ static void engine_budget_start(struct engine *e, const struct engine_totals *t)
   b->set = 1.0;
 }
 
+/** The angular-momentum check (Statistics:max_angular_momentum_change,
+ *  issue 24 item 5, for runs moved over from miluphcuda): with the budget's
+ *  L(0) and the angular momentum the particles that left an open box took
+ *  with them, a run whose |L + L_removed - L(0)| / |L(0)| exceeds the bound
+ *  writes a crash snapshot OUTDIR/crash_stepNNNNNN.hdf5 and stops with one
+ *  line and exit status 3.  Called at every line of the statistics file
+ *  (where the particles are on the host anyway). */
+static void engine_check_angular_momentum(struct engine *e, const struct engine_totals *t) {
+  const double bound = params_get_real(e->params, "Statistics:max_angular_momentum_change");
+  if (!(bound > 0.0)) return;
+  const struct budget_start *b = &e->budget0;
+  const struct budget_removed *r = &e->space.removed;
+  double dL2 = 0.0, L02 = 0.0;
+  for (int k = 0; k < 3; k++) {
+    const double dL = t->L[k] + r->L[k] - b->L[k];
+    dL2 += dL * dL;
+    L02 += b->L[k] * b->L[k];
+  }
+  if (!(L02 > 0.0)) return; /* nothing to compare with (a warning at the start) */
+  const double rel = sqrt(dL2 / L02);
+  if (!(rel > bound)) return;
+  char path[2100];
+  snprintf(path, sizeof path, "%s/crash_step%06ld.hdf5", e->outdir, e->step);
+  engine_snapshot_to(e, path);
+  error_exit_status(3,
+                    "angular momentum check: |L - L(0)| / |L(0)| = %.3e at step %ld (t = %g) exceeds "
+                    "Statistics:max_angular_momentum_change = %g; crash snapshot %s",
+                    rel, e->step, e->time, bound, path);
+}
+
+/** The start of the angular-momentum check: it needs an open box (a periodic
+ *  box does not conserve L) and some angular momentum to measure against. */
+static void engine_check_angular_momentum_start(struct engine *e) {
+  const double bound = params_get_real(e->params, "Statistics:max_angular_momentum_change");
+  if (!(bound > 0.0)) return;
+  if (e->space.periodic)
+    params_error(e->params, "Statistics:max_angular_momentum_change",
+                 "the angular-momentum check needs an open box (a periodic box does not conserve "
+                 "angular momentum)");
+  const double *L = e->budget0.L;
+  if (!(L[0] * L[0] + L[1] * L[1] + L[2] * L[2] > 0.0))
+    error_warning("Statistics:max_angular_momentum_change: the angular momentum is 0 at the start; "
+                  "the check is off");
+}
+
 void engine_stats_write(struct engine *e) {
 #ifdef HAVE_CUDA
   gpu_engine_to_host(e); /* the particles may be resident on the GPU */
 #endif
   struct engine_totals t;
   engine_totals(e, &t);
-  if (!(e->budget0.set > 0.0)) engine_budget_start(e, &t);
+  if (!(e->budget0.set > 0.0)) {
+    engine_budget_start(e, &t);
+    engine_check_angular_momentum_start(e);
+  }
   const struct budget_removed *r = &e->space.removed;
   const double etot = t.E_kin + t.E_int + t.E_pot;
   const double dE = etot + r->E - t.E_clamp - e->budget0.E_tot;
@@ -224,6 +272,7 @@ void engine_stats_write(struct engine *e) {
           r->L[1], r->L[2], t.E_clamp, t.W_plastic, dE);
   if (fflush(e->stats)) error_exit("cannot write the statistics file (disk full?)");
   e->stats_last_step = e->step;
+  engine_check_angular_momentum(e, &t);
 }
 
 void engine_stats_close(struct engine *e) {
@@ -242,6 +291,7 @@ void engine_stats_first(struct engine *e) {
     struct engine_totals t;
     engine_totals(e, &t);
     engine_budget_start(e, &t);
+    engine_check_angular_momentum_start(e);
   }
   engine_stats_maybe(e);
 }

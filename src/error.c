@@ -42,12 +42,9 @@ static void error_cleanup(void) {
   pthread_mutex_unlock(&error_lock);
 }
 
-void error_exit(const char *fmt, ...) {
-  char msg[4096];
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(msg, sizeof msg, fmt, ap);
-  va_end(ap);
+/** Print msg as the one line of error_exit and error_exit_status, then exit. */
+static void error_exit_msg(int status, char *msg) __attribute__((noreturn));
+static void error_exit_msg(int status, char *msg) {
   /* one line: fold newlines */
   for (char *c = msg; *c; c++)
     if (*c == '\n') *c = ' ';
@@ -56,7 +53,25 @@ void error_exit(const char *fmt, ...) {
   fflush(stderr);
   error_cleanup();
   if (error_exit_hook) error_exit_hook();
-  exit(1);
+  exit(status);
+}
+
+void error_exit(const char *fmt, ...) {
+  char msg[4096];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  error_exit_msg(1, msg);
+}
+
+void error_exit_status(int status, const char *fmt, ...) {
+  char msg[4096];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  error_exit_msg(status, msg);
 }
 
 void error_bug_at(const char *file, int line, const char *fmt, ...) {

@@ -22,6 +22,10 @@ void error_init(const char *argv0);
  *  Before exiting, runs the registered cleanup hooks (removal of temporary
  *  files), so that nothing half-written is left behind. */
 void error_exit(const char *fmt, ...) __attribute__((format(printf, 1, 2), noreturn));
+/** As error_exit, with exit status `status` (documented per use: 3 for a
+ *  failed conservation check, README "Programs"). */
+void error_exit_status(int status, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3), noreturn));
 
 /** Test hook, NULL in every program: when set, error_exit calls it after
  *  printing and cleaning up, instead of exit(1).  It must not return (the

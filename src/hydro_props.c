@@ -24,6 +24,13 @@ void hydro_props_init(struct hydro_props *hp, const struct params *p) {
   if (hp->continuity_cspm && !hp->continuity)
     params_error(p, "SPH:continuity_correction", "needs SPH:density: continuity");
   hp->xsph = params_get_real(p, "SPH:xsph_epsilon");
+  hp->free_surface = params_get_bool(p, "SPH:free_surface");
+  hp->free_surface_threshold = params_get_real(p, "SPH:free_surface_threshold");
+  /* with summation density the kernel sum is ~1 everywhere: rho_j is itself
+   * the kernel sum at j, so the surface's low densities make up its missing
+   * neighbours (theory/fluids.md) */
+  if (hp->free_surface && !hp->continuity)
+    params_error(p, "SPH:free_surface", "needs SPH:density: continuity");
   hp->solids = 0; /* set by the engine from the materials */
   hp->momentum_form = params_get_enum(p, "SPH:momentum_form");
   hp->gradient_correction = params_get_bool(p, "SPH:velocity_gradient_correction");

@@ -22,6 +22,8 @@ struct hydro_props {
   int continuity_cspm;  /**< 1: drho/dt = -rho tr(corrected velocity gradient) (CSPM) */
   double continuity_min_ratio; /**< continuity density floor in units of the material's rho0 */
   double xsph;          /**< XSPH epsilon (Monaghan 1989), 0 = off */
+  int free_surface;     /**< 1: pressure 0 on fluid particles at the free surface (SPH:free_surface) */
+  double free_surface_threshold; /**< kernel sum sum_j V_j W_ij below which a fluid particle is on it */
   int solids;           /**< 1 when a material has strength: gradient tasks and stress terms run */
   int momentum_form;    /**< HYDRO_MOMENTUM_STANDARD or HYDRO_MOMENTUM_SYMMETRIC */
   int gradient_correction; /**< 1: linear-consistency correction of the velocity gradient */

@@ -94,6 +94,7 @@ enum part_flags {
   X(double,  gvzx, NULL,              6, 9, 0,  0, -1, 0, "velocity gradient dvz/dx")             \
   X(double,  gvzy, NULL,              7, 9, 0,  0, -1, 0, "velocity gradient dvz/dy")             \
   X(double,  gvzz, NULL,              8, 9, 0,  0, -1, 0, "velocity gradient dvz/dz")             \
+  X(double,  wvol, NULL,              0, 1, 0,  0,  0, 0, "kernel sum sum_j m_j/rho_j W_ij (gradient loop; the extra ghost adds the self term): the free-surface detection's") \
   /* force loop accumulators */                                                                   \
   X(double,  ax,  "Accelerations",    0, 3, 0,  1, -2, PART_SNAP_ACC, "acceleration")             \
   X(double,  ay,  "Accelerations",    1, 3, 0,  1, -2, PART_SNAP_ACC, "acceleration")             \
@@ -163,6 +164,8 @@ enum part_state {
   PART_RHO_FLOOR = 4,    /**< continuity density held at its floor (continuity_floor.h) */
   PART_U_FLOOR = 8,      /**< its material's EOS needs u >= 0: the kick halves a u that would go
                               negative (material.u_floor, set by the ghost; drift.h) */
+  PART_FREE_SURFACE = 16, /**< a fluid particle on the free surface (SPH:free_surface): P = 0
+                              (extra_ghost_part.h) */
 };
 
 /** All particles, one array per field. */

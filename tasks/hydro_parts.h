@@ -44,6 +44,7 @@ BOLIDE_INLINE void hydro_gradient_reset(struct parts *BOLIDE_RESTRICT p, size_t 
   p->gvxx[i] = p->gvxy[i] = p->gvxz[i] = 0.0;
   p->gvyx[i] = p->gvyy[i] = p->gvyz[i] = 0.0;
   p->gvzx[i] = p->gvzy[i] = p->gvzz[i] = 0.0;
+  p->wvol[i] = 0.0;
 }
 
 /** Add a gradient accumulator to particle i. */
@@ -64,12 +65,13 @@ BOLIDE_INLINE void hydro_gradient_add(struct parts *BOLIDE_RESTRICT p, size_t i,
   p->gvzx[i] += a->G[6];
   p->gvzy[i] += a->G[7];
   p->gvzz[i] += a->G[8];
+  p->wvol[i] += a->Z;
 }
 
 /** The contribution of j to i's gradient sums (gather form), dx = x_i - x_j. */
 BOLIDE_INLINE void hydro_gradient_gather(struct parts *BOLIDE_RESTRICT p, size_t i, size_t j,
                                          double r2, const double dx[3], double hi_inv) {
-  struct gradient_acc a = {{0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 0, 0, 0, 0}};
+  struct gradient_acc a = {{0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 0, 0, 0, 0}, 0};
   const double dv[3] = {p->vpx[i] - p->vpx[j], p->vpy[i] - p->vpy[j], p->vpz[i] - p->vpz[j]};
   gradient_iact(r2, dx, hi_inv, p->m[j] / p->rho[j], dv, &a);
   hydro_gradient_add(p, i, &a);

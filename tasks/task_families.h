@@ -72,7 +72,7 @@
     ("gmxx", "gmxy", "gmxz", "gmyy", "gmyz", "gmzz", "gvxx", "gvxy", "gvxz", "gvyx", "gvyy",      \
      "gvyz", "gvzx", "gvzy", "gvzz", "Sxx", "Sxy", "Sxz", "Syy", "Syz", "Szz", "Spxx", "Spxy",    \
      "Spxz", "Spyy", "Spyz", "Spzz", "dSxx", "dSxy", "dSxz", "dSyy", "dSyz", "dSzz", "Rxx",       \
-     "Rxy", "Rxz", "Ryy", "Ryz", "Rzz", "eps_p", "dmg_shear", "w_plastic"))                       \
+     "Rxy", "Rxz", "Ryy", "Ryz", "Rzz", "eps_p", "dmg_shear", "w_plastic", "wvol"))               \
   X(force, SUB(force), HYDRO, 4, STEP(force_gpu_phase), ALWAYS, "force",                          \
     ("vx", "vy", "vz"),                                                                           \
     ("ax", "ay", "az", "du_dt", "drho_dt", "v_sig", "xsphx", "xsphy", "xsphz"))                   \

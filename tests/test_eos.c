@@ -297,7 +297,9 @@ static void test_other_eos(void) {
   struct eos_ideal_gas ig = {5.0 / 3.0, 0.0, 0.0};
   struct eos_isothermal iso = {300.0, 0.0};
   struct eos_polytropic poly = {1.4, 1.0, 1e5};
-  struct eos_liquid liq = {1010.0, 852.0, 0.0};
+  struct eos_liquid liq = {1010.0, 852.0, 0.0, 0.0};
+  /* water by its compressibility modulus K0 = 2.2 GPa (c0 = sqrt(K0/rho0)) */
+  struct eos_liquid water = {1000.0, 0.0, 2.2e9, 0.0};
   struct eos_murnaghan mur = {2700.0, 3.5e10, 4.0, 0.0};
   struct eos_mie_gruneisen mg = {2710.0, 6320.0, 1.337, 2.1, 0.0};
 
@@ -361,6 +363,32 @@ static void test_other_eos(void) {
     double P, c2;
     eos_liquid_eval(&liq, liq.rho0, 0.0, &P, &c2);
     CHECK(P == 0.0 && fabs(sqrt(c2) - 852.0) < 1e-12, "liquid: P(rho0) = %g, c = %g", P, sqrt(c2));
+  }
+
+  /* water given by K0: P = (K0/rho0)(rho - rho0) exactly (to round-off),
+   * c = sqrt(K0/rho0) = 1483.2397 m/s, the same state as c0 given directly */
+  {
+    double P, c2, Pc, c2c;
+    const double c0 = sqrt(2.2e9 / 1000.0);
+    const struct eos_liquid by_c0 = {1000.0, c0, 0.0, 0.0};
+    eos_liquid_eval(&water, 1010.0, 0.0, &P, &c2);
+    eos_liquid_eval(&by_c0, 1010.0, 0.0, &Pc, &c2c);
+    CHECK(fabs(P - 2.2e7) <= 1e-9 * 2.2e7, "liquid by K0: P(1.01 rho0) = %.12g, want 2.2e7", P);
+    CHECK(fabs(sqrt(c2) - 1483.2396974191) <= 1e-9, "liquid by K0: c = %.12g, want 1483.2396974191",
+          sqrt(c2));
+    CHECK(fabs(eos_liquid_sound_speed(&water, 900.0, 0.0) - c0) <= 1e-12 * c0,
+          "liquid by K0: sound speed %.12g vs %.12g", eos_liquid_sound_speed(&water, 900.0, 0.0),
+          c0);
+    CHECK(fabs(P - Pc) <= 1e-9 * fabs(Pc) && fabs(c2 - c2c) <= 1e-12 * c2c,
+          "liquid by K0 vs by c0: P %.12g / %.12g, c^2 %.12g / %.12g", P, Pc, c2, c2c);
+    const char *key = NULL;
+    CHECK(eos_liquid_check(&water, &key) == NULL, "liquid by K0 rejected");
+    const struct eos_liquid both = {1000.0, c0, 2.2e9, 0.0}, none = {1000.0, 0.0, 0.0, 0.0};
+    CHECK(eos_liquid_check(&both, &key) != NULL, "liquid with both c0 and K0 accepted");
+    CHECK(eos_liquid_check(&none, &key) != NULL, "liquid with neither c0 nor K0 accepted");
+    check_c2("liquid by K0", w_liquid, &water, 1050.0, 0.0);
+    const double rw[] = {950.0, 1000.0, 1100.0};
+    round_trip_rho("liquid by K0", w_liquid, &water, rw, 3, 500.0, 2000.0);
   }
 
   const double rho[] = {0.5, 1.0, 3.0}, u[] = {1e3, 2e5, 7e6};

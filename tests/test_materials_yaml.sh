@@ -41,6 +41,18 @@ grep -qx "101 granite tillotson 2680 1.8e+10 0" "$tmp/out" || fail "SWIFT id 101
 grep -qx "7 rubber_inline liquid 1000 800 0" "$tmp/out" || fail "inline: $(cat "$tmp/out")"
 grep -qx "2 ice tillotson 917 9470000000 0" "$tmp/out" || fail "ice: $(cat "$tmp/out")"
 
+# 1b. weakly compressible water by its bulk modulus K0 (c0 = sqrt(K0/rho0)),
+# with a Newtonian viscosity, from the library and inline
+{ base; cat <<EOT
+Materials:
+  8: {name: water_wc}
+  9: {name: thick, eos: liquid, rho0: 1000, K0: 4e8, viscosity: 2.5}
+EOT
+} >"$tmp/water.yml"
+"$prog" "$tmp/water.yml" >"$tmp/out" 2>"$tmp/err" || fail "water: $(cat "$tmp/err")"
+grep -qx "8 water_wc liquid 1000 1483.239697 0" "$tmp/out" || fail "water_wc: $(cat "$tmp/out")"
+grep -qx "9 thick liquid 1000 632.455532 0" "$tmp/out" || fail "inline K0: $(cat "$tmp/out")"
+
 # 2. no Materials section: one ideal gas, id 0, gamma = SPH:gamma
 { base; printf 'SPH:\n  gamma: 1.4\n'; } >"$tmp/gas.yml"
 "$prog" "$tmp/gas.yml" >"$tmp/out" 2>"$tmp/err" || fail "no Materials: $(cat "$tmp/err")"
@@ -66,6 +78,15 @@ check_error "$tmp/e5.yml" "e5.yml:6: Materials: 'x' is not a material id"
 check_error "$tmp/e6.yml" "e6.yml:6: .*key 'eos' must be one of"
 { base; printf 'Materials:\n  0: {name: basalt, Ecv: 1e6}\n'; } >"$tmp/e7.yml"
 check_error "$tmp/e7.yml" "e7.yml:6: material 'basalt': key 'Ecv' must be larger than Eiv"
+
+{ base; printf 'Materials:\n  0: {eos: liquid, name: w, rho0: 1000, c0: 1500, K0: 2.2e9}\n'; } >"$tmp/e8.yml"
+check_error "$tmp/e8.yml" "e8.yml:6: material 'w': key 'c0' and K0 cannot both be given"
+{ base; printf 'Materials:\n  0: {eos: liquid, name: w, rho0: 1000}\n'; } >"$tmp/e9.yml"
+check_error "$tmp/e9.yml" "e9.yml:6: material 'w': key 'c0' is required for EOS liquid \\(or its bulk modulus K0\\)"
+{ base; printf 'Materials:\n  0: {name: rubber, viscosity: 1.0}\n'; } >"$tmp/e10.yml"
+check_error "$tmp/e10.yml" "e10.yml:6: material 'rubber': key 'viscosity' is for fluids \\(strength none\\) only"
+{ base; printf 'Materials:\n  0: {name: water_wc, viscosity: -1}\n'; } >"$tmp/e11.yml"
+check_error "$tmp/e11.yml" "e11.yml:6: material 'water_wc': key 'viscosity' must not be negative"
 
 # 4. a bad library: the error names the library file and line
 cat >"$tmp/lib.yml" <<EOT

@@ -106,7 +106,7 @@ static void test_gradient(void) {
   /* gather form, brute force */
   double worst = 0.0;
   for (size_t i = 0; i < n; i++) {
-    struct gradient_acc a = {{0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 0, 0, 0, 0}};
+    struct gradient_acc a = {{0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 0, 0, 0, 0}, 0};
     const double Hi = kernel_gamma * p.h[i];
     for (size_t j = 0; j < n; j++) {
       if (j == i) continue;

@@ -241,6 +241,12 @@ static const char *material_strength_check(const struct material *mat, const cha
     *key = "spall_pressure";
     return "needs Johnson-Cook fracture (strength johnson_cook with jc_D1 or jc_D2)";
   }
+  if (mat->viscosity > 0.0 && s != STRENGTH_NONE) {
+    /* a Newtonian viscous stress belongs to fluids; a solid's deviatoric
+     * stress is its elastic-plastic one */
+    *key = "viscosity";
+    return "is for fluids (strength none) only";
+  }
   if ((mat->weibull_k > 0.0) != (mat->weibull_m > 0.0)) {
     *key = mat->weibull_k > 0.0 ? "weibull_m" : "weibull_k";
     return "must be given together with the other Weibull parameter";

@@ -46,7 +46,8 @@ struct unit_system;
   X(PER_VOLUME, "m^-3", 0, -3, 0)            \
   X(RATE, "s^-1", 0, 0, -1)                  \
   X(TEMPERATURE, "K", 0, 0, 0)               \
-  X(PER_PRESSURE, "Pa^-1", -1, 1, 2)
+  X(PER_PRESSURE, "Pa^-1", -1, 1, 2)         \
+  X(VISCOSITY, "Pa s", 1, -1, -1)
 
 /** Unit kinds (MATERIAL_UNIT_DENSITY, ...). */
 enum material_unit {
@@ -116,6 +117,8 @@ enum material_strength_type {
     "sound speed floor (default: 0.1 sqrt(A/rho0) for Tillotson, 0 otherwise)")                        \
   X(material, shear_modulus, "shear_modulus", 0.0, 0.0, 0, INFINITY, MATERIAL_UNIT_PRESSURE,           \
     "shear modulus mu (0: a fluid)")                                                                   \
+  X(material, viscosity, "viscosity", 0.0, 0.0, 0, INFINITY, MATERIAL_UNIT_VISCOSITY,                  \
+    "dynamic viscosity eta of a Newtonian fluid (strength none): deviatoric stress 2 eta e' (0: inviscid; water 1.0e-3)") \
   X(material, bulk_modulus, "bulk_modulus", NAN, 0.0, 0, INFINITY, MATERIAL_UNIT_PRESSURE,             \
     "bulk modulus K (default: rho0 c_s^2 of the EOS at rho0, u = 0)")                                  \
   X(material, yield_stress, "yield_stress", 0.0, 0.0, 0, INFINITY, MATERIAL_UNIT_PRESSURE,             \
@@ -235,6 +238,13 @@ BOLIDE_INLINE void material_eos(const struct material *mat, double rho, double u
   }
   *P = p;
   *cs = sqrt(c2 > mat->cs_min * mat->cs_min ? c2 : mat->cs_min * mat->cs_min);
+}
+
+/** Whether particles of material `mat` carry a deviatoric stress: a solid
+ *  (a strength model) or a viscous fluid (theory/fluids.md).  Runs with such
+ *  a material need the gradient tasks. */
+BOLIDE_INLINE int material_has_stress(const struct material *mat) {
+  return mat->strength != STRENGTH_NONE || mat->viscosity > 0.0;
 }
 
 /** Temperature of material `mat` at (rho, u); 0 where its EOS defines none. */

@@ -11,9 +11,11 @@
 #include "gradient_finish.h"
 #include "hydro_props.h"
 #include "inline.h"
+#include "kernel.h"
 #include "material.h"
 #include "part.h"
 #include "strength.h"
+#include "viscosity.h"
 
 /** Read the six components of a symmetric tensor field into T. */
 #define EXTRA_GHOST_GET6(T, p, pre, i)                                            \
@@ -62,33 +64,12 @@ BOLIDE_INLINE double extra_ghost_plastic_return(struct parts *BOLIDE_RESTRICT p,
   return Y;
 }
 
-/** Finish solid particle i: gv = G M^-1 (Randles & Libersky 1996; the
- *  identity without SPH:gradient_correction), plasticity, dS/dt and R.
- *  Particles of materials without strength get zero stress, rates and R.
- *  With SPH:continuity_correction, drho/dt of every particle (E14). */
-BOLIDE_INLINE void extra_ghost_part(struct parts *BOLIDE_RESTRICT p, size_t i,
-                                    const struct hydro_props *hp,
-                                    const struct material_table *mats) {
-  const struct material *mat = material_table_find(mats, p->mat[i]);
-  const double zero[6] = {0, 0, 0, 0, 0, 0};
-  if (hp->continuity_cspm) {
-    /* CSPM continuity (theory/solids.md E14), every particle, fluids
-     * included: the force loop adds no density rate of its own (force_iact.h) */
-    double M6[6];
-    EXTRA_GHOST_GET6(M6, p, gm, i);
-    const double G9[9] = {p->gvxx[i], p->gvxy[i], p->gvxz[i], p->gvyx[i], p->gvyy[i],
-                          p->gvyz[i], p->gvzx[i], p->gvzy[i], p->gvzz[i]};
-    p->drho_dt[i] = gradient_cspm_drho_dt(p->rho[i], M6, G9);
-  }
-  if (!mat || mat->strength == STRENGTH_NONE || !(mat->shear_modulus > 0.0)) {
-    EXTRA_GHOST_PUT6(zero, p, S, i);
-    EXTRA_GHOST_PUT6(zero, p, Sp, i);
-    EXTRA_GHOST_PUT6(zero, p, dS, i);
-    EXTRA_GHOST_PUT6(zero, p, R, i);
-    return;
-  }
-  /* corrected velocity gradient (Randles & Libersky 1996) */
-  double M[6], Minv[9], gv[9];
+/** The corrected velocity gradient gv = G M^-1 of particle i (Randles &
+ *  Libersky 1996; G alone without SPH:velocity_gradient_correction), from
+ *  its gradient sums; stored back into the gv fields. */
+BOLIDE_INLINE void extra_ghost_velocity_gradient(struct parts *BOLIDE_RESTRICT p, size_t i,
+                                                 const struct hydro_props *hp, double gv[9]) {
+  double M[6], Minv[9];
   EXTRA_GHOST_GET6(M, p, gm, i);
   const double G[9] = {p->gvxx[i], p->gvxy[i], p->gvxz[i], p->gvyx[i], p->gvyy[i],
                        p->gvyz[i], p->gvzx[i], p->gvzy[i], p->gvzz[i]};
@@ -100,6 +81,70 @@ BOLIDE_INLINE void extra_ghost_part(struct parts *BOLIDE_RESTRICT p, size_t i,
   p->gvxx[i] = gv[0], p->gvxy[i] = gv[1], p->gvxz[i] = gv[2];
   p->gvyx[i] = gv[3], p->gvyy[i] = gv[4], p->gvyz[i] = gv[5];
   p->gvzx[i] = gv[6], p->gvzy[i] = gv[7], p->gvzz[i] = gv[8];
+}
+
+/** Free-surface detection of fluid particle i (theory/fluids.md F5): with the self term V_i W(0, h_i) added, its kernel sum
+ *  Z_i = sum_j m_j/rho_j W_ij is about 1 inside the fluid and about 1/2 on
+ *  a flat surface; below hp->free_surface_threshold the particle is on the
+ *  free surface: flagged PART_FREE_SURFACE, pressure 0 for the force loop.
+ *  Particles of materials with strength are never flagged. */
+BOLIDE_INLINE void extra_ghost_free_surface(struct parts *BOLIDE_RESTRICT p, size_t i,
+                                            const struct hydro_props *hp,
+                                            const struct material *mat) {
+  p->wvol[i] += p->m[i] / p->rho[i] * kernel_W(0.0, p->h[i]);
+  if (hp->free_surface && mat && mat->strength == STRENGTH_NONE &&
+      p->wvol[i] < hp->free_surface_threshold) {
+    p->flags[i] |= PART_FREE_SURFACE;
+    p->P[i] = 0.0;
+  } else {
+    p->flags[i] &= ~PART_FREE_SURFACE;
+  }
+}
+
+/** Finish solid particle i: gv = G M^-1 (Randles & Libersky 1996; the
+ *  identity without SPH:gradient_correction), plasticity, dS/dt and R.
+ *  A viscous fluid (material key viscosity) gets the Newtonian stress
+ *  S = 2 eta e' of its corrected gradient (viscosity.h) and dS/dt = 0;
+ *  other particles of materials without strength get zero stress, rates
+ *  and R.  With SPH:continuity_correction, drho/dt of every particle (E14);
+ *  with SPH:free_surface, the free-surface detection of fluid particles. */
+BOLIDE_INLINE void extra_ghost_part(struct parts *BOLIDE_RESTRICT p, size_t i,
+                                    const struct hydro_props *hp,
+                                    const struct material_table *mats) {
+  const struct material *mat = material_table_find(mats, p->mat[i]);
+  const double zero[6] = {0, 0, 0, 0, 0, 0};
+  extra_ghost_free_surface(p, i, hp, mat);
+  if (hp->continuity_cspm) {
+    /* CSPM continuity (theory/solids.md E14), every particle, fluids
+     * included: the force loop adds no density rate of its own (force_iact.h) */
+    double M6[6];
+    EXTRA_GHOST_GET6(M6, p, gm, i);
+    const double G9[9] = {p->gvxx[i], p->gvxy[i], p->gvxz[i], p->gvyx[i], p->gvyy[i],
+                          p->gvyz[i], p->gvzx[i], p->gvzy[i], p->gvzz[i]};
+    p->drho_dt[i] = gradient_cspm_drho_dt(p->rho[i], M6, G9);
+  }
+  double gv[9];
+  if (mat && mat->strength == STRENGTH_NONE && mat->viscosity > 0.0) {
+    /* Newtonian fluid: S = 2 eta e', the same in the integrated and the
+     * predicted stress, no rate of its own */
+    double S[6];
+    extra_ghost_velocity_gradient(p, i, hp, gv);
+    viscosity_stress(gv, mat->viscosity, S);
+    EXTRA_GHOST_PUT6(S, p, S, i);
+    EXTRA_GHOST_PUT6(S, p, Sp, i);
+    EXTRA_GHOST_PUT6(zero, p, dS, i);
+    EXTRA_GHOST_PUT6(zero, p, R, i);
+    return;
+  }
+  if (!mat || mat->strength == STRENGTH_NONE || !(mat->shear_modulus > 0.0)) {
+    EXTRA_GHOST_PUT6(zero, p, S, i);
+    EXTRA_GHOST_PUT6(zero, p, Sp, i);
+    EXTRA_GHOST_PUT6(zero, p, dS, i);
+    EXTRA_GHOST_PUT6(zero, p, R, i);
+    return;
+  }
+  /* corrected velocity gradient (Randles & Libersky 1996) */
+  extra_ghost_velocity_gradient(p, i, hp, gv);
 
   /* plasticity: the radial return of the integrated and the predicted stress */
   double S[6], Sp[6], dS[6];

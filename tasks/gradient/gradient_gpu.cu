@@ -24,7 +24,7 @@ __global__ void gradient_gpu_kernel(struct parts p, struct gpu_leaves_dev lv) {
     const size_t i = beg + (size_t)t;
     const double xi[3] = {x[i], y[i], z[i]}, vi[3] = {vx[i], vy[i], vz[i]};
     const double hi_inv = 1.0 / p.h[i], Hi = kernel_gamma * p.h[i], Hi2 = Hi * Hi;
-    struct gradient_acc a = {{0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 0, 0, 0, 0}};
+    struct gradient_acc a = {{0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 0, 0, 0, 0}, 0};
     for (int k = k0; k < k1; k++) {
       const int J = lv.ngb_leaf[k];
       const double s[3] = {lv.ngb_shift[3 * k], lv.ngb_shift[3 * k + 1], lv.ngb_shift[3 * k + 2]};

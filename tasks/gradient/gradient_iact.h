@@ -8,7 +8,9 @@
  *   M_i^{ab} = sum_j V_j (x_j - x_i)^a d_b W_ij        (symmetric)
  *   G_i^{ab} = sum_j V_j (v_j - v_i)^a d_b W_ij
  * and the corrected gradient dv^a/dx^b = G_i^{ac} (M_i^{-1})^{cb}
- * (gradient_finish.h), exact for a linear velocity field. */
+ * (gradient_finish.h), exact for a linear velocity field; and the kernel
+ * sum of the free-surface detection (theory/fluids.md)
+ *   Z_i = sum_j V_j W_ij(h_i)   (the self term added by the extra ghost). */
 #ifndef BOLIDE_GRADIENT_IACT_H
 #define BOLIDE_GRADIENT_IACT_H
 
@@ -21,6 +23,7 @@
 struct gradient_acc {
   double M[6]; /**< correction-tensor sum, components xx xy xz yy yz zz */
   double G[9]; /**< velocity-difference sum, row-major (a = velocity component) */
+  double Z;    /**< kernel sum sum_j V_j W_ij (free-surface detection), without the self term */
 };
 
 /** Contribution of j (volume Vj = m_j / rho_j) at dx = x_i - x_j,
@@ -42,6 +45,7 @@ BOLIDE_INLINE void gradient_iact(double r2, const double dx[3], double hi_inv, d
   acc->M[5] += f * dx[2] * dx[2];
   for (int a = 0; a < 3; a++)
     for (int b = 0; b < 3; b++) acc->G[3 * a + b] += f * dv[a] * dx[b];
+  acc->Z += Vj * w;
 }
 
 #endif

@@ -13,6 +13,7 @@
 #include "material.h"
 #include "part.h"
 #include "kick/timestep.h"
+#include "viscosity.h"
 
 /** The kicked stress of a plastic particle back onto its yield surface
  *  (extra_ghost_plastic_return, with the yield stress of this step's
@@ -37,9 +38,10 @@ BOLIDE_INLINE void kick2_plastic_return(struct parts *BOLIDE_RESTRICT p, size_t 
 /** Kick particle i by dt_kick, bring a plastic particle's stress back onto
  *  its yield surface (kick2_plastic_return), make the predicted state the
  *  kicked one (kick_sync_predicted), and return its new time step
- *  (timestep_hydro and, with SPH:max_relative_change, the relative-change
- *  limits).  With the continuity equation a particle on its density floor
- *  does not expand further (continuity_floor.h). */
+ *  (timestep_hydro, the viscous diffusion limit of a viscous fluid and,
+ *  with SPH:max_relative_change, the relative-change limits).  With the
+ *  continuity equation a particle on its density floor does not expand
+ *  further (continuity_floor.h). */
 BOLIDE_INLINE double kick2_part(struct parts *BOLIDE_RESTRICT p, size_t i, double dt_kick,
                                 const struct hydro_props *hp, const struct material_table *mats) {
   if (hp->continuity) continuity_floor_rate(p, i);
@@ -48,6 +50,14 @@ BOLIDE_INLINE double kick2_part(struct parts *BOLIDE_RESTRICT p, size_t i, doubl
   kick_sync_predicted(p, i);
   const double a = sqrt(p->ax[i] * p->ax[i] + p->ay[i] * p->ay[i] + p->az[i] * p->az[i]);
   double dt = timestep_hydro(hp, p->h[i], p->v_sig[i], a, p->div_v[i]);
+  if (hp->solids) {
+    /* viscous diffusion of a Newtonian fluid (viscosity.h) */
+    const struct material *mat = material_table_find(mats, p->mat[i]);
+    if (mat && mat->viscosity > 0.0) {
+      const double dtv = viscosity_timestep(kernel_gamma * p->h[i], p->rho[i], mat->viscosity);
+      if (dtv < dt) dt = dtv;
+    }
+  }
   if (hp->max_rel_change > 0.0) {
     const double S[6] = {p->Sxx[i], p->Sxy[i], p->Sxz[i], p->Syy[i], p->Syz[i], p->Szz[i]};
     const double dS[6] = {p->dSxx[i], p->dSxy[i], p->dSxz[i], p->dSyy[i], p->dSyz[i], p->dSzz[i]};
