@@ -12,6 +12,11 @@
 #                              [-T 4000] [-o OUTDIR]
 #   -m  cpu: --no-gpu; gpu: the defaults with a GPU (the build must have CUDA)
 set -euo pipefail
+# ENERGY_ETA: SPH:resolution_eta (default SWIFT's 1.2348 for the cubic spline;
+# empty: the build kernel's default eta, e.g. Wendland C2's 1.7)
+eta=${ENERGY_ETA-1.2348}
+etaline=""; [ -n "$eta" ] && etaline="  resolution_eta: $eta
+"
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 build=${BOLIDE_BUILD:-$top/_build}
 python=${PYTHON:-$build/.venv/bin/python}
@@ -47,8 +52,7 @@ Statistics:
 Materials:
   101: {}
 SPH:
-  resolution_eta: 1.2348
-  CFL_condition: 0.2
+$etaline  CFL_condition: 0.2
   viscosity_alpha: 1.5
 Gravity:
   enabled: true
