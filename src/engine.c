@@ -719,7 +719,8 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
       ids[k] = e->mats->mats[k].id;
       u_floor[k] = e->mats->mats[k].u_floor;
     }
-    const struct restart_expect ex = {e->params_text, ids, e->mats->n, e->nr_out, e->time, e->time_end, u_floor};
+    const struct restart_expect ex = {e->params_text, ids, e->mats->n, e->nr_out, e->time, e->time_end, u_floor,
+                                      (int64_t)(sizeof(struct gravity_cell) / sizeof(double))};
     struct restart_data rd;
     restart_read(e->restart_stem, &ex, &rd, icname, sizeof icname);
     snprintf(e->restart_file, sizeof e->restart_file, "%s", icname);

@@ -65,7 +65,7 @@ def run(d, params, t_end, sub):
 
 def main():
     with tempfile.TemporaryDirectory() as d:
-        subprocess.run([sys.executable, os.path.join(example, "make_ic.py"), "--dx", str(DX), "--thickness", "0.02",
+        subprocess.run([sys.executable, os.path.join(example, "make_ic.py"), "--dx", str(DX), "--thickness", "0.03",
                         "--periodic-z", "-o", os.path.join(d, "rings.hdf5")], check=True, capture_output=True)
         run(d, "params_no_as.yml", 1.6e-3, "no_as")
         run(d, "params.yml", 2.1e-3, "with_as")

@@ -76,6 +76,11 @@ Snapshots: {{basename: wave, subdir: out_{tag}, delta_time: {dt_snap}}}
 Statistics: {{delta_time: {dt_snap}}}
 SPH:
   density: continuity
+  # h of 1.2348 spacings whatever the build's kernel: k h at the two
+  # resolutions (0.35 and 0.23) is what the bounds below were set for; the
+  # default Wendland C2 eta 1.7 widens h by 1.38 and needs 1.38 times the
+  # particles per wavelength for the same smoothing error
+  resolution_eta: 1.2348
   viscosity_alpha: 0.0
 Materials:
   0: {{name: fluid, eos: liquid, rho0: 1.0, K0: 100.0, viscosity: {eta}}}

@@ -96,6 +96,7 @@ struct restart_expect {
   double time_begin;      /**< TimeIntegration:time_begin */
   double time_end;        /**< TimeIntegration:time_end */
   const int32_t *u_floor; /**< per material of mat_ids: 1 when its EOS needs u >= 0 (NULL: no check) */
+  int64_t grav_cell_doubles; /**< doubles per gravity cell of this build's expansion order (0: no check) */
 };
 
 /** Everything a file holds (free with restart_data_free). */

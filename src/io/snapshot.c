@@ -459,7 +459,8 @@ void snapshot_write_series(const char *dir, const char *basename, int count) {
   if (!f) error_exit("%s: cannot write: %s", tmp, strerror(errno));
   fprintf(f, "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n");
   fprintf(f, "<Xdmf Version=\"2.0\">\n <Domain>\n");
-  fprintf(f, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", basename);
+  fprintf(f, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n",
+          basename);
   /* the Grid of every snapshot's own XDMF file, copied: one file that
    * ParaView opens as the time series of the run */
   for (int k = 0; k < count; k++) {

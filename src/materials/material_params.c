@@ -233,7 +233,8 @@ enum material_swift_kind {
   MATERIAL_SWIFT_LIBRARY, /**< fixed parameters: the library entry with its swift_id */
   MATERIAL_SWIFT_TABLE,   /**< a SESAME-like table file (planetary_NAME_table_file) */
   MATERIAL_SWIFT_HM80,    /**< a Hubbard & MacFarlane table file (not read yet) */
-  MATERIAL_SWIFT_TIL_FILE /**< a Tillotson parameter file (planetary_NAME_param_file; not read yet) */
+  MATERIAL_SWIFT_TIL_FILE /**< a Tillotson parameter file (planetary_NAME_param_file; not read yet)
+                           */
 };
 
 /** SWIFT's planetary materials: NAME of its EoS:planetary_use_NAME key, the
@@ -244,16 +245,16 @@ static const struct {
   int id;
   enum material_swift_kind kind;
 } material_swift[] = {
-    {"idg_def", 0, MATERIAL_SWIFT_LIBRARY},          {"Til_iron", 100, MATERIAL_SWIFT_LIBRARY},
-    {"Til_granite", 101, MATERIAL_SWIFT_LIBRARY},    {"Til_water", 102, MATERIAL_SWIFT_LIBRARY},
-    {"Til_basalt", 103, MATERIAL_SWIFT_LIBRARY},     {"Til_ice", 104, MATERIAL_SWIFT_LIBRARY},
-    {"HM80_HHe", 200, MATERIAL_SWIFT_HM80},          {"HM80_ice", 201, MATERIAL_SWIFT_HM80},
-    {"HM80_rock", 202, MATERIAL_SWIFT_HM80},         {"SESAME_iron", 300, MATERIAL_SWIFT_TABLE},
-    {"SESAME_basalt", 301, MATERIAL_SWIFT_TABLE},    {"SESAME_water", 302, MATERIAL_SWIFT_TABLE},
-    {"SS08_water", 303, MATERIAL_SWIFT_TABLE},       {"AQUA", 304, MATERIAL_SWIFT_TABLE},
-    {"CMS19_H", 305, MATERIAL_SWIFT_TABLE},          {"CMS19_He", 306, MATERIAL_SWIFT_TABLE},
-    {"CD21_HHe", 307, MATERIAL_SWIFT_TABLE},         {"ANEOS_forsterite", 400, MATERIAL_SWIFT_TABLE},
-    {"ANEOS_iron", 401, MATERIAL_SWIFT_TABLE},       {"ANEOS_Fe85Si15", 402, MATERIAL_SWIFT_TABLE},
+    {"idg_def", 0, MATERIAL_SWIFT_LIBRARY},       {"Til_iron", 100, MATERIAL_SWIFT_LIBRARY},
+    {"Til_granite", 101, MATERIAL_SWIFT_LIBRARY}, {"Til_water", 102, MATERIAL_SWIFT_LIBRARY},
+    {"Til_basalt", 103, MATERIAL_SWIFT_LIBRARY},  {"Til_ice", 104, MATERIAL_SWIFT_LIBRARY},
+    {"HM80_HHe", 200, MATERIAL_SWIFT_HM80},       {"HM80_ice", 201, MATERIAL_SWIFT_HM80},
+    {"HM80_rock", 202, MATERIAL_SWIFT_HM80},      {"SESAME_iron", 300, MATERIAL_SWIFT_TABLE},
+    {"SESAME_basalt", 301, MATERIAL_SWIFT_TABLE}, {"SESAME_water", 302, MATERIAL_SWIFT_TABLE},
+    {"SS08_water", 303, MATERIAL_SWIFT_TABLE},    {"AQUA", 304, MATERIAL_SWIFT_TABLE},
+    {"CMS19_H", 305, MATERIAL_SWIFT_TABLE},       {"CMS19_He", 306, MATERIAL_SWIFT_TABLE},
+    {"CD21_HHe", 307, MATERIAL_SWIFT_TABLE},      {"ANEOS_forsterite", 400, MATERIAL_SWIFT_TABLE},
+    {"ANEOS_iron", 401, MATERIAL_SWIFT_TABLE},    {"ANEOS_Fe85Si15", 402, MATERIAL_SWIFT_TABLE},
 };
 #define MATERIAL_NR_SWIFT ((int)(sizeof material_swift / sizeof material_swift[0]))
 
@@ -410,16 +411,17 @@ static void material_table_from_swift(struct material_table *t, struct material_
     for (size_t k = 0; k < sizeof material_swift_compiled / sizeof *material_swift_compiled; k++)
       compiled |= strcmp(key, material_swift_compiled[k]) == 0;
     if (compiled) {
-      error_warning("%s:%d: EoS:%s (SWIFT's, for an equation of state chosen when SWIFT is "
-                    "compiled) has no effect in Bolide: give the material its EOS in the "
-                    "Materials section (eos: isothermal, polytropic, ...; examples/parameters.yml)",
-                    params_filename(p), param_node_line(v), key);
+      error_warning(
+          "%s:%d: EoS:%s (SWIFT's, for an equation of state chosen when SWIFT is "
+          "compiled) has no effect in Bolide: give the material its EOS in the "
+          "Materials section (eos: isothermal, polytropic, ...; examples/parameters.yml)",
+          params_filename(p), param_node_line(v), key);
       continue;
     }
     if (strncmp(key, "planetary_use_", 14) == 0 && material_swift_find(key + 14, &kind) >= 0) {
       const char *s = param_node_text(v);
-      if (!s || (strcmp(s, "0") && strcmp(s, "1") && strcasecmp(s, "true") &&
-                 strcasecmp(s, "false")))
+      if (!s ||
+          (strcmp(s, "0") && strcmp(s, "1") && strcasecmp(s, "true") && strcasecmp(s, "false")))
         material_swift_problem(&pr, p, v, "EoS:%s: expected 0 or 1 (true or false), got %s", key,
                                s ? s : "a collection");
       continue;
@@ -469,8 +471,8 @@ static void material_table_from_swift(struct material_table *t, struct material_
       material_swift_problem(&pr, p, v,
                              "EoS:%s: Bolide does not read SWIFT's %s files yet: define material "
                              "%d in the Materials section (%s)",
-                             key, kind == MATERIAL_SWIFT_HM80 ? "HM80 table" : "Tillotson parameter",
-                             id,
+                             key,
+                             kind == MATERIAL_SWIFT_HM80 ? "HM80 table" : "Tillotson parameter", id,
                              kind == MATERIAL_SWIFT_HM80
                                  ? "eos: table, file: ..., format: rho_T"
                                  : "eos: tillotson with its parameters; examples/materials.yml");
@@ -480,11 +482,12 @@ static void material_table_from_swift(struct material_table *t, struct material_
                              "EoS:%s (or define material %d in the Materials section)",
                              key, id, fkey, id);
     else if (kind == MATERIAL_SWIFT_TABLE && access(file, R_OK) != 0)
-      material_swift_problem(&pr, p, fn,
-                             "EoS:%s: cannot read the table %s: %s (SWIFT's planetary tables come "
-                             "with SWIFT: examples/Planetary/EoSTables/get_eos_tables.sh; README.md, "
-                             "Coming from SWIFT)",
-                             fkey, file, strerror(errno));
+      material_swift_problem(
+          &pr, p, fn,
+          "EoS:%s: cannot read the table %s: %s (SWIFT's planetary tables come "
+          "with SWIFT: examples/Planetary/EoSTables/get_eos_tables.sh; README.md, "
+          "Coming from SWIFT)",
+          fkey, file, strerror(errno));
     if (pr.n) continue;
     struct material mat;
     material_from_swift(&mat, libs, p, name, id, kind, file);
@@ -496,10 +499,11 @@ static void material_table_from_swift(struct material_table *t, struct material_
   }
   if (pr.n) error_exit("%s%s", pr.last, pr.n > 1 ? " (and the problems above)" : "");
   if (added[0])
-    error_note("%s: SWIFT's EoS section read as materials %s; Bolide's own section for materials is "
-               "Materials (examples/parameters.yml), where a run can also give strength, damage and "
-               "porosity",
-               params_filename(p), added);
+    error_note(
+        "%s: SWIFT's EoS section read as materials %s; Bolide's own section for materials is "
+        "Materials (examples/parameters.yml), where a run can also give strength, damage and "
+        "porosity",
+        params_filename(p), added);
 }
 
 void material_table_from_params(struct material_table *t, const struct params *p) {

@@ -225,7 +225,8 @@ int64_t fof_groups_local(size_t n, const double *x, const double *y, const doubl
   size_t m = 0;
   for (size_t i = 0; i < n; i++) {
     if (keep && !keep[i]) continue;
-    if (!(ell[i] > 0.0) || !isfinite(ell[i])) error_bug("fof_groups_local: linking length %g", ell[i]);
+    if (!(ell[i] > 0.0) || !isfinite(ell[i]))
+      error_bug("fof_groups_local: linking length %g", ell[i]);
     m++;
     if (x[i] < lo[0]) lo[0] = x[i];
     if (y[i] < lo[1]) lo[1] = y[i];
@@ -285,8 +286,8 @@ int64_t fof_groups_local(size_t n, const double *x, const double *y, const doubl
     for (int64_t dz = -k; dz <= k; dz++)
       for (int64_t dy = -k; dy <= k; dy++)
         for (int64_t dx = -k; dx <= k; dx++) {
-          const int64_t kb = fof_key((ca[0] + dx) & FOF_MASK, (ca[1] + dy) & FOF_MASK,
-                                     (ca[2] + dz) & FOF_MASK);
+          const int64_t kb =
+              fof_key((ca[0] + dx) & FOF_MASK, (ca[1] + dy) & FOF_MASK, (ca[2] + dz) & FOF_MASK);
           const int64_t b = kb == ka ? (int64_t)a : fof_cell_find(ckey, nc, kb);
           if (b < 0) continue;
           for (size_t p = start[a]; p < start[a + 1]; p++) {

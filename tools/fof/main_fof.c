@@ -66,30 +66,32 @@ static const struct option fofmain_longopts[] = {
 
 /** Print the usage text to f. */
 static void fofmain_usage(FILE *f) {
-  fprintf(f,
-          "Usage: bolide-fof SNAPSHOT.hdf5 [options]\n"
-          "Friends-of-friends fragments: mass, count, position, velocity, damage,\n"
-          "material fractions, boundness; cumulative mass spectrum.\n\n"
-          "  --link-local F         two particles are friends when closer than F times\n"
-          "                         the larger of their smoothing lengths: the linking\n"
-          "                         length follows the particle spacing through the\n"
-          "                         layers of a body (default: --link-local " FOF_LINK_LOCAL_DEFAULT_STR ",\n"
-          "                         which keeps an intact SEA or woma/SEAGen planet,\n"
-          "                         core to outer shell, in one fragment)\n"
-          "  --link-length L        one linking length for every pair, in m\n"
-          "  --link-h F             one linking length, F x the median smoothing length\n"
-          "                         (the default of Bolide before 0.2: --link-h 1 split\n"
-          "                         the sparser outer shells off a layered planet)\n"
-          "  --min-damage-drop D    leave out particles with damage >= D (Nakamura\n"
-          "                         analysis; default: keep all)\n"
-          "  --min-count C          list fragments of at least C particles (default 1)\n"
-          "  -o, --out FILE         fragment table (default: standard output)\n"
-          "  --spectrum FILE        cumulative mass spectrum N(>=m) as text\n"
-          "  --plot PNG             plot the spectrum (runs tools/plot_fragments.py with\n"
-          "                         $PYTHON, default python3; needs --out)\n"
-          "  -v                     log the phases and their times\n"
-          "  -h, --help             this help\n"
-          "  --version              version\n");
+  fprintf(
+      f,
+      "Usage: bolide-fof SNAPSHOT.hdf5 [options]\n"
+      "Friends-of-friends fragments: mass, count, position, velocity, damage,\n"
+      "material fractions, boundness; cumulative mass spectrum.\n\n"
+      "  --link-local F         two particles are friends when closer than F times\n"
+      "                         the larger of their smoothing lengths: the linking\n"
+      "                         length follows the particle spacing through the\n"
+      "                         layers of a body (default: --link-local " FOF_LINK_LOCAL_DEFAULT_STR
+      ",\n"
+      "                         which keeps an intact SEA or woma/SEAGen planet,\n"
+      "                         core to outer shell, in one fragment)\n"
+      "  --link-length L        one linking length for every pair, in m\n"
+      "  --link-h F             one linking length, F x the median smoothing length\n"
+      "                         (the default of Bolide before 0.2: --link-h 1 split\n"
+      "                         the sparser outer shells off a layered planet)\n"
+      "  --min-damage-drop D    leave out particles with damage >= D (Nakamura\n"
+      "                         analysis; default: keep all)\n"
+      "  --min-count C          list fragments of at least C particles (default 1)\n"
+      "  -o, --out FILE         fragment table (default: standard output)\n"
+      "  --spectrum FILE        cumulative mass spectrum N(>=m) as text\n"
+      "  --plot PNG             plot the spectrum (runs tools/plot_fragments.py with\n"
+      "                         $PYTHON, default python3; needs --out)\n"
+      "  -v                     log the phases and their times\n"
+      "  -h, --help             this help\n"
+      "  --version              version\n");
 }
 
 /** Parse a number for option `name`; positive unless zero_ok. */
@@ -280,7 +282,8 @@ int main(int argc, char **argv) {
       for (size_t i = 0; i < n; i++) {
         ell[i] = link_local * p.h[i];
         if (keep[i] && !(ell[i] > 0.0 && isfinite(ell[i])))
-          error_exit("%s: particle %zu has smoothing length %g: give --link-length", path, i, p.h[i]);
+          error_exit("%s: particle %zu has smoothing length %g: give --link-length", path, i,
+                     p.h[i]);
       }
     }
   }

@@ -71,31 +71,46 @@ int icgen_miluphcuda_main(int argc, char **argv) {
   struct milu_format fmt = {1, 1, 0, 0, 0, 0, 0};
   const char *out = NULL;
   enum { O_NODENS = 300, O_NOENER, O_SML, O_JC, O_SOLID, O_PALPHA, O_EPSALPHA };
-  static const struct option opts[] = {{"output", required_argument, NULL, 'o'},
-                                       {"no-density", no_argument, NULL, O_NODENS},
-                                       {"no-energy", no_argument, NULL, O_NOENER},
-                                       {"sml", no_argument, NULL, O_SML},
-                                       {"jc-plasticity", no_argument, NULL, O_JC},
-                                       {"solid", no_argument, NULL, O_SOLID},
-                                       {"palpha", no_argument, NULL, O_PALPHA},
-                                       {"epsalpha", no_argument, NULL, O_EPSALPHA},
-                                       {"help", no_argument, NULL, 'h'},
-                                       {NULL, 0, NULL, 0}};
+  static const struct option opts[] = {
+      {"output", required_argument, NULL, 'o'},   {"no-density", no_argument, NULL, O_NODENS},
+      {"no-energy", no_argument, NULL, O_NOENER}, {"sml", no_argument, NULL, O_SML},
+      {"jc-plasticity", no_argument, NULL, O_JC}, {"solid", no_argument, NULL, O_SOLID},
+      {"palpha", no_argument, NULL, O_PALPHA},    {"epsalpha", no_argument, NULL, O_EPSALPHA},
+      {"help", no_argument, NULL, 'h'},           {NULL, 0, NULL, 0}};
   int c;
   opterr = 0;
   optind = 1;
   while ((c = getopt_long(argc, argv, "o:h", opts, NULL)) != -1) {
     switch (c) {
-      case 'o': out = optarg; break;
-      case O_NODENS: fmt.density = 0; break;
-      case O_NOENER: fmt.energy = 0; break;
-      case O_SML: fmt.sml = 1; break;
-      case O_JC: fmt.jc = 1; break;
-      case O_SOLID: fmt.solid = 1; break;
-      case O_PALPHA: fmt.palpha = 1; break;
-      case O_EPSALPHA: fmt.epsalpha = 1; break;
-      case 'h': milu_usage(stdout); return 0;
-      default: error_exit("import-miluphcuda: unknown option '%s' (see --help)", argv[optind - 1]);
+      case 'o':
+        out = optarg;
+        break;
+      case O_NODENS:
+        fmt.density = 0;
+        break;
+      case O_NOENER:
+        fmt.energy = 0;
+        break;
+      case O_SML:
+        fmt.sml = 1;
+        break;
+      case O_JC:
+        fmt.jc = 1;
+        break;
+      case O_SOLID:
+        fmt.solid = 1;
+        break;
+      case O_PALPHA:
+        fmt.palpha = 1;
+        break;
+      case O_EPSALPHA:
+        fmt.epsalpha = 1;
+        break;
+      case 'h':
+        milu_usage(stdout);
+        return 0;
+      default:
+        error_exit("import-miluphcuda: unknown option '%s' (see --help)", argv[optind - 1]);
     }
   }
   if (optind != argc - 1) error_exit("import-miluphcuda: expected one input FILE (see --help)");
@@ -210,8 +225,12 @@ int icgen_miluphcuda_main(int argc, char **argv) {
   }
   struct unit_system si;
   units_init_si(&si);
-  struct snapshot_meta meta = {
-      .time = 0, .periodic = 0, .ic = 1, .run_name = "import-miluphcuda", .command = command, .hydro = 1};
+  struct snapshot_meta meta = {.time = 0,
+                               .periodic = 0,
+                               .ic = 1,
+                               .run_name = "import-miluphcuda",
+                               .command = command,
+                               .hydro = 1};
   for (int d = 0; d < 3; d++) meta.box_size[d] = L;
   snapshot_write(out, &meta, &p, &si, 0);
   printf("bolide-ic import-miluphcuda: %zu particles of %s (%s) written to %s\n", p.count, in, desc,

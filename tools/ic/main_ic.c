@@ -178,7 +178,9 @@ static long icgen_parse_int(const char *opt, const char *s, long min, long max) 
 
 int main(int argc, char **argv) {
   error_init(argv[0]);
-  if (argc < 2) error_exit("missing subcommand (box, sod, sedov, planet, impact or import-miluphcuda; see --help)");
+  if (argc < 2)
+    error_exit(
+        "missing subcommand (box, sod, sedov, planet, impact or import-miluphcuda; see --help)");
   if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
     icgen_usage(stdout);
     return 0;
@@ -196,8 +198,10 @@ int main(int argc, char **argv) {
                   : strcmp(sub, "sedov") == 0 ? CMD_SEDOV
                                               : 0;
   if (!cmd)
-    error_exit("unknown subcommand '%s' (box, sod, sedov, planet, impact or import-miluphcuda; see --help)",
-               sub);
+    error_exit(
+        "unknown subcommand '%s' (box, sod, sedov, planet, impact or import-miluphcuda; see "
+        "--help)",
+        sub);
 
   struct icgen_opts o = {.lattice = ICGEN_CUBIC,
                          .n = cmd == CMD_SOD ? 64 : 32,
