@@ -169,10 +169,22 @@ with tempfile.TemporaryDirectory() as tmp:
     check(r.returncode == 0 and len(t["count"]) == 1 and int(t["count"][0]) == 3000,
           "default: the intact planet is one fragment (%d fragments)" % len(t["count"]))
     check(any("--link-local" in ln for ln in lines), "the table names the default linking")
-    r = run(fof, planet, "--link-h", "1", "--out", out)
+    # the former default, one global length of the median h, with h as the
+    # cubic spline at eta 1.2348 sets it (1.2348 spacings): with the build's
+    # kernel at its default eta that is --link-h 1.2348 / eta
+    ref = run(os.path.join(build, "bolide"), "--param-reference").stdout.splitlines()
+    sec, eta = "", None
+    for ln in ref:
+        if ln and not ln[0].isspace() and not ln.startswith("#"):
+            sec = ln.split()[0]
+        elif sec == "SPH:" and ln.split()[:1] == ["resolution_eta:"]:
+            eta = float(ln.split()[1])
+    check(eta is not None, "bolide --param-reference gives SPH:resolution_eta")
+    F = 1.2348 / eta
+    r = run(fof, planet, "--link-h", "%.4f" % F, "--out", out)
     t1, _ = read_table(out)
-    check(len(t1["count"]) > 1, "--link-h 1 splits it (%d fragments): why the default changed"
-          % len(t1["count"]))
+    check(len(t1["count"]) > 1, "--link-h %.4f (the median h of the cubic spline at eta 1.2348) splits it "
+          "(%d fragments): why the default changed" % (F, len(t1["count"])))
     with h5py.File(planet, "r") as f:
         pp, hh = f["PartType0/Coordinates"][...], f["PartType0/SmoothingLengths"][...]
     for F in (0.9, 1.0):

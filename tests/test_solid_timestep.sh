@@ -95,8 +95,17 @@ with h5py.File("snapshot_0000.hdf5", "r") as f:
     cs, rho, h = g["SoundSpeeds"][:], g["Densities"][:], g["SmoothingLengths"][:]
 G, C = 40e9, 0.3
 cl = np.sqrt(cs**2 + 4 * G / (3 * rho))
-ratio = (c["dt"][1] * cl / (C * h)).min()
-print(f"first step {c['dt'][1]:.6e} s: dt c_l / (C h) = {ratio:.5f}, kernel_gamma {gamma} "
+# the first step's dt (the progress table of run.log: the statistics lines
+# follow Statistics:delta_time and need not include step 1), set by the h of
+# snapshot 0 (the h iteration at t = 0)
+dt1 = None
+for line in open("run.log"):
+    w = line.split()
+    if len(w) >= 6 and w[0] == "1" and dt1 is None:
+        dt1 = float(w[2])
+assert dt1 is not None, "no step 1 in run.log"
+ratio = (dt1 * cl / (C * h)).min()
+print(f"first step {dt1:.6e} s: dt c_l / (C h) = {ratio:.5f}, kernel_gamma {gamma} "
       f"(c_l / c_s = {np.median(cl / cs):.3f})")
 assert abs(ratio / gamma - 1) < 0.01, "the time step does not follow c_l"
 k0, k1 = c["E_kin"][0], c["E_kin"][-1]
