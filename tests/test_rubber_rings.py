@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Colliding rubber rings through bolide (Gray, Monaghan & Swift 2001;
 VALIDATION.md "Colliding rubber rings"; examples/RubberRings): plane strain
-(rings 8 layers tall in a box periodic in z), dx = 2.5 mm, 5696 particles,
+(rings 12 layers tall in a box periodic in z: wider than two supports of the
+Wendland C2 kernel at eta 1.7; 8 layers stopped at step 284), dx = 2.5 mm, 8544 particles,
 the example's own initial conditions and parameter files.
 
 Asserts what VALIDATION.md asks for:
@@ -12,7 +13,7 @@ Asserts what VALIDATION.md asks for:
   - with artificial stress (eps_s = 0.2, n = 4) they bounce whole: 1 + 1
     pieces at 2 ms and the left ring moving back at more than half its
     approach speed (measured -35.5 m/s against +50.3 m/s).
-A slow test: two runs of about 2000 steps (about a minute on 2 cores)."""
+A slow test: two runs of about 2000 steps (several minutes on 2 cores)."""
 import os
 import subprocess
 import sys
