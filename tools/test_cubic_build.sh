@@ -15,7 +15,7 @@ mkdir -p "$top/_build_cubic" && cd "$top/_build_cubic"
 [ -f Makefile ] || ../configure --with-kernel=cubic-spline --without-cuda >configure.out 2>&1 ||
   { tail -20 configure.out; exit 1; }
 make -j"$jobs" >make.out 2>&1 || { tail -30 make.out; exit 1; }
-pass="tests/test_solid_timestep.sh tests/test_energy_budget.sh tests/test_restart_exact.sh"
+pass="tests/test_solid_timestep.sh tests/test_energy_budget.sh tests/test_restart_exact.sh tests/test_rubber_rings.py"
 make -j"$jobs" check TESTS="$pass tests/test_sod.sh" PYTHON="$top/_build/.venv/bin/python" >check.out 2>&1 || true
 rc=0
 for t in $pass; do
