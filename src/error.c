@@ -83,26 +83,27 @@ void error_bug_at(const char *file, int line, const char *fmt, ...) {
   error_exit("internal error at %s:%d: %s (please report this bug)", file, line, msg);
 }
 
-void error_warning(const char *fmt, ...) {
+/** One line "PROGRAM: KIND: MESSAGE" on stderr (after what stdout holds). */
+static void error_line(const char *kind, const char *fmt, va_list ap) {
   char msg[4096];
-  va_list ap;
-  va_start(ap, fmt);
   vsnprintf(msg, sizeof msg, fmt, ap);
-  va_end(ap);
   fflush(stdout);
-  fprintf(stderr, "%s: warning: %s\n", error_progname, msg);
+  fprintf(stderr, "%s: %s: %s\n", error_progname, kind, msg);
   fflush(stderr);
 }
 
-void error_note(const char *fmt, ...) {
-  char msg[4096];
+void error_warning(const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
-  vsnprintf(msg, sizeof msg, fmt, ap);
+  error_line("warning", fmt, ap);
   va_end(ap);
-  fflush(stdout);
-  fprintf(stderr, "%s: note: %s\n", error_progname, msg);
-  fflush(stderr);
+}
+
+void error_note(const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  error_line("note", fmt, ap);
+  va_end(ap);
 }
 
 void error_report(const char *fmt, ...) {
