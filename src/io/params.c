@@ -161,7 +161,8 @@ static const char *candidate_name(int k) {
  *  when nothing is within three slips.  A key is looked for among the keys
  *  of its own section first, then (put in the wrong section) among the keys
  *  of every section, where the same key name in another section wins.
- *  Returns the index in params_table of the key suggested, or -1. */
+ *  Returns the index in params_table of the key suggested, or -1 (also when
+ *  the name suggested is one of SWIFT's, which has no entry in the table). */
 static int suggest(const char *name, int section, char *buf, size_t len) {
   int best = 4, best_k = -1;
   const char *colon = strchr(name, ':');
@@ -198,7 +199,7 @@ static int suggest(const char *name, int section, char *buf, size_t len) {
     snprintf(buf, len, " (did you mean '%.*s'?)", (int)(strchr(c, ':') - c), c);
   else
     snprintf(buf, len, " (did you mean '%s'?)", c);
-  return section ? -1 : best_k;
+  return section || best_k >= PARAMS_N ? -1 : best_k;
 }
 
 /* ================================================================ the tree */
