@@ -12,6 +12,10 @@
 #   leaves out and that take minutes each under ASan, SAN_HEAVY_TESTS below.)
 #   SAN_JOBS: tests (and compilations) at once, default the number of cores
 #   (SAN_JOBS=1 on a shared machine: one test at a time).
+#   SAN_BUILDDIR: the ASan build folder (default _build_asan);
+#   SAN_CONFIGURE: further configure options (--with-kernel=cubic-spline, say);
+#   SAN_PYTHON: the interpreter the Python tests run with instead of the
+#   build's venv (a host without network: its python3 with h5py and numpy).
 # On a 16-core host the whole suite: tools/test_sanitizers.sh asan FULL
 # Closes with one line "sanitizers: ..." and exits non-zero on any failure.
 set -euo pipefail
@@ -47,23 +51,25 @@ configure_in() {
   local dir="$top/$1"
   mkdir -p "$dir"
   if [ ! -f "$dir/Makefile" ] || [ "$dir/config.status" -ot "$top/configure" ]; then
-    (cd "$dir" && "$top/configure" --enable-sanitizers="$2" --without-cuda >configure.out 2>&1) ||
+    (cd "$dir" && "$top/configure" --enable-sanitizers="$2" --without-cuda ${SAN_CONFIGURE:-} >configure.out 2>&1) ||
       { tail -20 "$dir/configure.out"; return 1; }
   fi
   if [ -d "$top/_build/.venv" ] && [ ! -e "$dir/.venv" ]; then ln -s "$top/_build/.venv" "$dir/.venv"; fi
 }
 
 if [ "$what" = all ] || [ "$what" = asan ]; then
-  configure_in _build_asan address,undefined
-  cd "$top/_build_asan"
+  asan_dir="${SAN_BUILDDIR:-_build_asan}"
+  configure_in "$asan_dir" address,undefined
+  cd "$top/$asan_dir"
+  pyarg=""; [ -n "${SAN_PYTHON:-}" ] && pyarg="PYTHON=$SAN_PYTHON"
   tests="${*:-$SAN_FAST_TESTS}"
   [ "$tests" = HEAVY ] && tests=$SAN_HEAVY_TESTS
   start=$(date +%s)
   set +e
   if [ "$tests" = FULL ]; then
-    make -j"$jobs" check-summary >check.out 2>&1
+    make -j"$jobs" check-summary $pyarg >check.out 2>&1
   else
-    make -j"$jobs" check-summary TESTS="$(echo $tests)" >check.out 2>&1
+    make -j"$jobs" check-summary $pyarg TESTS="$(echo $tests)" >check.out 2>&1
   fi
   rc=$?
   set -e

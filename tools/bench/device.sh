@@ -19,6 +19,10 @@
 #                    and GPU (ENERGY_SIZES, ENERGY_MODES override)
 #   cmd:'COMMAND'    any command, run in the repository root with the build's
 #                    environment (BOLIDE_BUILD, PYTHON, BOLIDE_BENCH_IC set)
+# DEVICE_NOBUILD=1 skips the CUDA build (for commands that build their own,
+# such as the sanitizer builds).  /tmp/kit/python runs the host's python3
+# with the carried h5py on its path whatever PYTHONPATH a Makefile sets
+# (SAN_PYTHON=/tmp/kit/python for tools/test_sanitizers.sh).
 set -uo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 cd "$top"
@@ -34,6 +38,8 @@ export CPPFLAGS="-I/tmp/kit/usr/include" LDFLAGS="-L/tmp/kit/usr/lib/x86_64-linu
 export LD_LIBRARY_PATH="/tmp/kit/usr/lib/x86_64-linux-gnu${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 export PYTHONPATH="/tmp/site${PYTHONPATH:+:$PYTHONPATH}"
 export PYTHON=$(command -v python3)
+printf '#!/bin/sh\nPYTHONPATH=/tmp/site${PYTHONPATH:+:$PYTHONPATH} exec %s "$@"\n' "$PYTHON" >/tmp/kit/python
+chmod +x /tmp/kit/python
 export BOLIDE_BENCH_IC=$kit/make_impact_ic.py
 
 build() { # dir, extra configure options
@@ -50,7 +56,7 @@ build() { # dir, extra configure options
 }
 
 nvidia-smi --query-gpu=name,memory.total,driver_version --format=csv,noheader | tee "$out/gpu.txt"
-build _dbuild 2>&1 | tee "$out/build.log" || exit 1
+if [ -z "${DEVICE_NOBUILD:-}" ]; then build _dbuild 2>&1 | tee "$out/build.log" || exit 1; fi
 export BOLIDE_BUILD=$top/_dbuild
 rc=0
 for step in "$@"; do
