@@ -12,6 +12,7 @@ void hydro_props_init(struct hydro_props *hp, const struct params *p) {
   hp->h_tolerance = params_get_real(p, "SPH:h_tolerance");
   hp->h_max = params_get_real(p, "SPH:h_max");
   hp->max_iterations = (int)params_get_int(p, "SPH:max_ghost_iterations");
+  hp->h_continuity = params_get_enum(p, "SPH:h_evolution") == 1;
   hp->cfl = params_get_real(p, "SPH:CFL_condition");
   hp->log_max_volume_change = log(params_get_real(p, "SPH:max_volume_change"));
   hp->alpha = params_get_real(p, "SPH:viscosity_alpha");

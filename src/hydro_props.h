@@ -12,6 +12,7 @@ struct hydro_props {
   double h_tolerance;   /**< relative tolerance of the h iteration */
   double h_max;         /**< largest smoothing length */
   int max_iterations;   /**< of the h iteration */
+  int h_continuity;     /**< SPH:h_evolution: continuity (dh/dt = -h/(3 rho) drho/dt, no iteration) */
   double cfl;           /**< Courant factor */
   double log_max_volume_change; /**< ln of the largest kernel-volume change per step */
   double alpha;         /**< artificial viscosity alpha (Monaghan 1997) */

@@ -524,12 +524,12 @@ extern "C" void gpu_download_all(struct gpu *g, struct parts *p) {
 }
 
 extern "C" void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt, double xsph,
-                          double h_max) {
+                          double h_max, int h_continuity) {
   if (p->count != g->dev.count) error_bug("GPU and host particle counts differ");
   gpu_pin(g, p);
   cudaStream_t s = g->stream[0];
   gpu_check(cudaEventRecord(g->ev_drift[0], s));
-  drift_gpu_launch(s, g->dev, dt_kick, dt, xsph, h_max);
+  drift_gpu_launch(s, g->dev, dt_kick, dt, xsph, h_max, h_continuity);
   const int idx[4] = {gpu_field_index("x"), gpu_field_index("y"), gpu_field_index("z"),
                       gpu_field_index("h")};
   gpu_copy_fields(g, p, idx, 4, 0);

@@ -182,7 +182,8 @@ void gpu_download_all(struct gpu *g, struct parts *p);
 /** First half kick by dt_kick and drift by dt of the resident particles;
  *  copy back the positions and smoothing lengths (what the CPU needs to
  *  decide on a rebuild and to build the neighbour lists). */
-void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt, double xsph, double h_max);
+void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt, double xsph, double h_max,
+               int h_continuity);
 /** The watchdog (engine.c) on the resident particles.  gpu_watchdog_save:
  *  keep the positions before the drift on the device (a device copy, queued
  *  before the drift).  gpu_watchdog_moved: after the drift, the first

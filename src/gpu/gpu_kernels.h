@@ -194,7 +194,8 @@ void gpu_bytes_add(struct gpu *g, double h2d, double d2h);
 void force_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
                       struct hydro_props hp);
 /** First half kick and drift of every particle (tasks/drift/drift_gpu.cu). */
-void drift_gpu_launch(cudaStream_t s, struct parts p, double dt_kick, double dt, double xsph, double h_max);
+void drift_gpu_launch(cudaStream_t s, struct parts p, double dt_kick, double dt, double xsph, double h_max,
+                      int h_continuity);
 /** Second half kick and time step; leaf_dt[L] the smallest of leaf L; with
  *  damage_max_change > 0 the damage limit joins, with grav.enabled the
  *  gravitational acceleration and its limit (tasks/kick/kick_gpu.cu). */

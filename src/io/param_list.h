@@ -57,6 +57,7 @@
   X("SPH:h_tolerance", PARAM_REAL, "1e-4", 1e-10, 0.1, NULL, "-", "relative tolerance of the smoothing length iteration") \
   X("SPH:h_max", PARAM_REAL, "1e30", 0, PARAM_INF, NULL, "internal length", "largest allowed smoothing length") \
   X("SPH:h_min_ratio", PARAM_REAL, "0", 0, 1, NULL, "-", "smallest allowed h in units of the softening (0: no limit)") \
+  X("SPH:h_evolution", PARAM_ENUM, "iterate", 0, 0, "iterate|continuity", "-", "smoothing length: iterate (solve n(h) h^3 = resolution_eta^3 at every step, the neighbour number; the drift's dh/dt = h div v / 3 is its first guess) or continuity (integrate dh/dt = -h/(3 rho) drho/dt in the drift, with the drho/dt of the force loop, and take it as it is: h keeps the ratio to (m/rho)^(1/3) of the initial conditions, e.g. a graded body from bolide-ic import-mesh; theory/sph.md section 2)") \
   X("SPH:max_ghost_iterations", PARAM_INT, "30", 1, 1000, NULL, "-", "iterations of the smoothing length before the run stops with an error") \
   X("SPH:CFL_condition", PARAM_REAL, "0.2", 1e-4, 1, NULL, "-", "Courant factor of the time step") \
   X("SPH:max_volume_change", PARAM_REAL, "1.4", 1.01, 10, NULL, "-", "largest allowed change of kernel volume in one step") \

@@ -63,13 +63,16 @@ BOLIDE_INLINE void kick_sync_predicted(struct parts *BOLIDE_RESTRICT p, size_t i
  *  the half-step velocity; the velocity and energy used by the next force
  *  computation are predicted to the end of the step; h follows the
  *  velocity divergence (dh/dt = h div v / 3) as a first guess for the
- *  iteration, never above h_max (SPH:h_max; a larger guess would widen
- *  the cells' reach at the next rebuild check).  With XSPH (xsph > 0)
- *  positions move with v + xsph * sum m_j/rho_ij (v_j - v_i) W_ij
+ *  iteration, or, with h_continuity (SPH:h_evolution: continuity), the
+ *  density rate of the last force loop, dh/dt = -h/(3 rho) drho/dt, as
+ *  the h itself (theory/sph.md section 2); h = h exp(dt dh/dt / h), the
+ *  exponent within +-0.2, never above h_max (SPH:h_max; a larger guess
+ *  would widen the cells' reach at the next rebuild check).  With XSPH
+ *  (xsph > 0) positions move with v + xsph * sum m_j/rho_ij (v_j - v_i) W_ij
  *  (Monaghan 1989; theory/sph.md eq. S15), the sum from the last force
  *  loop. */
 BOLIDE_INLINE void drift_part(struct parts *BOLIDE_RESTRICT p, size_t i, double dt, double xsph,
-                              double h_max) {
+                              double h_max, int h_continuity) {
   p->x[i] += (p->vx[i] + xsph * p->xsphx[i]) * dt;
   p->y[i] += (p->vy[i] + xsph * p->xsphy[i]) * dt;
   p->z[i] += (p->vz[i] + xsph * p->xsphz[i]) * dt;
@@ -89,7 +92,7 @@ BOLIDE_INLINE void drift_part(struct parts *BOLIDE_RESTRICT p, size_t i, double 
   p->vpz[i] = p->vz[i] + p->az[i] * half;
   const double up = p->u[i] + p->du_dt[i] * half;
   p->up[i] = (up >= 0.0 || !(p->flags[i] & PART_U_FLOOR)) ? up : 0.5 * p->u[i];
-  double w = p->div_v[i] * dt / 3.0;
+  double w = h_continuity ? -p->drho_dt[i] * dt / (3.0 * p->rho[i]) : p->div_v[i] * dt / 3.0;
   if (w > 0.2) w = 0.2;
   if (w < -0.2) w = -0.2;
   const double h = p->h[i] * exp(w);

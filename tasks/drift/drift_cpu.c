@@ -6,11 +6,11 @@
 #include "hydro_parts.h"
 
 void drift_cell_cpu(struct parts *p, struct cell *c, double dt_kick, double dt, double xsph,
-                    double h_max) {
+                    double h_max, int h_continuity) {
   const size_t end = c->offset + c->count;
   for (size_t i = c->offset; i < end; i++) {
     kick_part(p, i, dt_kick);
-    drift_part(p, i, dt, xsph, h_max);
+    drift_part(p, i, dt, xsph, h_max, h_continuity);
     hydro_density_reset(p, i);
   }
   cell_update_bounds(p, c);

@@ -6,8 +6,9 @@
 #include "part.h"
 
 /** First half kick by dt_kick, then drift by dt, of every particle of c;
- *  updates the cell's h_max and dx_max. */
+ *  updates the cell's h_max and dx_max.  h_continuity: SPH:h_evolution:
+ *  continuity (drift_part). */
 void drift_cell_cpu(struct parts *p, struct cell *c, double dt_kick, double dt, double xsph,
-                    double h_max);
+                    double h_max, int h_continuity);
 
 #endif

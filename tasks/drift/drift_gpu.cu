@@ -6,16 +6,19 @@
 #include "gpu_kernels.h"
 
 /** See drift_gpu_launch. */
-__global__ void drift_gpu_kernel(struct parts p, double dt_kick, double dt, double xsph, double h_max) {
+__global__ void drift_gpu_kernel(struct parts p, double dt_kick, double dt, double xsph, double h_max,
+                                 int h_continuity) {
   const size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= p.count) return;
   kick_part(&p, i, dt_kick);
-  drift_part(&p, i, dt, xsph, h_max); /* XSPH sums of the last force kernel (force_iact.h) */
+  /* XSPH sums of the last force kernel (force_iact.h) */
+  drift_part(&p, i, dt, xsph, h_max, h_continuity);
 }
 
-void drift_gpu_launch(cudaStream_t s, struct parts p, double dt_kick, double dt, double xsph, double h_max) {
+void drift_gpu_launch(cudaStream_t s, struct parts p, double dt_kick, double dt, double xsph, double h_max,
+                      int h_continuity) {
   if (p.count == 0) return;
   const unsigned nb = (unsigned)((p.count + GPU_BLOCK - 1) / GPU_BLOCK);
-  drift_gpu_kernel<<<nb, GPU_BLOCK, 0, s>>>(p, dt_kick, dt, xsph, h_max);
+  drift_gpu_kernel<<<nb, GPU_BLOCK, 0, s>>>(p, dt_kick, dt, xsph, h_max, h_continuity);
   gpu_check_launch(drift_gpu_kernel);
 }

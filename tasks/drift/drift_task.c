@@ -4,5 +4,5 @@
 #include "engine.h"
 
 void drift_task(struct engine *e, struct task *t) {
-  drift_cell_cpu(&e->parts, t->ci, 0.5 * e->dt, e->dt, e->hp.xsph, e->hp.h_max);
+  drift_cell_cpu(&e->parts, t->ci, 0.5 * e->dt, e->dt, e->hp.xsph, e->hp.h_max, e->hp.h_continuity);
 }

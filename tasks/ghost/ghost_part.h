@@ -35,11 +35,22 @@ BOLIDE_INLINE void ghost_part_start(struct parts *BOLIDE_RESTRICT p, size_t i) {
 /** One iteration step for particle i (its sums complete, self term
  *  included); sets PART_H_CONVERGED when done, else stores the new h.
  *  h_cap: the largest h the cells allow.  Returns 1 if the particle was
- *  capped at h_cap below SPH:h_max (the cells must be rebuilt). */
+ *  capped at h_cap below SPH:h_max (the cells must be rebuilt).  With
+ *  SPH:h_evolution: continuity the h the drift integrated is kept (one
+ *  pass of the sums), unless it is above the cap: then the sums are redone
+ *  at the cap. */
 BOLIDE_INLINE int ghost_part_step(struct parts *BOLIDE_RESTRICT p, size_t i,
                                   const struct hydro_props *hp, double h_cap) {
   double h = p->h[i];
   const double hmax = hp->h_max < h_cap ? hp->h_max : h_cap;
+  if (hp->h_continuity) {
+    if (h > hmax) {
+      p->h[i] = hmax;
+      return 0;
+    }
+    p->flags[i] |= PART_H_CONVERGED;
+    return (h >= h_cap && h_cap < hp->h_max) ? 1 : 0;
+  }
   const int r = ghost_h_iterate(&h, &p->h_lo[i], &p->h_hi[i], p->wcount[i], p->wcount_dh[i],
                                 hp->eta, hp->h_tolerance, hmax);
   int capped = 0;

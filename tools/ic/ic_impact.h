@@ -16,5 +16,7 @@ int icgen_planet_main(int argc, char **argv);
 int icgen_impact_main(int argc, char **argv);
 /** import-miluphcuda: a miluphcuda ASCII input file (ic_miluphcuda.c). */
 int icgen_miluphcuda_main(int argc, char **argv);
+/** import-mesh: the nodes of a finite-element mesh (ic_mesh.c). */
+int icgen_mesh_main(int argc, char **argv);
 
 #endif
