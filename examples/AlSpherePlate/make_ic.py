@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Initial conditions of the aluminium sphere on a plate (Hiermaier et al.
-1997; ../../shared VALIDATION.md): an Al 6061-T6 sphere of 1 cm diameter at
+1997; theory/validation.md): an Al 6061-T6 sphere of 1 cm diameter at
 6180 m/s, normal incidence, onto an Al 6061-T6 plate 0.4 cm thick, both on a
 cubic lattice of spacing dx, rho = rho0 = 2710 kg/m^3, u = 0.  The plate is
 a square of half-width `--half-width` (a full 3D plate: the code has no

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Initial conditions of the Prater crater (Prater 1970; ../../shared
-VALIDATION.md; Pierazzo et al. 2008): an Al 6061 sphere of 6.35 mm
+"""Initial conditions of the Prater crater (Prater 1970;
+theory/validation.md, "Prater crater"; Pierazzo et al. 2008): an Al 6061 sphere of 6.35 mm
 diameter (the 1/4-inch ball of the experiments; `--radius`, default
 3.175 mm) at 7 km/s, normal incidence, onto a block of aluminium, both on a cubic lattice of spacing dx,
 rho = rho0 = 2700 kg/m^3, u = 0.  The target is a block of half-width

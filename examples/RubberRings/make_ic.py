@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Initial conditions of the colliding rubber rings (Gray, Monaghan & Swift
-2001, CMAME 190, 6641, Sec. 5.3; ../../shared VALIDATION.md): two rings of
+2001, CMAME 190, 6641, Sec. 5.3; theory/validation.md): two rings of
 inner radius 3 cm and outer radius 4 cm, here short tubes of a given
 thickness in z (the paper is 2D), on a cubic lattice of spacing dx, moving
 towards each other at +-0.059 c0 (c0 = 852 m/s), rho = rho0 = 1010 kg/m^3,

@@ -1,6 +1,6 @@
 #!/bin/bash
 # Tillotson granite and basalt: P and c_s against density for energies in
-# the cold, hybrid and expanded regions (VALIDATION.md "Tillotson sound
+# the cold, hybrid and expanded regions (theory/validation.md "Tillotson sound
 # speed"), drawn with bolide-eos --plot; the number behind the case -- the
 # analytic c^2 against a numerical isentropic derivative, 1e-6 relative --
 # is asserted by tests/test_eos (make check), whose -v output lists every state.
