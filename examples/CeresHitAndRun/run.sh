@@ -26,6 +26,5 @@ rm -f ceres_0*.hdf5 ceres_0*.xmf statistics.txt
 last=$(ls ceres_0*.hdf5 | tail -1)
 "$build/bolide-fof" "$last" --link-h 2 --min-count 10 -o fragments.txt
 PYTHONPATH=$top/tools "$python" survivors.py fragments.txt "$last" | tee survivors.txt
-PYTHONPATH=$top/tools "$python" $top/tools/plot_impact.py --stats statistics.txt \
-  --length-unit 1e3 --length-name km --impactor-offset 3 ceres_0*.hdf5 > bound_mass.txt
-echo "pictures: $(pwd)/collision.png $(pwd)/energy.png; survivors: $(pwd)/survivors.txt"
+./plot.sh
+echo "survivors: $(pwd)/survivors.txt"
