@@ -1,6 +1,7 @@
 /* Errors, warnings and log messages.
  *
- * The contract of every Bolide program (DESIGN.md): on failure print one line
+ * The contract of every Bolide program (theory/architecture.md, "Programs
+ * and their contract"): on failure print one line
  * "PROGRAM: error: ..." to stderr and exit non-zero.  Log lines carry the
  * wall-clock time since start. */
 #ifndef BOLIDE_ERROR_H

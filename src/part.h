@@ -3,7 +3,8 @@
  * Every per-particle field is declared once, in BOLIDE_PART_FIELDS below.
  * From that one list come the struct members, allocation, reordering on
  * rebuild, the HDF5 dataset names of initial conditions and snapshots, their
- * units and the XDMF description (STYLE.md: "one list, many uses").
+ * units and the XDMF description (theory/architecture.md, rule 5: "one list,
+ * many uses").
  *
  * Vectors and tensors are stored one array per component (x, y, z each a
  * contiguous array) so that CPU loops vectorise and GPU loads coalesce; the

@@ -1,6 +1,6 @@
 /* The space: the simulation box, its top-level grid of cells and the octree
  * below each top-level cell, over particles sorted so that every cell owns
- * one contiguous index range (DESIGN.md, "Data layout").
+ * one contiguous index range (theory/architecture.md, "Data layout").
  *
  * space_rebuild() wraps (periodic box) or removes (open box) particles,
  * chooses the top-level grid so that every interacting pair of particles is

@@ -2,9 +2,9 @@
  *
  * A task is a piece of work on a cell (ci) or a pair of cells (ci, cj).  Its
  * *type* says its shape (self, pair, ghost, drift, kick, ...) and its
- * *subtype* the physics it runs (density, gradient, force, ...): STYLE.md
- * rule 4.  The scheduler treats ci and cj as opaque pointers; it never looks
- * inside a cell.
+ * *subtype* the physics it runs (density, gradient, force, ...):
+ * theory/architecture.md, rule 4.  The scheduler treats ci and cj as opaque
+ * pointers; it never looks inside a cell.
  *
  * Two separate mechanisms order the work (theory/scheduler.md):
  *  - dependencies: `wait` counts the unfinished predecessors; at zero the task
@@ -26,7 +26,7 @@
  * and subtypes of the task families, from their registry
  * (tasks/task_families.h).  The enums and the name tables (used by the
  * timers, the task dumps and tools/plot_tasks.py through the dumps) are
- * generated from these lists (STYLE.md rule 5). */
+ * generated from these lists (theory/architecture.md, rule 5). */
 /* clang-format off */
 #define TASK_TYPES(X)                                                    \
   X(none)     /* unused slot: a task never has it */                     \

@@ -1,5 +1,6 @@
 /* The interaction-loop skeleton, written once for every task family
- * (STYLE.md, "three layers": pair function, loop skeleton, task).
+ * (theory/architecture.md, rule 2, "three layers": pair function, loop
+ * skeleton, task).
  *
  * A task family includes this header after naming its interaction:
  *

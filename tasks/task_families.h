@@ -1,7 +1,8 @@
 /* The registry of task families: one row per folder tasks/<family>/.
  *
  * Everything the engine, the scheduler and the GPU runner know about a
- * family comes from here (STYLE.md rule 5, "one list, many uses"):
+ * family comes from here (theory/architecture.md, rule 5, "one list, many
+ * uses"):
  *
  *  - the task types and subtypes (src/task.h) and so the names of the
  *    timers and of the task dumps (tools/plot_tasks.py);

@@ -3,7 +3,8 @@
  *
  *   bench_gravity_accuracy [options] SOURCE
  *
- * SOURCE: initial conditions in HDF5 (the reference impact of shared/bench,
+ * SOURCE: initial conditions in HDF5 (the reference impact of
+ * theory/validation.md, "Benchmarks",
  * read with ic_read in the file's own units; G = 1: relative errors and
  * times do not depend on G), or a built-in set: plummer2:N (the two
  * clustered Plummer spheres of tests/gravity_sets.h), plummer:N, uniform:N.

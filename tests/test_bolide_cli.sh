@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The bolide command line (DESIGN.md "Programs and their contract"): --help
+# The bolide command line (theory/architecture.md, "Programs and their contract"): --help
 # and --version exit 0; every bad input gives one line "bolide: error: ..."
 # naming the file or key and a non-zero exit, and leaves no half-written
 # output; --check validates without running; -n 0 turns the initial

@@ -244,7 +244,7 @@ static void test_bar(void) {
   flaws_rng_seed(&rng, 7);
   double R[3][3];
   random_rotation(&rng, R);
-  /* basalt (VALIDATION.md): K = A = 26.7 GPa, mu = 22.7 GPa, rho 2700;
+  /* basalt (theory/validation.md): K = A = 26.7 GPa, mu = 22.7 GPa, rho 2700;
    * Nakamura's Weibull k = 5e34 m^-3, m = 8, a 1 mm^3 particle with the
    * 60 weakest flaws of its own volume */
   const double K = 26.7e9, mu = 22.7e9, rho = 2700, k = 5e34, m = 8, V = 1e-9;

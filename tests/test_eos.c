@@ -6,8 +6,8 @@
  * Tolerances (stated, not tuned):
  *  - c^2 analytic vs numerical dP/drho along the isentrope du = P/rho^2
  *    drho (RK4 with 20 sub-steps, 6th-order central difference with step
- *    h = 1e-4 rho): 1e-6 relative (VALIDATION.md); the method's own error is
- *    ~1e-10 (truncation h^6, round-off 1e-16 P/h).
+ *    h = 1e-4 rho): 1e-6 relative (theory/validation.md, "Tillotson sound
+ *    speed"); the method's own error is ~1e-10 (truncation h^6, round-off 1e-16 P/h).
  *  - continuity: the jump of P across a region boundary, over a step of
  *    1e-7 (relative) on each side, is at most 3 times the change of P over
  *    the adjacent step of the same size (a kink passes, a step fails) and at
@@ -66,7 +66,7 @@ static struct eos_tillotson granite(void) {
   return p;
 }
 
-/** Basalt of Benz & Asphaug 1999 (VALIDATION.md). */
+/** Basalt of Benz & Asphaug 1999 (theory/validation.md). */
 static struct eos_tillotson basalt(void) {
   struct eos_tillotson p = granite();
   p.rho0 = 2700.0;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Evrard (1988) collapse (VALIDATION.md), hydro + tree gravity at the default
+# Evrard (1988) collapse (theory/validation.md), hydro + tree gravity at the default
 # settings, 7,208 particles to t = 1.4 (through the bounce): the total energy
 # stays within 1% of its initial value at every output of the statistics
 # file, and the thermal energy peaks within 15% of the free-fall time of the

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# The formatting check of STYLE.md: every C and CUDA file of src/, tasks/,
-# tests/ and tools/ is as clang-format writes it with the repository's
-# .clang-format, except the files listed in tests/format.allow (not yet
+# The formatting check of theory/architecture.md (rule 11): every C and CUDA
+# file of src/, tasks/, tests/ and tools/ is as clang-format writes it with
+# the repository's .clang-format, except the files listed in tests/format.allow (not yet
 # formatted; the list only shrinks: a listed file that is formatted fails
 # too).  Formatting differs between clang-format versions: the check runs
 # with version 14 (clang-format-14 or a clang-format of that version) and

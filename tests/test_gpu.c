@@ -1,7 +1,7 @@
 /* CPU against GPU on the same particles, every task family of the FORCE
- * phase (STYLE.md rule 9): density sums (rho, neighbour number, div v), the
- * iterated smoothing lengths, pressure and sound speed from the EOS, the
- * accelerations, du/dt, the signal velocity, the kicked velocities and
+ * phase (theory/architecture.md, rule 9): density sums (rho, neighbour number,
+ * div v), the iterated smoothing lengths, pressure and sound speed from the
+ * EOS, the accelerations, du/dt, the signal velocity, the kicked velocities and
  * energies and the new time steps; with solids the corrected velocity
  * gradient, dS/dt, the stress after the radial return and the kick, the
  * plastic strain and the artificial stress; with brittle materials the

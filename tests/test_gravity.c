@@ -1,4 +1,5 @@
-/* Gravity accuracy (VALIDATION.md): tree forces against direct summation.
+/* Gravity accuracy (theory/validation.md, "Gravity accuracy"): tree forces
+ * against direct summation.
  *
  * For a uniform sphere, a Plummer sphere and two clustered bodies (two
  * Plummer spheres of different mass and size), N = 20000 each, in an open

@@ -5,7 +5,7 @@
 # summation) at the first evaluation (no previous acceleration: the
 # adaptive criterion's scale from gravity_estimate) and at the second (the
 # scale from the first) stay at or below SWIFT's on the reference impact,
-# median 3.3e-5 and 99th percentile 1.7e-4 (shared/bench/README.md), on
+# median 3.3e-5 and 99th percentile 1.7e-4 (theory/validation.md, "Benchmarks"), on
 #   * two clustered Plummer spheres, 20,000 particles (tests/gravity_sets.h);
 #   * a SEA planet, 20,000 particles, iron core (30% of the mass) in a granite
 #     mantle (bolide-ic planet), softening = the particle spacing.

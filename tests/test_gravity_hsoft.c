@@ -9,7 +9,7 @@
  * pair softening (gravity_direct_h):
  *   - |a - a_dir| / |a_dir|: median < 1e-4, 99th percentile < 1e-3 at the
  *     defaults (theta_cr 0.5, order 5, epsilon_fmm 5e-5, first and second
- *     step), the limits of VALIDATION.md for gravity;
+ *     step), the limits of theory/validation.md for gravity;
  *   - momentum |sum m a| / sum m |a| < 1e-12 (rounding) for the tree and
  *     the direct sum; potential energy within 1e-6;
  *   - the opening criterion needs each cell's largest support: the same

@@ -9,7 +9,7 @@
  * at the new positions, the kept local expansions evaluated there.  Checks:
  *   - with f = 0 the replay reproduces the full evaluation to rounding;
  *   - at the default Gravity:reuse_tolerance (f = 0.01) the reused field
- *     meets the bar of a full evaluation (VALIDATION.md: median relative
+ *     meets the bar of a full evaluation (theory/validation.md: median relative
  *     error < 1e-4, 99th percentile < 1e-3 against direct summation);
  *   - the error grows with f (0.01, 0.05, 0.2): it is an approximation
  *     whose size the tolerance sets.

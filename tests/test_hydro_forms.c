@@ -1,7 +1,7 @@
 /* The symmetric CPU loops (cell self and pair tasks) against the gather form
  * of the same pair interactions evaluated by brute force over all pairs:
  * density sums and forces must agree to round-off, and the symmetric forces
- * must conserve linear momentum to round-off (STYLE.md rule 3).
+ * must conserve linear momentum to round-off (theory/architecture.md, rule 3).
  * Random particles with h varying by a factor 4, periodic and open boxes. */
 #include <math.h>
 #include <stdio.h>

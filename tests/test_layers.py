@@ -12,7 +12,7 @@ Fails (one FAIL line per finding) when
   hand list  a C or CUDA line outside the registry lists three or more family
              names as strings (a list kept by hand beside the registry: the
              names of Scheduler:gpu, of timers or of GPU stages);
-  layers     a file includes across the layers DESIGN.md draws:
+  layers     a file includes across the layers of theory/architecture.md, "Layers":
                src/ (engine, scheduler, io, gpu) -> tasks/: only the registry
                src/materials/ -> anything but src/materials/, the portability
                  macros, errors, particles, units and parameters

@@ -1,4 +1,5 @@
-/* Neighbour search (VALIDATION.md): the interacting pairs found by the cell
+/* Neighbour search (theory/validation.md, "Neighbour search"): the
+ * interacting pairs found by the cell
  * space and the loop skeleton (tasks/iact_loop.h) equal a brute-force O(N^2)
  * search, exactly.
  *

@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """Colliding rubber rings through bolide (Gray, Monaghan & Swift 2001;
-VALIDATION.md "Colliding rubber rings"; examples/RubberRings): plane strain
+theory/validation.md "Colliding rubber rings"; examples/RubberRings): plane strain
 (rings 8 layers tall in a box periodic in z), dx = 2.5 mm, 5696 particles,
 the example's own initial conditions and parameter files.
 
-Asserts what VALIDATION.md asks for:
+Asserts what theory/validation.md asks for:
   - without artificial stress the rings are whole before maximum compression
     (1 + 1 pieces at 0.5 ms) and broken after it (at 1.5 ms each ring in at
     least 3 friends-of-friends pieces of 10 or more particles, the largest

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Sedov-Taylor blast (VALIDATION.md): at t = 0.05 the shock radius is within
+# Sedov-Taylor blast (theory/validation.md): at t = 0.05 the shock radius is within
 # 3% of the similarity solution (moment estimator of tools/plot_sedov.py)
 # and the total energy is conserved to 0.5%.  32,768 particles.
 set -euo pipefail

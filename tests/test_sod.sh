@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Sod shock tube (VALIDATION.md) with Bolide's default SPH scheme (the
+# Sod shock tube (theory/validation.md) with Bolide's default SPH scheme (the
 # Wendland C2 kernel of a default build; the example's params.yml sets no
 # eta, viscosity or conduction; builds configured with another kernel skip
 # the test, exit 77: the tube does not converge with the cubic spline): L1

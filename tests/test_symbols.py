@@ -1,5 +1,6 @@
-"""Every symbol libbolide.a exports carries its module's prefix (STYLE.md,
-"Conventions enforced by make check"; the nm check REBOUND does).
+"""Every symbol libbolide.a exports carries its module's prefix
+(theory/architecture.md, rule 11, "conventions checked by make check"; the
+nm check REBOUND does).
 
 A module is a source file; its prefixes are the first word of its name
 (engine_graph.c: engine_, gpu_lists.cu: gpu_), that word without or with a

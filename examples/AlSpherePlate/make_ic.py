@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Initial conditions of the aluminium sphere on a plate (Hiermaier et al.
-1997; ../../shared VALIDATION.md): an Al 6061-T6 sphere of 1 cm diameter at
+1997; theory/validation.md): an Al 6061-T6 sphere of 1 cm diameter at
 6180 m/s, normal incidence, onto an Al 6061-T6 plate 0.4 cm thick, both on a
 cubic lattice of spacing dx, rho = rho0 = 2710 kg/m^3, u = 0.  The plate is
 a square of half-width `--half-width` (a full 3D plate: the code has no
@@ -16,19 +16,16 @@ Usage: make_ic.py [--dx 0.0008] [-o plate.hdf5]  (SI units; an example
 input, not part of bolide-ic)."""
 import argparse
 import os
+import sys
 
-import h5py
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+import ichelpers  # noqa: E402  (examples/common/ichelpers.py)
 
 RHO0 = 2710.0
 R_P = 0.005
 THICK = 0.004
-
-
-def lattice(n_lo, n_hi, dx):
-    g = [np.arange(a, b + 1) * dx for a, b in zip(n_lo, n_hi)]
-    x, y, z = np.meshgrid(*g, indexing="ij")
-    return np.stack([x.ravel(), y.ravel(), z.ravel()], axis=1)
 
 
 def main():
@@ -45,10 +42,8 @@ def main():
     nw = int(round(a.half_width / dx))
     nl = int(round(THICK / dx))
     # plate: cell-centred layers between z = -THICK and 0
-    plate = lattice((-nw, -nw, -nl), (nw, nw, -1), dx) + [0, 0, 0.5 * dx]
-    npj = int(np.ceil(R_P / dx)) + 1
-    pj = lattice((-npj, -npj, -npj), (npj, npj, npj), dx) + 0.5 * dx  # centred between lattice planes
-    pj = pj[np.linalg.norm(pj, axis=1) < R_P]
+    plate = ichelpers.lattice((-nw, -nw, -nl), (nw, nw, -1), dx) + [0, 0, 0.5 * dx]
+    pj = ichelpers.lattice_ball(R_P, dx, 0.5 * dx)  # centred between lattice planes
     pj[:, 2] += R_P + dx
     pos = np.concatenate([plate, pj])
     n0, n1 = len(plate), len(pj)
@@ -65,22 +60,17 @@ def main():
     if not a.lattice_mass:
         # the lattice sphere is not the sphere: give the projectile the mass of
         # the true sphere (its particles' volumes m / rho0 then sum to 4/3 pi R^3)
-        mass[-npp:] = RHO0 * 4.0 / 3.0 * np.pi * R_P**3 / npp
-    with h5py.File(a.output + ".tmp", "w") as f:
-        h = f.create_group("Header")
-        h.attrs["BoxSize"] = box
-        h.attrs["NumPart_Total"] = [N, 0, 0, 0, 0, 0]
-        h.attrs["Dimension"] = 3
-        p = f.create_group("PartType0")
-        p["Coordinates"] = pos
-        p["Velocities"] = vel
-        p["Masses"] = mass
-        p["SmoothingLengths"] = np.full(N, a.eta * dx)
-        p["InternalEnergies"] = np.zeros(N)
-        p["Densities"] = np.full(N, RHO0)
-        p["ParticleIDs"] = np.arange(1, N + 1)
-        p["MaterialIDs"] = mat
-    os.replace(a.output + ".tmp", a.output)
+        mass[-npp:] = ichelpers.sphere_particle_mass(RHO0, R_P, npp)
+    ichelpers.write_ic(a.output, box, {
+        "Coordinates": pos,
+        "Velocities": vel,
+        "Masses": mass,
+        "SmoothingLengths": np.full(N, a.eta * dx),
+        "InternalEnergies": np.zeros(N),
+        "Densities": np.full(N, RHO0),
+        "ParticleIDs": np.arange(1, N + 1),
+        "MaterialIDs": mat,
+    })
     print(f"{a.output}: {N} particles ({n0} plate, {n1} projectile), dx = {dx} m, "
           f"{nl} layers, plate {2 * a.half_width * 100:.1f} cm wide")
 

@@ -7,10 +7,13 @@ Omega = 1.6e-12 s^-1 about z, and an m = 2 perturbation of amplitude 0.5
 carried by the particle masses: m_i = m0 (1 + 0.5 cos 2 phi_i).  SI units.
 Usage: make_ic.py N_ACROSS OUT.hdf5   (lattice points across the diameter;
 40 gives about 33,500 particles)."""
+import os
 import sys
 
-import h5py
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+import ichelpers  # noqa: E402  (examples/common/ichelpers.py)
 
 R0 = 3.2e14
 RHO0 = 1.44e-14
@@ -22,9 +25,7 @@ def main():
     if len(sys.argv) != 3:
         sys.exit("usage: make_ic.py N_ACROSS OUT.hdf5")
     n = int(sys.argv[1])
-    dx = 2.0 * R0 / n
-    g = (np.arange(n) + 0.5) * dx - R0
-    x, y, z = np.meshgrid(g, g, g, indexing="ij")
+    x, y, z, dx = ichelpers.centred_grid(n, R0)
     keep = x * x + y * y + z * z < R0 * R0
     pos = np.stack([x[keep], y[keep], z[keep]], axis=1)
     N = len(pos)
@@ -36,19 +37,15 @@ def main():
     vel[:, 0] = -OMEGA * pos[:, 1]
     vel[:, 1] = OMEGA * pos[:, 0]
     box = 8.0 * R0
-    with h5py.File(sys.argv[2], "w") as f:
-        hd = f.create_group("Header")
-        hd.attrs["BoxSize"] = [box, box, box]
-        hd.attrs["NumPart_Total"] = [N, 0, 0, 0, 0, 0]
-        hd.attrs["Dimension"] = 3
-        p = f.create_group("PartType0")
-        p["Coordinates"] = pos + 0.5 * box
-        p["Velocities"] = vel
-        p["Masses"] = m
-        p["SmoothingLengths"] = np.full(N, 1.2348 * dx)
-        p["InternalEnergies"] = np.zeros(N)
-        p["ParticleIDs"] = np.arange(1, N + 1, dtype=np.int64)
-        p["MaterialIDs"] = np.zeros(N, dtype=np.int32)
+    ichelpers.write_ic(sys.argv[2], [box, box, box], {
+        "Coordinates": pos + 0.5 * box,
+        "Velocities": vel,
+        "Masses": m,
+        "SmoothingLengths": np.full(N, 1.2348 * dx),
+        "InternalEnergies": np.zeros(N),
+        "ParticleIDs": np.arange(1, N + 1, dtype=np.int64),
+        "MaterialIDs": np.zeros(N, dtype=np.int32),
+    })
     print("wrote %s: %d particles, M = %.4e kg" % (sys.argv[2], N, mass))
 
 

@@ -15,7 +15,7 @@ read -r na nb eps < <("$python" -c "
 n = int(float('$n')); print(n // 2, n - n // 2, 5.0e3 * (2e4 / n) ** (1 / 3))")
 # Body A: basalt core with a 30 wt-% water ice mantle, 9.43e20 kg (R = 509 km
 # uncompressed); body B: pure basalt, 9.43e20 kg (R = 437 km).  Start 11369 km
-# apart at 744 m/s with impact parameter 819 km (VALIDATION.md).
+# apart at 744 m/s with impact parameter 819 km (theory/validation.md).
 "$build/bolide-ic" impact \
   --target "planet,materials=basalt:ice,mass-fractions=0.7:0.3,mass=9.43e20,T-surface=0,mat-ids=1:2,n=$na" \
   --impactor "planet,materials=basalt,mass=9.43e20,T-surface=0,mat-ids=3,n=$nb,seed=2" \
@@ -26,6 +26,5 @@ rm -f ceres_0*.hdf5 ceres_0*.xmf statistics.txt
 last=$(ls ceres_0*.hdf5 | tail -1)
 "$build/bolide-fof" "$last" --link-h 2 --min-count 10 -o fragments.txt
 PYTHONPATH=$top/tools "$python" survivors.py fragments.txt "$last" | tee survivors.txt
-PYTHONPATH=$top/tools "$python" $top/tools/plot_impact.py --stats statistics.txt \
-  --length-unit 1e3 --length-name km --impactor-offset 3 ceres_0*.hdf5 > bound_mass.txt
-echo "pictures: $(pwd)/collision.png $(pwd)/energy.png; survivors: $(pwd)/survivors.txt"
+./plot.sh
+echo "survivors: $(pwd)/survivors.txt"

@@ -14,7 +14,4 @@ n=${1:-16000}
   --v-contact 5000 --angle 45 --separation 1600 --impactor-mat-offset 1000 \
   -o demo_impact.hdf5
 "$build/bolide" params.yml
-for s in demo_0000 demo_0004; do
-  PYTHONPATH=$top/tools "$python" $top/tools/plot_snapshot.py $s.hdf5 --slice 200 --out $s.png
-done
-echo "pictures: $(pwd)/demo_0000.png $(pwd)/demo_0004.png"
+./plot.sh

@@ -27,4 +27,4 @@ layers="materials=iron:granite,mass-fractions=0.3:0.7,T-rho=adiabatic,T-surface=
   -o earth_impact.hdf5
 rm -f earth_0*.hdf5 earth_0*.xmf statistics.txt
 "$build/bolide" -P Gravity:softening:"$eps" "$@" params.yml
-PYTHONPATH=$top/tools "$python" $top/tools/plot_impact.py --stats statistics.txt earth_0*.hdf5 | tee bound_mass.txt
+./plot.sh

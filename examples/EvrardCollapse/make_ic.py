@@ -8,10 +8,13 @@ r0 mapped to r = R (r0 / R)^(3/2) so that the enclosed mass M(r) = M r^2 / R^2
 of the 1/r profile holds (the mapping keeps the angular order of the lattice).
 Usage: make_ic.py N_ACROSS OUT.hdf5   (N_ACROSS lattice points across the
 diameter; 40 gives about 33,500 particles)."""
+import os
 import sys
 
-import h5py
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+import ichelpers  # noqa: E402  (examples/common/ichelpers.py)
 
 
 def main():
@@ -19,9 +22,7 @@ def main():
         sys.exit("usage: make_ic.py N_ACROSS OUT.hdf5")
     n = int(sys.argv[1])
     out = sys.argv[2]
-    dx = 2.0 / n
-    g = (np.arange(n) + 0.5) * dx - 1.0
-    x, y, z = np.meshgrid(g, g, g, indexing="ij")
+    x, y, z, dx = ichelpers.centred_grid(n, 1.0)
     r0 = np.sqrt(x * x + y * y + z * z)
     keep = r0 < 1.0
     pos0 = np.stack([x[keep], y[keep], z[keep]], axis=1)
@@ -33,20 +34,16 @@ def main():
     rho = 1.0 / (2.0 * np.pi * np.maximum(r, 1e-3))
     h = 1.2348 * (m / rho) ** (1.0 / 3.0)
     box = 24.0  # wide: the outgoing shock throws gas beyond r = 4 after t = 2
-    with h5py.File(out, "w") as f:
-        hd = f.create_group("Header")
-        hd.attrs["BoxSize"] = [box, box, box]
-        hd.attrs["NumPart_Total"] = [N, 0, 0, 0, 0, 0]
-        hd.attrs["Dimension"] = 3
-        p = f.create_group("PartType0")
-        p["Coordinates"] = pos + 0.5 * box
-        p["Velocities"] = np.zeros_like(pos)
-        p["Masses"] = m
-        p["SmoothingLengths"] = h
-        p["InternalEnergies"] = np.full(N, 0.05)
-        p["Densities"] = rho
-        p["ParticleIDs"] = np.arange(1, N + 1, dtype=np.int64)
-        p["MaterialIDs"] = np.zeros(N, dtype=np.int32)
+    ichelpers.write_ic(out, [box, box, box], {
+        "Coordinates": pos + 0.5 * box,
+        "Velocities": np.zeros_like(pos),
+        "Masses": m,
+        "SmoothingLengths": h,
+        "InternalEnergies": np.full(N, 0.05),
+        "Densities": rho,
+        "ParticleIDs": np.arange(1, N + 1, dtype=np.int64),
+        "MaterialIDs": np.zeros(N, dtype=np.int32),
+    })
     print("wrote %s: %d particles" % (out, N))
 
 

@@ -8,5 +8,4 @@ build=${BOLIDE_BUILD:-$top/_build}
 python=${PYTHON:-$build/.venv/bin/python}
 "$python" make_ic.py "${1:-40}" evrard.hdf5
 "$build/bolide" params.yml
-PYTHONPATH=$top/tools "$python" $top/tools/plot_stats.py statistics.txt --out energies.png
-echo "plot: $(pwd)/energies.png"
+./plot.sh

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Initial conditions of the Prater crater (Prater 1970; ../../shared
-VALIDATION.md; Pierazzo et al. 2008): an Al 6061 sphere of 6.35 mm
+"""Initial conditions of the Prater crater (Prater 1970;
+theory/validation.md, "Prater crater"; Pierazzo et al. 2008): an Al 6061 sphere of 6.35 mm
 diameter (the 1/4-inch ball of the experiments; `--radius`, default
 3.175 mm) at 7 km/s, normal incidence, onto a block of aluminium, both on a cubic lattice of spacing dx,
 rho = rho0 = 2700 kg/m^3, u = 0.  The target is a block of half-width
@@ -17,18 +17,15 @@ Usage: make_ic.py [--dx 0.002] [-o crater.hdf5]  (SI units; an example
 input, not part of bolide-ic)."""
 import argparse
 import os
+import sys
 
-import h5py
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+import ichelpers  # noqa: E402  (examples/common/ichelpers.py)
 
 RHO0 = 2700.0
 R_P = 3.175e-3  # 6.35 mm diameter (README.md: the projectile size)
-
-
-def lattice(n_lo, n_hi, dx):
-    g = [np.arange(a, b + 1) * dx for a, b in zip(n_lo, n_hi)]
-    x, y, z = np.meshgrid(*g, indexing="ij")
-    return np.stack([x.ravel(), y.ravel(), z.ravel()], axis=1)
 
 
 def main():
@@ -48,11 +45,9 @@ def main():
     nw = int(round(a.half_width / dx))
     nd = int(round(a.depth / dx))
     # target: cells centred on the lattice, top layer at z = -dx/2
-    tgt = lattice((-nw, -nw, -nd), (nw, nw, -1), dx) + [0, 0, 0.5 * dx]
+    tgt = ichelpers.lattice((-nw, -nw, -nd), (nw, nw, -1), dx) + [0, 0, 0.5 * dx]
     # projectile: lattice points within rp of the centre, sphere bottom one dx above the top
-    npj = int(np.ceil(rp / dx)) + 1
-    pj = lattice((-npj, -npj, -npj), (npj, npj, npj), dx)
-    pj = pj[np.linalg.norm(pj, axis=1) < rp]
+    pj = ichelpers.lattice_ball(rp, dx)
     pj[:, 2] += rp + dx
     pos = np.concatenate([tgt, pj])
     nt, npp = len(tgt), len(pj)
@@ -69,23 +64,17 @@ def main():
     if not a.lattice_mass:
         # the lattice sphere is not the sphere: give the projectile the mass of
         # the true sphere (its particles' volumes m / rho0 then sum to 4/3 pi R^3)
-        mass[-npp:] = RHO0 * 4.0 / 3.0 * np.pi * rp**3 / npp
-    with h5py.File(a.output + ".tmp", "w") as f:
-        h = f.create_group("Header")
-        h.attrs["BoxSize"] = box
-        h.attrs["NumPart_Total"] = [N, 0, 0, 0, 0, 0]
-        h.attrs["Dimension"] = 3
-        h.attrs["Origin"] = shift  # the impact point (top face, axis), for the analysis
-        p = f.create_group("PartType0")
-        p["Coordinates"] = pos
-        p["Velocities"] = vel
-        p["Masses"] = mass
-        p["SmoothingLengths"] = np.full(N, a.eta * dx)
-        p["InternalEnergies"] = np.zeros(N)
-        p["Densities"] = np.full(N, RHO0)
-        p["ParticleIDs"] = np.arange(1, N + 1)
-        p["MaterialIDs"] = mat
-    os.replace(a.output + ".tmp", a.output)
+        mass[-npp:] = ichelpers.sphere_particle_mass(RHO0, rp, npp)
+    ichelpers.write_ic(a.output, box, {
+        "Coordinates": pos,
+        "Velocities": vel,
+        "Masses": mass,
+        "SmoothingLengths": np.full(N, a.eta * dx),
+        "InternalEnergies": np.zeros(N),
+        "Densities": np.full(N, RHO0),
+        "ParticleIDs": np.arange(1, N + 1),
+        "MaterialIDs": mat,
+    }, header={"Origin": shift})  # the impact point (top face, axis), for the analysis
     print(f"{a.output}: {N} particles ({nt} target, {npp} projectile, r/dx = {rp / dx:.2f}), dx = {dx} m, "
           f"target {2 * a.half_width * 100:.1f} x {2 * a.half_width * 100:.1f} x {a.depth * 100:.1f} cm")
 

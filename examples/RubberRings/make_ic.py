@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Initial conditions of the colliding rubber rings (Gray, Monaghan & Swift
-2001, CMAME 190, 6641, Sec. 5.3; ../../shared VALIDATION.md): two rings of
+2001, CMAME 190, 6641, Sec. 5.3; theory/validation.md): two rings of
 inner radius 3 cm and outer radius 4 cm, here short tubes of a given
 thickness in z (the paper is 2D), on a cubic lattice of spacing dx, moving
 towards each other at +-0.059 c0 (c0 = 852 m/s), rho = rho0 = 1010 kg/m^3,
@@ -14,9 +14,13 @@ radius, 2.3 dx with the default eta).
 Usage: make_ic.py [--dx 0.0025] [--thickness 0.01] [--periodic-z] [-o rings.hdf5]
 (SI units; an example input, not part of bolide-ic)."""
 import argparse
+import os
+import sys
 
-import h5py
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+import ichelpers  # noqa: E402  (examples/common/ichelpers.py)
 
 RHO0 = 1010.0
 C0 = 852.0
@@ -56,23 +60,16 @@ def main():
     vel[:n1, 0] = a.speed * C0
     vel[n1:, 0] = -a.speed * C0
     N = len(pos)
-    with h5py.File(a.output + ".tmp", "w") as f:
-        h = f.create_group("Header")
-        h.attrs["BoxSize"] = box
-        h.attrs["NumPart_Total"] = [N, 0, 0, 0, 0, 0]
-        h.attrs["Dimension"] = 3
-        p = f.create_group("PartType0")
-        p["Coordinates"] = pos
-        p["Velocities"] = vel
-        p["Masses"] = np.full(N, RHO0 * a.dx**3)
-        p["SmoothingLengths"] = np.full(N, a.eta * a.dx)
-        p["InternalEnergies"] = np.zeros(N)
-        p["Densities"] = np.full(N, RHO0)
-        p["ParticleIDs"] = np.arange(1, N + 1)
-        p["MaterialIDs"] = np.zeros(N, dtype=np.int32)
-    import os
-
-    os.replace(a.output + ".tmp", a.output)
+    ichelpers.write_ic(a.output, box, {
+        "Coordinates": pos,
+        "Velocities": vel,
+        "Masses": np.full(N, RHO0 * a.dx**3),
+        "SmoothingLengths": np.full(N, a.eta * a.dx),
+        "InternalEnergies": np.zeros(N),
+        "Densities": np.full(N, RHO0),
+        "ParticleIDs": np.arange(1, N + 1),
+        "MaterialIDs": np.zeros(N, dtype=np.int32),
+    })
     print(f"{a.output}: {N} particles ({n1} per ring), dx = {a.dx} m, ring speed {a.speed * C0:.1f} m/s")
 
 

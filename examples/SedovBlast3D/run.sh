@@ -9,6 +9,4 @@ python=${PYTHON:-$build/.venv/bin/python}
 n=${1:-32}
 "$build/bolide-ic" sedov --n "$n" --energy 1 --rho 1 -o sedov.hdf5
 "$build/bolide" params.yml
-PYTHONPATH=$top/tools "$python" $top/tools/plot_sedov.py sedov_0002.hdf5 --E 1 --rho0 1 --out sedov.png
-PYTHONPATH=$top/tools "$python" $top/tools/plot_stats.py statistics.txt --out statistics.png
-echo "plots: $(pwd)/sedov.png $(pwd)/statistics.png"
+./plot.sh sedov_0002.hdf5

@@ -9,5 +9,4 @@ python=${PYTHON:-$build/.venv/bin/python}
 nx=${1:-64}
 "$build/bolide-ic" sod --nx "$nx" --size 2,0.25,0.25 -o sod.hdf5
 "$build/bolide" params.yml
-PYTHONPATH=$top/tools "$python" $top/tools/plot_sod.py sod_0002.hdf5 --out sod.png
-echo "plot: $(pwd)/sod.png"
+./plot.sh sod_0002.hdf5

@@ -1,6 +1,7 @@
 /* The GPU runner: one CUDA device holding the particle arrays and running
  * the FORCE phase of a step (density -> ghost -> force -> kick2/time step)
- * as batched kernels over every leaf cell (DESIGN.md, "CPU and GPU").
+ * as batched kernels over every leaf cell (theory/architecture.md, "CPU and
+ * GPU").
  *
  * The interface is C; the implementation (src/gpu/gpu.cu and the kernels
  * in tasks/<name>/<name>_gpu.cu) is CUDA C++ calling the same inline pair

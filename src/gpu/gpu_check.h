@@ -1,5 +1,5 @@
-/* Checking every CUDA call (STYLE.md rule 11): gpu_check(call) stops the
- * run with one line naming the call, the file and line and CUDA's message;
+/* Checking every CUDA call (theory/architecture.md, rule 11): gpu_check(call)
+ * stops the run with one line naming the call, the file and line and CUDA's message;
  * gpu_check_launch(name) does the same for the kernel launched just before. */
 #ifndef BOLIDE_GPU_CHECK_H
 #define BOLIDE_GPU_CHECK_H

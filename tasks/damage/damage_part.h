@@ -1,7 +1,7 @@
 /* The damage task's work on one particle, shared by the CPU task
  * (damage_task.c) and the CUDA kernel (damage_gpu.cu): the Grady-Kipp
  * update of damage_iact.h from the particle's fields, and its time-step
- * limit.  Physics written once (STYLE.md rule 3). */
+ * limit.  Physics written once (theory/architecture.md, rule 3). */
 #ifndef BOLIDE_DAMAGE_PART_H
 #define BOLIDE_DAMAGE_PART_H
 

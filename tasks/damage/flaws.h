@@ -3,8 +3,8 @@
  *
  * Every brittle particle carries a few activation thresholds (strains); all
  * of them live in one flat array, the particle's own being a slice
- * eps[offset[i] .. offset[i+1]-1], sorted ascending (DESIGN.md, "Data
- * layout").  In files the slices follow the particle order of the file
+ * eps[offset[i] .. offset[i+1]-1], sorted ascending (theory/architecture.md,
+ * "Data layout").  In files the slices follow the particle order of the file
  * (/PartType0/FlawThresholds and /PartType0/FlawOffsets, N + 1 entries); in
  * the engine, whose particles are reordered on every rebuild, each particle
  * keeps the index of its first flaw and its count, and the flat array stays

@@ -1,8 +1,8 @@
 /* The ghost task: smoothing-length iteration and equation of state for the
- * particles of one top-level cell (DESIGN.md: "ghost finishes the density
- * sums, iterates the smoothing length to the target neighbour number
- * (re-running density for particles that need it), and evaluates the
- * equation of state"). */
+ * particles of one top-level cell (theory/architecture.md, "The task graph":
+ * ghost completes the density sums, iterates the smoothing length towards
+ * the target neighbour number, running density again for the particles that
+ * need it, and evaluates the equation of state). */
 #include "ghost_cpu.h"
 
 #include <math.h>

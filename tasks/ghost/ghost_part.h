@@ -1,7 +1,8 @@
 /* The ghost's work on one particle, shared by the CPU task (ghost_cpu.c) and
  * the CUDA kernels (ghost_gpu.cu): add the self term, take one step of the
  * smoothing-length iteration, and finish the density-derived quantities and
- * the equation of state.  Physics written once (STYLE.md rule 3). */
+ * the equation of state.  Physics written once (theory/architecture.md,
+ * rule 3). */
 #ifndef BOLIDE_GHOST_PART_H
 #define BOLIDE_GHOST_PART_H
 

@@ -3,7 +3,7 @@
  * return of the integrated and the predicted stress onto the yield surface,
  * dS/dt by Hooke's law with the Jaumann rate, and the artificial stress.
  * Shared by the CPU task (gradient_cpu.c) and the CUDA kernel
- * (gradient_gpu.cu): physics written once (STYLE.md rule 3). */
+ * (gradient_gpu.cu): physics written once (theory/architecture.md, rule 3). */
 #ifndef BOLIDE_EXTRA_GHOST_PART_H
 #define BOLIDE_EXTRA_GHOST_PART_H
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Initial conditions of issue 7's solid reference problem (shared/bench,
-"Solid-body impact, GPU"): a basalt sphere of radius 50 km on a simple cubic
+"""Initial conditions of issue 7's solid reference problem (theory/validation.md,
+"Benchmarks", the solid-body impact on the GPU): a basalt sphere of radius 50 km on a simple cubic
 lattice hit by a basalt sphere of radius 6.25 km (the same spacing) at
 5 km/s and 45 degrees, the bodies one spacing apart along the velocity, in
 the centre-of-mass frame.  Basalt: material id 103 (the library's SWIFT id),

@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# The conservation budget of the planetary reference impact of shared/bench
+# The conservation budget of the planetary reference impact of theory/validation.md
 # (two Tillotson granite spheres, 2 km/s at 45 degrees, hydro + self-gravity,
 # SWIFT's settings: cubic spline eta 1.2348, CFL 0.2, alpha 1.5, theta 0.5,
 # softening = lattice spacing, `101: {}` with the library's defaults) run to
 # time_end: |dE| / |E_pot(0)| (E_tot plus what left the box, nothing else
 # added back) and |dL| / |L| at each statistics time, on the CPU and/or the
-# GPU.  SWIFT's figures (shared/bench/README.md): 3.6e-4 at 2000 s, 5.6e-4
+# GPU.  SWIFT's figures (theory/validation.md, "Benchmarks"): 3.6e-4 at 2000 s, 5.6e-4
 # at 4000 s, |dL| / L 2.5e-4.
 #
 # Usage: tools/bench/energy.sh [-n "2.2e4 1.1e5"] [-m "cpu gpu"] [-t THREADS]
@@ -20,7 +20,7 @@ etaline=""; [ -n "$eta" ] && etaline="  resolution_eta: $eta
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 build=${BOLIDE_BUILD:-$top/_build}
 python=${PYTHON:-$build/.venv/bin/python}
-gen=${BOLIDE_BENCH_IC:-$top/../shared/bench/make_impact_ic.py}
+gen=${BOLIDE_BENCH_IC:-$top/tools/bench/make_impact_ic.py}
 sizes="2.2e4"; modes="cpu"; threads=$(nproc); tend=4000; out=""
 while getopts "n:m:t:T:o:" o; do
   case $o in n) sizes=$OPTARG ;; m) modes=$OPTARG ;; t) threads=$OPTARG ;; T) tend=$OPTARG ;;

@@ -4,14 +4,14 @@
 # evaluation with every particle active, bus traffic and GPU memory.
 #
 # Problems (-p):
-#   basalt   issue 7's solid reference (shared/bench, "Solid-body impact,
-#            GPU"): a basalt sphere of radius 50 km hit by a basalt sphere of
+#   basalt   issue 7's solid reference (theory/validation.md, "Benchmarks",
+#            solid-body impact on the GPU): a basalt sphere of radius 50 km hit by a basalt sphere of
 #            6.25 km at 5 km/s and 45 degrees, both on a simple cubic lattice
 #            (tools/bench/basalt_ic.py); Tillotson, Collins strength,
 #            Grady-Kipp damage with Weibull flaws (N ln N), self-gravity with
 #            opening angle 0.5; cubic spline with the support 2.8 spacings
 #            (resolution_eta 1.534, about 90 neighbours)
-#   gravity  the planetary reference impact of shared/bench (make_impact_ic.py,
+#   gravity  the planetary reference impact of theory/validation.md (make_impact_ic.py,
 #            Tillotson granite), hydro + self-gravity (softening 30 km)
 #   impact   the same, hydro only
 #   solid    the same ICs as basalt with Collins strength and damage, no gravity
@@ -39,7 +39,7 @@ set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 build=${BOLIDE_BUILD:-$top/_build}
 python=${PYTHON:-python3}
-gen=${BOLIDE_BENCH_IC:-$top/../shared/bench/make_impact_ic.py}
+gen=${BOLIDE_BENCH_IC:-$top/tools/bench/make_impact_ic.py}
 sizes="1e5 1e6"; problems="basalt gravity"; modes="cpu gpu hybrid"; repeat=3; steps=4; gpu_args=""; tlimit=0
 while getopts "n:p:m:r:s:g:T:" o; do
   case $o in n) sizes=$OPTARG ;; p) problems=$OPTARG ;; m) modes=$OPTARG ;; r) repeat=$OPTARG ;;

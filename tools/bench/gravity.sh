@@ -1,6 +1,6 @@
 #!/bin/bash
 # Gravity tree: wall time of one force pass against N, and the fitted
-# exponent of t ~ N^k (least squares in log-log).  VALIDATION.md asks for
+# exponent of t ~ N^k (least squares in log-log).  theory/validation.md asks for
 # cost growing no faster than N log N (k close to 1; N log N over this range
 # fits k ~ 1.1).  One thread; keep the sizes small on a small machine.
 #   tools/bench/gravity.sh [BUILDDIR] [SET] [N...]

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Gravity's accuracy against its cost on the planetary reference impact of
-# shared/bench (issue 25): for each Gravity:epsilon_fmm, theta_cr and
+# theory/validation.md, "Benchmarks" (issue 25): for each Gravity:epsilon_fmm, theta_cr and
 # multipole_order, the median, 90th and 99th percentile and largest relative
 # acceleration error |a - a_direct| / |a_direct| at the first evaluation (a
 # run's first step: no previous acceleration) and at the second (the
@@ -8,7 +8,7 @@
 # (tests/bench_gravity_accuracy: the CPU's serial tree, or with -m gpu the
 # upward pass, walks and interactions on the GPU).  The direct sum is
 # computed once per size and kept in the output directory.  SWIFT's figures
-# on these ICs (shared/bench/README.md): median 3.3e-5, p90 8.2e-5, p99
+# on these ICs (theory/validation.md, "Benchmarks"): median 3.3e-5, p90 8.2e-5, p99
 # 1.7e-4, max 7.4e-4 at every step (epsilon_fmm 1e-3, theta 0.5, 1 in 10).
 #
 # Usage: tools/bench/gravity_accuracy.sh [-n "2.2e4 1.1e5"] [-m "cpu gpu"]
@@ -30,7 +30,7 @@ set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 build=${BOLIDE_BUILD:-$top/_build}
 python=${PYTHON:-$build/.venv/bin/python}
-gen=${BOLIDE_BENCH_IC:-$top/../shared/bench/make_impact_ic.py}
+gen=${BOLIDE_BENCH_IC:-$top/tools/bench/make_impact_ic.py}
 sizes="2.2e4"; modes="cpu"; epss="1e-3 1e-4 1e-5 1e-6"; thetas="0.5"; orders="4"
 stride=""; threads=$(nproc); out=gravity_accuracy.out; extra=""
 while getopts "n:m:E:T:P:k:t:o:x:" o; do

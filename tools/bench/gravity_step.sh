@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Seconds per step of the reference impact (shared/bench) with and without
+# Seconds per step of the reference impact (theory/validation.md, "Benchmarks") with and without
 # self-gravity, every particle active, at given Gravity:epsilon_fmm and
 # multipole_order: the step's gravity time is the difference (issue 25,
 # item 4: against SWIFT's 2.79 s hydro + gravity, 0.385 s hydro, per step at
@@ -15,7 +15,7 @@ set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 build=${BOLIDE_BUILD:-$top/_build}
 python=${PYTHON:-$build/.venv/bin/python}
-gen=${BOLIDE_BENCH_IC:-$top/../shared/bench/make_impact_ic.py}
+gen=${BOLIDE_BENCH_IC:-$top/tools/bench/make_impact_ic.py}
 sizes="1.1e5"; modes="cpu"; threads=$(nproc); steps=6; cfgs="off 1e-3,4 5e-5,5"
 while getopts "n:m:t:s:c:" o; do
   case $o in n) sizes=$OPTARG ;; m) modes=$OPTARG ;; t) threads=$OPTARG ;; s) steps=$OPTARG ;;

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# The planetary reference impact of shared/bench (Tillotson granite spheres,
-# 2 km/s, 45 degrees; the IC generator is shared/bench/make_impact_ic.py):
+# The planetary reference impact of theory/validation.md (Tillotson granite spheres,
+# 2 km/s, 45 degrees; the IC generator is tools/bench/make_impact_ic.py):
 # seconds per step with every particle active, hydro only and (when the
 # build has self-gravity) hydro + gravity, at each thread count; median of
 # REPEAT runs of STEPS steps.  Compare with SWIFT's figures in
-# shared/bench/README.md as ratios measured on the same machine.
+# theory/validation.md as ratios measured on the same machine.
 #
 # Usage: tools/bench/impact.sh [-n "1e5 1e6"] [-t "1 2"] [-r 3] [-s 3] [-g]
 #   -g  also hydro + gravity
@@ -12,7 +12,7 @@ set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 build=${BOLIDE_BUILD:-$top/_build}
 python=${PYTHON:-$build/.venv/bin/python}
-gen=${BOLIDE_BENCH_IC:-$top/../shared/bench/make_impact_ic.py}
+gen=${BOLIDE_BENCH_IC:-$top/tools/bench/make_impact_ic.py}
 sizes="1e5"; threads="1 $(nproc)"; repeat=3; steps=3; gravity=0
 while getopts "n:t:r:s:g" o; do
   case $o in n) sizes=$OPTARG ;; t) threads=$OPTARG ;; r) repeat=$OPTARG ;; s) steps=$OPTARG ;;

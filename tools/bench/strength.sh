@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Solid-body reference problem of shared/bench ("Solid-body impact, CPU"):
+# Solid-body reference problem (theory/validation.md, "Benchmarks", on the CPU):
 # the Nakamura basalt sphere (6 cm basalt, Tillotson + strength + Grady-Kipp
 # damage with Weibull flaws m 8, k 5e34 m^-3; 0.2 g lucite bullet at
 # 3.2 km/s, 30 degrees) built by examples/NakamuraBasalt's set-up with
@@ -7,7 +7,7 @@
 # of STEPS steps, the initial force computation excluded), particle updates
 # per second per core, and peak resident memory per particle (flaws
 # included).  SWIFT's strength branch: 3.30 / 1.71 s per step at 1 / 2
-# threads and 680 MiB for 113,198 particles (shared/bench/README.md);
+# threads and 680 MiB for 113,198 particles (theory/validation.md, "Benchmarks");
 # compare as ratios measured on the same machine.
 #
 # Usage: tools/bench/strength.sh [-n "113000"] [-t "1 2"] [-r 3] [-s 3] [-P KEY:VALUE]...

@@ -2,7 +2,7 @@
 # Strong scaling in threads: particle updates per second and parallel
 # efficiency for a uniform box of 1e5 and 1e6 particles (ideal gas, every
 # particle active), a uniform ideal-gas sphere, and the planetary reference
-# impact of shared/bench (Tillotson granite, 1.1e5 particles) when its
+# impact of theory/validation.md (Tillotson granite, 1.1e5 particles) when its
 # generator is found.  Every figure is the median of REPEAT runs of STEPS
 # steps (the initial force computation excluded: it is timed apart by
 # bolide's "done:" line).
@@ -78,7 +78,7 @@ with h5py.File("sphere.hdf5", "w") as f:
 PY
 params sphere.yml sphere.hdf5 ""
 cases="$cases sphere"
-impact_gen=$top/../shared/bench/make_impact_ic.py
+impact_gen=$top/tools/bench/make_impact_ic.py
 if [ -f "$impact_gen" ]; then
   "$python" "$impact_gen" 100000 10000 impact.hdf5 >/dev/null
   params impact.yml impact.hdf5 "Materials:

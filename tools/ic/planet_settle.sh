@@ -4,7 +4,7 @@
 # `bolide-ic planet`, evolves it with hydrodynamics and self-gravity and no
 # damping, and prints v_rms / v_esc of every snapshot (theory/planets.md).
 # Exits 1 unless v_rms / v_esc of the last snapshot is below 1% (the bar of
-# shared/VALIDATION.md: "after several dynamical times"; theory/planets.md
+# theory/validation.md: "after several dynamical times"; theory/planets.md
 # "Sitting still" for measurements).  Also prints the largest v_rms / v_esc
 # of the whole run, from E_kin of the statistics (every 100 s), and per
 # snapshot v_rms / sqrt(<P/rho>_m), the measure of the particle noise
