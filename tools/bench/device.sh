@@ -2,7 +2,7 @@
 # One call on the lent GPU host (16 cores, one H100/H200, CUDA, no network,
 # no libyaml, no h5py): set up what it lacks from .devkit/ (carried: the
 # Debian libyaml .debs, an h5py wheel for its Python, the reference impact's
-# IC generator tools/bench/make_impact_ic.py), build with CUDA in _dbuild/
+# IC generator make_impact_ic.py), build with CUDA in _dbuild/
 # (kept between calls while the host stays warm), then run the named steps,
 # each logged to STEP.log; the logs come back as $OUT/device-logs.tgz
 # (the host returns at most 8 files).
@@ -40,7 +40,7 @@ export PYTHONPATH="/tmp/site${PYTHONPATH:+:$PYTHONPATH}"
 export PYTHON=$(command -v python3)
 printf '#!/bin/sh\nPYTHONPATH=/tmp/site${PYTHONPATH:+:$PYTHONPATH} exec %s "$@"\n' "$PYTHON" >/tmp/kit/python
 chmod +x /tmp/kit/python
-export BOLIDE_BENCH_IC=${BOLIDE_BENCH_IC:-$top/tools/bench/make_impact_ic.py}
+export BOLIDE_BENCH_IC=${BOLIDE_BENCH_IC:-$kit/make_impact_ic.py}
 
 build() { # dir, extra configure options
   local dir=$1; shift

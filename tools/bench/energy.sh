@@ -20,7 +20,7 @@ etaline=""; [ -n "$eta" ] && etaline="  resolution_eta: $eta
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 build=${BOLIDE_BUILD:-$top/_build}
 python=${PYTHON:-$build/.venv/bin/python}
-gen=${BOLIDE_BENCH_IC:-$top/tools/bench/make_impact_ic.py}
+gen=${BOLIDE_BENCH_IC:?"set BOLIDE_BENCH_IC to the reference impact IC generator of the benchmark set (make_impact_ic.py; theory/validation.md, Benchmarks)"}
 sizes="2.2e4"; modes="cpu"; threads=$(nproc); tend=4000; out=""
 while getopts "n:m:t:T:o:" o; do
   case $o in n) sizes=$OPTARG ;; m) modes=$OPTARG ;; t) threads=$OPTARG ;; T) tend=$OPTARG ;;

@@ -39,7 +39,7 @@ set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 build=${BOLIDE_BUILD:-$top/_build}
 python=${PYTHON:-python3}
-gen=${BOLIDE_BENCH_IC:-$top/tools/bench/make_impact_ic.py}
+gen=${BOLIDE_BENCH_IC:?"set BOLIDE_BENCH_IC to the reference impact IC generator of the benchmark set (make_impact_ic.py; theory/validation.md, Benchmarks)"}
 sizes="1e5 1e6"; problems="basalt gravity"; modes="cpu gpu hybrid"; repeat=3; steps=4; gpu_args=""; tlimit=0
 while getopts "n:p:m:r:s:g:T:" o; do
   case $o in n) sizes=$OPTARG ;; p) problems=$OPTARG ;; m) modes=$OPTARG ;; r) repeat=$OPTARG ;;

@@ -30,7 +30,7 @@ set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 build=${BOLIDE_BUILD:-$top/_build}
 python=${PYTHON:-$build/.venv/bin/python}
-gen=${BOLIDE_BENCH_IC:-$top/tools/bench/make_impact_ic.py}
+gen=${BOLIDE_BENCH_IC:?"set BOLIDE_BENCH_IC to the reference impact IC generator of the benchmark set (make_impact_ic.py; theory/validation.md, Benchmarks)"}
 sizes="2.2e4"; modes="cpu"; epss="1e-3 1e-4 1e-5 1e-6"; thetas="0.5"; orders="4"
 stride=""; threads=$(nproc); out=gravity_accuracy.out; extra=""
 while getopts "n:m:E:T:P:k:t:o:x:" o; do

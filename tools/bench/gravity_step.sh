@@ -15,7 +15,7 @@ set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 build=${BOLIDE_BUILD:-$top/_build}
 python=${PYTHON:-$build/.venv/bin/python}
-gen=${BOLIDE_BENCH_IC:-$top/tools/bench/make_impact_ic.py}
+gen=${BOLIDE_BENCH_IC:?"set BOLIDE_BENCH_IC to the reference impact IC generator of the benchmark set (make_impact_ic.py; theory/validation.md, Benchmarks)"}
 sizes="1.1e5"; modes="cpu"; threads=$(nproc); steps=6; cfgs="off 1e-3,4 5e-5,5"
 while getopts "n:m:t:s:c:" o; do
   case $o in n) sizes=$OPTARG ;; m) modes=$OPTARG ;; t) threads=$OPTARG ;; s) steps=$OPTARG ;;

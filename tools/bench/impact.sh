@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The planetary reference impact of theory/validation.md (Tillotson granite spheres,
-# 2 km/s, 45 degrees; the IC generator is tools/bench/make_impact_ic.py):
+# 2 km/s, 45 degrees; the IC generator is make_impact_ic.py):
 # seconds per step with every particle active, hydro only and (when the
 # build has self-gravity) hydro + gravity, at each thread count; median of
 # REPEAT runs of STEPS steps.  Compare with SWIFT's figures in
@@ -12,7 +12,7 @@ set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 build=${BOLIDE_BUILD:-$top/_build}
 python=${PYTHON:-$build/.venv/bin/python}
-gen=${BOLIDE_BENCH_IC:-$top/tools/bench/make_impact_ic.py}
+gen=${BOLIDE_BENCH_IC:?"set BOLIDE_BENCH_IC to the reference impact IC generator of the benchmark set (make_impact_ic.py; theory/validation.md, Benchmarks)"}
 sizes="1e5"; threads="1 $(nproc)"; repeat=3; steps=3; gravity=0
 while getopts "n:t:r:s:g" o; do
   case $o in n) sizes=$OPTARG ;; t) threads=$OPTARG ;; r) repeat=$OPTARG ;; s) steps=$OPTARG ;;

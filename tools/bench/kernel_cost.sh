@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The cost of the default kernel against the former one: seconds per step of
 # the planetary reference impact of theory/validation.md (Tillotson granite spheres,
-# 2 km/s at 45 degrees, tools/bench/make_impact_ic.py) in two builds, each
+# 2 km/s at 45 degrees, make_impact_ic.py) in two builds, each
 # with its own default SPH:resolution_eta (Wendland C2: 1.7, 149
 # neighbours; cubic spline: 1.2348, 48), hydro only and hydro + gravity,
 # every particle active (the first STEPS steps), on the CPU.  The runs of
@@ -17,7 +17,7 @@
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 python=${PYTHON:-$top/_build/.venv/bin/python}
-gen=${BOLIDE_BENCH_IC:-$top/tools/bench/make_impact_ic.py}
+gen=${BOLIDE_BENCH_IC:?"set BOLIDE_BENCH_IC to the reference impact IC generator of the benchmark set (make_impact_ic.py; theory/validation.md, Benchmarks)"}
 a=""; b=""; n=2.2e4; threads=$(nproc); repeat=3; steps=3
 while getopts "a:b:n:t:r:s:" o; do
   case $o in a) a=$OPTARG ;; b) b=$OPTARG ;; n) n=$OPTARG ;; t) threads=$OPTARG ;;

@@ -78,7 +78,7 @@ with h5py.File("sphere.hdf5", "w") as f:
 PY
 params sphere.yml sphere.hdf5 ""
 cases="$cases sphere"
-impact_gen=$top/tools/bench/make_impact_ic.py
+impact_gen=${BOLIDE_BENCH_IC:-}
 if [ -f "$impact_gen" ]; then
   "$python" "$impact_gen" 100000 10000 impact.hdf5 >/dev/null
   params impact.yml impact.hdf5 "Materials:
