@@ -22,7 +22,6 @@
 #include "damage/flaws.h"
 #include "error.h"
 #include "drift/drift.h"
-#include "flaws_io.h"
 #include "hydro_parts.h"
 #include "ic.h"
 #include "kernel.h"
@@ -720,7 +719,8 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
       u_floor[k] = e->mats->mats[k].u_floor;
     }
     const struct restart_expect ex = {e->params_text, ids, e->mats->n, e->nr_out, e->time, e->time_end, u_floor,
-                                      (int64_t)(sizeof(struct gravity_cell) / sizeof(double))};
+                                      (int64_t)(sizeof(struct gravity_cell) / sizeof(double)),
+                                      flaws_check_values};
     struct restart_data rd;
     restart_read(e->restart_stem, &ex, &rd, icname, sizeof icname);
     snprintf(e->restart_file, sizeof e->restart_file, "%s", icname);

@@ -1,5 +1,6 @@
 /* Damage model (tasks/damage/damage_iact.h):
- *  - the 3x3 symmetric eigen-solver on diagonal, rotated, repeated and
+ *  - the 3x3 symmetric eigen-solver (src/sym3.h, which the artificial stress
+ *    of tasks/gradient/gradient_finish.h shares) on diagonal, rotated, repeated and
  *    nearly repeated cases and on random matrices: eigenvalues against the
  *    construction, A = Q L Q^T and Q^T Q = I to 1e-12 relative;
  *  - Young's modulus, damaged pressure and stress;
@@ -20,6 +21,7 @@
 
 #include "damage/damage_iact.h"
 #include "damage/flaws.h"
+#include "sym3.h"
 
 static int failures = 0;
 
@@ -60,15 +62,17 @@ static void compose(double R[3][3], const double l[3], double a[6]) {
       m[i][j] = 0;
       for (int k = 0; k < 3; k++) m[i][j] += R[i][k] * l[k] * R[j][k];
     }
-  a[DAMAGE_XX] = m[0][0], a[DAMAGE_YY] = m[1][1], a[DAMAGE_ZZ] = m[2][2];
-  a[DAMAGE_XY] = m[0][1], a[DAMAGE_XZ] = m[0][2], a[DAMAGE_YZ] = m[1][2];
+  a[SYM3_XX] = m[0][0], a[SYM3_YY] = m[1][1], a[SYM3_ZZ] = m[2][2];
+  a[SYM3_XY] = m[0][1], a[SYM3_XZ] = m[0][2], a[SYM3_YZ] = m[1][2];
 }
 
 /** Errors of an eigen-decomposition of a: reconstruction and orthogonality
  *  (relative to the largest |entry|). */
 static void decomposition_errors(const double a[6], double *rec, double *orth, double lam[3]) {
-  double q[3][3];
-  damage_sym3_eigen(a, lam, q);
+  double qf[9], q[3][3];
+  sym3_eigen(a, lam, qf);
+  for (int r = 0; r < 3; r++)
+    for (int c = 0; c < 3; c++) q[r][c] = qf[3 * r + c];
   double b[6];
   compose(q, lam, b);
   double scale = 0;
@@ -91,10 +95,19 @@ static void test_eigen(void) {
   flaws_rng_seed(&rng, 42);
   double lam[3], rec, orth;
   /* diagonal: exact */
-  const double diag[6] = {-1.5, 7.25, 3.0, 0, 0, 0};
-  damage_sym3_eigen(diag, lam, NULL);
+  const double diag[6] = {-1.5, 0, 0, 7.25, 0, 3.0};
+  sym3_eigen(diag, lam, NULL);
   check("diagonal: eigenvalues exact", fabs(lam[0] - 7.25) + fabs(lam[1] - 3) + fabs(lam[2] + 1.5),
         0);
+
+  /* a known tridiagonal matrix: 2 + sqrt 2, 2, 2 - sqrt 2 */
+  const double tri[6] = {2, -1, 0, 2, -1, 2};
+  sym3_eigen(tri, lam, NULL);
+  check("tridiagonal (2,-1): eigenvalues 2 + sqrt2, 2, 2 - sqrt2",
+        fabs(lam[0] - (2 + sqrt(2.0))) + fabs(lam[1] - 2) + fabs(lam[2] - (2 - sqrt(2.0))), 1e-14);
+  /* NaN input: the sweeps stop at once */
+  const double bad[6] = {NAN, 1, 0, 1, 0, 1};
+  check("NaN entry: no sweep", sym3_eigen(bad, lam, NULL), 0);
 
   /* rotated distinct, repeated (double, triple), nearly repeated, with
    * stress-like magnitudes */
@@ -138,18 +151,20 @@ static void test_eigen(void) {
   for (int trial = 0; trial < 100000; trial++) {
     double a[6];
     for (int k = 0; k < 6; k++) a[k] = 2 * uniform(&rng) - 1;
-    if (trial % 3 == 0) a[DAMAGE_XY] = a[DAMAGE_XZ] = 0; /* block-diagonal cases */
+    if (trial % 3 == 0) a[SYM3_XY] = a[SYM3_XZ] = 0; /* block-diagonal cases */
     decomposition_errors(a, &rec, &orth, lam);
     worst_r = fmax(worst_r, rec);
     worst_o = fmax(worst_o, orth);
     if (lam[0] < lam[1] || lam[1] < lam[2]) unsorted++;
-    const double tr = a[0] + a[1] + a[2];
-    const double det = a[0] * (a[1] * a[2] - a[5] * a[5]) - a[3] * (a[3] * a[2] - a[5] * a[4]) +
-                       a[4] * (a[3] * a[5] - a[1] * a[4]);
+    const double xx = a[SYM3_XX], yy = a[SYM3_YY], zz = a[SYM3_ZZ];
+    const double xy = a[SYM3_XY], xz = a[SYM3_XZ], yz = a[SYM3_YZ];
+    const double tr = xx + yy + zz;
+    const double det =
+        xx * (yy * zz - yz * yz) - xy * (xy * zz - yz * xz) + xz * (xy * yz - yy * xz);
     worst_inv =
         fmax(worst_inv, fabs(lam[0] + lam[1] + lam[2] - tr) + fabs(lam[0] * lam[1] * lam[2] - det));
     double l2[3];
-    const int sweeps = damage_sym3_eigen(a, l2, NULL);
+    const int sweeps = sym3_eigen(a, l2, NULL);
     if (sweeps > max_sweeps) max_sweeps = sweeps;
   }
   check("random symmetric (1e5): A = Q L Q^T", worst_r, 1e-12);
@@ -158,7 +173,7 @@ static void test_eigen(void) {
   check("random symmetric (1e5): eigenvalues descending (count)", unsorted, 0);
   check("random symmetric (1e5): Jacobi sweeps <= 8", max_sweeps > 8 ? max_sweeps : 0, 0);
   const double zero[6] = {0, 0, 0, 0, 0, 0};
-  damage_sym3_eigen(zero, lam, NULL);
+  sym3_eigen(zero, lam, NULL);
   check("zero matrix: eigenvalues 0", fabs(lam[0]) + fabs(lam[1]) + fabs(lam[2]), 0);
 }
 
@@ -171,16 +186,16 @@ static void test_moduli(void) {
   check("E(K = mu) = 9/4 mu", fabs(damage_young_modulus(1.0, 1.0) - 2.25), 1e-15);
   check("c_g = 0.4 sqrt((K + 4/3 mu)/rho)",
         fabs(damage_crack_speed(K, mu, 2700) / (0.4 * sqrt((K + 4 * mu / 3) / 2700)) - 1), 1e-15);
-  const double S[6] = {1, -2, 1, 0.5, -0.25, 0.125};
+  const double S[6] = {1, 0.5, -0.25, -2, 0.125, 1}; /* xx xy xz yy yz zz */
   double s[6];
   damage_stress(0.25, -8.0, S, s); /* tension: P reduced */
   check("damaged stress, P < 0: -(1-d)P + (1-d)S",
-        fabs(s[DAMAGE_XX] - 0.75 * (8 + 1)) + fabs(s[DAMAGE_YY] - 0.75 * (8 - 2)) +
-            fabs(s[DAMAGE_XY] - 0.75 * 0.5) + fabs(s[DAMAGE_YZ] - 0.75 * 0.125),
+        fabs(s[SYM3_XX] - 0.75 * (8 + 1)) + fabs(s[SYM3_YY] - 0.75 * (8 - 2)) +
+            fabs(s[SYM3_XY] - 0.75 * 0.5) + fabs(s[SYM3_YZ] - 0.75 * 0.125),
         1e-15);
   damage_stress(0.25, 8.0, S, s); /* compression: P kept */
   check("damaged stress, P > 0: -P + (1-d)S",
-        fabs(s[DAMAGE_XX] - (-8 + 0.75)) + fabs(s[DAMAGE_ZZ] - (-8 + 0.75)), 1e-15);
+        fabs(s[SYM3_XX] - (-8 + 0.75)) + fabs(s[SYM3_ZZ] - (-8 + 0.75)), 1e-15);
 }
 
 /** Parameters of the bar. */
@@ -396,7 +411,7 @@ static void test_wrapper(void) {
   const int ok = material_finalize(&mat, msg, sizeof msg) == 0;
   if (!ok) printf("material: %s\n", msg);
   const double eps[6] = {9e9, 1e-5, 2e-5, 4e-5, 8e-5, 9e9}; /* slice [1, 5) */
-  const double S[6] = {1e6, -5e5, -5e5, 2e5, 0, 1e5};
+  const double S[6] = {1e6, 2e5, 0, -5e5, 1e5, -5e5};       /* xx xy xz yy yz zz */
   double x1 = 0.1, x2 = 0.1, d = 0;
   int32_t a1 = 1, a2 = 1;
   const double r1 =

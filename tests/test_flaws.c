@@ -1,4 +1,4 @@
-/* Weibull flaws (tasks/damage/flaws.h, src/io/flaws_io.h):
+/* Weibull flaws (tasks/damage/flaws.h, through src/io/ragged_io.h):
  *  - every brittle particle has at least one flaw, the others none;
  *  - the number of flaws per particle averaged over seeds matches the
  *    coupon-collector expectation H_N = ln N + 0.5772 + 1/(2N) within 4
@@ -20,7 +20,7 @@
 
 #include "damage/flaws.h"
 #include "error.h"
-#include "flaws_io.h"
+#include "ragged_io.h"
 #include "material.h"
 
 static int failures = 0;
@@ -219,7 +219,7 @@ static void test_io(void) {
   }
   hid_t file = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
   hid_t grp = H5Gopen2(file, "PartType0", H5P_DEFAULT);
-  const int rc = flaws_io_write_group(grp, N, f.eps, first, count, 4);
+  const int rc = ragged_io_write_group(grp, &flaws_ragged, N, f.eps, first, count, 4);
   H5Gclose(grp);
   H5Fclose(file);
   flaws_io_read(path, N, &g);

@@ -32,8 +32,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "damage/flaws.h"
 #include "error.h"
+#include "ragged_io.h"
 #include "version.h"
 
 static const char restart_magic[16] = "BOLIDE-RESTART\n";
@@ -331,7 +331,8 @@ int restart_read_buffer(const void *buf, size_t len, const char *name, const str
   memset(out, 0, sizeof *out);
   char *ptext = NULL, *mine = NULL;
   int64_t *sorted = NULL;
-  struct flaws fl = {0, NULL, NULL};
+  int64_t *fl_offset = NULL;
+  double *fl_eps = NULL;
   unsigned char hdr[RESTART_HEADER_BYTES];
   if (len < 16 || memcmp(buf, restart_magic, 16)) FAIL("not a Bolide restart file (no magic line)");
   if (len < RESTART_HEADER_BYTES + 8) FAIL("truncated restart file (%zu bytes)", len);
@@ -493,22 +494,23 @@ int restart_read_buffer(const void *buf, size_t len, const char *name, const str
   uint64_t nflaws = 0;
   GET(&nflaws, 8, "flaw count");
   if (nflaws > (in.len - in.pos) / 8) FAIL("flaw count %llu does not fit in the file", (unsigned long long)nflaws);
-  fl.n_parts = n;
-  fl.offset = error_malloc((n + 1) * sizeof *fl.offset, "restart: flaw offsets");
-  fl.eps = error_malloc((nflaws ? nflaws : 1) * sizeof *fl.eps, "restart: flaw thresholds");
-  GET(fl.offset, 8 * (n + 1), "flaw offsets");
-  GET(fl.eps, 8 * (size_t)nflaws, "flaw thresholds");
-  if (fl.offset[n] != (int64_t)nflaws)
-    FAIL("corrupt restart file (flaw offsets end at %lld, %llu flaws)", (long long)fl.offset[n],
+  fl_offset = error_malloc((n + 1) * sizeof *fl_offset, "restart: flaw offsets");
+  fl_eps = error_malloc((nflaws ? nflaws : 1) * sizeof *fl_eps, "restart: flaw thresholds");
+  GET(fl_offset, 8 * (n + 1), "flaw offsets");
+  GET(fl_eps, 8 * (size_t)nflaws, "flaw thresholds");
+  if (fl_offset[n] != (int64_t)nflaws)
+    FAIL("corrupt restart file (flaw offsets end at %lld, %llu flaws)", (long long)fl_offset[n],
          (unsigned long long)nflaws);
   char msg[256];
-  if (flaws_check(&fl, msg, sizeof msg)) FAIL("corrupt restart file: %s", msg);
+  if (ragged_io_check_offsets("flaw offsets", n, fl_offset, (size_t)nflaws, msg, sizeof msg) ||
+      (ex && ex->flaws_check && ex->flaws_check(n, fl_offset, fl_eps, msg, sizeof msg)))
+    FAIL("corrupt restart file: %s", msg);
   for (size_t i = 0; i < n; i++) {
-    if (fl.offset[i + 1] - fl.offset[i] != p->n_flaws[i])
+    if (fl_offset[i + 1] - fl_offset[i] != p->n_flaws[i])
       FAIL("corrupt restart file (particle %zu has %d flaws, its offsets say %lld)", i, (int)p->n_flaws[i],
-           (long long)(fl.offset[i + 1] - fl.offset[i]));
+           (long long)(fl_offset[i + 1] - fl_offset[i]));
     if (p->n_act[i] > p->n_flaws[i]) FAIL("particle %zu: %d of %d flaws active", i, (int)p->n_act[i], (int)p->n_flaws[i]);
-    p->flaw_first[i] = fl.offset[i];
+    p->flaw_first[i] = fl_offset[i];
   }
 
   /* the reused far field of self-gravity */
@@ -576,21 +578,21 @@ int restart_read_buffer(const void *buf, size_t len, const char *name, const str
     }
   }
   if (in.pos != in.len) FAIL("corrupt restart file (%zu bytes after the far field)", in.len - in.pos);
-  free(fl.offset);
+  free(fl_offset);
   free(sorted);
   free(ptext);
   free(mine);
   if (nflaws) {
-    out->flaw_eps = fl.eps;
+    out->flaw_eps = fl_eps;
   } else {
-    free(fl.eps);
+    free(fl_eps);
     out->flaw_eps = NULL;
   }
   out->nr_flaws = (int64_t)nflaws;
   return 0;
 fail:
-  free(fl.offset);
-  free(fl.eps);
+  free(fl_offset);
+  free(fl_eps);
   free(sorted);
   free(ptext);
   free(mine);

@@ -97,6 +97,9 @@ struct restart_expect {
   double time_end;        /**< TimeIntegration:time_end */
   const int32_t *u_floor; /**< per material of mat_ids: 1 when its EOS needs u >= 0 (NULL: no check) */
   int64_t grav_cell_doubles; /**< doubles per gravity cell of this build's expansion order (0: no check) */
+  /** the damage family's check of the flaw thresholds, n particles with offset[n + 1]
+   *  (ragged_io_check_fn; NULL: the offsets only) */
+  int (*flaws_check)(size_t n, const int64_t *offset, const double *eps, char *msg, size_t len);
 };
 
 /** Everything a file holds (free with restart_data_free). */

@@ -10,7 +10,7 @@
  *
  * One update (damage_grady_kipp_update), once per step after the force task:
  *   1. sigma = -P_d I + (1 - d) S, the damage-reduced stress   (theory/damage.md D5)
- *   2. sigma_max, its largest principal stress (Jacobi, damage_sym3_eigen)
+ *   2. sigma_max, its largest principal stress (Jacobi, sym3_eigen in sym3.h)
  *   3. local strain eps = sigma_max / ((1 - d) E)          (D3)
  *   4. n_grow = #{j : eps_j < eps}; n_act = max(n_act, n_grow)   (D2)
  *   5. d(d^(1/3))/dt = n_grow c_g / R_s, c_g = 0.4 c_l    (D4)
@@ -27,100 +27,7 @@
 
 #include "inline.h"
 #include "material.h"
-
-/** Components of a symmetric 3x3 tensor stored as 6 numbers. */
-enum damage_sym_comp {
-  DAMAGE_XX = 0,
-  DAMAGE_YY = 1,
-  DAMAGE_ZZ = 2,
-  DAMAGE_XY = 3,
-  DAMAGE_XZ = 4,
-  DAMAGE_YZ = 5,
-};
-
-/** Largest number of Jacobi sweeps (convergence is quadratic: 4 to 6 suffice
- *  for doubles; the bound only guards against NaN input). */
-#define DAMAGE_JACOBI_MAX_SWEEPS 32
-
-/** Eigen-decomposition of the symmetric matrix a (6 components, enum
- *  damage_sym_comp) by cyclic Jacobi rotations (Golub & Van Loan 2013,
- *  Sect. 8.5; Press et al. 2007, Sect. 11.1).  Jacobi is used rather than the
- *  closed-form cubic because it stays accurate to rounding for repeated and
- *  nearly repeated eigenvalues, where the trigonometric formula loses half
- *  the digits.  lam: eigenvalues in descending order; q (may be NULL): q[r][c]
- *  holds component r of the eigenvector of lam[c], so a = Q diag(lam) Q^T.
- *  Returns the number of sweeps used. */
-BOLIDE_INLINE int damage_sym3_eigen(const double a_in[6], double lam[3], double q[3][3]) {
-  double a[3][3], v[3][3];
-  /* scale to O(1) so that squares neither overflow nor underflow */
-  double scale = 0.0;
-  for (int k = 0; k < 6; k++)
-    if (fabs(a_in[k]) > scale) scale = fabs(a_in[k]);
-  const double inv = scale > 0.0 ? 1.0 / scale : 0.0;
-  a[0][0] = a_in[DAMAGE_XX] * inv;
-  a[1][1] = a_in[DAMAGE_YY] * inv;
-  a[2][2] = a_in[DAMAGE_ZZ] * inv;
-  a[0][1] = a[1][0] = a_in[DAMAGE_XY] * inv;
-  a[0][2] = a[2][0] = a_in[DAMAGE_XZ] * inv;
-  a[1][2] = a[2][1] = a_in[DAMAGE_YZ] * inv;
-  for (int r = 0; r < 3; r++)
-    for (int c = 0; c < 3; c++) v[r][c] = r == c ? 1.0 : 0.0;
-
-  int sweep = 0;
-  for (; sweep < DAMAGE_JACOBI_MAX_SWEEPS; sweep++) {
-    const double off = fabs(a[0][1]) + fabs(a[0][2]) + fabs(a[1][2]);
-    const double diag = fabs(a[0][0]) + fabs(a[1][1]) + fabs(a[2][2]);
-    if (!(off > 1e-18 * diag) || off == 0.0) break; /* also stops on NaN */
-    for (int p = 0; p < 2; p++)
-      for (int r = p + 1; r < 3; r++) {
-        const double apr = a[p][r];
-        if (apr == 0.0) continue;
-        /* rotation angle zeroing a[p][r]: theta = cot(2 phi), t = tan(phi),
-         * the smaller root (Golub & Van Loan 2013, Alg. 8.5.1) */
-        const double theta = (a[r][r] - a[p][p]) / (2.0 * apr);
-        const double t = (theta >= 0.0 ? 1.0 : -1.0) / (fabs(theta) + sqrt(theta * theta + 1.0));
-        const double c = 1.0 / sqrt(t * t + 1.0), s = t * c;
-        for (int k = 0; k < 3; k++) { /* A <- A J (columns p, r) */
-          const double akp = a[k][p], akr = a[k][r];
-          a[k][p] = c * akp - s * akr;
-          a[k][r] = s * akp + c * akr;
-        }
-        for (int k = 0; k < 3; k++) { /* A <- J^T A (rows p, r) */
-          const double apk = a[p][k], ark = a[r][k];
-          a[p][k] = c * apk - s * ark;
-          a[r][k] = s * apk + c * ark;
-        }
-        a[p][r] = a[r][p] = 0.0;
-        for (int k = 0; k < 3; k++) { /* V <- V J */
-          const double vkp = v[k][p], vkr = v[k][r];
-          v[k][p] = c * vkp - s * vkr;
-          v[k][r] = s * vkp + c * vkr;
-        }
-      }
-  }
-  /* sort descending (three elements: insertion by swaps) */
-  int idx[3] = {0, 1, 2};
-  for (int i = 0; i < 2; i++)
-    for (int j = 0; j < 2 - i; j++)
-      if (a[idx[j]][idx[j]] < a[idx[j + 1]][idx[j + 1]]) {
-        const int tmp = idx[j];
-        idx[j] = idx[j + 1];
-        idx[j + 1] = tmp;
-      }
-  for (int c = 0; c < 3; c++) {
-    lam[c] = a[idx[c]][idx[c]] * scale;
-    if (q)
-      for (int r = 0; r < 3; r++) q[r][c] = v[r][idx[c]];
-  }
-  return sweep;
-}
-
-/** Largest principal value of the symmetric tensor a (6 components). */
-BOLIDE_INLINE double damage_sym3_max_eigenvalue(const double a[6]) {
-  double lam[3];
-  damage_sym3_eigen(a, lam, (double(*)[3])0);
-  return lam[0];
-}
+#include "sym3.h"
 
 /** Young's modulus from the bulk and shear moduli, E = 9 K mu / (3K + mu)
  *  (Landau & Lifshitz, Theory of Elasticity, Sect. 5). */
@@ -144,15 +51,15 @@ BOLIDE_INLINE double damage_pressure(double d, double P) {
 }
 
 /** Damage-reduced stress sigma = -P_d I + (1 - d) S (BA94; theory/damage.md D5), from the
- *  undamaged pressure P and deviatoric stress S (6 components). */
+ *  undamaged pressure P and deviatoric stress S (6 components, enum sym3_comp). */
 BOLIDE_INLINE void damage_stress(double d, double P, const double S[6], double sigma[6]) {
   const double f = 1.0 - d, Pd = damage_pressure(d, P);
-  sigma[DAMAGE_XX] = -Pd + f * S[DAMAGE_XX];
-  sigma[DAMAGE_YY] = -Pd + f * S[DAMAGE_YY];
-  sigma[DAMAGE_ZZ] = -Pd + f * S[DAMAGE_ZZ];
-  sigma[DAMAGE_XY] = f * S[DAMAGE_XY];
-  sigma[DAMAGE_XZ] = f * S[DAMAGE_XZ];
-  sigma[DAMAGE_YZ] = f * S[DAMAGE_YZ];
+  sigma[SYM3_XX] = -Pd + f * S[SYM3_XX];
+  sigma[SYM3_YY] = -Pd + f * S[SYM3_YY];
+  sigma[SYM3_ZZ] = -Pd + f * S[SYM3_ZZ];
+  sigma[SYM3_XY] = f * S[SYM3_XY];
+  sigma[SYM3_XZ] = f * S[SYM3_XZ];
+  sigma[SYM3_YZ] = f * S[SYM3_YZ];
 }
 
 /** Number of thresholds of the ascending array eps[0..n-1] strictly below x
@@ -203,7 +110,7 @@ BOLIDE_INLINE double damage_grady_kipp_update(double P, const double S[6], doubl
   const double d = x * x * x;
   double sigma[6];
   damage_stress(d, P, S, sigma);
-  const double smax = damage_sym3_max_eigenvalue(sigma);
+  const double smax = sym3_max_eigenvalue(sigma);
   if (!(smax > 0.0)) return 0.0;                /* no tension: no activation, no growth */
   const double strain = smax / ((1.0 - d) * E); /* D3 */
   const int32_t n_grow = damage_count_below(eps, n_tot, strain);

@@ -23,12 +23,12 @@ BOLIDE_INLINE void damage_part(struct parts *BOLIDE_RESTRICT p, size_t i,
   if (p->n_flaws[i] == 0) return;
   const struct material *mat = material_table_find(mats, p->mat[i]);
   double S[6];
-  S[DAMAGE_XX] = p->Spxx[i];
-  S[DAMAGE_YY] = p->Spyy[i];
-  S[DAMAGE_ZZ] = p->Spzz[i];
-  S[DAMAGE_XY] = p->Spxy[i];
-  S[DAMAGE_XZ] = p->Spxz[i];
-  S[DAMAGE_YZ] = p->Spyz[i];
+  S[SYM3_XX] = p->Spxx[i];
+  S[SYM3_XY] = p->Spxy[i];
+  S[SYM3_XZ] = p->Spxz[i];
+  S[SYM3_YY] = p->Spyy[i];
+  S[SYM3_YZ] = p->Spyz[i];
+  S[SYM3_ZZ] = p->Spzz[i];
   int32_t n_act = p->n_act[i];
   p->dmg_rate[i] =
       damage_update_particle(mat, p->rho[i], kernel_gamma * p->h[i], p->P[i], S, eps,

@@ -8,6 +8,7 @@
 
 #include "error.h"
 #include "material.h"
+#include "ragged_io.h"
 
 /** splitmix64 step (Steele, Lea & Flood 2014): seeds xoshiro's state. */
 static uint64_t flaws_splitmix64(uint64_t *x) {
@@ -151,35 +152,47 @@ int64_t flaws_generate_materials(size_t n, const int32_t *mat, const double *mas
   return out->offset[n];
 }
 
-int flaws_check(const struct flaws *f, char *msg, size_t len) {
-  if (f->offset[0] != 0) {
-    snprintf(msg, len, "FlawOffsets[0] is %lld (must be 0)", (long long)f->offset[0]);
-    return -1;
-  }
-  /* offsets first, so that the threshold loop stays inside the array */
-  for (size_t i = 0; i < f->n_parts; i++) {
-    const int64_t a = f->offset[i], b = f->offset[i + 1];
-    if (b < a || b - a > INT32_MAX) {
-      snprintf(msg, len, "particle %zu: FlawOffsets decrease or jump (%lld to %lld)", i,
-               (long long)a, (long long)b);
-      return -1;
-    }
-  }
-  for (size_t i = 0; i < f->n_parts; i++) {
-    const int64_t a = f->offset[i], b = f->offset[i + 1];
+int flaws_check_values(size_t n, const int64_t *offset, const double *eps, char *msg, size_t len) {
+  for (size_t i = 0; i < n; i++) {
+    const int64_t a = offset[i], b = offset[i + 1];
     for (int64_t j = a; j < b; j++) {
-      if (!isfinite(f->eps[j]) || f->eps[j] < 0.0) {
-        snprintf(msg, len, "particle %zu: flaw threshold %g (must be finite and >= 0)", i,
-                 f->eps[j]);
+      if (!isfinite(eps[j]) || eps[j] < 0.0) {
+        snprintf(msg, len, "particle %zu: flaw threshold %g (must be finite and >= 0)", i, eps[j]);
         return -1;
       }
-      if (j > a && f->eps[j] < f->eps[j - 1]) {
+      if (j > a && eps[j] < eps[j - 1]) {
         snprintf(msg, len, "particle %zu: flaw thresholds not in ascending order", i);
         return -1;
       }
     }
   }
   return 0;
+}
+
+int flaws_check(const struct flaws *f, char *msg, size_t len) {
+  /* offsets first, so that the threshold loop stays inside the array */
+  if (ragged_io_check_offsets(flaws_ragged.offsets_name, f->n_parts, f->offset,
+                              (size_t)f->offset[f->n_parts], msg, len))
+    return -1;
+  return flaws_check_values(f->n_parts, f->offset, f->eps, msg, len);
+}
+
+/** The flaws in HDF5 files, in the particle order of the file. */
+const struct ragged_io_desc flaws_ragged = {
+    "FlawThresholds", "FlawOffsets",
+    "Weibull flaw activation strains of all particles, ascending per particle (slices given by "
+    "FlawOffsets)",
+    "N+1 offsets: particle i owns FlawThresholds[off[i]:off[i+1]]", flaws_check_values};
+
+int flaws_io_read(const char *path, size_t n, struct flaws *f) {
+  memset(f, 0, sizeof *f);
+  if (!ragged_io_read(path, &flaws_ragged, n, &f->offset, &f->eps)) return 0;
+  f->n_parts = n;
+  return 1;
+}
+
+void flaws_io_write_file(const char *path, const struct flaws *f) {
+  ragged_io_write_file(path, &flaws_ragged, f->n_parts, f->offset, f->eps);
 }
 
 size_t flaws_bytes(const struct flaws *f) {

@@ -76,6 +76,30 @@ int64_t flaws_generate_materials(size_t n, const int32_t *mat, const double *mas
  *  -1 with the first problem in msg. */
 int flaws_check(const struct flaws *f, char *msg, size_t len);
 
+/** The thresholds' part of flaws_check, for offsets already checked (n
+ *  particles, offset[n + 1], eps): the check of flaws_ragged. */
+int flaws_check_values(size_t n, const int64_t *offset, const double *eps, char *msg, size_t len);
+
+struct ragged_io_desc;
+
+/** How files store the flaws (src/io/ragged_io.h): /PartType0/FlawThresholds
+ *  (all thresholds, one flat double array, dimensionless strains) and
+ *  /PartType0/FlawOffsets (N + 1 int64), in the particle order of the file,
+ *  checked by flaws_check_values.  The io layer reads and writes them
+ *  through this description without knowing the damage model. */
+extern const struct ragged_io_desc flaws_ragged;
+
+/** Read the flaws of the n particles of `path` (ragged_io_read of
+ *  flaws_ragged).  Returns 1 and fills f when the file has them, 0 (f
+ *  zeroed) when it has neither dataset.  A file with only one of them, a
+ *  length other than n + 1 offsets, or a layout that fails flaws_check stops
+ *  with one line naming the file. */
+int flaws_io_read(const char *path, size_t n, struct flaws *f);
+
+/** Add (or replace) the flaws f in the existing HDF5 file `path` (its
+ *  /PartType0 must exist).  Stops with one line naming the file on failure. */
+void flaws_io_write_file(const char *path, const struct flaws *f);
+
 /** Bytes held by f (thresholds and offsets). */
 size_t flaws_bytes(const struct flaws *f);
 

@@ -9,6 +9,7 @@
 #include <math.h>
 
 #include "inline.h"
+#include "sym3.h"
 
 /** Inverse of the symmetric matrix M (xx xy xz yy yz zz) as a full 3x3
  *  row-major Minv.  Returns 0, or -1 (Minv = identity) when M is singular
@@ -89,52 +90,15 @@ BOLIDE_INLINE double gradient_stress_rate(const double gv[9], const double S[6],
   return sqrt(2.0 / 3.0 * ee);
 }
 
-/** Eigen-decomposition of a symmetric 3x3 matrix A (xx xy xz yy yz zz) by
- *  cyclic Jacobi rotations: eigenvalues lam, eigenvectors in the columns of
- *  Q (row-major), A = Q diag(lam) Q^T. */
-BOLIDE_INLINE void gradient_eigen_sym(const double A6[6], double lam[3], double Q[9]) {
-  double A[9] = {A6[0], A6[1], A6[2], A6[1], A6[3], A6[4], A6[2], A6[4], A6[5]};
-  for (int k = 0; k < 9; k++) Q[k] = (k % 4 == 0) ? 1.0 : 0.0;
-  for (int sweep = 0; sweep < 20; sweep++) {
-    const double off = A[1] * A[1] + A[2] * A[2] + A[5] * A[5];
-    const double scale = A[0] * A[0] + A[4] * A[4] + A[8] * A[8];
-    if (off <= 1e-30 * scale || off == 0.0) break;
-    for (int p = 0; p < 2; p++)
-      for (int q = p + 1; q < 3; q++) {
-        const double apq = A[3 * p + q];
-        if (apq == 0.0) continue;
-        const double theta = (A[3 * q + q] - A[3 * p + p]) / (2.0 * apq);
-        const double t = (theta >= 0 ? 1.0 : -1.0) / (fabs(theta) + sqrt(theta * theta + 1.0));
-        const double c = 1.0 / sqrt(t * t + 1.0), s = t * c;
-        for (int k = 0; k < 3; k++) { /* A = J^T A J */
-          const double akp = A[3 * k + p], akq = A[3 * k + q];
-          A[3 * k + p] = c * akp - s * akq;
-          A[3 * k + q] = s * akp + c * akq;
-        }
-        for (int k = 0; k < 3; k++) {
-          const double apk = A[3 * p + k], aqk = A[3 * q + k];
-          A[3 * p + k] = c * apk - s * aqk;
-          A[3 * q + k] = s * apk + c * aqk;
-        }
-        for (int k = 0; k < 3; k++) {
-          const double qkp = Q[3 * k + p], qkq = Q[3 * k + q];
-          Q[3 * k + p] = c * qkp - s * qkq;
-          Q[3 * k + q] = s * qkp + c * qkq;
-        }
-      }
-  }
-  lam[0] = A[0], lam[1] = A[4], lam[2] = A[8];
-}
-
 /** Artificial stress R/rho^2 of a particle with total stress sigma = -P I + S
  *  (theory/solids.md eq. E10; Monaghan 2000, Sec. 4; Gray et al. 2001, Sec. 4): in the
- *  principal frame R'^{aa} = -eps sigma'^{aa} / rho^2 where sigma'^{aa} > 0
+ *  principal frame (sym3_eigen) R'^{aa} = -eps sigma'^{aa} / rho^2 where sigma'^{aa} > 0
  *  (tension), 0 otherwise; rotated back to the simulation frame. */
 BOLIDE_INLINE void gradient_artificial_stress(const double S[6], double P, double rho, double eps,
                                               double R[6]) {
   const double sig[6] = {S[0] - P, S[1], S[2], S[3] - P, S[4], S[5] - P};
   double lam[3], Q[9];
-  gradient_eigen_sym(sig, lam, Q);
+  sym3_eigen(sig, lam, Q);
   double r[3];
   for (int k = 0; k < 3; k++) r[k] = lam[k] > 0.0 ? -eps * lam[k] / (rho * rho) : 0.0;
   const int ia[6] = {0, 0, 0, 1, 1, 2}, ib[6] = {0, 1, 2, 1, 2, 2}; /* no statics: device code */

@@ -110,26 +110,11 @@ void gravity_counters_get(struct gravity_counters *out, int reset) {
   if (reset) memset(&counters, 0, sizeof counters);
 }
 
-/** Spline or Newtonian pair kernel without branches (the selects compile to
- *  masks, so that the P2P loops vectorise): the same values as
- *  gravity_softened_kernel with the spline softening.  inv_H = 1/H, H2 = H^2. */
-static inline void kernel_spline_nb(double r2, double inv_H, double H2, double *wpot,
-                                    double *wacc) {
-  const double r = sqrt(r2);
-  const double inv_r = 1.0 / r;
-  const double u = r * inv_H, u2 = u * u;
-  const double sp = inv_H * (3.0 + u2 * (-7.0 + u2 * (21.0 + u * (-28.0 + u * (15.0 - 3.0 * u)))));
-  const double sa =
-      inv_H * inv_H * inv_H * (14.0 + u2 * (-84.0 + u * (140.0 + u * (-90.0 + 21.0 * u))));
-  const int in = r2 < H2;
-  *wpot = in ? sp : inv_r;
-  *wacc = in ? sa : inv_r * inv_r * inv_r;
-}
-
 #if defined(__SSE2__)
 /** The spline loop of p2p_row two sources at a time in SSE2 (x86-64's
  *  baseline; GCC does not vectorise the plain loop because sqrt may set
- *  errno): the same arithmetic as kernel_spline_nb, the branch as a mask.
+ *  errno): the same arithmetic as gravity_spline_kernel (its polynomials
+ *  GRAVITY_SPLINE_POT and GRAVITY_SPLINE_ACC), the branch as a mask.
  *  Adds the target's sums to out[4] and returns the first source not done
  *  (the odd one left goes through the scalar loop). */
 static size_t p2p_spline_sse2(const double *restrict x, const double *restrict y,
@@ -149,19 +134,11 @@ static size_t p2p_spline_sse2(const double *restrict x, const double *restrict y
                   dz = vz - _mm_loadu_pd(z + j);
     const __m128d r2 = dx * dx + dy * dy + dz * dz;
     const __m128d r = _mm_sqrt_pd(r2);
-    const __m128d inv_r = one / r;
-    const __m128d u = r * vih, u2 = u * u;
-    const __m128d kp =
-        vih *
-        (_mm_set1_pd(3.0) +
-         u2 * (_mm_set1_pd(-7.0) +
-               u2 * (_mm_set1_pd(21.0) +
-                     u * (_mm_set1_pd(-28.0) + u * (_mm_set1_pd(15.0) - _mm_set1_pd(3.0) * u)))));
-    const __m128d ka =
-        vih3 * (_mm_set1_pd(14.0) +
-                u2 * (_mm_set1_pd(-84.0) +
-                      u * (_mm_set1_pd(140.0) + u * (_mm_set1_pd(-90.0) + _mm_set1_pd(21.0) * u))));
     const __m128d in = _mm_cmplt_pd(r2, vH2);
+    const __m128d inv_r = one / _mm_or_pd(_mm_and_pd(in, one), _mm_andnot_pd(in, r));
+    const __m128d u = r * vih, u2 = u * u;
+    const __m128d kp = vih * GRAVITY_SPLINE_POT(u, u2);
+    const __m128d ka = vih3 * GRAVITY_SPLINE_ACC(u, u2);
     const __m128d wpot = _mm_or_pd(_mm_and_pd(in, kp), _mm_andnot_pd(in, inv_r));
     const __m128d wacc = _mm_or_pd(_mm_and_pd(in, ka), _mm_andnot_pd(in, inv_r * inv_r * inv_r));
     const __m128d gmj = vG * _mm_loadu_pd(m + j);
@@ -229,7 +206,7 @@ static inline void p2p_row(const double *restrict x, const double *restrict y,
       const double dx = xi[0] - x[j], dy = xi[1] - y[j], dz = xi[2] - z[j];
       const double r2 = dx * dx + dy * dy + dz * dz;
       double wpot, wacc;
-      kernel_spline_nb(r2, inv_H, H2, &wpot, &wacc);
+      gravity_spline_kernel(r2, inv_H, H2, &wpot, &wacc);
       const double gmj = G * m[j];
       sp -= gmj * wpot;
       sx -= gmj * wacc * dx;
@@ -245,7 +222,7 @@ static inline void p2p_row(const double *restrict x, const double *restrict y,
       const double dx = xi[0] - x[j], dy = xi[1] - y[j], dz = xi[2] - z[j];
       const double r2 = dx * dx + dy * dy + dz * dz;
       double wpot, wacc;
-      kernel_spline_nb(r2, inv_H, H2, &wpot, &wacc);
+      gravity_spline_kernel(r2, inv_H, H2, &wpot, &wacc);
       const double gmj = G * m[j];
       sp -= gmj * wpot;
       sx -= gmj * wacc * dx;

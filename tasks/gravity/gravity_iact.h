@@ -517,10 +517,38 @@ BOLIDE_INLINE void gravity_m2p_p2l(double m, const struct gravity_multipole *BOL
   a[2] -= G * az;
 }
 
+/** The spline softening kernel (theory/gravity.md G10, G11) in u = r/H for
+ *  u < 1, Horner form: H wpot and H^3 wacc.  Macros, not functions, so that
+ *  the one expression serves the scalar kernel below and the SSE2 P2P of
+ *  gravity_cpu.c, whose operands are GCC vectors (the constants broadcast):
+ *  GCC does not vectorise a plain loop over gravity_spline_kernel (sqrt may
+ *  set errno, and a select between divisions may trap). */
+#define GRAVITY_SPLINE_POT(u, u2) \
+  (3.0 + (u2) * (-7.0 + (u2) * (21.0 + (u) * (-28.0 + (u) * (15.0 - 3.0 * (u))))))
+#define GRAVITY_SPLINE_ACC(u, u2) (14.0 + (u2) * (-84.0 + (u) * (140.0 + (u) * (-90.0 + 21.0 * (u)))))
+
+/** Softened pair kernel with the spline softening of support H, without
+ *  branches (the selects compile to masks or conditional moves): the spline
+ *  for r2 < H2, Newtonian beyond; wpot and wacc as in
+ *  gravity_softened_kernel.  inv_H = 1/H, or 0 with H = 0 (Newtonian
+ *  everywhere); H2 = H^2.  The Newtonian side divides by r only where it is
+ *  taken, so that coincident particles inside the support (r2 = 0) raise no
+ *  division by zero. */
+BOLIDE_INLINE void gravity_spline_kernel(double r2, double inv_H, double H2,
+                                         double *BOLIDE_RESTRICT wpot,
+                                         double *BOLIDE_RESTRICT wacc) {
+  const int in = r2 < H2;
+  const double r = sqrt(r2);
+  const double inv_r = 1.0 / (in ? 1.0 : r);
+  const double u = r * inv_H, u2 = u * u;
+  *wpot = in ? inv_H * GRAVITY_SPLINE_POT(u, u2) : inv_r;
+  *wacc = in ? inv_H * inv_H * inv_H * GRAVITY_SPLINE_ACC(u, u2) : inv_r * inv_r * inv_r;
+}
+
 /** Softened pair kernel: for separation r^2 and softening eps (Plummer
  *  equivalent), the potential is -G m * (*wpot) and the acceleration of i
  *  -G m * (*wacc) * (x_i - x_j).  Newtonian: wpot = 1/r, wacc = 1/r^3.
- *  Spline (G10, G11), u = r/H, H = 3 eps, for u < 1:
+ *  Spline (G10, G11; gravity_spline_kernel), u = r/H, H = 3 eps, for u < 1:
  *    wpot = (3 - 7u^2 + 21u^4 - 28u^5 + 15u^6 - 3u^7) / H
  *    wacc = (14 - 84u^2 + 140u^3 - 90u^4 + 21u^5) / H^3
  *  Plummer (G12): wpot = (r^2+eps^2)^(-1/2), wacc = (r^2+eps^2)^(-3/2).
@@ -535,17 +563,13 @@ BOLIDE_INLINE void gravity_softened_kernel(double r2, double eps, int softening,
     return;
   }
   const double H = GRAVITY_SPLINE_H_OVER_EPS * eps;
-  if (r2 >= H * H) {
+  if (r2 >= H * H) { /* outside the support: no polynomial (a warp-uniform branch on the GPU) */
     const double q = 1.0 / sqrt(r2);
     *wpot = q;
     *wacc = q * q * q;
     return;
   }
-  const double inv_H = 1.0 / H;
-  const double u = sqrt(r2) * inv_H;
-  const double u2 = u * u;
-  *wpot = inv_H * (3.0 + u2 * (-7.0 + u2 * (21.0 + u * (-28.0 + u * (15.0 - 3.0 * u)))));
-  *wacc = inv_H * inv_H * inv_H * (14.0 + u2 * (-84.0 + u * (140.0 + u * (-90.0 + 21.0 * u))));
+  gravity_spline_kernel(r2, 1.0 / H, H * H, wpot, wacc);
 }
 
 /** Softening of the pair (i, j) (Plummer equivalent): the constant eps, or,

@@ -18,7 +18,6 @@
 
 #include "error.h"
 #include "damage/flaws.h"
-#include "flaws_io.h"
 #include "ic.h"
 #include "units.h"
 #include "version.h"
