@@ -1,5 +1,5 @@
-/* Per-particle arrays of variable length in HDF5 files (DESIGN.md, "Data
- * layout"): one flat double array of values and N + 1 int64 offsets,
+/* Per-particle arrays of variable length in HDF5 files
+ * (theory/architecture.md, "Data layout"): one flat double array of values and N + 1 int64 offsets,
  * particle i owning values[off[i] .. off[i+1]-1], in the particle order of
  * the file.  The io layer knows no task family: a family describes its array
  * by a struct ragged_io_desc (dataset names, descriptions, its own check of
