@@ -16,5 +16,8 @@ int icgen_planet_main(int argc, char **argv);
 int icgen_impact_main(int argc, char **argv);
 /** import-miluphcuda: a miluphcuda ASCII input file (ic_miluphcuda.c). */
 int icgen_miluphcuda_main(int argc, char **argv);
+/** bolide-ic miluphcuda-materials: a miluphcuda material.cfg as a Materials
+ *  section (ic_miluphcuda_cfg.c; needs libconfig). */
+int icgen_miluphcuda_cfg_main(int argc, char **argv);
 
 #endif

@@ -105,6 +105,8 @@ static void icgen_usage(FILE *f) {
       "  planet  layered planet in hydrostatic equilibrium, SEA shells (planet --help)\n"
       "  impact  two bodies on a collision course (impact --help)\n"
       "  import-miluphcuda  a miluphcuda ASCII input file (import-miluphcuda --help)\n"
+      "  miluphcuda-materials  a miluphcuda material.cfg as a Bolide Materials section,\n"
+      "          written as YAML, not HDF5 (miluphcuda-materials --help)\n"
       "\n"
       "Options (subcommands they apply to in brackets):\n"
       "  -o, --output FILE     output file (default: SUBCOMMAND.hdf5)\n"
@@ -180,7 +182,8 @@ int main(int argc, char **argv) {
   error_init(argv[0]);
   if (argc < 2)
     error_exit(
-        "missing subcommand (box, sod, sedov, planet, impact or import-miluphcuda; see --help)");
+        "missing subcommand (box, sod, sedov, planet, impact, import-miluphcuda or "
+        "miluphcuda-materials; see --help)");
   if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
     icgen_usage(stdout);
     return 0;
@@ -193,13 +196,16 @@ int main(int argc, char **argv) {
   if (strcmp(sub, "planet") == 0) return icgen_planet_main(argc - 1, argv + 1);
   if (strcmp(sub, "impact") == 0) return icgen_impact_main(argc - 1, argv + 1);
   if (strcmp(sub, "import-miluphcuda") == 0) return icgen_miluphcuda_main(argc - 1, argv + 1);
+  if (strcmp(sub, "miluphcuda-materials") == 0)
+    return icgen_miluphcuda_cfg_main(argc - 1, argv + 1);
   const int cmd = strcmp(sub, "box") == 0     ? CMD_BOX
                   : strcmp(sub, "sod") == 0   ? CMD_SOD
                   : strcmp(sub, "sedov") == 0 ? CMD_SEDOV
                                               : 0;
   if (!cmd)
     error_exit(
-        "unknown subcommand '%s' (box, sod, sedov, planet, impact or import-miluphcuda; see "
+        "unknown subcommand '%s' (box, sod, sedov, planet, impact, import-miluphcuda or "
+        "miluphcuda-materials; see "
         "--help)",
         sub);
 
