@@ -104,7 +104,7 @@ static void icgen_usage(FILE *f) {
       "  sedov   Sedov-Taylor blast: energy E deposited near the centre of a box\n"
       "  planet  layered planet in hydrostatic equilibrium, SEA shells (planet --help)\n"
       "  impact  two bodies on a collision course (impact --help)\n"
-      "  import-miluphcuda  a miluphcuda ASCII input file (import-miluphcuda --help)\n"
+      "  import-miluphcuda  a miluphcuda ASCII or HDF5 input file (import-miluphcuda --help)\n"
       "  miluphcuda-materials  a miluphcuda material.cfg as a Bolide Materials section,\n"
       "          written as YAML, not HDF5 (miluphcuda-materials --help)\n"
       "\n"
