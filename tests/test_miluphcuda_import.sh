@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
-# bolide-ic import-miluphcuda (issue 23 item 7, ASCII input): files written
+# bolide-ic import-miluphcuda (issue 23 item 7, ASCII and HDF5 input): files written
 # here in miluphcuda's ASCII layouts (a hydro run: x v m rho e mat; a solid,
 # porous run: x v m rho e sml mat S(9) alpha_jutzi p) come out as initial
 # conditions with the same values (h = sml / kernel_gamma, the symmetric
 # part of S, alpha as the distention), pass `bolide --check` with a
 # Materials section for their ids; a line with the wrong number of columns
-# is one error line naming the file, the line and the expected columns.
+# is one error line naming the file, the line and the expected columns.  The
+# solid file written as miluphcuda's HDF5 input (its dataset names) imports
+# to the same initial conditions as the ASCII one; an HDF5 file without /x is
+# one error line.
 set -uo pipefail
 B=${BOLIDE_BUILDDIR:?}; S=${BOLIDE_SRCDIR:?}
 PY=${PYTHON:-$B/.venv/bin/python}
@@ -38,11 +41,37 @@ with open("solid.0000", "w") as f:
         f.write(" ".join("%.17e" % c for c in cols) + " %d " % mat[i]
                 + " ".join("%.17e" % c for c in Sm[i].ravel()) + " %.17e 0\n" % alpha[i])
 np.savez("truth.npz", x=x, v=v, m=m, rho=rho, e=e, mat=mat, sml=sml, S=Sm, alpha=alpha)
+# the same solid, porous particles as miluphcuda's HDF5 input file (its
+# dataset names; material_type an integer dataset, S as N x 9)
+import h5py
+with h5py.File("solid.h5", "w") as f:
+    f["x"] = x; f["v"] = v; f["m"] = m; f["rho"] = rho; f["e"] = e; f["sml"] = sml
+    f["material_type"] = mat.astype(np.int32); f["deviatoric_stress"] = Sm.reshape(n, 9)
+    f["alpha_jutzi"] = alpha; f["p"] = np.zeros(n); f["time"] = np.array([0.0])
+with h5py.File("nox.h5", "w") as f:
+    f["v"] = v
 PY
 
 "$ic" import-miluphcuda hydro.0000 -o hydro.hdf5 >hydro.log 2>&1 || { echo "FAIL: import hydro"; cat hydro.log; fail=1; }
 "$ic" import-miluphcuda solid.0000 --sml --solid --palpha -o solid.hdf5 >solid.log 2>&1 ||
   { echo "FAIL: import solid"; cat solid.log; fail=1; }
+# HDF5 input: its datasets name the columns, no switches
+"$ic" import-miluphcuda solid.h5 -o solid_h5.hdf5 >solid_h5.log 2>&1 ||
+  { echo "FAIL: import solid.h5"; cat solid_h5.log; fail=1; }
+grep -q "deviatoric_stress alpha_jutzi" solid_h5.log || { echo "FAIL: solid.h5: datasets read: $(cat solid_h5.log)"; fail=1; }
+"$PY" - <<'PY' || fail=1
+import h5py, numpy as np, sys
+# the HDF5 import equals the ASCII import of the same particles, field by field
+with h5py.File("solid.hdf5", "r") as a, h5py.File("solid_h5.hdf5", "r") as b:
+    ga, gb = a["PartType0"], b["PartType0"]
+    bad = [k for k in ga if not np.array_equal(ga[k][...], gb[k][...])]
+    print(("FAIL solid.h5 differs from solid.0000 in " + " ".join(bad)) if bad
+          else "ok   solid.h5 (HDF5) imports as solid.0000 (ASCII): %d fields equal" % len(ga))
+    sys.exit(1 if bad else 0)
+PY
+"$ic" import-miluphcuda nox.h5 -o nox.hdf5 >nox.out 2>nox.err && { echo "FAIL: nox.h5: exit 0"; fail=1; }
+[ "$(wc -l <nox.err)" -eq 1 ] && grep -q "nox.h5: an HDF5 file without /x" nox.err ||
+  { echo "FAIL: nox.h5: $(cat nox.err)"; fail=1; }
 "$PY" - <<'PY' || fail=1
 import h5py, numpy as np, sys
 t = np.load("truth.npz")

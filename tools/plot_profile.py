@@ -7,8 +7,12 @@ import sys
 
 try:
     from bolide.plot_profile import main
-except ImportError:  # the source tree's package, beside tools/
-    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+except ImportError:
+    # the source tree's package beside tools/, or an install's (PREFIX/bin/SCRIPT:
+    # PREFIX/share/bolide/python)
+    _here = os.path.dirname(os.path.abspath(__file__))
+    sys.path[:0] = [os.path.join(_here, "..", "python"),
+                    os.path.join(_here, "..", "share", "bolide", "python")]
     try:
         from bolide.plot_profile import main
     except ImportError as exc:

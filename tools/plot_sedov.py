@@ -35,11 +35,17 @@ minimum image when the header has a BoxSize.
 """
 
 import argparse
+import os
 import sys
 
 import numpy as np
 
-from bolide_tools import common, l1, sedov, snapshot
+try:
+    from bolide_tools import common, l1, sedov, snapshot
+except ImportError:  # an install: PREFIX/bin/SCRIPT, the package in PREFIX/share/bolide/python
+    _here = os.path.dirname(os.path.abspath(__file__))
+    sys.path.insert(0, os.path.join(_here, "..", "share", "bolide", "python"))
+    from bolide_tools import common, l1, sedov, snapshot
 
 
 def parse_args(argv):

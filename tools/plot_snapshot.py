@@ -16,11 +16,17 @@ them in order of increasing z, so the picture is a view from +z.
 """
 
 import argparse
+import os
 import sys
 
 import numpy as np
 
-from bolide_tools import common, snapshot
+try:
+    from bolide_tools import common, snapshot
+except ImportError:  # an install: PREFIX/bin/SCRIPT, the package in PREFIX/share/bolide/python
+    _here = os.path.dirname(os.path.abspath(__file__))
+    sys.path.insert(0, os.path.join(_here, "..", "share", "bolide", "python"))
+    from bolide_tools import common, snapshot
 
 #: Short colour names -> dataset names (any dataset name is accepted too).
 SHORT_NAMES = {

@@ -30,11 +30,17 @@ A in a non-periodic tube (left state at x < A).
 """
 
 import argparse
+import os
 import sys
 
 import numpy as np
 
-from bolide_tools import common, l1, riemann, snapshot
+try:
+    from bolide_tools import common, l1, riemann, snapshot
+except ImportError:  # an install: PREFIX/bin/SCRIPT, the package in PREFIX/share/bolide/python
+    _here = os.path.dirname(os.path.abspath(__file__))
+    sys.path.insert(0, os.path.join(_here, "..", "share", "bolide", "python"))
+    from bolide_tools import common, l1, riemann, snapshot
 
 
 def parse_args(argv):

@@ -24,11 +24,17 @@ relative to max_t |L| and is not printed when L is identically zero.
 """
 
 import argparse
+import os
 import sys
 
 import numpy as np
 
-from bolide_tools import common, snapshot
+try:
+    from bolide_tools import common, snapshot
+except ImportError:  # an install: PREFIX/bin/SCRIPT, the package in PREFIX/share/bolide/python
+    _here = os.path.dirname(os.path.abspath(__file__))
+    sys.path.insert(0, os.path.join(_here, "..", "share", "bolide", "python"))
+    from bolide_tools import common, snapshot
 
 
 def parse_args(argv):

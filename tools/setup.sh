@@ -8,7 +8,7 @@ top="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$top"
 need=""
 for pkg in build-essential autoconf automake libtool pkg-config libhdf5-dev libyaml-dev \
-           libhwloc-dev python3 python3-venv python3-dev clang libclang-rt-14-dev; do
+           libhwloc-dev python3 python3-venv python3-dev clang libclang-rt-14-dev help2man libconfig-dev; do
   dpkg -s "$pkg" >/dev/null 2>&1 || need="$need $pkg"
 done
 if [ -n "$need" ]; then

@@ -12,6 +12,7 @@
 
 #include "error.h"
 #include "material.h"
+#include "paths.h"
 #include "version.h"
 
 static void usage(FILE *f) {
@@ -26,8 +27,9 @@ static void usage(FILE *f) {
           "  --nu N                    number of energies (default 5)\n"
           "  --log                     log-spaced grids (minima must then be positive)\n"
           "  --stdin                   read 'density energy' pairs from standard input instead\n"
-          "  --plot FILE.png           also draw P and c_s against density (tools/plot_eos.py,\n"
-          "                            run with $PYTHON or the build's .venv python)\n"
+          "  --plot FILE.png           also draw P and c_s against density (plot_eos.py beside\n"
+          "                            the program, or tools/ of the source tree; run with\n"
+          "                            $PYTHON, the build's .venv python or python3)\n"
           "  --keys                    list every EOS and material key and exit\n"
           "  -h, --help, --version\n");
 }
@@ -93,19 +95,17 @@ static void plot_check_target(const char *path) {
 
 /** Run PYTHON tools/plot_eos.py TABLE PNG NAME and wait for it. */
 static void plot(const char *table, const char *png, const char *name) {
-  const char *py = getenv("PYTHON");
-  if (!py || !*py) py = BOLIDE_PYTHON;
-  const char *script = getenv("BOLIDE_PLOT_EOS");
-  char path[4096];
-  if (!script || !*script) {
-    snprintf(path, sizeof path, "%s/tools/plot_eos.py", BOLIDE_SRCDIR);
-    script = path;
-  }
+  const char *py = paths_python();
+  /* $BOLIDE_PLOT_EOS, else plot_eos.py beside an installed bolide-eos, else
+   * the source tree's tools/ (paths.h) */
+  char script[4096];
+  if (!paths_find(script, sizeof script, "BOLIDE_PLOT_EOS", "plot_eos.py", "tools/plot_eos.py"))
+    error_exit("--plot: cannot find the plotting script (%s; set BOLIDE_PLOT_EOS)", script);
   fflush(stdout);
   const pid_t pid = fork();
   if (pid < 0) error_exit("cannot start %s: %s", py, strerror(errno));
   if (pid == 0) {
-    execl(py, py, script, table, png, name, (char *)NULL);
+    execlp(py, py, script, table, png, name, (char *)NULL);
     fprintf(stderr, "bolide-eos: error: cannot run %s: %s\n", py, strerror(errno));
     _exit(127);
   }

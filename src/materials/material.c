@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "error.h"
+#include "paths.h"
 #include "units.h"
 
 /* ------------------------------------------------------------ key tables */
@@ -682,28 +683,11 @@ void material_eos_table_load_swift(struct eos_table *tab, const char *filename) 
 
 const char *material_default_library(void) {
   static char path[PATH_MAX];
-  const char *env = getenv("BOLIDE_MATERIALS");
-  if (env && *env) return env;
-  /* installed: PREFIX/bin/PROGRAM -> PREFIX/share/bolide/materials.yml */
-  char exe[PATH_MAX];
-  const ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 64);
-  if (n > 0) {
-    exe[n] = 0;
-    char *slash = strrchr(exe, '/');
-    if (slash) {
-      strcpy(slash, "/../share/bolide/materials.yml");
-      if (access(exe, R_OK) == 0) {
-        memcpy(path, exe, sizeof path);
-        return path;
-      }
-    }
-  }
-#ifdef BOLIDE_SRCDIR
-  snprintf(path, sizeof path, "%s/examples/materials.yml", BOLIDE_SRCDIR);
+  /* $BOLIDE_MATERIALS, else PREFIX/share/bolide/materials.yml beside an
+   * install (PREFIX/bin/PROGRAM), else the source tree's examples/ (paths.h) */
+  paths_find(path, sizeof path, "BOLIDE_MATERIALS", "../share/bolide/materials.yml",
+             "examples/materials.yml");
   return path;
-#else
-  return "materials.yml";
-#endif
 }
 
 void material_write_keys(FILE *f) {

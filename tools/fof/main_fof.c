@@ -25,6 +25,7 @@
 #include "error.h"
 #include "fof.h"
 #include "ic.h"
+#include "paths.h"
 #include "units.h"
 #include "version.h"
 
@@ -172,11 +173,15 @@ static double fofmain_enclosed(const double *rs, const double *mcum, size_t n, d
 
 /** Run the plotting script on the fragment table. */
 static void fofmain_plot(const char *table, const char *png) {
-  const char *py = getenv("PYTHON");
-  if (!py || !*py) py = "python3";
+  const char *py = paths_python();
+  /* $BOLIDE_TOOLS_DIR/plot_fragments.py, else the script beside an installed
+   * bolide-fof, else the source tree's tools/ (paths.h) */
   char script[4096];
   const char *tools = getenv("BOLIDE_TOOLS_DIR");
-  snprintf(script, sizeof script, "%s/plot_fragments.py", tools ? tools : BOLIDE_SRCDIR "/tools");
+  if (tools && *tools)
+    snprintf(script, sizeof script, "%s/plot_fragments.py", tools);
+  else if (!paths_find(script, sizeof script, NULL, "plot_fragments.py", "tools/plot_fragments.py"))
+    error_exit("%s: cannot find the plotting script (%s; set BOLIDE_TOOLS_DIR)", png, script);
   fflush(NULL);
   const pid_t pid = fork();
   if (pid < 0) error_exit("cannot start %s: %s", py, strerror(errno));

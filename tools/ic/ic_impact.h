@@ -18,5 +18,8 @@ int icgen_impact_main(int argc, char **argv);
 int icgen_miluphcuda_main(int argc, char **argv);
 /** import-mesh: the nodes of a finite-element mesh (ic_mesh.c). */
 int icgen_mesh_main(int argc, char **argv);
+/** bolide-ic miluphcuda-materials: a miluphcuda material.cfg as a Materials
+ *  section (ic_miluphcuda_cfg.c; needs libconfig). */
+int icgen_miluphcuda_cfg_main(int argc, char **argv);
 
 #endif

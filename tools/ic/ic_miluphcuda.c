@@ -13,9 +13,15 @@
  * kernel's support radius: h = sml / kernel_gamma.  Without sml, h =
  * SPH:resolution_eta's default x (m/rho)^(1/3) (Bolide iterates h anyway).
  * Material ids are kept (miluphcuda's start at 0); theory/miluphcuda.md maps
- * the switches and material keys to Bolide's. */
+ * the switches and material keys to Bolide's.
+ *
+ * An HDF5 input file (miluphcuda's HDF5IO; its output files too) names its
+ * datasets, so no switch is needed: /x, /v (N x 3), /m, /material_type and,
+ * where present, /rho, /e, /sml, /deviatoric_stress (N x 9), /alpha_jutzi or
+ * /alpha_epspor, /ep.  Flaws (/activation_thresholds) are not read. */
 #include <errno.h>
 #include <getopt.h>
+#include <hdf5.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -64,7 +70,212 @@ static void milu_usage(FILE *f) {
           "  --epsalpha          EPSALPHA_POROSITY 1: alpha_epspor and epsilon_v columns\n"
           "  -h, --help          this help\n"
           "FRAGMENTATION's flaw columns are not read (bolide-flaws draws flaws).\n"
+          "An HDF5 input file (miluphcuda's HDF5IO) needs no switches: its datasets /x, /v,\n"
+          "/m, /material_type and, where present, /rho, /e, /sml, /deviatoric_stress,\n"
+          "/alpha_jutzi or /alpha_epspor and /ep are read.\n"
           "The switches and material keys in Bolide's terms: theory/miluphcuda.md.\n");
+}
+
+/** Read miluphcuda's ASCII input file (columns after the switches fmt). */
+static void milu_read_ascii(const char *in, const struct milu_format *fmtp, struct parts *p,
+                            char *desc, size_t len) {
+  const struct milu_format fmt = *fmtp;
+  FILE *f = fopen(in, "r");
+  if (!f) error_exit("%s: cannot open: %s", in, strerror(errno));
+  const int ncol = milu_columns(&fmt);
+  milu_describe(&fmt, desc, len);
+  parts_alloc(p, 1024);
+  p->count = 0;
+  char *line = NULL;
+  size_t cap = 0;
+  long lineno = 0;
+  double v[32];
+  while (getline(&line, &cap, f) > 0) {
+    lineno++;
+    char *s = line, *end;
+    while (*s == ' ' || *s == '\t') s++;
+    if (*s == '#' || *s == '\n' || *s == '\0') continue;
+    int n = 0;
+    for (;;) {
+      while (*s == ' ' || *s == '\t') s++;
+      if (*s == '\n' || *s == '\r' || *s == '\0') break;
+      const double x = strtod(s, &end);
+      if (end == s || !isfinite(x))
+        error_exit("%s:%ld: column %d: not a finite number ('%.20s')", in, lineno, n + 1, s);
+      if (n < 32) v[n] = x;
+      n++;
+      s = end;
+    }
+    if (n != ncol)
+      error_exit("%s:%ld: %d columns, expected %d for these switches (%s; see --help)", in, lineno,
+                 n, ncol, desc);
+    const size_t i = p->count;
+    if (i + 1 > p->capacity) parts_reserve(p, 2 * p->capacity);
+    p->count = i + 1;
+    int k = 0;
+    p->x[i] = v[k++], p->y[i] = v[k++], p->z[i] = v[k++];
+    p->vx[i] = v[k++], p->vy[i] = v[k++], p->vz[i] = v[k++];
+    p->m[i] = v[k++];
+    if (!(p->m[i] > 0)) error_exit("%s:%ld: mass %g must be positive", in, lineno, p->m[i]);
+    p->rho[i] = fmt.density ? v[k++] : 0.0;
+    if (fmt.density && !(p->rho[i] > 0))
+      error_exit("%s:%ld: density %g must be positive", in, lineno, p->rho[i]);
+    p->u[i] = fmt.energy ? v[k++] : 0.0;
+    if (fmt.sml) {
+      if (!(v[k] > 0)) error_exit("%s:%ld: sml %g must be positive", in, lineno, v[k]);
+      p->h[i] = v[k++] / kernel_gamma;
+    } else {
+      p->h[i] = KERNEL_ETA_DEFAULT * cbrt(p->m[i] / p->rho[i]);
+    }
+    const double mat = v[k++];
+    if (mat < 0 || mat != floor(mat) || mat > 2147483647.0)
+      error_exit("%s:%ld: material id %g must be an integer >= 0", in, lineno, mat);
+    p->mat[i] = (int32_t)mat;
+    if (fmt.jc) {
+      p->eps_p[i] = v[k++];
+      k++; /* T: Bolide's temperature follows from the EOS and u */
+    }
+    if (fmt.solid) {
+      const double *S = v + k; /* 3 x 3, row by row */
+      p->Sxx[i] = S[0], p->Sxy[i] = 0.5 * (S[1] + S[3]), p->Sxz[i] = 0.5 * (S[2] + S[6]);
+      p->Syy[i] = S[4], p->Syz[i] = 0.5 * (S[5] + S[7]), p->Szz[i] = S[8];
+      k += 9;
+    }
+    p->alpha[i] = 1.0;
+    if (fmt.palpha) {
+      p->alpha[i] = v[k];
+      k += 2; /* p: miluphcuda's previous pressure, recomputed by Bolide */
+    }
+    if (fmt.epsalpha) {
+      p->alpha[i] = v[k];
+      k += 2; /* epsilon_v: starts at 0 in Bolide */
+    }
+    if (!(p->alpha[i] >= 1.0))
+      error_exit("%s:%ld: distention %g must be >= 1", in, lineno, p->alpha[i]);
+    p->id[i] = (int64_t)i + 1;
+  }
+  free(line);
+  fclose(f);
+  if (p->count == 0) error_exit("%s: no particles", in);
+}
+
+/** Dataset `name` of miluphcuda's HDF5 file as n x ncomp doubles (HDF5
+ *  converts integer datasets); NULL when absent and not required. */
+static double *milu_h5_read(hid_t f, const char *in, const char *name, size_t n, int ncomp,
+                            int required) {
+  if (H5Lexists(f, name, H5P_DEFAULT) <= 0) {
+    if (required) error_exit("%s: no dataset %s (a miluphcuda HDF5 input file has it)", in, name);
+    return NULL;
+  }
+  const hid_t d = H5Dopen2(f, name, H5P_DEFAULT);
+  if (d < 0) error_exit("%s: cannot open dataset %s", in, name);
+  const hid_t sp = H5Dget_space(d);
+  hsize_t dims[2] = {0, 1};
+  const int nd = H5Sget_simple_extent_ndims(sp);
+  if (nd < 1 || nd > 2) error_exit("%s: %s has %d dimensions, expected 1 or 2", in, name, nd);
+  H5Sget_simple_extent_dims(sp, dims, NULL);
+  H5Sclose(sp);
+  if (dims[0] != n || (nd == 2 ? dims[1] : 1) != (hsize_t)ncomp)
+    error_exit("%s: %s has shape %llu x %llu, expected %zu x %d", in, name,
+               (unsigned long long)dims[0], (unsigned long long)(nd == 2 ? dims[1] : 1), n, ncomp);
+  double *buf = malloc(n * (size_t)ncomp * sizeof *buf + 1);
+  if (!buf) error_exit("%s: out of memory for %s", in, name);
+  if (H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0)
+    error_exit("%s: cannot read %s as numbers", in, name);
+  H5Dclose(d);
+  for (size_t i = 0; i < n * (size_t)ncomp; i++)
+    if (!isfinite(buf[i]))
+      error_exit("%s: %s of particle %zu: not a finite number", in, name, i / (size_t)ncomp);
+  return buf;
+}
+
+/** Whether file `in` starts with HDF5's signature. */
+static int milu_is_hdf5(const char *in) {
+  static const unsigned char sig[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
+  unsigned char b[8];
+  FILE *f = fopen(in, "rb");
+  if (!f) return 0; /* the ASCII reader says why */
+  const int yes = fread(b, 1, 8, f) == 8 && memcmp(b, sig, 8) == 0;
+  fclose(f);
+  return yes;
+}
+
+/** Read miluphcuda's HDF5 input file into p; desc gets the datasets read. */
+static void milu_read_hdf5(const char *in, struct parts *p, char *desc, size_t len) {
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  const hid_t f = H5Fopen(in, H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) error_exit("%s: cannot open as HDF5", in);
+  if (H5Lexists(f, "/x", H5P_DEFAULT) <= 0)
+    error_exit("%s: an HDF5 file without /x: not a miluphcuda input file", in);
+  const hid_t d = H5Dopen2(f, "/x", H5P_DEFAULT);
+  const hid_t sp = H5Dget_space(d);
+  hsize_t dims[2] = {0, 0};
+  if (H5Sget_simple_extent_ndims(sp) != 2) error_exit("%s: /x is not N x 3", in);
+  H5Sget_simple_extent_dims(sp, dims, NULL);
+  H5Sclose(sp);
+  H5Dclose(d);
+  if (dims[1] != 3)
+    error_exit("%s: /x is N x %llu: only 3-D files (DIM 3)", in, (unsigned long long)dims[1]);
+  const size_t n = dims[0];
+  if (n == 0) error_exit("%s: no particles", in);
+  double *x = milu_h5_read(f, in, "/x", n, 3, 1), *v = milu_h5_read(f, in, "/v", n, 3, 1);
+  double *m = milu_h5_read(f, in, "/m", n, 1, 1);
+  double *mat = milu_h5_read(f, in, "/material_type", n, 1, 1);
+  double *rho = milu_h5_read(f, in, "/rho", n, 1, 0), *e = milu_h5_read(f, in, "/e", n, 1, 0);
+  double *sml = milu_h5_read(f, in, "/sml", n, 1, 0);
+  double *S = milu_h5_read(f, in, "/deviatoric_stress", n, 9, 0);
+  double *aj = milu_h5_read(f, in, "/alpha_jutzi", n, 1, 0);
+  double *ae = aj ? NULL : milu_h5_read(f, in, "/alpha_epspor", n, 1, 0);
+  double *ep = milu_h5_read(f, in, "/ep", n, 1, 0);
+  if (!rho && !sml) error_exit("%s: neither /rho nor /sml: h cannot be set", in);
+  if (H5Lexists(f, "/activation_thresholds", H5P_DEFAULT) > 0)
+    error_note(
+        "%s: /activation_thresholds (FRAGMENTATION's flaws) not read: bolide-flaws or "
+        "Damage:seed draws Bolide's",
+        in);
+  H5Fclose(f);
+  snprintf(desc, len, "HDF5: x v m material_type%s%s%s%s%s%s", rho ? " rho" : "", e ? " e" : "",
+           sml ? " sml" : "", S ? " deviatoric_stress" : "",
+           aj   ? " alpha_jutzi"
+           : ae ? " alpha_epspor"
+                : "",
+           ep ? " ep" : "");
+  parts_alloc(p, n);
+  p->count = n;
+  for (size_t i = 0; i < n; i++) {
+    p->x[i] = x[3 * i], p->y[i] = x[3 * i + 1], p->z[i] = x[3 * i + 2];
+    p->vx[i] = v[3 * i], p->vy[i] = v[3 * i + 1], p->vz[i] = v[3 * i + 2];
+    p->m[i] = m[i];
+    if (!(m[i] > 0)) error_exit("%s: particle %zu: mass %g must be positive", in, i, m[i]);
+    p->rho[i] = rho ? rho[i] : 0.0;
+    if (rho && !(rho[i] > 0))
+      error_exit("%s: particle %zu: density %g must be positive", in, i, rho[i]);
+    p->u[i] = e ? e[i] : 0.0;
+    if (sml) {
+      if (!(sml[i] > 0)) error_exit("%s: particle %zu: sml %g must be positive", in, i, sml[i]);
+      p->h[i] = sml[i] / kernel_gamma;
+    } else {
+      p->h[i] = KERNEL_ETA_DEFAULT * cbrt(m[i] / rho[i]);
+    }
+    if (mat[i] < 0 || mat[i] != floor(mat[i]) || mat[i] > 2147483647.0)
+      error_exit(
+          "%s: particle %zu: material_type %g must be an integer >= 0 (miluphcuda's "
+          "ignored (-1) and accreted (-2) particles are not imported)",
+          in, i, mat[i]);
+    p->mat[i] = (int32_t)mat[i];
+    if (ep) p->eps_p[i] = ep[i];
+    if (S) {
+      const double *s9 = S + 9 * i; /* 3 x 3, row by row */
+      p->Sxx[i] = s9[0], p->Sxy[i] = 0.5 * (s9[1] + s9[3]), p->Sxz[i] = 0.5 * (s9[2] + s9[6]);
+      p->Syy[i] = s9[4], p->Syz[i] = 0.5 * (s9[5] + s9[7]), p->Szz[i] = s9[8];
+    }
+    p->alpha[i] = aj ? aj[i] : ae ? ae[i] : 1.0;
+    if (!(p->alpha[i] >= 1.0))
+      error_exit("%s: particle %zu: distention %g must be >= 1", in, i, p->alpha[i]);
+    p->id[i] = (int64_t)i + 1;
+  }
+  free(x), free(v), free(m), free(mat), free(rho), free(e), free(sml), free(S), free(aj), free(ae),
+      free(ep);
 }
 
 int icgen_miluphcuda_main(int argc, char **argv) {
@@ -124,85 +335,14 @@ int icgen_miluphcuda_main(int argc, char **argv) {
     snprintf(outbuf, sizeof outbuf, "%.*s.hdf5", (int)stem, in);
     out = outbuf;
   }
-  FILE *f = fopen(in, "r");
-  if (!f) error_exit("%s: cannot open: %s", in, strerror(errno));
-  const int ncol = milu_columns(&fmt);
   char desc[256];
-  milu_describe(&fmt, desc, sizeof desc);
   struct parts p;
-  parts_alloc(&p, 1024);
-  p.count = 0;
-  char *line = NULL;
-  size_t cap = 0;
-  long lineno = 0;
-  double v[32];
-  while (getline(&line, &cap, f) > 0) {
-    lineno++;
-    char *s = line, *end;
-    while (*s == ' ' || *s == '\t') s++;
-    if (*s == '#' || *s == '\n' || *s == '\0') continue;
-    int n = 0;
-    for (;;) {
-      while (*s == ' ' || *s == '\t') s++;
-      if (*s == '\n' || *s == '\r' || *s == '\0') break;
-      const double x = strtod(s, &end);
-      if (end == s || !isfinite(x))
-        error_exit("%s:%ld: column %d: not a finite number ('%.20s')", in, lineno, n + 1, s);
-      if (n < 32) v[n] = x;
-      n++;
-      s = end;
-    }
-    if (n != ncol)
-      error_exit("%s:%ld: %d columns, expected %d for these switches (%s; see --help)", in, lineno,
-                 n, ncol, desc);
-    const size_t i = p.count;
-    if (i + 1 > p.capacity) parts_reserve(&p, 2 * p.capacity);
-    p.count = i + 1;
-    int k = 0;
-    p.x[i] = v[k++], p.y[i] = v[k++], p.z[i] = v[k++];
-    p.vx[i] = v[k++], p.vy[i] = v[k++], p.vz[i] = v[k++];
-    p.m[i] = v[k++];
-    if (!(p.m[i] > 0)) error_exit("%s:%ld: mass %g must be positive", in, lineno, p.m[i]);
-    p.rho[i] = fmt.density ? v[k++] : 0.0;
-    if (fmt.density && !(p.rho[i] > 0))
-      error_exit("%s:%ld: density %g must be positive", in, lineno, p.rho[i]);
-    p.u[i] = fmt.energy ? v[k++] : 0.0;
-    if (fmt.sml) {
-      if (!(v[k] > 0)) error_exit("%s:%ld: sml %g must be positive", in, lineno, v[k]);
-      p.h[i] = v[k++] / kernel_gamma;
-    } else {
-      p.h[i] = KERNEL_ETA_DEFAULT * cbrt(p.m[i] / p.rho[i]);
-    }
-    const double mat = v[k++];
-    if (mat < 0 || mat != floor(mat) || mat > 2147483647.0)
-      error_exit("%s:%ld: material id %g must be an integer >= 0", in, lineno, mat);
-    p.mat[i] = (int32_t)mat;
-    if (fmt.jc) {
-      p.eps_p[i] = v[k++];
-      k++; /* T: Bolide's temperature follows from the EOS and u */
-    }
-    if (fmt.solid) {
-      const double *S = v + k; /* 3 x 3, row by row */
-      p.Sxx[i] = S[0], p.Sxy[i] = 0.5 * (S[1] + S[3]), p.Sxz[i] = 0.5 * (S[2] + S[6]);
-      p.Syy[i] = S[4], p.Syz[i] = 0.5 * (S[5] + S[7]), p.Szz[i] = S[8];
-      k += 9;
-    }
-    p.alpha[i] = 1.0;
-    if (fmt.palpha) {
-      p.alpha[i] = v[k];
-      k += 2; /* p: miluphcuda's previous pressure, recomputed by Bolide */
-    }
-    if (fmt.epsalpha) {
-      p.alpha[i] = v[k];
-      k += 2; /* epsilon_v: starts at 0 in Bolide */
-    }
-    if (!(p.alpha[i] >= 1.0))
-      error_exit("%s:%ld: distention %g must be >= 1", in, lineno, p.alpha[i]);
-    p.id[i] = (int64_t)i + 1;
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  if (milu_is_hdf5(in)) {
+    milu_read_hdf5(in, &p, desc, sizeof desc);
+  } else {
+    milu_read_ascii(in, &fmt, &p, desc, sizeof desc);
   }
-  free(line);
-  fclose(f);
-  if (p.count == 0) error_exit("%s: no particles", in);
 
   /* the engine's open box is [0, L]^3: the particles' centre at its centre */
   double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};

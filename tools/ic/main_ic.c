@@ -104,7 +104,9 @@ static void icgen_usage(FILE *f) {
       "  sedov   Sedov-Taylor blast: energy E deposited near the centre of a box\n"
       "  planet  layered planet in hydrostatic equilibrium, SEA shells (planet --help)\n"
       "  impact  two bodies on a collision course (impact --help)\n"
-      "  import-miluphcuda  a miluphcuda ASCII input file (import-miluphcuda --help)\n"
+      "  import-miluphcuda  a miluphcuda ASCII or HDF5 input file (import-miluphcuda --help)\n"
+      "  miluphcuda-materials  a miluphcuda material.cfg as a Bolide Materials section,\n"
+      "          written as YAML, not HDF5 (miluphcuda-materials --help)\n"
       "  import-mesh  a finite-element mesh's nodes: a node file or a keyword deck's\n"
       "          *NODE sections (import-mesh --help)\n"
       "\n"
@@ -182,8 +184,8 @@ int main(int argc, char **argv) {
   error_init(argv[0]);
   if (argc < 2)
     error_exit(
-        "missing subcommand (box, sod, sedov, planet, impact, import-miluphcuda or import-mesh; "
-        "see --help)");
+        "missing subcommand (box, sod, sedov, planet, impact, import-miluphcuda, "
+        "miluphcuda-materials or import-mesh; see --help)");
   if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
     icgen_usage(stdout);
     return 0;
@@ -197,15 +199,16 @@ int main(int argc, char **argv) {
   if (strcmp(sub, "impact") == 0) return icgen_impact_main(argc - 1, argv + 1);
   if (strcmp(sub, "import-miluphcuda") == 0) return icgen_miluphcuda_main(argc - 1, argv + 1);
   if (strcmp(sub, "import-mesh") == 0) return icgen_mesh_main(argc - 1, argv + 1);
+  if (strcmp(sub, "miluphcuda-materials") == 0)
+    return icgen_miluphcuda_cfg_main(argc - 1, argv + 1);
   const int cmd = strcmp(sub, "box") == 0     ? CMD_BOX
                   : strcmp(sub, "sod") == 0   ? CMD_SOD
                   : strcmp(sub, "sedov") == 0 ? CMD_SEDOV
                                               : 0;
   if (!cmd)
     error_exit(
-        "unknown subcommand '%s' (box, sod, sedov, planet, impact, import-miluphcuda or "
-        "import-mesh; see "
-        "--help)",
+        "unknown subcommand '%s' (box, sod, sedov, planet, impact, import-miluphcuda, "
+        "miluphcuda-materials or import-mesh; see --help)",
         sub);
 
   struct icgen_opts o = {.lattice = ICGEN_CUBIC,

@@ -1,0 +1,140 @@
+#!/usr/bin/env bash
+# bolide-ic miluphcuda-materials (issue 23 item 7): miluphcuda's libconfig
+# material file as a Bolide Materials section.  On
+# tests/data/miluphcuda/material.cfg (written here in miluphcuda's layout:
+# Tillotson with an @include, Tillotson + P-alpha, Murnaghan, ideal gas):
+#   - the conversion with each plasticity switch gives a section that
+#     `bolide --check` accepts in a parameter file, the values as
+#     theory/miluphcuda.md's table says (Tillotson keys, the crush curve
+#     rescaled to alpha_e = alpha_0, sqrt(3) on the pressure-dependent
+#     yield strengths, friction angles as coefficients);
+#   - every key not converted is named (a comment and a note);
+#   - an EOS Bolide does not have (ANEOS, type 7) is an error, all problems
+#     in one pass, and nothing is written;
+#   - an integer where miluphcuda reads a float is warned about.
+# Skips (77) when bolide-ic was built without libconfig, after checking that
+# the subcommand then says so in one line.
+set -u
+S=${BOLIDE_SRCDIR:?} B=${BOLIDE_BUILDDIR:?}
+ic="$B/bolide-ic" bolide="$B/bolide"
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/bolide_milucfg.XXXXXX")
+trap 'rm -rf "$tmp"' EXIT
+cd "$tmp" || exit 1
+fail=0
+FAIL() { echo "FAIL: $*"; fail=1; }
+cfg="$S/tests/data/miluphcuda/material.cfg"
+
+if ! grep -q '^#define HAVE_LIBCONFIG 1' "$B/config.h"; then
+  "$ic" miluphcuda-materials "$cfg" >out 2>err && FAIL "without libconfig: exit 0"
+  [ "$(wc -l <err)" -eq 1 ] && grep -q "built without libconfig" err || FAIL "without libconfig: $(cat err)"
+  [ "$fail" = 0 ] && echo "bolide-ic built without libconfig: skip"
+  [ "$fail" = 0 ] && exit 77
+  exit 1
+fi
+
+# initial conditions: one granite cube (material 0); the other materials are
+# checked by --check all the same
+"$ic" box --n 6 --size 1 --rho 2680 --u 1e4 --mat 0 -o cube.hdf5 >/dev/null || FAIL "bolide-ic box"
+params() { # SECTION-FILE: a parameter file with the converted section
+  cat <<'EOF'
+InitialConditions:
+  file_name: cube.hdf5
+TimeIntegration:
+  time_end: 1e-5
+EOF
+  cat "$1"
+}
+value() { # FILE ID KEY: the value of KEY of material ID
+  awk -v id="  $2:" -v key="$3:" '
+    index($0, id) == 1 { inside = 1; next }
+    /^  [0-9]+:/ { inside = 0 }
+    inside && $1 == key { print $2; exit }' "$1"
+}
+near() { # A B: |A - B| <= 1e-9 |B|
+  awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; m = b < 0 ? -b : b; exit !(a != "" && d <= 1e-9 * m) }'
+}
+
+for pl in none von_mises drucker_prager mohr_coulomb collins collins_simple; do
+  "$ic" miluphcuda-materials "$cfg" --plasticity "$pl" --fragmentation -o "m_$pl.yml" 2>"e_$pl" ||
+    { FAIL "--plasticity $pl: conversion failed"; cat "e_$pl"; continue; }
+  params "m_$pl.yml" >"p_$pl.yml"
+  "$bolide" --check "p_$pl.yml" >"c_$pl" 2>&1 || { FAIL "--plasticity $pl: bolide --check"; cat "c_$pl"; }
+done
+
+m=m_collins.yml
+# Tillotson from the @include, miluphcuda's rho_limit and cs_limit default
+for kv in rho0=2680 A=18e9 B=18e9 E0=16e6 Eiv=3.5e6 Ecv=18e6 a=0.5 b=1.3 alpha=5 beta=5 \
+  eta_min=0.85 density_floor=100 shear_modulus=24e9 bulk_modulus=36e9 weibull_k=1e61 weibull_m=16; do
+  near "$(value $m 0 "${kv%%=*}")" "${kv#*=}" || FAIL "material 0: ${kv%%=*} is '$(value $m 0 "${kv%%=*}")', not ${kv#*=}"
+done
+near "$(value $m 0 cs_min)" "$(awk 'BEGIN { printf "%.17g", 0.01 * sqrt(18e9 / 2680) }')" || FAIL "material 0: cs_min"
+# Collins: sqrt(3) on cohesions and limit, friction coefficients sqrt(3) tan(angle)
+r3() { awk -v x="$1" 'BEGIN { printf "%.17g", sqrt(3) * x }'; }
+near "$(value $m 0 yield_stress)" "$(r3 1e7)" || FAIL "material 0: yield_stress (cohesion)"
+near "$(value $m 0 yield_stress_max)" "$(r3 3.5e9)" || FAIL "material 0: yield_stress_max"
+near "$(value $m 0 cohesion_damaged)" "$(r3 1e4)" || FAIL "material 0: cohesion_damaged"
+near "$(value $m 0 friction_intact)" "$(awk 'BEGIN { x = 0.9827937232; printf "%.17g", sqrt(3) * sin(x) / cos(x) }')" ||
+  FAIL "material 0: friction_intact"
+grep -q '^    strength: collins' $m || FAIL "no strength: collins"
+# P-alpha, crush curve 1: alpha_e = alpha_0, alpha_t = 1 + (1.9 - 1)(2 - 1)/(4.64 - 1)
+sed -n '/^  1:/,/^  2:/p' $m >mat1
+for kv in alpha_0=2 alpha_e=2 p_e=1e6 p_t=6.8e7 p_s=2.13e8 n1=12 n2=3; do
+  v=$(awk -v k="${kv%%=*}:" '$1 == k { print $2; exit }' mat1)
+  near "$v" "${kv#*=}" || FAIL "material 1 porosity: ${kv%%=*} is '$v', not ${kv#*=}"
+done
+near "$(awk '$1 == "alpha_t:" { print $2 }' mat1)" "$(awk 'BEGIN { printf "%.17g", 1 + 0.9 / 3.64 }')" ||
+  FAIL "material 1: alpha_t"
+grep -q 'model: palpha' mat1 || FAIL "material 1: no palpha"
+# Murnaghan (miluphcuda's default rho_limit), ideal gas; fluids have no strength
+for kv in rho0=1000 K0=2.2e9 n=7 eta_limit=0.9; do
+  near "$(value $m 2 "${kv%%=*}")" "${kv#*=}" || FAIL "material 2: ${kv%%=*}"
+done
+near "$(value $m 3 gamma)" 1.4 || FAIL "material 3: gamma"
+[ -z "$(value $m 2 strength)" ] || FAIL "material 2 (no shear modulus) has a strength"
+# the other switches
+grep -q '^    strength: elastic' m_none.yml || FAIL "--plasticity none: not elastic"
+near "$(value m_von_mises.yml 0 yield_stress)" 3.5e9 || FAIL "von_mises: yield_stress unscaled"
+near "$(value m_drucker_prager.yml 0 yield_stress)" \
+  "$(awk 'BEGIN { p = 0.9827937232; printf "%.17g", 6 * 1e7 * cos(p) / (3 - sin(p)) }')" || FAIL "drucker_prager: Y0"
+near "$(value m_mohr_coulomb.yml 0 yield_stress)" "$(r3 1e7)" || FAIL "mohr_coulomb: cohesion"
+[ -z "$(value m_collins_simple.yml 0 cohesion_damaged)" ] || FAIL "collins_simple has a damaged curve"
+# what is not converted is said
+grep -q '# not converted: sml, interactions, artificial_viscosity.alpha' $m || FAIL "no 'not converted' comment"
+grep -q "material.cfg:[0-9]*: material 1: eos.cs_porous not converted" e_collins || FAIL "no note on cs_porous"
+grep -q '#     viscosity_alpha: 1' $m || FAIL "no hint on SPH:viscosity_alpha"
+# --hydro: fluids only
+"$ic" miluphcuda-materials "$cfg" --hydro >m_hydro.yml 2>/dev/null || FAIL "--hydro"
+grep -q 'strength' m_hydro.yml && FAIL "--hydro: a material with strength"
+params m_hydro.yml >p_hydro.yml
+"$bolide" --check p_hydro.yml >c_hydro 2>&1 || { FAIL "--hydro: bolide --check"; cat c_hydro; }
+
+# errors: ANEOS and a missing ID in one pass, nothing written; an integer
+cat >bad.cfg <<'EOF'
+materials = (
+{
+    ID = 0
+    eos = { type = 7; table_path = "aneos.table"; n_rho = 10; n_e = 10; };
+},
+{
+    name = "no ID"
+    eos = { type = 9; polytropic_gamma = 1.4; };
+},
+{
+    ID = 2
+    eos = { type = 1; rho_0 = 1000.0; bulk_modulus = 2.2e9; n = 7; };
+}
+);
+EOF
+"$ic" miluphcuda-materials bad.cfg -o bad.yml >bad.out 2>bad.err && FAIL "bad.cfg: exit 0"
+[ -e bad.yml ] && FAIL "bad.cfg: a file was written"
+grep -q "bad.cfg:4: material 0: eos.type 7 (ANEOS)" bad.err || FAIL "bad.cfg: ANEOS not reported: $(cat bad.err)"
+grep -q "bad.cfg:[0-9]*: a material without an integer ID" bad.err || FAIL "bad.cfg: missing ID not reported"
+grep -q "bad.cfg:12: n = 7 is an integer" bad.err || FAIL "bad.cfg: integer not warned about"
+grep -q "2 problems above: nothing written" bad.err || FAIL "bad.cfg: last line: $(tail -1 bad.err)"
+# libconfig's own syntax errors: one line with file and line
+printf 'materials = ( { ID = 0 \n eos = { type = ; } } );\n' >syntax.cfg
+"$ic" miluphcuda-materials syntax.cfg >/dev/null 2>syn.err && FAIL "syntax error: exit 0"
+[ "$(wc -l <syn.err)" -eq 1 ] && grep -q "syntax.cfg:2:" syn.err || FAIL "syntax error: $(cat syn.err)"
+
+[ "$fail" = 0 ] && echo "ok: miluphcuda material files convert and pass bolide --check"
+exit "$fail"
