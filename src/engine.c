@@ -1074,42 +1074,35 @@ static void engine_run_phase(struct engine *e, int phase) {
   scheduler_run(&e->sched, engine_run_task, e);
 }
 
+void engine_timestep_props(const struct engine *e, struct timestep_props *tp) {
+  memset(tp, 0, sizeof *tp);
+  tp->hydro = e->hp.enabled;
+  tp->porous = e->porous;
+  tp->damage_max_change = e->damage ? e->damage_max_change : 0.0;
+  tp->gravity = e->gp.enabled;
+  tp->grav_eps = e->gp.eps;
+  tp->grav_h_factor = e->gp.h_factor;
+  tp->grav_eta = e->gp.eta;
+}
+
 /** Which particle and which criterion set the smallest time step (the
- *  criteria of kick2_part, the damage and the gravity steps, recomputed from
- *  the state of the last kick), written into why. */
+ *  criteria of the kick, timestep_part_criteria, recomputed from the state
+ *  of the last kick), written into why. */
 static void engine_dt_culprit(const struct engine *e, char *why, size_t len) {
   const struct parts *p = &e->parts;
-  const struct hydro_props *hp = &e->hp;
+  struct timestep_props tp;
+  engine_timestep_props(e, &tp);
   double best = HUGE_VAL;
   size_t ib = 0;
-  const char *crit = "none";
+  int crit = TIMESTEP_NR;
   for (size_t i = 0; i < p->count; i++) {
-    const double H = kernel_gamma * p->h[i];
-    const double a = sqrt(p->ax[i] * p->ax[i] + p->ay[i] * p->ay[i] + p->az[i] * p->az[i]);
-    double d[6] = {HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL};
-    static const char *name[6] = {"Courant condition (h, v_sig)", "acceleration criterion (h, |a|)",
-                                  "volume change (div v)", "relative change of rho, u or S",
-                                  "damage growth", "gravitational criterion (eps, |a_grav|)"};
-    if (hp->enabled) {
-      if (p->v_sig[i] > 0.0) d[0] = 2.0 * hp->cfl * H / p->v_sig[i];
-      if (a > 0.0) d[1] = sqrt(2.0 * hp->cfl * H / a);
-      if (p->div_v[i] != 0.0) d[2] = hp->log_max_volume_change / fabs(p->div_v[i]);
-      if (hp->max_rel_change > 0.0) {
-        const double S[6] = {p->Sxx[i], p->Sxy[i], p->Sxz[i], p->Syy[i], p->Syz[i], p->Szz[i]};
-        const double dS[6] = {p->dSxx[i], p->dSxy[i], p->dSxz[i], p->dSyy[i], p->dSyz[i], p->dSzz[i]};
-        d[3] = timestep_relative_change(hp, p->rho[i], p->drho_dt[i], p->u[i], p->du_dt[i], p->cs[i], S, dS);
-      }
-    }
-    if (e->damage) d[4] = damage_part_timestep(p, i, e->damage_max_change);
-    if (e->gp.enabled && e->gp.eps > 0.0) {
-      const double ga[3] = {p->gax[i], p->gay[i], p->gaz[i]};
-      d[5] = gravity_timestep(ga, e->gp.eps, e->gp.eta);
-    }
-    for (int k = 0; k < 6; k++)
+    double d[TIMESTEP_NR];
+    timestep_part_criteria(p, i, &e->hp, e->mats, &tp, d);
+    for (int k = 0; k < TIMESTEP_NR; k++)
       if (d[k] < best) {
         best = d[k];
         ib = i;
-        crit = name[k];
+        crit = k;
       }
   }
   if (p->count == 0) {
@@ -1120,8 +1113,8 @@ static void engine_dt_culprit(const struct engine *e, char *why, size_t len) {
   snprintf(why, len,
            "particle id %lld (material %d) at (%g, %g, %g) limited by the %s: h %g, rho %g, u %g, P %g, "
            "c_s %g, v_sig %g, |a| %g, div v %g",
-           (long long)p->id[i], (int)p->mat[i], p->x[i], p->y[i], p->z[i], crit, p->h[i], p->rho[i], p->u[i],
-           p->P[i], p->cs[i], p->v_sig[i],
+           (long long)p->id[i], (int)p->mat[i], p->x[i], p->y[i], p->z[i], timestep_criterion_name(crit),
+           p->h[i], p->rho[i], p->u[i], p->P[i], p->cs[i], p->v_sig[i],
            sqrt(p->ax[i] * p->ax[i] + p->ay[i] * p->ay[i] + p->az[i] * p->az[i]), p->div_v[i]);
 }
 
