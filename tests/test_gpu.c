@@ -459,7 +459,7 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
   tp.hydro = tp.porous = 1;
   tp.damage_max_change = solid ? damage_max_change : 0.0;
   for (int c = 0; c < sp.nr_top; c++)
-    dt_cpu[c] = sp.cells[c].count ? kick2_cell_cpu(&p, &sp.cells[c], dt_kick, &hp, &mats, &tp) : 1e300;
+    dt_cpu[c] = sp.cells[c].count ? kick2_cell_cpu(&p, &sp.cells[c], dt_kick, &hp, &mats, &tp, NULL, NULL) : 1e300;
   const double t_cpu = error_walltime() - t0;
 
   /* GPU: the runner's FORCE phase on the copy, cells reset to its h */

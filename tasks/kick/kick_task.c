@@ -5,11 +5,12 @@
 
 /** Second half kick and new time step of a task cell (kick2_part, the same
  *  function as the GPU's): the smallest time step of its particles into
- *  e->cell_dt_min. */
+ *  e->cell_dt_min, their counts by time bin into e->cell_bins. */
 void kick2_task(struct engine *e, struct task *tk) {
   const int t = tk->cell_index;
   struct timestep_props tp;
   engine_timestep_props(e, &tp);
-  e->cell_dt_min[t] = kick2_cell_cpu(&e->parts, e->tcells[t], e->first_force ? 0.0 : 0.5 * e->dt,
-                                     &e->hp, e->mats, &tp);
+  e->cell_dt_min[t] =
+      kick2_cell_cpu(&e->parts, e->tcells[t], e->first_force ? 0.0 : 0.5 * e->dt, &e->hp, e->mats,
+                     &tp, &e->timeline, e->cell_bins + (size_t)t * (TIMELINE_NR_BINS + 1));
 }
