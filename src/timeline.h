@@ -50,6 +50,11 @@ BOLIDE_INLINE integertime_t timeline_step_of_bin(int bin) {
 /** Position of the lowest set bit of ti > 0 (0 for odd ti); 64 for 0. */
 BOLIDE_INLINE int timeline_trailing_zeros(integertime_t ti) {
   if (ti == 0) return 64;
+#if defined(__CUDA_ARCH__)
+  return __ffsll((long long)ti) - 1;
+#elif defined(__GNUC__)
+  return __builtin_ctzll((unsigned long long)ti);
+#else
   uint64_t u = (uint64_t)ti;
   int n = 0;
   while (!(u & 1u)) {
@@ -57,10 +62,17 @@ BOLIDE_INLINE int timeline_trailing_zeros(integertime_t ti) {
     n++;
   }
   return n;
+#endif
 }
 
 /** Position of the highest set bit of ti > 0 (floor(log2 ti)); -1 for 0. */
 BOLIDE_INLINE int timeline_log2(integertime_t ti) {
+  if (ti == 0) return -1;
+#if defined(__CUDA_ARCH__)
+  return 63 - __clzll((long long)ti);
+#elif defined(__GNUC__)
+  return 63 - __builtin_clzll((unsigned long long)ti);
+#else
   int n = -1;
   uint64_t u = (uint64_t)ti;
   while (u) {
@@ -68,6 +80,7 @@ BOLIDE_INLINE int timeline_log2(integertime_t ti) {
     n++;
   }
   return n;
+#endif
 }
 
 /** The time line of a run from time_begin to time_end (> time_begin) with
