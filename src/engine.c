@@ -702,6 +702,13 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     params_error(params, "TimeIntegration:time_end", "time_end (%g) is before time_begin (%g)", e->time_end, e->time);
   if (e->dt_min > e->dt_max)
     params_error(params, "TimeIntegration:dt_min", "dt_min (%g) is larger than dt_max (%g)", e->dt_min, e->dt_max);
+  if (!params_get_bool(params, "TimeIntegration:global_step"))
+    params_error(params, "TimeIntegration:global_step",
+                 "false (individual time steps in time bins) is not implemented yet: use true");
+  /* the time line of individual time steps: today only to report the bins
+   * that the particles' own limits would give (the timesteps file) */
+  e->timeline = timeline_make(e->time, e->time_end > e->time ? e->time_end : e->time + 1.0,
+                              e->dt_max > 0.0 ? e->dt_max : e->time_end - e->time);
 
   double box[3];
   int periodic = params_get_bool(params, "InitialConditions:periodic");
@@ -1074,42 +1081,35 @@ static void engine_run_phase(struct engine *e, int phase) {
   scheduler_run(&e->sched, engine_run_task, e);
 }
 
+void engine_timestep_props(const struct engine *e, struct timestep_props *tp) {
+  memset(tp, 0, sizeof *tp);
+  tp->hydro = e->hp.enabled;
+  tp->porous = e->porous;
+  tp->damage_max_change = e->damage ? e->damage_max_change : 0.0;
+  tp->gravity = e->gp.enabled;
+  tp->grav_eps = e->gp.eps;
+  tp->grav_h_factor = e->gp.h_factor;
+  tp->grav_eta = e->gp.eta;
+}
+
 /** Which particle and which criterion set the smallest time step (the
- *  criteria of kick2_part, the damage and the gravity steps, recomputed from
- *  the state of the last kick), written into why. */
+ *  criteria of the kick, timestep_part_criteria, recomputed from the state
+ *  of the last kick), written into why. */
 static void engine_dt_culprit(const struct engine *e, char *why, size_t len) {
   const struct parts *p = &e->parts;
-  const struct hydro_props *hp = &e->hp;
+  struct timestep_props tp;
+  engine_timestep_props(e, &tp);
   double best = HUGE_VAL;
   size_t ib = 0;
-  const char *crit = "none";
+  int crit = TIMESTEP_NR;
   for (size_t i = 0; i < p->count; i++) {
-    const double H = kernel_gamma * p->h[i];
-    const double a = sqrt(p->ax[i] * p->ax[i] + p->ay[i] * p->ay[i] + p->az[i] * p->az[i]);
-    double d[6] = {HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL};
-    static const char *name[6] = {"Courant condition (h, v_sig)", "acceleration criterion (h, |a|)",
-                                  "volume change (div v)", "relative change of rho, u or S",
-                                  "damage growth", "gravitational criterion (eps, |a_grav|)"};
-    if (hp->enabled) {
-      if (p->v_sig[i] > 0.0) d[0] = 2.0 * hp->cfl * H / p->v_sig[i];
-      if (a > 0.0) d[1] = sqrt(2.0 * hp->cfl * H / a);
-      if (p->div_v[i] != 0.0) d[2] = hp->log_max_volume_change / fabs(p->div_v[i]);
-      if (hp->max_rel_change > 0.0) {
-        const double S[6] = {p->Sxx[i], p->Sxy[i], p->Sxz[i], p->Syy[i], p->Syz[i], p->Szz[i]};
-        const double dS[6] = {p->dSxx[i], p->dSxy[i], p->dSxz[i], p->dSyy[i], p->dSyz[i], p->dSzz[i]};
-        d[3] = timestep_relative_change(hp, p->rho[i], p->drho_dt[i], p->u[i], p->du_dt[i], p->cs[i], S, dS);
-      }
-    }
-    if (e->damage) d[4] = damage_part_timestep(p, i, e->damage_max_change);
-    if (e->gp.enabled && e->gp.eps > 0.0) {
-      const double ga[3] = {p->gax[i], p->gay[i], p->gaz[i]};
-      d[5] = gravity_timestep(ga, e->gp.eps, e->gp.eta);
-    }
-    for (int k = 0; k < 6; k++)
+    double d[TIMESTEP_NR];
+    timestep_part_criteria(p, i, &e->hp, e->mats, &tp, d);
+    for (int k = 0; k < TIMESTEP_NR; k++)
       if (d[k] < best) {
         best = d[k];
         ib = i;
-        crit = name[k];
+        crit = k;
       }
   }
   if (p->count == 0) {
@@ -1120,9 +1120,21 @@ static void engine_dt_culprit(const struct engine *e, char *why, size_t len) {
   snprintf(why, len,
            "particle id %lld (material %d) at (%g, %g, %g) limited by the %s: h %g, rho %g, u %g, P %g, "
            "c_s %g, v_sig %g, |a| %g, div v %g",
-           (long long)p->id[i], (int)p->mat[i], p->x[i], p->y[i], p->z[i], crit, p->h[i], p->rho[i], p->u[i],
-           p->P[i], p->cs[i], p->v_sig[i],
+           (long long)p->id[i], (int)p->mat[i], p->x[i], p->y[i], p->z[i], timestep_criterion_name(crit),
+           p->h[i], p->rho[i], p->u[i], p->P[i], p->cs[i], p->v_sig[i],
            sqrt(p->ax[i] * p->ax[i] + p->ay[i] * p->ay[i] + p->az[i] * p->az[i]), p->div_v[i]);
+}
+
+/** The particles by time bin of their own limit after this step's kick
+ *  (the CPU kick's cell_bins; the GPU kick does not count them yet: all 0)
+ *  into e->bins, and what time bins would have updated to the run's sums. */
+static void engine_bins_collect(struct engine *e) {
+  memset(e->bins, 0, sizeof e->bins);
+  if (e->gpu) return;
+  for (int t = 0; t < e->nr_tcells; t++)
+    for (int b = 0; b <= TIMELINE_NR_BINS; b++) e->bins[b] += e->cell_bins[(size_t)t * (TIMELINE_NR_BINS + 1) + b];
+  e->bin_updates += timeline_active_fraction(e->bins) * (double)e->parts.count;
+  e->bin_all += (double)e->parts.count;
 }
 
 /** The next global time step: the smallest particle step, limited by dt_max,
@@ -1216,6 +1228,7 @@ void engine_run(struct engine *e) {
     engine_run_phase(e, ENGINE_PHASE_FORCE);
     e->t_eval += error_walltime() - wf;
     e->nr_eval++;
+    engine_bins_collect(e);
     engine_gravity_reuse_remember(e);
     e->step++;
     e->updates += (long long)e->parts.count;
@@ -1260,6 +1273,11 @@ void engine_run(struct engine *e) {
   error_log(0, "done: %ld steps to t = %g in %.2f s (%.3g particle updates per second)", e->step, e->time, wall,
             wall > 0 ? (double)e->updates / wall : 0.0);
   if (e->nr_removed) error_log(0, "%lld particles left the open box and were removed", e->nr_removed);
+  if (e->bin_all > 0.0)
+    error_log(0, "time bins: individual time steps (issue 20; TimeIntegration:global_step) would have "
+              "updated %.1f%% of the particles per step of the smallest bin on average (the timesteps file "
+              "has the bins and the fraction of each step)",
+              100.0 * e->bin_updates / e->bin_all);
   if (e->nr_eval)
     error_log(0, "derivative evaluations (FORCE phases of the steps): %ld, %.4f s each on average",
               e->nr_eval, e->t_eval / e->nr_eval);
@@ -1292,6 +1310,7 @@ void engine_clean(struct engine *e) {
   if (e->timesteps) fclose(e->timesteps);
   free(e->out_times);
   free(e->cell_dt_min);
+  free(e->cell_bins);
   free(e->gcells);
   free(e->grav_x0);
   restart_gravity_free(&e->restart_grav);

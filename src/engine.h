@@ -14,12 +14,14 @@
 #include "part.h"
 #include "scheduler.h"
 #include "space.h"
+#include "timeline.h"
 #include "restart.h"
 #include "units.h"
 
 struct params;
 struct material_table;
 struct gpu_engine;
+struct timestep_props;
 
 /** Command-line choices that shape the run. */
 struct engine_options {
@@ -98,6 +100,13 @@ struct engine {
   int nr_pairs;                   /**< their number */
   int *task_pair;                 /**< pair number of each pair task, by task id */
   double *cell_dt_min;            /**< smallest new time step per task cell */
+  struct timeline timeline;       /**< integer time line of the run (src/timeline.h) */
+  int64_t *cell_bins;             /**< per task cell, TIMELINE_NR_BINS + 1 counts of its particles by
+                                       the time bin of their own limit (CPU kick; issue 20) */
+  int64_t bins[TIMELINE_NR_BINS + 1]; /**< the sum of cell_bins after the last step */
+  double bin_updates;             /**< sum over the CPU steps of this process of the particle updates
+                                       that time bins would have done (timeline_active_fraction) */
+  double bin_all;                 /**< and of the particle updates done */
   int need_rebuild;               /**< set by tasks (atomic): h outgrew the cells */
   int first_force;                /**< 1 while computing the initial forces */
   double t_eval;                  /**< wall seconds of the steps' FORCE phases (derivative evaluations) */
@@ -159,6 +168,9 @@ struct engine {
 void engine_init(struct engine *e, const struct params *params, const struct engine_options *opt);
 /** Run to TimeIntegration:time_end or the step limit. */
 void engine_run(struct engine *e);
+/** What decides the kick and the time step of a particle in this run
+ *  (tasks/kick/timestep.h): hydrodynamics, porosity, damage, gravity. */
+void engine_timestep_props(const struct engine *e, struct timestep_props *tp);
 /** Free everything. */
 void engine_clean(struct engine *e);
 

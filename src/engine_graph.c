@@ -449,6 +449,9 @@ void engine_make_graph(struct engine *e) {
   e->ct = error_calloc(nt ? nt : 1, sizeof(struct engine_cell_tasks), "cell tasks");
   e->nr_ct = nt;
   e->cell_dt_min = error_realloc(e->cell_dt_min, (nt ? nt : 1) * sizeof(double), "cell time steps");
+  e->cell_bins = error_realloc(e->cell_bins, (nt ? nt : 1) * (TIMELINE_NR_BINS + 1) * sizeof(int64_t),
+                               "cell time bins");
+  memset(e->cell_bins, 0, (nt ? nt : 1) * (TIMELINE_NR_BINS + 1) * sizeof(int64_t));
 
   /* tasks of each task cell: drift(t);  density(t) -> ghost(t) -> force(t) -> kick2(t) */
   for (int t = 0; t < nt; t++) {

@@ -140,8 +140,12 @@ void engine_stats_open(struct engine *e) {
   fprintf(e->timesteps,
           "# Bolide %s time steps, one line per step (SWIFT's timesteps file)\n"
           "# Time and time-step in internal units (%g s); wall-clock time of the step in ms\n"
-          "# %8s %16s %16s %14s %16s\n",
-          PACKAGE_VERSION, e->us.time_cgs, "Step", "Time", "Time-step", "Updates", "Wall-clock time");
+          "# Bin-min, Bin-max: the time bins (src/timeline.h) of the particles' own limits after the step;\n"
+          "# Active-fraction: the particle updates individual time steps would do per step of Bin-min,\n"
+          "# as a fraction of this global step's (0 0 -1: not counted, as on the GPU)\n"
+          "# %8s %16s %16s %14s %16s %7s %7s %15s\n",
+          PACKAGE_VERSION, e->us.time_cgs, "Step", "Time", "Time-step", "Updates", "Wall-clock time", "Bin-min",
+          "Bin-max", "Active-fraction");
   fflush(e->timesteps);
   engine_stats_header(e, e->stats);
   fflush(e->stats);
@@ -154,8 +158,15 @@ void engine_stats_open(struct engine *e) {
 
 void engine_timesteps_write(struct engine *e, double wall_step) {
   if (!e->timesteps) return;
-  fprintf(e->timesteps, "  %8ld %16.9e %16.9e %14zu %16.6f\n", e->step, e->time, e->dt, e->parts.count,
-          1e3 * wall_step);
+  int b_min = -1, b_max = -1;
+  for (int b = 0; b <= TIMELINE_NR_BINS; b++)
+    if (e->bins[b] > 0) {
+      if (b_min < 0) b_min = b;
+      b_max = b;
+    }
+  fprintf(e->timesteps, "  %8ld %16.9e %16.9e %14zu %16.6f %7d %7d %15.6f\n", e->step, e->time, e->dt,
+          e->parts.count, 1e3 * wall_step, b_min < 0 ? 0 : b_min, b_max < 0 ? 0 : b_max,
+          b_min < 0 ? -1.0 : timeline_active_fraction(e->bins));
   if (fflush(e->timesteps)) error_exit("cannot write the timesteps file (disk full?)");
 }
 

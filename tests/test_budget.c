@@ -112,7 +112,10 @@ static void test_kick_return(void) {
    * sqrt(3 J2) = sqrt(3) |S_xy| */
   const double Sxy = 1.1e8 / sqrt(3.0);
   p.Sxy[0] = 0.0, p.dSxy[0] = Sxy; /* kicked by dt 1 */
-  kick2_part(&p, 0, 1.0, &hp, &t);
+  struct timestep_props tp;
+  memset(&tp, 0, sizeof tp);
+  tp.hydro = 1;
+  kick2_part(&p, 0, 1.0, &hp, &t, &tp);
   const double seq = sqrt(3.0) * fabs(p.Sxy[0]);
   CHECK(fabs(seq - 1e8) <= 1e-6, "after the kick sqrt(3 J2) = %.9g (Y = 1e8)", seq);
   CHECK(p.Spxy[0] == p.Sxy[0], "the predicted stress is the returned one");

@@ -42,6 +42,7 @@
 #include "hydro_parts.h"
 #include "kernel.h"
 #include "kick/kick_cpu.h"
+#include "kick/timestep.h"
 #include "material.h"
 #include "space.h"
 
@@ -452,11 +453,13 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
   /* force -> damage -> kick2 (tasks/task_families.h) */
   for (size_t k = 0; k < n && solid; k++) damage_part(&p, k, &mats, fl.eps, dt_damage);
   double *dt_cpu = malloc(sp.nr_top * sizeof(double)), *dt_gpu = malloc(sp.nr_top * sizeof(double));
-  for (int c = 0; c < sp.nr_top; c++) {
-    dt_cpu[c] = sp.cells[c].count ? kick2_cell_cpu(&p, &sp.cells[c], dt_kick, &hp, &mats) : 1e300;
-    for (size_t k = sp.cells[c].offset; k < sp.cells[c].offset + sp.cells[c].count && solid; k++)
-      dt_cpu[c] = fmin(dt_cpu[c], damage_part_timestep(&p, k, damage_max_change));
-  }
+  /* the GPU kick's: hydrodynamics, porous rates (no-ops here), damage */
+  struct timestep_props tp;
+  memset(&tp, 0, sizeof tp);
+  tp.hydro = tp.porous = 1;
+  tp.damage_max_change = solid ? damage_max_change : 0.0;
+  for (int c = 0; c < sp.nr_top; c++)
+    dt_cpu[c] = sp.cells[c].count ? kick2_cell_cpu(&p, &sp.cells[c], dt_kick, &hp, &mats, &tp, NULL, NULL) : 1e300;
   const double t_cpu = error_walltime() - t0;
 
   /* GPU: the runner's FORCE phase on the copy, cells reset to its h */

@@ -388,7 +388,7 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
   ph.dmg_dt = damage ? dmg->dt : 0.0;
   ph.dmg_max_change = damage ? dmg->max_change : 0.0;
   ph.grav.enabled = 0;
-  ph.grav.eps = ph.grav.eta = 0.0;
+  ph.grav.eps = ph.grav.eta = ph.grav.h_factor = 0.0;
   if (grav) ph.grav = *grav;
   ph.dt_kick = dt_kick;
   ph.leaf_dt = g->leaf_dt;

@@ -60,6 +60,7 @@ struct gpu_gravity {
   int enabled; /**< add ga in the kick */
   double eps;  /**< softening (time step criterion when > 0) */
   double eta;  /**< Gravity:eta */
+  double h_factor; /**< Gravity:softening_h_factor (time step criterion with eps_i = h_factor h_i when > 0) */
 };
 
 /** What a FORCE phase reports besides the particle fields. */

@@ -519,7 +519,8 @@ void gpu_engine_init(struct engine *e) {
   /* the GPU runs the hydrodynamic phase as a whole (solids, damage, XSPH
    * and the continuity equation included) and self-gravity's interactions
    * (the walks stay on the CPU); the gravitational softening tied to h has
-   * no GPU implementation yet (the GPU P2P and kick use one constant eps), and a
+   * no GPU implementation yet (the GPU P2P uses one constant eps; the kick has the
+   * criterion with eps_i = h_factor h_i), and a
    * gravity-only run none */
   const char *unsupported = !e->hp.enabled ? "hydrodynamics is off"
                             : e->gp.enabled && e->gp.h_factor > 0.0
@@ -777,7 +778,7 @@ void gpu_engine_force(struct engine *e) {
   /* no damage before Damage:start_time (damage_task does the same) */
   jb.dmg = (struct gpu_damage){e->damage && !(e->time < e->damage_start),
                                e->first_force ? 0.0 : e->dt, e->damage_max_change};
-  jb.grav = (struct gpu_gravity){e->gp.enabled, e->gp.eps, e->gp.eta};
+  jb.grav = (struct gpu_gravity){e->gp.enabled, e->gp.eps, e->gp.eta, e->gp.h_factor};
   const int hybrid = e->gp.enabled && ge->mode != GPU_MODE_SERIAL;
   const int on_gpu = ge->mode != GPU_MODE_CPU_GRAV;
   /* serial: gravity's CPU part and device part first */

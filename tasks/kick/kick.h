@@ -12,6 +12,7 @@
 #include "inline.h"
 #include "material.h"
 #include "part.h"
+#include "kick/kick_porous.h"
 #include "kick/timestep.h"
 #include "viscosity.h"
 
@@ -35,36 +36,34 @@ BOLIDE_INLINE void kick2_plastic_return(struct parts *BOLIDE_RESTRICT p, size_t 
   EXTRA_GHOST_PUT6(S, p, S, i);
 }
 
-/** Kick particle i by dt_kick, bring a plastic particle's stress back onto
- *  its yield surface (kick2_plastic_return), make the predicted state the
- *  kicked one (kick_sync_predicted), and return its new time step
- *  (timestep_hydro, the viscous diffusion limit of a viscous fluid and,
- *  with SPH:max_relative_change, the relative-change limits).  With the
+/** The kick and the new time step of particle i, on the CPU and the GPU:
+ *  with self-gravity the gravitational acceleration joins the hydrodynamic
+ *  one (the two families accumulate apart, engine_graph.c; a gravity-only
+ *  run has no hydrodynamic one); for porous materials dalpha/dt from the
+ *  rates of this force loop (kick_porous.h); the kick by dt_kick (0 after
+ *  the first force computation); a plastic particle's stress back onto its
+ *  yield surface (kick2_plastic_return); the predicted state made the
+ *  kicked one (kick_sync_predicted); the time step of the kicked state
+ *  (timestep_part); then the kicked state of a porous particle back on its
+ *  crush curve (not after the first force computation).  With the
  *  continuity equation a particle on its density floor does not expand
  *  further (continuity_floor.h). */
 BOLIDE_INLINE double kick2_part(struct parts *BOLIDE_RESTRICT p, size_t i, double dt_kick,
-                                const struct hydro_props *hp, const struct material_table *mats) {
+                                const struct hydro_props *hp, const struct material_table *mats,
+                                const struct timestep_props *tp) {
+  if (tp->gravity) {
+    if (!tp->hydro) p->ax[i] = p->ay[i] = p->az[i] = 0.0;
+    p->ax[i] += p->gax[i];
+    p->ay[i] += p->gay[i];
+    p->az[i] += p->gaz[i];
+  }
+  if (tp->porous) kick2_porous_rate(p, i, mats);
   if (hp->continuity) continuity_floor_rate(p, i);
   kick_part(p, i, dt_kick);
   if (hp->solids) kick2_plastic_return(p, i, mats);
   kick_sync_predicted(p, i);
-  const double a = sqrt(p->ax[i] * p->ax[i] + p->ay[i] * p->ay[i] + p->az[i] * p->az[i]);
-  double dt = timestep_hydro(hp, p->h[i], p->v_sig[i], a, p->div_v[i]);
-  if (hp->solids) {
-    /* viscous diffusion of a Newtonian fluid (viscosity.h) */
-    const struct material *mat = material_table_find(mats, p->mat[i]);
-    if (mat && mat->viscosity > 0.0) {
-      const double dtv = viscosity_timestep(kernel_gamma * p->h[i], p->rho[i], mat->viscosity);
-      if (dtv < dt) dt = dtv;
-    }
-  }
-  if (hp->max_rel_change > 0.0) {
-    const double S[6] = {p->Sxx[i], p->Sxy[i], p->Sxz[i], p->Syy[i], p->Syz[i], p->Szz[i]};
-    const double dS[6] = {p->dSxx[i], p->dSxy[i], p->dSxz[i], p->dSyy[i], p->dSyz[i], p->dSzz[i]};
-    const double dtr = timestep_relative_change(hp, p->rho[i], p->drho_dt[i], p->u[i], p->du_dt[i],
-                                                p->cs[i], S, dS);
-    if (dtr < dt) dt = dtr;
-  }
+  const double dt = timestep_part(p, i, hp, mats, tp);
+  if (tp->porous && dt_kick > 0.0) kick2_porous_return(p, i, mats, hp->continuity);
   return dt;
 }
 

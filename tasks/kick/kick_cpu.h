@@ -2,17 +2,25 @@
 #ifndef BOLIDE_KICK_CPU_H
 #define BOLIDE_KICK_CPU_H
 
+#include <stdint.h>
+
 #include "cell.h"
 #include "hydro_props.h"
 #include "material.h"
 #include "part.h"
 
-/** Second half kick by dt_kick of every particle of c (velocities and
- *  energies become those of the end of the step, and the predicted ones
- *  equal them; plastic stresses back on the yield surface of their
- *  material in mats); returns the smallest new time step of its
- *  particles. */
+struct timestep_props;
+struct timeline;
+
+/** Second half kick by dt_kick of every particle of c (kick2_part:
+ *  velocities and energies become those of the end of the step, and the
+ *  predicted ones equal them; plastic stresses back on the yield surface of
+ *  their material in mats); returns the smallest new time step of its
+ *  particles (timestep_part with tp).  With bins (TIMELINE_NR_BINS + 1
+ *  counts; NULL: none) the particles are counted by the time bin of their
+ *  own step on the time line tl (timeline_bin). */
 double kick2_cell_cpu(struct parts *p, const struct cell *c, double dt_kick,
-                      const struct hydro_props *hp, const struct material_table *mats);
+                      const struct hydro_props *hp, const struct material_table *mats,
+                      const struct timestep_props *tp, const struct timeline *tl, int64_t *bins);
 
 #endif

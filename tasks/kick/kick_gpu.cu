@@ -1,13 +1,11 @@
-/* Second half kick and new time step on the GPU, with kick2_part (kick.h)
- * and, with brittle materials, damage_part_timestep (damage_part.h), with
- * self-gravity the gravitational acceleration added first and
- * gravity_timestep (gravity_iact.h), as the CPU task (kick2_task) does; each block reduces the
- * smallest time step of its leaf. */
-#include "damage/damage_part.h"
-#include "gravity/gravity_iact.h"
+/* Second half kick and new time step on the GPU with kick2_part (kick.h),
+ * the function of the CPU task (kick2_task): the gravitational acceleration,
+ * the porous rates and return, and every time-step criterion
+ * (timestep_part: hydrodynamic, damage and gravitational, the softening
+ * tied to h included); each block reduces the smallest time step of its
+ * leaf. */
 #include "gpu_kernels.h"
 #include "kick.h"
-#include "kick_porous.h"
 
 /** See kick2_gpu_launch. */
 __global__ void kick2_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, struct hydro_props hp,
@@ -17,29 +15,20 @@ __global__ void kick2_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, struc
   __shared__ double dt_min[GPU_BLOCK];
   const int L = blockIdx.x;
   const size_t beg = lv.offset[L];
+  /* the GPU runs only with hydrodynamics on (gpu_engine.c); porous rates
+   * are no-ops for the other materials */
+  struct timestep_props tp;
+  tp.hydro = 1;
+  tp.porous = 1;
+  tp.damage_max_change = damage_max_change;
+  tp.gravity = grav.enabled;
+  tp.grav_eps = grav.eps;
+  tp.grav_h_factor = grav.h_factor;
+  tp.grav_eta = grav.eta;
   double dt = 1e300;
   for (int t = threadIdx.x; t < lv.count[L]; t += blockDim.x) {
-    const size_t i = beg + (size_t)t;
-    if (grav.enabled) {
-      p.ax[i] += p.gax[i];
-      p.ay[i] += p.gay[i];
-      p.az[i] += p.gaz[i];
-    }
-    /* porous materials (kick_porous.h; no-ops for the others); dt_kick is
-     * 0 exactly after the first force computation, which has no return */
-    kick2_porous_rate(&p, i, mats);
-    const double d = kick2_part(&p, i, dt_kick, &hp, mats);
-    if (dt_kick > 0.0) kick2_porous_return(&p, i, mats, hp.continuity);
+    const double d = kick2_part(&p, beg + (size_t)t, dt_kick, &hp, mats, &tp);
     if (d < dt) dt = d;
-    if (damage_max_change > 0.0) {
-      const double dtd = damage_part_timestep(&p, i, damage_max_change);
-      if (dtd < dt) dt = dtd;
-    }
-    if (grav.enabled && grav.eps > 0.0) {
-      const double ga[3] = {p.gax[i], p.gay[i], p.gaz[i]};
-      const double dtg = gravity_timestep(ga, grav.eps, grav.eta);
-      if (dtg < dt) dt = dtg;
-    }
   }
   dt_min[threadIdx.x] = dt;
   __syncthreads();
