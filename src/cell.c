@@ -1,9 +1,9 @@
 /* Cells: bookkeeping of cell bounds between rebuilds (see cell.h). */
-#include "cell.h"
+#include "src/cell.h"
 
 #include <math.h>
 
-#include "part.h"
+#include "src/part.h"
 
 void cell_update_bounds(const struct parts *p, struct cell *c) {
   if (c->split) {

@@ -19,8 +19,8 @@
 
 #include <stddef.h>
 
-#include "inline.h"
-#include "task.h"
+#include "src/inline.h"
+#include "src/task.h"
 
 struct parts;
 

@@ -1,6 +1,6 @@
 #define _GNU_SOURCE /* sched_getaffinity */
 /* The engine: initialisation and the time-step loop (see engine.h). */
-#include "engine.h"
+#include "src/engine.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -17,23 +17,23 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "engine_tasks.h"
-#include "damage/damage_part.h"
-#include "damage/flaws.h"
-#include "error.h"
-#include "drift/drift.h"
-#include "hydro_parts.h"
-#include "ic.h"
-#include "kernel.h"
-#include "material.h"
-#include "params.h"
-#include "porosity_eos.h"
-#include "restart.h"
-#include "kick/timestep.h"
-#include "version.h"
-#include "gpu/gpu_policy.h"
+#include "src/engine_tasks.h"
+#include "tasks/damage/damage_part.h"
+#include "tasks/damage/flaws.h"
+#include "src/error.h"
+#include "tasks/drift/drift.h"
+#include "tasks/hydro_parts.h"
+#include "src/io/ic.h"
+#include "src/kernel.h"
+#include "src/materials/material.h"
+#include "src/io/params.h"
+#include "src/materials/porosity_eos.h"
+#include "src/io/restart.h"
+#include "tasks/kick/timestep.h"
+#include "src/version.h"
+#include "src/gpu/gpu_policy.h"
 #ifdef HAVE_CUDA
-#include "gpu/gpu_engine.h"
+#include "src/gpu/gpu_engine.h"
 #endif
 
 /* ------------------------------------------------------------------------ */

@@ -8,15 +8,15 @@
 
 #include <stdio.h>
 
-#include "cell.h"
-#include "gravity/gravity_cpu.h"
-#include "hydro_props.h"
-#include "part.h"
-#include "scheduler.h"
-#include "space.h"
-#include "timeline.h"
-#include "restart.h"
-#include "units.h"
+#include "src/cell.h"
+#include "tasks/gravity/gravity_cpu.h"
+#include "src/hydro_props.h"
+#include "src/part.h"
+#include "src/scheduler.h"
+#include "src/space.h"
+#include "src/timeline.h"
+#include "src/io/restart.h"
+#include "src/io/units.h"
 
 struct params;
 struct material_table;

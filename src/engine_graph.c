@@ -52,13 +52,13 @@
  * Gravity tasks write the gravity accumulators and take gravity locks;
  * hydro tasks write other fields, so the two families run side by side.
  * The kick adds the gravitational acceleration. */
-#include "engine.h"
+#include "src/engine.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "kernel.h"
+#include "src/error.h"
+#include "src/kernel.h"
 
 /** The per-task-cell tasks between the force tasks and the kick: the rows
  *  of shape chain(active) of the registry (tasks/task_families.h), in its

@@ -6,14 +6,14 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "engine_tasks.h"
-#include "error.h"
-#include "units.h"
-#include "params.h"
-#include "snapshot.h"
-#include "version.h"
+#include "src/engine_tasks.h"
+#include "src/error.h"
+#include "src/io/units.h"
+#include "src/io/params.h"
+#include "src/io/snapshot.h"
+#include "src/version.h"
 #ifdef HAVE_CUDA
-#include "gpu/gpu_engine.h"
+#include "src/gpu/gpu_engine.h"
 #endif
 
 /** Columns of the statistics file: one list for the header and the rows,

@@ -1,8 +1,8 @@
 /* The scheduler's callback: what each task of the engine's graph does.  The
  * function of each kind of task (type, subtype) comes from the registry of
  * task families (tasks/task_families.h); the engine knows no family here. */
-#include "engine_tasks.h"
-#include "error.h"
+#include "src/engine_tasks.h"
+#include "src/error.h"
 
 /** The largest kernel support the current cells and task graph allow. */
 double engine_H_limit(const struct engine *e) {

@@ -2,7 +2,7 @@
 #ifndef BOLIDE_ENGINE_TASKS_H
 #define BOLIDE_ENGINE_TASKS_H
 
-#include "engine.h"
+#include "src/engine.h"
 
 /* engine_graph.c */
 void engine_make_graph(struct engine *e);

@@ -1,5 +1,5 @@
 /* Errors, warnings and log messages: see error.h. */
-#include "error.h"
+#include "src/error.h"
 
 #include <pthread.h>
 #include <stdio.h>

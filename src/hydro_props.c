@@ -1,10 +1,10 @@
 /* Hydrodynamics settings from the SPH section. */
-#include "hydro_props.h"
+#include "src/hydro_props.h"
 
 #include <math.h>
 
-#include "kernel.h"
-#include "params.h"
+#include "src/kernel.h"
+#include "src/io/params.h"
 
 void hydro_props_init(struct hydro_props *hp, const struct params *p) {
   hp->enabled = params_get_bool(p, "SPH:hydro");

@@ -33,7 +33,7 @@
 #include "config.h"
 #endif
 
-#include "inline.h"
+#include "src/inline.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846

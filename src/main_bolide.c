@@ -15,10 +15,10 @@
 #include <strings.h>
 #include <unistd.h>
 
-#include "engine.h"
-#include "error.h"
-#include "params.h"
-#include "version.h"
+#include "src/engine.h"
+#include "src/error.h"
+#include "src/io/params.h"
+#include "src/version.h"
 
 static void usage(FILE *f) {
   fprintf(f,

@@ -1,10 +1,10 @@
 /* Particles: allocation and reordering of the structure of arrays. */
-#include "part.h"
+#include "src/part.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
+#include "src/error.h"
 
 #define PART_TYPE_ID(type) \
   _Generic((type)0, double: PART_DOUBLE, int64_t: PART_INT64, int32_t: PART_INT32)

@@ -1,5 +1,5 @@
 /* Where the running program finds the files Bolide ships (paths.h). */
-#include "paths.h"
+#include "src/paths.h"
 
 #include <limits.h>
 #include <stdio.h>

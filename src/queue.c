@@ -1,9 +1,9 @@
 /* Queues of ready tasks: see queue.h. */
-#include "queue.h"
+#include "src/queue.h"
 
 #include <stdlib.h>
 
-#include "error.h"
+#include "src/error.h"
 
 void queue_init(struct queue *q) {
   pthread_mutex_init(&q->mutex, NULL);

@@ -11,7 +11,7 @@
 #include <pthread.h>
 #include <stdatomic.h>
 
-#include "task.h"
+#include "src/task.h"
 
 /** A heap of ready tasks. */
 struct queue {

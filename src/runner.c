@@ -1,11 +1,11 @@
 /* CPU worker threads: see runner.h. */
-#include "runner.h"
+#include "src/runner.h"
 
 #include <hwloc.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 
-#include "error.h"
+#include "src/error.h"
 
 /** hwloc state: the topology restricted to the process's CPU set, where each
  *  thread goes, and the caller's binding before runner_start(). */

@@ -1,12 +1,12 @@
 /* The scheduler: see scheduler.h and theory/scheduler.md. */
-#include "scheduler.h"
+#include "src/scheduler.h"
 
 #include <sched.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
-#include "error.h"
+#include "src/error.h"
 
 /** Failed attempts to find a task before a worker goes to sleep. */
 #define SCHEDULER_SPIN 64

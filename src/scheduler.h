@@ -25,9 +25,9 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "queue.h"
-#include "runner.h"
-#include "task.h"
+#include "src/queue.h"
+#include "src/runner.h"
+#include "src/task.h"
 
 /** Tasks per storage chunk. */
 #define SCHEDULER_CHUNK 1024

@@ -3,7 +3,7 @@
 #include "config.h"
 #endif
 
-#include "space.h"
+#include "src/space.h"
 
 #include <limits.h>
 #include <math.h>
@@ -12,9 +12,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "kernel.h"
-#include "part.h"
+#include "src/error.h"
+#include "src/kernel.h"
+#include "src/part.h"
 
 /** Particles removed from an open box that are logged one by one at level 0
  *  (the rest at level 1; the count is always logged). */

@@ -20,8 +20,8 @@
 
 #include <stddef.h>
 
-#include "budget.h"
-#include "cell.h"
+#include "src/budget.h"
+#include "src/cell.h"
 
 struct parts;
 

@@ -9,7 +9,7 @@
 
 #include <math.h>
 
-#include "inline.h"
+#include "src/inline.h"
 
 /** Components of a symmetric 3x3 tensor stored as 6 numbers. */
 enum sym3_comp {

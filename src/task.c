@@ -1,6 +1,6 @@
 /* Tasks: the name tables generated from TASK_TYPES, TASK_SUBTYPES and the
  * registry of task families. */
-#include "task.h"
+#include "src/task.h"
 
 const char *const task_type_names[task_type_count] = {
 #define TASK_NAME_(name) #name,

@@ -16,7 +16,7 @@
 
 #include "config.h"
 
-#include "task_families.h"
+#include "tasks/task_families.h"
 
 #include <stdatomic.h>
 #include <stdint.h>

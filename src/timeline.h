@@ -24,7 +24,7 @@
 #include <math.h>
 #include <stdint.h>
 
-#include "inline.h"
+#include "src/inline.h"
 
 /** Number of time bins; the time line of the run has 2^TIMELINE_NR_BINS
  *  ticks (2^56: a ratio of 7e16 between the run and its shortest step). */

@@ -4,11 +4,11 @@
 #ifndef BOLIDE_HYDRO_PARTS_H
 #define BOLIDE_HYDRO_PARTS_H
 
-#include "density/density_iact.h"
-#include "force/force_iact.h"
-#include "gradient/gradient_iact.h"
-#include "inline.h"
-#include "part.h"
+#include "tasks/density/density_iact.h"
+#include "tasks/force/force_iact.h"
+#include "tasks/gradient/gradient_iact.h"
+#include "src/inline.h"
+#include "src/part.h"
 
 /** Zero the density accumulators of particle i. */
 BOLIDE_INLINE void hydro_density_reset(struct parts *BOLIDE_RESTRICT p, size_t i) {

@@ -8,7 +8,7 @@
  *   #define IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj)    density_iact(p, i, j, r2, dx, hi, hj)
  *   #define IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, hj) density_iact_gather(p, i, j, r2, dx, hi, hj)
  *   #define IACT_LOOP_ACTIVE(p, i) ((p)->flags[i] & PART_ACTIVE)      (optional)
- *   #include "iact_loop.h"
+ *   #include "tasks/iact_loop.h"
  *
  * which defines, for the macros given:
  *   IACT_LOOP_SYM (symmetric form: updates i and j; called once per pair with
@@ -47,9 +47,9 @@
  * macros are undefined at the end, so the header can be included again. */
 #include <math.h>
 
-#include "cell.h"
-#include "kernel.h"
-#include "part.h"
+#include "src/cell.h"
+#include "src/kernel.h"
+#include "src/part.h"
 
 #ifndef IACT_LOOP_NAME
 #error "define IACT_LOOP_NAME before including iact_loop.h"

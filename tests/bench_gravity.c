@@ -15,10 +15,10 @@
 #include <string.h>
 #include <time.h>
 
-#include "error.h"
-#include "gravity/gravity_cpu.h"
-#include "part.h"
-#include "space.h"
+#include "src/error.h"
+#include "tasks/gravity/gravity_cpu.h"
+#include "src/part.h"
+#include "src/space.h"
 
 static double now(void) {
   struct timespec t;

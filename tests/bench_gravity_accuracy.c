@@ -51,16 +51,16 @@
 #include <string.h>
 #include <time.h>
 
-#include "error.h"
-#include "gravity/gravity_cpu.h"
-#include "gravity_sets.h"
-#include "ic.h"
-#include "units.h"
-#include "part.h"
-#include "space.h"
+#include "src/error.h"
+#include "tasks/gravity/gravity_cpu.h"
+#include "tests/gravity_sets.h"
+#include "src/io/ic.h"
+#include "src/io/units.h"
+#include "src/part.h"
+#include "src/space.h"
 #ifdef HAVE_CUDA
-#include "gpu/gpu.h"
-#include "gpu/gpu_engine.h"
+#include "src/gpu/gpu.h"
+#include "src/gpu/gpu_engine.h"
 #endif
 
 #define MAX_CONFIGS 64

@@ -7,7 +7,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "material.h"
+#include "src/materials/material.h"
 
 /** Fill t from Tillotson p on [r0, r1] x [u0, u1], nr x nu log-spaced nodes
  *  (P and c^2 malloc'ed: material_table_free releases them). */

@@ -7,9 +7,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "ic.h"
-#include "snapshot.h"
+#include "src/error.h"
+#include "src/io/ic.h"
+#include "src/io/snapshot.h"
 
 /** FNV-1a over the bytes of a buffer. */
 static uint64_t fnv1a(uint64_t h, const void *data, size_t n) {

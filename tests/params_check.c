@@ -10,8 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "params.h"
+#include "src/error.h"
+#include "src/io/params.h"
 
 /** Print KEY=VALUE for one key, formatted by its type. */
 static void print_key(const struct params *p, const char *name) {

@@ -16,9 +16,9 @@
 #include <string.h>
 
 #include "config.h"
-#include "error.h"
-#include "ic_planet.h"
-#include "kernel.h"
+#include "src/error.h"
+#include "tools/ic/ic_planet.h"
+#include "src/kernel.h"
 
 static int cmp_double(const void *p, const void *q) {
   const double a = *(const double *)p, b = *(const double *)q;

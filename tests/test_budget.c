@@ -13,9 +13,9 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "kick/kick.h"
-#include "material.h"
-#include "part.h"
+#include "tasks/kick/kick.h"
+#include "src/materials/material.h"
+#include "src/part.h"
 
 static int checks, failures;
 #define CHECK(cond, ...)                          \

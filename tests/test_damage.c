@@ -19,9 +19,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "damage/damage_iact.h"
-#include "damage/flaws.h"
-#include "sym3.h"
+#include "tasks/damage/damage_iact.h"
+#include "tasks/damage/flaws.h"
+#include "src/sym3.h"
 
 static int failures = 0;
 

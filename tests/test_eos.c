@@ -24,8 +24,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "eos_tables.h"
-#include "material.h"
+#include "tests/eos_tables.h"
+#include "src/materials/material.h"
 
 static int failures = 0;
 static int checks = 0;

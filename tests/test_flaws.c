@@ -18,10 +18,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "damage/flaws.h"
-#include "error.h"
-#include "ragged_io.h"
-#include "material.h"
+#include "tasks/damage/flaws.h"
+#include "src/error.h"
+#include "src/io/ragged_io.h"
+#include "src/materials/material.h"
 
 static int failures = 0;
 

@@ -16,9 +16,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "damage/flaws.h"
-#include "error.h"
-#include "fof.h"
+#include "tasks/damage/flaws.h"
+#include "src/error.h"
+#include "tools/fof/fof.h"
 
 static int failures = 0;
 

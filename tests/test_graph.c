@@ -16,11 +16,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "engine.h"
-#include "engine_tasks.h"
-#include "error.h"
-#include "part.h"
-#include "space.h"
+#include "src/engine.h"
+#include "src/engine_tasks.h"
+#include "src/error.h"
+#include "src/part.h"
+#include "src/space.h"
 
 static int failures = 0;
 

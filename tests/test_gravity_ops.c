@@ -17,7 +17,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "gravity/gravity_iact.h"
+#include "tasks/gravity/gravity_iact.h"
 
 static int failures = 0;
 

@@ -23,11 +23,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "gravity_sets.h"
-#include "gravity/gravity_cpu.h"
-#include "part.h"
-#include "space.h"
+#include "src/error.h"
+#include "tests/gravity_sets.h"
+#include "tasks/gravity/gravity_cpu.h"
+#include "src/part.h"
+#include "src/space.h"
 
 #define NPART 20000
 #define BOX 4.0

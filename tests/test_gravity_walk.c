@@ -18,12 +18,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "gravity/gravity_cpu.h"
-#include "gravity/gravity_walk.h"
-#include "gravity_sets.h"
-#include "part.h"
-#include "space.h"
+#include "src/error.h"
+#include "tasks/gravity/gravity_cpu.h"
+#include "tasks/gravity/gravity_walk.h"
+#include "tests/gravity_sets.h"
+#include "src/part.h"
+#include "src/space.h"
 
 #define BOX 4.0
 

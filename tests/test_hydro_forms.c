@@ -7,12 +7,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "density/density_cpu.h"
-#include "error.h"
-#include "force/force_cpu.h"
-#include "hydro_parts.h"
-#include "kernel.h"
-#include "space.h"
+#include "tasks/density/density_cpu.h"
+#include "src/error.h"
+#include "tasks/force/force_cpu.h"
+#include "tasks/hydro_parts.h"
+#include "src/kernel.h"
+#include "src/space.h"
 
 static double urand(unsigned long long *s) {
   *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;

@@ -9,9 +9,9 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "error.h"
-#include "ic.h"
-#include "snapshot.h"
+#include "src/error.h"
+#include "src/io/ic.h"
+#include "src/io/snapshot.h"
 
 static int failures = 0;
 

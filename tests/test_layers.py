@@ -25,10 +25,12 @@ Fails (one FAIL line per finding) when
              with its reason, in tests/layers.allow; an allowed arrow that no
              longer exists fails too, so that the list only shrinks.
 
-Includes are resolved as the compilers see them: the including file's own
-folder first, then -I src, src/io, src/materials, tasks, src/gpu (Makefile.am's
-AM_CPPFLAGS, and src/gpu for nvcc).  Standard-library and system headers
-(<...>) are not read.  Run with BOLIDE_SRCDIR set (make check), or from the
+  qualified  every #include "..." names its file from the top of the tree
+             ("src/io/params.h", "tasks/force/force_iact.h"): the only -I
+             is the top (Makefile.am's AM_CPPFLAGS), so that a file shows
+             which layer it reaches into; config.h (the build's) excepted.
+
+Standard-library and system headers (<...>) are not read.  Run with BOLIDE_SRCDIR set (make check), or from the
 top of the repository.
 """
 import os
@@ -37,7 +39,7 @@ import sys
 
 TOP = os.environ.get("BOLIDE_SRCDIR") or os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 os.chdir(TOP)
-INC_PATH = ["src", "src/io", "src/materials", "tasks", "src/gpu"]
+GENERATED = {"config.h"}  # written by configure into the build folder
 SOURCE_EXT = (".c", ".h", ".cu")
 fails = []
 
@@ -150,11 +152,19 @@ include_re = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 
 
 def resolve(src, name):
-    for d in [os.path.dirname(src)] + INC_PATH:
-        p = os.path.normpath(os.path.join(d, name))
-        if os.path.isfile(p):
-            return p
-    return None
+    """The file an include names: from the top of the tree (the one -I)."""
+    p = os.path.normpath(name)
+    return p if os.path.isfile(p) else None
+
+
+for p in sources:
+    for i, line in enumerate(read(p).splitlines(), 1):
+        m = include_re.match(line)
+        if not m or m.group(1) in GENERATED:
+            continue
+        if resolve(p, m.group(1)) is None or m.group(1) != os.path.normpath(m.group(1)):
+            fail('%s:%d: #include "%s" does not name a file from the top of the tree '
+                 '(write its folder: "src/...", "tasks/<family>/...")' % (p, i, m.group(1)))
 
 
 SCHED = {"src/task.h", "src/task.c", "src/queue.h", "src/queue.c", "src/scheduler.h",

@@ -5,8 +5,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "material.h"
-#include "units.h"
+#include "src/materials/material.h"
+#include "src/io/units.h"
 
 static int failures = 0, checks = 0;
 #define CHECK(cond, ...)                          \
@@ -101,7 +101,7 @@ int main(void) {
         "absent ids not found");
 
   /* unit conversion to cgs: densities x 1e-3, pressures x 10, energies x 1e4 */
-  struct unit_system cgs = {1.0, 1.0, 1.0, 1.0, 1.0};
+  struct unit_system cgs = {1.0, 1.0, 1.0, 1.0, 1.0, 0.0};
   const double A = t.mats[0].eos.tillotson.A, rho0 = t.mats[0].rho0;
   const double E0 = t.mats[0].eos.tillotson.E0, mu = t.mats[0].shear_modulus;
   double P_si, cs_si, P_cgs, cs_cgs;

@@ -7,9 +7,9 @@
  * and SWIFT ids. */
 #include <stdio.h>
 
-#include "error.h"
-#include "material.h"
-#include "params.h"
+#include "src/error.h"
+#include "src/materials/material.h"
+#include "src/io/params.h"
 
 int main(int argc, char **argv) {
   error_init(argv[0]);

@@ -26,10 +26,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "kernel.h"
-#include "part.h"
-#include "space.h"
+#include "src/error.h"
+#include "src/kernel.h"
+#include "src/part.h"
+#include "src/space.h"
 
 /** One interaction seen: key = id_i * N + id_j and its r2. */
 struct rec {
@@ -70,7 +70,7 @@ static void record(const struct parts *p, size_t i, size_t j, double r2, const d
 #define IACT_LOOP_NAME test
 #define IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj) record(p, i, j, r2, dx, hi, hj, 1)
 #define IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, hj) record(p, i, j, r2, dx, hi, hj, 0)
-#include "iact_loop.h"
+#include "tasks/iact_loop.h"
 
 /** A density sum through the symmetric form: both sides, each with its own h
  *  (W vanishes beyond the support, so adding both is right). */
@@ -85,7 +85,7 @@ static void rho_sym(struct parts *p, size_t i, size_t j, double r2, double hi, d
 #define IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj) rho_sym(p, i, j, r2, hi, hj)
 #define IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, hj) \
   ((p)->rho[i] += (p)->m[j] * kernel_W(sqrt(r2), hi))
-#include "iact_loop.h"
+#include "tasks/iact_loop.h"
 
 static int failures = 0;
 

@@ -12,9 +12,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "error.h"
-#include "param_list.h"
-#include "params.h"
+#include "src/error.h"
+#include "src/io/param_list.h"
+#include "src/io/params.h"
 
 static int failures = 0;
 

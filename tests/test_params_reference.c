@@ -9,9 +9,9 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "error.h"
-#include "kernel.h"
-#include "params.h"
+#include "src/error.h"
+#include "src/kernel.h"
+#include "src/io/params.h"
 
 /** Whole content of a file (malloc'd), or NULL; *len gets its size. */
 static char *slurp(const char *path, size_t *len) {

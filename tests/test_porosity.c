@@ -25,13 +25,13 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "eos_murnaghan.h"
-#include "eos_tillotson.h"
-#include "error.h"
-#include "material.h"
-#include "params.h"
-#include "porosity.h"
-#include "units.h"
+#include "src/materials/eos_murnaghan.h"
+#include "src/materials/eos_tillotson.h"
+#include "src/error.h"
+#include "src/materials/material.h"
+#include "src/io/params.h"
+#include "src/materials/porosity.h"
+#include "src/io/units.h"
 
 static int failures = 0;
 

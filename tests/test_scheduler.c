@@ -21,8 +21,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "error.h"
-#include "scheduler.h"
+#include "src/error.h"
+#include "src/scheduler.h"
 
 /** Largest lock pool. */
 #define MAX_LOCKS 8

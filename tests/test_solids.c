@@ -22,16 +22,16 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "density/density_cpu.h"
-#include "force/force_cpu.h"
-#include "error.h"
-#include "gradient/gradient_cpu.h"
-#include "gradient/gradient_finish.h"
-#include "hydro_parts.h"
-#include "kernel.h"
-#include "material.h"
-#include "space.h"
-#include "strength.h"
+#include "tasks/density/density_cpu.h"
+#include "tasks/force/force_cpu.h"
+#include "src/error.h"
+#include "tasks/gradient/gradient_cpu.h"
+#include "tasks/gradient/gradient_finish.h"
+#include "tasks/hydro_parts.h"
+#include "src/kernel.h"
+#include "src/materials/material.h"
+#include "src/space.h"
+#include "src/materials/strength.h"
 
 static double urand(unsigned long long *s) {
   *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;

@@ -15,9 +15,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "error.h"
-#include "part.h"
-#include "space.h"
+#include "src/error.h"
+#include "src/part.h"
+#include "src/space.h"
 
 enum bad_case { BAD_NAN_X, BAD_ZERO_H, BAD_BIG_H, BAD_SPLIT, BAD_BOX, NR_BAD };
 

@@ -12,7 +12,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "timeline.h"
+#include "src/timeline.h"
 
 static int checks, failures;
 #define CHECK(cond, ...)                          \

@@ -13,11 +13,11 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "kernel.h"
-#include "kick/kick.h"
-#include "kick/timestep.h"
-#include "material.h"
-#include "part.h"
+#include "src/kernel.h"
+#include "tasks/kick/kick.h"
+#include "tasks/kick/timestep.h"
+#include "src/materials/material.h"
+#include "src/part.h"
 
 static int checks, failures;
 #define CHECK(cond, ...)                          \

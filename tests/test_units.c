@@ -8,9 +8,9 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "error.h"
-#include "params.h"
-#include "units.h"
+#include "src/error.h"
+#include "src/io/params.h"
+#include "src/io/units.h"
 
 static int failures = 0;
 
@@ -65,8 +65,8 @@ static void test_si_cgs(void) {
 
 /** Round trips through custom systems, and their consistency. */
 static void test_custom(void) {
-  struct unit_system si, earth = {5.9722e27, 6.371e8, 6.371e8 / 1e5, 1., 1.};
-  struct unit_system odd = {3.7, 0.013, 1234.5, 2., 300.};
+  struct unit_system si, earth = {5.9722e27, 6.371e8, 6.371e8 / 1e5, 1., 1., 0.};
+  struct unit_system odd = {3.7, 0.013, 1234.5, 2., 300., 0.};
   units_init_si(&si);
   for (int a = -3; a <= 3; a++)
     for (int b = -3; b <= 3; b++)

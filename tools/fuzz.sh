@@ -36,8 +36,7 @@ srcs="src/error.c src/paths.c src/part.c src/io/params.c src/io/units.c src/io/i
       tasks/damage/flaws.c src/materials/material.c src/materials/material_params.c
       src/materials/porosity.c"
 flags="-fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -g -O1 -std=gnu11
-       -DHAVE_CONFIG_H -DBOLIDE_SRCDIR=\"$top\" -I$build -I$top/src -I$top/src/io
-       -I$top/src/materials -I$top/tasks $hdf5_cflags"
+       -DHAVE_CONFIG_H -DBOLIDE_SRCDIR=\"$top\" -I$build -I$top $hdf5_cflags"
 for h in $harnesses; do
   bin="$out/fuzz_$h"
   if [ ! -x "$bin" ] || [ -n "$(cd "$top" && find $srcs tests/fuzz -newer "$bin" | head -1)" ]; then

@@ -16,13 +16,13 @@
 #include <string.h>
 
 extern "C" {
-#include "error.h"
-#include "part.h"
+#include "src/error.h"
+#include "src/part.h"
 }
-#include "gpu.h"
-#include "gpu_kernels.h"
-#include "gpu_lists.h"
-#include "material.h"
+#include "src/gpu/gpu.h"
+#include "src/gpu/gpu_kernels.h"
+#include "src/gpu/gpu_lists.h"
+#include "src/materials/material.h"
 
 /** The steps of the FORCE phase: one per task family with a GPU step, from
  *  the registry (tasks/task_families.h), with the particle fields each

@@ -14,9 +14,9 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "gravity/gravity_cpu.h"
-#include "hydro_props.h"
-#include "part.h"
+#include "tasks/gravity/gravity_cpu.h"
+#include "src/hydro_props.h"
+#include "src/part.h"
 
 #ifdef __cplusplus
 extern "C" {

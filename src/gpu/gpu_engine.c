@@ -1,19 +1,19 @@
 /* The engine's side of the GPU runner (gpu_engine.h). */
-#include "gpu_engine.h"
+#include "src/gpu/gpu_engine.h"
 
 #include <math.h>
 #include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "engine_tasks.h"
-#include "error.h"
-#include "gpu_policy.h"
-#include "gpu_lists.h"
-#include "kernel.h"
-#include "material.h"
-#include "params.h"
-#include "runner.h"
+#include "src/engine_tasks.h"
+#include "src/error.h"
+#include "src/gpu/gpu_policy.h"
+#include "src/gpu/gpu_lists.h"
+#include "src/kernel.h"
+#include "src/materials/material.h"
+#include "src/io/params.h"
+#include "src/runner.h"
 
 /** Where the work of a FORCE phase runs (Scheduler:gpu, gpu_policy.h). */
 enum gpu_engine_mode {

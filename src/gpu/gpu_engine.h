@@ -4,9 +4,9 @@
 #ifndef BOLIDE_GPU_ENGINE_H
 #define BOLIDE_GPU_ENGINE_H
 
-#include "engine.h"
-#include "gpu.h"
-#include "gravity/gravity_cpu.h"
+#include "src/engine.h"
+#include "src/gpu/gpu.h"
+#include "tasks/gravity/gravity_cpu.h"
 
 struct gpu_cells_job;
 struct gpu_list_box;

@@ -11,10 +11,10 @@
 #include <string.h>
 
 extern "C" {
-#include "error.h"
+#include "src/error.h"
 }
-#include "gpu.h"
-#include "gpu_kernels.h"
+#include "src/gpu/gpu.h"
+#include "src/gpu/gpu_kernels.h"
 
 /** A device buffer grown on demand (contents not kept). */
 struct gpu_grav_buf {

@@ -4,8 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "gpu_engine.h"
+#include "src/error.h"
+#include "src/gpu/gpu_engine.h"
 
 /* ------------------------------------------------------------------ tree */
 

@@ -5,12 +5,12 @@
 
 #include <cuda_runtime.h>
 
-#include "gpu.h"
-#include "gpu_check.h"
-#include "gravity/gravity_walk.h"
-#include "hydro_props.h"
-#include "part.h"
-#include "task_families.h"
+#include "src/gpu/gpu.h"
+#include "src/gpu/gpu_check.h"
+#include "tasks/gravity/gravity_walk.h"
+#include "src/hydro_props.h"
+#include "src/part.h"
+#include "tasks/task_families.h"
 
 struct material_table;
 

@@ -6,10 +6,10 @@
 #include <string.h>
 
 extern "C" {
-#include "error.h"
+#include "src/error.h"
 }
-#include "gpu_kernels.h"
-#include "gpu_lists.h"
+#include "src/gpu/gpu_kernels.h"
+#include "src/gpu/gpu_lists.h"
 
 /** Threads per block of the walk. */
 #define GPU_LISTS_BLOCK 128

@@ -24,8 +24,8 @@
 
 #include <math.h>
 
-#include "inline.h"
-#include "kernel.h"
+#include "src/inline.h"
+#include "src/kernel.h"
 
 #ifdef __cplusplus
 extern "C" {

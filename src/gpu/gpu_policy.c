@@ -1,5 +1,5 @@
 /* Scheduler:gpu (gpu_policy.h). */
-#include "gpu_policy.h"
+#include "src/gpu/gpu_policy.h"
 
 #include <ctype.h>
 #include <stdio.h>

@@ -5,8 +5,8 @@
 #ifndef BOLIDE_GPU_POLICY_H
 #define BOLIDE_GPU_POLICY_H
 
-#include "params.h"
-#include "task.h"
+#include "src/io/params.h"
+#include "src/task.h"
 
 /* The task families Scheduler:gpu can name are those of the registry
  * (tasks/task_families.h), by their names (task_family_names); bit

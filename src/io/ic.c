@@ -7,7 +7,7 @@
  * GADGET-style aliases that woma and SEAGen also write.  A periodic flag is
  * taken from /RuntimePars/PeriodicBoundariesOn (SWIFT, woma) or
  * /Header/Periodic. */
-#include "ic.h"
+#include "src/io/ic.h"
 
 #include <errno.h>
 #include <hdf5.h>
@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
+#include "src/error.h"
 
 /** Other names of a dataset found in files made by other tools. */
 static const char *const ic_aliases[][3] = {

@@ -6,8 +6,8 @@
 
 #include <stdint.h>
 
-#include "part.h"
-#include "units.h"
+#include "src/part.h"
+#include "src/io/units.h"
 
 /** Largest number of particle fields the ICs reader tracks (part_fields). */
 #define IC_MAX_FIELDS 256

@@ -6,7 +6,7 @@
  * the table (BOLIDE_PARAMS, src/io/param_list.h) then gets one parsed value:
  * its default first, then the file's, then the -P override's, each checked by
  * the same function (value_parse).  Getters only read those values. */
-#include "params.h"
+#include "src/io/params.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -18,9 +18,9 @@
 #include <sys/stat.h>
 #include <yaml.h>
 
-#include "error.h"
-#include "param_list.h"
-#include "param_swift.h"
+#include "src/error.h"
+#include "src/io/param_list.h"
+#include "src/io/param_swift.h"
 
 /* ================================================================ the table */
 

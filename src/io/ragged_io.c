@@ -1,12 +1,12 @@
 /* Per-particle arrays of variable length in HDF5 files: see ragged_io.h. */
-#include "ragged_io.h"
+#include "src/io/ragged_io.h"
 
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
+#include "src/error.h"
 
 /** Write a 1-D dataset `name` of n values (replacing one of that name). */
 static int ragged_io_dataset(hid_t grp, const char *name, hid_t ftype, hid_t mtype, size_t n,

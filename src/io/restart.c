@@ -19,7 +19,7 @@
  *   uint64 checksum of everything before it (restart_checksum).
  * Version 3 (before the far field) is refused with one line: a run
  * resumed from it would not repeat the uninterrupted run's reuse. */
-#include "restart.h"
+#include "src/io/restart.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -32,9 +32,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "error.h"
-#include "ragged_io.h"
-#include "version.h"
+#include "src/error.h"
+#include "src/io/ragged_io.h"
+#include "src/version.h"
 
 static const char restart_magic[16] = "BOLIDE-RESTART\n";
 #define RESTART_BOM 0x01020304u

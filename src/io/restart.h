@@ -26,8 +26,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "budget.h"
-#include "part.h"
+#include "src/budget.h"
+#include "src/part.h"
 
 #define RESTART_VERSION 4
 #define RESTART_HEADER_BYTES 128

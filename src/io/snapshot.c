@@ -12,7 +12,7 @@
  *
  * Every HDF5 call is checked; a failure closes the file, removes the temporary
  * file and stops with one line. */
-#include "snapshot.h"
+#include "src/io/snapshot.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -24,8 +24,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "error.h"
-#include "version.h"
+#include "src/error.h"
+#include "src/version.h"
 
 /** State of one file being written. */
 struct snapshot_writer {

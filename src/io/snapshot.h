@@ -7,8 +7,8 @@
 #ifndef BOLIDE_SNAPSHOT_H
 #define BOLIDE_SNAPSHOT_H
 
-#include "part.h"
-#include "units.h"
+#include "src/part.h"
+#include "src/io/units.h"
 
 /** What a snapshot records besides the particles. */
 struct snapshot_meta {

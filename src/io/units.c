@@ -4,13 +4,13 @@
  * are formed as one quotient of two products of integer powers of the base
  * units, so that conversions between systems whose units are powers of ten
  * (SI <-> cgs) are correctly rounded: kg m^-3 -> g cm^-3 is exactly 1e-3. */
-#include "units.h"
+#include "src/io/units.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
-#include "params.h"
+#include "src/io/params.h"
 
 /** Gravitational constant in cm^3 g^-1 s^-2 (CODATA 2018). */
 #define UNITS_G_CGS 6.67430e-8

@@ -27,7 +27,7 @@
 #include <math.h>
 #include <stddef.h>
 
-#include "inline.h"
+#include "src/inline.h"
 
 /** Expands one entry of an EOS_*_PARAMS list to a struct member. */
 #define EOS_PARAM_FIELD(st, field, key, def, lo, lo_open, hi, kind, doc) double field;

@@ -4,7 +4,7 @@
 #ifndef BOLIDE_EOS_IDEAL_GAS_H
 #define BOLIDE_EOS_IDEAL_GAS_H
 
-#include "eos_common.h"
+#include "src/materials/eos_common.h"
 
 /* clang-format off */
 #define EOS_IDEAL_GAS_PARAMS(X)                                                                        \

@@ -3,7 +3,7 @@
 #ifndef BOLIDE_EOS_ISOTHERMAL_H
 #define BOLIDE_EOS_ISOTHERMAL_H
 
-#include "eos_common.h"
+#include "src/materials/eos_common.h"
 
 /* clang-format off */
 #define EOS_ISOTHERMAL_PARAMS(X)                                                                       \

@@ -18,7 +18,7 @@
 #ifndef BOLIDE_EOS_LIQUID_H
 #define BOLIDE_EOS_LIQUID_H
 
-#include "eos_common.h"
+#include "src/materials/eos_common.h"
 
 /* clang-format off */
 #define EOS_LIQUID_PARAMS(X)                                                                           \

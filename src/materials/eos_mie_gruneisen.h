@@ -34,7 +34,7 @@
 #ifndef BOLIDE_EOS_MIE_GRUNEISEN_H
 #define BOLIDE_EOS_MIE_GRUNEISEN_H
 
-#include "eos_common.h"
+#include "src/materials/eos_common.h"
 
 /* clang-format off */
 #define EOS_MIE_GRUNEISEN_PARAMS(X)                                                                    \

@@ -9,7 +9,7 @@
 #ifndef BOLIDE_EOS_MURNAGHAN_H
 #define BOLIDE_EOS_MURNAGHAN_H
 
-#include "eos_common.h"
+#include "src/materials/eos_common.h"
 
 /* clang-format off */
 #define EOS_MURNAGHAN_PARAMS(X)                                                                        \

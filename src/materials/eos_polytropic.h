@@ -4,7 +4,7 @@
 #ifndef BOLIDE_EOS_POLYTROPIC_H
 #define BOLIDE_EOS_POLYTROPIC_H
 
-#include "eos_common.h"
+#include "src/materials/eos_common.h"
 
 /* clang-format off */
 #define EOS_POLYTROPIC_PARAMS(X)                                                                       \

@@ -20,7 +20,7 @@
 #ifndef BOLIDE_EOS_TABLE_H
 #define BOLIDE_EOS_TABLE_H
 
-#include "eos_common.h"
+#include "src/materials/eos_common.h"
 
 /* clang-format off */
 #define EOS_TABLE_PARAMS(X)                                                                            \

@@ -38,7 +38,7 @@
 #ifndef BOLIDE_EOS_TILLOTSON_H
 #define BOLIDE_EOS_TILLOTSON_H
 
-#include "eos_common.h"
+#include "src/materials/eos_common.h"
 
 /* clang-format off */
 #define EOS_TILLOTSON_PARAMS(X)                                                                        \

@@ -10,10 +10,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "error.h"
-#include "material.h"
-#include "paths.h"
-#include "version.h"
+#include "src/error.h"
+#include "src/materials/material.h"
+#include "src/paths.h"
+#include "src/version.h"
 
 static void usage(FILE *f) {
   fprintf(f,

@@ -1,6 +1,6 @@
 /* Materials: keys, checks, the material table, unit conversion and the
  * loader of tabulated EOS.  See material.h. */
-#include "material.h"
+#include "src/materials/material.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -9,9 +9,9 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "error.h"
-#include "paths.h"
-#include "units.h"
+#include "src/error.h"
+#include "src/paths.h"
+#include "src/io/units.h"
 
 /* ------------------------------------------------------------ key tables */
 

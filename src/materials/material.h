@@ -20,16 +20,16 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "inline.h"
-#include "eos_ideal_gas.h"
-#include "eos_isothermal.h"
-#include "eos_polytropic.h"
-#include "eos_liquid.h"
-#include "eos_murnaghan.h"
-#include "eos_tillotson.h"
-#include "eos_mie_gruneisen.h"
-#include "eos_table.h"
-#include "porosity.h"
+#include "src/inline.h"
+#include "src/materials/eos_ideal_gas.h"
+#include "src/materials/eos_isothermal.h"
+#include "src/materials/eos_polytropic.h"
+#include "src/materials/eos_liquid.h"
+#include "src/materials/eos_murnaghan.h"
+#include "src/materials/eos_tillotson.h"
+#include "src/materials/eos_mie_gruneisen.h"
+#include "src/materials/eos_table.h"
+#include "src/materials/porosity.h"
 
 struct params;
 struct unit_system;

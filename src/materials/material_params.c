@@ -24,9 +24,9 @@
 #include <strings.h>
 #include <unistd.h>
 
-#include "error.h"
-#include "material.h"
-#include "params.h"
+#include "src/error.h"
+#include "src/materials/material.h"
+#include "src/io/params.h"
 
 /** Libraries read while building one table (read each file once). */
 #define MATERIAL_MAX_LIBRARIES 8

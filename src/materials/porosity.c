@@ -1,16 +1,16 @@
 /* Porosity models: key tables from the X lists of porosity_palpha.h and
  * porosity_epsalpha.h, parsing of the `porosity:` sub-mapping, checks and
  * unit conversion.  See porosity.h and theory/porosity.md. */
-#include "porosity.h"
+#include "src/materials/porosity.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
-#include "error.h"
-#include "material.h"
-#include "params.h"
-#include "units.h"
+#include "src/error.h"
+#include "src/materials/material.h"
+#include "src/io/params.h"
+#include "src/io/units.h"
 
 /** One key of a porosity model (the format of material.c's key tables). */
 struct porosity_key {

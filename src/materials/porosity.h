@@ -15,9 +15,9 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "inline.h"
-#include "porosity_epsalpha.h"
-#include "porosity_palpha.h"
+#include "src/inline.h"
+#include "src/materials/porosity_epsalpha.h"
+#include "src/materials/porosity_palpha.h"
 
 struct params;
 struct param_node;

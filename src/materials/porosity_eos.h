@@ -14,8 +14,8 @@
 
 #include <math.h>
 
-#include "inline.h"
-#include "material.h"
+#include "src/inline.h"
+#include "src/materials/material.h"
 
 /** Relative step of the centred differences of porosity_matrix_partials. */
 #define POROSITY_DIFF_STEP 1e-6

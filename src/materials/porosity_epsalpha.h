@@ -26,7 +26,7 @@
 #ifndef BOLIDE_POROSITY_EPSALPHA_H
 #define BOLIDE_POROSITY_EPSALPHA_H
 
-#include "eos_common.h"
+#include "src/materials/eos_common.h"
 
 /* clang-format off */
 #define POROSITY_EPSALPHA_PARAMS(X)                                                                    \

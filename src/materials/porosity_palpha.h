@@ -56,7 +56,7 @@
 #ifndef BOLIDE_POROSITY_PALPHA_H
 #define BOLIDE_POROSITY_PALPHA_H
 
-#include "eos_common.h"
+#include "src/materials/eos_common.h"
 
 /* clang-format off */
 #define POROSITY_PALPHA_PARAMS(X)                                                                      \

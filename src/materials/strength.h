@@ -8,13 +8,13 @@
 
 #include <math.h>
 
-#include "inline.h"
-#include "material.h"
-#include "strength_collins.h"
-#include "strength_drucker_prager.h"
-#include "strength_johnson_cook.h"
-#include "strength_mohr_coulomb.h"
-#include "strength_von_mises.h"
+#include "src/inline.h"
+#include "src/materials/material.h"
+#include "src/materials/strength_collins.h"
+#include "src/materials/strength_drucker_prager.h"
+#include "src/materials/strength_johnson_cook.h"
+#include "src/materials/strength_mohr_coulomb.h"
+#include "src/materials/strength_von_mises.h"
 
 /** What the yield stress of a particle depends on. */
 struct strength_state {

@@ -7,7 +7,7 @@
 #ifndef BOLIDE_STRENGTH_COLLINS_H
 #define BOLIDE_STRENGTH_COLLINS_H
 
-#include "inline.h"
+#include "src/inline.h"
 
 /** Yield stress at pressure P and damage D (0: intact, 1: fully damaged). */
 BOLIDE_INLINE double strength_collins_yield(double Y0, double mu_i, double Y_M, double c_d,

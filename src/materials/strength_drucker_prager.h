@@ -5,7 +5,7 @@
 #ifndef BOLIDE_STRENGTH_DRUCKER_PRAGER_H
 #define BOLIDE_STRENGTH_DRUCKER_PRAGER_H
 
-#include "inline.h"
+#include "src/inline.h"
 
 /** Y = min(Y0 + friction P, Y_M), >= 0, for pressure P. */
 BOLIDE_INLINE double strength_drucker_prager_yield(double Y0, double friction, double Y_M,

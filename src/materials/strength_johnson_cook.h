@@ -16,7 +16,7 @@
 
 #include <math.h>
 
-#include "inline.h"
+#include "src/inline.h"
 
 /** Flow stress for plastic strain eps_p, strain rate eps_rate, temperature T. */
 BOLIDE_INLINE double strength_johnson_cook_yield(double A, double B, double C, double m, double n,

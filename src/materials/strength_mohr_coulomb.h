@@ -6,7 +6,7 @@
 #ifndef BOLIDE_STRENGTH_MOHR_COULOMB_H
 #define BOLIDE_STRENGTH_MOHR_COULOMB_H
 
-#include "inline.h"
+#include "src/inline.h"
 
 /** Y = max(0, c + friction P), capped at Y_M when Y_M > 0. */
 BOLIDE_INLINE double strength_mohr_coulomb_yield(double c, double friction, double Y_M, double P) {

@@ -4,7 +4,7 @@
 #ifndef BOLIDE_STRENGTH_VON_MISES_H
 #define BOLIDE_STRENGTH_VON_MISES_H
 
-#include "inline.h"
+#include "src/inline.h"
 
 /** Yield stress Y0 times the melt factor (computed by the caller). */
 BOLIDE_INLINE double strength_von_mises_yield(double Y0, double melt_factor) {

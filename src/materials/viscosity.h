@@ -16,7 +16,7 @@
 #ifndef BOLIDE_VISCOSITY_H
 #define BOLIDE_VISCOSITY_H
 
-#include "inline.h"
+#include "src/inline.h"
 
 /** The viscous deviatoric stress S = 2 eta e' (xx xy xz yy yz zz) of the
  *  velocity gradient gv (row-major, gv[3a + b] = dv^a/dx^b). */

@@ -1,8 +1,8 @@
 /* The damage task on the GPU: one thread per particle running damage_part
  * (damage_part.h, the function the CPU task calls) with the flaw thresholds
  * resident in device memory (gpu_set_flaws). */
-#include "damage_part.h"
-#include "gpu_kernels.h"
+#include "tasks/damage/damage_part.h"
+#include "src/gpu/gpu_kernels.h"
 
 /** See damage_gpu_launch. */
 __global__ void damage_gpu_kernel(struct parts p, const struct material_table *mats,

@@ -25,9 +25,9 @@
 #include <math.h>
 #include <stdint.h>
 
-#include "inline.h"
-#include "material.h"
-#include "sym3.h"
+#include "src/inline.h"
+#include "src/materials/material.h"
+#include "src/sym3.h"
 
 /** Young's modulus from the bulk and shear moduli, E = 9 K mu / (3K + mu)
  *  (Landau & Lifshitz, Theory of Elasticity, Sect. 5). */

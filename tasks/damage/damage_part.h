@@ -5,11 +5,11 @@
 #ifndef BOLIDE_DAMAGE_PART_H
 #define BOLIDE_DAMAGE_PART_H
 
-#include "damage_iact.h"
-#include "inline.h"
-#include "kernel.h"
-#include "material.h"
-#include "part.h"
+#include "tasks/damage/damage_iact.h"
+#include "src/inline.h"
+#include "src/kernel.h"
+#include "src/materials/material.h"
+#include "src/part.h"
 
 /** Flaw activation and growth of d^(1/3) of particle i over the step dt
  *  just computed, from the pressure and the predicted stress the force loop

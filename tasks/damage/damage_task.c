@@ -1,6 +1,6 @@
 /* The damage family's task (tasks/task_families.h). */
-#include "damage/damage_part.h"
-#include "engine.h"
+#include "tasks/damage/damage_part.h"
+#include "src/engine.h"
 
 /** The damage tasks run where a material is brittle (a chain of the
  *  registry: force -> damage -> kick2). */

@@ -1,14 +1,14 @@
 /* Weibull flaws: see flaws.h and theory/damage.md. */
-#include "flaws.h"
+#include "tasks/damage/flaws.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "material.h"
-#include "ragged_io.h"
+#include "src/error.h"
+#include "src/materials/material.h"
+#include "src/io/ragged_io.h"
 
 /** splitmix64 step (Steele, Lea & Flood 2014): seeds xoshiro's state. */
 static uint64_t flaws_splitmix64(uint64_t *x) {

@@ -2,9 +2,9 @@
  * the pair interaction of density_iact.h, symmetric form for the self and
  * pair tasks, gather form for the h iteration of the ghost.  Particle i's
  * sums are kept in a local accumulator over its inner loop. */
-#include "density_cpu.h"
+#include "tasks/density/density_cpu.h"
 
-#include "hydro_parts.h"
+#include "tasks/hydro_parts.h"
 
 /** Symmetric form: i (local accumulator acc_i, inverse smoothing length
  *  hi_inv, velocity vi) gets j's contribution if r < H_i; j gets i's, in the
@@ -41,7 +41,7 @@ BOLIDE_ALWAYS_INLINE void density_gather(const struct parts *p, size_t j, double
   density_sym(p, i, j, r2, dx, hi, hi_inv, hj, vi, &acc_i)
 #define IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, hj) density_gather(p, j, r2, dx, hi_inv, vi, &acc_i)
 #define IACT_LOOP_ACTIVE(p, i) (!((p)->flags[i] & PART_H_CONVERGED))
-#include "iact_loop.h"
+#include "tasks/iact_loop.h"
 
 void density_self_cpu(struct parts *p, const struct cell *c) {
   loop_density_self(p, c);

@@ -2,8 +2,8 @@
 #ifndef BOLIDE_DENSITY_CPU_H
 #define BOLIDE_DENSITY_CPU_H
 
-#include "cell.h"
-#include "part.h"
+#include "src/cell.h"
+#include "src/part.h"
 
 /** Density sums between every pair of particles of c (symmetric form). */
 void density_self_cpu(struct parts *p, const struct cell *c);

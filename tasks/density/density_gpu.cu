@@ -3,9 +3,9 @@
  * the CPU loops call) over every j of the leaves in its neighbour list with
  * r < H_i.  Sums are accumulated in registers and stored once with
  * hydro_density_reset/hydro_density_add (hydro_parts.h). */
-#include "gpu_kernels.h"
-#include "hydro_parts.h"
-#include "kernel.h"
+#include "src/gpu/gpu_kernels.h"
+#include "tasks/hydro_parts.h"
+#include "src/kernel.h"
 
 /** See density_gpu_launch. */
 __global__ void density_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, int only_unconverged) {

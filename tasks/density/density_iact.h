@@ -16,8 +16,8 @@
 
 #include <math.h>
 
-#include "inline.h"
-#include "kernel.h"
+#include "src/inline.h"
+#include "src/kernel.h"
 
 /** Accumulators of the density loop for one particle. */
 struct density_acc {

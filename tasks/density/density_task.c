@@ -1,8 +1,8 @@
 /* The density family's tasks (tasks/task_families.h): the density sums of
  * a task cell and of a pair of task cells (density_cpu.c).  The
  * accumulators were zeroed by the drift. */
-#include "density/density_cpu.h"
-#include "engine.h"
+#include "tasks/density/density_cpu.h"
+#include "src/engine.h"
 
 void density_self_task(struct engine *e, struct task *t) {
   density_self_cpu(&e->parts, t->ci);

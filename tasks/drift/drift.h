@@ -5,8 +5,8 @@
 
 #include <math.h>
 
-#include "inline.h"
-#include "part.h"
+#include "src/inline.h"
+#include "src/part.h"
 
 /** Half kick of particle i by dt_kick: v += a dt, u += du/dt dt; the
  *  deviatoric stress and the continuity density are integrated like u

@@ -1,9 +1,9 @@
 /* Kick1 + drift of the particles of one cell on the CPU; the density
  * accumulators are zeroed here, before any density task of the step. */
-#include "drift_cpu.h"
+#include "tasks/drift/drift_cpu.h"
 
-#include "drift.h"
-#include "hydro_parts.h"
+#include "tasks/drift/drift.h"
+#include "tasks/hydro_parts.h"
 
 void drift_cell_cpu(struct parts *p, struct cell *c, double dt_kick, double dt, double xsph,
                     double h_max, int h_continuity) {

@@ -2,8 +2,8 @@
 #ifndef BOLIDE_DRIFT_CPU_H
 #define BOLIDE_DRIFT_CPU_H
 
-#include "cell.h"
-#include "part.h"
+#include "src/cell.h"
+#include "src/part.h"
 
 /** First half kick by dt_kick, then drift by dt, of every particle of c;
  *  updates the cell's h_max and dx_max.  h_continuity: SPH:h_evolution:

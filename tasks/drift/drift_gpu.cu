@@ -2,8 +2,8 @@
  * kick_part and drift_part (drift.h), the functions the CPU drift task
  * calls.  The density sums need no zeroing here: the density kernel writes
  * them whole. */
-#include "drift.h"
-#include "gpu_kernels.h"
+#include "tasks/drift/drift.h"
+#include "src/gpu/gpu_kernels.h"
 
 /** See drift_gpu_launch. */
 __global__ void drift_gpu_kernel(struct parts p, double dt_kick, double dt, double xsph, double h_max,

@@ -1,7 +1,7 @@
 /* The drift family's task (tasks/task_families.h): first half kick and
  * drift of a task cell (drift_cpu.c). */
-#include "drift/drift_cpu.h"
-#include "engine.h"
+#include "tasks/drift/drift_cpu.h"
+#include "src/engine.h"
 
 void drift_task(struct engine *e, struct task *t) {
   drift_cell_cpu(&e->parts, t->ci, 0.5 * e->dt, e->dt, e->hp.xsph, e->hp.h_max, e->hp.h_continuity);

@@ -3,9 +3,9 @@
  * the pair function combines i and j with commutative operations only, so
  * the two are exact opposites (force_iact.h) and the result equals the
  * gather form's (tests/test_hydro_forms.c). */
-#include "force_cpu.h"
+#include "tasks/force/force_cpu.h"
 
-#include "hydro_parts.h"
+#include "tasks/hydro_parts.h"
 
 /** The hydro settings of the running loop (the skeleton's interaction macro
  *  has a fixed signature); thread-local so that tasks can run in parallel. */
@@ -31,7 +31,7 @@ BOLIDE_ALWAYS_INLINE void force_sym(struct parts *p, size_t i, size_t j, double 
 
 #define IACT_LOOP_NAME force
 #define IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj) force_sym(p, i, j, r2, dx)
-#include "iact_loop.h"
+#include "tasks/iact_loop.h"
 
 void force_self_cpu(struct parts *p, const struct cell *c, const struct hydro_props *hp) {
   force_hp = hp;

@@ -2,9 +2,9 @@
 #ifndef BOLIDE_FORCE_CPU_H
 #define BOLIDE_FORCE_CPU_H
 
-#include "cell.h"
-#include "hydro_props.h"
-#include "part.h"
+#include "src/cell.h"
+#include "src/hydro_props.h"
+#include "src/part.h"
 
 /** Hydrodynamic forces between every pair of particles of c. */
 void force_self_cpu(struct parts *p, const struct cell *c, const struct hydro_props *hp);

@@ -4,9 +4,9 @@
  * 0 < r < max(H_i, H_j), the pairs the symmetric CPU loop visits.
  * force_iact combines i and j commutatively, so the result equals the CPU's
  * up to the order of the sums (force_iact.h, tests/test_gpu.c). */
-#include "gpu_kernels.h"
-#include "hydro_parts.h"
-#include "kernel.h"
+#include "src/gpu/gpu_kernels.h"
+#include "tasks/hydro_parts.h"
+#include "src/kernel.h"
 
 /** See force_gpu_launch. */
 __global__ void force_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, struct hydro_props hp) {

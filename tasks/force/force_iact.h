@@ -34,9 +34,9 @@
 
 #include <math.h>
 
-#include "hydro_props.h"
-#include "inline.h"
-#include "kernel.h"
+#include "src/hydro_props.h"
+#include "src/inline.h"
+#include "src/kernel.h"
 
 /** What the force loop reads of one particle. */
 struct force_in {

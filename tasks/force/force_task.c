@@ -1,8 +1,8 @@
 /* The force family's tasks (tasks/task_families.h): the forces within a
  * task cell and between a pair of task cells (force_cpu.c).  The
  * accumulators were zeroed by the ghost. */
-#include "engine.h"
-#include "force/force_cpu.h"
+#include "src/engine.h"
+#include "tasks/force/force_cpu.h"
 
 void force_self_task(struct engine *e, struct task *t) {
   force_self_cpu(&e->parts, t->ci, &e->hp);

@@ -22,10 +22,10 @@
 #ifndef BOLIDE_CONTINUITY_FLOOR_H
 #define BOLIDE_CONTINUITY_FLOOR_H
 
-#include "hydro_props.h"
-#include "inline.h"
-#include "material.h"
-#include "part.h"
+#include "src/hydro_props.h"
+#include "src/inline.h"
+#include "src/materials/material.h"
+#include "src/part.h"
 
 /** The smallest continuity density of material mat: the larger of its
  *  density_floor and ratio * rho0 (0: no floor). */

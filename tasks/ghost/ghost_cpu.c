@@ -3,14 +3,14 @@
  * ghost completes the density sums, iterates the smoothing length towards
  * the target neighbour number, running density again for the particles that
  * need it, and evaluates the equation of state). */
-#include "ghost_cpu.h"
+#include "tasks/ghost/ghost_cpu.h"
 
 #include <math.h>
 
-#include "density/density_cpu.h"
-#include "error.h"
-#include "ghost_part.h"
-#include "kernel.h"
+#include "tasks/density/density_cpu.h"
+#include "src/error.h"
+#include "tasks/ghost/ghost_part.h"
+#include "src/kernel.h"
 
 int ghost_cell_cpu(struct parts *p, struct cell *c, const struct ghost_ngbs *ngbs,
                    const struct hydro_props *hp, const struct material_table *mats,

@@ -5,10 +5,10 @@
  * particles only) until no particle is left, reading the counters in
  * between. */
 extern "C" {
-#include "error.h"
+#include "src/error.h"
 }
-#include "ghost_part.h"
-#include "gpu_kernels.h"
+#include "tasks/ghost/ghost_part.h"
+#include "src/gpu/gpu_kernels.h"
 
 /** One step for particle i of leaf L; counts what the runner must know. */
 __device__ static void ghost_gpu_one(struct parts *p, size_t i, int L,

@@ -11,7 +11,7 @@
 
 #include <math.h>
 
-#include "inline.h"
+#include "src/inline.h"
 
 /** Outcome of one iteration step. */
 enum ghost_h_result {

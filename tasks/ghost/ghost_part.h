@@ -8,16 +8,16 @@
 
 #include <math.h>
 
-#include "continuity_floor.h"
-#include "damage/damage_iact.h"
-#include "ghost_iact.h"
-#include "hydro_parts.h"
-#include "hydro_props.h"
-#include "inline.h"
-#include "material.h"
-#include "part.h"
-#include "porosity_eos.h"
-#include "strength.h"
+#include "tasks/ghost/continuity_floor.h"
+#include "tasks/damage/damage_iact.h"
+#include "tasks/ghost/ghost_iact.h"
+#include "tasks/hydro_parts.h"
+#include "src/hydro_props.h"
+#include "src/inline.h"
+#include "src/materials/material.h"
+#include "src/part.h"
+#include "src/materials/porosity_eos.h"
+#include "src/materials/strength.h"
 
 /** Add particle i's own contribution to its density sums. */
 BOLIDE_INLINE void ghost_part_add_self(struct parts *BOLIDE_RESTRICT p, size_t i) {

@@ -3,8 +3,8 @@
  * (ghost_cpu.c). */
 #include <stdatomic.h>
 
-#include "engine_tasks.h"
-#include "ghost/ghost_cpu.h"
+#include "src/engine_tasks.h"
+#include "tasks/ghost/ghost_cpu.h"
 
 void ghost_task(struct engine *e, struct task *tk) {
   const int t = tk->cell_index;

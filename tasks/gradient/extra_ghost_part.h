@@ -7,15 +7,15 @@
 #ifndef BOLIDE_EXTRA_GHOST_PART_H
 #define BOLIDE_EXTRA_GHOST_PART_H
 
-#include "damage/damage_iact.h"
-#include "gradient_finish.h"
-#include "hydro_props.h"
-#include "inline.h"
-#include "kernel.h"
-#include "material.h"
-#include "part.h"
-#include "strength.h"
-#include "viscosity.h"
+#include "tasks/damage/damage_iact.h"
+#include "tasks/gradient/gradient_finish.h"
+#include "src/hydro_props.h"
+#include "src/inline.h"
+#include "src/kernel.h"
+#include "src/materials/material.h"
+#include "src/part.h"
+#include "src/materials/strength.h"
+#include "src/materials/viscosity.h"
 
 /** Read the six components of a symmetric tensor field into T. */
 #define EXTRA_GHOST_GET6(T, p, pre, i)                                            \

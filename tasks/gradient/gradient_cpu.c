@@ -1,10 +1,10 @@
 /* Gradient loops on the CPU: the loop skeleton (tasks/iact_loop.h) around
  * gradient_iact.h, and the extra ghost that finishes each solid particle
  * (extra_ghost_part.h, shared with the GPU).  theory/solids.md. */
-#include "gradient_cpu.h"
+#include "tasks/gradient/gradient_cpu.h"
 
-#include "extra_ghost_part.h"
-#include "hydro_parts.h"
+#include "tasks/gradient/extra_ghost_part.h"
+#include "tasks/hydro_parts.h"
 
 /** Symmetric form: i gets j's contribution if r < H_i, j gets i's if r < H_j. */
 static inline void gradient_sym(struct parts *p, size_t i, size_t j, double r2, const double dx[3],
@@ -20,7 +20,7 @@ static inline void gradient_sym(struct parts *p, size_t i, size_t j, double r2, 
 #define IACT_LOOP_NAME gradient
 #define IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj) gradient_sym(p, i, j, r2, dx, hi, hj)
 #define IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, hj) hydro_gradient_gather(p, i, j, r2, dx, 1.0 / (hi))
-#include "iact_loop.h"
+#include "tasks/iact_loop.h"
 
 void gradient_self_cpu(struct parts *p, const struct cell *c) {
   loop_gradient_self(p, c);

@@ -2,9 +2,9 @@
 #ifndef BOLIDE_GRADIENT_CPU_H
 #define BOLIDE_GRADIENT_CPU_H
 
-#include "cell.h"
-#include "hydro_props.h"
-#include "part.h"
+#include "src/cell.h"
+#include "src/hydro_props.h"
+#include "src/part.h"
 
 struct material_table;
 

@@ -8,8 +8,8 @@
 
 #include <math.h>
 
-#include "inline.h"
-#include "sym3.h"
+#include "src/inline.h"
+#include "src/sym3.h"
 
 /** Inverse of the symmetric matrix M (xx xy xz yy yz zz) as a full 3x3
  *  row-major Minv.  Returns 0, or -1 (Minv = identity) when M is singular

@@ -6,10 +6,10 @@
  * extra_ghost_part (extra_ghost_part.h, the CPU task's function) on every
  * particle: corrected velocity gradient, plasticity, dS/dt, artificial
  * stress. */
-#include "extra_ghost_part.h"
-#include "gpu_kernels.h"
-#include "hydro_parts.h"
-#include "kernel.h"
+#include "tasks/gradient/extra_ghost_part.h"
+#include "src/gpu/gpu_kernels.h"
+#include "tasks/hydro_parts.h"
+#include "src/kernel.h"
 
 /** See gradient_gpu_launch. */
 __global__ void gradient_gpu_kernel(struct parts p, struct gpu_leaves_dev lv) {

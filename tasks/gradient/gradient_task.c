@@ -1,8 +1,8 @@
 /* The gradient family's tasks (tasks/task_families.h): the gradient sums of
  * a task cell and of a pair of task cells, and the extra ghost that closes
  * them (gradient_cpu.c). */
-#include "engine.h"
-#include "gradient/gradient_cpu.h"
+#include "src/engine.h"
+#include "tasks/gradient/gradient_cpu.h"
 
 void gradient_self_task(struct engine *e, struct task *t) {
   gradient_self_cpu(&e->parts, t->ci);

@@ -2,8 +2,8 @@
  * gravity_cpu.h; the formulas are in gravity_iact.h and theory/gravity.md). */
 /* the M2L operators unrolled for each expansion order (gravity_iact.h) */
 #define GRAVITY_UNROLL_LOOPS 1
-#include "gravity/gravity_cpu.h"
-#include "gravity/gravity_walk.h"
+#include "tasks/gravity/gravity_cpu.h"
+#include "tasks/gravity/gravity_walk.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -13,9 +13,9 @@
 #include <emmintrin.h>
 #endif
 
-#include "cell.h"
-#include "error.h"
-#include "part.h"
+#include "src/cell.h"
+#include "src/error.h"
+#include "src/part.h"
 
 void gravity_props_set(struct gravity_props *gp, double G, double theta, double eps, int softening,
                        int order) {

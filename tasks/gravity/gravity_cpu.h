@@ -37,7 +37,7 @@
 
 #include <stddef.h>
 
-#include "gravity/gravity_iact.h"
+#include "tasks/gravity/gravity_iact.h"
 
 struct cell;
 struct parts;

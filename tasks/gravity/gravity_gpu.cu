@@ -21,8 +21,8 @@
  * interaction to the field or particle as the walk meets it): the results
  * differ by round-off (tests/test_gpu.c). */
 #define GRAVITY_UNROLL_LOOPS 1
-#include "gpu_kernels.h"
-#include "gravity_iact.h"
+#include "src/gpu/gpu_kernels.h"
+#include "tasks/gravity/gravity_iact.h"
 
 /** Every cell c with sources: the M2L of its multipole sources and the P2L
  *  of its leaf sources (struct gravity_gpu_rec.field), stored as its field. */

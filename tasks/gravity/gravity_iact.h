@@ -43,7 +43,7 @@
 
 #include <math.h>
 
-#include "inline.h"
+#include "src/inline.h"
 
 /** Full unrolling of the loops over multi-indices, for a translation unit
  *  that defines GRAVITY_UNROLL_LOOPS before including this header and calls

@@ -3,10 +3,10 @@
  * (gravity_props_set) do not link the parameter parser. */
 #include <math.h>
 
-#include "error.h"
-#include "gravity/gravity_cpu.h"
-#include "params.h"
-#include "units.h"
+#include "src/error.h"
+#include "tasks/gravity/gravity_cpu.h"
+#include "src/io/params.h"
+#include "src/io/units.h"
 
 void gravity_props_init(struct gravity_props *gp, const struct params *params,
                         const struct unit_system *us) {

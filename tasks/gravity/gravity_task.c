@@ -1,8 +1,8 @@
 /* The gravity family's tasks (tasks/task_families.h): the upward pass, the
  * walks (self, near pair, long range) and the downward pass of the
  * top-level cells and their split (engine_graph.c). */
-#include "engine.h"
-#include "gravity/gravity_cpu.h"
+#include "src/engine.h"
+#include "tasks/gravity/gravity_cpu.h"
 
 /** A gravity walk task: self (cj == ci), near pair, or long range (cj
  *  NULL); records its particle-level interactions when the far field may

@@ -24,9 +24,9 @@
  *                 GRAVITY_WALK_BUF. */
 #include <limits.h>
 
-#include "gpu_kernels.h"
-#include "gravity_iact.h"
-#include "gravity_walk.h"
+#include "src/gpu/gpu_kernels.h"
+#include "tasks/gravity/gravity_iact.h"
+#include "tasks/gravity/gravity_walk.h"
 
 /** Every cell as an empty one (zero moments at its box centre). */
 __global__ void gravity_up_empty_gpu_kernel(struct gravity_gpu_up u, int nr_cells) {

@@ -10,7 +10,7 @@
 #ifndef BOLIDE_GRAVITY_WALK_H
 #define BOLIDE_GRAVITY_WALK_H
 
-#include "gravity_iact.h"
+#include "tasks/gravity/gravity_iact.h"
 
 /** A leaf meeting a cell GRAVITY_LOPSIDED times smaller (radius) interacts
  *  particle by particle (gravity_walk_decide). */

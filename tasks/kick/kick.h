@@ -5,16 +5,16 @@
 
 #include <math.h>
 
-#include "drift/drift.h"
-#include "ghost/continuity_floor.h"
-#include "gradient/extra_ghost_part.h"
-#include "hydro_props.h"
-#include "inline.h"
-#include "material.h"
-#include "part.h"
-#include "kick/kick_porous.h"
-#include "kick/timestep.h"
-#include "viscosity.h"
+#include "tasks/drift/drift.h"
+#include "tasks/ghost/continuity_floor.h"
+#include "tasks/gradient/extra_ghost_part.h"
+#include "src/hydro_props.h"
+#include "src/inline.h"
+#include "src/materials/material.h"
+#include "src/part.h"
+#include "tasks/kick/kick_porous.h"
+#include "tasks/kick/timestep.h"
+#include "src/materials/viscosity.h"
 
 /** The kicked stress of a plastic particle back onto its yield surface
  *  (extra_ghost_plastic_return, with the yield stress of this step's

@@ -1,8 +1,8 @@
 /* Second half kick and time step of one cell on the CPU. */
-#include "kick_cpu.h"
+#include "tasks/kick/kick_cpu.h"
 
-#include "kick.h"
-#include "timeline.h"
+#include "tasks/kick/kick.h"
+#include "src/timeline.h"
 
 double kick2_cell_cpu(struct parts *p, const struct cell *c, double dt_kick,
                       const struct hydro_props *hp, const struct material_table *mats,

@@ -4,10 +4,10 @@
 
 #include <stdint.h>
 
-#include "cell.h"
-#include "hydro_props.h"
-#include "material.h"
-#include "part.h"
+#include "src/cell.h"
+#include "src/hydro_props.h"
+#include "src/materials/material.h"
+#include "src/part.h"
 
 struct timestep_props;
 struct timeline;

@@ -4,8 +4,8 @@
  * (timestep_part: hydrodynamic, damage and gravitational, the softening
  * tied to h included); each block reduces the smallest time step of its
  * leaf. */
-#include "gpu_kernels.h"
-#include "kick.h"
+#include "src/gpu/gpu_kernels.h"
+#include "tasks/kick/kick.h"
 
 /** See kick2_gpu_launch. */
 __global__ void kick2_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, struct hydro_props hp,

@@ -4,10 +4,10 @@
 #ifndef BOLIDE_KICK_POROUS_H
 #define BOLIDE_KICK_POROUS_H
 
-#include "inline.h"
-#include "material.h"
-#include "part.h"
-#include "porosity_eos.h"
+#include "src/inline.h"
+#include "src/materials/material.h"
+#include "src/part.h"
+#include "src/materials/porosity_eos.h"
 
 /** Before the kick: dalpha/dt of particle i from the rates of this force
  *  loop (PA6; 0 for materials that are not P-alpha porous). */

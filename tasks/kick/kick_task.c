@@ -1,7 +1,7 @@
 /* The kick family's task (tasks/task_families.h). */
-#include "engine.h"
-#include "kick/kick_cpu.h"
-#include "kick/timestep.h"
+#include "src/engine.h"
+#include "tasks/kick/kick_cpu.h"
+#include "tasks/kick/timestep.h"
 
 /** Second half kick and new time step of a task cell (kick2_part, the same
  *  function as the GPU's): the smallest time step of its particles into

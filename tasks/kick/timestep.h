@@ -7,14 +7,14 @@
 
 #include <math.h>
 
-#include "damage/damage_part.h"
-#include "gravity/gravity_iact.h"
-#include "hydro_props.h"
-#include "inline.h"
-#include "kernel.h"
-#include "material.h"
-#include "part.h"
-#include "viscosity.h"
+#include "tasks/damage/damage_part.h"
+#include "tasks/gravity/gravity_iact.h"
+#include "src/hydro_props.h"
+#include "src/inline.h"
+#include "src/kernel.h"
+#include "src/materials/material.h"
+#include "src/part.h"
+#include "src/materials/viscosity.h"
 
 /** Norm sqrt(T:T) of a symmetric tensor (xx xy xz yy yz zz). */
 BOLIDE_INLINE double timestep_sym_norm(const double T[6]) {

@@ -16,7 +16,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "error.h"
+#include "src/error.h"
 
 static jmp_buf fuzz_env;
 

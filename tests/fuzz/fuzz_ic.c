@@ -9,10 +9,10 @@
  * or refused through error_exit. */
 #include <math.h>
 
-#include "fuzz_common.h"
-#include "ic.h"
-#include "part.h"
-#include "units.h"
+#include "tests/fuzz/fuzz_common.h"
+#include "src/io/ic.h"
+#include "src/part.h"
+#include "src/io/units.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -3,10 +3,10 @@
  * input must either be read (and then its units and materials set up as
  * bolide does) or be refused through error_exit: no crash, no hang, no
  * sanitizer report. */
-#include "fuzz_common.h"
-#include "material.h"
-#include "params.h"
-#include "units.h"
+#include "tests/fuzz/fuzz_common.h"
+#include "src/materials/material.h"
+#include "src/io/params.h"
+#include "src/io/units.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -9,9 +9,9 @@
  * header's payload length, the parameter hash and the final checksum made
  * to match the bytes), so that the validation of every field behind them is
  * reached; inputs of odd length are read as they are. */
-#include "fuzz_common.h"
-#include "part.h"
-#include "restart.h"
+#include "tests/fuzz/fuzz_common.h"
+#include "src/part.h"
+#include "src/io/restart.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -16,11 +16,11 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "error.h"
-#include "damage/flaws.h"
-#include "ic.h"
-#include "units.h"
-#include "version.h"
+#include "src/error.h"
+#include "tasks/damage/flaws.h"
+#include "src/io/ic.h"
+#include "src/io/units.h"
+#include "src/version.h"
 
 /** Long options without a short form. */
 enum { OPT_MAT = 256, OPT_K, OPT_M, OPT_SEED, OPT_VOLUME, OPT_VERSION };

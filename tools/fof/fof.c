@@ -1,11 +1,11 @@
 /* Friends-of-friends groups: see fof.h. */
-#include "fof.h"
+#include "tools/fof/fof.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
+#include "src/error.h"
 
 /** Bits per axis of a cell key; cell coordinates wrap modulo 2^FOF_BITS, so
  *  far-apart cells may share a key (their particles are still compared by

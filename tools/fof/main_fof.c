@@ -22,12 +22,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "error.h"
-#include "fof.h"
-#include "ic.h"
-#include "paths.h"
-#include "units.h"
-#include "version.h"
+#include "src/error.h"
+#include "tools/fof/fof.h"
+#include "src/io/ic.h"
+#include "src/paths.h"
+#include "src/io/units.h"
+#include "src/version.h"
 
 /** Default of --link-local: F x max(h_i, h_j).  An intact planet of
  *  bolide-ic planet (SEA shells) holds together from F = 1.0 (0.9 splits it

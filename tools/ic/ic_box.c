@@ -4,8 +4,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "error.h"
-#include "ic_tools.h"
+#include "src/error.h"
+#include "tools/ic/ic_tools.h"
 
 /** Lattice cells along each axis and the cell side lengths of a region. */
 struct icgen_grid {

@@ -12,8 +12,8 @@
  * theory/planets.md. */
 #include <math.h>
 
-#include "error.h"
-#include "ic_impact.h"
+#include "src/error.h"
+#include "tools/ic/ic_impact.h"
 
 /** Derivative of the state (r, v) of the relative Kepler problem. */
 static void imp_deriv(double mu, const double s[6], double d[6]) {

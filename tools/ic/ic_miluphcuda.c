@@ -27,12 +27,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "ic_impact.h"
-#include "kernel.h"
-#include "part.h"
-#include "snapshot.h"
-#include "units.h"
+#include "src/error.h"
+#include "tools/ic/ic_impact.h"
+#include "src/kernel.h"
+#include "src/part.h"
+#include "src/io/snapshot.h"
+#include "src/io/units.h"
 
 /** The columns a set of miluphcuda switches gives. */
 struct milu_format {

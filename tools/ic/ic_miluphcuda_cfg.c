@@ -16,8 +16,8 @@
 #include <string.h>
 
 #include "config.h"
-#include "error.h"
-#include "ic_impact.h"
+#include "src/error.h"
+#include "tools/ic/ic_impact.h"
 
 static void milucfg_usage(FILE *f) {
   fprintf(f,

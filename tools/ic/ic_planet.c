@@ -14,8 +14,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "ic_planet.h"
+#include "src/error.h"
+#include "tools/ic/ic_planet.h"
 
 uint64_t ic_rng_next(uint64_t *s) {
   uint64_t z = (*s += 0x9e3779b97f4a7c15ULL);

@@ -9,8 +9,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "material.h"
-#include "part.h"
+#include "src/materials/material.h"
+#include "src/part.h"
 
 /** Largest number of layers of one planet. */
 #define IC_PLANET_MAX_LAYERS 8

@@ -7,14 +7,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "ic.h"
-#include "ic_impact.h"
-#include "ic_planet.h"
-#include "kernel.h"
-#include "snapshot.h"
-#include "units.h"
-#include "version.h"
+#include "src/error.h"
+#include "src/io/ic.h"
+#include "tools/ic/ic_impact.h"
+#include "tools/ic/ic_planet.h"
+#include "src/kernel.h"
+#include "src/io/snapshot.h"
+#include "src/io/units.h"
+#include "src/version.h"
 
 /** Everything one body (a planet, a uniform sphere or a file) needs. */
 struct body {

@@ -27,9 +27,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "ic_planet.h"
-#include "kernel.h"
+#include "src/error.h"
+#include "tools/ic/ic_planet.h"
+#include "src/kernel.h"
 
 /* Isolated shells (ic_sea_shell): the resolution_eta of the SPH density
  * whose spread the choice of stretching and collar count minimises (Bolide's

@@ -21,9 +21,9 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "error.h"
-#include "ic_planet.h"
-#include "kernel.h"
+#include "src/error.h"
+#include "tools/ic/ic_planet.h"
+#include "src/kernel.h"
 
 /** Points sorted into cubic cells of side `cell`. */
 struct sea_grid {

@@ -4,7 +4,7 @@
 
 #include <stdint.h>
 
-#include "part.h"
+#include "src/part.h"
 
 /** Particle arrangements of a uniform region. */
 enum icgen_lattice {

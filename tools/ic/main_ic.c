@@ -11,13 +11,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "ic_impact.h"
-#include "ic_tools.h"
-#include "kernel.h"
-#include "snapshot.h"
-#include "units.h"
-#include "version.h"
+#include "src/error.h"
+#include "tools/ic/ic_impact.h"
+#include "tools/ic/ic_tools.h"
+#include "src/kernel.h"
+#include "src/io/snapshot.h"
+#include "src/io/units.h"
+#include "src/version.h"
 
 /** Subcommands, as bits so that each option lists where it applies. */
 enum icgen_cmd { CMD_BOX = 1, CMD_SOD = 2, CMD_SEDOV = 4, CMD_ALL = 7 };
