@@ -32,7 +32,7 @@ echo 'int LLVMFuzzerTestOneInput(const unsigned char *d, unsigned long n) { retu
 
 hdf5_cflags="$(pkg-config --cflags hdf5 2>/dev/null || echo -I/usr/include/hdf5/serial)"
 hdf5_libs="$(pkg-config --libs hdf5 2>/dev/null || echo -L/usr/lib/x86_64-linux-gnu/hdf5/serial -lhdf5)"
-srcs="src/error.c src/paths.c src/part.c src/io/params.c src/io/units.c src/io/ic.c src/io/restart.c
+srcs="src/error.c src/paths.c src/part.c src/io/params.c src/io/units.c src/io/ic.c src/io/restart.c src/io/ragged_io.c
       tasks/damage/flaws.c src/materials/material.c src/materials/material_params.c
       src/materials/porosity.c"
 flags="-fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -g -O1 -std=gnu11
