@@ -37,7 +37,8 @@ SAN_FAST_TESTS="tests/test_graph tests/test_budget tests/test_scheduler tests/te
   tests/test_materials_yaml.sh tests/test_porosity tests/test_porosity_errors.sh
   tests/test_damage tests/test_flaws tests/test_fof tests/test_gravity_ops tests/test_solids
   tests/test_bolide_cli.sh tests/test_restart.sh tests/test_hostile_inputs.sh
-  tests/test_fuzz_corpus.sh"
+  tests/test_fuzz_corpus.sh tests/test_timeline tests/test_timestep tests/test_swift_params.sh
+  tests/test_miluphcuda_import.sh tests/test_miluphcuda_materials.sh tests/test_mesh_import.py"
 # The heavy tests (hydrodynamic forms, self-gravity, the SEA shells, the
 # Evrard collapse, the energy budget, the solid benchmarks): part of FULL,
 # or alone with HEAVY.
