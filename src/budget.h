@@ -19,13 +19,13 @@ struct budget_removed {
 
 /** Totals of the run's first statistics line. */
 struct budget_start {
-  double E_tot;  /**< E_kin + E_int + E_pot */
-  double E_pot;  /**< potential energy (0 without self-gravity) */
-  double E_abs;  /**< |E_kin| + |E_int| + |E_pot| */
-  double p[3];   /**< momentum */
-  double L[3];   /**< angular momentum */
-  double p_abs;  /**< sum of m |v|, the scale of momentum errors */
-  double set;    /**< 1 once measured */
+  double E_tot; /**< E_kin + E_int + E_pot */
+  double E_pot; /**< potential energy (0 without self-gravity) */
+  double E_abs; /**< |E_kin| + |E_int| + |E_pot| */
+  double p[3];  /**< momentum */
+  double L[3];  /**< angular momentum */
+  double p_abs; /**< sum of m |v|, the scale of momentum errors */
+  double set;   /**< 1 once measured */
 };
 
 #endif

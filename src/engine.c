@@ -101,8 +101,9 @@ static int engine_cmp_double(const void *a, const void *b) {
  *  time_first + k delta_time; time_end is always an output time. */
 static void engine_init_outputs(struct engine *e, double t0) {
   const struct params *p = e->params;
-  const char *list =
-      params_get_bool(p, "Snapshots:output_list_on") ? params_get_string(p, "Snapshots:output_list") : "";
+  const char *list = params_get_bool(p, "Snapshots:output_list_on")
+                         ? params_get_string(p, "Snapshots:output_list")
+                         : "";
   int cap = 16, n = 0;
   double *t = error_malloc(cap * sizeof(double), "output times");
   if (list[0]) {
@@ -118,7 +119,8 @@ static void engine_init_outputs(struct engine *e, double t0) {
       if (!strncmp(s, "Time", 4)) continue; /* SWIFT's header line */
       char *end;
       const double v = strtod(s, &end);
-      if (end == s || !isfinite(v)) error_exit("%s:%d: expected an output time, found '%.40s'", list, lineno, s);
+      if (end == s || !isfinite(v))
+        error_exit("%s:%d: expected an output time, found '%.40s'", list, lineno, s);
       if (n == cap) t = error_realloc(t, (cap *= 2) * sizeof(double), "output times");
       t[n++] = v;
     }
@@ -130,7 +132,8 @@ static void engine_init_outputs(struct engine *e, double t0) {
       for (long k = 0;; k++) {
         const double v = first + (double)k * delta;
         if (v > e->time_end * (1.0 + 1e-12)) break;
-        if (k > 1000000) error_exit("Snapshots:delta_time %g gives more than a million snapshots", delta);
+        if (k > 1000000)
+          error_exit("Snapshots:delta_time %g gives more than a million snapshots", delta);
         if (n == cap) t = error_realloc(t, (cap *= 2) * sizeof(double), "output times");
         t[n++] = v;
       }
@@ -165,10 +168,12 @@ static void engine_remove_stale_snapshots(const struct engine *e) {
     const char *n = ent->d_name;
     const size_t l = strlen(n);
     if (l < 4 || strcmp(n + l - 4, ".tmp")) continue;
-    if (!((!strncmp(n, e->snap_basename, nb) && n[nb] == '_') || !strncmp(n, "crash_step", 10))) continue;
+    if (!((!strncmp(n, e->snap_basename, nb) && n[nb] == '_') || !strncmp(n, "crash_step", 10)))
+      continue;
     char path[2400];
     snprintf(path, sizeof path, "%s/%s", e->outdir, n);
-    if (unlink(path) == 0) error_log(0, "removed %s, left by a run that stopped while writing it", path);
+    if (unlink(path) == 0)
+      error_log(0, "removed %s, left by a run that stopped while writing it", path);
   }
   closedir(d);
 }
@@ -180,10 +185,12 @@ static void engine_mkdir(const char *dir) {
   for (char *s = tmp + 1; *s; s++)
     if (*s == '/') {
       *s = '\0';
-      if (mkdir(tmp, 0755) && errno != EEXIST) error_exit("%s: cannot create folder: %s", tmp, strerror(errno));
+      if (mkdir(tmp, 0755) && errno != EEXIST)
+        error_exit("%s: cannot create folder: %s", tmp, strerror(errno));
       *s = '/';
     }
-  if (mkdir(tmp, 0755) && errno != EEXIST) error_exit("%s: cannot create folder: %s", tmp, strerror(errno));
+  if (mkdir(tmp, 0755) && errno != EEXIST)
+    error_exit("%s: cannot create folder: %s", tmp, strerror(errno));
 }
 
 /** Index of the particle field called name in part_fields. */
@@ -210,33 +217,44 @@ static void engine_init_porosity(struct engine *e, const char *icname, int has_a
     /* 0: not given (bolide-ic writes every IC field, zero where it has no value) */
     if (!m || m->porosity.model == POROSITY_NONE) {
       if (has_alpha && p->alpha[i] != 1.0 && p->alpha[i] != 0.0)
-        error_exit("%s: particle %zu (id %lld): Distentions is %g but material %d is not porous (must be 1)",
-                   icname, i, (long long)p->id[i], p->alpha[i], (int)p->mat[i]);
+        error_exit(
+            "%s: particle %zu (id %lld): Distentions is %g but material %d is not porous (must be "
+            "1)",
+            icname, i, (long long)p->id[i], p->alpha[i], (int)p->mat[i]);
       p->alpha[i] = p->alpha_p[i] = 1.0;
       continue;
     }
     const double alpha_0 = porosity_alpha_0(&m->porosity);
     if (!has_alpha || p->alpha[i] == 0.0) p->alpha[i] = alpha_0;
     if (!(p->alpha[i] >= 1.0) || p->alpha[i] > alpha_0)
-      error_exit("%s: particle %zu (id %lld): Distentions is %g (must be in [1, alpha_0 = %g] for material '%s')",
-                 icname, i, (long long)p->id[i], p->alpha[i], alpha_0, m->name);
+      error_exit(
+          "%s: particle %zu (id %lld): Distentions is %g (must be in [1, alpha_0 = %g] for "
+          "material '%s')",
+          icname, i, (long long)p->id[i], p->alpha[i], alpha_0, m->name);
     if (!(p->rho[i] > 0.0))
-      error_exit("%s: particle %zu (id %lld) of porous material '%s' has no density: porous bodies need "
-                 "Densities in the initial conditions (the bulk density rho0/alpha)",
-                 icname, i, (long long)p->id[i], m->name);
+      error_exit(
+          "%s: particle %zu (id %lld) of porous material '%s' has no density: porous bodies need "
+          "Densities in the initial conditions (the bulk density rho0/alpha)",
+          icname, i, (long long)p->id[i], m->name);
     const double err = porosity_check_ic(p->rho[i], p->alpha[i], m->rho0, tol);
     if (err > 0.0)
-      error_exit("%s: particle %zu (id %lld) of porous material '%s': density %g times distention %g is %g, "
-                 "not the matrix density rho0 = %g (relative difference %.3g > Porosity:ic_tolerance %g)",
-                 icname, i, (long long)p->id[i], m->name, p->rho[i], p->alpha[i], p->rho[i] * p->alpha[i],
-                 m->rho0, err, tol);
+      error_exit(
+          "%s: particle %zu (id %lld) of porous material '%s': density %g times distention %g is "
+          "%g, "
+          "not the matrix density rho0 = %g (relative difference %.3g > Porosity:ic_tolerance %g)",
+          icname, i, (long long)p->id[i], m->name, p->rho[i], p->alpha[i], p->rho[i] * p->alpha[i],
+          m->rho0, err, tol);
     p->alpha_p[i] = p->alpha[i];
   }
   if (e->porous) {
     size_t n = 0;
     for (size_t i = 0; i < p->count; i++) n += p->alpha[i] > 1.0;
-    error_log(0, "porosity: %zu porous particles (P-alpha: Jutzi et al. 2008; epsilon-alpha: Wuennemann et al. 2006, Collins et al. 2011), distentions %s", n,
-              has_alpha ? "from the initial conditions (alpha_0 where 0)" : "alpha_0 of their materials");
+    error_log(
+        0,
+        "porosity: %zu porous particles (P-alpha: Jutzi et al. 2008; epsilon-alpha: Wuennemann et "
+        "al. 2006, Collins et al. 2011), distentions %s",
+        n,
+        has_alpha ? "from the initial conditions (alpha_0 where 0)" : "alpha_0 of their materials");
   }
 }
 
@@ -253,12 +271,15 @@ static void engine_check_ic_motion(const struct engine *e, const char *icname, c
     const double x[3] = {p->x[i], p->y[i], p->z[i]};
     for (int k = 0; periodic && k < 3; k++)
       if (!(x[k] >= -box[k] && x[k] < 2.0 * box[k]))
-        error_exit("%s: particle %zu (id %lld): position %c = %g is more than a box size outside the "
-                   "periodic box [0, %g)", icname, i, (long long)p->id[i], "xyz"[k], x[k], box[k]);
+        error_exit(
+            "%s: particle %zu (id %lld): position %c = %g is more than a box size outside the "
+            "periodic box [0, %g)",
+            icname, i, (long long)p->id[i], "xyz"[k], x[k], box[k]);
     const double v = hypot(hypot(p->vx[i], p->vy[i]), p->vz[i]);
     if (!(v < c_light))
-      error_exit("%s: particle %zu (id %lld): speed %g is above the speed of light (%g in internal units)",
-                 icname, i, (long long)p->id[i], v, c_light);
+      error_exit(
+          "%s: particle %zu (id %lld): speed %g is above the speed of light (%g in internal units)",
+          icname, i, (long long)p->id[i], v, c_light);
   }
 }
 
@@ -277,11 +298,16 @@ static void engine_read_ics(struct engine *e, char *icname, size_t len, double b
   for (int k = 0; k < 3; k++) box[k] = hdr.box_size[k];
   double b[3];
   const int nb = params_get_real_array(params, "InitialConditions:box_size", b, 3);
-  if (nb == 1) box[0] = box[1] = box[2] = b[0];
-  else if (nb == 3) for (int k = 0; k < 3; k++) box[k] = b[k];
-  else if (nb != 0) params_error(params, "InitialConditions:box_size", "expected 1 or 3 values, got %d", nb);
+  if (nb == 1)
+    box[0] = box[1] = box[2] = b[0];
+  else if (nb == 3)
+    for (int k = 0; k < 3; k++) box[k] = b[k];
+  else if (nb != 0)
+    params_error(params, "InitialConditions:box_size", "expected 1 or 3 values, got %d", nb);
   for (int k = 0; k < 3; k++)
-    if (!(box[k] > 0.0)) error_exit("%s: the box size is not positive (%g); set InitialConditions:box_size", icname, box[k]);
+    if (!(box[k] > 0.0))
+      error_exit("%s: the box size is not positive (%g); set InitialConditions:box_size", icname,
+                 box[k]);
   double shift[3];
   params_get_real_array(params, "InitialConditions:shift", shift, 3);
   const double hscale = params_get_real(params, "InitialConditions:smoothing_length_scaling");
@@ -343,11 +369,13 @@ static void engine_init_flaws(struct engine *e, const char *icname) {
       bare += brittle && p->n_flaws[i] == 0;
     }
     if (idle && !e->restarted)
-      error_warning("%s: %zu particles have flaws but a material without weibull_k or shear_modulus: "
-                    "they take no damage", icname, idle);
+      error_warning(
+          "%s: %zu particles have flaws but a material without weibull_k or shear_modulus: "
+          "they take no damage",
+          icname, idle);
     if (bare && !e->restarted)
-      error_warning("%s: %zu particles of brittle materials have no flaws: they take no damage", icname,
-                    bare);
+      error_warning("%s: %zu particles of brittle materials have no flaws: they take no damage",
+                    icname, bare);
   }
   if (!e->damage) return;
   if (!e->flaw_eps) {
@@ -356,14 +384,16 @@ static void engine_init_flaws(struct engine *e, const char *icname) {
     engine_sort_ids = p->id;
     qsort(order, n, sizeof(size_t), engine_cmp_by_id);
     int32_t *mat = error_malloc(n * sizeof(int32_t), "flaw order");
-    double *m = error_malloc(n * sizeof(double), "flaw order"), *rho = error_malloc(n * sizeof(double), "flaw order");
+    double *m = error_malloc(n * sizeof(double), "flaw order"),
+           *rho = error_malloc(n * sizeof(double), "flaw order");
     for (size_t k = 0; k < n; k++) {
       mat[k] = p->mat[order[k]];
       m[k] = p->m[order[k]];
       rho[k] = p->rho[order[k]];
     }
     struct flaws fl;
-    e->nr_flaws = flaws_generate_materials(n, mat, m, rho, e->mats, (uint64_t)params_get_int(e->params, "Damage:seed"), &fl);
+    e->nr_flaws = flaws_generate_materials(n, mat, m, rho, e->mats,
+                                           (uint64_t)params_get_int(e->params, "Damage:seed"), &fl);
     for (size_t k = 0; k < n; k++) {
       const size_t i = order[k];
       p->flaw_first[i] = fl.offset[k];
@@ -384,12 +414,14 @@ static void engine_init_flaws(struct engine *e, const char *icname) {
   e->damage_start = params_get_real(e->params, "Damage:start_time");
   char from[64];
   snprintf(from, sizeof from, "Damage:seed %ld", params_get_int(e->params, "Damage:seed"));
-  error_log(0, "damage: %lld Weibull flaws (%.1f per particle, %.1f MiB) from %s", (long long)e->nr_flaws,
-            n ? (double)e->nr_flaws / (double)n : 0.0,
+  error_log(0, "damage: %lld Weibull flaws (%.1f per particle, %.1f MiB) from %s",
+            (long long)e->nr_flaws, n ? (double)e->nr_flaws / (double)n : 0.0,
             (double)e->nr_flaws * sizeof(double) / 1048576.0, e->flaws_from ? e->flaws_from : from);
   if (e->damage_start > 0.0)
-    error_log(0, "damage: no flaw activation or growth before t = %g (Damage:start_time)", e->damage_start);
-  if (!e->hp.solids) error_warning("brittle materials without strength: damage has no stress to act on");
+    error_log(0, "damage: no flaw activation or growth before t = %g (Damage:start_time)",
+              e->damage_start);
+  if (!e->hp.solids)
+    error_warning("brittle materials without strength: damage has no stress to act on");
 }
 
 /* ------------------------------------------------------------------------ */
@@ -422,11 +454,16 @@ static void engine_signals_install(void) {
 
 static const char *engine_signal_name(int sig) {
   switch (sig) {
-    case SIGTERM: return "SIGTERM";
-    case SIGINT: return "SIGINT";
-    case SIGHUP: return "SIGHUP";
-    case SIGUSR1: return "SIGUSR1";
-    default: return "a signal";
+    case SIGTERM:
+      return "SIGTERM";
+    case SIGINT:
+      return "SIGINT";
+    case SIGHUP:
+      return "SIGHUP";
+    case SIGUSR1:
+      return "SIGUSR1";
+    default:
+      return "a signal";
   }
 }
 
@@ -459,7 +496,8 @@ static int engine_must_stop(struct engine *e, char *why, size_t len) {
  *  ranges), -1 if none. */
 static int engine_cell_of(const struct engine *e, size_t i) {
   for (int c = 0; c < e->space.nr_top; c++)
-    if (i >= e->space.cells[c].offset && i < e->space.cells[c].offset + e->space.cells[c].count) return c;
+    if (i >= e->space.cells[c].offset && i < e->space.cells[c].offset + e->space.cells[c].count)
+      return c;
   return -1;
 }
 
@@ -472,10 +510,12 @@ static void engine_watchdog_fail(struct engine *e, size_t i, const char *what) {
   snprintf(path, sizeof path, "%s/crash_step%06ld.hdf5", e->outdir, e->step);
   fflush(stdout);
   engine_snapshot_to(e, path);
-  error_exit("watchdog: step %ld (t = %g): particle id %lld (index %zu, top-level cell %d at (%g, %g, %g)): %s; "
-             "crash snapshot %s, the last restart file stays the one to resume from",
-             e->step, e->time, (long long)e->parts.id[i], i, c, c >= 0 ? e->space.cells[c].loc[0] : 0.0,
-             c >= 0 ? e->space.cells[c].loc[1] : 0.0, c >= 0 ? e->space.cells[c].loc[2] : 0.0, what, path);
+  error_exit(
+      "watchdog: step %ld (t = %g): particle id %lld (index %zu, top-level cell %d at (%g, %g, "
+      "%g)): %s; "
+      "crash snapshot %s, the last restart file stays the one to resume from",
+      e->step, e->time, (long long)e->parts.id[i], i, c, c >= 0 ? e->space.cells[c].loc[0] : 0.0,
+      c >= 0 ? e->space.cells[c].loc[1] : 0.0, c >= 0 ? e->space.cells[c].loc[2] : 0.0, what, path);
 }
 
 /** BOLIDE_TEST_INJECT=STEP:FIELD:VALUE (for the tests only): at the end of
@@ -493,8 +533,11 @@ static void engine_watchdog_init(struct engine *e) {
   e->wd_inject_value = strtod(value, &end);
   if (*end) error_exit("BOLIDE_TEST_INJECT '%s': '%s' is not a number", s, value);
   int k = 0;
-  while (k < part_nr_fields && (strcmp(part_fields[k].name, field) || part_fields[k].type != PART_DOUBLE)) k++;
-  if (k == part_nr_fields) error_exit("BOLIDE_TEST_INJECT '%s': no double particle field '%s'", s, field);
+  while (k < part_nr_fields &&
+         (strcmp(part_fields[k].name, field) || part_fields[k].type != PART_DOUBLE))
+    k++;
+  if (k == part_nr_fields)
+    error_exit("BOLIDE_TEST_INJECT '%s': no double particle field '%s'", s, field);
   snprintf(e->wd_inject_field, sizeof e->wd_inject_field, "%s", field);
   e->wd_inject_step = step;
   error_warning("BOLIDE_TEST_INJECT: %s of one particle set to %g at the end of step %ld", field,
@@ -513,7 +556,8 @@ static void engine_watchdog_before_drift(struct engine *e) {
   }
 #endif
   const struct parts *p = &e->parts;
-  e->wd_x = error_realloc(e->wd_x, 3 * (p->count ? p->count : 1) * sizeof(double), "watchdog positions");
+  e->wd_x =
+      error_realloc(e->wd_x, 3 * (p->count ? p->count : 1) * sizeof(double), "watchdog positions");
   memcpy(e->wd_x, p->x, p->count * sizeof(double));
   memcpy(e->wd_x + p->count, p->y, p->count * sizeof(double));
   memcpy(e->wd_x + 2 * p->count, p->z, p->count * sizeof(double));
@@ -542,11 +586,13 @@ static void engine_watchdog_after_drift(struct engine *e) {
 #endif
   if (!e->wd_x) return;
   for (size_t i = 0; i < n; i++) {
-    const double dx = p->x[i] - e->wd_x[i], dy = p->y[i] - e->wd_x[n + i], dz = p->z[i] - e->wd_x[2 * n + i];
+    const double dx = p->x[i] - e->wd_x[i], dy = p->y[i] - e->wd_x[n + i],
+                 dz = p->z[i] - e->wd_x[2 * n + i];
     const double d = sqrt(dx * dx + dy * dy + dz * dz);
     if (!(d <= w)) {
       char what[256];
-      snprintf(what, sizeof what, "moved %g in one step (dt %g), more than its cell (width %g)", d, e->dt, w);
+      snprintf(what, sizeof what, "moved %g in one step (dt %g), more than its cell (width %g)", d,
+               e->dt, w);
       e->step++; /* the step in progress */
       engine_watchdog_fail(e, i, what);
     }
@@ -554,7 +600,8 @@ static void engine_watchdog_after_drift(struct engine *e) {
   if (gpu_bad >= 0) {
     /* (a displacement within rounding of the width: the device's verdict) */
     char what[256];
-    snprintf(what, sizeof what, "moved more than its cell (width %g) in one step (dt %g) on the GPU", w, e->dt);
+    snprintf(what, sizeof what,
+             "moved more than its cell (width %g) in one step (dt %g) on the GPU", w, e->dt);
     e->step++;
     engine_watchdog_fail(e, (size_t)gpu_bad, what);
   }
@@ -596,7 +643,8 @@ static void engine_watchdog_after_step(struct engine *e) {
 #endif
     double *a = NULL;
     for (int k = 0; k < part_nr_fields; k++)
-      if (!strcmp(part_fields[k].name, e->wd_inject_field)) a = part_field_array(p, &part_fields[k]);
+      if (!strcmp(part_fields[k].name, e->wd_inject_field))
+        a = part_field_array(p, &part_fields[k]);
     a[p->count / 2] = e->wd_inject_value;
 #ifdef HAVE_CUDA
     gpu_engine_host_modified(e);
@@ -621,7 +669,8 @@ static void engine_watchdog_after_step(struct engine *e) {
   pthread_t th[64];
   for (int t = 0; t < nt; t++) {
     job[t] = (struct engine_wd_job){p, t, nt, 0};
-    if (t > 0 && pthread_create(&th[t], NULL, engine_watchdog_scan, &job[t])) nt = t; /* fewer threads */
+    if (t > 0 && pthread_create(&th[t], NULL, engine_watchdog_scan, &job[t]))
+      nt = t; /* fewer threads */
   }
   engine_watchdog_scan(&job[0]);
   uint64_t bad = 0;
@@ -650,13 +699,15 @@ static void engine_watchdog_after_step(struct engine *e) {
     if (p->u[i] < 0.0) {
       const struct material *m = material_table_find(e->mats, p->mat[i]);
       if (m && m->u_floor) {
-        snprintf(what, sizeof what, "field u is %g (negative internal energy; material '%s' needs u >= 0)", p->u[i],
+        snprintf(what, sizeof what,
+                 "field u is %g (negative internal energy; material '%s' needs u >= 0)", p->u[i],
                  m->name);
         engine_watchdog_fail(e, i, what);
       }
     }
   }
-  if (e->gpu) error_bug("watchdog: the GPU found a bad particle, the host none after copying them back");
+  if (e->gpu)
+    error_bug("watchdog: the GPU found a bad particle, the host none after copying them back");
 }
 
 /* ------------------------------------------------------------------------ */
@@ -672,7 +723,8 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     params_error(params, "SPH:hydro", "neither hydrodynamics nor self-gravity is switched on");
   e->restarts = params_get_bool(params, "Restarts:enable");
   e->restart_dt_wall = 3600.0 * params_get_real(params, "Restarts:delta_hours");
-  snprintf(e->restart_dir, sizeof e->restart_dir, "%s", params_get_string(params, "Restarts:subdir"));
+  snprintf(e->restart_dir, sizeof e->restart_dir, "%s",
+           params_get_string(params, "Restarts:subdir"));
   e->restart_delta_steps = params_get_int(params, "Restarts:delta_steps");
   e->restart_max_wall = 3600.0 * params_get_real(params, "Restarts:max_run_time");
   e->restart_stop_steps = params_get_int(params, "Restarts:stop_steps");
@@ -699,9 +751,11 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   e->dt_min = params_get_real(params, "TimeIntegration:dt_min");
   e->dt_max = params_get_real(params, "TimeIntegration:dt_max");
   if (e->time_end < e->time)
-    params_error(params, "TimeIntegration:time_end", "time_end (%g) is before time_begin (%g)", e->time_end, e->time);
+    params_error(params, "TimeIntegration:time_end", "time_end (%g) is before time_begin (%g)",
+                 e->time_end, e->time);
   if (e->dt_min > e->dt_max)
-    params_error(params, "TimeIntegration:dt_min", "dt_min (%g) is larger than dt_max (%g)", e->dt_min, e->dt_max);
+    params_error(params, "TimeIntegration:dt_min", "dt_min (%g) is larger than dt_max (%g)",
+                 e->dt_min, e->dt_max);
   if (!params_get_bool(params, "TimeIntegration:global_step"))
     params_error(params, "TimeIntegration:global_step",
                  "false (individual time steps in time bins) is not implemented yet: use true");
@@ -720,14 +774,18 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     engine_init_outputs(e, e->time);
     e->params_text = params_to_string(params);
     int32_t *ids = error_malloc((e->mats->n ? e->mats->n : 1) * sizeof(int32_t), "material ids");
-    int32_t *u_floor = error_malloc((e->mats->n ? e->mats->n : 1) * sizeof(int32_t), "material flags");
+    int32_t *u_floor =
+        error_malloc((e->mats->n ? e->mats->n : 1) * sizeof(int32_t), "material flags");
     for (int k = 0; k < e->mats->n; k++) {
       ids[k] = e->mats->mats[k].id;
       u_floor[k] = e->mats->mats[k].u_floor;
     }
-    const struct restart_expect ex = {e->params_text, ids, e->mats->n, e->nr_out, e->time, e->time_end, u_floor,
-                                      (int64_t)(sizeof(struct gravity_cell) / sizeof(double)),
-                                      flaws_check_values};
+    const struct restart_expect ex = {
+        e->params_text,    ids,
+        e->mats->n,        e->nr_out,
+        e->time,           e->time_end,
+        u_floor,           (int64_t)(sizeof(struct gravity_cell) / sizeof(double)),
+        flaws_check_values};
     struct restart_data rd;
     restart_read(e->restart_stem, &ex, &rd, icname, sizeof icname);
     snprintf(e->restart_file, sizeof e->restart_file, "%s", icname);
@@ -757,18 +815,21 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     engine_read_ics(e, icname, sizeof icname, box);
   }
   if (opt->restart)
-    for (int k = 0; k < e->mats->n; k++) e->porous |= e->mats->mats[k].porosity.model != POROSITY_NONE;
+    for (int k = 0; k < e->mats->n; k++)
+      e->porous |= e->mats->mats[k].porosity.model != POROSITY_NONE;
   engine_guess_h(e);
   engine_init_flaws(e, icname);
   if (e->gp.enabled && periodic)
-    params_error(params, "InitialConditions:periodic", "self-gravity in a periodic box is not implemented");
-  error_log(0, "read %zu particles from %s (box %g x %g x %g, %s)", e->parts.count, icname, box[0], box[1],
-            box[2], periodic ? "periodic" : "open");
+    params_error(params, "InitialConditions:periodic",
+                 "self-gravity in a periodic box is not implemented");
+  error_log(0, "read %zu particles from %s (box %g x %g x %g, %s)", e->parts.count, icname, box[0],
+            box[1], box[2], periodic ? "periodic" : "open");
 
   /* outputs */
   const char *subdir = params_get_string(params, "Snapshots:subdir");
   snprintf(e->outdir, sizeof e->outdir, "%s", subdir);
-  snprintf(e->snap_basename, sizeof e->snap_basename, "%s", params_get_string(params, "Snapshots:basename"));
+  snprintf(e->snap_basename, sizeof e->snap_basename, "%s",
+           params_get_string(params, "Snapshots:basename"));
   e->write_acc = params_get_bool(params, "Snapshots:accelerations");
   e->compression = (int)params_get_int(params, "Snapshots:compression");
   e->stats_dt = params_get_real(params, "Statistics:delta_time");
@@ -803,18 +864,21 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
             "CPU-only build: every task runs on the CPU"
 #endif
   );
-  error_log(0, "configured with: %s", BOLIDE_CONFIGURE_ARGS[0] ? BOLIDE_CONFIGURE_ARGS : "(defaults)");
+  error_log(0, "configured with: %s",
+            BOLIDE_CONFIGURE_ARGS[0] ? BOLIDE_CONFIGURE_ARGS : "(defaults)");
   material_table_log(e->mats);
   if (e->hp.solids)
-    error_log(0, "solids: gradient tasks on (correction tensor %s, %s momentum form, artificial stress eps %g n %g%s)",
+    error_log(0,
+              "solids: gradient tasks on (correction tensor %s, %s momentum form, artificial "
+              "stress eps %g n %g%s)",
               e->hp.gradient_correction ? "on" : "off",
-              e->hp.momentum_form == HYDRO_MOMENTUM_SYMMETRIC ? "symmetric" : "standard", e->hp.as_eps, e->hp.as_n,
-              e->hp.continuity_cspm ? ", CSPM continuity" : "");
+              e->hp.momentum_form == HYDRO_MOMENTUM_SYMMETRIC ? "symmetric" : "standard",
+              e->hp.as_eps, e->hp.as_n, e->hp.continuity_cspm ? ", CSPM continuity" : "");
   error_log(0, "particle memory: %zu bytes per particle", parts_bytes_per_particle());
 
   if (opt->check_only) {
-    printf("%s: parameters, materials and initial conditions are valid (%zu particles)\n", params_filename(params),
-           e->parts.count);
+    printf("%s: parameters, materials and initial conditions are valid (%zu particles)\n",
+           params_filename(params), e->parts.count);
     return;
   }
 
@@ -895,7 +959,8 @@ static void engine_gravity_reuse_decide(struct engine *e, int rebuilt) {
   const double *x0 = e->grav_x0;
   double d2max = 0.0;
   for (size_t i = 0; i < p->count; i++) {
-    const double dx = p->x[i] - x0[3 * i], dy = p->y[i] - x0[3 * i + 1], dz = p->z[i] - x0[3 * i + 2];
+    const double dx = p->x[i] - x0[3 * i], dy = p->y[i] - x0[3 * i + 1],
+                 dz = p->z[i] - x0[3 * i + 2];
     const double d2 = dx * dx + dy * dy + dz * dz;
     if (d2 > d2max) d2max = d2;
   }
@@ -912,7 +977,8 @@ static void engine_gravity_reuse_decide(struct engine *e, int rebuilt) {
 static void engine_gravity_reuse_remember(struct engine *e) {
   if (!e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0 || e->gp.replay) return;
   const struct parts *p = &e->parts;
-  e->grav_x0 = error_realloc(e->grav_x0, 3 * (p->count ? p->count : 1) * sizeof(double), "gravity reuse positions");
+  e->grav_x0 = error_realloc(e->grav_x0, 3 * (p->count ? p->count : 1) * sizeof(double),
+                             "gravity reuse positions");
   for (size_t i = 0; i < p->count; i++) {
     e->grav_x0[3 * i] = p->x[i];
     e->grav_x0[3 * i + 1] = p->y[i];
@@ -920,7 +986,8 @@ static void engine_gravity_reuse_remember(struct engine *e) {
   }
   e->grav_d_min = HUGE_VAL;
   for (int k = 0; k < e->nr_gilists; k++)
-    if (e->gilists[k].d_min > 0.0 && e->gilists[k].d_min < e->grav_d_min) e->grav_d_min = e->gilists[k].d_min;
+    if (e->gilists[k].d_min > 0.0 && e->gilists[k].d_min < e->grav_d_min)
+      e->grav_d_min = e->gilists[k].d_min;
   e->grav_reused = 0;
 }
 
@@ -932,8 +999,8 @@ static void engine_gravity_reuse_remember(struct engine *e) {
  *  unset) and every task's interaction list (cells by index).  Free with restart_gravity_free. */
 static void engine_gravity_reuse_save(const struct engine *e, struct restart_gravity *g) {
   memset(g, 0, sizeof *g);
-  if (!e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0 || !e->grav_x0 || !(e->grav_d_min < HUGE_VAL) ||
-      e->gpu || e->nr_gilists < 1)
+  if (!e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0 || !e->grav_x0 ||
+      !(e->grav_d_min < HUGE_VAL) || e->gpu || e->nr_gilists < 1)
     return;
   const struct parts *p = &e->parts;
   const int nc = e->space.nr_cells;
@@ -945,12 +1012,15 @@ static void engine_gravity_reuse_save(const struct engine *e, struct restart_gra
   memcpy(g->x0, e->grav_x0, 3 * p->count * sizeof(double));
   g->nr_cells = nc;
   g->cell_doubles = sizeof(struct gravity_cell) / sizeof(double);
-  g->cell_index = error_malloc(((size_t)nc ? (size_t)nc : 1) * sizeof(int32_t), "restart far field");
-  g->cells = error_malloc(((size_t)nc ? (size_t)nc : 1) * sizeof(struct gravity_cell), "restart far field");
+  g->cell_index =
+      error_malloc(((size_t)nc ? (size_t)nc : 1) * sizeof(int32_t), "restart far field");
+  g->cells = error_malloc(((size_t)nc ? (size_t)nc : 1) * sizeof(struct gravity_cell),
+                          "restart far field");
   for (int c = 0; c < nc; c++)
     if (e->space.cells[c].count > 0) {
       g->cell_index[g->nr_saved] = c;
-      memcpy((struct gravity_cell *)g->cells + g->nr_saved++, e->gcells + c, sizeof(struct gravity_cell));
+      memcpy((struct gravity_cell *)g->cells + g->nr_saved++, e->gcells + c,
+             sizeof(struct gravity_cell));
     }
   g->nr_lists = e->nr_gilists;
   g->list_count = error_malloc((size_t)e->nr_gilists * sizeof(int64_t), "restart far field");
@@ -985,23 +1055,28 @@ static void engine_gravity_reuse_restore(struct engine *e) {
   if (!g->present) return;
   if (e->gpu || !e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0) {
     if (e->gpu)
-      error_log(0, "gravity: the far field of the restart file is not used on the GPU: the first step "
+      error_log(0,
+                "gravity: the far field of the restart file is not used on the GPU: the first step "
                 "evaluates it in full");
     restart_gravity_free(g);
     return;
   }
   const struct parts *p = &e->parts;
   if (g->nr_cells != e->space.nr_cells || g->nr_lists != e->nr_gilists)
-    error_exit("%s: the far field of %lld cells and %lld gravity tasks does not match the restored cells "
-               "(%d) and task graph (%d gravity tasks)", e->restart_file, (long long)g->nr_cells,
-               (long long)g->nr_lists, e->space.nr_cells, e->nr_gilists);
-  e->grav_x0 = error_realloc(e->grav_x0, 3 * (p->count ? p->count : 1) * sizeof(double), "gravity reuse positions");
+    error_exit(
+        "%s: the far field of %lld cells and %lld gravity tasks does not match the restored cells "
+        "(%d) and task graph (%d gravity tasks)",
+        e->restart_file, (long long)g->nr_cells, (long long)g->nr_lists, e->space.nr_cells,
+        e->nr_gilists);
+  e->grav_x0 = error_realloc(e->grav_x0, 3 * (p->count ? p->count : 1) * sizeof(double),
+                             "gravity reuse positions");
   memcpy(e->grav_x0, g->x0, 3 * p->count * sizeof(double));
   e->grav_d_min = g->d_min;
   e->grav_reused = (int)g->reused;
   e->grav_replays = (long)g->replays;
   for (int64_t c = 0; c < g->nr_saved; c++)
-    memcpy(e->gcells + g->cell_index[c], (const struct gravity_cell *)g->cells + c, sizeof(struct gravity_cell));
+    memcpy(e->gcells + g->cell_index[c], (const struct gravity_cell *)g->cells + c,
+           sizeof(struct gravity_cell));
   size_t q = 0;
   for (int k = 0; k < e->nr_gilists; k++) {
     struct gravity_ilist *il = &e->gilists[k];
@@ -1014,8 +1089,8 @@ static void engine_gravity_reuse_restore(struct engine *e) {
     il->d_min = g->list_d_min[k];
     for (int j = 0; j < n; j++, q++) {
       const int32_t *it = g->items + 4 * q;
-      il->item[j] = (struct gravity_iitem){&e->space.cells[it[0]], it[1] >= 0 ? &e->space.cells[it[1]] : NULL,
-                                           it[2], it[3]};
+      il->item[j] = (struct gravity_iitem){
+          &e->space.cells[it[0]], it[1] >= 0 ? &e->space.cells[it[1]] : NULL, it[2], it[3]};
     }
   }
   restart_gravity_free(g);
@@ -1050,7 +1125,8 @@ static void engine_write_restart(struct engine *e) {
     st.stats_offset = ftell(e->stats);
   }
   const int nc = e->space.nr_cells;
-  struct restart_cells cells = {nc, error_malloc(2 * (size_t)nc * sizeof(double) + 1, "restart cells"), NULL};
+  struct restart_cells cells = {
+      nc, error_malloc(2 * (size_t)nc * sizeof(double) + 1, "restart cells"), NULL};
   cells.dx_max = cells.h_max + nc;
   for (int c = 0; c < nc; c++) {
     cells.h_max[c] = e->space.cells[c].h_max;
@@ -1117,12 +1193,13 @@ static void engine_dt_culprit(const struct engine *e, char *why, size_t len) {
     return;
   }
   const size_t i = ib;
-  snprintf(why, len,
-           "particle id %lld (material %d) at (%g, %g, %g) limited by the %s: h %g, rho %g, u %g, P %g, "
-           "c_s %g, v_sig %g, |a| %g, div v %g",
-           (long long)p->id[i], (int)p->mat[i], p->x[i], p->y[i], p->z[i], timestep_criterion_name(crit),
-           p->h[i], p->rho[i], p->u[i], p->P[i], p->cs[i], p->v_sig[i],
-           sqrt(p->ax[i] * p->ax[i] + p->ay[i] * p->ay[i] + p->az[i] * p->az[i]), p->div_v[i]);
+  snprintf(
+      why, len,
+      "particle id %lld (material %d) at (%g, %g, %g) limited by the %s: h %g, rho %g, u %g, P %g, "
+      "c_s %g, v_sig %g, |a| %g, div v %g",
+      (long long)p->id[i], (int)p->mat[i], p->x[i], p->y[i], p->z[i], timestep_criterion_name(crit),
+      p->h[i], p->rho[i], p->u[i], p->P[i], p->cs[i], p->v_sig[i],
+      sqrt(p->ax[i] * p->ax[i] + p->ay[i] * p->ay[i] + p->az[i] * p->az[i]), p->div_v[i]);
 }
 
 /** The particles by time bin of their own limit after this step's kick
@@ -1132,7 +1209,8 @@ static void engine_bins_collect(struct engine *e) {
   memset(e->bins, 0, sizeof e->bins);
   if (e->gpu) return;
   for (int t = 0; t < e->nr_tcells; t++)
-    for (int b = 0; b <= TIMELINE_NR_BINS; b++) e->bins[b] += e->cell_bins[(size_t)t * (TIMELINE_NR_BINS + 1) + b];
+    for (int b = 0; b <= TIMELINE_NR_BINS; b++)
+      e->bins[b] += e->cell_bins[(size_t)t * (TIMELINE_NR_BINS + 1) + b];
   e->bin_updates += timeline_active_fraction(e->bins) * (double)e->parts.count;
   e->bin_all += (double)e->parts.count;
 }
@@ -1146,20 +1224,24 @@ static double engine_next_dt(struct engine *e) {
   if (dt < e->dt_min) {
     char why[512];
     engine_dt_culprit(e, why, sizeof why);
-    error_exit("time step %g at t = %g is below TimeIntegration:dt_min = %g: %s", dt, e->time, e->dt_min, why);
+    error_exit("time step %g at t = %g is below TimeIntegration:dt_min = %g: %s", dt, e->time,
+               e->dt_min, why);
   }
   if (e->next_out < e->nr_out) {
     const double to_out = e->out_times[e->next_out] - e->time;
-    if (to_out > 0.0 && dt >= to_out) dt = to_out;
-    else if (to_out > 0.0 && dt > 0.5 * to_out && dt < to_out) dt = 0.5 * to_out; /* no sliver steps */
+    if (to_out > 0.0 && dt >= to_out)
+      dt = to_out;
+    else if (to_out > 0.0 && dt > 0.5 * to_out && dt < to_out)
+      dt = 0.5 * to_out; /* no sliver steps */
   }
   if (e->time + dt > e->time_end) dt = e->time_end - e->time;
   /* a time so large in magnitude that the step is below its spacing would
    * loop for ever at the same t */
   if (dt > 0.0 && e->time + dt == e->time)
-    error_exit("time step %g cannot advance the time t = %g (the spacing of doubles there is %g): "
-               "TimeIntegration:time_begin or time_end too large in magnitude for the run's time steps",
-               dt, e->time, nextafter(fabs(e->time), INFINITY) - fabs(e->time));
+    error_exit(
+        "time step %g cannot advance the time t = %g (the spacing of doubles there is %g): "
+        "TimeIntegration:time_begin or time_end too large in magnitude for the run's time steps",
+        dt, e->time, nextafter(fabs(e->time), INFINITY) - fabs(e->time));
   return dt;
 }
 
@@ -1215,7 +1297,8 @@ void engine_run(struct engine *e) {
     engine_run_phase(e, ENGINE_PHASE_DRIFT);
     engine_watchdog_after_drift(e);
     e->time += e->dt;
-    if (e->next_out < e->nr_out && fabs(e->time - e->out_times[e->next_out]) <= 1e-12 * fabs(e->time))
+    if (e->next_out < e->nr_out &&
+        fabs(e->time - e->out_times[e->next_out]) <= 1e-12 * fabs(e->time))
       e->time = e->out_times[e->next_out];
     int rebuilt = 0;
     if (atomic_load((_Atomic int *)&e->need_rebuild) || engine_should_rebuild(e)) {
@@ -1242,7 +1325,8 @@ void engine_run(struct engine *e) {
     const double w1 = error_walltime();
     const double frac = (e->time - t_begin) / fmax(e->time_end - t_begin, 1e-300);
     const double eta = frac > 0 ? (w1 - e->wall_start) * (1.0 - frac) / frac : 0.0;
-    printf("%8ld %14.6e %14.6e %12zu %10.4f %10.1f\n", e->step, e->time, e->dt, e->parts.count, w1 - w0, eta);
+    printf("%8ld %14.6e %14.6e %12zu %10.4f %10.1f\n", e->step, e->time, e->dt, e->parts.count,
+           w1 - w0, eta);
     engine_timesteps_write(e, w1 - w0);
     fflush(stdout);
     if (e->time < e->time_end && engine_must_stop(e, stop_why, sizeof stop_why)) break;
@@ -1257,7 +1341,8 @@ void engine_run(struct engine *e) {
     }
   }
   const int stopped = stop_why[0] != '\0';
-  if (!stopped && !e->restarts && e->next_out < e->nr_out && e->out_times[e->nr_out - 1] > e->time) {
+  if (!stopped && !e->restarts && e->next_out < e->nr_out &&
+      e->out_times[e->nr_out - 1] > e->time) {
     /* stopped by --steps without restart files: keep the last state */
     engine_snapshot(e);
   }
@@ -1265,31 +1350,38 @@ void engine_run(struct engine *e) {
    * file to its length then, dropping the closing line written now */
   if (e->restarts || stopped) engine_write_restart(e);
   if (stopped)
-    fprintf(stderr, "bolide: %s: wrote %s.bin at step %ld (t = %g) and stopped; resume with --restart\n",
+    fprintf(stderr,
+            "bolide: %s: wrote %s.bin at step %ld (t = %g) and stopped; resume with --restart\n",
             stop_why, e->restart_stem, e->step, e->time);
   engine_stats_close(e);
   engine_budget_summary(e);
   const double wall = error_walltime() - e->wall_start;
-  error_log(0, "done: %ld steps to t = %g in %.2f s (%.3g particle updates per second)", e->step, e->time, wall,
-            wall > 0 ? (double)e->updates / wall : 0.0);
-  if (e->nr_removed) error_log(0, "%lld particles left the open box and were removed", e->nr_removed);
+  error_log(0, "done: %ld steps to t = %g in %.2f s (%.3g particle updates per second)", e->step,
+            e->time, wall, wall > 0 ? (double)e->updates / wall : 0.0);
+  if (e->nr_removed)
+    error_log(0, "%lld particles left the open box and were removed", e->nr_removed);
   if (e->bin_all > 0.0)
-    error_log(0, "time bins: individual time steps (issue 20; TimeIntegration:global_step) would have "
-              "updated %.1f%% of the particles per step of the smallest bin on average (the timesteps file "
+    error_log(0,
+              "time bins: individual time steps (issue 20; TimeIntegration:global_step) would have "
+              "updated %.1f%% of the particles per step of the smallest bin on average (the "
+              "timesteps file "
               "has the bins and the fraction of each step)",
               100.0 * e->bin_updates / e->bin_all);
   if (e->nr_eval)
     error_log(0, "derivative evaluations (FORCE phases of the steps): %ld, %.4f s each on average",
               e->nr_eval, e->t_eval / e->nr_eval);
   if (e->nr_rebuild)
-    error_log(0, "rebuilds (cells, particle order, task graph): %ld, %.4f s each on average "
+    error_log(0,
+              "rebuilds (cells, particle order, task graph): %ld, %.4f s each on average "
               "(particles back from the GPU %.4f, cells and order %.4f, task graph %.4f)",
               e->nr_rebuild, e->t_rebuild / e->nr_rebuild, e->t_rebuild_part[0] / e->nr_rebuild,
               e->t_rebuild_part[1] / e->nr_rebuild, e->t_rebuild_part[2] / e->nr_rebuild);
   error_log(0, "watchdog: %.4f s per step on average (every field of every particle checked)",
             e->step > 0 ? e->t_watchdog / (double)e->step : 0.0);
   if (e->gp.enabled && e->gp.reuse_steps > 0)
-    error_log(0, "gravity: %ld of %ld steps reused the far field (Gravity:reuse_steps %d, reuse_tolerance %g)",
+    error_log(0,
+              "gravity: %ld of %ld steps reused the far field (Gravity:reuse_steps %d, "
+              "reuse_tolerance %g)",
               e->grav_replays, e->step, e->gp.reuse_steps, e->gp.reuse_tol);
   scheduler_print_timers(&e->sched, stdout);
 #ifdef HAVE_CUDA

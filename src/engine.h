@@ -25,23 +25,24 @@ struct timestep_props;
 
 /** Command-line choices that shape the run. */
 struct engine_options {
-  int nr_threads;  /**< CPU workers (0: every allowed core) */
-  long max_steps;  /**< stop after this many steps (-1: no limit) */
-  int use_gpu;     /**< 0 never, 1 when present, 2 required */
-  int check_only;  /**< validate and exit */
-  int restart;     /**< resume from a restart file */
+  int nr_threads; /**< CPU workers (0: every allowed core) */
+  long max_steps; /**< stop after this many steps (-1: no limit) */
+  int use_gpu;    /**< 0 never, 1 when present, 2 required */
+  int check_only; /**< validate and exit */
+  int restart;    /**< resume from a restart file */
 };
 
 /** Tasks of one task cell (engine_graph.c: the graph is built on these). */
 struct engine_cell_tasks {
-  struct task *drift;    /**< kick1 + drift of the cell */
-  struct task *ghost;    /**< h iteration and equation of state */
+  struct task *drift;       /**< kick1 + drift of the cell */
+  struct task *ghost;       /**< h iteration and equation of state */
   struct task *extra_ghost; /**< end of the gradient loop (solids only, else NULL) */
-  struct task *kick2;    /**< second half kick and new time step */
-  struct task *force_done; /**< what the force tasks unlock: the first chain task (damage), else kick2 */
-  int nr_ngb;            /**< number of neighbouring task cells (itself included) */
-  int *ngb;              /**< their numbers in engine.tcells */
-  double (*ngb_shift)[3];/**< periodic shift to add to the neighbour's positions */
+  struct task *kick2;       /**< second half kick and new time step */
+  struct task
+      *force_done; /**< what the force tasks unlock: the first chain task (damage), else kick2 */
+  int nr_ngb;      /**< number of neighbouring task cells (itself included) */
+  int *ngb;        /**< their numbers in engine.tcells */
+  double (*ngb_shift)[3]; /**< periodic shift to add to the neighbour's positions */
 };
 
 /** Pair tasks join task cells closer than this many times the largest kernel
@@ -54,113 +55,114 @@ enum engine_phase { ENGINE_PHASE_DRIFT = 0, ENGINE_PHASE_FORCE = 1 };
 
 /** The whole state of a run. */
 struct engine {
-  const struct params *params;    /**< the run's parameters */
-  struct engine_options opt;      /**< command-line choices */
-  struct unit_system us;          /**< internal units */
-  struct hydro_props hp;          /**< SPH settings */
-  struct material_table *mats;    /**< materials by id */
-  struct parts parts;             /**< the particles */
-  struct space space;             /**< cells */
-  struct scheduler sched;         /**< tasks and workers */
-  int nr_threads;                 /**< workers in use */
+  const struct params *params; /**< the run's parameters */
+  struct engine_options opt;   /**< command-line choices */
+  struct unit_system us;       /**< internal units */
+  struct hydro_props hp;       /**< SPH settings */
+  struct material_table *mats; /**< materials by id */
+  struct parts parts;          /**< the particles */
+  struct space space;          /**< cells */
+  struct scheduler sched;      /**< tasks and workers */
+  int nr_threads;              /**< workers in use */
 
-  struct cell **tcells;           /**< the task cells (engine_graph.c) */
-  int nr_tcells;                  /**< their number */
-  int cell_task_size;             /**< Scheduler:cell_task_size */
-  int grav_task_size;             /**< Scheduler:gravity_task_size */
-  double reach;                   /**< task cells closer than this have pair tasks */
-  int damage;                     /**< 1 when a material is brittle (tasks/damage) */
-  double *flaw_eps;               /**< every particle's flaw thresholds, one flat array */
-  int64_t nr_flaws;               /**< their number */
-  const char *flaws_from;         /**< where they came from (log), NULL: Damage:seed */
-  double damage_max_change;       /**< Damage:max_change */
-  double damage_start;            /**< Damage:start_time: no damage before it */
-  int porous;                     /**< 1 when a material has a porosity model */
-  struct gravity_props gp;        /**< self-gravity settings (gp.enabled) */
-  struct gravity_cell *gcells;    /**< gravity data of every cell, by cell index */
-  int gcells_cap;                 /**< its allocated length */
-  struct sched_lock *glocks;      /**< per top-level cell: taken by gravity tasks writing it */
-  struct sched_lock *gsublocks;   /**< by cell index: taken by the split self-gravity tasks */
-  struct task **grav_down;        /**< per top-level cell: its gravity_down task (or NULL) */
-  struct gravity_ilist *gilists;  /**< interaction list of each gravity task, by task id
-                                       (Gravity:reuse_steps > 0; else NULL) */
-  int nr_gilists;                 /**< their number */
-  double *grav_x0;                /**< positions at the last full gravity evaluation (reuse) */
-  double grav_d_min;              /**< shortest far-field distance of that evaluation */
-  int grav_reused;                /**< steps since it that reused its far field */
-  long grav_replays;              /**< steps of the run that reused the far field */
+  struct cell **tcells;                /**< the task cells (engine_graph.c) */
+  int nr_tcells;                       /**< their number */
+  int cell_task_size;                  /**< Scheduler:cell_task_size */
+  int grav_task_size;                  /**< Scheduler:gravity_task_size */
+  double reach;                        /**< task cells closer than this have pair tasks */
+  int damage;                          /**< 1 when a material is brittle (tasks/damage) */
+  double *flaw_eps;                    /**< every particle's flaw thresholds, one flat array */
+  int64_t nr_flaws;                    /**< their number */
+  const char *flaws_from;              /**< where they came from (log), NULL: Damage:seed */
+  double damage_max_change;            /**< Damage:max_change */
+  double damage_start;                 /**< Damage:start_time: no damage before it */
+  int porous;                          /**< 1 when a material has a porosity model */
+  struct gravity_props gp;             /**< self-gravity settings (gp.enabled) */
+  struct gravity_cell *gcells;         /**< gravity data of every cell, by cell index */
+  int gcells_cap;                      /**< its allocated length */
+  struct sched_lock *glocks;           /**< per top-level cell: taken by gravity tasks writing it */
+  struct sched_lock *gsublocks;        /**< by cell index: taken by the split self-gravity tasks */
+  struct task **grav_down;             /**< per top-level cell: its gravity_down task (or NULL) */
+  struct gravity_ilist *gilists;       /**< interaction list of each gravity task, by task id
+                                            (Gravity:reuse_steps > 0; else NULL) */
+  int nr_gilists;                      /**< their number */
+  double *grav_x0;                     /**< positions at the last full gravity evaluation (reuse) */
+  double grav_d_min;                   /**< shortest far-field distance of that evaluation */
+  int grav_reused;                     /**< steps since it that reused its far field */
+  long grav_replays;                   /**< steps of the run that reused the far field */
   struct restart_gravity restart_grav; /**< the far field read from the restart file, restored
                                             after the first rebuild (grav.present 0: none) */
-  int *tcell_top;                 /**< top-level cell of each task cell */
-  struct engine_cell_tasks *ct;   /**< per task cell */
-  int nr_ct;                      /**< number of entries of ct */
-  struct task **phase_tasks[2];   /**< tasks of each phase */
-  int phase_count[2];             /**< their numbers */
-  struct space_pair *pairs;       /**< pairs of task cells (numbers in tcells, periodic shift) */
-  int nr_pairs;                   /**< their number */
-  int *task_pair;                 /**< pair number of each pair task, by task id */
-  double *cell_dt_min;            /**< smallest new time step per task cell */
-  struct timeline timeline;       /**< integer time line of the run (src/timeline.h) */
-  int64_t *cell_bins;             /**< per task cell, TIMELINE_NR_BINS + 1 counts of its particles by
-                                       the time bin of their own limit (CPU kick; issue 20) */
+  int *tcell_top;                      /**< top-level cell of each task cell */
+  struct engine_cell_tasks *ct;        /**< per task cell */
+  int nr_ct;                           /**< number of entries of ct */
+  struct task **phase_tasks[2];        /**< tasks of each phase */
+  int phase_count[2];                  /**< their numbers */
+  struct space_pair *pairs; /**< pairs of task cells (numbers in tcells, periodic shift) */
+  int nr_pairs;             /**< their number */
+  int *task_pair;           /**< pair number of each pair task, by task id */
+  double *cell_dt_min;      /**< smallest new time step per task cell */
+  struct timeline timeline; /**< integer time line of the run (src/timeline.h) */
+  int64_t *cell_bins;       /**< per task cell, TIMELINE_NR_BINS + 1 counts of its particles by
+                                 the time bin of their own limit (CPU kick; issue 20) */
   int64_t bins[TIMELINE_NR_BINS + 1]; /**< the sum of cell_bins after the last step */
-  double bin_updates;             /**< sum over the CPU steps of this process of the particle updates
-                                       that time bins would have done (timeline_active_fraction) */
-  double bin_all;                 /**< and of the particle updates done */
-  int need_rebuild;               /**< set by tasks (atomic): h outgrew the cells */
-  int first_force;                /**< 1 while computing the initial forces */
-  double t_eval;                  /**< wall seconds of the steps' FORCE phases (derivative evaluations) */
-  long nr_eval;                   /**< their number */
-  double t_rebuild;               /**< wall seconds of the rebuilds (cells, sort, task graph) */
-  double t_rebuild_part[3];       /**< of which: particles back from the GPU, space_rebuild, task graph */
-  long nr_rebuild;                /**< rebuilds, the first one included */
+  double bin_updates;       /**< sum over the CPU steps of this process of the particle updates
+                                 that time bins would have done (timeline_active_fraction) */
+  double bin_all;           /**< and of the particle updates done */
+  int need_rebuild;         /**< set by tasks (atomic): h outgrew the cells */
+  int first_force;          /**< 1 while computing the initial forces */
+  double t_eval;            /**< wall seconds of the steps' FORCE phases (derivative evaluations) */
+  long nr_eval;             /**< their number */
+  double t_rebuild;         /**< wall seconds of the rebuilds (cells, sort, task graph) */
+  double t_rebuild_part[3]; /**< of which: particles back from the GPU, space_rebuild, task graph */
+  long nr_rebuild;          /**< rebuilds, the first one included */
 
-  double time;                    /**< current simulation time */
-  double time_end;                /**< end of the run */
-  double dt;                      /**< current global time step */
-  double dt_min, dt_max;          /**< limits */
-  long step;                      /**< steps done */
-  long long updates;              /**< particle updates so far */
-  long long nr_removed;           /**< particles that left an open box */
+  double time;           /**< current simulation time */
+  double time_end;       /**< end of the run */
+  double dt;             /**< current global time step */
+  double dt_min, dt_max; /**< limits */
+  long step;             /**< steps done */
+  long long updates;     /**< particle updates so far */
+  long long nr_removed;  /**< particles that left an open box */
 
-  char outdir[1024];              /**< folder of snapshots and statistics */
-  char snap_basename[256];        /**< snapshot prefix */
-  double *out_times;              /**< snapshot times */
-  int nr_out, next_out;           /**< their count and the next to write */
-  int snap_index;                 /**< index of the next snapshot file */
-  int write_acc;                  /**< Snapshots:accelerations */
-  int compression;                /**< gzip level */
-  char *params_text;              /**< the parameters in use, for snapshots */
+  char outdir[1024];       /**< folder of snapshots and statistics */
+  char snap_basename[256]; /**< snapshot prefix */
+  double *out_times;       /**< snapshot times */
+  int nr_out, next_out;    /**< their count and the next to write */
+  int snap_index;          /**< index of the next snapshot file */
+  int write_acc;           /**< Snapshots:accelerations */
+  int compression;         /**< gzip level */
+  char *params_text;       /**< the parameters in use, for snapshots */
 
-  int restarts;                   /**< Restarts:enable */
-  double restart_dt_wall;         /**< seconds of wall time between restart files */
-  double restart_last_wall;       /**< wall time of the last restart file */
-  char restart_dir[1024];         /**< Restarts:subdir */
-  char restart_stem[1300];        /**< Restarts:subdir/Restarts:basename: the files are STEM.bin,
-                                       STEM.prev.bin (restart.h) */
-  long restart_stop_steps;        /**< Restarts:stop_steps: steps between looks for the stop file */
-  int restarted;                  /**< 1 when this run resumed from a restart file */
-  double restart_dt_next;         /**< smallest particle time step saved in the restart file */
-  double restart_h_max;           /**< > 0: the first rebuild restores the cells of the file (space_restore) */
+  int restarts;             /**< Restarts:enable */
+  double restart_dt_wall;   /**< seconds of wall time between restart files */
+  double restart_last_wall; /**< wall time of the last restart file */
+  char restart_dir[1024];   /**< Restarts:subdir */
+  char restart_stem[1300];  /**< Restarts:subdir/Restarts:basename: the files are STEM.bin,
+                                 STEM.prev.bin (restart.h) */
+  long restart_stop_steps;  /**< Restarts:stop_steps: steps between looks for the stop file */
+  int restarted;            /**< 1 when this run resumed from a restart file */
+  double restart_dt_next;   /**< smallest particle time step saved in the restart file */
+  double
+      restart_h_max; /**< > 0: the first rebuild restores the cells of the file (space_restore) */
   struct restart_cells restart_cells; /**< the cells' h_max and dx_max from the file */
-  char restart_file[4096];        /**< the restart file this run resumed from */
-  double *wd_x;                   /**< watchdog: positions before the drift of the step (3 per particle) */
-  double t_watchdog;              /**< wall seconds of the watchdog's checks */
-  long wd_inject_step;            /**< BOLIDE_TEST_INJECT: step whose end gets a bad value (0: none) */
-  char wd_inject_field[32];       /**< its particle field */
-  double wd_inject_value;         /**< its value */
-  long restart_delta_steps;       /**< Restarts:delta_steps */
-  double restart_max_wall;        /**< Restarts:max_run_time in seconds (0: none) */
-  long restart_stats_offset;      /**< length of the statistics file when the restart file was written */
+  char restart_file[4096];            /**< the restart file this run resumed from */
+  double *wd_x;        /**< watchdog: positions before the drift of the step (3 per particle) */
+  double t_watchdog;   /**< wall seconds of the watchdog's checks */
+  long wd_inject_step; /**< BOLIDE_TEST_INJECT: step whose end gets a bad value (0: none) */
+  char wd_inject_field[32];  /**< its particle field */
+  double wd_inject_value;    /**< its value */
+  long restart_delta_steps;  /**< Restarts:delta_steps */
+  double restart_max_wall;   /**< Restarts:max_run_time in seconds (0: none) */
+  long restart_stats_offset; /**< length of the statistics file when the restart file was written */
 
-  struct budget_start budget0;    /**< totals at the start of the run (engine_io.c) */
-  FILE *stats;                    /**< statistics file */
-  long stats_last_step;           /**< step of its last line (-1: none yet) */
-  FILE *timesteps;                /**< timesteps file: one line per step */
-  double stats_dt, next_stats;    /**< its interval */
-  long dump_tasks;                /**< dump a task timeline every this many steps */
-  double wall_start;              /**< wall time at the first step */
-  struct gpu_engine *gpu;         /**< the GPU runner (src/gpu/gpu_engine.h), NULL: CPU only */
+  struct budget_start budget0; /**< totals at the start of the run (engine_io.c) */
+  FILE *stats;                 /**< statistics file */
+  long stats_last_step;        /**< step of its last line (-1: none yet) */
+  FILE *timesteps;             /**< timesteps file: one line per step */
+  double stats_dt, next_stats; /**< its interval */
+  long dump_tasks;             /**< dump a task timeline every this many steps */
+  double wall_start;           /**< wall time at the first step */
+  struct gpu_engine *gpu;      /**< the GPU runner (src/gpu/gpu_engine.h), NULL: CPU only */
 };
 
 /** Read everything (units, materials, initial conditions), build the cells,

@@ -68,13 +68,19 @@ struct engine_chain {
   enum task_type type;                  /**< their type */
   enum task_subtype subtype;            /**< and subtype */
 };
-#define ENGINE_CHAIN_chain(active) {active, ENGINE_CHAIN_TAIL_
-#define ENGINE_CHAIN_TAIL_(type, subtype) task_type_##type, task_subtype_##subtype},
+#define ENGINE_CHAIN_chain(active) \
+  {                                \
+    active, ENGINE_CHAIN_TAIL_
+#define ENGINE_CHAIN_TAIL_(type, subtype)  \
+  task_type_##type, task_subtype_##subtype \
+  }                                        \
+  ,
 #define ENGINE_CHAIN_cell(type, subtype)
 #define ENGINE_CHAIN_self(type, subtype)
 #define ENGINE_CHAIN_pair(type, subtype)
 #define ENGINE_CHAIN_ROW_(family, shape, type, subtype, cpu) ENGINE_CHAIN_##shape(type, subtype)
-static const struct engine_chain engine_chain[] = {TASK_FAMILY_TASKS(ENGINE_CHAIN_ROW_){NULL, task_type_none, task_subtype_none}};
+static const struct engine_chain engine_chain[] = {
+    TASK_FAMILY_TASKS(ENGINE_CHAIN_ROW_){NULL, task_type_none, task_subtype_none}};
 #undef ENGINE_CHAIN_ROW_
 /** Their number (the table ends with an empty row). */
 #define ENGINE_NR_CHAIN ((int)(sizeof engine_chain / sizeof engine_chain[0]) - 1)
@@ -83,7 +89,8 @@ static const struct engine_chain engine_chain[] = {TASK_FAMILY_TASKS(ENGINE_CHAI
 static void engine_phase_add(struct engine *e, int ph, struct task *t, int *cap) {
   if (e->phase_count[ph] == cap[ph]) {
     cap[ph] = cap[ph] ? 2 * cap[ph] : 1024;
-    e->phase_tasks[ph] = error_realloc(e->phase_tasks[ph], cap[ph] * sizeof(struct task *), "task lists");
+    e->phase_tasks[ph] =
+        error_realloc(e->phase_tasks[ph], cap[ph] * sizeof(struct task *), "task lists");
   }
   e->phase_tasks[ph][e->phase_count[ph]++] = t;
 }
@@ -101,7 +108,8 @@ static void engine_task_pair_set(struct engine *e, const struct task *t, int k, 
 /** Record task cell b (with shift) as a neighbour of task cell a. */
 static void engine_add_ngb(struct engine_cell_tasks *ct, int b, const double shift[3]) {
   ct->ngb = error_realloc(ct->ngb, (ct->nr_ngb + 1) * sizeof(int), "cell neighbours");
-  ct->ngb_shift = error_realloc(ct->ngb_shift, (ct->nr_ngb + 1) * sizeof(double[3]), "cell neighbours");
+  ct->ngb_shift =
+      error_realloc(ct->ngb_shift, (ct->nr_ngb + 1) * sizeof(double[3]), "cell neighbours");
   ct->ngb[ct->nr_ngb] = b;
   for (int k = 0; k < 3; k++) ct->ngb_shift[ct->nr_ngb][k] = shift[k];
   ct->nr_ngb++;
@@ -178,8 +186,8 @@ static void engine_graph_free(struct engine *e) {
 /** The self-gravity tasks of cell c (the walk_self of gravity_cpu.c as tasks,
  *  see the top comment), after `after`; returns the task that follows them
  *  all.  top: c's top-level cell (for the dumps). */
-static struct task *engine_grav_self(struct engine *e, struct cell *c, struct task *after, int depth, int top,
-                                     int *cap) {
+static struct task *engine_grav_self(struct engine *e, struct cell *c, struct task *after,
+                                     int depth, int top, int *cap) {
   struct scheduler *sched = &e->sched;
   if (!c->split || c->count <= (size_t)e->grav_task_size || depth >= ENGINE_GRAV_SPLIT_DEPTH) {
     struct task *t = scheduler_addtask(sched, task_type_self, task_subtype_grav, c, c);
@@ -202,7 +210,8 @@ static struct task *engine_grav_self(struct engine *e, struct cell *c, struct ta
   for (int q = 0; q < 8; q++)
     for (int r = q + 1; r < 8; r++) {
       if (!sub[q] || !sub[r]) continue;
-      struct task *t = scheduler_addtask(sched, task_type_pair, task_subtype_grav, c->progeny[q], c->progeny[r]);
+      struct task *t =
+          scheduler_addtask(sched, task_type_pair, task_subtype_grav, c->progeny[q], c->progeny[r]);
       t->cell_index = top;
       t->locks[0] = &e->gsublocks[c->progeny[q]->index];
       t->locks[1] = &e->gsublocks[c->progeny[r]->index];
@@ -251,7 +260,8 @@ static void engine_make_gravity_tasks(struct engine *e, const int *first, int *c
     /* self(c), or its split: then gself[c] is the implicit done(c) */
     gself[c] = engine_grav_self(e, ci, up[c], 0, c, cap);
     const int split = gself[c]->type != task_type_self;
-    struct task *lr = glr[c] = scheduler_addtask(sched, task_type_grav_long_range, task_subtype_grav, ci, NULL);
+    struct task *lr = glr[c] =
+        scheduler_addtask(sched, task_type_grav_long_range, task_subtype_grav, ci, NULL);
     e->grav_down[c] = scheduler_addtask(sched, task_type_grav_down, task_subtype_grav, ci, NULL);
     up[c]->cell_index = lr->cell_index = e->grav_down[c]->cell_index = c;
     up[c]->locks[0] = lr->locks[0] = e->grav_down[c]->locks[0] = &e->glocks[c];
@@ -261,23 +271,27 @@ static void engine_make_gravity_tasks(struct engine *e, const int *first, int *c
     scheduler_addunlock(sched, all_up, lr);
     scheduler_addunlock(sched, gself[c], e->grav_down[c]);
     scheduler_addunlock(sched, lr, e->grav_down[c]);
-    if (split) scheduler_addunlock(sched, gself[c], lr);
-    else gself[c] = NULL; /* the lock orders it against the pairs */
+    if (split)
+      scheduler_addunlock(sched, gself[c], lr);
+    else
+      gself[c] = NULL; /* the lock orders it against the pairs */
     /* grav_down(c) -> kick2(t) for the task cells of c */
-    for (int t = first[c]; t < first[c + 1]; t++) scheduler_addunlock(sched, e->grav_down[c], e->ct[t].kick2);
+    for (int t = first[c]; t < first[c + 1]; t++)
+      scheduler_addunlock(sched, e->grav_down[c], e->ct[t].kick2);
     /* softening tied to h (Gravity:softening_h_factor): ghost(t) -> grav_up(c), so that
      * every gravity task reads the step's final h (the long range waits for every up) */
     if (e->gp.h_factor > 0.0 && e->hp.enabled)
-      for (int t = first[c]; t < first[c + 1]; t++) scheduler_addunlock(sched, e->ct[t].ghost, up[c]);
+      for (int t = first[c]; t < first[c + 1]; t++)
+        scheduler_addunlock(sched, e->ct[t].ghost, up[c]);
     engine_phase_add(e, ENGINE_PHASE_FORCE, up[c], cap);
     engine_phase_add(e, ENGINE_PHASE_FORCE, lr, cap);
     engine_phase_add(e, ENGINE_PHASE_FORCE, e->grav_down[c], cap);
   }
-  /* near pairs of top-level cells: grav_up(c), grav_up(c') -> grav(c,c') -> grav_down(c), grav_down(c');
-   * a pair with a split cell (gself set: its self tasks were split) is split
-   * too, into pairs of the octants of the split cells (engine_grav_units):
-   * they lock those octants, wait for done() of the split cells and come
-   * before their long-range tasks, the other writers of the whole cell */
+  /* near pairs of top-level cells: grav_up(c), grav_up(c') -> grav(c,c') -> grav_down(c),
+   * grav_down(c'); a pair with a split cell (gself set: its self tasks were split) is split too,
+   * into pairs of the octants of the split cells (engine_grav_units): they lock those octants, wait
+   * for done() of the split cells and come before their long-range tasks, the other writers of the
+   * whole cell */
   for (int a = 0; a < nt; a++) {
     if (!up[a]) continue;
     for (int b = a + 1; b < nt; b++) {
@@ -287,7 +301,8 @@ static void engine_make_gravity_tasks(struct engine *e, const int *first, int *c
       const int nb = engine_grav_units(&s->cells[b], gself[b] != NULL, ub);
       for (int i = 0; i < na; i++)
         for (int j = 0; j < nb; j++) {
-          struct task *pt = scheduler_addtask(sched, task_type_pair, task_subtype_grav, ua[i], ub[j]);
+          struct task *pt =
+              scheduler_addtask(sched, task_type_pair, task_subtype_grav, ua[i], ub[j]);
           pt->cell_index = a;
           pt->locks[0] = ua[i] == &s->cells[a] ? &e->glocks[a] : &e->gsublocks[ua[i]->index];
           pt->locks[1] = ub[j] == &s->cells[b] ? &e->glocks[b] : &e->gsublocks[ub[j]->index];
@@ -313,7 +328,8 @@ static void engine_make_gravity_tasks(struct engine *e, const int *first, int *c
 }
 
 /** The tasks of a pair of task cells a, b (b seen at x + shift). */
-static void engine_make_pair_tasks(struct engine *e, int a, int b, const double shift[3], int *cap) {
+static void engine_make_pair_tasks(struct engine *e, int a, int b, const double shift[3],
+                                   int *cap) {
   struct scheduler *sched = &e->sched;
   struct cell *ci = e->tcells[a], *cj = e->tcells[b];
   const int k = engine_add_pair(e, a, b, shift, &cap[2]);
@@ -372,8 +388,7 @@ struct engine_pair_list {
  *  it replaces.  tc[i]: the task-cell index of cell i, or -1 above the
  *  task cells (such a cell holds particles and is split). */
 static void engine_pairs_descend(const int *tc, struct cell *A, struct cell *B,
-                                 const double shift[3], double reach2,
-                                 struct engine_pair_list *L) {
+                                 const double shift[3], double reach2, struct engine_pair_list *L) {
   if (cell_bbox_dist2(A, B, shift) >= reach2) return;
   const int ta = tc[A->index], tb = tc[B->index];
   if (ta >= 0 && tb >= 0) {
@@ -426,7 +441,8 @@ static void engine_make_listed_pairs(struct engine *e, struct engine_pair_list *
                                      const double shift[3], int *cap) {
   /* qsort's pointer must be valid even for no element (C11 7.22.5; UBSan) */
   if (L->n > 1) qsort(L->ab, L->n, 2 * sizeof(int), engine_pair_cmp);
-  for (size_t k = 0; k < L->n; k++) engine_make_pair_tasks(e, L->ab[2 * k], L->ab[2 * k + 1], shift, cap);
+  for (size_t k = 0; k < L->n; k++)
+    engine_make_pair_tasks(e, L->ab[2 * k], L->ab[2 * k + 1], shift, cap);
   L->n = 0;
 }
 
@@ -449,8 +465,8 @@ void engine_make_graph(struct engine *e) {
   e->ct = error_calloc(nt ? nt : 1, sizeof(struct engine_cell_tasks), "cell tasks");
   e->nr_ct = nt;
   e->cell_dt_min = error_realloc(e->cell_dt_min, (nt ? nt : 1) * sizeof(double), "cell time steps");
-  e->cell_bins = error_realloc(e->cell_bins, (nt ? nt : 1) * (TIMELINE_NR_BINS + 1) * sizeof(int64_t),
-                               "cell time bins");
+  e->cell_bins = error_realloc(
+      e->cell_bins, (nt ? nt : 1) * (TIMELINE_NR_BINS + 1) * sizeof(int64_t), "cell time bins");
   memset(e->cell_bins, 0, (nt ? nt : 1) * (TIMELINE_NR_BINS + 1) * sizeof(int64_t));
 
   /* tasks of each task cell: drift(t);  density(t) -> ghost(t) -> force(t) -> kick2(t) */
@@ -467,7 +483,8 @@ void engine_make_graph(struct engine *e) {
     ct->force_done = ct->kick2;
     for (int k = ENGINE_NR_CHAIN - 1; k >= 0; k--) {
       if (!engine_chain[k].active(e)) continue;
-      struct task *d = scheduler_addtask(sched, engine_chain[k].type, engine_chain[k].subtype, c, NULL);
+      struct task *d =
+          scheduler_addtask(sched, engine_chain[k].type, engine_chain[k].subtype, c, NULL);
       d->cell_index = t;
       scheduler_addunlock(sched, d, ct->force_done);
       engine_phase_add(e, ENGINE_PHASE_FORCE, d, cap);
@@ -506,7 +523,8 @@ void engine_make_graph(struct engine *e) {
   double reach = s->width[0];
   for (int k = 1; k < 3; k++)
     if (s->width[k] < reach) reach = s->width[k];
-  if (ENGINE_REACH_FACTOR * kernel_gamma * s->h_max < reach) reach = ENGINE_REACH_FACTOR * kernel_gamma * s->h_max;
+  if (ENGINE_REACH_FACTOR * kernel_gamma * s->h_max < reach)
+    reach = ENGINE_REACH_FACTOR * kernel_gamma * s->h_max;
   e->reach = reach;
   const double reach2 = reach * reach;
   const double zero[3] = {0, 0, 0};
@@ -516,7 +534,8 @@ void engine_make_graph(struct engine *e) {
     for (int t = first[c]; t < first[c + 1]; t++) e->tcell_top[t] = c;
   if (e->gp.enabled && e->gp.direct) {
     /* Gravity:direct: one task of exact summation -> every kick2 */
-    struct task *d = scheduler_addtask(sched, task_type_grav_long_range, task_subtype_grav, NULL, NULL);
+    struct task *d =
+        scheduler_addtask(sched, task_type_grav_long_range, task_subtype_grav, NULL, NULL);
     for (int t = 0; t < nt; t++) scheduler_addunlock(sched, d, e->ct[t].kick2);
     engine_phase_add(e, ENGINE_PHASE_FORCE, d, cap);
   } else if (e->gp.enabled) {

@@ -30,33 +30,36 @@
  *  part of E_int: where the stress power went, not a term of the sum);
  *  dE = E_tot + E_removed - E_clamp - E_tot(start), which a conservative
  *  run keeps at the level of its time-integration error. */
-#define ENGINE_STATS_COLUMNS(X)                                                                    \
-  X(step, "Step", "Simulation step", 0, 0, 0)                                                      \
-  X(time, "Time", "Time since the start of the simulation", 0, 0, 1)                               \
-  X(dt, "dt", "Time-step of the step that ended here", 0, 0, 1)                                    \
-  X(mass, "Total mass", "Total mass in the simulation", 1, 0, 0)                                   \
-  X(px, "Mom. x", "Momentum of the simulation (x coordinate)", 1, 1, -1)                           \
-  X(py, "Mom. y", "Momentum of the simulation (y coordinate)", 1, 1, -1)                           \
-  X(pz, "Mom. z", "Momentum of the simulation (z coordinate)", 1, 1, -1)                           \
-  X(Lx, "Ang. mom. x", "Angular momentum about the origin (x coordinate)", 1, 2, -1)               \
-  X(Ly, "Ang. mom. y", "Angular momentum about the origin (y coordinate)", 1, 2, -1)               \
-  X(Lz, "Ang. mom. z", "Angular momentum about the origin (z coordinate)", 1, 2, -1)               \
-  X(E_kin, "Kin. Energy", "Total kinetic energy", 1, 2, -2)                                        \
-  X(E_int, "Int. Energy", "Total internal energy", 1, 2, -2)                                       \
-  X(E_pot, "Pot. energy", "Total potential energy of self-gravity", 1, 2, -2)                      \
-  X(E_tot, "Tot. energy", "Total energy E_kin + E_int + E_pot", 1, 2, -2)                          \
-  X(n_particles, "Particles", "Number of particles in the box", 0, 0, 0)                           \
-  X(n_removed, "Removed particles", "Number of particles that left the open box", 0, 0, 0)         \
-  X(m_removed, "Removed mass", "Mass the removed particles took with them", 1, 0, 0)               \
-  X(E_removed, "Removed energy", "Energy the removed particles took with them", 1, 2, -2)          \
-  X(px_removed, "Removed mom. x", "Momentum the removed particles took (x coordinate)", 1, 1, -1)  \
-  X(py_removed, "Removed mom. y", "Momentum the removed particles took (y coordinate)", 1, 1, -1)  \
-  X(pz_removed, "Removed mom. z", "Momentum the removed particles took (z coordinate)", 1, 1, -1)  \
-  X(Lx_removed, "Removed ang. mom. x", "Angular momentum the removed particles took (x)", 1, 2, -1) \
-  X(Ly_removed, "Removed ang. mom. y", "Angular momentum the removed particles took (y)", 1, 2, -1) \
-  X(Lz_removed, "Removed ang. mom. z", "Angular momentum the removed particles took (z)", 1, 2, -1) \
-  X(E_clamp, "Clamp energy", "Energy added by the floor on the internal energy", 1, 2, -2)         \
-  X(W_plastic, "Plastic work", "Plastic work (a part of the internal energy)", 1, 2, -2)            \
+#define ENGINE_STATS_COLUMNS(X)                                                                   \
+  X(step, "Step", "Simulation step", 0, 0, 0)                                                     \
+  X(time, "Time", "Time since the start of the simulation", 0, 0, 1)                              \
+  X(dt, "dt", "Time-step of the step that ended here", 0, 0, 1)                                   \
+  X(mass, "Total mass", "Total mass in the simulation", 1, 0, 0)                                  \
+  X(px, "Mom. x", "Momentum of the simulation (x coordinate)", 1, 1, -1)                          \
+  X(py, "Mom. y", "Momentum of the simulation (y coordinate)", 1, 1, -1)                          \
+  X(pz, "Mom. z", "Momentum of the simulation (z coordinate)", 1, 1, -1)                          \
+  X(Lx, "Ang. mom. x", "Angular momentum about the origin (x coordinate)", 1, 2, -1)              \
+  X(Ly, "Ang. mom. y", "Angular momentum about the origin (y coordinate)", 1, 2, -1)              \
+  X(Lz, "Ang. mom. z", "Angular momentum about the origin (z coordinate)", 1, 2, -1)              \
+  X(E_kin, "Kin. Energy", "Total kinetic energy", 1, 2, -2)                                       \
+  X(E_int, "Int. Energy", "Total internal energy", 1, 2, -2)                                      \
+  X(E_pot, "Pot. energy", "Total potential energy of self-gravity", 1, 2, -2)                     \
+  X(E_tot, "Tot. energy", "Total energy E_kin + E_int + E_pot", 1, 2, -2)                         \
+  X(n_particles, "Particles", "Number of particles in the box", 0, 0, 0)                          \
+  X(n_removed, "Removed particles", "Number of particles that left the open box", 0, 0, 0)        \
+  X(m_removed, "Removed mass", "Mass the removed particles took with them", 1, 0, 0)              \
+  X(E_removed, "Removed energy", "Energy the removed particles took with them", 1, 2, -2)         \
+  X(px_removed, "Removed mom. x", "Momentum the removed particles took (x coordinate)", 1, 1, -1) \
+  X(py_removed, "Removed mom. y", "Momentum the removed particles took (y coordinate)", 1, 1, -1) \
+  X(pz_removed, "Removed mom. z", "Momentum the removed particles took (z coordinate)", 1, 1, -1) \
+  X(Lx_removed, "Removed ang. mom. x", "Angular momentum the removed particles took (x)", 1, 2,   \
+    -1)                                                                                           \
+  X(Ly_removed, "Removed ang. mom. y", "Angular momentum the removed particles took (y)", 1, 2,   \
+    -1)                                                                                           \
+  X(Lz_removed, "Removed ang. mom. z", "Angular momentum the removed particles took (z)", 1, 2,   \
+    -1)                                                                                           \
+  X(E_clamp, "Clamp energy", "Energy added by the floor on the internal energy", 1, 2, -2)        \
+  X(W_plastic, "Plastic work", "Plastic work (a part of the internal energy)", 1, 2, -2)          \
   X(dE, "Energy error", "Energy budget error E_tot + E_removed - E_clamp - E_tot(start)", 1, 2, -2)
 
 /** The unit of dimension M^a L^b T^c in unyt's words ("gram * cm**2 *
@@ -86,16 +89,17 @@ static void engine_stats_header(struct engine *e, FILE *f) {
   fprintf(f, "# Bolide %s statistics file (SWIFT's layout: swiftsimio.load_statistics reads it)\n",
           PACKAGE_VERSION);
   fprintf(f, "######################################################\n");
-  fprintf(f, "# The quantities are all given in internal units: mass %g g, length %g cm, time %g s\n",
+  fprintf(f,
+          "# The quantities are all given in internal units: mass %g g, length %g cm, time %g s\n",
           e->us.mass_cgs, e->us.length_cgs, e->us.time_cgs);
   fprintf(f, "#\n");
 #define ENGINE_STATS_DESC(n, swift, desc, a, b, c)                                   \
   engine_stats_unit(a, b, c, unit, sizeof unit);                                     \
-  fprintf(f, "# (%d)%*s%s\n", col, col < 10 ? 2 : 1, "", desc);                     \
+  fprintf(f, "# (%d)%*s%s\n", col, col < 10 ? 2 : 1, "", desc);                      \
   if (unit[0])                                                                       \
     fprintf(f, "#      Unit = %.16e %s\n", units_cgs_factor(&e->us, a, b, c), unit); \
   else                                                                               \
-    fprintf(f, "#      Unit = dimensionless\n");                                    \
+    fprintf(f, "#      Unit = dimensionless\n");                                     \
   col++;
   ENGINE_STATS_COLUMNS(ENGINE_STATS_DESC)
 #undef ENGINE_STATS_DESC
@@ -112,7 +116,8 @@ static void engine_stats_header(struct engine *e, FILE *f) {
 
 void engine_stats_open(struct engine *e) {
   char path[2048];
-  snprintf(path, sizeof path, "%s/%s.txt", e->outdir, params_get_string(e->params, "Statistics:energy_file_name"));
+  snprintf(path, sizeof path, "%s/%s.txt", e->outdir,
+           params_get_string(e->params, "Statistics:energy_file_name"));
   /* a resumed run appends to the file of the run it continues, cut to its
    * length when the restart file was written (the lines of the steps after
    * it come again) */
@@ -120,11 +125,12 @@ void engine_stats_open(struct engine *e) {
     struct stat sb;
     if (stat(path, &sb) == 0 && sb.st_size > e->restart_stats_offset) {
       if (truncate(path, (off_t)e->restart_stats_offset))
-        error_exit("%s: cannot cut the statistics file to %ld bytes: %s", path, e->restart_stats_offset,
-                   strerror(errno));
+        error_exit("%s: cannot cut the statistics file to %ld bytes: %s", path,
+                   e->restart_stats_offset, strerror(errno));
     } else if (stat(path, &sb) || sb.st_size < e->restart_stats_offset) {
-      error_warning("%s: shorter than when the restart file was written (%ld bytes): lines are missing", path,
-                    e->restart_stats_offset);
+      error_warning(
+          "%s: shorter than when the restart file was written (%ld bytes): lines are missing", path,
+          e->restart_stats_offset);
     }
   }
   e->stats = fopen(path, e->restarted ? "a" : "w");
@@ -133,19 +139,22 @@ void engine_stats_open(struct engine *e) {
   /* the timesteps file (SWIFT's Statistics:timestep_file_name): one line
    * per step; a resumed run appends (the steps between the restart file
    * and the stop come twice) */
-  snprintf(path, sizeof path, "%s/%s.txt", e->outdir, params_get_string(e->params, "Statistics:timestep_file_name"));
+  snprintf(path, sizeof path, "%s/%s.txt", e->outdir,
+           params_get_string(e->params, "Statistics:timestep_file_name"));
   e->timesteps = fopen(path, e->restarted ? "a" : "w");
   if (!e->timesteps) error_exit("%s: cannot create the timesteps file", path);
   if (e->restarted) return; /* (no comment line: the file stays one table) */
   fprintf(e->timesteps,
           "# Bolide %s time steps, one line per step (SWIFT's timesteps file)\n"
           "# Time and time-step in internal units (%g s); wall-clock time of the step in ms\n"
-          "# Bin-min, Bin-max: the time bins (src/timeline.h) of the particles' own limits after the step;\n"
-          "# Active-fraction: the particle updates individual time steps would do per step of Bin-min,\n"
+          "# Bin-min, Bin-max: the time bins (src/timeline.h) of the particles' own limits after "
+          "the step;\n"
+          "# Active-fraction: the particle updates individual time steps would do per step of "
+          "Bin-min,\n"
           "# as a fraction of this global step's (0 0 -1: not counted, as on the GPU)\n"
           "# %8s %16s %16s %14s %16s %7s %7s %15s\n",
-          PACKAGE_VERSION, e->us.time_cgs, "Step", "Time", "Time-step", "Updates", "Wall-clock time", "Bin-min",
-          "Bin-max", "Active-fraction");
+          PACKAGE_VERSION, e->us.time_cgs, "Step", "Time", "Time-step", "Updates",
+          "Wall-clock time", "Bin-min", "Bin-max", "Active-fraction");
   fflush(e->timesteps);
   engine_stats_header(e, e->stats);
   fflush(e->stats);
@@ -164,8 +173,8 @@ void engine_timesteps_write(struct engine *e, double wall_step) {
       if (b_min < 0) b_min = b;
       b_max = b;
     }
-  fprintf(e->timesteps, "  %8ld %16.9e %16.9e %14zu %16.6f %7d %7d %15.6f\n", e->step, e->time, e->dt,
-          e->parts.count, 1e3 * wall_step, b_min < 0 ? 0 : b_min, b_max < 0 ? 0 : b_max,
+  fprintf(e->timesteps, "  %8ld %16.9e %16.9e %14zu %16.6f %7d %7d %15.6f\n", e->step, e->time,
+          e->dt, e->parts.count, 1e3 * wall_step, b_min < 0 ? 0 : b_min, b_max < 0 ? 0 : b_max,
           b_min < 0 ? -1.0 : timeline_active_fraction(e->bins));
   if (fflush(e->timesteps)) error_exit("cannot write the timesteps file (disk full?)");
 }
@@ -241,10 +250,11 @@ static void engine_check_angular_momentum(struct engine *e, const struct engine_
   char path[2100];
   snprintf(path, sizeof path, "%s/crash_step%06ld.hdf5", e->outdir, e->step);
   engine_snapshot_to(e, path);
-  error_exit_status(3,
-                    "angular momentum check: |L - L(0)| / |L(0)| = %.3e at step %ld (t = %g) exceeds "
-                    "Statistics:max_angular_momentum_change = %g; crash snapshot %s",
-                    rel, e->step, e->time, bound, path);
+  error_exit_status(
+      3,
+      "angular momentum check: |L - L(0)| / |L(0)| = %.3e at step %ld (t = %g) exceeds "
+      "Statistics:max_angular_momentum_change = %g; crash snapshot %s",
+      rel, e->step, e->time, bound, path);
 }
 
 /** The start of the angular-momentum check: it needs an open box (a periodic
@@ -258,8 +268,9 @@ static void engine_check_angular_momentum_start(struct engine *e) {
                  "angular momentum)");
   const double *L = e->budget0.L;
   if (!(L[0] * L[0] + L[1] * L[1] + L[2] * L[2] > 0.0))
-    error_warning("Statistics:max_angular_momentum_change: the angular momentum is 0 at the start; "
-                  "the check is off");
+    error_warning(
+        "Statistics:max_angular_momentum_change: the angular momentum is 0 at the start; "
+        "the check is off");
 }
 
 void engine_stats_write(struct engine *e) {
@@ -275,12 +286,13 @@ void engine_stats_write(struct engine *e) {
   const struct budget_removed *r = &e->space.removed;
   const double etot = t.E_kin + t.E_int + t.E_pot;
   const double dE = etot + r->E - t.E_clamp - e->budget0.E_tot;
-  fprintf(e->stats,
-          "%ld %.12e %.6e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %zu %lld"
-          " %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.6e\n",
-          e->step, e->time, e->dt, t.mass, t.p[0], t.p[1], t.p[2], t.L[0], t.L[1], t.L[2], t.E_kin, t.E_int,
-          t.E_pot, etot, e->parts.count, e->nr_removed, r->m, r->E, r->p[0], r->p[1], r->p[2], r->L[0],
-          r->L[1], r->L[2], t.E_clamp, t.W_plastic, dE);
+  fprintf(
+      e->stats,
+      "%ld %.12e %.6e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %zu %lld"
+      " %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.6e\n",
+      e->step, e->time, e->dt, t.mass, t.p[0], t.p[1], t.p[2], t.L[0], t.L[1], t.L[2], t.E_kin,
+      t.E_int, t.E_pot, etot, e->parts.count, e->nr_removed, r->m, r->E, r->p[0], r->p[1], r->p[2],
+      r->L[0], r->L[1], r->L[2], t.E_clamp, t.W_plastic, dE);
   if (fflush(e->stats)) error_exit("cannot write the statistics file (disk full?)");
   e->stats_last_step = e->step;
   engine_check_angular_momentum(e, &t);
@@ -328,13 +340,15 @@ void engine_budget_summary(struct engine *e) {
     dL2 += dL * dL;
     L02 += b->L[k] * b->L[k];
   }
-  error_log(0,
-            "conservation budget against the start: dE / |%s| = %.3e (E_tot %+.6e -> %+.6e; removed "
-            "with %lld particles %+.3e; kick's floor on u %+.3e; plastic work %.3e, part of E_int)",
-            fabs(b->E_pot) > 0.0 ? "E_pot(0)" : "E(0)", Escale > 0.0 ? dE / Escale : 0.0, b->E_tot, etot,
-            e->nr_removed, r->E, t.E_clamp, t.W_plastic);
-  error_log(0, "conservation budget against the start: |dL| / |L(0)| = %.3e, |dp| / sum m|v|(0) = %.3e",
-            L02 > 0.0 ? sqrt(dL2 / L02) : 0.0, b->p_abs > 0.0 ? sqrt(dp2) / b->p_abs : 0.0);
+  error_log(
+      0,
+      "conservation budget against the start: dE / |%s| = %.3e (E_tot %+.6e -> %+.6e; removed "
+      "with %lld particles %+.3e; kick's floor on u %+.3e; plastic work %.3e, part of E_int)",
+      fabs(b->E_pot) > 0.0 ? "E_pot(0)" : "E(0)", Escale > 0.0 ? dE / Escale : 0.0, b->E_tot, etot,
+      e->nr_removed, r->E, t.E_clamp, t.W_plastic);
+  error_log(
+      0, "conservation budget against the start: |dL| / |L(0)| = %.3e, |dp| / sum m|v|(0) = %.3e",
+      L02 > 0.0 ? sqrt(dL2 / L02) : 0.0, b->p_abs > 0.0 ? sqrt(dp2) / b->p_abs : 0.0);
 }
 
 void engine_stats_maybe(struct engine *e) {
@@ -347,7 +361,9 @@ void engine_stats_maybe(struct engine *e) {
     if (e->stats_dt > 0.0)
       for (int k = 0; e->next_stats <= e->time; k++) {
         double next = e->next_stats + e->stats_dt;
-        if (k == 1000) next = e->next_stats + e->stats_dt * (floor((e->time - e->next_stats) / e->stats_dt) + 1.0);
+        if (k == 1000)
+          next =
+              e->next_stats + e->stats_dt * (floor((e->time - e->next_stats) / e->stats_dt) + 1.0);
         e->next_stats = next > e->next_stats ? next : nextafter(e->time, INFINITY);
       }
   }

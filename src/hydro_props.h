@@ -7,31 +7,32 @@ struct params;
 /** Hydrodynamics settings shared by the density, ghost, force and time-step
  *  tasks.  Plain data: copied to the GPU as is. */
 struct hydro_props {
-  int enabled;          /**< SPH:hydro */
-  double eta;           /**< SPH:resolution_eta, h = eta * (1/n)^(1/3) */
-  double h_tolerance;   /**< relative tolerance of the h iteration */
-  double h_max;         /**< largest smoothing length */
-  int max_iterations;   /**< of the h iteration */
-  int h_continuity;     /**< SPH:h_evolution: continuity (dh/dt = -h/(3 rho) drho/dt, no iteration) */
-  double cfl;           /**< Courant factor */
+  int enabled;        /**< SPH:hydro */
+  double eta;         /**< SPH:resolution_eta, h = eta * (1/n)^(1/3) */
+  double h_tolerance; /**< relative tolerance of the h iteration */
+  double h_max;       /**< largest smoothing length */
+  int max_iterations; /**< of the h iteration */
+  int h_continuity;   /**< SPH:h_evolution: continuity (dh/dt = -h/(3 rho) drho/dt, no iteration) */
+  double cfl;         /**< Courant factor */
   double log_max_volume_change; /**< ln of the largest kernel-volume change per step */
-  double alpha;         /**< artificial viscosity alpha (Monaghan 1997) */
-  double beta;          /**< signal-velocity beta (Monaghan 1997) */
-  int balsara;          /**< Balsara (1995) switch on/off */
-  double alpha_u;       /**< artificial conduction (Price 2008), 0 = off */
-  int continuity;       /**< 1: density from the continuity equation */
-  int continuity_cspm;  /**< 1: drho/dt = -rho tr(corrected velocity gradient) (CSPM) */
-  double continuity_min_ratio; /**< continuity density floor in units of the material's rho0 */
-  double xsph;          /**< XSPH epsilon (Monaghan 1989), 0 = off */
-  int free_surface;     /**< 1: pressure 0 on fluid particles at the free surface (SPH:free_surface) */
-  double free_surface_threshold; /**< kernel sum sum_j V_j W_ij below which a fluid particle is on it */
-  int solids;           /**< 1 when a material has strength: gradient tasks and stress terms run */
-  int momentum_form;    /**< HYDRO_MOMENTUM_STANDARD or HYDRO_MOMENTUM_SYMMETRIC */
+  double alpha;                 /**< artificial viscosity alpha (Monaghan 1997) */
+  double beta;                  /**< signal-velocity beta (Monaghan 1997) */
+  int balsara;                  /**< Balsara (1995) switch on/off */
+  double alpha_u;               /**< artificial conduction (Price 2008), 0 = off */
+  int continuity;               /**< 1: density from the continuity equation */
+  int continuity_cspm;          /**< 1: drho/dt = -rho tr(corrected velocity gradient) (CSPM) */
+  double continuity_min_ratio;  /**< continuity density floor in units of the material's rho0 */
+  double xsph;                  /**< XSPH epsilon (Monaghan 1989), 0 = off */
+  int free_surface; /**< 1: pressure 0 on fluid particles at the free surface (SPH:free_surface) */
+  double free_surface_threshold; /**< kernel sum sum_j V_j W_ij below which a fluid particle is on
+                                    it */
+  int solids;        /**< 1 when a material has strength: gradient tasks and stress terms run */
+  int momentum_form; /**< HYDRO_MOMENTUM_STANDARD or HYDRO_MOMENTUM_SYMMETRIC */
   int gradient_correction; /**< 1: linear-consistency correction of the velocity gradient */
-  double as_eps;        /**< artificial stress epsilon_s (Monaghan 2000), 0 = off */
-  double as_n;          /**< artificial stress exponent n */
-  double as_wdp_inv;    /**< 1 / W(dp, h = 1) with dp = h / eta, the mean particle spacing */
-  double max_rel_change;/**< time-step limit on relative changes of rho, u, S per step (0 = off) */
+  double as_eps;           /**< artificial stress epsilon_s (Monaghan 2000), 0 = off */
+  double as_n;             /**< artificial stress exponent n */
+  double as_wdp_inv;       /**< 1 / W(dp, h = 1) with dp = h / eta, the mean particle spacing */
+  double max_rel_change; /**< time-step limit on relative changes of rho, u, S per step (0 = off) */
 };
 
 /** Forms of the momentum equation (SPH:momentum_form). */

@@ -7,20 +7,20 @@
 #include "src/error.h"
 
 #define PART_TYPE_ID(type) \
-  _Generic((type)0, double: PART_DOUBLE, int64_t: PART_INT64, int32_t: PART_INT32)
+  _Generic((type)0, double : PART_DOUBLE, int64_t : PART_INT64, int32_t : PART_INT32)
 
 #define PART_FIELD_ENTRY(ctype, name_, h5, c, nc, m, l, t, fl, desc) \
-  {.name = #name_,                                                    \
-   .h5name = h5,                                                      \
-   .comp = c,                                                         \
-   .ncomp = nc,                                                       \
-   .uM = m,                                                           \
-   .uL = l,                                                           \
-   .uT = t,                                                           \
-   .flags = fl,                                                       \
-   .type = PART_TYPE_ID(ctype),                                       \
-   .size = sizeof(ctype),                                             \
-   .offset = offsetof(struct parts, name_),                           \
+  {.name = #name_,                                                   \
+   .h5name = h5,                                                     \
+   .comp = c,                                                        \
+   .ncomp = nc,                                                      \
+   .uM = m,                                                          \
+   .uL = l,                                                          \
+   .uT = t,                                                          \
+   .flags = fl,                                                      \
+   .type = PART_TYPE_ID(ctype),                                      \
+   .size = sizeof(ctype),                                            \
+   .offset = offsetof(struct parts, name_),                          \
    .description = desc},
 const struct part_field part_fields[] = {BOLIDE_PART_FIELDS(PART_FIELD_ENTRY)};
 #undef PART_FIELD_ENTRY
@@ -39,7 +39,8 @@ void parts_alloc(struct parts *p, size_t n) {
   p->count = n;
   p->capacity = n;
   for (int k = 0; k < part_nr_fields; k++)
-    *part_field_slot(p, &part_fields[k]) = error_calloc(n, part_fields[k].size, part_fields[k].name);
+    *part_field_slot(p, &part_fields[k]) =
+        error_calloc(n, part_fields[k].size, part_fields[k].name);
 }
 
 void parts_reserve(struct parts *p, size_t n) {

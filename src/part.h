@@ -160,11 +160,11 @@ enum { PART_NR_FIELDS = 0 BOLIDE_PART_FIELDS(PART_COUNT_FIELD) };
 
 /** Bits of parts.flags. */
 enum part_state {
-  PART_ACTIVE = 1,       /**< updated in the current step */
-  PART_H_CONVERGED = 2,  /**< smoothing length iteration converged */
-  PART_RHO_FLOOR = 4,    /**< continuity density held at its floor (continuity_floor.h) */
-  PART_U_FLOOR = 8,      /**< its material's EOS needs u >= 0: the kick halves a u that would go
-                              negative (material.u_floor, set by the ghost; drift.h) */
+  PART_ACTIVE = 1,        /**< updated in the current step */
+  PART_H_CONVERGED = 2,   /**< smoothing length iteration converged */
+  PART_RHO_FLOOR = 4,     /**< continuity density held at its floor (continuity_floor.h) */
+  PART_U_FLOOR = 8,       /**< its material's EOS needs u >= 0: the kick halves a u that would go
+                               negative (material.u_floor, set by the ghost; drift.h) */
   PART_FREE_SURFACE = 16, /**< a fluid particle on the free surface (SPH:free_surface): P = 0
                               (extra_ghost_part.h) */
 };

@@ -49,7 +49,7 @@ struct scheduler_edge {
 
 /** The task graph, its queues and its worker threads. */
 struct scheduler {
-  int nr_threads; /**< threads computing, the caller of scheduler_run() included */
+  int nr_threads;  /**< threads computing, the caller of scheduler_run() included */
   int fixed_costs; /**< 1: never replace the task costs by measured times, so that with one
                         thread the task order (and every sum) repeats from run to run */
 

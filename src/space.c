@@ -297,8 +297,8 @@ static void *space_permute_run(void *arg) {
     const size_t sz = part_fields[k].size;
     space_gather(j->p, k, j->perm, j->buf, j->lo, j->hi);
     pthread_barrier_wait(j->bar); /* every gather of field k read the old order */
-    memcpy((char *)part_field_array(j->p, &part_fields[k]) + j->lo * sz, (char *)j->buf + j->lo * sz,
-           (j->hi - j->lo) * sz);
+    memcpy((char *)part_field_array(j->p, &part_fields[k]) + j->lo * sz,
+           (char *)j->buf + j->lo * sz, (j->hi - j->lo) * sz);
     pthread_barrier_wait(j->bar); /* buf is free for the next field */
   }
   return NULL;
@@ -322,8 +322,9 @@ static void space_permute(struct parts *p, const size_t *perm, void *buf, int nr
   if (pthread_barrier_init(&bar, NULL, (unsigned)t) != 0)
     error_exit("space: cannot set up the threads of the rebuild (pthread_barrier_init)");
   for (int k = 0; k < t; k++)
-    job[k] = (struct space_permute_job){p, perm, buf, n * (size_t)k / (size_t)t,
-                                        n * (size_t)(k + 1) / (size_t)t, &bar, nonzero, k, t};
+    job[k] = (struct space_permute_job){
+        p,       perm, buf, n * (size_t)k / (size_t)t, n * (size_t)(k + 1) / (size_t)t, &bar,
+        nonzero, k,    t};
   for (int k = 1; k < t; k++)
     if (pthread_create(&th[k], NULL, space_permute_run, &job[k]))
       /* a thread could not start: the barrier would wait for ever */
@@ -453,15 +454,16 @@ size_t space_rebuild(struct space *s) {
   const double w3 = error_walltime();
   for (int c = 0; c < s->nr_top; c++) space_finish_cell(s, c);
   const double w4 = error_walltime();
-  error_log(1, "space: rebuild %d: %zu particles, %d x %d x %d top-level cells, %d cells; "
+  error_log(1,
+            "space: rebuild %d: %zu particles, %d x %d x %d top-level cells, %d cells; "
             "s: wrap and sort by top-level cell %.3f, octrees %.3f, reorder %.3f, boxes %.3f",
             s->nr_rebuilds, n, s->cdim[0], s->cdim[1], s->cdim[2], s->nr_cells, w1 - w0, w2 - w1,
             w3 - w2, w4 - w3);
   return removed;
 }
 
-void space_restore(struct space *s, double h_max, const double *cell_h, const double *cell_dx, int nr_cells,
-                   const char *file) {
+void space_restore(struct space *s, double h_max, const double *cell_h, const double *cell_dx,
+                   int nr_cells, const char *file) {
   struct parts *p = s->parts;
   const size_t n = p->count;
   /* the cells of the positions at the last rebuild (x0), then the positions back */
@@ -477,9 +479,11 @@ void space_restore(struct space *s, double h_max, const double *cell_h, const do
   s->restore_h_max = h_max;
   const size_t removed = space_rebuild(s);
   s->restore_h_max = 0.0;
-  if (removed) error_exit("%s: %zu particles were outside the box at the last rebuild", file, removed);
+  if (removed)
+    error_exit("%s: %zu particles were outside the box at the last rebuild", file, removed);
   if (memcmp(ids, p->id, n * sizeof(int64_t)))
-    error_exit("%s: the particles are not in the order of the cells of their rebuild positions", file);
+    error_exit("%s: the particles are not in the order of the cells of their rebuild positions",
+               file);
   memcpy(p->x, keep, n * sizeof(double));
   memcpy(p->y, keep + n, n * sizeof(double));
   memcpy(p->z, keep + 2 * n, n * sizeof(double));
@@ -490,8 +494,8 @@ void space_restore(struct space *s, double h_max, const double *cell_h, const do
     return;
   }
   if (nr_cells != s->nr_cells)
-    error_exit("%s: the restored space has %d cells, the file %d (another build or parameters?)", file,
-               s->nr_cells, nr_cells);
+    error_exit("%s: the restored space has %d cells, the file %d (another build or parameters?)",
+               file, s->nr_cells, nr_cells);
   for (int c = 0; c < nr_cells; c++) {
     s->cells[c].h_max = cell_h[c];
     s->cells[c].dx_max = cell_dx[c];

@@ -52,11 +52,11 @@ struct space {
   double h_max;              /**< largest smoothing length at the last rebuild */
   size_t nr_removed;         /**< particles removed from an open box since space_init */
   struct budget_removed removed; /**< what they took with them (the engine sets it on restart) */
-  int nr_rebuilds;           /**< number of calls of space_rebuild */
-  size_t *sort_index;        /**< work array of the rebuild (capacity sort_capacity) */
-  size_t sort_capacity;      /**< allocated length of sort_index */
-  int nr_threads;            /**< threads of the rebuild's reordering of the fields (1) */
-  double restore_h_max;      /**< > 0: space_choose_grid takes this h_max (space_restore) */
+  int nr_rebuilds;               /**< number of calls of space_rebuild */
+  size_t *sort_index;            /**< work array of the rebuild (capacity sort_capacity) */
+  size_t sort_capacity;          /**< allocated length of sort_index */
+  int nr_threads;                /**< threads of the rebuild's reordering of the fields (1) */
+  double restore_h_max;          /**< > 0: space_choose_grid takes this h_max (space_restore) */
 };
 
 /** One pair of top-level cells that can interact: the particles of cj are
@@ -95,8 +95,8 @@ size_t space_rebuild(struct space *s);
  *  sorts are stable: the permutation is the identity), so that the resumed
  *  run takes the same steps.  A cell count other than nr_cells stops with
  *  one line (file: the restart file's name). */
-void space_restore(struct space *s, double h_max, const double *cell_h, const double *cell_dx, int nr_cells,
-                   const char *file);
+void space_restore(struct space *s, double h_max, const double *cell_h, const double *cell_dx,
+                   int nr_cells, const char *file);
 
 /** 1 if the cells no longer hold every interaction among neighbours or are
  *  too stale: some particle moved more than max_drift_fraction of a cell

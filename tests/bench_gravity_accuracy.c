@@ -189,8 +189,9 @@ int main(int argc, char **argv) {
     } else if (argv[a][0] != '-' && source == NULL) {
       source = argv[a];
     } else {
-      error_exit("usage: bench_gravity_accuracy [-s EPS] [-c E,T,P]... [-e K] [-k K] [-r FILE] "
-                 "[-t T] [-l L] [-m M] [-g] IC.hdf5|plummer2:N|plummer:N|uniform:N");
+      error_exit(
+          "usage: bench_gravity_accuracy [-s EPS] [-c E,T,P]... [-e K] [-k K] [-r FILE] "
+          "[-t T] [-l L] [-m M] [-g] IC.hdf5|plummer2:N|plummer:N|uniform:N");
     }
   }
   if (source == NULL) error_exit("bench_gravity_accuracy: no source (IC file or set:N)");
@@ -228,8 +229,7 @@ int main(int argc, char **argv) {
       for (int d = 0; d < 3; d++) box[d] = info.box_size[d];
     if (eps == 0.0) {
       double *sp = error_malloc(p.count * sizeof(double), "spacings");
-      for (size_t i = 0; i < p.count; i++)
-        sp[i] = p.rho[i] > 0.0 ? cbrt(p.m[i] / p.rho[i]) : 0.0;
+      for (size_t i = 0; i < p.count; i++) sp[i] = p.rho[i] > 0.0 ? cbrt(p.m[i] / p.rho[i]) : 0.0;
       qsort(sp, p.count, sizeof(double), cmp_double);
       eps = pct(sp, p.count, 0.5);
       free(sp);
@@ -275,10 +275,11 @@ int main(int argc, char **argv) {
       fclose(f);
     }
   }
-  printf("# %s: N = %zu, softening %g (spline), %d top-level cells, %d cells, leaves <= %d; "
-         "reference: %zu particles (1 in %d), %s %.1f s\n",
-         source, n, eps, s.nr_top, s.nr_cells, leaf, nt, stride,
-         have ? "read from the cache in" : "direct summation", error_walltime() - t0);
+  printf(
+      "# %s: N = %zu, softening %g (spline), %d top-level cells, %d cells, leaves <= %d; "
+      "reference: %zu particles (1 in %d), %s %.1f s\n",
+      source, n, eps, s.nr_top, s.nr_cells, leaf, nt, stride,
+      have ? "read from the cache in" : "direct summation", error_walltime() - t0);
   printf("# mode eps_fmm theta order eval median p90 p99 max seconds m2l/N p2p/N\n");
   fflush(stdout);
 

@@ -68,8 +68,10 @@ int main(int argc, char **argv) {
     free(w);
   } else if (binary) {
     double *buf = error_malloc(3 * (size_t)N * sizeof(double), "shell");
-    for (long i = 0; i < N; i++) buf[3 * i] = x[i], buf[3 * i + 1] = x[N + i], buf[3 * i + 2] = x[2 * N + i];
-    if (fwrite(buf, sizeof(double), 3 * (size_t)N, stdout) != 3 * (size_t)N) error_exit("write failed");
+    for (long i = 0; i < N; i++)
+      buf[3 * i] = x[i], buf[3 * i + 1] = x[N + i], buf[3 * i + 2] = x[2 * N + i];
+    if (fwrite(buf, sizeof(double), 3 * (size_t)N, stdout) != 3 * (size_t)N)
+      error_exit("write failed");
     free(buf);
   } else {
     for (long i = 0; i < N; i++) printf("%.17g %.17g %.17g\n", x[i], x[N + i], x[2 * N + i]);

@@ -53,7 +53,8 @@ static void test_pressure_floor(void) {
   CHECK(material_set(&solid, "shear_modulus", 22e9, msg, sizeof msg) == 0, "%s", msg);
   CHECK(material_set(&solid, "yield_stress", 1e9, msg, sizeof msg) == 0, "%s", msg);
   CHECK(material_finalize(&solid, msg, sizeof msg) == 0, "%s", msg);
-  CHECK(isinf(solid.P_min) && solid.P_min < 0, "P_min with strength: %g (must be -inf)", solid.P_min);
+  CHECK(isinf(solid.P_min) && solid.P_min < 0, "P_min with strength: %g (must be -inf)",
+        solid.P_min);
   material_eos(&solid, 0.8 * 2680, 0.0, &P, &cs);
   const double T1 = 18e9 * (0.8 - 1) + 18e9 * 0.04; /* A mu + B mu^2 at u = 0 */
   CHECK(fabs(P - T1) <= 1e-12 * fabs(T1), "tension of a solid: P %g (T1 %g)", P, T1);
@@ -79,8 +80,8 @@ static void test_u_floor(void) {
   p.flags[1] = 0;            /* Tillotson */
   kick_part(&p, 0, 1.0);
   kick_part(&p, 1, 1.0);
-  CHECK(p.u[0] == 0.5 && p.e_clamp[0] == 9.5, "floored: u %g (0.5), e_clamp %g (9.5 = 0.5 - (1 - 10))",
-        p.u[0], p.e_clamp[0]);
+  CHECK(p.u[0] == 0.5 && p.e_clamp[0] == 9.5,
+        "floored: u %g (0.5), e_clamp %g (9.5 = 0.5 - (1 - 10))", p.u[0], p.e_clamp[0]);
   CHECK(p.u[1] == -9.0 && p.e_clamp[1] == 0.0, "not floored: u %g (-9), e_clamp %g (0)", p.u[1],
         p.e_clamp[1]);
   parts_free(&p);

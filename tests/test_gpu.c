@@ -123,8 +123,8 @@ static int list_entry_cmp(const void *a, const void *b) {
  *  not exercised), or, in a periodic box, no entry with a shift.  Returns
  *  the failures. */
 static int compare_lists(struct gpu *g, const struct space *sp, struct cell *const *tcells, int nr,
-                         const struct engine_cell_tasks *ct, const double *tc_h_cap,
-                         double growth, int leaf_size, int must_prune) {
+                         const struct engine_cell_tasks *ct, const double *tc_h_cap, double growth,
+                         int leaf_size, int must_prune) {
   struct gpu_cells gh, gd;
   memset(&gh, 0, sizeof gh);
   memset(&gd, 0, sizeof gd);
@@ -186,12 +186,14 @@ static int compare_lists(struct gpu *g, const struct space *sp, struct cell *con
     fail++;
   }
   const int periodic = sp->periodic;
-  printf("  lists (growth %.2f, leaves of at most %d particles): %d leaves, %d entries of %ld "
-         "candidate leaf pairs, %ld shifted; device = host as sets%s%s\n",
-         growth, leaf_size, gd.n, gd.nr_ngb, candidates, shifted,
-         same_order ? " and in order" : "", fail ? "  FAIL" : "");
+  printf(
+      "  lists (growth %.2f, leaves of at most %d particles): %d leaves, %d entries of %ld "
+      "candidate leaf pairs, %ld shifted; device = host as sets%s%s\n",
+      growth, leaf_size, gd.n, gd.nr_ngb, candidates, shifted, same_order ? " and in order" : "",
+      fail ? "  FAIL" : "");
   if (gd.nr_ngb == 0 || (must_prune && gd.nr_ngb >= candidates) || (periodic && shifted == 0)) {
-    printf("  FAIL lists: degenerate test (no entry, every candidate kept, or no periodic image)\n");
+    printf(
+        "  FAIL lists: degenerate test (no entry, every candidate kept, or no periodic image)\n");
     fail++;
   }
   free(tc_leaves);
@@ -459,7 +461,9 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
   tp.hydro = tp.porous = 1;
   tp.damage_max_change = solid ? damage_max_change : 0.0;
   for (int c = 0; c < sp.nr_top; c++)
-    dt_cpu[c] = sp.cells[c].count ? kick2_cell_cpu(&p, &sp.cells[c], dt_kick, &hp, &mats, &tp, NULL, NULL) : 1e300;
+    dt_cpu[c] = sp.cells[c].count
+                    ? kick2_cell_cpu(&p, &sp.cells[c], dt_kick, &hp, &mats, &tp, NULL, NULL)
+                    : 1e300;
   const double t_cpu = error_walltime() - t0;
 
   /* GPU: the runner's FORCE phase on the copy, cells reset to its h */
@@ -616,10 +620,10 @@ static int gravity_up_report(const struct space *sp, const struct gravity_cell *
     if (isnan(b->M[0]) || isnan(b->r_max) || isnan(gd[k].a_min)) wm = INFINITY;
   }
   const int bad = !(wm == 0.0) + !(wc == 0.0) + !(wr == 0.0) + !(wa == 0.0) + !(wh == 0.0);
-  printf("  multipoles on the GPU vs the CPU, %d cells: moments %.2e, centres %.2e, r_max %.2e, "
-         "a_min %.2e, h_support %.2e%s\n",
-         sp->nr_cells, wm, wc, wr, wa, wh,
-         bad ? " FAIL (must be equal)" : "");
+  printf(
+      "  multipoles on the GPU vs the CPU, %d cells: moments %.2e, centres %.2e, r_max %.2e, "
+      "a_min %.2e, h_support %.2e%s\n",
+      sp->nr_cells, wm, wc, wr, wa, wh, bad ? " FAIL (must be equal)" : "");
   return bad;
 }
 
@@ -699,10 +703,12 @@ static int run_gravity_case(struct gpu *g, size_t n, int softening, unsigned lon
   size_t n_m2p = 0, n_p2l = 0;
   for (size_t k = 0; k < rec.part.n; k++) n_m2p += rec.part.source[k] < 0;
   for (size_t k = 0; k < rec.field.n; k++) n_p2l += rec.field.source[k] < 0;
-  const size_t n_part = rec.part.n + 2 * rec.part_sym.n, n_field = rec.field.n + 2 * rec.field_sym.n;
-  printf("  CPU tree %.3f s; CPU up + recorded walks + GPU %.3f s; %zu P2P/M2P and %zu M2L/P2L "
-         "interactions, %d leaves, %d L2L levels\n",
-         t_cpu, t_gpu, n_part, n_field, h.tree.nr_leaves, h.tree.nr_levels);
+  const size_t n_part = rec.part.n + 2 * rec.part_sym.n,
+               n_field = rec.field.n + 2 * rec.field_sym.n;
+  printf(
+      "  CPU tree %.3f s; CPU up + recorded walks + GPU %.3f s; %zu P2P/M2P and %zu M2L/P2L "
+      "interactions, %d leaves, %d L2L levels\n",
+      t_cpu, t_gpu, n_part, n_field, h.tree.nr_leaves, h.tree.nr_levels);
   fail += gravity_report("first evaluation", &p, &q);
   printf("  exercised: %zu M2P, %zu P2L, %zu M2L, %zu P2P\n", n_m2p, n_p2l, n_field - n_p2l,
          n_part - n_m2p);
@@ -736,13 +742,15 @@ static int run_gravity_case(struct gpu *g, size_t n, int softening, unsigned lon
   int capd = 0;
   struct gravity_cell *gcd = gravity_cells_reserve(NULL, &capd, sp.cells_capacity);
   memset(gcd, 0, (size_t)capd * sizeof *gcd);
-  for (size_t i = 0; i < n; i++) q.gax[i] = ga1[3 * i], q.gay[i] = ga1[3 * i + 1], q.gaz[i] = ga1[3 * i + 2];
+  for (size_t i = 0; i < n; i++)
+    q.gax[i] = ga1[3 * i], q.gay[i] = ga1[3 * i + 1], q.gaz[i] = ga1[3 * i + 2];
   gpu_grav_tree_all(gg, &h, &rec, &q, &sp, gcd, &gp, 0, 1, 0);
   fail += gravity_up_report(&sp, gcq, gcd, gp.order);
   fail += gravity_report("second, multipoles on the GPU", &p, &q);
   /* 2c: and the walks on the device too (Scheduler:gpu_walks: device):
    * the same decisions on the same multipoles */
-  for (size_t i = 0; i < n; i++) q.gax[i] = ga1[3 * i], q.gay[i] = ga1[3 * i + 1], q.gaz[i] = ga1[3 * i + 2];
+  for (size_t i = 0; i < n; i++)
+    q.gax[i] = ga1[3 * i], q.gay[i] = ga1[3 * i + 1], q.gaz[i] = ga1[3 * i + 2];
   gpu_grav_tree_all(gg, &h, &rec, &q, &sp, gcd, &gp, 0, 1, 1);
   fail += gravity_report("second, multipoles and walks on the GPU", &p, &q);
   free(gcd);

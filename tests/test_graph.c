@@ -73,13 +73,13 @@ static void run(const char *name, size_t n, int clustered, int periodic, int tas
   for (int c = 0; c < s->nr_top; c++) first[c + 1] += first[c];
   size_t n_exp = 0, bad = 0;
   const double zero[3] = {0, 0, 0};
-#define EXPECT(a_, b_, sh_)                                                                  \
-  do {                                                                                       \
-    const struct space_pair *q = n_exp < (size_t)e.nr_pairs ? &e.pairs[n_exp] : NULL;        \
-    if (!q || q->ci != (a_) || q->cj != (b_) || q->shift[0] != (sh_)[0] ||                   \
-        q->shift[1] != (sh_)[1] || q->shift[2] != (sh_)[2])                                  \
-      bad++;                                                                                 \
-    n_exp++;                                                                                 \
+#define EXPECT(a_, b_, sh_)                                                           \
+  do {                                                                                \
+    const struct space_pair *q = n_exp < (size_t)e.nr_pairs ? &e.pairs[n_exp] : NULL; \
+    if (!q || q->ci != (a_) || q->cj != (b_) || q->shift[0] != (sh_)[0] ||            \
+        q->shift[1] != (sh_)[1] || q->shift[2] != (sh_)[2])                           \
+      bad++;                                                                          \
+    n_exp++;                                                                          \
   } while (0)
   for (int c = 0; c < s->nr_top; c++)
     for (int a = first[c]; a < first[c + 1]; a++)
@@ -97,8 +97,10 @@ static void run(const char *name, size_t n, int clustered, int periodic, int tas
   for (int c = 0; c < s->nr_top; c++)
     if (first[c + 1] - first[c] > most) most = first[c + 1] - first[c];
   const int ok = bad == 0 && n_exp == (size_t)e.nr_pairs && n_exp > 0;
-  printf("  %-34s %6d task cells (up to %4d in a top-level cell), %7d pairs, all-pairs test %7zu: %s\n",
-         name, nt, most, e.nr_pairs, n_exp, ok ? "same, same order" : "FAIL");
+  printf(
+      "  %-34s %6d task cells (up to %4d in a top-level cell), %7d pairs, all-pairs test %7zu: "
+      "%s\n",
+      name, nt, most, e.nr_pairs, n_exp, ok ? "same, same order" : "FAIL");
   failures += !ok;
   free(top), free(first), free(top_of);
   engine_graph_clean(&e);

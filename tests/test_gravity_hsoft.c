@@ -237,8 +237,7 @@ int main(void) {
   const struct errors eb = measure(&p, &ref);
   printf("  support of h_min for every cell: median %.2e p99 %.2e max %.2e\n", eb.median, eb.p99,
          eb.max);
-  check(eb.p99 > 1e-3, "criterion without the per-cell support: p99 above the limit", eb.p99,
-        1e-3);
+  check(eb.p99 > 1e-3, "criterion without the per-cell support: p99 above the limit", eb.p99, 1e-3);
 
   free(ref.a);
   free(gc);

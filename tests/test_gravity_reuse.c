@@ -168,8 +168,8 @@ static void test_set(int two_bodies) {
   check(med_f[0] < 1e-4, "default tolerance 0.01: median", med_f[0], 1e-4);
   check(p99_f[0] < 1e-3, "default tolerance 0.01: 99th percentile", p99_f[0], 1e-3);
   /* monotone growth: the ratio p99(0.2) / p99(0.01) must exceed 1 */
-  check(p99_f[1] > p99_f[0] && p99_f[2] > p99_f[1], "p99 grows with displacement: p99(0.2)/p99(0.01) > 1",
-        p99_f[2] / p99_f[0], 1.0);
+  check(p99_f[1] > p99_f[0] && p99_f[2] > p99_f[1],
+        "p99 grows with displacement: p99(0.2)/p99(0.01) > 1", p99_f[2] / p99_f[0], 1.0);
   gravity_ilist_free(&il);
   free(gc);
   free(x0);

@@ -125,8 +125,8 @@ static void run(const char *name, int two_bodies, double h_factor) {
      * with its walker), the queue then walked by the next round */
     for (int k = 0; k < nc; k++) mp[k] = gc[k].mp, a_min[k] = gc[k].a_min, hs[k] = gc[k].h_support;
     const struct gravity_walk_tree T = {progeny, count, split, mp, a_min, hs};
-    const struct gravity_walk_params wp = {gp.G, gp.theta, gp.epsilon_fmm, gp.h_support,
-                                           gp.h_factor, gp.order};
+    const struct gravity_walk_params wp = {gp.G,         gp.theta,    gp.epsilon_fmm,
+                                           gp.h_support, gp.h_factor, gp.order};
     double *lo_hi = malloc(6 * (size_t)nt * sizeof(double));
     for (int i = 0; i < nt; i++)
       for (int d = 0; d < 3; d++)
@@ -152,21 +152,22 @@ static void run(const char *name, int two_bodies, double h_factor) {
       const unsigned long long qcap = 2048;
       int *qi[2] = {malloc(3 * qcap * sizeof(int)), malloc(3 * qcap * sizeof(int))};
       unsigned long long qn[2] = {0, 0};
-      /* walk: the stack's n entries with the budget, the rest to queue o */
-      #define WALK_ITEMS(n0, o)                                                      \
-        do {                                                                         \
-          const struct gravity_walk_queue Q = {qi[o], qn + (o), qcap};               \
-          int nw = gravity_walk_run(&T, &wp, &L, &B, stack, scap, (n0), budget);      \
-          if (nw > 0) {                                                              \
-            const int left = gravity_walk_spill(&Q, stack, nw);                      \
-            handed += (unsigned long long)(nw - left), kept += (unsigned long long)left; \
-            nw = left > 0 ? gravity_walk_run(&T, &wp, &L, &B, stack, TEST_STACK, left, (long long)1 << 62) : 0; \
-          }                                                                          \
-          deep += nw > 0;                                                            \
-        } while (0)
+/* walk: the stack's n entries with the budget, the rest to queue o */
+#define WALK_ITEMS(n0, o)                                                                       \
+  do {                                                                                          \
+    const struct gravity_walk_queue Q = {qi[o], qn + (o), qcap};                                \
+    int nw = gravity_walk_run(&T, &wp, &L, &B, stack, scap, (n0), budget);                      \
+    if (nw > 0) {                                                                               \
+      const int left = gravity_walk_spill(&Q, stack, nw);                                       \
+      handed += (unsigned long long)(nw - left), kept += (unsigned long long)left;              \
+      nw = left > 0                                                                             \
+               ? gravity_walk_run(&T, &wp, &L, &B, stack, TEST_STACK, left, (long long)1 << 62) \
+               : 0;                                                                             \
+    }                                                                                           \
+    deep += nw > 0;                                                                             \
+  } while (0)
       for (long long r = 0; r < (long long)nt * nt; r++)
-        if (gravity_walk_root(count, lo_hi, nt, gp.theta, gp.h_support, r, stack))
-          WALK_ITEMS(1, 0);
+        if (gravity_walk_root(count, lo_hi, nt, gp.theta, gp.h_support, r, stack)) WALK_ITEMS(1, 0);
       for (int cur = 0; qn[cur] > 0; cur ^= 1, rounds++) {
         const unsigned long long m = qn[cur] < qcap ? qn[cur] : qcap;
         qn[cur ^ 1] = 0;
@@ -176,7 +177,7 @@ static void run(const char *name, int two_bodies, double h_factor) {
         }
         qn[cur] = 0;
       }
-      #undef WALK_ITEMS
+#undef WALK_ITEMS
       for (int k = 0; k < 4; k++) gravity_walk_flush(&L, &B, k);
       char what[160];
       snprintf(what, sizeof what, "%s, %s, %s, %s", name, pass ? "adaptive pass" : "first pass",

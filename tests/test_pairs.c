@@ -483,13 +483,16 @@ static void check_threaded_rebuild(void) {
   int cells_differ = sa.nr_cells != sb.nr_cells;
   for (int c = 0; c < sa.nr_cells && !cells_differ; c++) {
     const struct cell *x = &sa.cells[c], *y = &sb.cells[c];
-    cells_differ |= memcmp(x->loc, y->loc, sizeof x->loc) || memcmp(x->width, y->width, sizeof x->width) ||
-                    memcmp(x->bmin, y->bmin, sizeof x->bmin) || memcmp(x->bmax, y->bmax, sizeof x->bmax) ||
-                    x->offset != y->offset || x->count != y->count || x->depth != y->depth ||
-                    x->split != y->split || x->index != c || y->index != c || x->top != y->top ||
-                    x->h_max != y->h_max || (x->parent ? x->parent->index : -1) != (y->parent ? y->parent->index : -1);
+    cells_differ |= memcmp(x->loc, y->loc, sizeof x->loc) ||
+                    memcmp(x->width, y->width, sizeof x->width) ||
+                    memcmp(x->bmin, y->bmin, sizeof x->bmin) ||
+                    memcmp(x->bmax, y->bmax, sizeof x->bmax) || x->offset != y->offset ||
+                    x->count != y->count || x->depth != y->depth || x->split != y->split ||
+                    x->index != c || y->index != c || x->top != y->top || x->h_max != y->h_max ||
+                    (x->parent ? x->parent->index : -1) != (y->parent ? y->parent->index : -1);
     for (int q = 0; q < 8; q++)
-      cells_differ |= (x->progeny[q] ? x->progeny[q]->index : -1) != (y->progeny[q] ? y->progeny[q]->index : -1);
+      cells_differ |= (x->progeny[q] ? x->progeny[q]->index : -1) !=
+                      (y->progeny[q] ? y->progeny[q]->index : -1);
   }
   CHECK(a.count == b.count && differ == 0 && !cells_differ && sa.nr_cells > sa.nr_top,
         "the rebuild on 5 threads reordered %d of %d fields differently from 1 thread, cells %s",

@@ -368,8 +368,8 @@ static void test_cspm_continuity(void) {
 
   struct material_table mats;
   make_table(&mats, STRENGTH_ELASTIC);
-  struct hydro_props hp = {.alpha = 1.0, .beta = 2.0, .continuity = 1, .solids = 1,
-                           .gradient_correction = 1};
+  struct hydro_props hp = {
+      .alpha = 1.0, .beta = 2.0, .continuity = 1, .solids = 1, .gradient_correction = 1};
   double err[2] = {0.0, 0.0}, err_edge[2] = {0.0, 0.0}, err_in[2] = {0.0, 0.0}, scale = 0.0;
   for (size_t i = 0; i < n; i++) scale = fmax(scale, fabs(p.rho[i] * divA));
   for (int pass = 0; pass < 2; pass++) {
@@ -391,8 +391,8 @@ static void test_cspm_continuity(void) {
       const double e = fabs(p.drho_dt[i] + p.rho[i] * divA) / scale;
       err[pass] = fmax(err[pass], e);
       const double H = kernel_gamma * p.h[i];
-      const int edge = fmin(fmin(fmin(p.x[i], p.y[i]), p.z[i]), 1.0 - fmax(fmax(p.x[i], p.y[i]), p.z[i])) <
-                       0.05 + H;
+      const int edge = fmin(fmin(fmin(p.x[i], p.y[i]), p.z[i]),
+                            1.0 - fmax(fmax(p.x[i], p.y[i]), p.z[i])) < 0.05 + H;
       if (edge)
         err_edge[pass] = fmax(err_edge[pass], e);
       else
@@ -423,21 +423,26 @@ static void test_jc_fracture(void) {
   const double D1 = 0.13, D2 = 0.13, D3 = -1.5, D4 = 0.011, D5 = 0.0;
   double e = 0.0;
   /* pure shear (s* = 0), reference rate, room temperature: D1 + D2 */
-  e = fmax(e, fabs(strength_johnson_cook_failure_strain(D1, D2, D3, D4, D5, 1.0, 0.0, 1.0, 0.0) - 0.26));
+  e = fmax(
+      e, fabs(strength_johnson_cook_failure_strain(D1, D2, D3, D4, D5, 1.0, 0.0, 1.0, 0.0) - 0.26));
   /* uniaxial tension (s* = 1/3): D1 + D2 exp(-0.5) */
   const double ef_t = D1 + D2 * exp(-0.5);
-  e = fmax(e, fabs(strength_johnson_cook_failure_strain(D1, D2, D3, D4, D5, 1.0, 1.0 / 3.0, 1.0, 0.0) -
-                   ef_t));
+  e = fmax(e,
+           fabs(strength_johnson_cook_failure_strain(D1, D2, D3, D4, D5, 1.0, 1.0 / 3.0, 1.0, 0.0) -
+                ef_t));
   /* rate e^2 times the reference: factor 1 + 2 D4; below the reference: 1 */
-  e = fmax(e, fabs(strength_johnson_cook_failure_strain(D1, D2, D3, D4, D5, 1.0, 0.0, exp(2.0), 0.0) -
-                   0.26 * (1.0 + 2.0 * D4)));
-  e = fmax(e, fabs(strength_johnson_cook_failure_strain(D1, D2, D3, D4, D5, 1.0, 0.0, 0.01, 0.0) - 0.26));
+  e = fmax(e,
+           fabs(strength_johnson_cook_failure_strain(D1, D2, D3, D4, D5, 1.0, 0.0, exp(2.0), 0.0) -
+                0.26 * (1.0 + 2.0 * D4)));
+  e = fmax(e, fabs(strength_johnson_cook_failure_strain(D1, D2, D3, D4, D5, 1.0, 0.0, 0.01, 0.0) -
+                   0.26));
   /* temperature factor 1 + D5 T*, T* clipped to [0, 1] */
   e = fmax(e, fabs(strength_johnson_cook_failure_strain(D1, D2, D3, D4, 0.5, 1.0, 0.0, 1.0, 3.0) -
                    0.26 * 1.5));
   /* a fit with eps_f <= 0 fractures at once (floor 1e-6) */
-  e = fmax(e, fabs(strength_johnson_cook_failure_strain(-0.5, 0.1, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 0.0) -
-                   1e-6));
+  e = fmax(e,
+           fabs(strength_johnson_cook_failure_strain(-0.5, 0.1, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 0.0) -
+                1e-6));
   check_le("strain at fracture at known points", e, 1e-15);
 
   /* uniaxial tension at the reference rate and temperature: D reaches 1 when
@@ -477,19 +482,25 @@ static void test_jc_fracture(void) {
   int bad = 0;
   struct material v;
   material_init(&v, 0, "vm", EOS_LIQUID);
-  if (material_set(&v, "rho0", 2710.0, msg, sizeof msg) || material_set(&v, "c0", 5000.0, msg, sizeof msg) ||
+  if (material_set(&v, "rho0", 2710.0, msg, sizeof msg) ||
+      material_set(&v, "c0", 5000.0, msg, sizeof msg) ||
       material_set(&v, "shear_modulus", 26e9, msg, sizeof msg) ||
-      material_set(&v, "yield_stress", 3e8, msg, sizeof msg) || material_set(&v, "jc_D1", 0.13, msg, sizeof msg))
+      material_set(&v, "yield_stress", 3e8, msg, sizeof msg) ||
+      material_set(&v, "jc_D1", 0.13, msg, sizeof msg))
     error_exit("%s", msg);
   v.strength = STRENGTH_VON_MISES;
   if (material_finalize(&v, msg, sizeof msg) == 0) bad++;
   printf("  von Mises with jc_D1: %s\n", msg);
   struct material g;
   material_init(&g, 0, "mg", EOS_MIE_GRUNEISEN);
-  if (material_set(&g, "rho0", 2710.0, msg, sizeof msg) || material_set(&g, "c0", 6320.0, msg, sizeof msg) ||
-      material_set(&g, "s", 1.337, msg, sizeof msg) || material_set(&g, "Gamma0", 2.1, msg, sizeof msg) ||
-      material_set(&g, "cv", 875.0, msg, sizeof msg) || material_set(&g, "shear_modulus", 26e9, msg, sizeof msg) ||
-      material_set(&g, "jc_A", 265e6, msg, sizeof msg) || material_set(&g, "T_melt", 775.0, msg, sizeof msg))
+  if (material_set(&g, "rho0", 2710.0, msg, sizeof msg) ||
+      material_set(&g, "c0", 6320.0, msg, sizeof msg) ||
+      material_set(&g, "s", 1.337, msg, sizeof msg) ||
+      material_set(&g, "Gamma0", 2.1, msg, sizeof msg) ||
+      material_set(&g, "cv", 875.0, msg, sizeof msg) ||
+      material_set(&g, "shear_modulus", 26e9, msg, sizeof msg) ||
+      material_set(&g, "jc_A", 265e6, msg, sizeof msg) ||
+      material_set(&g, "T_melt", 775.0, msg, sizeof msg))
     error_exit("%s", msg);
   g.strength = STRENGTH_JOHNSON_COOK;
   if (material_finalize(&g, msg, sizeof msg) == 0) bad++;

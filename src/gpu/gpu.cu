@@ -28,12 +28,12 @@ extern "C" {
  *  the registry (tasks/task_families.h), with the particle fields each
  *  reads and writes. */
 struct gpu_step {
-  const char *stage;                 /**< the name of its timer */
-  int place;                         /**< its rank along the graph: the order of the steps */
-  int when;                          /**< enum gpu_when: in which phases it runs */
-  int (*fn)(struct gpu_phase *);     /**< the step (NULL: the family has none) */
+  const char *stage;                        /**< the name of its timer */
+  int place;                                /**< its rank along the graph: the order of the steps */
+  int when;                                 /**< enum gpu_when: in which phases it runs */
+  int (*fn)(struct gpu_phase *);            /**< the step (NULL: the family has none) */
   const char *const *reads, *const *writes; /**< its fields */
-  int nr_reads, nr_writes;                 /**< their numbers */
+  int nr_reads, nr_writes;                  /**< their numbers */
 };
 /** Column when of the registry. */
 enum gpu_when { GPU_WHEN_ALWAYS, GPU_WHEN_SOLIDS, GPU_WHEN_BRITTLE };
@@ -42,7 +42,7 @@ enum gpu_when { GPU_WHEN_ALWAYS, GPU_WHEN_SOLIDS, GPU_WHEN_BRITTLE };
 #define GPU_STEP_ONE_STEP(fn) +1
 #define GPU_STEP_ONE_NOSTEP
 #define GPU_STEP_FIELDS_(name, subtype, policy, place, gpu, when, stage, reads, writes) \
-  static const char *const gpu_reads_##name[] = {NULL, TASK_UNPAREN reads};            \
+  static const char *const gpu_reads_##name[] = {NULL, TASK_UNPAREN reads};             \
   static const char *const gpu_writes_##name[] = {NULL, TASK_UNPAREN writes};
 TASK_FAMILIES(GPU_STEP_FIELDS_)
 #undef GPU_STEP_FIELDS_
@@ -51,8 +51,14 @@ TASK_FAMILIES(GPU_STEP_FIELDS_)
  *  that an empty one is valid C++). */
 static const struct gpu_step gpu_steps[task_family_count] = {
 #define GPU_STEP_ROW_(name, subtype, policy, place, gpu, when, stage, reads, writes) \
-  {stage, place, GPU_WHEN_##when, GPU_STEP_FN_##gpu, gpu_reads_##name + 1, gpu_writes_##name + 1, \
-   GPU_NR_OF(gpu_reads_##name) - 1, GPU_NR_OF(gpu_writes_##name) - 1},
+  {stage,                                                                            \
+   place,                                                                            \
+   GPU_WHEN_##when,                                                                  \
+   GPU_STEP_FN_##gpu,                                                                \
+   gpu_reads_##name + 1,                                                             \
+   gpu_writes_##name + 1,                                                            \
+   GPU_NR_OF(gpu_reads_##name) - 1,                                                  \
+   GPU_NR_OF(gpu_writes_##name) - 1},
     TASK_FAMILIES(GPU_STEP_ROW_)
 #undef GPU_STEP_ROW_
 };
@@ -66,20 +72,20 @@ enum { GPU_NR_STEPS = 0 TASK_FAMILIES(GPU_STEP_COUNT_) };
 #define GPU_T_N (GPU_NR_STEPS + 2)
 
 struct gpu {
-  int device;                  /**< CUDA device number */
-  char name[512];              /**< description for the log */
-  size_t mem_base;             /**< device memory in use when the context was made (not the run's) */
-  cudaStream_t stream[2];      /**< 0: fields and kernels; 1: cell data */
-  cudaEvent_t ev[GPU_T_N + 1]; /**< stage boundaries of the last phase */
-  cudaEvent_t cells_ready;     /**< stream 1 finished its upload */
-  cudaEvent_t ev_drift[2];     /**< around the last drift */
-  double t_drift;              /**< accumulated milliseconds of drifts (with the copy back) */
-  long drifts;                 /**< drifts run */
-  struct parts dev;            /**< device arrays of every particle field */
-  size_t capacity;             /**< their length */
-  int in[PART_NR_FIELDS];      /**< indices in part_fields of the fields a phase reads */
-  int out[PART_NR_FIELDS];     /**< of those it writes */
-  int order[GPU_NR_STEPS];     /**< the families with a step, by place (gpu_init) */
+  int device;             /**< CUDA device number */
+  char name[512];         /**< description for the log */
+  size_t mem_base;        /**< device memory in use when the context was made (not the run's) */
+  cudaStream_t stream[2]; /**< 0: fields and kernels; 1: cell data */
+  cudaEvent_t ev[GPU_T_N + 1];       /**< stage boundaries of the last phase */
+  cudaEvent_t cells_ready;           /**< stream 1 finished its upload */
+  cudaEvent_t ev_drift[2];           /**< around the last drift */
+  double t_drift;                    /**< accumulated milliseconds of drifts (with the copy back) */
+  long drifts;                       /**< drifts run */
+  struct parts dev;                  /**< device arrays of every particle field */
+  size_t capacity;                   /**< their length */
+  int in[PART_NR_FIELDS];            /**< indices in part_fields of the fields a phase reads */
+  int out[PART_NR_FIELDS];           /**< of those it writes */
+  int order[GPU_NR_STEPS];           /**< the families with a step, by place (gpu_init) */
   double *flaws_dev;                 /**< Weibull flaw thresholds (gpu_set_flaws) */
   size_t flaws_n, flaws_cap;         /**< their number and allocated length */
   void *cell_dev, *cell_host;        /**< device buffer and pinned staging of the leaf data */
@@ -90,19 +96,19 @@ struct gpu {
   struct material_table *mats_host;  /**< pinned staging of it */
   double *table_dev[MATERIAL_MAX];   /**< device copies of tabulated EOS nodes (P, c2, T) */
   struct eos_table table_src[MATERIAL_MAX]; /**< the host tables they mirror */
-  double t[GPU_T_N];                 /**< accumulated milliseconds per stage */
-  long calls;                        /**< FORCE phases run */
-  double bytes_h2d, bytes_d2h;       /**< traffic over the bus */
-  double bytes_full;                 /**< of which the full copies (both ways) */
-  long full_up, full_down;           /**< copies of every field (rebuilds, outputs) */
-  void *pinned[PART_NR_FIELDS];      /**< host arrays registered as pinned memory, by field */
-  size_t pinned_bytes;               /**< bytes per field registered */
-  void (*kick_wait)(void *);         /**< called before the kick reads ga (gpu_set_kick_wait) */
-  void *kick_wait_ctx;               /**< its argument */
-  double *wd_x0;                     /**< watchdog: positions before the drift (3 x wd_cap) */
-  size_t wd_cap;                     /**< their allocated length per coordinate */
-  unsigned long long *wd_dev;        /**< watchdog: first bad particle per check (GPU_WD_N) */
-  unsigned long long *wd_host;       /**< pinned copy of it */
+  double t[GPU_T_N];                        /**< accumulated milliseconds per stage */
+  long calls;                               /**< FORCE phases run */
+  double bytes_h2d, bytes_d2h;              /**< traffic over the bus */
+  double bytes_full;                        /**< of which the full copies (both ways) */
+  long full_up, full_down;                  /**< copies of every field (rebuilds, outputs) */
+  void *pinned[PART_NR_FIELDS]; /**< host arrays registered as pinned memory, by field */
+  size_t pinned_bytes;          /**< bytes per field registered */
+  void (*kick_wait)(void *);    /**< called before the kick reads ga (gpu_set_kick_wait) */
+  void *kick_wait_ctx;          /**< its argument */
+  double *wd_x0;                /**< watchdog: positions before the drift (3 x wd_cap) */
+  size_t wd_cap;                /**< their allocated length per coordinate */
+  unsigned long long *wd_dev;   /**< watchdog: first bad particle per check (GPU_WD_N) */
+  unsigned long long *wd_host;  /**< pinned copy of it */
 };
 
 /** Slots of the watchdog's results (gpu_watchdog_check): one per double
@@ -182,7 +188,8 @@ extern "C" struct gpu *gpu_init(char *why, size_t len) {
         g->order[k] = g->order[k - 1];
       g->order[k] = f;
     }
-  g->wd_dev = (unsigned long long *)gpu_alloc(GPU_WD_N * sizeof(unsigned long long), "watchdog flags");
+  g->wd_dev =
+      (unsigned long long *)gpu_alloc(GPU_WD_N * sizeof(unsigned long long), "watchdog flags");
   gpu_check(cudaMallocHost((void **)&g->wd_host, GPU_WD_N * sizeof(unsigned long long)));
   return g;
 }
@@ -217,9 +224,14 @@ static size_t gpu_align(size_t b) {
 static struct gpu_leaves_dev gpu_upload_cells(struct gpu *g, const struct gpu_leaves *lv) {
   /* lists built on the device stay there */
   const size_t n = (size_t)lv->n, nn = lv->lists ? 0 : (size_t)lv->nr_ngb;
-  const size_t sz[8] = {n * sizeof(size_t),      n * sizeof(int),       n * sizeof(double),
-                        n * sizeof(double),      (lv->lists ? 0 : n + 1) * sizeof(int), nn * sizeof(int),
-                        3 * nn * sizeof(double), n * sizeof(double)};
+  const size_t sz[8] = {n * sizeof(size_t),
+                        n * sizeof(int),
+                        n * sizeof(double),
+                        n * sizeof(double),
+                        (lv->lists ? 0 : n + 1) * sizeof(int),
+                        nn * sizeof(int),
+                        3 * nn * sizeof(double),
+                        n * sizeof(double)};
   size_t off[8], total = 0;
   for (int k = 0; k < 8; k++) {
     off[k] = total;
@@ -563,14 +575,16 @@ struct gpu_wd_mats {
  *  exponent of all ones (Inf, NaN) is a candidate for slot blockIdx.y.
  *  Negative density and, for the u_floor materials, negative u go to the
  *  slots after the fields (block row 0 checks them). */
-__global__ static void gpu_wd_scan_kernel(struct gpu_wd_fields f, const double *rho, const double *u,
-                                          const int32_t *mat, struct gpu_wd_mats m, size_t n,
-                                          unsigned long long *first) {
+__global__ static void gpu_wd_scan_kernel(struct gpu_wd_fields f, const double *rho,
+                                          const double *u, const int32_t *mat, struct gpu_wd_mats m,
+                                          size_t n, unsigned long long *first) {
   const int k = blockIdx.y;
   const double *a = f.a[k];
-  for (size_t i = blockIdx.x * (size_t)blockDim.x + threadIdx.x; i < n; i += (size_t)gridDim.x * blockDim.x) {
+  for (size_t i = blockIdx.x * (size_t)blockDim.x + threadIdx.x; i < n;
+       i += (size_t)gridDim.x * blockDim.x) {
     const unsigned long long w = (unsigned long long)__double_as_longlong(a[i]);
-    if ((w & 0x7ff0000000000000ULL) == 0x7ff0000000000000ULL) atomicMin(&first[k], (unsigned long long)i);
+    if ((w & 0x7ff0000000000000ULL) == 0x7ff0000000000000ULL)
+      atomicMin(&first[k], (unsigned long long)i);
     if (k == 0) {
       if (rho[i] < 0.0) atomicMin(&first[PART_NR_FIELDS], (unsigned long long)i);
       if (u[i] < 0.0)
@@ -586,10 +600,12 @@ __global__ static void gpu_wd_scan_kernel(struct gpu_wd_fields f, const double *
 __global__ static void gpu_wd_move_kernel(const double *x, const double *y, const double *z,
                                           const double *x0, size_t cap, size_t n, double width,
                                           unsigned long long *first) {
-  for (size_t i = blockIdx.x * (size_t)blockDim.x + threadIdx.x; i < n; i += (size_t)gridDim.x * blockDim.x) {
+  for (size_t i = blockIdx.x * (size_t)blockDim.x + threadIdx.x; i < n;
+       i += (size_t)gridDim.x * blockDim.x) {
     const double dx = __dsub_rn(x[i], x0[i]), dy = __dsub_rn(y[i], x0[cap + i]),
                  dz = __dsub_rn(z[i], x0[2 * cap + i]);
-    const double d = __dsqrt_rn(__dadd_rn(__dadd_rn(__dmul_rn(dx, dx), __dmul_rn(dy, dy)), __dmul_rn(dz, dz)));
+    const double d =
+        __dsqrt_rn(__dadd_rn(__dadd_rn(__dmul_rn(dx, dx), __dmul_rn(dy, dy)), __dmul_rn(dz, dz)));
     if (!(d <= width)) atomicMin(&first[PART_NR_FIELDS + 2], (unsigned long long)i);
   }
 }
@@ -611,14 +627,17 @@ extern "C" void gpu_watchdog_save(struct gpu *g) {
   }
   cudaStream_t s = g->stream[0];
   gpu_check(cudaMemcpyAsync(g->wd_x0, g->dev.x, n * sizeof(double), cudaMemcpyDeviceToDevice, s));
-  gpu_check(cudaMemcpyAsync(g->wd_x0 + g->wd_cap, g->dev.y, n * sizeof(double), cudaMemcpyDeviceToDevice, s));
-  gpu_check(cudaMemcpyAsync(g->wd_x0 + 2 * g->wd_cap, g->dev.z, n * sizeof(double), cudaMemcpyDeviceToDevice, s));
+  gpu_check(cudaMemcpyAsync(g->wd_x0 + g->wd_cap, g->dev.y, n * sizeof(double),
+                            cudaMemcpyDeviceToDevice, s));
+  gpu_check(cudaMemcpyAsync(g->wd_x0 + 2 * g->wd_cap, g->dev.z, n * sizeof(double),
+                            cudaMemcpyDeviceToDevice, s));
 }
 
 /** Run the queued watchdog kernels' results back: the GPU_WD_N slots. */
 static void gpu_wd_read(struct gpu *g) {
   cudaStream_t s = g->stream[0];
-  gpu_check(cudaMemcpyAsync(g->wd_host, g->wd_dev, GPU_WD_N * sizeof(unsigned long long), cudaMemcpyDeviceToHost, s));
+  gpu_check(cudaMemcpyAsync(g->wd_host, g->wd_dev, GPU_WD_N * sizeof(unsigned long long),
+                            cudaMemcpyDeviceToHost, s));
   gpu_check(cudaStreamSynchronize(s));
   g->bytes_d2h += GPU_WD_N * sizeof(unsigned long long);
 }
@@ -628,8 +647,8 @@ extern "C" long gpu_watchdog_moved(struct gpu *g, double width, double *x0_host)
   if (!g->wd_x0 || n > g->wd_cap || n == 0) return -1;
   cudaStream_t s = g->stream[0];
   gpu_check(cudaMemsetAsync(g->wd_dev, 0xff, GPU_WD_N * sizeof(unsigned long long), s));
-  gpu_wd_move_kernel<<<gpu_wd_blocks(n), 256, 0, s>>>(g->dev.x, g->dev.y, g->dev.z, g->wd_x0, g->wd_cap, n,
-                                                      width, g->wd_dev);
+  gpu_wd_move_kernel<<<gpu_wd_blocks(n), 256, 0, s>>>(g->dev.x, g->dev.y, g->dev.z, g->wd_x0,
+                                                      g->wd_cap, n, width, g->wd_dev);
   gpu_check(cudaGetLastError());
   gpu_wd_read(g);
   const unsigned long long i = g->wd_host[PART_NR_FIELDS + 2];
@@ -647,7 +666,8 @@ extern "C" int gpu_watchdog_check(struct gpu *g, const int32_t *u_floor_ids, int
   struct gpu_wd_fields f;
   f.n = 0;
   for (int k = 0; k < part_nr_fields; k++)
-    if (part_fields[k].type == PART_DOUBLE) f.a[f.n++] = (const double *)*gpu_field_slot(&g->dev, k);
+    if (part_fields[k].type == PART_DOUBLE)
+      f.a[f.n++] = (const double *)*gpu_field_slot(&g->dev, k);
   struct gpu_wd_mats m;
   m.n = n_ids < MATERIAL_MAX ? n_ids : MATERIAL_MAX;
   for (int q = 0; q < m.n; q++) m.id[q] = u_floor_ids[q];
@@ -655,7 +675,8 @@ extern "C" int gpu_watchdog_check(struct gpu *g, const int32_t *u_floor_ids, int
   gpu_check(cudaMemsetAsync(g->wd_dev, 0xff, GPU_WD_N * sizeof(unsigned long long), s));
   unsigned bx = gpu_wd_blocks(n);
   if (bx > 256) bx = 256; /* times the fields: enough blocks to fill the device */
-  gpu_wd_scan_kernel<<<dim3(bx, (unsigned)f.n), 256, 0, s>>>(f, g->dev.rho, g->dev.u, g->dev.mat, m, n, g->wd_dev);
+  gpu_wd_scan_kernel<<<dim3(bx, (unsigned)f.n), 256, 0, s>>>(f, g->dev.rho, g->dev.u, g->dev.mat, m,
+                                                             n, g->wd_dev);
   gpu_check(cudaGetLastError());
   gpu_wd_read(g);
   for (int k = 0; k < PART_NR_FIELDS + 2; k++) /* (the slots of no field stay unset) */
@@ -667,7 +688,9 @@ extern "C" void gpu_print_timers(const struct gpu *g, FILE *f) {
   if (g->calls == 0) return;
   fprintf(f, "GPU (%s), %ld force phases, ms per phase:", g->name, g->calls);
   for (int k = 0; k < GPU_T_N; k++) {
-    const char *name = k == 0 ? "upload" : k == GPU_T_N - 1 ? "download" : gpu_steps[g->order[k - 1]].stage;
+    const char *name = k == 0             ? "upload"
+                       : k == GPU_T_N - 1 ? "download"
+                                          : gpu_steps[g->order[k - 1]].stage;
     fprintf(f, " %s %.3f", name, g->t[k] / g->calls);
   }
   if (g->drifts) fprintf(f, " drift(+x,h back) %.3f", g->t_drift / g->drifts);

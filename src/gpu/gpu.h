@@ -39,8 +39,8 @@ struct gpu_leaves {
   const int
       *ngb_start;      /**< n + 1 entries: leaf L's neighbours are [ngb_start[L], ngb_start[L+1]) */
   const int *ngb_leaf; /**< neighbouring leaf of each entry (the leaf itself included) */
-  const double *ngb_shift; /**< 3 per entry: added to the neighbour's positions */
-  int nr_ngb;              /**< number of entries */
+  const double *ngb_shift;       /**< 3 per entry: added to the neighbour's positions */
+  int nr_ngb;                    /**< number of entries */
   const struct gpu_lists *lists; /**< non-NULL: the lists were built on the device
                                       (gpu_lists.h); ngb_start, ngb_leaf and ngb_shift
                                       above are then unused */
@@ -57,10 +57,11 @@ struct gpu_damage {
  *  gay, gaz, complete on the device: gpu_grav_run) join the
  *  hydrodynamic ones in the kick, and their time-step criterion joins. */
 struct gpu_gravity {
-  int enabled; /**< add ga in the kick */
-  double eps;  /**< softening (time step criterion when > 0) */
-  double eta;  /**< Gravity:eta */
-  double h_factor; /**< Gravity:softening_h_factor (time step criterion with eps_i = h_factor h_i when > 0) */
+  int enabled;     /**< add ga in the kick */
+  double eps;      /**< softening (time step criterion when > 0) */
+  double eta;      /**< Gravity:eta */
+  double h_factor; /**< Gravity:softening_h_factor (time step criterion with eps_i = h_factor h_i
+                      when > 0) */
 };
 
 /** What a FORCE phase reports besides the particle fields. */
@@ -74,18 +75,18 @@ struct gpu_force_out {
 /** The cell tree of self-gravity on the GPU as index arrays (cells by
  *  struct cell.index): set again after each rebuild (gpu_grav_set_tree). */
 struct gpu_grav_tree {
-  int nr_cells;           /**< cells 0 .. nr_cells - 1 */
-  const size_t *offset;   /**< first particle of each cell */
-  const int *count;       /**< its particles */
-  int nr_l2l;             /**< parent-child pairs of non-empty cells, level after level */
-  const int *l2l_child;   /**< child of each pair */
-  const int *l2l_parent;  /**< parent of each pair */
-  int nr_levels;          /**< tree levels below the top-level cells */
-  const int *level_start; /**< nr_levels + 1: level L's pairs are [level_start[L], [L+1]) */
-  int nr_leaves;          /**< non-empty leaves */
-  const int *leaf;        /**< their cell indices */
-  const double *centre;   /**< 3 per cell: the centre of its box */
-  const int *progeny;     /**< 8 per cell: child cell or -1 (gravity_walk_tree_arrays) */
+  int nr_cells;               /**< cells 0 .. nr_cells - 1 */
+  const size_t *offset;       /**< first particle of each cell */
+  const int *count;           /**< its particles */
+  int nr_l2l;                 /**< parent-child pairs of non-empty cells, level after level */
+  const int *l2l_child;       /**< child of each pair */
+  const int *l2l_parent;      /**< parent of each pair */
+  int nr_levels;              /**< tree levels below the top-level cells */
+  const int *level_start;     /**< nr_levels + 1: level L's pairs are [level_start[L], [L+1]) */
+  int nr_leaves;              /**< non-empty leaves */
+  const int *leaf;            /**< their cell indices */
+  const double *centre;       /**< 3 per cell: the centre of its box */
+  const int *progeny;         /**< 8 per cell: child cell or -1 (gravity_walk_tree_arrays) */
   const unsigned char *split; /**< 1 per cell: it has progeny */
 };
 

@@ -25,15 +25,15 @@ enum gpu_engine_mode {
 
 /** The engine's GPU state. */
 struct gpu_engine {
-  int mode;               /**< enum gpu_engine_mode */
-  struct gpu *gpu;        /**< the device */
-  struct gpu_cells cells; /**< leaves and lists */
-  int dev_valid;          /**< the device holds the current particles */
-  int host_stale;         /**< the device has changed them since the last copy back */
-  double t_bounds;        /**< host seconds updating cell bounds after drifts */
-  long steps;             /**< FORCE phases run */
-  double *tc_h_cap;       /**< cap on h per task cell */
-  int nr_tc;              /**< its length */
+  int mode;                       /**< enum gpu_engine_mode */
+  struct gpu *gpu;                /**< the device */
+  struct gpu_cells cells;         /**< leaves and lists */
+  int dev_valid;                  /**< the device holds the current particles */
+  int host_stale;                 /**< the device has changed them since the last copy back */
+  double t_bounds;                /**< host seconds updating cell bounds after drifts */
+  long steps;                     /**< FORCE phases run */
+  double *tc_h_cap;               /**< cap on h per task cell */
+  int nr_tc;                      /**< its length */
   struct gravity_gpu_rec *rec;    /**< interactions recorded by each CPU worker */
   int nr_rec;                     /**< workers (length of rec) */
   struct gpu_grav *grav;          /**< self-gravity's device state */
@@ -444,10 +444,9 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
       for (int l = 0; l < gc->n; l++) gc->h_cap[l] = tc_h_cap[gc->top[l]];
     }
     leaf_dt = error_realloc(leaf_dt, (gc->n + 1) * sizeof(double), "GPU leaf time steps");
-    const struct gpu_leaves lv = {gc->n,        gc->offset,     gc->count,
-                                  gc->h_cap,    gc->h_list_cap, gc->ngb_start,
-                                  gc->ngb_leaf, gc->ngb_shift,  gc->nr_ngb,
-                                  gc->host_lists ? NULL : gc->dev};
+    const struct gpu_leaves lv = {
+        gc->n,         gc->offset,   gc->count,     gc->h_cap,  gc->h_list_cap,
+        gc->ngb_start, gc->ngb_leaf, gc->ngb_shift, gc->nr_ngb, gc->host_lists ? NULL : gc->dev};
     gpu_force_phase(g, p, &lv, hp, mats, dmg, grav, dt_kick, leaf_dt, resident, &out);
     if (!out.overflow) break;
     if (attempt > 30)
@@ -475,8 +474,13 @@ struct gpu_engine_chain {
   int (*active)(const struct engine *); /**< 1: the run has the family's tasks */
   enum task_family family;              /**< the family */
 };
-#define GPU_ENGINE_CHAIN_chain(active) {active, GPU_ENGINE_CHAIN_FAMILY_
-#define GPU_ENGINE_CHAIN_FAMILY_(family) task_family_##family},
+#define GPU_ENGINE_CHAIN_chain(active) \
+  {                                    \
+    active, GPU_ENGINE_CHAIN_FAMILY_
+#define GPU_ENGINE_CHAIN_FAMILY_(family) \
+  task_family_##family                   \
+  }                                      \
+  ,
 #define GPU_ENGINE_CHAIN_cell(family)
 #define GPU_ENGINE_CHAIN_self(family)
 #define GPU_ENGINE_CHAIN_pair(family)
@@ -567,15 +571,17 @@ void gpu_engine_init(struct engine *e) {
   if (!walks_given && (reuse || (up_given && !ge->up_on_device))) ge->walk_on_device = 0;
   if (ge->walk_on_device && !ge->up_on_device) {
     if (up_given)
-      error_exit("%s: Scheduler:gpu_walks: device needs Scheduler:gpu_multipoles: device (the "
-                 "walks read the multipoles where they are computed)",
-                 params_filename(e->params));
+      error_exit(
+          "%s: Scheduler:gpu_walks: device needs Scheduler:gpu_multipoles: device (the "
+          "walks read the multipoles where they are computed)",
+          params_filename(e->params));
     ge->up_on_device = 1;
   }
   if (ge->walk_on_device && reuse)
-    error_exit("%s: Scheduler:gpu_walks: device cannot be combined with Gravity:reuse_steps > 0 "
-               "yet (the reuse's tolerance is measured by the CPU's walks)",
-               params_filename(e->params));
+    error_exit(
+        "%s: Scheduler:gpu_walks: device cannot be combined with Gravity:reuse_steps > 0 "
+        "yet (the reuse's tolerance is measured by the CPU's walks)",
+        params_filename(e->params));
   if (e->gp.enabled && mode != GPU_MODE_CPU_GRAV) {
     ge->grav = gpu_grav_new(g);
     ge->grav_host.built_rebuild = -1;
@@ -588,30 +594,33 @@ void gpu_engine_init(struct engine *e) {
   if (e->damage) gpu_set_flaws(g, e->flaw_eps, (size_t)e->nr_flaws);
   const char *grav = "";
   if (e->gp.enabled && mode == GPU_MODE_SERIAL)
-    grav = "; self-gravity: multipoles and walks on the CPU, M2L, L2L, L2P, M2P and P2P on the GPU "
-           "(one after the other: the CPU part, the GPU part, then the hydrodynamics)";
+    grav =
+        "; self-gravity: multipoles and walks on the CPU, M2L, L2L, L2P, M2P and P2P on the GPU "
+        "(one after the other: the CPU part, the GPU part, then the hydrodynamics)";
   else if (mode == GPU_MODE_HYBRID)
-    grav = "; self-gravity: multipoles and walks on the CPU, M2L, L2L, L2P, M2P and P2P on the GPU "
-           "(hybrid: the CPU workers walk while the GPU computes the hydrodynamics; then gravity's "
-           "GPU part and the kick)";
+    grav =
+        "; self-gravity: multipoles and walks on the CPU, M2L, L2L, L2P, M2P and P2P on the GPU "
+        "(hybrid: the CPU workers walk while the GPU computes the hydrodynamics; then gravity's "
+        "GPU part and the kick)";
   else if (mode == GPU_MODE_CPU_GRAV)
-    grav = e->gp.direct ? "; self-gravity (Gravity:direct, no GPU implementation) on the CPU "
-                          "workers while the GPU computes the hydrodynamics; ga goes up for the kick"
-                        : "; self-gravity entirely on the CPU workers (multipoles, walks, M2L, "
-                          "P2P, L2P) while the GPU computes the hydrodynamics; ga goes up for the "
-                          "kick";
+    grav = e->gp.direct
+               ? "; self-gravity (Gravity:direct, no GPU implementation) on the CPU "
+                 "workers while the GPU computes the hydrodynamics; ga goes up for the kick"
+               : "; self-gravity entirely on the CPU workers (multipoles, walks, M2L, "
+                 "P2P, L2P) while the GPU computes the hydrodynamics; ga goes up for the "
+                 "kick";
   if (e->gp.enabled && mode != GPU_MODE_CPU_GRAV && !e->gp.direct && ge->up_on_device)
     grav = ge->walk_on_device
                ? "; self-gravity entirely on the GPU (Scheduler:gpu_walks: device: multipoles, "
                  "walks, M2L, L2L, L2P, M2P and P2P), before the hydrodynamics"
-               : mode == GPU_MODE_SERIAL
-                     ? "; self-gravity: multipoles on the GPU (Scheduler:gpu_multipoles: device), "
-                       "walks on the CPU, M2L, L2L, L2P, M2P and P2P on the GPU (one after the "
-                       "other)"
-                     : "; self-gravity: multipoles on the GPU (Scheduler:gpu_multipoles: device), "
-                       "walks on the CPU, M2L, L2L, L2P, M2P and P2P on the GPU (hybrid: the CPU "
-                       "workers walk while the GPU computes the hydrodynamics; then gravity's GPU "
-                       "part and the kick)";
+           : mode == GPU_MODE_SERIAL
+               ? "; self-gravity: multipoles on the GPU (Scheduler:gpu_multipoles: device), "
+                 "walks on the CPU, M2L, L2L, L2P, M2P and P2P on the GPU (one after the "
+                 "other)"
+               : "; self-gravity: multipoles on the GPU (Scheduler:gpu_multipoles: device), "
+                 "walks on the CPU, M2L, L2L, L2P, M2P and P2P on the GPU (hybrid: the CPU "
+                 "workers walk while the GPU computes the hydrodynamics; then gravity's GPU "
+                 "part and the kick)";
   error_log(0,
             "GPU %s (%s): drift, density, ghost, %sforce, %skick2 of every cell run on it, the "
             "particles stay on it between steps%s",
@@ -694,25 +703,25 @@ static void gpu_engine_grav_device(struct engine *e) {
   struct gpu_engine *ge = e->gpu;
   const struct gravity_props *gp = &e->gp;
   const double w0 = error_walltime();
-  gpu_grav_run(ge->grav, &e->parts, gp->replay ? NULL : ge->rec, gp->replay ? 0 : ge->nr_rec,
-               gp->G, gp->eps, gp->softening, gp->eps2_expansion, gp->order, 1, gp->replay);
+  gpu_grav_run(ge->grav, &e->parts, gp->replay ? NULL : ge->rec, gp->replay ? 0 : ge->nr_rec, gp->G,
+               gp->eps, gp->softening, gp->eps2_expansion, gp->order, 1, gp->replay);
   ge->t_grav_gpu += error_walltime() - w0;
 }
 
 /** The hydrodynamic phase on the GPU driven by a host thread beside the
  *  CPU's gravity (hybrid modes), or alone (serial). */
 struct gpu_hydro_job {
-  struct engine *e;          /**< the engine */
-  struct gpu_damage dmg;     /**< damage of this phase */
-  struct gpu_gravity grav;   /**< gravity in the kick */
-  double dt_kick;            /**< second half kick */
-  int capped;                /**< gpu_cells_force's result */
-  pthread_mutex_t mutex;     /**< guards cpu_done */
-  pthread_cond_t cond;       /**< signalled when cpu_done is set */
-  int cpu_done;              /**< the CPU's gravity tasks have finished */
-  int ga_ready;              /**< ga is complete on the device (the hook ran) */
-  double t_start, t_hook;    /**< wall clock: the thread started, it reached the hook */
-  double t_waited;           /**< seconds the hook waited for the CPU */
+  struct engine *e;        /**< the engine */
+  struct gpu_damage dmg;   /**< damage of this phase */
+  struct gpu_gravity grav; /**< gravity in the kick */
+  double dt_kick;          /**< second half kick */
+  int capped;              /**< gpu_cells_force's result */
+  pthread_mutex_t mutex;   /**< guards cpu_done */
+  pthread_cond_t cond;     /**< signalled when cpu_done is set */
+  int cpu_done;            /**< the CPU's gravity tasks have finished */
+  int ga_ready;            /**< ga is complete on the device (the hook ran) */
+  double t_start, t_hook;  /**< wall clock: the thread started, it reached the hook */
+  double t_waited;         /**< seconds the hook waited for the CPU */
 };
 
 /** gpu_set_kick_wait's hook in the hybrid modes: wait until the CPU's

@@ -87,21 +87,21 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
 /** Host side of self-gravity on the GPU, grown and reused between steps:
  *  the cell tree as index arrays (gpu_grav_tree_build, at each rebuild). */
 struct gpu_grav_host {
-  struct gpu_grav_tree tree;            /**< the tree, as gpu_grav_set_tree reads it */
-  size_t *offset;                       /**< storage of the tree: by cell */
-  int *count, cells_cap;                /**< by cell; allocated cells */
-  double *centre;                       /**< by cell: its box centre (3 doubles) */
-  int *progeny;                         /**< by cell: 8 children or -1 (walks) */
-  unsigned char *split;                 /**< by cell: split flag (walks) */
-  double *lo_hi;                        /**< by top-level cell: its box (6 doubles, walks) */
-  int lo_hi_cap;                        /**< top-level cells it holds */
-  int *l2l_tmp;                         /**< (child, parent, level) while building */
-  int *l2l_child, *l2l_parent;          /**< pairs by level */
-  int nr_l2l, l2l_cap;                  /**< pairs and allocated length */
-  int *level_start;                     /**< levels + 1 */
-  int *leaf, nr_leaf, leaf_cap;         /**< non-empty leaves */
-  int built_rebuild;                    /**< space.nr_rebuilds of the tree */
-  const struct cell *built_cells;       /**< space.cells of the tree */
+  struct gpu_grav_tree tree;      /**< the tree, as gpu_grav_set_tree reads it */
+  size_t *offset;                 /**< storage of the tree: by cell */
+  int *count, cells_cap;          /**< by cell; allocated cells */
+  double *centre;                 /**< by cell: its box centre (3 doubles) */
+  int *progeny;                   /**< by cell: 8 children or -1 (walks) */
+  unsigned char *split;           /**< by cell: split flag (walks) */
+  double *lo_hi;                  /**< by top-level cell: its box (6 doubles, walks) */
+  int lo_hi_cap;                  /**< top-level cells it holds */
+  int *l2l_tmp;                   /**< (child, parent, level) while building */
+  int *l2l_child, *l2l_parent;    /**< pairs by level */
+  int nr_l2l, l2l_cap;            /**< pairs and allocated length */
+  int *level_start;               /**< levels + 1 */
+  int *leaf, nr_leaf, leaf_cap;   /**< non-empty leaves */
+  int built_rebuild;              /**< space.nr_rebuilds of the tree */
+  const struct cell *built_cells; /**< space.cells of the tree */
 };
 /** The tree of s (its top-level cells' octrees) as index arrays into h->tree. */
 void gpu_grav_tree_build(struct gpu_grav_host *h, const struct space *s);

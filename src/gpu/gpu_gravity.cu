@@ -28,48 +28,48 @@ static const char *const gg_stage_names[GG_N] = {"upload",  "grouping", "M2L+P2L
                                                  "P2P+M2P", "L2P",      "ga back"};
 
 struct gpu_grav {
-  struct gpu *g;                     /**< the device */
-  struct gpu_grav_buf mp, field;     /**< multipoles, local expansions (by cell) */
-  struct gpu_grav_buf offset, count; /**< particle range of each cell */
-  struct gpu_grav_buf l2l, leaf;     /**< L2L pairs (child then parent), leaves */
-  struct gpu_grav_buf raw[2];        /**< part and field: the recorded pairs as uploaded */
-  struct gpu_grav_buf start[2];      /**< part and field: counts, then start of each cell */
-  struct gpu_grav_buf src[2];        /**< part and field: the sources grouped by cell */
-  struct gpu_grav_buf cursor;        /**< scatter positions of each cell */
-  struct gpu_grav_buf centre;        /**< box centre of each cell (3 doubles) */
-  struct gpu_grav_buf scale;         /**< a_min then h_support of each cell (upward pass) */
-  double *scale_host;                /**< pinned copy of scale */
-  int scale_host_cap;                /**< its cells */
-  int mp_on_device;                  /**< gpu_grav_up left this evaluation's multipoles */
-  cudaEvent_t ev_up[2];              /**< the upward pass, copy back included */
-  double t_up;                       /**< its accumulated milliseconds */
-  long calls_up;                     /**< upward passes on the device */
+  struct gpu *g;                      /**< the device */
+  struct gpu_grav_buf mp, field;      /**< multipoles, local expansions (by cell) */
+  struct gpu_grav_buf offset, count;  /**< particle range of each cell */
+  struct gpu_grav_buf l2l, leaf;      /**< L2L pairs (child then parent), leaves */
+  struct gpu_grav_buf raw[2];         /**< part and field: the recorded pairs as uploaded */
+  struct gpu_grav_buf start[2];       /**< part and field: counts, then start of each cell */
+  struct gpu_grav_buf src[2];         /**< part and field: the sources grouped by cell */
+  struct gpu_grav_buf cursor;         /**< scatter positions of each cell */
+  struct gpu_grav_buf centre;         /**< box centre of each cell (3 doubles) */
+  struct gpu_grav_buf scale;          /**< a_min then h_support of each cell (upward pass) */
+  double *scale_host;                 /**< pinned copy of scale */
+  int scale_host_cap;                 /**< its cells */
+  int mp_on_device;                   /**< gpu_grav_up left this evaluation's multipoles */
+  cudaEvent_t ev_up[2];               /**< the upward pass, copy back included */
+  double t_up;                        /**< its accumulated milliseconds */
+  long calls_up;                      /**< upward passes on the device */
   struct gpu_grav_buf progeny, split; /**< the tree for the walks (gravity_walk_tree_arrays) */
-  struct gpu_grav_buf lo_hi;         /**< boxes of the top-level cells (walks) */
-  struct gpu_grav_buf wcount;        /**< 4 list counters, then the out-of-stack counter */
-  struct gpu_grav_buf wlist[4];      /**< the walks' lists: targets, then sources (cap each) */
-  unsigned long long wcap[4];        /**< their capacities (entries) */
-  struct gpu_grav_buf wqueue[2];     /**< the walks' hand-on queues (3 ints per entry) */
-  unsigned long long qcap;           /**< their capacity (entries) */
-  long walk_rounds;                  /**< rounds of walkers, all walks */
-  unsigned long long wn[4];          /**< entries of the last walk */
-  int walk_on_device;                /**< gpu_grav_walk left this evaluation's lists */
-  cudaEvent_t ev_walk[2];            /**< the walks */
-  double t_walk;                     /**< their accumulated milliseconds */
-  long calls_walk, walk_retries;     /**< walks on the device; repeated for longer lists */
-  struct gravity_gpu_groups gl[2];   /**< device views of them (last full evaluation) */
-  struct gravity_multipole *mp_host; /**< pinned staging of the multipoles */
-  int mp_host_cap;                   /**< its length */
-  int nr_cells;                      /**< cells of the tree */
-  int nr_levels, *level_start;       /**< L2L levels (host copy) */
-  int nr_leaves;                     /**< leaves */
-  int block;                         /**< threads per block of the leaf kernels */
-  int have_tree, have_eval;          /**< a tree was set; a full evaluation ran on it */
-  cudaEvent_t ev[GG_N + 1];          /**< stage boundaries */
-  double t[GG_N];                    /**< accumulated milliseconds per stage */
-  long calls, replays;               /**< evaluations: all, of which replays */
-  double bytes;                      /**< bytes moved (both ways) */
-  double n_entries[2];               /**< grouped part and field interactions of the last */
+  struct gpu_grav_buf lo_hi;          /**< boxes of the top-level cells (walks) */
+  struct gpu_grav_buf wcount;         /**< 4 list counters, then the out-of-stack counter */
+  struct gpu_grav_buf wlist[4];       /**< the walks' lists: targets, then sources (cap each) */
+  unsigned long long wcap[4];         /**< their capacities (entries) */
+  struct gpu_grav_buf wqueue[2];      /**< the walks' hand-on queues (3 ints per entry) */
+  unsigned long long qcap;            /**< their capacity (entries) */
+  long walk_rounds;                   /**< rounds of walkers, all walks */
+  unsigned long long wn[4];           /**< entries of the last walk */
+  int walk_on_device;                 /**< gpu_grav_walk left this evaluation's lists */
+  cudaEvent_t ev_walk[2];             /**< the walks */
+  double t_walk;                      /**< their accumulated milliseconds */
+  long calls_walk, walk_retries;      /**< walks on the device; repeated for longer lists */
+  struct gravity_gpu_groups gl[2];    /**< device views of them (last full evaluation) */
+  struct gravity_multipole *mp_host;  /**< pinned staging of the multipoles */
+  int mp_host_cap;                    /**< its length */
+  int nr_cells;                       /**< cells of the tree */
+  int nr_levels, *level_start;        /**< L2L levels (host copy) */
+  int nr_leaves;                      /**< leaves */
+  int block;                          /**< threads per block of the leaf kernels */
+  int have_tree, have_eval;           /**< a tree was set; a full evaluation ran on it */
+  cudaEvent_t ev[GG_N + 1];           /**< stage boundaries */
+  double t[GG_N];                     /**< accumulated milliseconds per stage */
+  long calls, replays;                /**< evaluations: all, of which replays */
+  double bytes;                       /**< bytes moved (both ways) */
+  double n_entries[2];                /**< grouped part and field interactions of the last */
 };
 
 /** Make b hold at least bytes (grown by half again; contents lost). */
@@ -102,11 +102,11 @@ extern "C" struct gpu_grav *gpu_grav_new(struct gpu *g) {
 extern "C" void gpu_grav_free(struct gpu_grav *gg) {
   if (!gg) return;
   struct gpu_grav_buf *bufs[25] = {
-      &gg->mp,       &gg->field,    &gg->offset,   &gg->count,    &gg->l2l,      &gg->leaf,
-      &gg->raw[0],   &gg->raw[1],   &gg->start[0], &gg->start[1], &gg->src[0],   &gg->src[1],
-      &gg->cursor,   &gg->centre,   &gg->scale,    &gg->progeny,  &gg->split,    &gg->lo_hi,
-      &gg->wcount,   &gg->wlist[0], &gg->wlist[1], &gg->wlist[2], &gg->wlist[3],
-      &gg->wqueue[0], &gg->wqueue[1]};
+      &gg->mp,       &gg->field,    &gg->offset,   &gg->count,     &gg->l2l,
+      &gg->leaf,     &gg->raw[0],   &gg->raw[1],   &gg->start[0],  &gg->start[1],
+      &gg->src[0],   &gg->src[1],   &gg->cursor,   &gg->centre,    &gg->scale,
+      &gg->progeny,  &gg->split,    &gg->lo_hi,    &gg->wcount,    &gg->wlist[0],
+      &gg->wlist[1], &gg->wlist[2], &gg->wlist[3], &gg->wqueue[0], &gg->wqueue[1]};
   for (int k = 0; k < 25; k++)
     if (bufs[k]->ptr) gpu_check(cudaFree(bufs[k]->ptr));
   if (gg->mp_host) gpu_check(cudaFreeHost(gg->mp_host));
@@ -131,10 +131,10 @@ extern "C" void gpu_grav_set_tree(struct gpu_grav *gg, const struct gpu_grav_tre
   int *l2l = (int *)gg_reserve(&gg->l2l, 2 * nl * sizeof(int), "gravity L2L pairs");
   gg_up(gg, s, l2l, t->l2l_child, nl * sizeof(int));
   gg_up(gg, s, l2l + nl, t->l2l_parent, nl * sizeof(int));
-  gg_up(gg, s, gg_reserve(&gg->leaf, (size_t)t->nr_leaves * sizeof(int), "gravity leaves"),
-        t->leaf, (size_t)t->nr_leaves * sizeof(int));
-  gg_up(gg, s, gg_reserve(&gg->centre, 3 * nc * sizeof(double), "gravity cell centres"),
-        t->centre, 3 * nc * sizeof(double));
+  gg_up(gg, s, gg_reserve(&gg->leaf, (size_t)t->nr_leaves * sizeof(int), "gravity leaves"), t->leaf,
+        (size_t)t->nr_leaves * sizeof(int));
+  gg_up(gg, s, gg_reserve(&gg->centre, 3 * nc * sizeof(double), "gravity cell centres"), t->centre,
+        3 * nc * sizeof(double));
   gg_up(gg, s, gg_reserve(&gg->progeny, 8 * nc * sizeof(int), "gravity tree"), t->progeny,
         8 * nc * sizeof(int));
   gg_up(gg, s, gg_reserve(&gg->split, nc + 16, "gravity tree"), t->split, nc);
@@ -178,8 +178,8 @@ static double gg_stage_end(const cudaEvent_t ev[2], cudaStream_t s) {
 }
 
 extern "C" void gpu_grav_up(struct gpu_grav *gg, struct parts *p, int order, double h_factor,
-                            int resident, const struct gravity_multipole **mp,
-                            const double **a_min, const double **h_support) {
+                            int resident, const struct gravity_multipole **mp, const double **a_min,
+                            const double **h_support) {
   if (!gg->have_tree) error_bug("gpu_grav_up before gpu_grav_set_tree");
   cudaStream_t s = gpu_stream(gg->g, 0);
   struct parts dp = gpu_device_parts(gg->g, p->count);
@@ -190,7 +190,8 @@ extern "C" void gpu_grav_up(struct gpu_grav *gg, struct parts *p, int order, dou
     gg->bytes += 8.0 * (double)p->count * sizeof(double);
   }
   const size_t nc = (size_t)gg->nr_cells;
-  double *scale = (double *)gg_reserve(&gg->scale, 2 * nc * sizeof(double) + 16, "gravity cell scales");
+  double *scale =
+      (double *)gg_reserve(&gg->scale, 2 * nc * sizeof(double) + 16, "gravity cell scales");
   struct gravity_gpu_up u;
   u.mp = (struct gravity_multipole *)gg->mp.ptr;
   u.a_min = scale;
@@ -216,8 +217,8 @@ extern "C" void gpu_grav_up(struct gpu_grav *gg, struct parts *p, int order, dou
     }
     gpu_check(cudaMemcpyAsync(mh, u.mp, nc * sizeof(struct gravity_multipole),
                               cudaMemcpyDeviceToHost, s));
-    gpu_check(cudaMemcpyAsync(gg->scale_host, scale, 2 * nc * sizeof(double),
-                              cudaMemcpyDeviceToHost, s));
+    gpu_check(
+        cudaMemcpyAsync(gg->scale_host, scale, 2 * nc * sizeof(double), cudaMemcpyDeviceToHost, s));
     const double down = (double)nc * (sizeof(struct gravity_multipole) + 2 * sizeof(double));
     gpu_bytes_add(gg->g, 0.0, down);
     gg->bytes += down;
@@ -264,7 +265,8 @@ extern "C" void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_t
   for (int attempt = 0;; attempt++) {
     struct gravity_walk_lists L;
     for (int k = 0; k < 4; k++) {
-      int *b = (int *)gg_reserve(&gg->wlist[k], 2 * gg->wcap[k] * sizeof(int), "gravity walk lists");
+      int *b =
+          (int *)gg_reserve(&gg->wlist[k], 2 * gg->wcap[k] * sizeof(int), "gravity walk lists");
       L.target[k] = b;
       L.source[k] = b + gg->wcap[k];
       L.cap[k] = gg->wcap[k];
@@ -272,7 +274,8 @@ extern "C" void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_t
     L.n = cnt;
     struct gravity_walk_queue Q[2];
     for (int k = 0; k < 2; k++) {
-      Q[k].item = (int *)gg_reserve(&gg->wqueue[k], 3 * gg->qcap * sizeof(int), "gravity walk queues");
+      Q[k].item =
+          (int *)gg_reserve(&gg->wqueue[k], 3 * gg->qcap * sizeof(int), "gravity walk queues");
       Q[k].n = cnt + 4 + k;
       Q[k].cap = gg->qcap;
     }
@@ -300,10 +303,11 @@ extern "C" void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_t
     gpu_check(cudaMemcpyAsync(&hdeep, deep, sizeof hdeep, cudaMemcpyDeviceToHost, s));
     gpu_check(cudaStreamSynchronize(s));
     if (hdeep)
-      error_exit("gravity on the GPU: %d walkers found their stack (%d entries, "
-                 "GRAVITY_WALK_STACK) and the hand-on queue full; Scheduler:gpu_walks: host walks "
-                 "on the CPU",
-                 hdeep, GRAVITY_WALK_STACK);
+      error_exit(
+          "gravity on the GPU: %d walkers found their stack (%d entries, "
+          "GRAVITY_WALK_STACK) and the hand-on queue full; Scheduler:gpu_walks: host walks "
+          "on the CPU",
+          hdeep, GRAVITY_WALK_STACK);
     int grown = 0;
     for (int k = 0; k < 4; k++) {
       gg->wn[k] = hn[k];
@@ -334,8 +338,8 @@ __global__ void gpu_grav_scan_kernel(int *c, int n) {
 }
 
 /** Entry k < n goes to the next free place of cell t[k]: out = s[k]. */
-__global__ void gpu_grav_scatter_kernel(const int *__restrict__ t, const int *__restrict__ s, size_t n,
-                                  int *cursor, int *out) {
+__global__ void gpu_grav_scatter_kernel(const int *__restrict__ t, const int *__restrict__ s,
+                                        size_t n, int *cursor, int *out) {
   for (size_t k = blockIdx.x * (size_t)blockDim.x + threadIdx.x; k < n;
        k += (size_t)gridDim.x * blockDim.x)
     out[atomicAdd(cursor + t[k], 1)] = s[k];
@@ -354,7 +358,8 @@ static struct gravity_gpu_groups gg_group_dev(struct gpu_grav *gg, int k, const 
                                               const int *s1, size_t n1, const int *a2,
                                               const int *b2, size_t n2, cudaStream_t s) {
   const size_t ntot = n1 + 2 * n2;
-  if (ntot > (size_t)INT_MAX) error_exit("%zu recorded gravity interactions: more than the GPU lists hold", ntot);
+  if (ntot > (size_t)INT_MAX)
+    error_exit("%zu recorded gravity interactions: more than the GPU lists hold", ntot);
   const int nc = gg->nr_cells;
   int *start = (int *)gg_reserve(&gg->start[k], ((size_t)nc + 1) * sizeof(int), "gravity lists");
   int *cursor = (int *)gg_reserve(&gg->cursor, ((size_t)nc + 1) * sizeof(int), "gravity lists");
@@ -392,8 +397,8 @@ static struct gravity_gpu_groups gg_group(struct gpu_grav *gg, int k,
     /* the device's walk: part/field one-way in list k, mutual in list k + 2 */
     const struct gpu_grav_buf *one = &gg->wlist[k], *mut = &gg->wlist[k + 2];
     const int *o = (const int *)one->ptr, *m = (const int *)mut->ptr;
-    return gg_group_dev(gg, k, o, o + gg->wcap[k], gg->wn[k], m, m + gg->wcap[k + 2],
-                        gg->wn[k + 2], s);
+    return gg_group_dev(gg, k, o, o + gg->wcap[k], gg->wn[k], m, m + gg->wcap[k + 2], gg->wn[k + 2],
+                        s);
   }
   size_t n1 = 0, n2 = 0;
   for (int w = 0; w < nr_rec; w++) {
@@ -466,8 +471,7 @@ extern "C" void gpu_grav_run(struct gpu_grav *gg, struct parts *p,
       gravity_l2l_gpu_launch(s, d, l2l, l2l + nl, gg->level_start[L], gg->level_start[L + 1]);
   }
   gpu_check(cudaEventRecord(gg->ev[GG_PART], s));
-  gravity_part_gpu_launch(s, dp, d, gg->gl[0], (const int *)gg->leaf.ptr, gg->nr_leaves,
-                          gg->block);
+  gravity_part_gpu_launch(s, dp, d, gg->gl[0], (const int *)gg->leaf.ptr, gg->nr_leaves, gg->block);
   gpu_check(cudaEventRecord(gg->ev[GG_L2P], s));
   gravity_l2p_gpu_launch(s, dp, d, (const int *)gg->leaf.ptr, gg->nr_leaves, gg->block);
   gpu_check(cudaEventRecord(gg->ev[GG_DOWN], s));
@@ -496,7 +500,8 @@ extern "C" void gpu_grav_print(const struct gpu_grav *gg, FILE *f) {
     fprintf(f, "; %ld upward passes (P2M, M2M) on the device, %.3f ms each (copy back included)",
             gg->calls_up, gg->t_up / gg->calls_up);
   if (gg->calls_walk)
-    fprintf(f, "; %ld walks on the device, %.3f ms each (%.1f rounds of walkers; %ld repeated "
+    fprintf(f,
+            "; %ld walks on the device, %.3f ms each (%.1f rounds of walkers; %ld repeated "
             "with longer lists)",
             gg->calls_walk, gg->t_walk / gg->calls_walk,
             1.0 + (double)gg->walk_rounds / (double)(gg->calls_walk + gg->walk_retries),

@@ -42,8 +42,10 @@ void gpu_grav_tree_build(struct gpu_grav_host *h, const struct space *s) {
     h->cells_cap = nc + nc / 4 + 16;
     h->offset = error_realloc(h->offset, h->cells_cap * sizeof(size_t), "GPU gravity tree");
     h->count = error_realloc(h->count, h->cells_cap * sizeof(int), "GPU gravity tree");
-    h->centre = error_realloc(h->centre, 3 * (size_t)h->cells_cap * sizeof(double), "GPU gravity tree");
-    h->progeny = error_realloc(h->progeny, 8 * (size_t)h->cells_cap * sizeof(int), "GPU gravity tree");
+    h->centre =
+        error_realloc(h->centre, 3 * (size_t)h->cells_cap * sizeof(double), "GPU gravity tree");
+    h->progeny =
+        error_realloc(h->progeny, 8 * (size_t)h->cells_cap * sizeof(int), "GPU gravity tree");
     h->split = error_realloc(h->split, (size_t)h->cells_cap, "GPU gravity tree");
   }
   /* counts, split flags and progeny as the walks read them (index checked there) */

@@ -38,14 +38,24 @@ struct gpu_leaves_dev {
 
 /** Instantiate kernel K for the orders 1..GRAVITY_ORDER_MAX and launch the
  *  one of d.order on stream s (the gravity kernels). */
-#define GRAVITY_GPU_DISPATCH(K, grid, block, ...)                                           \
-  switch (d.order) {                                                                        \
-    case 1: K<1><<<(grid), (block), 0, s>>>(__VA_ARGS__); break;                            \
-    case 2: K<2><<<(grid), (block), 0, s>>>(__VA_ARGS__); break;                            \
-    case 3: K<3><<<(grid), (block), 0, s>>>(__VA_ARGS__); break;                            \
-    case 4: K<4><<<(grid), (block), 0, s>>>(__VA_ARGS__); break;                            \
-    default: K<GRAVITY_ORDER_MAX><<<(grid), (block), 0, s>>>(__VA_ARGS__); break;           \
-  }                                                                                         \
+#define GRAVITY_GPU_DISPATCH(K, grid, block, ...)                   \
+  switch (d.order) {                                                \
+    case 1:                                                         \
+      K<1><<<(grid), (block), 0, s>>>(__VA_ARGS__);                 \
+      break;                                                        \
+    case 2:                                                         \
+      K<2><<<(grid), (block), 0, s>>>(__VA_ARGS__);                 \
+      break;                                                        \
+    case 3:                                                         \
+      K<3><<<(grid), (block), 0, s>>>(__VA_ARGS__);                 \
+      break;                                                        \
+    case 4:                                                         \
+      K<4><<<(grid), (block), 0, s>>>(__VA_ARGS__);                 \
+      break;                                                        \
+    default:                                                        \
+      K<GRAVITY_ORDER_MAX><<<(grid), (block), 0, s>>>(__VA_ARGS__); \
+      break;                                                        \
+  }                                                                 \
   gpu_check_launch(K)
 
 /** The gravity tree on the device (src/gpu/gpu_gravity.cu), by cell index. */
@@ -185,8 +195,7 @@ void gravity_l2p_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_d
  *  allocation with the out-of-memory report, and the bus counters. */
 cudaStream_t gpu_stream(struct gpu *g, int k);
 struct parts gpu_device_parts(struct gpu *g, size_t count);
-void gpu_copy_named(struct gpu *g, struct parts *p, const char *const *names, int n,
-                    int to_device);
+void gpu_copy_named(struct gpu *g, struct parts *p, const char *const *names, int n, int to_device);
 void *gpu_alloc(size_t bytes, const char *what);
 void gpu_bytes_add(struct gpu *g, double h2d, double d2h);
 
@@ -194,8 +203,8 @@ void gpu_bytes_add(struct gpu *g, double h2d, double d2h);
 void force_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
                       struct hydro_props hp);
 /** First half kick and drift of every particle (tasks/drift/drift_gpu.cu). */
-void drift_gpu_launch(cudaStream_t s, struct parts p, double dt_kick, double dt, double xsph, double h_max,
-                      int h_continuity);
+void drift_gpu_launch(cudaStream_t s, struct parts p, double dt_kick, double dt, double xsph,
+                      double h_max, int h_continuity);
 /** Second half kick and time step; leaf_dt[L] the smallest of leaf L; with
  *  damage_max_change > 0 the damage limit joins, with grav.enabled the
  *  gravitational acceleration and its limit (tasks/kick/kick_gpu.cu). */

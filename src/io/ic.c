@@ -316,8 +316,8 @@ static const struct {
   const char *field;
   double min, max;
 } ic_ranges[] = {
-    {"u", 0.0, INFINITY},       {"rho", 0.0, INFINITY}, {"dmg", 0.0, 1.0},
-    {"dcbrt", 0.0, 1.0},        {"dmg_shear", 0.0, 1.0}, {"eps_p", 0.0, INFINITY},
+    {"u", 0.0, INFINITY}, {"rho", 0.0, INFINITY},  {"dmg", 0.0, 1.0},
+    {"dcbrt", 0.0, 1.0},  {"dmg_shear", 0.0, 1.0}, {"eps_p", 0.0, INFINITY},
 };
 
 static int ic_cmp_pos(const void *a, const void *b);
@@ -340,9 +340,10 @@ static void ic_check_distinct_positions(const char *path, const struct parts *p)
         const size_t t = a;
         a = b, b = t;
       }
-      error_exit("%s: particles %zu (id %lld) and %zu (id %lld) are at the same position (%g, %g, "
-                 "%g)",
-                 path, a, (long long)p->id[a], b, (long long)p->id[b], p->x[a], p->y[a], p->z[a]);
+      error_exit(
+          "%s: particles %zu (id %lld) and %zu (id %lld) are at the same position (%g, %g, "
+          "%g)",
+          path, a, (long long)p->id[a], b, (long long)p->id[b], p->x[a], p->y[a], p->z[a]);
     }
   free(idx);
 }
@@ -360,7 +361,8 @@ static void ic_validate(const char *path, const struct parts *p, const struct ic
   for (size_t r = 0; r < sizeof ic_ranges / sizeof ic_ranges[0]; r++) {
     krange[r] = -1;
     for (int k = 0; k < part_nr_fields; k++)
-      if (strcmp(part_fields[k].name, ic_ranges[r].field) == 0 && ic_field_read(info, k)) krange[r] = k;
+      if (strcmp(part_fields[k].name, ic_ranges[r].field) == 0 && ic_field_read(info, k))
+        krange[r] = k;
   }
   const int check_mat = kmat >= 0 && ic_field_read(info, kmat);
   for (size_t i = 0; i < p->count; i++) {
@@ -413,7 +415,8 @@ void ic_read(const char *path, const struct unit_system *internal, const int32_t
   struct ic_info info_local;
   struct ic_info *info = info_out ? info_out : &info_local;
   memset(info, 0, sizeof *info);
-  if (part_nr_fields > IC_MAX_FIELDS) error_bug("ic_info.fields_read holds at most %d fields", IC_MAX_FIELDS);
+  if (part_nr_fields > IC_MAX_FIELDS)
+    error_bug("ic_info.fields_read holds at most %d fields", IC_MAX_FIELDS);
   H5Eset_auto(H5E_DEFAULT, NULL, NULL);
 
   FILE *probe = fopen(path, "rb");

@@ -6,8 +6,8 @@
  *   default NULL means the key is required.  Ranges are inclusive; use
  *   PARAM_INF for no bound.  For PARAM_STRING, min and max bound the length
  *   of the text in bytes (max 0: no bound); for PARAM_REAL_ARRAY, choices is
- *   the '|'-separated list of the allowed numbers of values (NULL: any).  Keys follow SWIFT's sections and names where
- *   SWIFT has the same thing. */
+ *   the '|'-separated list of the allowed numbers of values (NULL: any).  Keys follow SWIFT's
+ * sections and names where SWIFT has the same thing. */
 #ifndef BOLIDE_PARAM_LIST_H
 #define BOLIDE_PARAM_LIST_H
 

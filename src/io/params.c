@@ -473,8 +473,7 @@ static void problems_report(struct params *p) {
 }
 
 /** The one line for a SWIFT key or section that has no effect. */
-static void swift_note(const char *where, int line, const char *what,
-                       const struct param_swift *s) {
+static void swift_note(const char *where, int line, const char *what, const struct param_swift *s) {
   if (s->level == PARAM_SWIFT_WARN)
     error_warning("%s:%d: %s (SWIFT's) has no effect in Bolide: %s", where, line, what, s->reason);
   else
@@ -894,23 +893,27 @@ static void params_apply_swift(struct params *p) {
   const int mac = spec_find("Gravity:MAC"), eps = spec_find("Gravity:epsilon_fmm");
   if (p->values[mac].b == 1) { /* geometric: theta_cr alone, as in SWIFT */
     if (p->values[eps].given && p->values[eps].r != 0.0)
-      error_note("%s:%d: Gravity:epsilon_fmm has no effect with Gravity:MAC: geometric (as in SWIFT)",
-                 p->filename, p->values[eps].line);
+      error_note(
+          "%s:%d: Gravity:epsilon_fmm has no effect with Gravity:MAC: geometric (as in SWIFT)",
+          p->filename, p->values[eps].line);
     p->values[eps].r = 0.0;
   } else if (p->values[mac].b == 2) {
-    error_note("%s:%d: Gravity:MAC: gadget is read as adaptive (Bolide's adaptive criterion, "
-               "Gravity:epsilon_fmm)",
-               p->filename, p->values[mac].line);
+    error_note(
+        "%s:%d: Gravity:MAC: gadget is read as adaptive (Bolide's adaptive criterion, "
+        "Gravity:epsilon_fmm)",
+        p->filename, p->values[mac].line);
   }
   const int save = spec_find("Restarts:save"), onexit = spec_find("Restarts:onexit");
   if (p->values[save].given && !p->values[save].b)
-    error_note("%s:%d: Restarts:save: false has no effect in Bolide: the previous restart file is "
-               "always kept (BASENAME.prev.bin), so that a complete one exists at every instant",
-               p->filename, p->values[save].line);
+    error_note(
+        "%s:%d: Restarts:save: false has no effect in Bolide: the previous restart file is "
+        "always kept (BASENAME.prev.bin), so that a complete one exists at every instant",
+        p->filename, p->values[save].line);
   if (p->values[onexit].given && !p->values[onexit].b)
-    error_note("%s:%d: Restarts:onexit: false has no effect in Bolide: with Restarts:enable a "
-               "restart file is always written when the run ends",
-               p->filename, p->values[onexit].line);
+    error_note(
+        "%s:%d: Restarts:onexit: false has no effect in Bolide: with Restarts:enable a "
+        "restart file is always written when the run ends",
+        p->filename, p->values[onexit].line);
 }
 
 struct params *params_read(const char *filename, int n_overrides, char *const *overrides) {
@@ -1354,9 +1357,10 @@ static void reference_wrap(FILE *f, const char *text) {
 /** The "# meaning [unit] (type, range; default)" comment of entry s. */
 static void reference_comment(FILE *f, const struct param_spec *s) {
   static const char *const type_name[] = {
-      [PARAM_INT] = "integer",    [PARAM_REAL] = "real",   [PARAM_BOOL] = "boolean",
-      [PARAM_STRING] = "text",    [PARAM_ENUM] = "one of", [PARAM_REAL_ARRAY] = "list of reals",
-      [PARAM_SECTION] = "section",  [PARAM_WORDS] = "word or [list of words]"};
+      [PARAM_INT] = "integer",     [PARAM_REAL] = "real",
+      [PARAM_BOOL] = "boolean",    [PARAM_STRING] = "text",
+      [PARAM_ENUM] = "one of",     [PARAM_REAL_ARRAY] = "list of reals",
+      [PARAM_SECTION] = "section", [PARAM_WORDS] = "word or [list of words]"};
   char range[96] = "", list[512] = "", unit[128] = "", text[2048];
   if (s->type == PARAM_INT || s->type == PARAM_REAL || s->type == PARAM_REAL_ARRAY)
     range_text(s, range, sizeof range);
@@ -1430,10 +1434,11 @@ void params_write_reference(FILE *f) {
       fputc('\n', f);
     }
   }
-  fputs("\n# SWIFT's keys and sections accepted without effect in Bolide (each one given\n"
-        "# gets one note on stderr, a warning where ignoring it changes what is\n"
-        "# simulated), and why:\n",
-        f);
+  fputs(
+      "\n# SWIFT's keys and sections accepted without effect in Bolide (each one given\n"
+      "# gets one note on stderr, a warning where ignoring it changes what is\n"
+      "# simulated), and why:\n",
+      f);
   for (int i = 0; i < PARAMS_NSWIFT; i++) {
     char text[1024];
     snprintf(text, sizeof text, "%s%s%s: %s", strchr(params_swift[i].name, ':') ? "" : "section ",

@@ -28,7 +28,7 @@ enum param_type {
 
 /** One known key (an entry of BOLIDE_PARAMS). */
 struct param_spec {
-  const char *name;    /**< "Section:key" */
+  const char *name; /**< "Section:key" */
   enum param_type type;
   const char *def;     /**< default as text; NULL = required */
   double min, max;     /**< allowed range for INT/REAL/REAL_ARRAY (inclusive); for

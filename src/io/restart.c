@@ -131,7 +131,8 @@ static uint64_t restart_gravity_bytes(const struct restart_gravity *g, size_t co
   uint64_t items = 0;
   for (int64_t k = 0; k < g->nr_lists; k++) items += (uint64_t)g->list_count[k];
   return 8 + 24 + 24 * (uint64_t)count + 24 + 4 * (uint64_t)g->nr_saved +
-         8 * (uint64_t)(g->nr_saved * g->cell_doubles) + 8 + 16 * (uint64_t)g->nr_lists + 16 * items;
+         8 * (uint64_t)(g->nr_saved * g->cell_doubles) + 8 + 16 * (uint64_t)g->nr_lists +
+         16 * items;
 }
 
 void restart_write(const char *stem, const struct restart_state *st, const struct parts *p,
@@ -196,7 +197,8 @@ void restart_write(const char *stem, const struct restart_state *st, const struc
   restart_put(o, &nflaws, 8);
   restart_put(o, off, 8 * (p->count + 1));
   for (size_t i = 0; i < p->count; i++)
-    if (off[i + 1] > off[i]) restart_put(o, flaw_eps + p->flaw_first[i], 8 * (size_t)(off[i + 1] - off[i]));
+    if (off[i + 1] > off[i])
+      restart_put(o, flaw_eps + p->flaw_first[i], 8 * (size_t)(off[i + 1] - off[i]));
   const int64_t present = grav && grav->present ? 1 : 0;
   restart_put(o, &present, 8);
   if (present) {
@@ -262,7 +264,8 @@ struct restart_in {
   const char *name;
 };
 
-static int restart_fail(struct restart_in *in, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static int restart_fail(struct restart_in *in, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
 static int restart_fail(struct restart_in *in, const char *fmt, ...) {
   char msg[512];
   va_list ap;
@@ -275,8 +278,8 @@ static int restart_fail(struct restart_in *in, const char *fmt, ...) {
 
 static int restart_get(struct restart_in *in, void *out, size_t bytes, const char *what) {
   if (bytes > in->len - in->pos)
-    return restart_fail(in, "truncated restart file (%s: %zu bytes needed at offset %zu, %zu left)", what,
-                        bytes, in->pos, in->len - in->pos);
+    return restart_fail(in, "truncated restart file (%s: %zu bytes needed at offset %zu, %zu left)",
+                        what, bytes, in->pos, in->len - in->pos);
   memcpy(out, in->b + in->pos, bytes);
   in->pos += bytes;
   return 0;
@@ -289,11 +292,16 @@ static void restart_params_diff(const char *a, const char *b, char *msg, size_t 
     const char *ea = strchr(a, '\n'), *eb = strchr(b, '\n');
     const size_t la = ea ? (size_t)(ea - a) : strlen(a), lb = eb ? (size_t)(eb - b) : strlen(b);
     if (la != lb || memcmp(a, b, la)) {
-      if (!la) snprintf(msg, len, "this run has the parameter line '%.*s' that the file lacks", (int)(lb > 120 ? 120 : lb), b);
-      else if (!lb) snprintf(msg, len, "the file has the parameter line '%.*s' that this run lacks", (int)(la > 120 ? 120 : la), a);
+      if (!la)
+        snprintf(msg, len, "this run has the parameter line '%.*s' that the file lacks",
+                 (int)(lb > 120 ? 120 : lb), b);
+      else if (!lb)
+        snprintf(msg, len, "the file has the parameter line '%.*s' that this run lacks",
+                 (int)(la > 120 ? 120 : la), a);
       else
-        snprintf(msg, len, "written with other parameters: %s'%.*s' in the file, '%.*s' in this run",
-                 sec, (int)(la > 120 ? 120 : la), a, (int)(lb > 120 ? 120 : lb), b);
+        snprintf(msg, len,
+                 "written with other parameters: %s'%.*s' in the file, '%.*s' in this run", sec,
+                 (int)(la > 120 ? 120 : la), a, (int)(lb > 120 ? 120 : lb), b);
       return;
     }
     if (la && a[0] != ' ') snprintf(sec, sizeof sec, "section %.*s ", (int)(la > 60 ? 60 : la), a);
@@ -304,14 +312,14 @@ static void restart_params_diff(const char *a, const char *b, char *msg, size_t 
   snprintf(msg, len, "written with other parameters");
 }
 
-#define FAIL(...)                      \
-  do {                                 \
-    restart_fail(&in, __VA_ARGS__);    \
-    goto fail;                         \
+#define FAIL(...)                   \
+  do {                              \
+    restart_fail(&in, __VA_ARGS__); \
+    goto fail;                      \
   } while (0)
-#define GET(ptr, bytes, what)                                   \
-  do {                                                          \
-    if (restart_get(&in, (ptr), (bytes), (what))) goto fail;    \
+#define GET(ptr, bytes, what)                                \
+  do {                                                       \
+    if (restart_get(&in, (ptr), (bytes), (what))) goto fail; \
   } while (0)
 
 static int restart_finite(const double *x, size_t n) {
@@ -325,8 +333,9 @@ static int restart_cmp_i64(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-int restart_read_buffer(const void *buf, size_t len, const char *name, const struct restart_expect *ex,
-                        struct restart_data *out, char *err, size_t errlen) {
+int restart_read_buffer(const void *buf, size_t len, const char *name,
+                        const struct restart_expect *ex, struct restart_data *out, char *err,
+                        size_t errlen) {
   struct restart_in in = {buf, len, 0, err, errlen, name};
   memset(out, 0, sizeof *out);
   char *ptext = NULL, *mine = NULL;
@@ -342,9 +351,11 @@ int restart_read_buffer(const void *buf, size_t len, const char *name, const str
   memcpy(&bom, hdr + 20, 4);
   if (bom != RESTART_BOM) FAIL("written on a machine of the other byte order");
   if (version != RESTART_VERSION)
-    FAIL("restart format version %u, this build reads version %d%s", (unsigned)version, RESTART_VERSION,
-         version < RESTART_VERSION ? " (an older Bolide's file: resume it with that build, or start the run again)"
-                                   : "");
+    FAIL("restart format version %u, this build reads version %d%s", (unsigned)version,
+         RESTART_VERSION,
+         version < RESTART_VERSION
+             ? " (an older Bolide's file: resume it with that build, or start the run again)"
+             : "");
   char build[RESTART_BUILD_LEN], mybuild[RESTART_BUILD_LEN];
   memcpy(build, hdr + 24, RESTART_BUILD_LEN);
   if (build[RESTART_BUILD_LEN - 1] != '\0') FAIL("corrupt header (build string not terminated)");
@@ -364,7 +375,8 @@ int restart_read_buffer(const void *buf, size_t len, const char *name, const str
   in.len = len - 8; /* the payload ends at the checksum */
   restart_build(mybuild);
   if (strcmp(build, mybuild))
-    error_warning("%s: written by Bolide %s, this is %s (same particle fields: resuming)", name, build, mybuild);
+    error_warning("%s: written by Bolide %s, this is %s (same particle fields: resuming)", name,
+                  build, mybuild);
 
   /* the particle-field table */
   int32_t nf = 0;
@@ -378,8 +390,8 @@ int restart_read_buffer(const void *buf, size_t len, const char *name, const str
     GET(&size, 4, "field size");
     fname[31] = '\0';
     if (strcmp(fname, part_fields[k].name) || size < 0 || (size_t)size != part_fields[k].size)
-      FAIL("particle field %d is '%s' (%d bytes) in the file, '%s' in this build", k, fname, (int)size,
-           part_fields[k].name);
+      FAIL("particle field %d is '%s' (%d bytes) in the file, '%s' in this build", k, fname,
+           (int)size, part_fields[k].name);
   }
 
   /* the state */
@@ -389,37 +401,47 @@ int restart_read_buffer(const void *buf, size_t len, const char *name, const str
   if (ex && (st->time < ex->time_begin || st->time > ex->time_end))
     FAIL("time %g outside [time_begin %g, time_end %g]", st->time, ex->time_begin, ex->time_end);
   if (!isfinite(st->dt) || st->dt < 0.0) FAIL("time step %g (must be finite, >= 0)", st->dt);
-  if (!isfinite(st->dt_next) || !(st->dt_next > 0.0)) FAIL("next time step %g (must be finite, > 0)", st->dt_next);
+  if (!isfinite(st->dt_next) || !(st->dt_next > 0.0))
+    FAIL("next time step %g (must be finite, > 0)", st->dt_next);
   if (st->step < 0 || st->step > ((int64_t)1 << 53)) FAIL("step %lld", (long long)st->step);
   if (st->updates < 0) FAIL("particle updates %lld (must be >= 0)", (long long)st->updates);
-  if (st->nr_removed < 0 || st->nr_removed > ((int64_t)1 << 53)) FAIL("removed particles %lld", (long long)st->nr_removed);
+  if (st->nr_removed < 0 || st->nr_removed > ((int64_t)1 << 53))
+    FAIL("removed particles %lld", (long long)st->nr_removed);
   const int64_t max_out = ex ? ex->nr_out : 100000000;
   if (st->next_out < 0 || st->next_out > max_out)
-    FAIL("output index %lld (this run has %lld output times)", (long long)st->next_out, (long long)max_out);
+    FAIL("output index %lld (this run has %lld output times)", (long long)st->next_out,
+         (long long)max_out);
   if (st->snap_index < 0 || st->snap_index > max_out + 1)
-    FAIL("snapshot index %lld (this run writes at most %lld)", (long long)st->snap_index, (long long)max_out + 1);
+    FAIL("snapshot index %lld (this run writes at most %lld)", (long long)st->snap_index,
+         (long long)max_out + 1);
   if (!isfinite(st->next_stats)) FAIL("next statistics time %g", st->next_stats);
   for (int k = 0; k < 3; k++)
-    if (!isfinite(st->box[k]) || !(st->box[k] > 0.0)) FAIL("box size %g (must be finite, > 0)", st->box[k]);
-  if (st->periodic != 0 && st->periodic != 1) FAIL("periodic flag %lld (must be 0 or 1)", (long long)st->periodic);
+    if (!isfinite(st->box[k]) || !(st->box[k] > 0.0))
+      FAIL("box size %g (must be finite, > 0)", st->box[k]);
+  if (st->periodic != 0 && st->periodic != 1)
+    FAIL("periodic flag %lld (must be 0 or 1)", (long long)st->periodic);
   if (!restart_finite(&st->removed.m, sizeof st->removed / sizeof(double)) ||
       !restart_finite(&st->start.E_tot, sizeof st->start / sizeof(double)))
     FAIL("non-finite energy budget");
-  if (st->start.set != 0.0 && st->start.set != 1.0) FAIL("budget flag %g (must be 0 or 1)", st->start.set);
+  if (st->start.set != 0.0 && st->start.set != 1.0)
+    FAIL("budget flag %g (must be 0 or 1)", st->start.set);
   if (!isfinite(st->rebuild_h_max) || !(st->rebuild_h_max > 0.0))
     FAIL("smoothing length of the last rebuild %g (must be finite, > 0)", st->rebuild_h_max);
-  if (st->need_rebuild != 0 && st->need_rebuild != 1) FAIL("rebuild flag %lld", (long long)st->need_rebuild);
+  if (st->need_rebuild != 0 && st->need_rebuild != 1)
+    FAIL("rebuild flag %lld", (long long)st->need_rebuild);
   if (st->stats_offset < 0) FAIL("statistics file offset %lld", (long long)st->stats_offset);
 
   /* the parameters */
   uint64_t plen = 0;
   GET(&plen, 8, "parameter length");
-  if (plen > in.len - in.pos) FAIL("truncated restart file (parameters of %llu bytes)", (unsigned long long)plen);
+  if (plen > in.len - in.pos)
+    FAIL("truncated restart file (parameters of %llu bytes)", (unsigned long long)plen);
   ptext = error_malloc(plen + 1, "restart parameters");
   GET(ptext, plen, "parameters");
   ptext[plen] = '\0';
   if (strlen(ptext) != plen) FAIL("corrupt parameters (NUL byte)");
-  if (restart_checksum(ptext, plen, RESTART_HASH_INIT) != phash) FAIL("corrupt header (parameter hash)");
+  if (restart_checksum(ptext, plen, RESTART_HASH_INIT) != phash)
+    FAIL("corrupt header (parameter hash)");
   if (ex && ex->params) {
     mine = restart_params_text(ex->params);
     if (strcmp(mine, ptext)) {
@@ -439,10 +461,10 @@ int restart_read_buffer(const void *buf, size_t len, const char *name, const str
   GET(out->cells.h_max, 8 * (size_t)nc, "cells");
   GET(out->cells.dx_max, 8 * (size_t)nc, "cells");
   for (int64_t c = 0; c < nc; c++)
-    if (!isfinite(out->cells.h_max[c]) || out->cells.h_max[c] < 0.0 || !isfinite(out->cells.dx_max[c]) ||
-        out->cells.dx_max[c] < 0.0)
-      FAIL("cell %lld: h_max %g, dx_max %g (must be finite, >= 0)", (long long)c, out->cells.h_max[c],
-           out->cells.dx_max[c]);
+    if (!isfinite(out->cells.h_max[c]) || out->cells.h_max[c] < 0.0 ||
+        !isfinite(out->cells.dx_max[c]) || out->cells.dx_max[c] < 0.0)
+      FAIL("cell %lld: h_max %g, dx_max %g (must be finite, >= 0)", (long long)c,
+           out->cells.h_max[c], out->cells.dx_max[c]);
 
   /* the particles */
   size_t per_part = 0;
@@ -469,20 +491,25 @@ int restart_read_buffer(const void *buf, size_t len, const char *name, const str
     if (!(p->m[i] > 0.0)) FAIL("particle %zu: mass %g (must be > 0)", i, p->m[i]);
     if (p->rho[i] < 0.0) FAIL("particle %zu: density %g (must be >= 0)", i, p->rho[i]);
     if (p->dmg[i] < 0.0 || p->dmg[i] > 1.0 || p->dmg_shear[i] < 0.0 || p->dmg_shear[i] > 1.0)
-      FAIL("particle %zu: damage %g, shear damage %g (must be in [0, 1])", i, p->dmg[i], p->dmg_shear[i]);
-    if (p->n_flaws[i] < 0 || p->n_act[i] < 0) FAIL("particle %zu: %d flaws, %d active", i, (int)p->n_flaws[i], (int)p->n_act[i]);
+      FAIL("particle %zu: damage %g, shear damage %g (must be in [0, 1])", i, p->dmg[i],
+           p->dmg_shear[i]);
+    if (p->n_flaws[i] < 0 || p->n_act[i] < 0)
+      FAIL("particle %zu: %d flaws, %d active", i, (int)p->n_flaws[i], (int)p->n_act[i]);
     if (p->id[i] < 0) FAIL("particle %zu: id %lld (must be >= 0)", i, (long long)p->id[i]);
     const double x0[3] = {p->x0[i], p->y0[i], p->z0[i]};
     for (int k = 0; k < 3; k++)
       if (x0[k] < 0.0 || x0[k] >= st->box[k])
-        FAIL("particle %zu: position at the last rebuild %g outside the box [0, %g)", i, x0[k], st->box[k]);
+        FAIL("particle %zu: position at the last rebuild %g outside the box [0, %g)", i, x0[k],
+             st->box[k]);
     if (ex && ex->mat_ids) {
       int found = -1;
       for (int k = 0; k < ex->nr_mats && found < 0; k++)
         if (ex->mat_ids[k] == p->mat[i]) found = k;
-      if (found < 0) FAIL("particle %zu: material id %d is not a material of this run", i, (int)p->mat[i]);
+      if (found < 0)
+        FAIL("particle %zu: material id %d is not a material of this run", i, (int)p->mat[i]);
       if (ex->u_floor && ex->u_floor[found] && p->u[i] < 0.0)
-        FAIL("particle %zu: internal energy %g (material %d needs u >= 0)", i, p->u[i], (int)p->mat[i]);
+        FAIL("particle %zu: internal energy %g (material %d needs u >= 0)", i, p->u[i],
+             (int)p->mat[i]);
     }
     sorted[i] = p->id[i];
   }
@@ -493,7 +520,8 @@ int restart_read_buffer(const void *buf, size_t len, const char *name, const str
   /* the flaws */
   uint64_t nflaws = 0;
   GET(&nflaws, 8, "flaw count");
-  if (nflaws > (in.len - in.pos) / 8) FAIL("flaw count %llu does not fit in the file", (unsigned long long)nflaws);
+  if (nflaws > (in.len - in.pos) / 8)
+    FAIL("flaw count %llu does not fit in the file", (unsigned long long)nflaws);
   fl_offset = error_malloc((n + 1) * sizeof *fl_offset, "restart: flaw offsets");
   fl_eps = error_malloc((nflaws ? nflaws : 1) * sizeof *fl_eps, "restart: flaw thresholds");
   GET(fl_offset, 8 * (n + 1), "flaw offsets");
@@ -507,23 +535,29 @@ int restart_read_buffer(const void *buf, size_t len, const char *name, const str
     FAIL("corrupt restart file: %s", msg);
   for (size_t i = 0; i < n; i++) {
     if (fl_offset[i + 1] - fl_offset[i] != p->n_flaws[i])
-      FAIL("corrupt restart file (particle %zu has %d flaws, its offsets say %lld)", i, (int)p->n_flaws[i],
-           (long long)(fl_offset[i + 1] - fl_offset[i]));
-    if (p->n_act[i] > p->n_flaws[i]) FAIL("particle %zu: %d of %d flaws active", i, (int)p->n_act[i], (int)p->n_flaws[i]);
+      FAIL("corrupt restart file (particle %zu has %d flaws, its offsets say %lld)", i,
+           (int)p->n_flaws[i], (long long)(fl_offset[i + 1] - fl_offset[i]));
+    if (p->n_act[i] > p->n_flaws[i])
+      FAIL("particle %zu: %d of %d flaws active", i, (int)p->n_act[i], (int)p->n_flaws[i]);
     p->flaw_first[i] = fl_offset[i];
   }
 
   /* the reused far field of self-gravity */
   struct restart_gravity *g = &out->grav;
   GET(&g->present, 8, "far-field flag");
-  if (g->present != 0 && g->present != 1) FAIL("far-field flag %lld (must be 0 or 1)", (long long)g->present);
+  if (g->present != 0 && g->present != 1)
+    FAIL("far-field flag %lld (must be 0 or 1)", (long long)g->present);
   if (g->present) {
     GET(&g->reused, 8, "far field");
     GET(&g->replays, 8, "far field");
     GET(&g->d_min, 8, "far field");
-    if (g->reused < 0 || g->reused > st->step) FAIL("far field reused %lld times (step %lld)", (long long)g->reused, (long long)st->step);
-    if (g->replays < 0 || g->replays > st->step) FAIL("far field reused in %lld steps (step %lld)", (long long)g->replays, (long long)st->step);
-    if (!isfinite(g->d_min) || !(g->d_min > 0.0)) FAIL("far-field distance %g (must be finite, > 0)", g->d_min);
+    if (g->reused < 0 || g->reused > st->step)
+      FAIL("far field reused %lld times (step %lld)", (long long)g->reused, (long long)st->step);
+    if (g->replays < 0 || g->replays > st->step)
+      FAIL("far field reused in %lld steps (step %lld)", (long long)g->replays,
+           (long long)st->step);
+    if (!isfinite(g->d_min) || !(g->d_min > 0.0))
+      FAIL("far-field distance %g (must be finite, > 0)", g->d_min);
     if (n > (in.len - in.pos) / 24) FAIL("truncated restart file (far-field positions)");
     g->x0 = error_malloc(24 * n, "restart: far-field positions");
     GET(g->x0, 24 * n, "far-field positions");
@@ -531,7 +565,9 @@ int restart_read_buffer(const void *buf, size_t len, const char *name, const str
     GET(&g->nr_cells, 8, "far-field cells");
     GET(&g->nr_saved, 8, "far-field cells");
     GET(&g->cell_doubles, 8, "far-field cells");
-    if (g->nr_cells != out->cells.n) FAIL("far field of %lld cells, the file has %lld", (long long)g->nr_cells, (long long)out->cells.n);
+    if (g->nr_cells != out->cells.n)
+      FAIL("far field of %lld cells, the file has %lld", (long long)g->nr_cells,
+           (long long)out->cells.n);
     if (g->nr_saved < 1 || g->nr_saved > g->nr_cells)
       FAIL("far field of %lld cells saved of %lld", (long long)g->nr_saved, (long long)g->nr_cells);
     if (g->cell_doubles < 1) FAIL("far field of %lld doubles per cell", (long long)g->cell_doubles);
@@ -543,9 +579,10 @@ int restart_read_buffer(const void *buf, size_t len, const char *name, const str
     g->cell_index = error_malloc(4 * (size_t)g->nr_saved, "restart: far-field cells");
     GET(g->cell_index, 4 * (size_t)g->nr_saved, "far-field cells");
     for (int64_t c = 0; c < g->nr_saved; c++)
-      if (g->cell_index[c] < 0 || g->cell_index[c] >= g->nr_cells || (c > 0 && g->cell_index[c] <= g->cell_index[c - 1]))
-        FAIL("far field: cell %lld saved is cell %d (indices must increase, below %lld)", (long long)c,
-             (int)g->cell_index[c], (long long)g->nr_cells);
+      if (g->cell_index[c] < 0 || g->cell_index[c] >= g->nr_cells ||
+          (c > 0 && g->cell_index[c] <= g->cell_index[c - 1]))
+        FAIL("far field: cell %lld saved is cell %d (indices must increase, below %lld)",
+             (long long)c, (int)g->cell_index[c], (long long)g->nr_cells);
     g->cells = error_malloc(8 * ncd, "restart: far-field cells");
     GET(g->cells, 8 * ncd, "far-field cells");
     if (!restart_finite(g->cells, ncd)) FAIL("non-finite multipole or local expansion");
@@ -560,24 +597,26 @@ int restart_read_buffer(const void *buf, size_t len, const char *name, const str
       GET(&g->list_d_min[k], 8, "interaction list");
       if (g->list_count[k] < 0 || (uint64_t)g->list_count[k] > (in.len - in.pos) / 16 ||
           !(g->list_d_min[k] >= 0.0))
-        FAIL("interaction list %lld: %lld interactions, d_min %g", (long long)k, (long long)g->list_count[k],
-             g->list_d_min[k]);
+        FAIL("interaction list %lld: %lld interactions, d_min %g", (long long)k,
+             (long long)g->list_count[k], g->list_d_min[k]);
       items += (uint64_t)g->list_count[k];
       if (items > (in.len - in.pos) / 16) /* (checked as it grows: no overflow) */
         FAIL("truncated restart file (%llu interactions)", (unsigned long long)items);
     }
-    if (items > (in.len - in.pos) / 16) FAIL("truncated restart file (%llu interactions)", (unsigned long long)items);
+    if (items > (in.len - in.pos) / 16)
+      FAIL("truncated restart file (%llu interactions)", (unsigned long long)items);
     g->items = error_malloc(16 * (items ? items : 1), "restart: interactions");
     GET(g->items, 16 * (size_t)items, "interactions");
     for (uint64_t q = 0; q < items; q++) {
       const int32_t *it = g->items + 4 * q;
-      if (it[0] < 0 || it[0] >= g->nr_cells || it[1] < -1 || it[1] >= g->nr_cells || (it[2] != 0 && it[2] != 1) ||
-          (it[3] != 0 && it[3] != 1) || (it[2] == 1 && it[1] < 0))
-        FAIL("interaction %llu: cells %d and %d, kind %d, symmetric %d", (unsigned long long)q, (int)it[0],
-             (int)it[1], (int)it[2], (int)it[3]);
+      if (it[0] < 0 || it[0] >= g->nr_cells || it[1] < -1 || it[1] >= g->nr_cells ||
+          (it[2] != 0 && it[2] != 1) || (it[3] != 0 && it[3] != 1) || (it[2] == 1 && it[1] < 0))
+        FAIL("interaction %llu: cells %d and %d, kind %d, symmetric %d", (unsigned long long)q,
+             (int)it[0], (int)it[1], (int)it[2], (int)it[3]);
     }
   }
-  if (in.pos != in.len) FAIL("corrupt restart file (%zu bytes after the far field)", in.len - in.pos);
+  if (in.pos != in.len)
+    FAIL("corrupt restart file (%zu bytes after the far field)", in.len - in.pos);
   free(fl_offset);
   free(sorted);
   free(ptext);
@@ -622,8 +661,8 @@ void restart_data_free(struct restart_data *d) {
 }
 
 /** Map and parse one file; 0, or -1 with one line in err. */
-static int restart_read_file(const char *path, const struct restart_expect *ex, struct restart_data *out,
-                             char *err, size_t errlen) {
+static int restart_read_file(const char *path, const struct restart_expect *ex,
+                             struct restart_data *out, char *err, size_t errlen) {
   const int fd = open(path, O_RDONLY);
   if (fd < 0) {
     snprintf(err, errlen, "%s: cannot open the restart file: %s", path, strerror(errno));
@@ -652,8 +691,8 @@ static int restart_read_file(const char *path, const struct restart_expect *ex, 
   return r;
 }
 
-void restart_read(const char *stem, const struct restart_expect *ex, struct restart_data *out, char *used,
-                  size_t usedlen) {
+void restart_read(const char *stem, const struct restart_expect *ex, struct restart_data *out,
+                  char *used, size_t usedlen) {
   char path[2048], prev[2048], err[1024], err2[1024];
   snprintf(path, sizeof path, "%s.bin", stem);
   snprintf(prev, sizeof prev, "%s.prev.bin", stem);
@@ -681,5 +720,6 @@ void restart_read(const char *stem, const struct restart_expect *ex, struct rest
 void restart_remove_stale(const char *stem) {
   char tmp[2100];
   snprintf(tmp, sizeof tmp, "%s.bin.tmp", stem);
-  if (unlink(tmp) == 0) error_log(0, "removed %s, left by a run that stopped while writing it", tmp);
+  if (unlink(tmp) == 0)
+    error_log(0, "removed %s, left by a run that stopped while writing it", tmp);
 }

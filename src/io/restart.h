@@ -35,22 +35,22 @@
 /** The engine's scalars saved with the particles (every member 8 bytes: no
  *  padding, written as it is). */
 struct restart_state {
-  double time;         /**< simulation time */
-  double dt;           /**< last global time step */
-  double dt_next;      /**< smallest particle time step for the next step */
-  int64_t step;        /**< steps done */
-  int64_t updates;     /**< particle updates done */
-  int64_t nr_removed;  /**< particles removed from an open box */
-  int64_t snap_index;  /**< index of the next snapshot */
-  int64_t next_out;    /**< next output time (index in the list from time_begin) */
-  double next_stats;   /**< next statistics time */
-  double box[3];       /**< box size */
-  int64_t periodic;    /**< periodic box */
+  double time;                   /**< simulation time */
+  double dt;                     /**< last global time step */
+  double dt_next;                /**< smallest particle time step for the next step */
+  int64_t step;                  /**< steps done */
+  int64_t updates;               /**< particle updates done */
+  int64_t nr_removed;            /**< particles removed from an open box */
+  int64_t snap_index;            /**< index of the next snapshot */
+  int64_t next_out;              /**< next output time (index in the list from time_begin) */
+  double next_stats;             /**< next statistics time */
+  double box[3];                 /**< box size */
+  int64_t periodic;              /**< periodic box */
   struct budget_removed removed; /**< what particles removed from the box took with them */
   struct budget_start start;     /**< the run's totals at its start */
-  double rebuild_h_max;  /**< the space's h_max at the last rebuild (its top-level grid) */
-  int64_t need_rebuild;  /**< 1: a task asked for a rebuild at the next step */
-  int64_t stats_offset;  /**< length of the statistics file when the file was written */
+  double rebuild_h_max;          /**< the space's h_max at the last rebuild (its top-level grid) */
+  int64_t need_rebuild;          /**< 1: a task asked for a rebuild at the next step */
+  int64_t stats_offset;          /**< length of the statistics file when the file was written */
 };
 
 /** The cells' h_max and dx_max at the end of the step (space.cells order). */
@@ -67,36 +67,38 @@ struct restart_cells {
  *  bit-identical.  present = 0: none (no reuse, no full evaluation yet, or
  *  a GPU run, whose far field stays on the device); the rest is then empty. */
 struct restart_gravity {
-  int64_t present;       /**< 1: the members below hold the state */
-  int64_t reused;        /**< steps since the evaluation that reused it (engine grav_reused) */
-  int64_t replays;       /**< steps of the run that reused a far field (engine grav_replays) */
-  double d_min;          /**< shortest far-field distance of the evaluation (finite, > 0) */
-  double *x0;            /**< positions at the evaluation, 3 per particle (x, y, z) */
-  int64_t nr_cells;      /**< the space's cells (restart_cells.n) */
-  int64_t nr_saved;      /**< cells whose gravity data are saved: those with particles (the
-                              walks and the replay read no other) */
-  int64_t cell_doubles;  /**< doubles per cell: sizeof(struct gravity_cell) / 8 */
-  int32_t *cell_index;   /**< nr_saved cell indices, increasing, < nr_cells */
-  double *cells;         /**< nr_saved * cell_doubles: their struct gravity_cell (multipole,
-                              local expansion, a_min, h_support) */
-  int64_t nr_lists;      /**< interaction lists: one per gravity task of the graph, by task id */
-  int64_t *list_count;   /**< interactions of each list */
-  double *list_d_min;    /**< d_min of each list (>= 0; HUGE_VAL: none; 0: a task
-                              that records nothing) */
-  int32_t *items;        /**< 4 per interaction, the lists one after the other: cell a, cell b
-                              (-1: none, a P2P within a), kind (0: P2P, 1: M2P), symmetric */
+  int64_t present;      /**< 1: the members below hold the state */
+  int64_t reused;       /**< steps since the evaluation that reused it (engine grav_reused) */
+  int64_t replays;      /**< steps of the run that reused a far field (engine grav_replays) */
+  double d_min;         /**< shortest far-field distance of the evaluation (finite, > 0) */
+  double *x0;           /**< positions at the evaluation, 3 per particle (x, y, z) */
+  int64_t nr_cells;     /**< the space's cells (restart_cells.n) */
+  int64_t nr_saved;     /**< cells whose gravity data are saved: those with particles (the
+                             walks and the replay read no other) */
+  int64_t cell_doubles; /**< doubles per cell: sizeof(struct gravity_cell) / 8 */
+  int32_t *cell_index;  /**< nr_saved cell indices, increasing, < nr_cells */
+  double *cells;        /**< nr_saved * cell_doubles: their struct gravity_cell (multipole,
+                             local expansion, a_min, h_support) */
+  int64_t nr_lists;     /**< interaction lists: one per gravity task of the graph, by task id */
+  int64_t *list_count;  /**< interactions of each list */
+  double *list_d_min;   /**< d_min of each list (>= 0; HUGE_VAL: none; 0: a task
+                             that records nothing) */
+  int32_t *items;       /**< 4 per interaction, the lists one after the other: cell a, cell b
+                             (-1: none, a P2P within a), kind (0: P2P, 1: M2P), symmetric */
 };
 
 /** What a file must match to be resumed by this run (restart_read_buffer). */
 struct restart_expect {
-  const char *params;     /**< parameters in use (params_to_string; the Restarts section is ignored) */
+  const char *params; /**< parameters in use (params_to_string; the Restarts section is ignored) */
   const int32_t *mat_ids; /**< material ids of the run */
   int nr_mats;            /**< their number */
   int64_t nr_out;         /**< number of output times of the run */
   double time_begin;      /**< TimeIntegration:time_begin */
   double time_end;        /**< TimeIntegration:time_end */
-  const int32_t *u_floor; /**< per material of mat_ids: 1 when its EOS needs u >= 0 (NULL: no check) */
-  int64_t grav_cell_doubles; /**< doubles per gravity cell of this build's expansion order (0: no check) */
+  const int32_t
+      *u_floor; /**< per material of mat_ids: 1 when its EOS needs u >= 0 (NULL: no check) */
+  int64_t grav_cell_doubles; /**< doubles per gravity cell of this build's expansion order (0: no
+                                check) */
   /** the damage family's check of the flaw thresholds, n particles with offset[n + 1]
    *  (ragged_io_check_fn; NULL: the offsets only) */
   int (*flaws_check)(size_t n, const int64_t *offset, const double *eps, char *msg, size_t len);
@@ -105,9 +107,9 @@ struct restart_expect {
 /** Everything a file holds (free with restart_data_free). */
 struct restart_data {
   struct restart_state st;
-  struct parts p;          /**< the particles in the order of the writing run */
-  double *flaw_eps;        /**< flat flaw thresholds, p.flaw_first indexes it (NULL: none) */
-  int64_t nr_flaws;        /**< their number */
+  struct parts p;   /**< the particles in the order of the writing run */
+  double *flaw_eps; /**< flat flaw thresholds, p.flaw_first indexes it (NULL: none) */
+  int64_t nr_flaws; /**< their number */
   struct restart_cells cells;
   struct restart_gravity grav; /**< the reused far field (grav.present 0: none) */
 };
@@ -127,8 +129,9 @@ void restart_write(const char *stem, const struct restart_state *st, const struc
  *  own consistency is checked).  Returns 0 and fills *out, or -1 with one
  *  line in err (nothing allocated).  Never exits and never reads outside
  *  buf: the entry point of the restart fuzzer. */
-int restart_read_buffer(const void *buf, size_t len, const char *name, const struct restart_expect *ex,
-                        struct restart_data *out, char *err, size_t errlen);
+int restart_read_buffer(const void *buf, size_t len, const char *name,
+                        const struct restart_expect *ex, struct restart_data *out, char *err,
+                        size_t errlen);
 
 /** Free the arrays of g and zero it. */
 void restart_gravity_free(struct restart_gravity *g);
@@ -140,8 +143,8 @@ void restart_data_free(struct restart_data *d);
  *  with a warning naming the problem of the newer one (which is renamed to
  *  STEM.bin.bad).  Stops with one line if neither can be resumed.  used:
  *  the name of the file read. */
-void restart_read(const char *stem, const struct restart_expect *ex, struct restart_data *out, char *used,
-                  size_t usedlen);
+void restart_read(const char *stem, const struct restart_expect *ex, struct restart_data *out,
+                  char *used, size_t usedlen);
 
 /** Remove STEM.bin.tmp left by a killed run (logged). */
 void restart_remove_stale(const char *stem);

@@ -32,15 +32,15 @@ void units_init_from_params(struct unit_system *us, const struct params *p);
 
 /** Factor converting a quantity of dimension M^a L^b T^c from system `from`
  *  to system `to`: value_to = value_from * factor. */
-double units_conversion_factor(const struct unit_system *from, const struct unit_system *to,
-                               int a, int b, int c);
+double units_conversion_factor(const struct unit_system *from, const struct unit_system *to, int a,
+                               int b, int c);
 /** Factor from internal units to cgs for dimension M^a L^b T^c. */
 double units_cgs_factor(const struct unit_system *us, int a, int b, int c);
 
 /** Physical constants in internal units. */
-double units_G(const struct unit_system *us); /**< gravitational constant (us->G when set) */
-double units_k_B(const struct unit_system *us);     /**< Boltzmann constant */
-double units_m_H(const struct unit_system *us);     /**< hydrogen mass */
+double units_G(const struct unit_system *us);   /**< gravitational constant (us->G when set) */
+double units_k_B(const struct unit_system *us); /**< Boltzmann constant */
+double units_m_H(const struct unit_system *us); /**< hydrogen mass */
 
 /** A string such as "[cm s^-1]" for the dimension, in cgs (for XDMF and
  *  dataset attributes). */

@@ -84,8 +84,7 @@ static void plot_check_target(const char *path) {
   else
     *slash = '\0';
   struct stat st;
-  if (!path[0] || path[strlen(path) - 1] == '/')
-    error_exit("--plot %s: not a file name", path);
+  if (!path[0] || path[strlen(path) - 1] == '/') error_exit("--plot %s: not a file name", path);
   if (stat(dir, &st) != 0) error_exit("--plot %s: %s: %s", path, dir, strerror(errno));
   if (!S_ISDIR(st.st_mode)) error_exit("--plot %s: %s: %s", path, dir, strerror(ENOTDIR));
   if (access(dir, W_OK) != 0) error_exit("--plot %s: %s: %s", path, dir, strerror(errno));

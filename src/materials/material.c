@@ -108,7 +108,8 @@ static const struct material_key *material_find_key(const struct material *mat, 
 static const char *material_range(const struct material_key *k, double v, char *buf, size_t len) {
   if (isnan(v)) return "must be a number";
   /* infinities only as a default, and P_min = -inf: no floor (tension allowed) */
-  if (isinf(v) && !(v == k->def) && !(v < 0.0 && strcmp(k->key, "P_min") == 0)) return "must be finite";
+  if (isinf(v) && !(v == k->def) && !(v < 0.0 && strcmp(k->key, "P_min") == 0))
+    return "must be finite";
   if (k->lo_open ? !(v > k->lo) : !(v >= k->lo)) {
     if (k->lo == 0.0) return k->lo_open ? "must be positive" : "must not be negative";
     if (k->lo == 1.0 && k->lo_open) return "must be larger than 1";
@@ -238,7 +239,8 @@ static const char *material_strength_check(const struct material *mat, const cha
     *key = mat->jc_D1 != 0.0 ? "jc_D1" : "jc_D2";
     return "(Johnson-Cook fracture) needs strength johnson_cook";
   }
-  if (mat->spall_pressure > 0.0 && !(s == STRENGTH_JOHNSON_COOK && (mat->jc_D1 != 0.0 || mat->jc_D2 != 0.0))) {
+  if (mat->spall_pressure > 0.0 &&
+      !(s == STRENGTH_JOHNSON_COOK && (mat->jc_D1 != 0.0 || mat->jc_D2 != 0.0))) {
     *key = "spall_pressure";
     return "needs Johnson-Cook fracture (strength johnson_cook with jc_D1 or jc_D2)";
   }

@@ -38,8 +38,7 @@ BOLIDE_INLINE double porosity_matrix_pressure(const struct material *mat, double
  *  turn negative).  cs: the matrix sound speed (floored as material_eos
  *  does). */
 BOLIDE_INLINE void porosity_matrix_partials(const struct material *mat, double rho_s, double u,
-                                            double *P, double *dP_drho, double *dP_du,
-                                            double *cs) {
+                                            double *P, double *dP_drho, double *dP_du, double *cs) {
   material_eos(mat, rho_s, u, P, cs);
   const double hr = POROSITY_DIFF_STEP * rho_s;
   *dP_drho = (porosity_matrix_pressure(mat, rho_s + hr, u) -
@@ -66,9 +65,9 @@ BOLIDE_INLINE double porosity_palpha_return(const struct material *mat, double r
   double lo = 1.0, hi = alpha;
   for (int k = 0; k < POROSITY_RETURN_MAX_ITER; k++) {
     const double rs = alpha * rho, hr = POROSITY_DIFF_STEP * rs;
-    const double dPs = (porosity_matrix_pressure(mat, rs + hr, u) -
-                        porosity_matrix_pressure(mat, rs - hr, u)) /
-                       (2.0 * hr);
+    const double dPs =
+        (porosity_matrix_pressure(mat, rs + hr, u) - porosity_matrix_pressure(mat, rs - hr, u)) /
+        (2.0 * hr);
     const double a = porosity_palpha_return_step(pp, rho, alpha, Ps, dPs, &lo, &hi);
     if (a == alpha) return a;
     if (hi - lo <= 1e-14 * hi) return lo;
@@ -91,8 +90,8 @@ BOLIDE_INLINE double porosity_epsalpha_strain(const struct material *mat, double
  *  strain, compaction is irreversible). */
 BOLIDE_INLINE double porosity_epsalpha_update(const struct material *mat, double rho,
                                               double alpha) {
-  const double a = porosity_epsalpha_alpha(&mat->porosity.epsalpha,
-                                           porosity_epsalpha_strain(mat, rho));
+  const double a =
+      porosity_epsalpha_alpha(&mat->porosity.epsalpha, porosity_epsalpha_strain(mat, rho));
   return a < alpha ? a : alpha;
 }
 

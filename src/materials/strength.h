@@ -92,9 +92,9 @@ BOLIDE_INLINE double strength_jc_damage_update(const struct material *mat, doubl
   const double s_star = seq > 0.0 ? -P / seq : 0.0;
   const double T = strength_temperature(mat, rho, u);
   const double T_star = (T - mat->T_ref) / (mat->T_melt - mat->T_ref);
-  const double eps_f = strength_johnson_cook_failure_strain(mat->jc_D1, mat->jc_D2, mat->jc_D3, mat->jc_D4,
-                                                            mat->jc_D5, mat->jc_strain_rate_ref, s_star,
-                                                            eps_rate, T_star);
+  const double eps_f = strength_johnson_cook_failure_strain(
+      mat->jc_D1, mat->jc_D2, mat->jc_D3, mat->jc_D4, mat->jc_D5, mat->jc_strain_rate_ref, s_star,
+      eps_rate, T_star);
   return strength_johnson_cook_damage(D, deps_p, eps_f);
 }
 

@@ -37,9 +37,10 @@ BOLIDE_INLINE double strength_johnson_cook_yield(double A, double B, double C, d
  *  homologous temperature T_star (clipped to [0, 1]).  Returns a value
  *  >= 1e-6 (an eps_f <= 0 from a fit with D1 < 0 means immediate fracture
  *  within a step's plastic strain of 1e-6). */
-BOLIDE_INLINE double strength_johnson_cook_failure_strain(double D1, double D2, double D3, double D4,
-                                                          double D5, double rate0, double s_star,
-                                                          double eps_rate, double T_star) {
+BOLIDE_INLINE double strength_johnson_cook_failure_strain(double D1, double D2, double D3,
+                                                          double D4, double D5, double rate0,
+                                                          double s_star, double eps_rate,
+                                                          double T_star) {
   const double x = eps_rate / rate0;
   const double rate = x > 1.0 ? 1.0 + D4 * log(x) : 1.0;
   if (T_star < 0.0) T_star = 0.0;

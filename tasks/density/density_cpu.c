@@ -9,9 +9,9 @@
 /** Symmetric form: i (local accumulator acc_i, inverse smoothing length
  *  hi_inv, velocity vi) gets j's contribution if r < H_i; j gets i's, in the
  *  arrays, if r < H_j. */
-BOLIDE_ALWAYS_INLINE void density_sym(struct parts *p, size_t i, size_t j, double r2, const double dx[3],
-                               double hi, double hi_inv, double hj, const double vi[3],
-                               struct density_acc *acc_i) {
+BOLIDE_ALWAYS_INLINE void density_sym(struct parts *p, size_t i, size_t j, double r2,
+                                      const double dx[3], double hi, double hi_inv, double hj,
+                                      const double vi[3], struct density_acc *acc_i) {
   const double Hi = kernel_gamma * hi, Hj = kernel_gamma * hj;
   const double dv[3] = {vi[0] - p->vpx[j], vi[1] - p->vpy[j], vi[2] - p->vpz[j]};
   if (r2 < Hi * Hi) density_iact(r2, dx, hi_inv, p->m[j], dv, acc_i);
@@ -25,16 +25,17 @@ BOLIDE_ALWAYS_INLINE void density_sym(struct parts *p, size_t i, size_t j, doubl
 }
 
 /** Gather form into the local accumulator of i. */
-BOLIDE_ALWAYS_INLINE void density_gather(const struct parts *p, size_t j, double r2, const double dx[3],
-                                  double hi_inv, const double vi[3], struct density_acc *acc_i) {
+BOLIDE_ALWAYS_INLINE void density_gather(const struct parts *p, size_t j, double r2,
+                                         const double dx[3], double hi_inv, const double vi[3],
+                                         struct density_acc *acc_i) {
   const double dv[3] = {vi[0] - p->vpx[j], vi[1] - p->vpy[j], vi[2] - p->vpz[j]};
   density_iact(r2, dx, hi_inv, p->m[j], dv, acc_i);
 }
 
 #define IACT_LOOP_NAME density
-#define IACT_LOOP_ACC_BEGIN(p, i)                                      \
-  struct density_acc acc_i = {0, 0, 0, 0, 0, {0, 0, 0}};              \
-  const double vi[3] = {(p)->vpx[i], (p)->vpy[i], (p)->vpz[i]};       \
+#define IACT_LOOP_ACC_BEGIN(p, i)                               \
+  struct density_acc acc_i = {0, 0, 0, 0, 0, {0, 0, 0}};        \
+  const double vi[3] = {(p)->vpx[i], (p)->vpy[i], (p)->vpz[i]}; \
   const double hi_inv = 1.0 / (p)->h[i]
 #define IACT_LOOP_ACC_END(p, i) hydro_density_add(p, i, &acc_i)
 #define IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj) \

@@ -6,8 +6,8 @@
 #include "src/gpu/gpu_kernels.h"
 
 /** See drift_gpu_launch. */
-__global__ void drift_gpu_kernel(struct parts p, double dt_kick, double dt, double xsph, double h_max,
-                                 int h_continuity) {
+__global__ void drift_gpu_kernel(struct parts p, double dt_kick, double dt, double xsph,
+                                 double h_max, int h_continuity) {
   const size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= p.count) return;
   kick_part(&p, i, dt_kick);
@@ -15,8 +15,8 @@ __global__ void drift_gpu_kernel(struct parts p, double dt_kick, double dt, doub
   drift_part(&p, i, dt, xsph, h_max, h_continuity);
 }
 
-void drift_gpu_launch(cudaStream_t s, struct parts p, double dt_kick, double dt, double xsph, double h_max,
-                      int h_continuity) {
+void drift_gpu_launch(cudaStream_t s, struct parts p, double dt_kick, double dt, double xsph,
+                      double h_max, int h_continuity) {
   if (p.count == 0) return;
   const unsigned nb = (unsigned)((p.count + GPU_BLOCK - 1) / GPU_BLOCK);
   drift_gpu_kernel<<<nb, GPU_BLOCK, 0, s>>>(p, dt_kick, dt, xsph, h_max, h_continuity);

@@ -12,7 +12,8 @@
 static _Thread_local const struct hydro_props *force_hp;
 
 /** Both sides of one interacting pair. */
-BOLIDE_ALWAYS_INLINE void force_sym(struct parts *p, size_t i, size_t j, double r2, const double dx[3]) {
+BOLIDE_ALWAYS_INLINE void force_sym(struct parts *p, size_t i, size_t j, double r2,
+                                    const double dx[3]) {
   if (r2 <= 0.0) return; /* coincident particles exert no pairwise force */
   struct force_in in_i, in_j;
   hydro_force_load(p, i, &in_i, force_hp->solids);

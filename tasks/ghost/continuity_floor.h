@@ -29,7 +29,8 @@
 
 /** The smallest continuity density of material mat: the larger of its
  *  density_floor and ratio * rho0 (0: no floor). */
-BOLIDE_INLINE double continuity_rho_floor(const struct hydro_props *hp, const struct material *mat) {
+BOLIDE_INLINE double continuity_rho_floor(const struct hydro_props *hp,
+                                          const struct material *mat) {
   const double f = hp->continuity_min_ratio * mat->rho0;
   return (f > mat->density_floor) ? f : mat->density_floor;
 }
@@ -37,7 +38,8 @@ BOLIDE_INLINE double continuity_rho_floor(const struct hydro_props *hp, const st
 /** Hold particle i's integrated and predicted densities at or above
  *  rho_floor; mark it with PART_RHO_FLOOR when it sits on the floor (its
  *  density may then not decrease: continuity_floor_rate). */
-BOLIDE_INLINE void continuity_floor_part(struct parts *BOLIDE_RESTRICT p, size_t i, double rho_floor) {
+BOLIDE_INLINE void continuity_floor_part(struct parts *BOLIDE_RESTRICT p, size_t i,
+                                         double rho_floor) {
   if (rho_floor > 0.0 && !(p->rho_fp[i] > rho_floor)) {
     p->rho_fp[i] = rho_floor;
     if (!(p->rho_full[i] > rho_floor)) p->rho_full[i] = rho_floor;

@@ -40,7 +40,8 @@ int ghost_cell_cpu(struct parts *p, struct cell *c, const struct ghost_ngbs *ngb
     for (size_t i = beg; i < end; i++)
       if (!(p->flags[i] & PART_H_CONVERGED)) hydro_density_reset(p, i);
     cell_update_h_max(p, c);
-    for (int k = 0; k < ngbs->n; k++) density_gather_unconverged_cpu(p, c, ngbs->cells[k], ngbs->shift[k]);
+    for (int k = 0; k < ngbs->n; k++)
+      density_gather_unconverged_cpu(p, c, ngbs->cells[k], ngbs->shift[k]);
     left = 0;
     for (size_t i = beg; i < end; i++) {
       if (p->flags[i] & PART_H_CONVERGED) continue;

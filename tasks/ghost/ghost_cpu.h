@@ -10,9 +10,9 @@ struct material_table;
 
 /** Where the ghost of a top-level cell finds its neighbours. */
 struct ghost_ngbs {
-  int n;                        /**< number of neighbouring top-level cells, itself included */
-  struct cell *const *cells;    /**< the cells */
-  const double (*shift)[3];     /**< periodic shift of each */
+  int n;                     /**< number of neighbouring top-level cells, itself included */
+  struct cell *const *cells; /**< the cells */
+  const double (*shift)[3];  /**< periodic shift of each */
 };
 
 /** Finish the density sums of the particles of top-level cell c, iterate
@@ -23,7 +23,6 @@ struct ghost_ngbs {
  *  returns 1 (rebuild the cells), else 0.  A particle that does not converge
  *  in hp->max_iterations stops the run with an error naming it. */
 int ghost_cell_cpu(struct parts *p, struct cell *c, const struct ghost_ngbs *ngbs,
-                   const struct hydro_props *hp, const struct material_table *mats,
-                   double H_limit);
+                   const struct hydro_props *hp, const struct material_table *mats, double H_limit);
 
 #endif

@@ -95,7 +95,8 @@ BOLIDE_INLINE void ghost_part_finish(struct parts *BOLIDE_RESTRICT p, size_t i,
   }
   double P, cs;
   if (mat->porosity.model != POROSITY_NONE)
-    porosity_eos(mat, p->rho[i], p->up[i], &p->alpha_p[i], &P, &cs); /* P = P_s(alpha rho, u)/alpha */
+    porosity_eos(mat, p->rho[i], p->up[i], &p->alpha_p[i], &P,
+                 &cs); /* P = P_s(alpha rho, u)/alpha */
   else
     material_eos(mat, p->rho[i], p->up[i], &P, &cs);
   /* fractured material (Johnson & Cook 1985; theory/solids.md E6f) carries

@@ -44,11 +44,12 @@
  *  yield surface, by the second kick (kick.h).  Returns the yield stress
  *  (of the state before the return's updates). */
 BOLIDE_INLINE double extra_ghost_plastic_return(struct parts *BOLIDE_RESTRICT p, size_t i,
-                                              const struct material *mat, double S[6],
-                                              double eps_rate) {
+                                                const struct material *mat, double S[6],
+                                                double eps_rate) {
   const double mu = mat->shear_modulus;
-  const struct strength_state st = {p->P[i], p->rho[i], p->up[i], p->eps_p[i], eps_rate,
-                                    damage_total(p->dmg[i], p->dmg_shear[i])};
+  const struct strength_state st = {p->P[i],  p->rho[i],
+                                    p->up[i], p->eps_p[i],
+                                    eps_rate, damage_total(p->dmg[i], p->dmg_shear[i])};
   const double Y = strength_yield(mat, &st);
   const double seq = sqrt(3.0 * strength_J2(S)); /* trial stress: triaxiality of E6f */
   const double deps_p = strength_radial_return(S, Y, mu);
@@ -56,11 +57,12 @@ BOLIDE_INLINE double extra_ghost_plastic_return(struct parts *BOLIDE_RESTRICT p,
   p->eps_p[i] += deps_p;
   if (p->rho[i] > 0.0) p->w_plastic[i] += Y * deps_p / p->rho[i];
   if (strength_jc_fracture(mat))
-    p->dmg_shear[i] = strength_jc_damage_update(mat, p->dmg_shear[i], deps_p, seq, p->P[i], p->rho[i],
-                                                p->up[i], eps_rate);
+    p->dmg_shear[i] = strength_jc_damage_update(mat, p->dmg_shear[i], deps_p, seq, p->P[i],
+                                                p->rho[i], p->up[i], eps_rate);
   else if (mat->shear_failure_strain > 0.0)
-    p->dmg_shear[i] = damage_shear_update(p->dmg_shear[i], deps_p, p->P[i], mat->shear_failure_strain,
-                                          mat->shear_failure_slope, mat->shear_failure_pressure);
+    p->dmg_shear[i] =
+        damage_shear_update(p->dmg_shear[i], deps_p, p->P[i], mat->shear_failure_strain,
+                            mat->shear_failure_slope, mat->shear_failure_pressure);
   return Y;
 }
 
@@ -83,11 +85,11 @@ BOLIDE_INLINE void extra_ghost_velocity_gradient(struct parts *BOLIDE_RESTRICT p
   p->gvzx[i] = gv[6], p->gvzy[i] = gv[7], p->gvzz[i] = gv[8];
 }
 
-/** Free-surface detection of fluid particle i (theory/fluids.md F5): with the self term V_i W(0, h_i) added, its kernel sum
- *  Z_i = sum_j m_j/rho_j W_ij is about 1 inside the fluid and about 1/2 on
- *  a flat surface; below hp->free_surface_threshold the particle is on the
- *  free surface: flagged PART_FREE_SURFACE, pressure 0 for the force loop.
- *  Particles of materials with strength are never flagged. */
+/** Free-surface detection of fluid particle i (theory/fluids.md F5): with the self term V_i W(0,
+ * h_i) added, its kernel sum Z_i = sum_j m_j/rho_j W_ij is about 1 inside the fluid and about 1/2
+ * on a flat surface; below hp->free_surface_threshold the particle is on the free surface: flagged
+ * PART_FREE_SURFACE, pressure 0 for the force loop. Particles of materials with strength are never
+ * flagged. */
 BOLIDE_INLINE void extra_ghost_free_surface(struct parts *BOLIDE_RESTRICT p, size_t i,
                                             const struct hydro_props *hp,
                                             const struct material *mat) {

@@ -63,8 +63,8 @@ static void up_rec(struct parts *p, const struct cell *c, struct gravity_cell *g
   const double centre[3] = {c->loc[0] + 0.5 * c->width[0], c->loc[1] + 0.5 * c->width[1],
                             c->loc[2] + 0.5 * c->width[2]};
   if (c->count == 0) {
-    gravity_up_leaf(&g->mp, &g->a_min, &g->h_support, p->x, p->y, p->z, p->m, p->h, p->gax,
-                    p->gay, p->gaz, 0, 0, order, h_factor, centre);
+    gravity_up_leaf(&g->mp, &g->a_min, &g->h_support, p->x, p->y, p->z, p->m, p->h, p->gax, p->gay,
+                    p->gaz, 0, 0, order, h_factor, centre);
     return;
   }
   if (c->split) {
@@ -81,8 +81,8 @@ static void up_rec(struct parts *p, const struct cell *c, struct gravity_cell *g
     gravity_up_node(&g->mp, &g->a_min, &g->h_support, ch, ch_a, ch_h, n, order, centre);
   } else {
     /* |ga| of the previous pass read, then a fresh start of the sums */
-    gravity_up_leaf(&g->mp, &g->a_min, &g->h_support, p->x, p->y, p->z, p->m, p->h, p->gax,
-                    p->gay, p->gaz, c->offset, c->offset + c->count, order, h_factor, centre);
+    gravity_up_leaf(&g->mp, &g->a_min, &g->h_support, p->x, p->y, p->z, p->m, p->h, p->gax, p->gay,
+                    p->gaz, c->offset, c->offset + c->count, order, h_factor, centre);
     for (size_t i = c->offset; i < c->offset + c->count; i++)
       p->gax[i] = p->gay[i] = p->gaz[i] = p->pot[i] = 0.0;
   }
@@ -249,7 +249,9 @@ void gravity_record_begin(struct gravity_ilist *il) {
   }
 }
 
-void gravity_record_end(void) { recording = NULL; }
+void gravity_record_end(void) {
+  recording = NULL;
+}
 
 void gravity_ilist_free(struct gravity_ilist *il) {
   free(il->item);
@@ -509,9 +511,9 @@ static void walk_pair(struct parts *p, const struct cell *a, const struct cell *
   int a_big = 0;
   double r2 = 0.0;
   counters.mac++;
-  const int d = gravity_walk_choose((int)a->count, (int)b->count, a->split, b->split, &ga->mp,
-                                    &gb->mp, ga->a_min, gb->a_min, ga->h_support, gb->h_support,
-                                    &wp, &a_big, &r2);
+  const int d =
+      gravity_walk_choose((int)a->count, (int)b->count, a->split, b->split, &ga->mp, &gb->mp,
+                          ga->a_min, gb->a_min, ga->h_support, gb->h_support, &wp, &a_big, &r2);
   if (d == GRAVITY_WALK_P2P) {
     p2p_pair(p, a, b, symmetric, gp);
   } else if (d == GRAVITY_WALK_M2P) {
@@ -525,8 +527,8 @@ static void walk_pair(struct parts *p, const struct cell *a, const struct cell *
       if (symmetric || !a_big) rec_add(&gpu_sink->field, small->index, -1 - big->index);
       return;
     }
-    m2p_leaf(p, big, gc + small->index, symmetric || a_big, symmetric || !a_big,
-             gp->eps2_expansion, gp->G, gp->order);
+    m2p_leaf(p, big, gc + small->index, symmetric || a_big, symmetric || !a_big, gp->eps2_expansion,
+             gp->G, gp->order);
   } else if (d == GRAVITY_WALK_M2L) {
     counters.m2l++;
     record_distance(r2);

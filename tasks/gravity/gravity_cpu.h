@@ -96,7 +96,7 @@ struct gravity_ilist {
 struct gravity_cell {
   struct gravity_multipole mp; /**< multipole about the centre of mass (gravity_up) */
   struct gravity_field field;  /**< local expansion about mp.com (interactions, gravity_down) */
-  double a_min; /**< smallest |ga| of the cell's particles at the previous pass (0: unknown) */
+  double a_min;     /**< smallest |ga| of the cell's particles at the previous pass (0: unknown) */
   double h_support; /**< largest kernel support 3 h_factor h_i of the cell's particles (gravity_up;
                          0 unless Gravity:softening_h_factor > 0) */
 };

@@ -246,9 +246,9 @@ BOLIDE_INLINE void gravity_up_leaf(struct gravity_multipole *BOLIDE_RESTRICT mp,
 /** Split cell from its n > 0 non-empty children (in progeny order):
  *  child k's multipole ch[k], a_min ch_a[k], h_support ch_h[k]. */
 BOLIDE_INLINE void gravity_up_node(struct gravity_multipole *BOLIDE_RESTRICT mp, double *a_min,
-                                   double *h_support,
-                                   const struct gravity_multipole *const *ch, const double *ch_a,
-                                   const double *ch_h, int n, int order, const double centre[3]) {
+                                   double *h_support, const struct gravity_multipole *const *ch,
+                                   const double *ch_a, const double *ch_h, int n, int order,
+                                   const double centre[3]) {
   gravity_multipole_zero(mp);
   for (int k = 0; k < 3; k++) mp->com[k] = centre[k];
   mp->r_max = 0.0;
@@ -266,8 +266,7 @@ BOLIDE_INLINE void gravity_up_node(struct gravity_multipole *BOLIDE_RESTRICT mp,
     for (int k = 0; k < 3; k++) mp->com[k] = s[k] / mass;
   for (int q = 0; q < n; q++) {
     const struct gravity_multipole *mq = ch[q];
-    const double t[3] = {mq->com[0] - mp->com[0], mq->com[1] - mp->com[1],
-                         mq->com[2] - mp->com[2]};
+    const double t[3] = {mq->com[0] - mp->com[0], mq->com[1] - mp->com[1], mq->com[2] - mp->com[2]};
     gravity_m2m(mp, mq, t, order);
     const double r = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]) + mq->r_max;
     if (r > mp->r_max) mp->r_max = r;
@@ -300,29 +299,26 @@ BOLIDE_INLINE void gravity_derivatives(const double R[3], double eps2, int q,
   }
   int i = 0;
   GRAVITY_UNROLL
-  for (int n = 0; n <= q; n++)
+  for (int n = 0; n <= q; n++) GRAVITY_UNROLL
+  for (int nx = n; nx >= 0; nx--) GRAVITY_UNROLL
+  for (int ny = n - nx; ny >= 0; ny--, i++) {
+    const int nz = n - nx - ny;
+    double s = 0.0;
     GRAVITY_UNROLL
-    for (int nx = n; nx >= 0; nx--)
+    for (int kx = 0; 2 * kx <= nx; kx++) {
+      const double cx = xp[nx - 2 * kx] / (fact[kx] * fact[nx - 2 * kx] * (double)(1 << kx));
       GRAVITY_UNROLL
-      for (int ny = n - nx; ny >= 0; ny--, i++) {
-        const int nz = n - nx - ny;
-        double s = 0.0;
+      for (int ky = 0; 2 * ky <= ny; ky++) {
+        const double cy = yp[ny - 2 * ky] / (fact[ky] * fact[ny - 2 * ky] * (double)(1 << ky));
         GRAVITY_UNROLL
-        for (int kx = 0; 2 * kx <= nx; kx++) {
-          const double cx = xp[nx - 2 * kx] / (fact[kx] * fact[nx - 2 * kx] * (double)(1 << kx));
-          GRAVITY_UNROLL
-          for (int ky = 0; 2 * ky <= ny; ky++) {
-            const double cy = yp[ny - 2 * ky] / (fact[ky] * fact[ny - 2 * ky] * (double)(1 << ky));
-            GRAVITY_UNROLL
-            for (int kz = 0; 2 * kz <= nz; kz++) {
-              const double cz =
-                  zp[nz - 2 * kz] / (fact[kz] * fact[nz - 2 * kz] * (double)(1 << kz));
-              s += cx * cy * cz * fm[n - kx - ky - kz];
-            }
-          }
+        for (int kz = 0; 2 * kz <= nz; kz++) {
+          const double cz = zp[nz - 2 * kz] / (fact[kz] * fact[nz - 2 * kz] * (double)(1 << kz));
+          s += cx * cy * cz * fm[n - kx - ky - kz];
         }
-        D[i] = s * fact[nx] * fact[ny] * fact[nz];
       }
+    }
+    D[i] = s * fact[nx] * fact[ny] * fact[nz];
+  }
 }
 
 /** M2L, one direction: add to the field tensor of B the contribution of the
@@ -332,29 +328,26 @@ BOLIDE_INLINE void gravity_m2l(struct gravity_field *BOLIDE_RESTRICT fb,
                                const double *BOLIDE_RESTRICT D, int p) {
   int i = 0;
   GRAVITY_UNROLL
-  for (int k = 0; k <= p; k++)
+  for (int k = 0; k <= p; k++) GRAVITY_UNROLL
+  for (int kx = k; kx >= 0; kx--) GRAVITY_UNROLL
+  for (int ky = k - kx; ky >= 0; ky--, i++) {
+    const int kz = k - kx - ky;
+    double s = 0.0;
+    int j = 0;
     GRAVITY_UNROLL
-    for (int kx = k; kx >= 0; kx--)
-      GRAVITY_UNROLL
-      for (int ky = k - kx; ky >= 0; ky--, i++) {
-        const int kz = k - kx - ky;
-        double s = 0.0;
-        int j = 0;
-        GRAVITY_UNROLL
-        for (int n = 0; n <= p - k; n++) {
-          if (n == 1) { /* the dipole vanishes about the centre of mass */
-            j += 3;
-            continue;
-          }
-          const double sg = gravity_sign(n);
-          GRAVITY_UNROLL
-          for (int nx = n; nx >= 0; nx--)
-            GRAVITY_UNROLL
-            for (int ny = n - nx; ny >= 0; ny--, j++)
-              s += sg * ma->M[j] * D[gravity_index(nx + kx, ny + ky, n - nx - ny + kz)];
-        }
-        fb->F[i] -= s;
+    for (int n = 0; n <= p - k; n++) {
+      if (n == 1) { /* the dipole vanishes about the centre of mass */
+        j += 3;
+        continue;
       }
+      const double sg = gravity_sign(n);
+      GRAVITY_UNROLL
+      for (int nx = n; nx >= 0; nx--) GRAVITY_UNROLL
+      for (int ny = n - nx; ny >= 0; ny--, j++)
+        s += sg * ma->M[j] * D[gravity_index(nx + kx, ny + ky, n - nx - ny + kz)];
+    }
+    fb->F[i] -= s;
+  }
 }
 
 /** M2L, both directions at once (the symmetric pair interaction): with
@@ -367,33 +360,30 @@ BOLIDE_INLINE void gravity_m2l_sym(struct gravity_field *BOLIDE_RESTRICT fa,
                                    const double *BOLIDE_RESTRICT D, int p) {
   int i = 0;
   GRAVITY_UNROLL
-  for (int k = 0; k <= p; k++)
+  for (int k = 0; k <= p; k++) GRAVITY_UNROLL
+  for (int kx = k; kx >= 0; kx--) GRAVITY_UNROLL
+  for (int ky = k - kx; ky >= 0; ky--, i++) {
+    const int kz = k - kx - ky;
+    double sa = 0.0, sb = 0.0;
+    int j = 0;
     GRAVITY_UNROLL
-    for (int kx = k; kx >= 0; kx--)
-      GRAVITY_UNROLL
-      for (int ky = k - kx; ky >= 0; ky--, i++) {
-        const int kz = k - kx - ky;
-        double sa = 0.0, sb = 0.0;
-        int j = 0;
-        GRAVITY_UNROLL
-        for (int n = 0; n <= p - k; n++) {
-          if (n == 1) { /* the dipoles vanish about the centres of mass */
-            j += 3;
-            continue;
-          }
-          const double sg = gravity_sign(n);
-          GRAVITY_UNROLL
-          for (int nx = n; nx >= 0; nx--)
-            GRAVITY_UNROLL
-            for (int ny = n - nx; ny >= 0; ny--, j++) {
-              const double d = D[gravity_index(nx + kx, ny + ky, n - nx - ny + kz)];
-              sb += sg * ma->M[j] * d;
-              sa += mb->M[j] * d;
-            }
-        }
-        fb->F[i] -= sb;
-        fa->F[i] -= gravity_sign(k) * sa;
+    for (int n = 0; n <= p - k; n++) {
+      if (n == 1) { /* the dipoles vanish about the centres of mass */
+        j += 3;
+        continue;
       }
+      const double sg = gravity_sign(n);
+      GRAVITY_UNROLL
+      for (int nx = n; nx >= 0; nx--) GRAVITY_UNROLL
+      for (int ny = n - nx; ny >= 0; ny--, j++) {
+        const double d = D[gravity_index(nx + kx, ny + ky, n - nx - ny + kz)];
+        sb += sg * ma->M[j] * d;
+        sa += mb->M[j] * d;
+      }
+    }
+    fb->F[i] -= sb;
+    fa->F[i] -= gravity_sign(k) * sa;
+  }
 }
 
 /** L2L: add the parent's local expansion, re-expanded about the child's
@@ -497,20 +487,18 @@ BOLIDE_INLINE void gravity_m2p_p2l(double m, const struct gravity_multipole *BOL
   double phi = 0.0, ax = 0.0, ay = 0.0, az = 0.0;
   int i = 0;
   GRAVITY_UNROLL
-  for (int n = 0; n <= p; n++)
-    GRAVITY_UNROLL
-    for (int nx = n; nx >= 0; nx--)
-      GRAVITY_UNROLL
-      for (int ny = n - nx; ny >= 0; ny--, i++) {
-        const int nz = n - nx - ny;
-        if (n != 1) phi += mb->M[i] * D[i]; /* B's dipole vanishes (centre of mass) */
-        if (n < p && n != 1) {
-          ax += mb->M[i] * D[gravity_index(nx + 1, ny, nz)];
-          ay += mb->M[i] * D[gravity_index(nx, ny + 1, nz)];
-          az += mb->M[i] * D[gravity_index(nx, ny, nz + 1)];
-        }
-        if (fb) fb->F[i] -= m * D[i];
-      }
+  for (int n = 0; n <= p; n++) GRAVITY_UNROLL
+  for (int nx = n; nx >= 0; nx--) GRAVITY_UNROLL
+  for (int ny = n - nx; ny >= 0; ny--, i++) {
+    const int nz = n - nx - ny;
+    if (n != 1) phi += mb->M[i] * D[i]; /* B's dipole vanishes (centre of mass) */
+    if (n < p && n != 1) {
+      ax += mb->M[i] * D[gravity_index(nx + 1, ny, nz)];
+      ay += mb->M[i] * D[gravity_index(nx, ny + 1, nz)];
+      az += mb->M[i] * D[gravity_index(nx, ny, nz + 1)];
+    }
+    if (fb) fb->F[i] -= m * D[i];
+  }
   *pot -= G * phi;
   a[0] -= G * ax;
   a[1] -= G * ay;
@@ -525,7 +513,8 @@ BOLIDE_INLINE void gravity_m2p_p2l(double m, const struct gravity_multipole *BOL
  *  set errno, and a select between divisions may trap). */
 #define GRAVITY_SPLINE_POT(u, u2) \
   (3.0 + (u2) * (-7.0 + (u2) * (21.0 + (u) * (-28.0 + (u) * (15.0 - 3.0 * (u))))))
-#define GRAVITY_SPLINE_ACC(u, u2) (14.0 + (u2) * (-84.0 + (u) * (140.0 + (u) * (-90.0 + 21.0 * (u)))))
+#define GRAVITY_SPLINE_ACC(u, u2) \
+  (14.0 + (u2) * (-84.0 + (u) * (140.0 + (u) * (-90.0 + 21.0 * (u)))))
 
 /** Softened pair kernel with the spline softening of support H, without
  *  branches (the selects compile to masks or conditional moves): the spline
@@ -627,8 +616,7 @@ BOLIDE_INLINE int gravity_mac(double r_max_a, double r_max_b, double r2, double 
  *  estimate).  a_min <= 0 (not known) or eps_fmm <= 0 accepts: the
  *  geometric criterion then decides alone. */
 BOLIDE_INLINE int gravity_mac_power(double G, const double *BOLIDE_RESTRICT pw_b, double rho_a,
-                                    double rho_b, double r2, int p, double eps_fmm,
-                                    double a_min) {
+                                    double rho_b, double r2, int p, double eps_fmm, double a_min) {
   if (eps_fmm <= 0.0 || a_min <= 0.0) return 1;
   const double rs = rho_a + rho_b;
   if (rs <= 0.0) return 1; /* two points: no truncation error */

@@ -30,14 +30,17 @@ void gravity_props_init(struct gravity_props *gp, const struct params *params,
         params_filename(params));
   if (gp->enabled && gp->h_factor > 0.0 && gp->reuse_steps > 0) {
     /* the kept cell supports would not follow h (theory/gravity.md) */
-    error_warning("Gravity:reuse_steps %d is not used: the far-field reuse does not follow the "
-                  "changes of h that Gravity:softening_h_factor ties the softening to",
-                  gp->reuse_steps);
+    error_warning(
+        "Gravity:reuse_steps %d is not used: the far-field reuse does not follow the "
+        "changes of h that Gravity:softening_h_factor ties the softening to",
+        gp->reuse_steps);
     gp->reuse_steps = 0;
   }
   if (gp->enabled && eps > 0.0 && gp->h_factor > 0.0)
-    error_warning("Gravity:softening %g is not used: Gravity:softening_h_factor %g sets eps_i = "
-                  "factor * h_i", eps, gp->h_factor);
+    error_warning(
+        "Gravity:softening %g is not used: Gravity:softening_h_factor %g sets eps_i = "
+        "factor * h_i",
+        eps, gp->h_factor);
   if (gp->enabled && eps == 0.0 && gp->h_factor <= 0.0)
     error_warning("Gravity:softening is 0: close pairs of particles will see a singular force");
 }

@@ -85,8 +85,8 @@ void gravity_up_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_up
   for (int L = nr_levels - 1; L >= 0; L--) {
     const int k0 = level_start[L], k1 = level_start[L + 1];
     if (k1 <= k0) continue;
-    GRAVITY_GPU_DISPATCH(gravity_up_node_gpu_kernel, (k1 - k0 + B - 1) / B, B, u, child, parent,
-                         k0, k1);
+    GRAVITY_GPU_DISPATCH(gravity_up_node_gpu_kernel, (k1 - k0 + B - 1) / B, B, u, child, parent, k0,
+                         k1);
   }
 }
 
@@ -120,10 +120,10 @@ __device__ static void gravity_walk_share(const struct gravity_walk_tree *T,
 /** The first round: the roots [r0, r0 + GRAVITY_WALK_ROOTS) of the nt x nt
  *  pairs of top-level cells (gravity_walk_root). */
 __global__ void __launch_bounds__(GRAVITY_WALK_BLOCK)
-gravity_walk_roots_gpu_kernel(struct gravity_walk_tree T, struct gravity_walk_params wp,
-                              struct gravity_walk_lists L, struct gravity_walk_queue out,
-                              const double *__restrict__ lo_hi, int nt, double h_support_top,
-                              int *deep) {
+    gravity_walk_roots_gpu_kernel(struct gravity_walk_tree T, struct gravity_walk_params wp,
+                                  struct gravity_walk_lists L, struct gravity_walk_queue out,
+                                  const double *__restrict__ lo_hi, int nt, double h_support_top,
+                                  int *deep) {
   const long long r0 =
       ((long long)blockIdx.x * blockDim.x + threadIdx.x) * (long long)GRAVITY_WALK_ROOTS;
   const long long nroots = (long long)nt * nt;
@@ -141,9 +141,9 @@ gravity_walk_roots_gpu_kernel(struct gravity_walk_tree T, struct gravity_walk_pa
 /** A later round: every entry the last round handed on (min(*in.n,
  *  in.cap) of them), one per walker, grid-stride. */
 __global__ void __launch_bounds__(GRAVITY_WALK_BLOCK)
-gravity_walk_queue_gpu_kernel(struct gravity_walk_tree T, struct gravity_walk_params wp,
-                              struct gravity_walk_lists L, struct gravity_walk_queue in,
-                              struct gravity_walk_queue out, int *deep) {
+    gravity_walk_queue_gpu_kernel(struct gravity_walk_tree T, struct gravity_walk_params wp,
+                                  struct gravity_walk_lists L, struct gravity_walk_queue in,
+                                  struct gravity_walk_queue out, int *deep) {
   const unsigned long long n = *in.n < in.cap ? *in.n : in.cap;
   int stack[3 * GRAVITY_WALK_STACK];
   struct gravity_walk_buf B;

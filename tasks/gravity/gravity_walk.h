@@ -31,11 +31,11 @@
 
 /** The cell tree as the walk reads it, by cell index. */
 struct gravity_walk_tree {
-  const int *progeny;                   /**< 8 per cell: child cell or -1 */
-  const int *count;                     /**< particles of each cell */
-  const unsigned char *split;           /**< 1: the cell has progeny */
-  const struct gravity_multipole *mp;   /**< multipoles (com, r_max, M[0]) */
-  const double *a_min, *h_support;      /**< struct gravity_cell's (gravity_up) */
+  const int *progeny;                 /**< 8 per cell: child cell or -1 */
+  const int *count;                   /**< particles of each cell */
+  const unsigned char *split;         /**< 1: the cell has progeny */
+  const struct gravity_multipole *mp; /**< multipoles (com, r_max, M[0]) */
+  const double *a_min, *h_support;    /**< struct gravity_cell's (gravity_up) */
 };
 
 /** The acceptance parameters of struct gravity_props. */
@@ -87,8 +87,8 @@ BOLIDE_INLINE void gravity_walk_flush(const struct gravity_walk_lists *L,
 }
 
 /** Add (t, s) to list k. */
-BOLIDE_INLINE void gravity_walk_emit(const struct gravity_walk_lists *L,
-                                     struct gravity_walk_buf *B, int k, int t, int s) {
+BOLIDE_INLINE void gravity_walk_emit(const struct gravity_walk_lists *L, struct gravity_walk_buf *B,
+                                     int k, int t, int s) {
   if (B->n[k] == GRAVITY_WALK_BUF) gravity_walk_flush(L, B, k);
   B->t[k][B->n[k]] = t;
   B->s[k][B->n[k]] = s;
@@ -124,10 +124,10 @@ BOLIDE_INLINE int gravity_walk_accept(const struct gravity_multipole *ma,
                            : wp->theta;
   const double hs = wp->h_factor > 0.0 ? fmax(hs_a, hs_b) : wp->h_support;
   if (!gravity_mac(ma->r_max, mb->r_max, r2, theta, hs)) return 0;
-  return gravity_mac_power(wp->G, mb->power, ma->r_max, mb->r_max, r2, wp->order,
-                           wp->epsilon_fmm, a_min_a) &&
-         gravity_mac_power(wp->G, ma->power, mb->r_max, ma->r_max, r2, wp->order,
-                           wp->epsilon_fmm, a_min_b);
+  return gravity_mac_power(wp->G, mb->power, ma->r_max, mb->r_max, r2, wp->order, wp->epsilon_fmm,
+                           a_min_a) &&
+         gravity_mac_power(wp->G, ma->power, mb->r_max, ma->r_max, r2, wp->order, wp->epsilon_fmm,
+                           a_min_b);
 }
 
 /** The dual-tree walk's step between disjoint cells a and b (Dehnen 2002),
@@ -158,7 +158,7 @@ BOLIDE_INLINE int gravity_walk_choose(int count_a, int count_b, int split_a, int
   }
   if (!split_a && !split_b) return GRAVITY_WALK_P2P;
   return split_a && (!split_b || ma->r_max >= mb->r_max) ? GRAVITY_WALK_OPEN_A
-                                                          : GRAVITY_WALK_OPEN_B;
+                                                         : GRAVITY_WALK_OPEN_B;
 }
 
 /** gravity_walk_choose for cells a and b of the tree T. */
@@ -167,16 +167,15 @@ BOLIDE_INLINE int gravity_walk_decide(const struct gravity_walk_tree *T,
                                       int *a_big) {
   double r2;
   return gravity_walk_choose(T->count[a], T->count[b], T->split[a], T->split[b], T->mp + a,
-                             T->mp + b, T->a_min[a], T->a_min[b], T->h_support[a],
-                             T->h_support[b], wp, a_big, &r2);
+                             T->mp + b, T->a_min[a], T->a_min[b], T->h_support[a], T->h_support[b],
+                             wp, a_big, &r2);
 }
 
 /** Whether two top-level cells, with bounding boxes lo/hi (3 each), are
  *  near: their walk is a pair task's (symmetric) rather than a long-range
  *  one (gravity_top_pair_is_near). */
-BOLIDE_INLINE int gravity_walk_top_near(const double *lo_i, const double *hi_i,
-                                        const double *lo_j, const double *hi_j, double theta,
-                                        double h_support) {
+BOLIDE_INLINE int gravity_walk_top_near(const double *lo_i, const double *hi_i, const double *lo_j,
+                                        const double *hi_j, double theta, double h_support) {
   double ri2 = 0.0, rj2 = 0.0, d2 = 0.0;
   for (int k = 0; k < 3; k++) {
     const double wi = hi_i[k] - lo_i[k];

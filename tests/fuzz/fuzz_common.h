@@ -20,7 +20,9 @@
 
 static jmp_buf fuzz_env;
 
-static inline void fuzz_jump(void) { longjmp(fuzz_env, 1); }
+static inline void fuzz_jump(void) {
+  longjmp(fuzz_env, 1);
+}
 
 /** A file name private to this process under /dev/shm (or /tmp). */
 static inline const char *fuzz_path(const char *suffix) {
@@ -58,6 +60,8 @@ static inline void fuzz_close_hdf5(void) {
 
 /** Route error_exit to fuzz_jump (once).  The error lines of refused
  *  inputs are hidden by running with -close_fd_mask=3 (tools/fuzz.sh). */
-static inline void fuzz_quiet(void) { error_exit_hook = fuzz_jump; }
+static inline void fuzz_quiet(void) {
+  error_exit_hook = fuzz_jump;
+}
 
 #endif

@@ -22,12 +22,15 @@ struct fuzz_in {
   size_t n, i;
 };
 
-static unsigned fz_u8(struct fuzz_in *in) { return in->i < in->n ? in->d[in->i++] : 0; }
+static unsigned fz_u8(struct fuzz_in *in) {
+  return in->i < in->n ? in->d[in->i++] : 0;
+}
 
 /** A value: mostly one of the interesting ones, else raw bits. */
 static double fz_value(struct fuzz_in *in, double typical) {
-  static const double special[] = {1.0, 0.0, -1.0, 0.5, 1e300, -1e300, 1e200, 1e-310, 101.0,
-                                   102.0, 2.5, 1099511627776.0, 9.3e18, -9.3e18, 1.5, 3.0};
+  static const double special[] = {1.0,    0.0,     -1.0,  0.5,   1e300, -1e300,
+                                   1e200,  1e-310,  101.0, 102.0, 2.5,   1099511627776.0,
+                                   9.3e18, -9.3e18, 1.5,   3.0};
   const unsigned c = fz_u8(in);
   if (c < 128) return typical * (1.0 + (double)c / 128.0);
   if (c < 128 + 16) return special[c - 128];

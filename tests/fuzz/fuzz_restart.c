@@ -21,7 +21,8 @@ static void fuzz_restart_repair(unsigned char *buf, size_t len) {
   if (len < RESTART_HEADER_BYTES + 8) return;
   const uint64_t payload = len - RESTART_HEADER_BYTES - 8;
   memcpy(buf + 88, &payload, 8);
-  const size_t ppos = RESTART_HEADER_BYTES + 4 + (size_t)part_nr_fields * 36 + sizeof(struct restart_state);
+  const size_t ppos =
+      RESTART_HEADER_BYTES + 4 + (size_t)part_nr_fields * 36 + sizeof(struct restart_state);
   uint64_t plen;
   if (ppos + 8 <= len - 8) {
     memcpy(&plen, buf + ppos, 8);
@@ -42,7 +43,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   struct restart_data d;
   char err[1024];
   if (setjmp(fuzz_env) == 0) {
-    if (restart_read_buffer(buf, size, "fuzz.bin", NULL, &d, err, sizeof err) == 0) restart_data_free(&d);
+    if (restart_read_buffer(buf, size, "fuzz.bin", NULL, &d, err, sizeof err) == 0)
+      restart_data_free(&d);
   }
   free(buf);
   return 0;

@@ -99,7 +99,8 @@ struct ic_sea_options {
   double stretch_a;       /**< a of the latitude stretching (b = 10 a) */
 };
 /** The defaults of bolide-ic planet (theory/planets.md). */
-#define IC_SEA_OPTIONS_DEFAULT {.density_iter = 6, .relax = 30, .shell_thickness = 1.2, .stretch_a = 0.15}
+#define IC_SEA_OPTIONS_DEFAULT \
+  { .density_iter = 6, .relax = 30, .shell_thickness = 1.2, .stretch_a = 0.15 }
 
 /** Particles of a profile on SEA shells: about N of them, masses equal
  *  within rounding, h = eta (m/rho)^(1/3), MaterialIDs mat_id[layer], ids

@@ -31,10 +31,10 @@ struct body {
   const char *profile;                                 /**< profile table to write, NULL: none */
   double n;                                            /**< particles */
   double eta;                                          /**< h = eta (m/rho)^(1/3) */
-  double rho, u, T;    /**< sphere: density, energy or temperature */
-  int T_given;         /**< sphere: u from T (else u = 0) */
-  double radius_given; /**< file: radius override */
-  uint64_t seed;       /**< random rotations */
+  double rho, u, T;          /**< sphere: density, energy or temperature */
+  int T_given;               /**< sphere: u from T (else u = 0) */
+  double radius_given;       /**< file: radius override */
+  uint64_t seed;             /**< random rotations */
   struct ic_sea_options sea; /**< surface iterations and relaxation of the SEA shells */
   /* results */
   struct parts p; /**< the particles, centred on their centre of mass */
@@ -490,8 +490,9 @@ int icgen_impact_main(int argc, char **argv) {
   if (start_mode) {
     if (!(v0 > 0) || !(b0 >= 0)) error_exit("impact: --v-start and --b-start go together");
     if (v_c >= 0 || v_rel >= 0 || angle_given || bimp >= 0 || t0 >= 0)
-      error_exit("impact: --v-start/--b-start replace --v-contact, --v-over-vesc, --angle, --b "
-                 "and --time");
+      error_exit(
+          "impact: --v-start/--b-start replace --v-contact, --v-over-vesc, --angle, --b "
+          "and --time");
     if (!(d0 > 0)) error_exit("impact: --v-start/--b-start need --separation");
     if (b0 >= d0) error_exit("impact: --b-start must be below --separation");
   } else if ((v_c >= 0) == (v_rel >= 0)) {
@@ -553,20 +554,23 @@ int icgen_impact_main(int argc, char **argv) {
   for (size_t i = 0; i < all.count; i++)
     ext = fmax(ext, fmax(fabs(all.x[i]), fmax(fabs(all.y[i]), fabs(all.z[i]))));
   const double v_eject = 2 * fmax(v_c, v_esc);
-  const double box = body_write(out, &all, argc, argv, "impact", t_end > 0 ? ext + v_eject * t_end : 0.0);
+  const double box =
+      body_write(out, &all, argc, argv, "impact", t_end > 0 ? ext + v_eject * t_end : 0.0);
   printf("impact: v_esc = %.8e m/s, contact: v = %.8e m/s, angle = %.6f deg, d = %.8e m\n", v_esc,
          v_c, theta * 180 / M_PI, d_c);
   printf("impact: start %.8e s before contact, separation %.8e m, v_rel %.8e m/s\n", t_contact,
          sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]),
          sqrt(s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
   if (t_end > 0)
-    printf("impact: box %.4e m: holds material moving away at up to %.4e m/s (twice the larger of "
-           "the contact and escape speeds) for --time-end %g s\n",
-           box, v_eject, t_end);
+    printf(
+        "impact: box %.4e m: holds material moving away at up to %.4e m/s (twice the larger of "
+        "the contact and escape speeds) for --time-end %g s\n",
+        box, v_eject, t_end);
   else
-    printf("impact: box %.4e m (4 x the largest coordinate): material faster than %.4e m/s leaves it "
-           "after %.4e s; give --time-end for a box that holds the ejecta to the end of the run\n",
-           box, v_eject, (0.5 * box - ext) / v_eject);
+    printf(
+        "impact: box %.4e m (4 x the largest coordinate): material faster than %.4e m/s leaves it "
+        "after %.4e s; give --time-end for a box that holds the ejecta to the end of the run\n",
+        box, v_eject, (0.5 * box - ext) / v_eject);
   printf("bolide-ic impact: %zu particles (target ids 1..%zu, impactor %zu..%zu) written to %s\n",
          all.count, t.p.count, t.p.count + 1, all.count, out);
   parts_free(&all), parts_free(&t.p), parts_free(&im.p);

@@ -209,7 +209,8 @@ void ic_sea_shell(int N, double *x, double *y, double *z, uint64_t *rng) {
     }
   }
   free(work);
-  if (!sea_shell_place(N, best_a, best_b, best_dcol, x, y, z)) error_bug("SEA shell of %d points", N);
+  if (!sea_shell_place(N, best_a, best_b, best_dcol, x, y, z))
+    error_bug("SEA shell of %d points", N);
   sea_rotate(N, x, y, z, rng);
 }
 
@@ -446,8 +447,8 @@ void ic_sea_planet(const struct ic_planet_profile *prof, const int32_t *mat_id, 
     free(sh_r), free(sh_first), free(sh_layer);
     if (it > 0) parts_free(p); /* sea_place allocates p afresh (LeakSanitizer) */
     const int ns =
-        sea_place(prof, mat_id, N, eta, seed, first_id, p, opt->shell_thickness, opt->stretch_a,
-                  gr, gv, ng, &sh_r, &sh_first, &sh_layer, verbose && it == 0);
+        sea_place(prof, mat_id, N, eta, seed, first_id, p, opt->shell_thickness, opt->stretch_a, gr,
+                  gv, ng, &sh_r, &sh_first, &sh_layer, verbose && it == 0);
     if (opt->density_iter == 0 && opt->relax == 0) break;
     const size_t n = p->count;
     double *rho = error_malloc(n * sizeof(double), "SEA planet");
@@ -468,10 +469,11 @@ void ic_sea_planet(const struct ic_planet_profile *prof, const int32_t *mat_id, 
       if (fabs(mean[k]) > wmean) wmean = fabs(mean[k]), kmw = k;
     }
     if (verbose)
-      printf("  SPH density, %s %d: largest |rho_SPH / rho - 1| %.4f (shell %d of %d), of a shell "
-             "mean %.4f (shell %d), outermost shell mean %+.4f\n",
-             final ? "relaxation steps" : "iteration", final ? opt->relax : it, worst, kw, ns,
-             wmean, kmw, mean[ns - 1]);
+      printf(
+          "  SPH density, %s %d: largest |rho_SPH / rho - 1| %.4f (shell %d of %d), of a shell "
+          "mean %.4f (shell %d), outermost shell mean %+.4f\n",
+          final ? "relaxation steps" : "iteration", final ? opt->relax : it, worst, kw, ns, wmean,
+          kmw, mean[ns - 1]);
     if (final) {
       free(rho), free(h), free(mean);
       break;

@@ -57,9 +57,9 @@ static void sea_grid_build(struct sea_grid *g, size_t n, const double *x, const 
   size_t *cid = error_malloc((n ? n : 1) * sizeof(size_t), "SPH density grid");
   memset(g->start, 0, (nc + 1) * sizeof(size_t));
   for (size_t i = 0; i < n; i++) {
-    cid[i] = (size_t)((sea_grid_coord(g, 0, x[i]) * g->n[1] + sea_grid_coord(g, 1, y[i])) *
-                          g->n[2] +
-                      sea_grid_coord(g, 2, z[i]));
+    cid[i] =
+        (size_t)((sea_grid_coord(g, 0, x[i]) * g->n[1] + sea_grid_coord(g, 1, y[i])) * g->n[2] +
+                 sea_grid_coord(g, 2, z[i]));
     g->start[cid[i] + 1]++;
   }
   for (size_t k = 0; k < nc; k++) g->start[k + 1] += g->start[k];
@@ -83,7 +83,8 @@ struct sea_ngb {
 static int sea_threads(void) {
   const char *env = getenv("BOLIDE_IC_THREADS");
   long t = env ? strtol(env, NULL, 10) : sysconf(_SC_NPROCESSORS_ONLN);
-  if (env && t < 1) error_exit("bolide-ic: BOLIDE_IC_THREADS must be a positive integer, not '%s'", env);
+  if (env && t < 1)
+    error_exit("bolide-ic: BOLIDE_IC_THREADS must be a positive integer, not '%s'", env);
   return t < 1 ? 1 : t > 256 ? 256 : (int)t;
 }
 
@@ -109,7 +110,8 @@ static void sea_for(size_t n, void (*body)(void *, size_t, struct sea_ngb *), vo
   struct sea_slice sl[256];
   pthread_t th[256];
   for (int k = 0; k < t; k++)
-    sl[k] = (struct sea_slice){n * (size_t)k / (size_t)t, n * (size_t)(k + 1) / (size_t)t, body, ctx};
+    sl[k] =
+        (struct sea_slice){n * (size_t)k / (size_t)t, n * (size_t)(k + 1) / (size_t)t, body, ctx};
   int started = 1;
   for (int k = 1; k < t; k++, started++)
     if (pthread_create(&th[k], NULL, sea_slice_run, &sl[k])) break;
@@ -260,8 +262,17 @@ void ic_sea_relax(size_t n, double *x, double *y, double *z, const double *m, co
     for (size_t i = 0; i < n; i++) hmax = fmax(hmax, h[i]);
     struct sea_grid g;
     sea_grid_build(&g, n, x, y, z, kernel_gamma * hmax);
-    struct sea_ctx c = {.g = &g, .x = x, .y = y, .z = z, .m = m, .rho_t = rho_t, .eta = eta,
-                        .h = h, .rho = rho, .e = e, .dx = dx};
+    struct sea_ctx c = {.g = &g,
+                        .x = x,
+                        .y = y,
+                        .z = z,
+                        .m = m,
+                        .rho_t = rho_t,
+                        .eta = eta,
+                        .h = h,
+                        .rho = rho,
+                        .e = e,
+                        .dx = dx};
     sea_for(n, sea_density_body, &c);
     if (s == steps) { /* the last pass only measures */
       sea_grid_free(&g);
