@@ -195,166 +195,193 @@ static void fofmain_plot(const char *table, const char *png) {
     error_exit("%s: plotting failed (%s %s)", png, py, script);
 }
 
-int main(int argc, char **argv) {
-  error_init(argv[0]);
-  double link_length = 0.0, link_h = 0.0, link_local = 0.0, drop = INFINITY;
-  long long min_count = 1;
-  const char *out = NULL, *spectrum = NULL, *plot = NULL;
+/** The command line. */
+struct fofmain_opts {
+  double link_length, link_h, link_local; /**< one of them set (--link-*) */
+  double drop;                            /**< --min-damage-drop (INFINITY: none) */
+  long long min_count;                    /**< --min-count */
+  const char *out, *spectrum, *plot;      /**< --out, --spectrum, --plot (or NULL) */
+  const char *path;                       /**< the snapshot */
+};
+
+/** Parse the command line into o; returns 1 when the program is done
+ *  (--help, --version) and exits with a message on a bad option. */
+static int fofmain_parse(int argc, char **argv, struct fofmain_opts *o) {
+  *o = (struct fofmain_opts){.drop = INFINITY, .min_count = 1};
   int c;
   while ((c = getopt_long(argc, argv, "hvo:", fofmain_longopts, NULL)) != -1) {
     switch (c) {
       case OPT_LINK_LENGTH:
-        link_length = fofmain_number("link-length", optarg, 0);
+        o->link_length = fofmain_number("link-length", optarg, 0);
         break;
       case OPT_LINK_H:
-        link_h = fofmain_number("link-h", optarg, 0);
+        o->link_h = fofmain_number("link-h", optarg, 0);
         break;
       case OPT_LINK_LOCAL:
-        link_local = fofmain_number("link-local", optarg, 0);
+        o->link_local = fofmain_number("link-local", optarg, 0);
         break;
       case OPT_DROP:
-        drop = fofmain_number("min-damage-drop", optarg, 1);
+        o->drop = fofmain_number("min-damage-drop", optarg, 1);
         break;
       case OPT_MIN_COUNT:
-        min_count = (long long)fofmain_number("min-count", optarg, 0);
+        o->min_count = (long long)fofmain_number("min-count", optarg, 0);
         break;
       case 'o':
-        out = optarg;
+        o->out = optarg;
         break;
       case OPT_SPECTRUM:
-        spectrum = optarg;
+        o->spectrum = optarg;
         break;
       case OPT_PLOT:
-        plot = optarg;
+        o->plot = optarg;
         break;
       case 'v':
         error_verbosity++;
         break;
       case 'h':
         fofmain_usage(stdout);
-        return 0;
+        return 1;
       case OPT_VERSION:
         bolide_version_print("bolide-fof");
-        return 0;
+        return 1;
       default:
         error_exit("unknown option (see --help)");
     }
   }
   if (argc - optind != 1) error_exit("expected one SNAPSHOT.hdf5 (see --help)");
-  if ((link_length > 0.0) + (link_h > 0.0) + (link_local > 0.0) > 1)
+  if ((o->link_length > 0.0) + (o->link_h > 0.0) + (o->link_local > 0.0) > 1)
     error_exit("give one of --link-local, --link-length and --link-h");
-  if (plot && !out) error_exit("--plot needs --out FILE (the table it plots)");
-  if (link_length == 0.0 && link_h == 0.0 && link_local == 0.0) link_local = FOF_LINK_LOCAL_DEFAULT;
-  const char *path = argv[optind];
+  if (o->plot && !o->out) error_exit("--plot needs --out FILE (the table it plots)");
+  if (o->link_length == 0.0 && o->link_h == 0.0 && o->link_local == 0.0)
+    o->link_local = FOF_LINK_LOCAL_DEFAULT;
+  o->path = argv[optind];
+  return 0;
+}
 
-  struct unit_system si;
-  units_init_si(&si);
-  struct parts p;
-  struct ic_info info;
-  ic_read(path, &si, NULL, 0, &p, &info);
-  const size_t n = p.count;
-  if (n == 0) error_exit("%s: no particles", path);
-  double *dmg = error_calloc(n, sizeof *dmg, "damage");
-  const int has_damage = fofmain_read_damage(path, n, dmg);
-  if (!has_damage && isfinite(drop))
-    error_warning("%s: no /PartType0/Damage: --min-damage-drop keeps every particle", path);
-
-  unsigned char *keep = error_malloc(n, "kept particles");
-  size_t nkeep = 0;
-  for (size_t i = 0; i < n; i++) {
-    keep[i] = !(dmg[i] >= drop);
-    nkeep += keep[i];
-  }
-  double *ell = NULL; /* --link-local: each particle's linking length */
-  double median_h = 0.0;
-  if (link_h > 0.0 || link_local > 0.0) {
-    int kh = -1;
-    for (int k = 0; k < part_nr_fields; k++)
-      if (strcmp(part_fields[k].name, "h") == 0) kh = k;
-    if (kh < 0 || !ic_field_read(&info, kh))
-      error_exit("%s: no SmoothingLengths: give --link-length", path);
-    double *hs = error_malloc(n * sizeof *hs, "smoothing lengths");
-    size_t m = 0;
-    for (size_t i = 0; i < n; i++)
-      if (keep[i]) hs[m++] = p.h[i];
-    if (m == 0) error_exit("%s: every particle is dropped (damage >= %g)", path, drop);
-    qsort(hs, m, sizeof *hs, fofmain_cmp_double);
-    median_h = hs[m / 2];
-    if (link_h > 0.0) link_length = link_h * median_h;
-    free(hs);
-    if (link_local > 0.0) {
-      ell = error_malloc(n * sizeof *ell, "linking lengths");
-      for (size_t i = 0; i < n; i++) {
-        ell[i] = link_local * p.h[i];
-        if (keep[i] && !(ell[i] > 0.0 && isfinite(ell[i])))
-          error_exit("%s: particle %zu has smoothing length %g: give --link-length", path, i,
-                     p.h[i]);
-      }
+/** The median smoothing length of the kept particles (0 without --link-h
+ *  or --link-local); sets o->link_length for --link-h and returns in *ell
+ *  each particle's linking length for --link-local (else NULL). */
+static double fofmain_link_lengths(struct fofmain_opts *o, const struct parts *p,
+                                   struct ic_info *info, const unsigned char *keep, double **ell) {
+  *ell = NULL;
+  if (!(o->link_h > 0.0 || o->link_local > 0.0)) return 0.0;
+  const size_t n = p->count;
+  int kh = -1;
+  for (int k = 0; k < part_nr_fields; k++)
+    if (strcmp(part_fields[k].name, "h") == 0) kh = k;
+  if (kh < 0 || !ic_field_read(info, kh))
+    error_exit("%s: no SmoothingLengths: give --link-length", o->path);
+  double *hs = error_malloc(n * sizeof *hs, "smoothing lengths");
+  size_t m = 0;
+  for (size_t i = 0; i < n; i++)
+    if (keep[i]) hs[m++] = p->h[i];
+  if (m == 0) error_exit("%s: every particle is dropped (damage >= %g)", o->path, o->drop);
+  qsort(hs, m, sizeof *hs, fofmain_cmp_double);
+  const double median_h = hs[m / 2];
+  if (o->link_h > 0.0) o->link_length = o->link_h * median_h;
+  free(hs);
+  if (o->link_local > 0.0) {
+    double *l = error_malloc(n * sizeof *l, "linking lengths");
+    for (size_t i = 0; i < n; i++) {
+      l[i] = o->link_local * p->h[i];
+      if (keep[i] && !(l[i] > 0.0 && isfinite(l[i])))
+        error_exit("%s: particle %zu has smoothing length %g: give --link-length", o->path, i,
+                   p->h[i]);
     }
+    *ell = l;
   }
+  return median_h;
+}
 
-  int64_t *group = error_malloc(n * sizeof *group, "groups");
-  error_log(1, "linking %zu particles, L = %g", nkeep, ell ? link_local * median_h : link_length);
-  const int64_t ng = ell ? fof_groups_local(n, p.x, p.y, p.z, keep, ell, group)
-                         : fof_groups(n, p.x, p.y, p.z, keep, link_length, group);
-  free(ell);
-  error_log(1, "%lld groups", (long long)ng);
+/** The fragments of a snapshot and what the table says of the whole. */
+struct fofmain_result {
+  int64_t ng;                /**< fragments */
+  struct fofmain_frag *fr;   /**< ng fragments, largest first */
+  double *mmat;              /**< mass of material k in group g: mmat[g * nmat + k] */
+  int32_t mats[FOF_MAX_MAT]; /**< the materials present */
+  int nmat;
+  double M, xb[3], vb[3];      /**< total mass, barycentre and its velocity */
+  double bound_mass;           /**< mass of the fragments bound to the barycentre */
+  double bound_mass_particles; /**< mass of the particles bound to it */
+};
 
-  /* materials present */
-  int32_t mats[FOF_MAX_MAT];
-  int nmat = 0;
-  for (size_t i = 0; i < n; i++) {
+/** The materials present in p (at most FOF_MAX_MAT). */
+static void fofmain_materials(const struct parts *p, const char *path, struct fofmain_result *r) {
+  r->nmat = 0;
+  for (size_t i = 0; i < p->count; i++) {
     int k = 0;
-    while (k < nmat && mats[k] != p.mat[i]) k++;
-    if (k == nmat) {
-      if (nmat == FOF_MAX_MAT) error_exit("%s: more than %d materials", path, FOF_MAX_MAT);
-      mats[nmat++] = p.mat[i];
+    while (k < r->nmat && r->mats[k] != p->mat[i]) k++;
+    if (k == r->nmat) {
+      if (r->nmat == FOF_MAX_MAT) error_exit("%s: more than %d materials", path, FOF_MAX_MAT);
+      r->mats[r->nmat++] = p->mat[i];
     }
   }
+}
 
-  /* barycentre and enclosed mass of the whole snapshot */
+/** Barycentre, particles sorted by distance from it (radix sort of the bit
+ *  patterns of r >= 0: *rord the order, *rsort the radii) and the enclosed
+ *  mass up to each (*mcum). */
+static void fofmain_radial(const struct parts *p, struct fofmain_result *r, int64_t **rord,
+                           double **rsort, double **mcum) {
+  const size_t n = p->count;
   double M = 0.0, xb[3] = {0, 0, 0}, vb[3] = {0, 0, 0};
   for (size_t i = 0; i < n; i++) {
-    M += p.m[i];
-    xb[0] += p.m[i] * p.x[i], xb[1] += p.m[i] * p.y[i], xb[2] += p.m[i] * p.z[i];
-    vb[0] += p.m[i] * p.vx[i], vb[1] += p.m[i] * p.vy[i], vb[2] += p.m[i] * p.vz[i];
+    M += p->m[i];
+    xb[0] += p->m[i] * p->x[i], xb[1] += p->m[i] * p->y[i], xb[2] += p->m[i] * p->z[i];
+    vb[0] += p->m[i] * p->vx[i], vb[1] += p->m[i] * p->vy[i], vb[2] += p->m[i] * p->vz[i];
   }
   for (int d = 0; d < 3; d++) xb[d] /= M, vb[d] /= M;
-  /* particles sorted by distance from the barycentre (radix sort of the
-   * bit patterns of r >= 0), and the enclosed mass before each */
+  r->M = M;
+  memcpy(r->xb, xb, sizeof xb);
+  memcpy(r->vb, vb, sizeof vb);
   int64_t *rkey = error_malloc(n * sizeof *rkey, "radii");
-  int64_t *rord = error_malloc(n * sizeof *rord, "radii");
+  int64_t *ord = error_malloc(n * sizeof *ord, "radii");
   for (size_t i = 0; i < n; i++) {
-    const double dx = p.x[i] - xb[0], dy = p.y[i] - xb[1], dz = p.z[i] - xb[2];
-    const double r = sqrt(dx * dx + dy * dy + dz * dz);
-    memcpy(&rkey[i], &r, sizeof r);
-    rord[i] = (int64_t)i;
+    const double dx = p->x[i] - xb[0], dy = p->y[i] - xb[1], dz = p->z[i] - xb[2];
+    const double rr = sqrt(dx * dx + dy * dy + dz * dz);
+    memcpy(&rkey[i], &rr, sizeof rr);
+    ord[i] = (int64_t)i;
   }
-  fof_radix_sort(n, rkey, rord);
-  double *rsort = error_malloc(n * sizeof *rsort, "radii");
-  double *mcum = error_malloc(n * sizeof *mcum, "masses");
+  fof_radix_sort(n, rkey, ord);
+  double *rs = error_malloc(n * sizeof *rs, "radii");
+  double *mc = error_malloc(n * sizeof *mc, "masses");
   for (size_t i = 0; i < n; i++) {
-    memcpy(&rsort[i], &rkey[i], sizeof rsort[i]);
-    mcum[i] = (i ? mcum[i - 1] : 0.0) + p.m[rord[i]];
+    memcpy(&rs[i], &rkey[i], sizeof rs[i]);
+    mc[i] = (i ? mc[i - 1] : 0.0) + p->m[ord[i]];
   }
   free(rkey);
-  const double G = units_G(&si);
+  *rord = ord, *rsort = rs, *mcum = mc;
+}
 
-  /* fragments */
+/** Fragment properties: mass, centre of mass, velocity, damage, material
+ *  fractions, extent, and whether each (and each particle) is bound to the
+ *  barycentre; the fragments sorted by mass. */
+static void fofmain_fragments(const struct parts *p, const int64_t *group, int64_t ng,
+                              const double *dmg, const char *path, struct fofmain_result *r) {
+  const size_t n = p->count;
+  r->ng = ng;
+  fofmain_materials(p, path, r);
+  int64_t *rord;
+  double *rsort, *mcum;
+  fofmain_radial(p, r, &rord, &rsort, &mcum);
+  struct unit_system si;
+  units_init_si(&si);
+  const double G = units_G(&si);
+  const int nmat = r->nmat;
   struct fofmain_frag *fr = error_calloc(ng ? (size_t)ng : 1, sizeof *fr, "fragments");
   double *mmat = error_calloc((ng ? (size_t)ng : 1) * (size_t)nmat, sizeof *mmat, "fractions");
   for (size_t i = 0; i < n; i++) {
     const int64_t g = group[i];
     if (g < 0) continue;
     struct fofmain_frag *f = &fr[g];
-    const double mi = p.m[i];
+    const double mi = p->m[i];
     f->mass += mi;
     f->count++;
-    f->x[0] += mi * p.x[i], f->x[1] += mi * p.y[i], f->x[2] += mi * p.z[i];
-    f->v[0] += mi * p.vx[i], f->v[1] += mi * p.vy[i], f->v[2] += mi * p.vz[i];
+    f->x[0] += mi * p->x[i], f->x[1] += mi * p->y[i], f->x[2] += mi * p->z[i];
+    f->v[0] += mi * p->vx[i], f->v[1] += mi * p->vy[i], f->v[2] += mi * p->vz[i];
     f->damage += mi * dmg[i];
     int k = 0;
-    while (mats[k] != p.mat[i]) k++;
+    while (r->mats[k] != p->mat[i]) k++;
     mmat[(size_t)g * nmat + k] += mi;
   }
   for (int64_t g = 0; g < ng; g++) {
@@ -365,111 +392,165 @@ int main(int argc, char **argv) {
   }
   /* particles in order of r: M(<r) is the mass before them (ties in r
    * counted as enclosed in sorted order, a negligible difference) */
-  double bound_mass_particles = 0.0;
+  r->bound_mass_particles = 0.0;
   for (size_t k = 0; k < n; k++) {
     const size_t i = (size_t)rord[k];
-    const double r = rsort[k];
-    const double dvx = p.vx[i] - vb[0], dvy = p.vy[i] - vb[1], dvz = p.vz[i] - vb[2];
+    const double rk = rsort[k];
+    const double dvx = p->vx[i] - r->vb[0], dvy = p->vy[i] - r->vb[1], dvz = p->vz[i] - r->vb[2];
     const double v2 = dvx * dvx + dvy * dvy + dvz * dvz;
-    if (r == 0.0 || v2 < 2.0 * G * (k ? mcum[k - 1] : 0.0) / r) bound_mass_particles += p.m[i];
+    if (rk == 0.0 || v2 < 2.0 * G * (k ? mcum[k - 1] : 0.0) / rk)
+      r->bound_mass_particles += p->m[i];
   }
   for (size_t i = 0; i < n; i++) {
     const int64_t g = group[i];
     if (g < 0) continue;
-    const double ex = p.x[i] - fr[g].x[0], ey = p.y[i] - fr[g].x[1], ez = p.z[i] - fr[g].x[2];
+    const double ex = p->x[i] - fr[g].x[0], ey = p->y[i] - fr[g].x[1], ez = p->z[i] - fr[g].x[2];
     const double e = sqrt(ex * ex + ey * ey + ez * ez);
     if (e > fr[g].extent) fr[g].extent = e;
   }
-  double bound_mass = 0.0;
+  r->bound_mass = 0.0;
   for (int64_t g = 0; g < ng; g++) {
     struct fofmain_frag *f = &fr[g];
     double dx[3], dv[3];
-    for (int d = 0; d < 3; d++) dx[d] = f->x[d] - xb[d], dv[d] = f->v[d] - vb[d];
+    for (int d = 0; d < 3; d++) dx[d] = f->x[d] - r->xb[d], dv[d] = f->v[d] - r->vb[d];
     f->r = sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]);
     f->vrel = sqrt(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2]);
     f->vesc = f->r > 0.0 ? sqrt(2.0 * G * fofmain_enclosed(rsort, mcum, n, f->r) / f->r) : INFINITY;
     f->bound = f->r <= f->extent || f->vrel < f->vesc;
-    if (f->bound) bound_mass += f->mass;
+    if (f->bound) r->bound_mass += f->mass;
   }
   qsort(fr, (size_t)ng, sizeof *fr, fofmain_cmp_frag);
-  error_log(1, "fragment properties and escape test done");
+  free(rsort);
+  free(rord);
+  free(mcum);
+  r->fr = fr;
+  r->mmat = mmat;
+}
 
-  /* the table */
+/** The fragment table, to o->out (through a temporary file) or stdout. */
+static void fofmain_write_table(const struct fofmain_opts *o, const struct parts *p,
+                                const struct ic_info *info, const unsigned char *keep, size_t nkeep,
+                                int has_damage, double median_h, int64_t ng,
+                                const struct fofmain_result *r) {
+  const size_t n = p->count;
   char tmp[4096] = "";
   FILE *fo = stdout;
-  if (out) {
-    snprintf(tmp, sizeof tmp, "%s.tmp", out);
+  if (o->out) {
+    snprintf(tmp, sizeof tmp, "%s.tmp", o->out);
     fo = fopen(tmp, "w");
     if (!fo) error_exit("%s: cannot create: %s", tmp, strerror(errno));
     error_register_tmpfile(tmp);
   }
   double kept_mass = 0.0;
   for (size_t i = 0; i < n; i++)
-    if (keep[i]) kept_mass += p.m[i];
-  fprintf(fo, "# bolide-fof %s: %s\n", PACKAGE_VERSION, path);
-  fprintf(fo, "# time %.9g s; %zu particles, %zu kept", info.time, n, nkeep);
-  if (isfinite(drop)) fprintf(fo, " (damage < %g)", drop);
+    if (keep[i]) kept_mass += p->m[i];
+  fprintf(fo, "# bolide-fof %s: %s\n", PACKAGE_VERSION, o->path);
+  fprintf(fo, "# time %.9g s; %zu particles, %zu kept", info->time, n, nkeep);
+  if (isfinite(o->drop)) fprintf(fo, " (damage < %g)", o->drop);
   fprintf(fo, "; damage %s\n", has_damage ? "from /PartType0/Damage" : "absent (0)");
-  if (link_local > 0.0)
+  if (o->link_local > 0.0)
     fprintf(fo,
             "# linking length %.9g x max(h_i, h_j) (--link-local; %.9g m at the median h); %lld "
             "fragments\n",
-            link_local, link_local * median_h, (long long)ng);
+            o->link_local, o->link_local * median_h, (long long)ng);
   else
-    fprintf(fo, "# linking length %.9g m%s; %lld fragments\n", link_length,
-            link_h > 0.0 ? " (from --link-h x median h)" : "", (long long)ng);
+    fprintf(fo, "# linking length %.9g m%s; %lld fragments\n", o->link_length,
+            o->link_h > 0.0 ? " (from --link-h x median h)" : "", (long long)ng);
   fprintf(fo,
           "# total mass %.9g kg, kept %.9g kg; barycentre %.9g %.9g %.9g m, %.9g %.9g %.9g m/s\n",
-          M, kept_mass, xb[0], xb[1], xb[2], vb[0], vb[1], vb[2]);
+          r->M, kept_mass, r->xb[0], r->xb[1], r->xb[2], r->vb[0], r->vb[1], r->vb[2]);
   fprintf(fo, "# bound to the barycentre: %.9g kg in fragments, %.9g kg of all particles\n",
-          bound_mass, bound_mass_particles);
+          r->bound_mass, r->bound_mass_particles);
   fprintf(fo, "# rank mass count x y z vx vy vz damage r v_rel v_esc bound");
-  for (int k = 0; k < nmat; k++) fprintf(fo, " frac_mat%d", (int)mats[k]);
+  for (int k = 0; k < r->nmat; k++) fprintf(fo, " frac_mat%d", (int)r->mats[k]);
   fprintf(fo, "\n");
   for (int64_t g = 0; g < ng; g++) {
-    const struct fofmain_frag *f = &fr[g];
-    if (f->count < min_count) continue;
+    const struct fofmain_frag *f = &r->fr[g];
+    if (f->count < o->min_count) continue;
     fprintf(fo, "%lld %.9e %lld %.9e %.9e %.9e %.9e %.9e %.9e %.6f %.6e %.6e %.6e %d",
             (long long)g + 1, f->mass, (long long)f->count, f->x[0], f->x[1], f->x[2], f->v[0],
             f->v[1], f->v[2], f->damage, f->r, f->vrel, f->vesc, f->bound);
-    for (int k = 0; k < nmat; k++)
-      fprintf(fo, " %.6f", mmat[(size_t)f->index * nmat + k] / f->mass);
+    for (int k = 0; k < r->nmat; k++)
+      fprintf(fo, " %.6f", r->mmat[(size_t)f->index * r->nmat + k] / f->mass);
     fprintf(fo, "\n");
   }
-  if (out) {
+  if (o->out) {
     if (fflush(fo) != 0 || ferror(fo) || fclose(fo) != 0)
       error_exit("%s: write failed: %s", tmp, strerror(errno));
-    if (rename(tmp, out) != 0) error_exit("%s: cannot rename %s: %s", out, tmp, strerror(errno));
+    if (rename(tmp, o->out) != 0)
+      error_exit("%s: cannot rename %s: %s", o->out, tmp, strerror(errno));
     error_unregister_tmpfile(tmp);
   }
+}
 
-  if (spectrum) {
-    char stmp[4096];
-    snprintf(stmp, sizeof stmp, "%s.tmp", spectrum);
-    FILE *fs = fopen(stmp, "w");
-    if (!fs) error_exit("%s: cannot create: %s", stmp, strerror(errno));
-    error_register_tmpfile(stmp);
-    fprintf(fs, "# cumulative mass spectrum of %s: N(>=m), mass in fragments >= m\n", path);
-    fprintf(fs, "# mass m/M_total N_ge cum_mass_fraction\n");
-    double cum = 0.0;
-    for (int64_t g = 0; g < ng; g++) {
-      cum += fr[g].mass;
-      /* one line per distinct mass: the count of all fragments >= m */
-      if (g + 1 < ng && fr[g + 1].mass == fr[g].mass) continue;
-      fprintf(fs, "%.9e %.9e %lld %.9e\n", fr[g].mass, fr[g].mass / M, (long long)g + 1, cum / M);
-    }
-    if (fflush(fs) != 0 || ferror(fs) || fclose(fs) != 0)
-      error_exit("%s: write failed: %s", stmp, strerror(errno));
-    if (rename(stmp, spectrum) != 0) error_exit("%s: cannot rename: %s", spectrum, strerror(errno));
-    error_unregister_tmpfile(stmp);
+/** The cumulative mass spectrum, to o->spectrum (through a temporary file). */
+static void fofmain_write_spectrum(const struct fofmain_opts *o, const struct fofmain_result *r) {
+  char stmp[4096];
+  snprintf(stmp, sizeof stmp, "%s.tmp", o->spectrum);
+  FILE *fs = fopen(stmp, "w");
+  if (!fs) error_exit("%s: cannot create: %s", stmp, strerror(errno));
+  error_register_tmpfile(stmp);
+  fprintf(fs, "# cumulative mass spectrum of %s: N(>=m), mass in fragments >= m\n", o->path);
+  fprintf(fs, "# mass m/M_total N_ge cum_mass_fraction\n");
+  double cum = 0.0;
+  for (int64_t g = 0; g < r->ng; g++) {
+    cum += r->fr[g].mass;
+    /* one line per distinct mass: the count of all fragments >= m */
+    if (g + 1 < r->ng && r->fr[g + 1].mass == r->fr[g].mass) continue;
+    fprintf(fs, "%.9e %.9e %lld %.9e\n", r->fr[g].mass, r->fr[g].mass / r->M, (long long)g + 1,
+            cum / r->M);
   }
-  if (plot) fofmain_plot(out, plot);
+  if (fflush(fs) != 0 || ferror(fs) || fclose(fs) != 0)
+    error_exit("%s: write failed: %s", stmp, strerror(errno));
+  if (rename(stmp, o->spectrum) != 0)
+    error_exit("%s: cannot rename: %s", o->spectrum, strerror(errno));
+  error_unregister_tmpfile(stmp);
+}
 
-  free(fr);
-  free(mmat);
-  free(rsort);
-  free(rord);
-  free(mcum);
+int main(int argc, char **argv) {
+  error_init(argv[0]);
+  struct fofmain_opts o;
+  if (fofmain_parse(argc, argv, &o)) return 0;
+  const char *path = o.path;
+
+  struct unit_system si;
+  units_init_si(&si);
+  struct parts p;
+  struct ic_info info;
+  ic_read(path, &si, NULL, 0, &p, &info);
+  const size_t n = p.count;
+  if (n == 0) error_exit("%s: no particles", path);
+  double *dmg = error_calloc(n, sizeof *dmg, "damage");
+  const int has_damage = fofmain_read_damage(path, n, dmg);
+  if (!has_damage && isfinite(o.drop))
+    error_warning("%s: no /PartType0/Damage: --min-damage-drop keeps every particle", path);
+
+  unsigned char *keep = error_malloc(n, "kept particles");
+  size_t nkeep = 0;
+  for (size_t i = 0; i < n; i++) {
+    keep[i] = !(dmg[i] >= o.drop);
+    nkeep += keep[i];
+  }
+  double *ell; /* --link-local: each particle's linking length */
+  const double median_h = fofmain_link_lengths(&o, &p, &info, keep, &ell);
+
+  int64_t *group = error_malloc(n * sizeof *group, "groups");
+  error_log(1, "linking %zu particles, L = %g", nkeep,
+            ell ? o.link_local * median_h : o.link_length);
+  const int64_t ng = ell ? fof_groups_local(n, p.x, p.y, p.z, keep, ell, group)
+                         : fof_groups(n, p.x, p.y, p.z, keep, o.link_length, group);
+  free(ell);
+  error_log(1, "%lld groups", (long long)ng);
+
+  struct fofmain_result r;
+  fofmain_fragments(&p, group, ng, dmg, path, &r);
+  error_log(1, "fragment properties and escape test done");
+  fofmain_write_table(&o, &p, &info, keep, nkeep, has_damage, median_h, ng, &r);
+  if (o.spectrum) fofmain_write_spectrum(&o, &r);
+  if (o.plot) fofmain_plot(o.out, o.plot);
+
+  free(r.fr);
+  free(r.mmat);
   free(group);
   free(keep);
   free(dmg);
