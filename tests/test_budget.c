@@ -17,17 +17,7 @@
 #include "src/materials/material.h"
 #include "src/part.h"
 
-static int checks, failures;
-#define CHECK(cond, ...)                          \
-  do {                                            \
-    checks++;                                     \
-    if (!(cond)) {                                \
-      failures++;                                 \
-      printf("FAIL %s:%d: ", __FILE__, __LINE__); \
-      printf(__VA_ARGS__);                        \
-      printf("\n");                               \
-    }                                             \
-  } while (0)
+#include "tests/check.h"
 
 /** Tillotson granite of the library (SWIFT id 101), without strength. */
 static void granite(struct material *m) {

@@ -8,17 +8,7 @@
 #include "src/materials/material.h"
 #include "src/io/units.h"
 
-static int failures = 0, checks = 0;
-#define CHECK(cond, ...)                          \
-  do {                                            \
-    checks++;                                     \
-    if (!(cond)) {                                \
-      failures++;                                 \
-      printf("FAIL %s:%d: ", __FILE__, __LINE__); \
-      printf(__VA_ARGS__);                        \
-      printf("\n");                               \
-    }                                             \
-  } while (0)
+#include "tests/check.h"
 
 /** Basalt of Benz & Asphaug 1999 through material_set (as the parser does). */
 static void basalt(struct material *m, int id) {

@@ -14,17 +14,7 @@
 
 #include "src/timeline.h"
 
-static int checks, failures;
-#define CHECK(cond, ...)                          \
-  do {                                            \
-    checks++;                                     \
-    if (!(cond)) {                                \
-      failures++;                                 \
-      printf("FAIL %s:%d: ", __FILE__, __LINE__); \
-      printf(__VA_ARGS__);                        \
-      printf("\n");                               \
-    }                                             \
-  } while (0)
+#include "tests/check.h"
 
 static void test_round_trip(void) {
   const struct timeline tl = timeline_make(-3.0, 2e4, 1e30);

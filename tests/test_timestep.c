@@ -19,17 +19,7 @@
 #include "src/materials/material.h"
 #include "src/part.h"
 
-static int checks, failures;
-#define CHECK(cond, ...)                          \
-  do {                                            \
-    checks++;                                     \
-    if (!(cond)) {                                \
-      failures++;                                 \
-      printf("FAIL %s:%d: ", __FILE__, __LINE__); \
-      printf(__VA_ARGS__);                        \
-      printf("\n");                               \
-    }                                             \
-  } while (0)
+#include "tests/check.h"
 
 static int close_to(double a, double b) {
   return fabs(a - b) <= 1e-14 * fabs(b);
