@@ -56,21 +56,8 @@ def main():
     shift = np.array([0.5 * span, 0.5 * span, 0.3])
     pos += shift
     N = len(pos)
-    mass = np.full(N, RHO0 * dx**3)
-    if not a.lattice_mass:
-        # the lattice sphere is not the sphere: give the projectile the mass of
-        # the true sphere (its particles' volumes m / rho0 then sum to 4/3 pi R^3)
-        mass[-npp:] = ichelpers.sphere_particle_mass(RHO0, R_P, npp)
-    ichelpers.write_ic(a.output, box, {
-        "Coordinates": pos,
-        "Velocities": vel,
-        "Masses": mass,
-        "SmoothingLengths": np.full(N, a.eta * dx),
-        "InternalEnergies": np.zeros(N),
-        "Densities": np.full(N, RHO0),
-        "ParticleIDs": np.arange(1, N + 1),
-        "MaterialIDs": mat,
-    })
+    fields = ichelpers.solid_fields(pos, vel, mat, RHO0, dx, a.eta, npp, R_P, a.lattice_mass)
+    ichelpers.write_ic(a.output, box, fields)
     print(f"{a.output}: {N} particles ({n0} plate, {n1} projectile), dx = {dx} m, "
           f"{nl} layers, plate {2 * a.half_width * 100:.1f} cm wide")
 

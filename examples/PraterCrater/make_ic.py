@@ -60,21 +60,9 @@ def main():
     shift = np.array([0.5 * span, 0.5 * span, a.depth + 0.1])
     pos += shift
     N = len(pos)
-    mass = np.full(N, RHO0 * dx**3)
-    if not a.lattice_mass:
-        # the lattice sphere is not the sphere: give the projectile the mass of
-        # the true sphere (its particles' volumes m / rho0 then sum to 4/3 pi R^3)
-        mass[-npp:] = ichelpers.sphere_particle_mass(RHO0, rp, npp)
-    ichelpers.write_ic(a.output, box, {
-        "Coordinates": pos,
-        "Velocities": vel,
-        "Masses": mass,
-        "SmoothingLengths": np.full(N, a.eta * dx),
-        "InternalEnergies": np.zeros(N),
-        "Densities": np.full(N, RHO0),
-        "ParticleIDs": np.arange(1, N + 1),
-        "MaterialIDs": mat,
-    }, header={"Origin": shift})  # the impact point (top face, axis), for the analysis
+    fields = ichelpers.solid_fields(pos, vel, mat, RHO0, dx, a.eta, npp, rp, a.lattice_mass)
+    # Origin: the impact point (top face, axis), for the analysis
+    ichelpers.write_ic(a.output, box, fields, header={"Origin": shift})
     print(f"{a.output}: {N} particles ({nt} target, {npp} projectile, r/dx = {rp / dx:.2f}), dx = {dx} m, "
           f"target {2 * a.half_width * 100:.1f} x {2 * a.half_width * 100:.1f} x {a.depth * 100:.1f} cm")
 

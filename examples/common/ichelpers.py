@@ -51,6 +51,29 @@ def sphere_particle_mass(rho0, radius, n):
     return rho0 * 4.0 / 3.0 * np.pi * radius**3 / n
 
 
+def solid_fields(pos, vel, mat, rho0, dx, eta, n_projectile, r_projectile, lattice_mass):
+    """The fields of a cold solid target and projectile cut from one lattice
+    of spacing dx at density rho0 (the projectile: the last n_projectile
+    particles): h = eta dx, u = 0, ids from 1.  Each particle carries
+    rho0 dx^3; unless lattice_mass, the projectile's particles carry the mass
+    of the true sphere of radius r_projectile instead (the lattice sphere is
+    not the sphere: their volumes m / rho0 then sum to 4/3 pi r^3)."""
+    n = len(pos)
+    mass = np.full(n, rho0 * dx**3)
+    if not lattice_mass:
+        mass[-n_projectile:] = sphere_particle_mass(rho0, r_projectile, n_projectile)
+    return {
+        "Coordinates": pos,
+        "Velocities": vel,
+        "Masses": mass,
+        "SmoothingLengths": np.full(n, eta * dx),
+        "InternalEnergies": np.zeros(n),
+        "Densities": np.full(n, rho0),
+        "ParticleIDs": np.arange(1, n + 1),
+        "MaterialIDs": mat,
+    }
+
+
 def write_ic(path, box, fields, header=None):
     """Write initial conditions: /Header (BoxSize, NumPart_Total,
     Dimension = 3, plus the attributes of `header`) and /PartType0 with one
