@@ -756,11 +756,10 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   if (e->dt_min > e->dt_max)
     params_error(params, "TimeIntegration:dt_min", "dt_min (%g) is larger than dt_max (%g)",
                  e->dt_min, e->dt_max);
-  if (!params_get_bool(params, "TimeIntegration:global_step"))
-    params_error(params, "TimeIntegration:global_step",
-                 "false (individual time steps in time bins) is not implemented yet: use true");
-  /* the time line of individual time steps: today only to report the bins
-   * that the particles' own limits would give (the timesteps file) */
+  e->individual = !params_get_bool(params, "TimeIntegration:global_step");
+  /* the time line of individual time steps (with the global step only to
+   * report the bins that the particles' own limits would give, the
+   * timesteps file) */
   e->timeline = timeline_make(e->time, e->time_end > e->time ? e->time_end : e->time + 1.0,
                               e->dt_max > 0.0 ? e->dt_max : e->time_end - e->time);
 
@@ -810,6 +809,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     e->restart_h_max = rs.rebuild_h_max;
     e->need_rebuild = (int)rs.need_rebuild;
     e->restart_stats_offset = rs.stats_offset;
+    e->ti_current = rs.ti_current;
     e->restarted = 1;
   } else {
     engine_read_ics(e, icname, sizeof icname, box);
@@ -1105,6 +1105,7 @@ static void engine_write_restart(struct engine *e) {
   memset(&st, 0, sizeof st);
   st.time = e->time;
   st.dt = e->dt;
+  st.ti_current = e->ti_current;
   st.dt_next = e->dt_max;
   for (int t = 0; t < e->nr_tcells; t++)
     if (e->cell_dt_min[t] < st.dt_next) st.dt_next = e->cell_dt_min[t];
@@ -1215,6 +1216,14 @@ static void engine_bins_collect(struct engine *e) {
   e->bin_all += (double)e->parts.count;
 }
 
+/** The particles kicked in the last step: all with the global step. */
+static void engine_count_active(struct engine *e) {
+  e->nr_active = (int64_t)e->parts.count;
+  if (!e->individual) return;
+  e->nr_active = 0;
+  for (int t = 0; t < e->nr_tcells; t++) e->nr_active += e->cell_kick[t].active;
+}
+
 /** The next global time step: the smallest particle step, limited by dt_max,
  *  the next output time and the end of the run. */
 static double engine_next_dt(struct engine *e) {
@@ -1245,10 +1254,96 @@ static double engine_next_dt(struct engine *e) {
   return dt;
 }
 
+/** With individual time steps: the end of the next step on the time line
+ *  (the earliest end of a particle's step, or the next output time if it
+ *  comes first) into e->ti_next, and its length. */
+static double engine_next_dt_bins(struct engine *e) {
+  const struct timeline *tl = &e->timeline;
+  const integertime_t end = (integertime_t)1 << TIMELINE_NR_BINS;
+  integertime_t ti = end;
+  double dt_lim = HUGE_VAL;
+  int64_t bin0 = 0;
+  for (int t = 0; t < e->nr_tcells; t++) {
+    if (e->cell_kick[t].ti_end_min < ti) ti = e->cell_kick[t].ti_end_min;
+    if (e->cell_dt_min[t] < dt_lim) dt_lim = e->cell_dt_min[t];
+    bin0 += e->cell_bins[(size_t)t * (TIMELINE_NR_BINS + 1)];
+  }
+  if (dt_lim < e->dt_min || bin0 > 0) {
+    char why[512];
+    engine_dt_culprit(e, why, sizeof why);
+    error_exit("time step %g at t = %g is below %s = %g: %s", dt_lim, e->time,
+               bin0 > 0 ? "the time line's shortest step (two ticks of (time_end - time_begin) / "
+                          "2^56)"
+                        : "TimeIntegration:dt_min",
+               bin0 > 0 ? 2.0 * tl->time_base : e->dt_min, why);
+  }
+  if (e->next_out < e->nr_out) {
+    const integertime_t ti_out = timeline_integer_time(tl, e->out_times[e->next_out]);
+    if (ti_out > e->ti_current && ti_out < ti) ti = ti_out;
+  }
+  e->ti_next = ti;
+  return (double)(ti - e->ti_current) * tl->time_base;
+}
+
+/** With individual time steps after a resumed run's start: the earliest
+ *  end of a particle's step from the particles' bins (what the kick of the
+ *  step before the restart file left in e->cell_kick). */
+static void engine_bins_resume(struct engine *e) {
+  integertime_t ti = INT64_MAX;
+  for (size_t i = 0; i < e->parts.count; i++) {
+    const int b = e->parts.time_bin[i];
+    const integertime_t step = timeline_step_of_bin(b > 0 ? b : 1);
+    const integertime_t end = e->ti_current - e->ti_current % step + step;
+    if (end < ti) ti = end;
+  }
+  for (int t = 0; t < e->nr_tcells; t++) {
+    e->cell_kick[t].ti_end_min = t == 0 ? ti : INT64_MAX;
+    e->cell_kick[t].active = 0;
+  }
+  memset(e->cell_bins, 0, (size_t)e->nr_tcells * (TIMELINE_NR_BINS + 1) * sizeof(int64_t));
+}
+
+/** With individual time steps a particle in the middle of its step holds
+ *  the state of its step's middle (velocities, u, stresses, continuity
+ *  density, distention) and the predicted state of now (vp, up, Sp, rho_fp,
+ *  alpha_p); a kicked one holds the same in both.  Snapshots and statistics
+ *  show the state of now: this swaps the two sets of arrays (twice: back). */
+static void engine_sync_view(struct engine *e) {
+  if (!e->individual) return;
+  struct parts *p = &e->parts;
+#define ENGINE_SWAP(a, b) \
+  do {                    \
+    double *tmp_ = p->a;  \
+    p->a = p->b;          \
+    p->b = tmp_;          \
+  } while (0)
+  ENGINE_SWAP(vx, vpx);
+  ENGINE_SWAP(vy, vpy);
+  ENGINE_SWAP(vz, vpz);
+  ENGINE_SWAP(u, up);
+  ENGINE_SWAP(Sxx, Spxx);
+  ENGINE_SWAP(Sxy, Spxy);
+  ENGINE_SWAP(Sxz, Spxz);
+  ENGINE_SWAP(Syy, Spyy);
+  ENGINE_SWAP(Syz, Spyz);
+  ENGINE_SWAP(Szz, Spzz);
+  ENGINE_SWAP(rho_full, rho_fp);
+  ENGINE_SWAP(alpha, alpha_p);
+#undef ENGINE_SWAP
+}
+
+/** A snapshot of the state of now (engine_sync_view). */
+static void engine_snapshot_now(struct engine *e) {
+  engine_sync_view(e);
+  engine_snapshot(e);
+  engine_sync_view(e);
+}
+
 /** Compute densities, forces and time steps without kicking (t = time_begin). */
 static void engine_first_force(struct engine *e) {
   e->first_force = 1;
   e->dt = 0.0;
+  e->ti_next = e->ti_current;
   for (size_t i = 0; i < e->parts.count; i++) hydro_density_reset(&e->parts, i);
   e->gp.replay = 0;
   /* the adaptive criterion's scale |ga| for the first evaluation (issue 25):
@@ -1275,13 +1370,16 @@ void engine_run(struct engine *e) {
   engine_rebuild(e);
   if (!e->restarted) {
     engine_first_force(e);
+    engine_sync_view(e);
     engine_stats_first(e);
     engine_snapshot(e);
+    engine_sync_view(e);
   } else {
     /* every force, rate and time step of the end of the last step is in the
      * restart file: recomputing them now would use corrected instead of
      * predicted velocities and change the run */
     for (int t = 0; t < e->nr_tcells; t++) e->cell_dt_min[t] = e->restart_dt_next;
+    if (e->individual) engine_bins_resume(e);
     engine_gravity_reuse_restore(e);
     error_log(0, "resumed from %s at step %ld, t = %g", e->restart_file, e->step, e->time);
   }
@@ -1291,12 +1389,19 @@ void engine_run(struct engine *e) {
   printf("#   step           time             dt      updates    wall[s]     ETA[s]\n");
   while (e->time < e->time_end && (e->opt.max_steps < 0 || e->step < e->opt.max_steps)) {
     const double w0 = error_walltime();
-    e->dt = engine_next_dt(e);
+    e->dt = e->individual ? engine_next_dt_bins(e) : engine_next_dt(e);
     if (!(e->dt > 0.0)) break;
     engine_watchdog_before_drift(e);
     engine_run_phase(e, ENGINE_PHASE_DRIFT);
     engine_watchdog_after_drift(e);
-    e->time += e->dt;
+    if (e->individual) {
+      e->ti_current = e->ti_next;
+      e->time = e->ti_current == (integertime_t)1 << TIMELINE_NR_BINS
+                    ? e->time_end
+                    : timeline_time(&e->timeline, e->ti_current);
+    } else {
+      e->time += e->dt;
+    }
     if (e->next_out < e->nr_out &&
         fabs(e->time - e->out_times[e->next_out]) <= 1e-12 * fabs(e->time))
       e->time = e->out_times[e->next_out];
@@ -1312,21 +1417,24 @@ void engine_run(struct engine *e) {
     e->t_eval += error_walltime() - wf;
     e->nr_eval++;
     engine_bins_collect(e);
+    engine_count_active(e);
     engine_gravity_reuse_remember(e);
     e->step++;
-    e->updates += (long long)e->parts.count;
+    e->updates += (long long)e->nr_active;
     engine_watchdog_after_step(e);
     if (e->dump_tasks > 0 && e->step % e->dump_tasks == 0) engine_dump_tasks(e);
+    engine_sync_view(e);
     engine_stats_maybe(e);
     if (e->next_out < e->nr_out && e->time >= e->out_times[e->next_out]) {
       engine_snapshot(e);
       while (e->next_out < e->nr_out && e->out_times[e->next_out] <= e->time) e->next_out++;
     }
+    engine_sync_view(e);
     const double w1 = error_walltime();
     const double frac = (e->time - t_begin) / fmax(e->time_end - t_begin, 1e-300);
     const double eta = frac > 0 ? (w1 - e->wall_start) * (1.0 - frac) / frac : 0.0;
-    printf("%8ld %14.6e %14.6e %12zu %10.4f %10.1f\n", e->step, e->time, e->dt, e->parts.count,
-           w1 - w0, eta);
+    printf("%8ld %14.6e %14.6e %12lld %10.4f %10.1f\n", e->step, e->time, e->dt,
+           (long long)e->nr_active, w1 - w0, eta);
     engine_timesteps_write(e, w1 - w0);
     fflush(stdout);
     if (e->time < e->time_end && engine_must_stop(e, stop_why, sizeof stop_why)) break;
@@ -1344,7 +1452,7 @@ void engine_run(struct engine *e) {
   if (!stopped && !e->restarts && e->next_out < e->nr_out &&
       e->out_times[e->nr_out - 1] > e->time) {
     /* stopped by --steps without restart files: keep the last state */
-    engine_snapshot(e);
+    engine_snapshot_now(e);
   }
   /* the restart file first: a run resumed from it truncates the statistics
    * file to its length then, dropping the closing line written now */
@@ -1353,14 +1461,24 @@ void engine_run(struct engine *e) {
     fprintf(stderr,
             "bolide: %s: wrote %s.bin at step %ld (t = %g) and stopped; resume with --restart\n",
             stop_why, e->restart_stem, e->step, e->time);
+  engine_sync_view(e);
   engine_stats_close(e);
   engine_budget_summary(e);
+  engine_sync_view(e);
   const double wall = error_walltime() - e->wall_start;
   error_log(0, "done: %ld steps to t = %g in %.2f s (%.3g particle updates per second)", e->step,
             e->time, wall, wall > 0 ? (double)e->updates / wall : 0.0);
   if (e->nr_removed)
     error_log(0, "%lld particles left the open box and were removed", e->nr_removed);
-  if (e->bin_all > 0.0)
+  if (e->individual)
+    error_log(0,
+              "time bins: %lld particle updates in %ld steps, %.1f%% of the particles per step on "
+              "average",
+              e->updates, e->step,
+              e->step > 0 && e->parts.count > 0
+                  ? 100.0 * (double)e->updates / ((double)e->step * (double)e->parts.count)
+                  : 0.0);
+  else if (e->bin_all > 0.0)
     error_log(0,
               "time bins: individual time steps (issue 20; TimeIntegration:global_step) would have "
               "updated %.1f%% of the particles per step of the smallest bin on average (the "
@@ -1403,6 +1521,7 @@ void engine_clean(struct engine *e) {
   free(e->out_times);
   free(e->cell_dt_min);
   free(e->cell_bins);
+  free(e->cell_kick);
   free(e->gcells);
   free(e->grav_x0);
   restart_gravity_free(&e->restart_grav);

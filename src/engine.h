@@ -108,8 +108,14 @@ struct engine {
   double bin_updates;       /**< sum over the CPU steps of this process of the particle updates
                                  that time bins would have done (timeline_active_fraction) */
   double bin_all;           /**< and of the particle updates done */
-  int need_rebuild;         /**< set by tasks (atomic): h outgrew the cells */
-  int first_force;          /**< 1 while computing the initial forces */
+  int individual;           /**< TimeIntegration:global_step false: individual time steps in
+                                 time bins (drift_cell_bins_cpu, kick2_cell_bins_cpu) */
+  integertime_t ti_current; /**< with individual steps: the time on the time line */
+  integertime_t ti_next;    /**< and the end of the step being taken (the drift's target) */
+  struct timeline_sums *cell_kick; /**< per task cell, what its kick with bins left */
+  int64_t nr_active;               /**< particles kicked at the end of the last step */
+  int need_rebuild;                /**< set by tasks (atomic): h outgrew the cells */
+  int first_force;                 /**< 1 while computing the initial forces */
   double t_eval;            /**< wall seconds of the steps' FORCE phases (derivative evaluations) */
   long nr_eval;             /**< their number */
   double t_rebuild;         /**< wall seconds of the rebuilds (cells, sort, task graph) */

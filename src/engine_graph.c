@@ -468,6 +468,8 @@ void engine_make_graph(struct engine *e) {
   e->cell_bins = error_realloc(
       e->cell_bins, (nt ? nt : 1) * (TIMELINE_NR_BINS + 1) * sizeof(int64_t), "cell time bins");
   memset(e->cell_bins, 0, (nt ? nt : 1) * (TIMELINE_NR_BINS + 1) * sizeof(int64_t));
+  e->cell_kick =
+      error_realloc(e->cell_kick, (nt ? nt : 1) * sizeof(struct timeline_sums), "cell step ends");
 
   /* tasks of each task cell: drift(t);  density(t) -> ghost(t) -> force(t) -> kick2(t) */
   for (int t = 0; t < nt; t++) {

@@ -40,6 +40,13 @@ struct timeline {
   int bin_max;       /**< longest bin allowed: its step <= TimeIntegration:dt_max */
 };
 
+/** What a cell's kick with time bins leaves for the engine
+ *  (kick2_cell_bins_cpu). */
+struct timeline_sums {
+  integertime_t ti_end_min; /**< the earliest end of a step of its particles (INT64_MAX: none) */
+  int64_t active;           /**< particles that ended their step at ti_new */
+};
+
 /** Steps of bin bin in ticks: 2^bin, 0 for bin <= 0 (no bin). */
 BOLIDE_INLINE integertime_t timeline_step_of_bin(int bin) {
   if (bin <= 0) return 0;

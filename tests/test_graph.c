@@ -107,6 +107,7 @@ static void run(const char *name, size_t n, int clustered, int periodic, int tas
   free(e.tcells);
   free(e.cell_dt_min);
   free(e.cell_bins);
+  free(e.cell_kick);
   free(e.tcell_top);
   scheduler_free(&e.sched);
   space_free(&e.space);

@@ -34,7 +34,7 @@ def checksum(buf):
 
 
 def layout(buf):
-    """Offsets of the parts of a version-4 file (the far-field flag: the last
+    """Offsets of the parts of a version-5 file (the far-field flag: the last
     8 bytes before the checksum when the file holds no far field)."""
     count = struct.unpack_from("<Q", buf, 72)[0]
     nf = struct.unpack_from("<i", buf, 128)[0]
@@ -45,7 +45,7 @@ def layout(buf):
         fields.append((name, size))
         pos += 36
     state = pos
-    pos += 296
+    pos += 304
     plen = struct.unpack_from("<Q", buf, pos)[0]
     params = pos
     pos += 8 + plen
@@ -67,7 +67,7 @@ def reseal(buf):
 
 STATE = dict(time=0, dt=8, dt_next=16, step=24, updates=32, nr_removed=40, snap_index=48, next_out=56,
              next_stats=64, box=72, periodic=96, removed_m=104, start_E_tot=184, start_set=264,
-             rebuild_h_max=272, need_rebuild=280, stats_offset=288)
+             rebuild_h_max=272, need_rebuild=280, stats_offset=288, ti_current=296)
 
 
 def main():
@@ -170,6 +170,8 @@ def main():
     corpus.append(("rebuild h_max 0", setf(good, st + STATE["rebuild_h_max"], "<d", 0.0)))
     corpus.append(("rebuild flag 2", setf(good, st + STATE["need_rebuild"], "<q", 2)))
     corpus.append(("negative statistics offset", setf(good, st + STATE["stats_offset"], "<q", -3)))
+    corpus.append(("integer time -1", setf(good, st + STATE["ti_current"], "<q", -1)))
+    corpus.append(("integer time past the run", setf(good, st + STATE["ti_current"], "<q", 2 ** 57)))
     corpus.append(("cell count 1e12", setf(good, L["cells"], "<q", 10 ** 12)))
     corpus.append(("NaN cell h_max", setf(good, L["cells"] + 8, "<d", nan)))
     corpus.append(("material id 999", setf(good, ar["mat"][0] + 4 * 10, "<i", 999)))
@@ -183,6 +185,7 @@ def main():
     corpus.append(("duplicate id", setf(good, ar["id"][0] + 8, "<q", struct.unpack_from("<q", good, ar["id"][0])[0])))
     corpus.append(("rebuild position outside the box", setf(good, ar["x0"][0], "<d", 99.0)))
     corpus.append(("negative flaw count", setf(good, ar["n_flaws"][0], "<i", -1)))
+    corpus.append(("time bin 99", setf(good, ar["time_bin"][0] + 4 * 6, "<i", 99)))
     corpus.append(("flaw count 1e18", setf(good, L["flaws"], "<Q", 10 ** 18)))
     corpus.append(("flaw offsets", setf(good, L["flaws"] + 8 + 8 * 5, "<q", 3)))
     corpus.append(("far-field flag 2", setf(good, L["grav"], "<q", 2)))

@@ -530,7 +530,9 @@ void gpu_engine_init(struct engine *e) {
                             : e->gp.enabled && e->gp.h_factor > 0.0
                                 ? "Gravity:softening_h_factor > 0 (softening tied to h) has no GPU "
                                   "implementation yet"
-                                : gpu_engine_cpu_only(e);
+                            : e->individual ? "individual time steps (TimeIntegration:global_step: "
+                                              "false) have no GPU implementation yet"
+                                            : gpu_engine_cpu_only(e);
   if (unsupported) {
     if (required) error_exit("a GPU was required (%s) but %s", asked, unsupported);
     error_log(0, "GPU not used (%s): every task runs on the CPU", unsupported);

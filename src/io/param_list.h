@@ -37,7 +37,7 @@
   X("TimeIntegration:time_end", PARAM_REAL, NULL, -PARAM_INF, PARAM_INF, NULL, "internal time", "simulation time at which the run stops") \
   X("TimeIntegration:dt_min", PARAM_REAL, "1e-12", 0, PARAM_INF, NULL, "internal time", "smallest allowed time step; a smaller one stops the run with an error") \
   X("TimeIntegration:dt_max", PARAM_REAL, "1e30", 0, PARAM_INF, NULL, "internal time", "largest allowed time step") \
-  X("TimeIntegration:global_step", PARAM_BOOL, "true", 0, 0, NULL, "-", "every particle steps with the smallest time step of all (true); false, individual time steps in power-of-two time bins (issue 20), is not implemented yet: the timesteps file shows the bins the particles' own limits would take and the fraction of updates they would do") \
+  X("TimeIntegration:global_step", PARAM_BOOL, "true", 0, 0, NULL, "-", "every particle steps with the smallest time step of all (true; the timesteps file shows the bins the particles' own limits would take and the fraction of updates they would do), or each with its own step in power-of-two time bins on an integer time line (false; theory/sph.md section 8; CPU only, every interaction is still computed at every step: no speed-up yet, issue 20)") \
                                                                                                          \
   X("Snapshots:basename", PARAM_STRING, "snapshot", 1, 255, NULL, "-", "snapshot file prefix (files are BASENAME_NNNN.hdf5; relative to the output folder)") \
   X("Snapshots:subdir", PARAM_STRING, ".", 1, 1023, NULL, "-", "folder for snapshots and statistics, created if missing") \

@@ -1,4 +1,4 @@
-/* Restart files (see restart.h).  Layout of version 4:
+/* Restart files (see restart.h).  Layout of version 5:
  *
  *   header (RESTART_HEADER_BYTES = 128): magic "BOLIDE-RESTART\n\0" (16),
  *     uint32 version, uint32 byte-order mark 0x01020304, char build[48]
@@ -18,7 +18,9 @@
  *     double d_min, then every list's interactions (4 int32 each)
  *   uint64 checksum of everything before it (restart_checksum).
  * Version 3 (before the far field) is refused with one line: a run
- * resumed from it would not repeat the uninterrupted run's reuse. */
+ * resumed from it would not repeat the uninterrupted run's reuse; version
+ * 4 (before the integer time and the particles' time bins of individual
+ * time steps) likewise. */
 #include "src/io/restart.h"
 
 #include <errno.h>
@@ -34,6 +36,7 @@
 
 #include "src/error.h"
 #include "src/io/ragged_io.h"
+#include "src/timeline.h"
 #include "src/version.h"
 
 static const char restart_magic[16] = "BOLIDE-RESTART\n";
@@ -430,6 +433,8 @@ int restart_read_buffer(const void *buf, size_t len, const char *name,
   if (st->need_rebuild != 0 && st->need_rebuild != 1)
     FAIL("rebuild flag %lld", (long long)st->need_rebuild);
   if (st->stats_offset < 0) FAIL("statistics file offset %lld", (long long)st->stats_offset);
+  if (st->ti_current < 0 || st->ti_current > ((int64_t)1 << TIMELINE_NR_BINS))
+    FAIL("integer time %lld (must be in [0, 2^%d])", (long long)st->ti_current, TIMELINE_NR_BINS);
 
   /* the parameters */
   uint64_t plen = 0;
@@ -495,6 +500,9 @@ int restart_read_buffer(const void *buf, size_t len, const char *name,
            p->dmg_shear[i]);
     if (p->n_flaws[i] < 0 || p->n_act[i] < 0)
       FAIL("particle %zu: %d flaws, %d active", i, (int)p->n_flaws[i], (int)p->n_act[i]);
+    if (p->time_bin[i] < 0 || p->time_bin[i] > TIMELINE_NR_BINS)
+      FAIL("particle %zu: time bin %d (must be in [0, %d])", i, (int)p->time_bin[i],
+           TIMELINE_NR_BINS);
     if (p->id[i] < 0) FAIL("particle %zu: id %lld (must be >= 0)", i, (long long)p->id[i]);
     const double x0[3] = {p->x0[i], p->y0[i], p->z0[i]};
     for (int k = 0; k < 3; k++)

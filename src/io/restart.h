@@ -29,7 +29,7 @@
 #include "src/budget.h"
 #include "src/part.h"
 
-#define RESTART_VERSION 4
+#define RESTART_VERSION 5
 #define RESTART_HEADER_BYTES 128
 
 /** The engine's scalars saved with the particles (every member 8 bytes: no
@@ -51,6 +51,8 @@ struct restart_state {
   double rebuild_h_max;          /**< the space's h_max at the last rebuild (its top-level grid) */
   int64_t need_rebuild;          /**< 1: a task asked for a rebuild at the next step */
   int64_t stats_offset;          /**< length of the statistics file when the file was written */
+  int64_t ti_current;            /**< the time on the integer time line (individual time steps,
+                                      since format 5; 0 with the global step) */
 };
 
 /** The cells' h_max and dx_max at the end of the step (space.cells order). */

@@ -61,7 +61,10 @@ BOLIDE_INLINE void kick_sync_predicted(struct parts *BOLIDE_RESTRICT p, size_t i
 
 /** Drift of particle i by dt after its first half kick: positions move with
  *  the half-step velocity; the velocity and energy used by the next force
- *  computation are predicted to the end of the step; h follows the
+ *  computation are predicted to the new time, half after the middle of the
+ *  particle's step (the state is that of the middle after the first half
+ *  kick: predicted = state + rate * half; with time bins a particle's step
+ *  spans several drifts, src/timeline.h); h follows the
  *  velocity divergence (dh/dt = h div v / 3) as a first guess for the
  *  iteration, or, with h_continuity (SPH:h_evolution: continuity), the
  *  density rate of the last force loop, dh/dt = -h/(3 rho) drho/dt, as
@@ -71,12 +74,11 @@ BOLIDE_INLINE void kick_sync_predicted(struct parts *BOLIDE_RESTRICT p, size_t i
  *  (xsph > 0) positions move with v + xsph * sum m_j/rho_ij (v_j - v_i) W_ij
  *  (Monaghan 1989; theory/sph.md eq. S15), the sum from the last force
  *  loop. */
-BOLIDE_INLINE void drift_part(struct parts *BOLIDE_RESTRICT p, size_t i, double dt, double xsph,
-                              double h_max, int h_continuity) {
+BOLIDE_INLINE void drift_part_to(struct parts *BOLIDE_RESTRICT p, size_t i, double dt, double half,
+                                 double xsph, double h_max, int h_continuity) {
   p->x[i] += (p->vx[i] + xsph * p->xsphx[i]) * dt;
   p->y[i] += (p->vy[i] + xsph * p->xsphy[i]) * dt;
   p->z[i] += (p->vz[i] + xsph * p->xsphz[i]) * dt;
-  const double half = 0.5 * dt;
   p->Spxx[i] = p->Sxx[i] + p->dSxx[i] * half;
   p->Spxy[i] = p->Sxy[i] + p->dSxy[i] * half;
   p->Spxz[i] = p->Sxz[i] + p->dSxz[i] * half;
@@ -97,6 +99,13 @@ BOLIDE_INLINE void drift_part(struct parts *BOLIDE_RESTRICT p, size_t i, double 
   if (w < -0.2) w = -0.2;
   const double h = p->h[i] * exp(w);
   p->h[i] = h < h_max ? h : h_max;
+}
+
+/** Drift of particle i by a whole step dt after its first half kick by dt/2
+ *  (the global step: the new time is the end of its step). */
+BOLIDE_INLINE void drift_part(struct parts *BOLIDE_RESTRICT p, size_t i, double dt, double xsph,
+                              double h_max, int h_continuity) {
+  drift_part_to(p, i, dt, 0.5 * dt, xsph, h_max, h_continuity);
 }
 
 #endif

@@ -36,6 +36,26 @@ BOLIDE_INLINE void kick2_plastic_return(struct parts *BOLIDE_RESTRICT p, size_t 
   EXTRA_GHOST_PUT6(S, p, S, i);
 }
 
+/** The rates of particle i that the force phase leaves for the kick to
+ *  complete: with self-gravity the gravitational acceleration joins the
+ *  hydrodynamic one (a gravity-only run has no hydrodynamic one); for
+ *  porous materials dalpha/dt (kick_porous.h); with the continuity
+ *  equation the density rate of a particle on its floor
+ *  (continuity_floor.h).  With time bins the particles that do not end
+ *  their step take only these (the drift predicts their state with them). */
+BOLIDE_INLINE void kick2_rates(struct parts *BOLIDE_RESTRICT p, size_t i,
+                               const struct hydro_props *hp, const struct material_table *mats,
+                               const struct timestep_props *tp) {
+  if (tp->gravity) {
+    if (!tp->hydro) p->ax[i] = p->ay[i] = p->az[i] = 0.0;
+    p->ax[i] += p->gax[i];
+    p->ay[i] += p->gay[i];
+    p->az[i] += p->gaz[i];
+  }
+  if (tp->porous) kick2_porous_rate(p, i, mats);
+  if (hp->continuity) continuity_floor_rate(p, i);
+}
+
 /** The kick and the new time step of particle i, on the CPU and the GPU:
  *  with self-gravity the gravitational acceleration joins the hydrodynamic
  *  one (the two families accumulate apart, engine_graph.c; a gravity-only
@@ -51,14 +71,7 @@ BOLIDE_INLINE void kick2_plastic_return(struct parts *BOLIDE_RESTRICT p, size_t 
 BOLIDE_INLINE double kick2_part(struct parts *BOLIDE_RESTRICT p, size_t i, double dt_kick,
                                 const struct hydro_props *hp, const struct material_table *mats,
                                 const struct timestep_props *tp) {
-  if (tp->gravity) {
-    if (!tp->hydro) p->ax[i] = p->ay[i] = p->az[i] = 0.0;
-    p->ax[i] += p->gax[i];
-    p->ay[i] += p->gay[i];
-    p->az[i] += p->gaz[i];
-  }
-  if (tp->porous) kick2_porous_rate(p, i, mats);
-  if (hp->continuity) continuity_floor_rate(p, i);
+  kick2_rates(p, i, hp, mats, tp);
   kick_part(p, i, dt_kick);
   if (hp->solids) kick2_plastic_return(p, i, mats);
   kick_sync_predicted(p, i);

@@ -18,3 +18,39 @@ double kick2_cell_cpu(struct parts *p, const struct cell *c, double dt_kick,
   }
   return dt_min;
 }
+
+double kick2_cell_bins_cpu(struct parts *p, const struct cell *c, const struct hydro_props *hp,
+                           const struct material_table *mats, const struct timestep_props *tp,
+                           const struct timeline *tl, integertime_t ti_new, int first,
+                           int64_t *bins, struct timeline_sums *sums) {
+  double dt_min = 1e300;
+  integertime_t ti_end_min = INT64_MAX;
+  int64_t active = 0;
+  const size_t end = c->offset + c->count;
+  for (int b = 0; b <= TIMELINE_NR_BINS; b++) bins[b] = 0;
+  for (size_t i = c->offset; i < end; i++) {
+    const int old_bin = p->time_bin[i];
+    const integertime_t step = timeline_step_of_bin(old_bin > 0 ? old_bin : 1);
+    if (!first && ti_new % step != 0) {
+      /* in the middle of its step: the rates for its predicted state only */
+      kick2_rates(p, i, hp, mats, tp);
+      const integertime_t ti_end = ti_new - ti_new % step + step;
+      if (ti_end < ti_end_min) ti_end_min = ti_end;
+      bins[old_bin]++;
+      continue;
+    }
+    const double dt_kick = first ? 0.0 : 0.5 * (double)step * tl->time_base;
+    const double dt = kick2_part(p, i, dt_kick, hp, mats, tp);
+    if (dt < dt_min) dt_min = dt;
+    const int want = timeline_bin(tl, dt);
+    const int bin = first ? want : timeline_bin_allowed(old_bin, want, ti_new);
+    p->time_bin[i] = bin;
+    bins[bin]++;
+    active++;
+    const integertime_t ti_end = ti_new + timeline_step_of_bin(bin > 0 ? bin : 1);
+    if (ti_end < ti_end_min) ti_end_min = ti_end;
+  }
+  sums->ti_end_min = ti_end_min;
+  sums->active = active;
+  return dt_min;
+}
