@@ -2,7 +2,8 @@
  * form: one thread per particle i of a leaf (one block per leaf) summing
  * gradient_iact (gradient_iact.h, the function the CPU loops call) over
  * every j of its neighbour list with r < H_i, in registers, added once with
- * hydro_gradient_add (the ghost zeroed the sums).  The extra ghost runs
+ * hydro_gradient_add (the ghost zeroed the sums; the loop:
+ * tasks/iact_loop_gpu.h).  The extra ghost runs
  * extra_ghost_part (extra_ghost_part.h, the CPU task's function) on every
  * particle: corrected velocity gradient, plasticity, dS/dt, artificial
  * stress. */
@@ -12,37 +13,18 @@
 #include "src/kernel.h"
 
 /** See gradient_gpu_launch. */
-__global__ void gradient_gpu_kernel(struct parts p, struct gpu_leaves_dev lv) {
-  const int L = blockIdx.x;
-  const size_t beg = lv.offset[L];
-  const int cnt = lv.count[L];
-  const int k0 = lv.ngb_start[L], k1 = lv.ngb_start[L + 1];
-  const double *__restrict__ x = p.x, *__restrict__ y = p.y, *__restrict__ z = p.z;
-  const double *__restrict__ m = p.m, *__restrict__ rho = p.rho;
-  const double *__restrict__ vx = p.vpx, *__restrict__ vy = p.vpy, *__restrict__ vz = p.vpz;
-  for (int t = threadIdx.x; t < cnt; t += blockDim.x) {
-    const size_t i = beg + (size_t)t;
-    const double xi[3] = {x[i], y[i], z[i]}, vi[3] = {vx[i], vy[i], vz[i]};
-    const double hi_inv = 1.0 / p.h[i], Hi = kernel_gamma * p.h[i], Hi2 = Hi * Hi;
-    struct gradient_acc a = {{0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 0, 0, 0, 0}, 0};
-    for (int k = k0; k < k1; k++) {
-      const int J = lv.ngb_leaf[k];
-      const double s[3] = {lv.ngb_shift[3 * k], lv.ngb_shift[3 * k + 1], lv.ngb_shift[3 * k + 2]};
-      const int unshifted = (s[0] == 0.0 && s[1] == 0.0 && s[2] == 0.0);
-      const size_t jb = lv.offset[J], je = jb + (size_t)lv.count[J];
-      for (size_t j = jb; j < je; j++) {
-        /* the CPU loops' expression, so that distances agree bit for bit */
-        const double dx[3] = {(xi[0] - x[j]) - s[0], (xi[1] - y[j]) - s[1], (xi[2] - z[j]) - s[2]};
-        const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-        if (r2 < Hi2 && !(unshifted && j == i)) {
-          const double dv[3] = {vi[0] - vx[j], vi[1] - vy[j], vi[2] - vz[j]};
-          gradient_iact(r2, dx, hi_inv, m[j] / rho[j], dv, &a);
-        }
-      }
-    }
-    hydro_gradient_add(&p, i, &a);
+#define IACT_GPU_NAME gradient_gpu_kernel
+#define IACT_GPU_BEGIN(p, i)                                                         \
+  const double hi_inv = 1.0 / (p).h[i], Hi = kernel_gamma * (p).h[i], Hi2 = Hi * Hi; \
+  const double *__restrict__ m = (p).m, *__restrict__ rho = (p).rho;                 \
+  struct gradient_acc a = {{0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 0, 0, 0, 0}, 0}
+#define IACT_GPU_PAIR(p, i, j, r2, dx, self)                            \
+  if ((r2) < Hi2 && !(self)) {                                          \
+    const double dv[3] = {vi[0] - vx[j], vi[1] - vy[j], vi[2] - vz[j]}; \
+    gradient_iact(r2, dx, hi_inv, m[j] / rho[j], dv, &a);               \
   }
-}
+#define IACT_GPU_END(p, i) hydro_gradient_add(&(p), i, &a)
+#include "tasks/iact_loop_gpu.h"
 
 /** See extra_ghost_gpu_launch. */
 __global__ void extra_ghost_gpu_kernel(struct parts p, struct hydro_props hp,
