@@ -1310,6 +1310,9 @@ static void engine_bins_resume(struct engine *e) {
  *  show the state of now: this swaps the two sets of arrays (twice: back). */
 static void engine_sync_view(struct engine *e) {
   if (!e->individual) return;
+#ifdef HAVE_CUDA
+  gpu_engine_to_host(e); /* (the arrays swapped must be the current ones) */
+#endif
   struct parts *p = &e->parts;
 #define ENGINE_SWAP(a, b) \
   do {                    \
@@ -1423,13 +1426,16 @@ void engine_run(struct engine *e) {
     e->updates += (long long)e->nr_active;
     engine_watchdog_after_step(e);
     if (e->dump_tasks > 0 && e->step % e->dump_tasks == 0) engine_dump_tasks(e);
-    engine_sync_view(e);
+    /* (a GPU run's particles come back to the host only for an output) */
+    const int output = e->time >= e->next_stats || e->time >= e->time_end ||
+                       (e->next_out < e->nr_out && e->time >= e->out_times[e->next_out]);
+    if (output) engine_sync_view(e);
     engine_stats_maybe(e);
     if (e->next_out < e->nr_out && e->time >= e->out_times[e->next_out]) {
       engine_snapshot(e);
       while (e->next_out < e->nr_out && e->out_times[e->next_out] <= e->time) e->next_out++;
     }
-    engine_sync_view(e);
+    if (output) engine_sync_view(e);
     const double w1 = error_walltime();
     const double frac = (e->time - t_begin) / fmax(e->time_end - t_begin, 1e-300);
     const double eta = frac > 0 ? (w1 - e->wall_start) * (1.0 - frac) / frac : 0.0;

@@ -476,7 +476,7 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
   t0 = error_walltime();
   if (solid) gpu_set_flaws(g, fl.eps, (size_t)nr_flaws);
   const int capped_gpu = gpu_cells_force(g, &gc, &q, &sp, tcells, sp.nr_top, ct, top_h_cap, &hp,
-                                         &mats, &dmg, NULL, dt_kick, 0, dt_gpu);
+                                         &mats, &dmg, NULL, dt_kick, 0, dt_gpu, NULL);
   const double t_gpu = error_walltime() - t0;
 
   /* compare */

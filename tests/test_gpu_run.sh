@@ -16,6 +16,8 @@
 #     L2L, L2P, M2P and P2P on the GPU.
 #  4. The same with Gravity:reuse_steps 2: the steps that reuse the far
 #     field replay the interactions on the GPU (gravity_replay on the CPU).
+#  5. Individual time steps (time bins): the Evrard collapse and the solid
+#     impact, the same steps and particles kicked on both.
 # The runs differ only by the order of the SPH sums (round-off, ~1e-15
 # relative per step, amplified along the run), so every column must agree
 # to 1e-8 relative to its scale (mass, E_tot, or sum m|v| for momenta).
@@ -159,6 +161,31 @@ grep "reused the far field" reuse/gpu/run.log
 grep -q "GPU gravity, .* evaluations ([1-9][0-9]* replays)" reuse/gpu/run.log ||
   { echo "FAIL: the reuse run replayed no step on the GPU"; exit 1; }
 
+# 5. individual time steps (TimeIntegration:global_step: false): the drift
+# and the kick of time bins on the GPU (drift_part_bins, kick2_part_bins,
+# the CPU's functions): the Evrard collapse (self-gravity) and the solid +
+# damage impact, 40 steps each; the same particles kicked in each step
+mkdir -p evbins/cpu evbins/gpu imbins/cpu imbins/gpu
+for m in cpu gpu; do
+  cp evrard/cpu/evrard.hdf5 evbins/$m/
+  sed 's/^  dt_max: 0.01$/  dt_max: 0.01\n  global_step: false/' "$S/examples/EvrardCollapse/params.yml" >evbins/$m/params.yml
+  cp impact/cpu/impact.hdf5 imbins/$m/
+  sed 's/^  time_end: 1$/  time_end: 1\n  global_step: false/' impact/$m/params.yml >imbins/$m/params.yml
+done
+grep -q "global_step: false" evbins/gpu/params.yml && grep -q "global_step: false" imbins/gpu/params.yml ||
+  { echo "FAIL: test set-up (bins)"; exit 1; }
+run evbins 40
+run imbins 40
+for b in evbins imbins; do
+  grep -q "GPU not used" $b/gpu/run.log && { echo "FAIL: the $b run did not use the GPU"; exit 1; }
+  # the step lines (step, time, dt, particles kicked) of the two runs
+  awk 'NF == 6 && $1 ~ /^[0-9]+$/ {print $1, $2, $3, $4}' $b/cpu/run.log >$b/cpu/steps.txt
+  awk 'NF == 6 && $1 ~ /^[0-9]+$/ {print $1, $2, $3, $4}' $b/gpu/run.log >$b/gpu/steps.txt
+  cmp -s $b/cpu/steps.txt $b/gpu/steps.txt ||
+    { echo "FAIL: $b: the CPU and GPU runs kicked other particles or took other steps"; diff $b/cpu/steps.txt $b/gpu/steps.txt | head -5; exit 1; }
+  echo "$b: $(wc -l <$b/cpu/steps.txt) steps, the same particles kicked on the CPU and the GPU ($(awk '{s += $4} END {print s}' $b/cpu/steps.txt) updates)"
+done
+
 fail=0
 compare sedov || fail=1
 compare impact || fail=1
@@ -189,4 +216,6 @@ PY
 done
 compare evrard || fail=1
 compare reuse || fail=1
+compare evbins || fail=1
+compare imbins || fail=1
 exit $fail

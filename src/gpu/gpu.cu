@@ -104,6 +104,7 @@ struct gpu {
   void *pinned[PART_NR_FIELDS]; /**< host arrays registered as pinned memory, by field */
   size_t pinned_bytes;          /**< bytes per field registered */
   void (*kick_wait)(void *);    /**< called before the kick reads ga (gpu_set_kick_wait) */
+  struct gpu_bins bins;         /**< time bins of the kicks and drifts (gpu_set_bins) */
   void *kick_wait_ctx;          /**< its argument */
   double *wd_x0;                /**< watchdog: positions before the drift (3 x wd_cap) */
   size_t wd_cap;                /**< their allocated length per coordinate */
@@ -231,7 +232,7 @@ static struct gpu_leaves_dev gpu_upload_cells(struct gpu *g, const struct gpu_le
                         (lv->lists ? 0 : n + 1) * sizeof(int),
                         nn * sizeof(int),
                         3 * nn * sizeof(double),
-                        n * sizeof(double)};
+                        3 * n * sizeof(double)};
   size_t off[8], total = 0;
   for (int k = 0; k < 8; k++) {
     off[k] = total;
@@ -403,6 +404,7 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
   ph.grav.eps = ph.grav.eta = ph.grav.h_factor = 0.0;
   if (grav) ph.grav = *grav;
   ph.dt_kick = dt_kick;
+  ph.bins = g->bins;
   ph.leaf_dt = g->leaf_dt;
   ph.counters = g->counters_dev;
   ph.counters_host = g->counters_host;
@@ -425,7 +427,8 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
   }
   double *leaf_dt = g->leaf_dt;
   if (!resident) gpu_copy_fields(g, p, g->out, nr_out, 0);
-  gpu_check(cudaMemcpyAsync(leaf_dt_min, leaf_dt, (size_t)lv->n * sizeof(double),
+  gpu_check(cudaMemcpyAsync(leaf_dt_min, leaf_dt,
+                            (g->bins.on ? 3 : 1) * (size_t)lv->n * sizeof(double),
                             cudaMemcpyDeviceToHost, s));
   gpu_check(cudaEventRecord(g->ev[GPU_T_N], s));
   gpu_check(cudaStreamSynchronize(s));
@@ -435,6 +438,13 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
     g->t[k] += ms;
   }
   g->calls++;
+}
+
+extern "C" void gpu_set_bins(struct gpu *g, const struct gpu_bins *bins) {
+  if (bins)
+    g->bins = *bins;
+  else
+    memset(&g->bins, 0, sizeof g->bins);
 }
 
 extern "C" void gpu_set_kick_wait(struct gpu *g, void (*fn)(void *), void *ctx) {
@@ -541,7 +551,10 @@ extern "C" void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double
   gpu_pin(g, p);
   cudaStream_t s = g->stream[0];
   gpu_check(cudaEventRecord(g->ev_drift[0], s));
-  drift_gpu_launch(s, g->dev, dt_kick, dt, xsph, h_max, h_continuity);
+  if (g->bins.on)
+    drift_bins_gpu_launch(s, g->dev, &g->bins, xsph, h_max, h_continuity);
+  else
+    drift_gpu_launch(s, g->dev, dt_kick, dt, xsph, h_max, h_continuity);
   const int idx[4] = {gpu_field_index("x"), gpu_field_index("y"), gpu_field_index("z"),
                       gpu_field_index("h")};
   gpu_copy_fields(g, p, idx, 4, 0);

@@ -17,6 +17,7 @@
 #include "tasks/gravity/gravity_cpu.h"
 #include "src/hydro_props.h"
 #include "src/part.h"
+#include "src/timeline.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -112,8 +113,10 @@ void gpu_set_flaws(struct gpu *g, const double *eps, size_t n);
  *  the loops read to the device first and the results back after;
  *  resident = 1: the device arrays are current (gpu_upload_all), nothing
  *  but the leaf time steps comes back.  leaf_dt_min[L]: smallest new time
- *  step of leaf L.  A particle whose h does not converge in
- *  hp->max_iterations stops the run with an error. */
+ *  step of leaf L; with time bins (gpu_set_bins) also, bit for bit in the
+ *  doubles, the int64 earliest end of a step leaf_dt_min[n + L] and the
+ *  int64 number of particles kicked leaf_dt_min[2 n + L] (n leaves).  A particle whose h does not
+ * converge in hp->max_iterations stops the run with an error. */
 void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu_leaves *lv,
                      const struct hydro_props *hp, const struct material_table *mats,
                      const struct gpu_damage *dmg, const struct gpu_gravity *grav, double dt_kick,
@@ -124,6 +127,21 @@ void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu_leaves *lv
  *  beside the phase (CPU tasks), then completes ga on the device (the
  *  device part of gravity on stream 0, or gpu_upload_gravity). */
 void gpu_set_kick_wait(struct gpu *g, void (*fn)(void *), void *ctx);
+
+/** Individual time steps (TimeIntegration:global_step: false) in the GPU's
+ *  drift and kick (drift_part_bins, kick2_part_bins: the CPU's functions). */
+struct gpu_bins {
+  int on;               /**< 0: the global step */
+  int first;            /**< the first force computation: every particle takes a bin, no kick */
+  integertime_t ti_old; /**< the drift's start on the time line */
+  integertime_t ti_new; /**< the drift's end, the kick's time */
+  struct timeline tl;   /**< the run's time line */
+};
+
+/** The time bins of the next FORCE phases' kicks (NULL or on = 0: the
+ *  global step); with them the phase's leaf_dt_min holds 3 values per leaf
+ *  (gpu_force_phase). */
+void gpu_set_bins(struct gpu *g, const struct gpu_bins *bins);
 /** Copy gax, gay, gaz and pot of the resident particles from the host to
  *  the device on stream 0 (self-gravity computed on the CPU). */
 void gpu_upload_gravity(struct gpu *g, struct parts *p);
@@ -182,9 +200,10 @@ void gpu_grav_print(const struct gpu_grav *gg, FILE *f);
 void gpu_upload_all(struct gpu *g, const struct parts *p);
 /** Copy every particle field back to the host (outputs, rebuilds). */
 void gpu_download_all(struct gpu *g, struct parts *p);
-/** First half kick by dt_kick and drift by dt of the resident particles;
- *  copy back the positions and smoothing lengths (what the CPU needs to
- *  decide on a rebuild and to build the neighbour lists). */
+/** First half kick by dt_kick and drift by dt of the resident particles
+ *  (with the time bins of gpu_set_bins: from bins.ti_old to bins.ti_new,
+ *  drift_part_bins); copy back the positions and smoothing lengths (what
+ *  the CPU needs to decide on a rebuild and to build the neighbour lists). */
 void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt, double xsph, double h_max,
                int h_continuity);
 /** The watchdog (engine.c) on the resident particles.  gpu_watchdog_save:

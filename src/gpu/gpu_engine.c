@@ -420,8 +420,8 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
                     struct cell *const *tcells, int nr, const struct engine_cell_tasks *ct,
                     const double *tc_h_cap, const struct hydro_props *hp,
                     const struct material_table *mats, const struct gpu_damage *dmg,
-                    const struct gpu_gravity *grav, double dt_kick, int resident,
-                    double *tc_dt_min) {
+                    const struct gpu_gravity *grav, double dt_kick, int resident, double *tc_dt_min,
+                    struct timeline_sums *tc_sums) {
   /* lists a quarter wider than the current h_max, widened when h outgrows them */
   double growth = gc->growth > 1.25 ? 0.97 * gc->growth : 1.25;
   if (growth < 1.25) growth = 1.25;
@@ -443,7 +443,7 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
       /* same leaves and lists; only the cells' caps moved */
       for (int l = 0; l < gc->n; l++) gc->h_cap[l] = tc_h_cap[gc->top[l]];
     }
-    leaf_dt = error_realloc(leaf_dt, (gc->n + 1) * sizeof(double), "GPU leaf time steps");
+    leaf_dt = error_realloc(leaf_dt, 3 * (gc->n + 1) * sizeof(double), "GPU leaf time steps");
     const struct gpu_leaves lv = {
         gc->n,         gc->offset,   gc->count,     gc->h_cap,  gc->h_list_cap,
         gc->ngb_start, gc->ngb_leaf, gc->ngb_shift, gc->nr_ngb, gc->host_lists ? NULL : gc->dev};
@@ -461,6 +461,17 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
   for (int t = 0; t < nr; t++) tc_dt_min[t] = 1e300;
   for (int l = 0; l < gc->n; l++)
     if (leaf_dt[l] < tc_dt_min[gc->top[l]]) tc_dt_min[gc->top[l]] = leaf_dt[l];
+  if (tc_sums) {
+    for (int t = 0; t < nr; t++) tc_sums[t] = (struct timeline_sums){INT64_MAX, 0};
+    for (int l = 0; l < gc->n; l++) {
+      int64_t ti_end, kicked;
+      memcpy(&ti_end, &leaf_dt[gc->n + l], sizeof ti_end);
+      memcpy(&kicked, &leaf_dt[2 * gc->n + l], sizeof kicked);
+      struct timeline_sums *ts = &tc_sums[gc->top[l]];
+      if (ti_end < ts->ti_end_min) ts->ti_end_min = ti_end;
+      ts->active += kicked;
+    }
+  }
   free(leaf_dt);
   /* h changed: the CPU's pruning and the rebuild test read the cells' bounds
    * (resident particles: the next drift brings h back) */
@@ -530,9 +541,7 @@ void gpu_engine_init(struct engine *e) {
                             : e->gp.enabled && e->gp.h_factor > 0.0
                                 ? "Gravity:softening_h_factor > 0 (softening tied to h) has no GPU "
                                   "implementation yet"
-                            : e->individual ? "individual time steps (TimeIntegration:global_step: "
-                                              "false) have no GPU implementation yet"
-                                            : gpu_engine_cpu_only(e);
+                                : gpu_engine_cpu_only(e);
   if (unsupported) {
     if (required) error_exit("a GPU was required (%s) but %s", asked, unsupported);
     error_log(0, "GPU not used (%s): every task runs on the CPU", unsupported);
@@ -698,6 +707,12 @@ static void gpu_engine_grav_cpu(struct engine *e, int on_gpu) {
   e->gpu->t_grav_walk += error_walltime() - w0;
 }
 
+/** The engine's time bins for the GPU's next drift or kick (gpu_set_bins). */
+static void gpu_engine_set_bins(struct engine *e) {
+  const struct gpu_bins b = {e->individual, e->first_force, e->ti_current, e->ti_next, e->timeline};
+  gpu_set_bins(e->gpu->gpu, &b);
+}
+
 /** The device part (gpu_grav_run: grouping included, or the replay of a
  *  step that reuses the far field), which leaves ga and pot complete on
  *  both sides for the kick, on stream 0 after whatever is queued there. */
@@ -756,12 +771,13 @@ static void *gpu_engine_hydro_run(void *arg) {
   jb->t_start = error_walltime();
   jb->capped = gpu_cells_force(ge->gpu, &ge->cells, &e->parts, &e->space, e->tcells, e->nr_tcells,
                                e->ct, ge->tc_h_cap, &e->hp, e->mats, &jb->dmg, &jb->grav,
-                               jb->dt_kick, 1, e->cell_dt_min);
+                               jb->dt_kick, 1, e->cell_dt_min, e->individual ? e->cell_kick : NULL);
   return NULL;
 }
 
 void gpu_engine_force(struct engine *e) {
   struct gpu_engine *ge = e->gpu;
+  gpu_engine_set_bins(e);
   const double w_phase = error_walltime();
   if (e->nr_tcells > ge->nr_tc) {
     ge->tc_h_cap = error_realloc(ge->tc_h_cap, e->nr_tcells * sizeof(double), "GPU caps");
@@ -867,6 +883,7 @@ static void gpu_engine_bounds(struct engine *e) {
 
 void gpu_engine_drift(struct engine *e) {
   struct gpu_engine *ge = e->gpu;
+  gpu_engine_set_bins(e);
   if (!ge->dev_valid) {
     gpu_upload_all(ge->gpu, &e->parts);
     ge->dev_valid = 1;

@@ -75,14 +75,16 @@ void gpu_cells_free(struct gpu_cells *gc);
  *  (neighbours ct): build the lists, run, and when some h outgrows them
  *  rebuild them wider and run again.  dmg: damage, grav: gravity in the
  *  kick (NULL or !enabled: none).  tc_dt_min[t]: the smallest new time
- *  step of task cell t.  resident: as gpu_force_phase.  Returns 1 if a smoothing length was capped
- * by the cells (the space must be rebuilt), else 0. */
+ *  step of task cell t; with time bins (gpu_set_bins) tc_sums[t] the
+ *  earliest end of a step and the particles kicked (NULL: not wanted).  resident: as
+ * gpu_force_phase.  Returns 1 if a smoothing length was capped by the cells (the space must be
+ * rebuilt), else 0. */
 int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct space *s,
                     struct cell *const *tcells, int nr, const struct engine_cell_tasks *ct,
                     const double *tc_h_cap, const struct hydro_props *hp,
                     const struct material_table *mats, const struct gpu_damage *dmg,
-                    const struct gpu_gravity *grav, double dt_kick, int resident,
-                    double *tc_dt_min);
+                    const struct gpu_gravity *grav, double dt_kick, int resident, double *tc_dt_min,
+                    struct timeline_sums *tc_sums);
 
 /** Host side of self-gravity on the GPU, grown and reused between steps:
  *  the cell tree as index arrays (gpu_grav_tree_build, at each rebuild). */

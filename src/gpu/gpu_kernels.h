@@ -106,7 +106,9 @@ struct gpu_phase {
   double dmg_max_change;             /**< Damage:max_change (0 without damage) */
   struct gpu_gravity grav;           /**< gravity in the kick */
   double dt_kick;                    /**< second half kick */
-  double *leaf_dt;                   /**< smallest new time step of each leaf (device) */
+  struct gpu_bins bins;              /**< individual time steps (bins.on = 0: none) */
+  double *leaf_dt;                   /**< smallest new time step of each leaf (device; with
+                                          bins 3 per leaf, gpu_force_phase) */
   int *counters;                     /**< counters of the h iteration (device) */
   int *counters_host;                /**< their pinned copy (gpu_phase_read_counters) */
   void (*wait)(void *);              /**< gpu_set_kick_wait's hook (NULL: none) */
@@ -205,12 +207,18 @@ void force_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
 /** First half kick and drift of every particle (tasks/drift/drift_gpu.cu). */
 void drift_gpu_launch(cudaStream_t s, struct parts p, double dt_kick, double dt, double xsph,
                       double h_max, int h_continuity);
+/** The same with time bins, from bins.ti_old to bins.ti_new (drift_part_bins). */
+void drift_bins_gpu_launch(cudaStream_t s, struct parts p, const struct gpu_bins *bins, double xsph,
+                           double h_max, int h_continuity);
 /** Second half kick and time step; leaf_dt[L] the smallest of leaf L; with
  *  damage_max_change > 0 the damage limit joins, with grav.enabled the
- *  gravitational acceleration and its limit (tasks/kick/kick_gpu.cu). */
+ *  gravitational acceleration and its limit; with bins.on the kick of time
+ *  bins (kick2_part_bins), leaf_dt 3 per leaf (gpu_force_phase)
+ *  (tasks/kick/kick_gpu.cu). */
 void kick2_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
                       struct hydro_props hp, const struct material_table *mats, double dt_kick,
-                      double damage_max_change, struct gpu_gravity grav, double *leaf_dt);
+                      double damage_max_change, struct gpu_gravity grav, struct gpu_bins bins,
+                      double *leaf_dt);
 
 /** In place, by one block of at most 1024 threads: c[0..n) become their
  *  exclusive prefix sums, c[n] the total.  Each thread sums a chunk, thread

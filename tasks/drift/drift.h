@@ -7,6 +7,7 @@
 
 #include "src/inline.h"
 #include "src/part.h"
+#include "src/timeline.h"
 
 /** Half kick of particle i by dt_kick: v += a dt, u += du/dt dt; the
  *  deviatoric stress and the continuity density are integrated like u
@@ -106,6 +107,24 @@ BOLIDE_INLINE void drift_part_to(struct parts *BOLIDE_RESTRICT p, size_t i, doub
 BOLIDE_INLINE void drift_part(struct parts *BOLIDE_RESTRICT p, size_t i, double dt, double xsph,
                               double h_max, int h_continuity) {
   drift_part_to(p, i, dt, 0.5 * dt, xsph, h_max, h_continuity);
+}
+
+/** With individual time steps (TimeIntegration:global_step: false):
+ *  particle i drifts from ti_old to ti_new on a time line of ticks of
+ *  time_base; a particle whose step begins at ti_old (its bin's step
+ *  divides ti_old) first takes its half kick by half its step, and its
+ *  predicted state is that of ti_new, from the middle of its own step
+ *  (drift_part_to).  Returns 1 when the particle ends its step at ti_new. */
+BOLIDE_INLINE int drift_part_bins(struct parts *BOLIDE_RESTRICT p, size_t i, double time_base,
+                                  integertime_t ti_old, integertime_t ti_new, double xsph,
+                                  double h_max, int h_continuity) {
+  const integertime_t step = timeline_step_of_bin(p->time_bin[i] > 0 ? p->time_bin[i] : 1);
+  const integertime_t since = ti_old % step; /* 0: its step begins at ti_old */
+  if (since == 0) kick_part(p, i, 0.5 * (double)step * time_base);
+  const integertime_t ti_mid = ti_old - since + step / 2;
+  drift_part_to(p, i, (double)(ti_new - ti_old) * time_base, (double)(ti_new - ti_mid) * time_base,
+                xsph, h_max, h_continuity);
+  return ti_new % step == 0;
 }
 
 #endif

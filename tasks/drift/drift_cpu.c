@@ -20,13 +20,8 @@ void drift_cell_bins_cpu(struct parts *p, struct cell *c, const struct timeline 
                          integertime_t ti_old, integertime_t ti_new, double xsph, double h_max,
                          int h_continuity) {
   const size_t end = c->offset + c->count;
-  const double dt = (double)(ti_new - ti_old) * tl->time_base;
   for (size_t i = c->offset; i < end; i++) {
-    const integertime_t step = timeline_step_of_bin(p->time_bin[i] > 0 ? p->time_bin[i] : 1);
-    const integertime_t since = ti_old % step; /* 0: its step begins at ti_old */
-    if (since == 0) kick_part(p, i, 0.5 * (double)step * tl->time_base);
-    const integertime_t ti_mid = ti_old - since + step / 2;
-    drift_part_to(p, i, dt, (double)(ti_new - ti_mid) * tl->time_base, xsph, h_max, h_continuity);
+    drift_part_bins(p, i, tl->time_base, ti_old, ti_new, xsph, h_max, h_continuity);
     hydro_density_reset(p, i);
   }
   cell_update_bounds(p, c);

@@ -12,6 +12,7 @@
 #include "src/inline.h"
 #include "src/materials/material.h"
 #include "src/part.h"
+#include "src/timeline.h"
 #include "tasks/kick/kick_porous.h"
 #include "tasks/kick/timestep.h"
 #include "src/materials/viscosity.h"
@@ -78,6 +79,35 @@ BOLIDE_INLINE double kick2_part(struct parts *BOLIDE_RESTRICT p, size_t i, doubl
   const double dt = timestep_part(p, i, hp, mats, tp);
   if (tp->porous && dt_kick > 0.0) kick2_porous_return(p, i, mats, hp->continuity);
   return dt;
+}
+
+/** The kick of particle i with individual time steps at ti_new on the time
+ *  line tl (TimeIntegration:global_step: false): a particle whose step ends
+ *  at ti_new (or any, first: the first force computation, no kick) takes
+ *  its second half kick by half its step (kick2_part) and the time bin of
+ *  its new limit (timeline_bin; a longer bin only where ti_new allows it,
+ *  timeline_bin_allowed), its new limit in *dt; the others, in the middle
+ *  of their step, only the rates (kick2_rates), *dt = 1e300.  *ti_end: the
+ *  end of its step.  Returns 1 when it was kicked. */
+BOLIDE_INLINE int kick2_part_bins(struct parts *BOLIDE_RESTRICT p, size_t i,
+                                  const struct hydro_props *hp, const struct material_table *mats,
+                                  const struct timestep_props *tp, const struct timeline *tl,
+                                  integertime_t ti_new, int first, integertime_t *ti_end,
+                                  double *dt) {
+  const int old_bin = p->time_bin[i];
+  const integertime_t step = timeline_step_of_bin(old_bin > 0 ? old_bin : 1);
+  if (!first && ti_new % step != 0) {
+    kick2_rates(p, i, hp, mats, tp);
+    *ti_end = ti_new - ti_new % step + step;
+    *dt = 1e300;
+    return 0;
+  }
+  *dt = kick2_part(p, i, first ? 0.0 : 0.5 * (double)step * tl->time_base, hp, mats, tp);
+  const int want = timeline_bin(tl, *dt);
+  const int bin = first ? want : timeline_bin_allowed(old_bin, want, ti_new);
+  p->time_bin[i] = bin;
+  *ti_end = ti_new + timeline_step_of_bin(bin > 0 ? bin : 1);
+  return 1;
 }
 
 #endif

@@ -29,26 +29,12 @@ double kick2_cell_bins_cpu(struct parts *p, const struct cell *c, const struct h
   const size_t end = c->offset + c->count;
   for (int b = 0; b <= TIMELINE_NR_BINS; b++) bins[b] = 0;
   for (size_t i = c->offset; i < end; i++) {
-    const int old_bin = p->time_bin[i];
-    const integertime_t step = timeline_step_of_bin(old_bin > 0 ? old_bin : 1);
-    if (!first && ti_new % step != 0) {
-      /* in the middle of its step: the rates for its predicted state only */
-      kick2_rates(p, i, hp, mats, tp);
-      const integertime_t ti_end = ti_new - ti_new % step + step;
-      if (ti_end < ti_end_min) ti_end_min = ti_end;
-      bins[old_bin]++;
-      continue;
-    }
-    const double dt_kick = first ? 0.0 : 0.5 * (double)step * tl->time_base;
-    const double dt = kick2_part(p, i, dt_kick, hp, mats, tp);
+    integertime_t ti_end;
+    double dt;
+    active += kick2_part_bins(p, i, hp, mats, tp, tl, ti_new, first, &ti_end, &dt);
     if (dt < dt_min) dt_min = dt;
-    const int want = timeline_bin(tl, dt);
-    const int bin = first ? want : timeline_bin_allowed(old_bin, want, ti_new);
-    p->time_bin[i] = bin;
-    bins[bin]++;
-    active++;
-    const integertime_t ti_end = ti_new + timeline_step_of_bin(bin > 0 ? bin : 1);
     if (ti_end < ti_end_min) ti_end_min = ti_end;
+    bins[p->time_bin[i]]++;
   }
   sums->ti_end_min = ti_end_min;
   sums->active = active;
