@@ -26,7 +26,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "tests/eos_tables.h"
+#include "tests/helpers/eos_tables.h"
 #include "tasks/damage/damage_part.h"
 #include "tasks/damage/flaws.h"
 #include "tasks/density/density_cpu.h"
@@ -36,7 +36,7 @@
 #include "tasks/ghost/ghost_cpu.h"
 #include "tasks/gradient/gradient_cpu.h"
 #include "tasks/gravity/gravity_cpu.h"
-#include "tests/gravity_sets.h"
+#include "tests/helpers/gravity_sets.h"
 #include "src/gpu/gpu_engine.h"
 #include "src/gpu/gpu_lists.h"
 #include "tasks/hydro_parts.h"
@@ -641,7 +641,7 @@ static int gravity_up_report(const struct space *sp, const struct gravity_cell *
  *  interactions at moved positions (Gravity:reuse_steps: gravity_replay on
  *  the CPU, gpu_grav_run with replay on the GPU).  n particles of equal
  *  masses, G = 1, uniform in a unit sphere or (clustered) two Plummer
- *  spheres of tests/gravity_sets.h, whose large sparse leaves meet small
+ *  spheres of tests/helpers/gravity_sets.h, whose large sparse leaves meet small
  *  dense cells: the walks' lopsided M2P and P2L, which the case then
  *  requires.  Returns the number of failures. */
 static int run_gravity_case(struct gpu *g, size_t n, int softening, unsigned long long seed,

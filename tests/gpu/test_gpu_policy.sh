@@ -89,7 +89,7 @@ expect_ok base.yml "-P 'Scheduler:gpu:[]'" "every task runs on the CPU"
 expect_ok base.yml "--no-gpu -P Scheduler:gpu:all" "$gpu_off"
 # the list as written to used_parameters.yml reads back as the same list
 used=$(find . -name used_parameters.yml -path '*out1*' | head -1)
-got=$("$B/tests/params_check" "$used" Scheduler:gpu 2>&1 | tail -1)
+got=$("$B/tests/helpers/params_check" "$used" Scheduler:gpu 2>&1 | tail -1)
 if [ "$got" = "Scheduler:gpu=[density, ghost, gradient, force, damage, drift, kick, gravity]" ]; then
   echo "ok: used_parameters.yml: $got"
 else

@@ -111,7 +111,7 @@ grep -q "GPU not used" impactc/gpu/run.log && { echo "FAIL: the continuity + XSP
 # basalt matrix, alpha_0 1.8, continuity density) squeezed at -300/s x for
 # 80 steps (alpha 1.31 to 1.68 at the end)
 mkdir -p porous/cpu porous/gpu
-for m in cpu gpu; do "${PYTHON:-python3}" "$S/tests/porous_cube.py" porous/$m/block.hdf5 1500 300; done
+for m in cpu gpu; do "${PYTHON:-python3}" "$S/tests/helpers/porous_cube.py" porous/$m/block.hdf5 1500 300; done
 for m in cpu gpu; do
   cat >porous/$m/params.yml <<'YML'
 InitialConditions:

@@ -7,7 +7,7 @@
  * theory/validation.md, "Benchmarks",
  * read with ic_read in the file's own units; G = 1: relative errors and
  * times do not depend on G), or a built-in set: plummer2:N (the two
- * clustered Plummer spheres of tests/gravity_sets.h), plummer:N, uniform:N.
+ * clustered Plummer spheres of tests/helpers/gravity_sets.h), plummer:N, uniform:N.
  * Options:
  *   -s EPS      softening (Plummer-equivalent, spline kernel; in the file's
  *               length unit; default: the built-in sets' 0.1 N^(-1/3) x box 1);
@@ -53,7 +53,7 @@
 
 #include "src/error.h"
 #include "tasks/gravity/gravity_cpu.h"
-#include "tests/gravity_sets.h"
+#include "tests/helpers/gravity_sets.h"
 #include "src/io/ic.h"
 #include "src/io/units.h"
 #include "src/part.h"

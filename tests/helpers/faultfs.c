@@ -1,9 +1,9 @@
-/* A full disk for tests (LD_PRELOAD=tests/faultfs.so): write, pwrite and
+/* A full disk for tests (LD_PRELOAD=tests/helpers/faultfs.so): write, pwrite and
  * pwrite64 on regular files fail with ENOSPC once FAULTFS_BYTES bytes have
  * been written through them by the process.  HDF5 writes through pwrite, so
  * a snapshot fails inside the HDF5 library as on a real full disk; stdio
  * (restart files, statistics) writes through glibc's internal calls and is
- * not limited.  Used by tests/test_hostile_inputs.sh (issue 18 item 5). */
+ * not limited.  Used by tests/program/test_hostile_inputs.sh (issue 18 item 5). */
 #define _GNU_SOURCE
 #include <dlfcn.h>
 #include <errno.h>

@@ -5,7 +5,7 @@
  * Prints "KEY=VALUE" for each KEY (arrays as "a,b,c"), then with --yaml the
  * parameters in use as YAML.  --tree reads FILE with params_read_tree
  * instead (no validation).  Errors are bolide's: one line, exit 1.  Used by
- * tests/test_params_errors.sh. */
+ * tests/program/test_params_errors.sh. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

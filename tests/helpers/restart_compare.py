@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Compare the outputs of two runs of Bolide (tests/test_restart_*.sh):
+"""Compare the outputs of two runs of Bolide (tests/program/test_restart_*.sh):
 usage: restart_compare.py DIR_A DIR_B [--tol REL]
 
 Every snapshot (*.hdf5) of either folder must exist in both, with the same

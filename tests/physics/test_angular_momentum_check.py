@@ -2,7 +2,7 @@
 """The angular-momentum check (Statistics:max_angular_momentum_change; issue
 24 item 5; theory/sph.md, "Conservation budget").
 
-The rotating elastic sphere of tests/test_rotating_sphere.py (485
+The rotating elastic sphere of tests/physics/test_rotating_sphere.py (485
 particles, omega = 0.2, a quarter rotation) is run twice with the bound
 1e-2:
   - with the velocity-gradient correction, which keeps |L - L(0)| / |L(0)|

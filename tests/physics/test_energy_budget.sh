@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The conservation budget with the defaults (theory/sph.md, "Conservation
 # budget"; issue 17): no floor or clamp may create energy in a
-# strengthless planetary run (tests/test_budget.c checks the counting of
+# strengthless planetary run (tests/unit/test_budget.c checks the counting of
 # the one that may, the kick's floor on u of ideal gases and tables).
 #
 # 1. A jittered-lattice sphere of Tillotson granite (2,000 particles, SWIFT

@@ -19,7 +19,7 @@ set -uo pipefail
 B=${BOLIDE_BUILDDIR:?}
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
-"$PYTHON" "${BOLIDE_SRCDIR:?}/tests/porous_cube.py" block.hdf5 1500 3000   # 2700 / 1.8
+"$PYTHON" "${BOLIDE_SRCDIR:?}/tests/helpers/porous_cube.py" block.hdf5 1500 3000   # 2700 / 1.8
 cat >params.yml <<'YML'
 InitialConditions:
   file_name: block.hdf5

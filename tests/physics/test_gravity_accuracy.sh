@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # Gravity at SWIFT's accuracy with the default settings (issue 25): the
 # relative acceleration errors |a - a_direct| / |a_direct| of every particle
-# (tests/bench_gravity_accuracy, the tree of gravity_tree_all against direct
+# (tests/helpers/bench_gravity_accuracy, the tree of gravity_tree_all against direct
 # summation) at the first evaluation (no previous acceleration: the
 # adaptive criterion's scale from gravity_estimate) and at the second (the
 # scale from the first) stay at or below SWIFT's on the reference impact,
 # median 3.3e-5 and 99th percentile 1.7e-4 (theory/validation.md, "Benchmarks"), on
-#   * two clustered Plummer spheres, 20,000 particles (tests/gravity_sets.h);
+#   * two clustered Plummer spheres, 20,000 particles (tests/helpers/gravity_sets.h);
 #   * a SEA planet, 20,000 particles, iron core (30% of the mass) in a granite
 #     mantle (bolide-ic planet), softening = the particle spacing.
 # The same bars on both evaluations, and on a geometric-only tree (epsilon_fmm
@@ -31,13 +31,13 @@ check() {
     END {if (n < 2) {print "FAIL: " what ": no evaluations"; fail = 1}; exit fail}' "$1"
 }
 fail=0
-"$B/tests/bench_gravity_accuracy" -t 2 -c "$cfg" -e 2 plummer2:20000 >plummer2.txt
+"$B/tests/helpers/bench_gravity_accuracy" -t 2 -c "$cfg" -e 2 plummer2:20000 >plummer2.txt
 check plummer2.txt "two Plummer" || fail=1
 
 "$B/bolide-ic" planet --library "$S/examples/materials.yml" --materials iron,granite \
   --mass 5.972e24 --mass-fractions 0.3,0.7 --n 20000 --density-iter 1 --relax 0 \
   -o planet.hdf5 >planet.log 2>&1 || { tail -5 planet.log; exit 1; }
-"$B/tests/bench_gravity_accuracy" -t 2 -s auto -r ref.bin -c "$cfg" -c "0,0.5,$order" -e 2 \
+"$B/tests/helpers/bench_gravity_accuracy" -t 2 -s auto -r ref.bin -c "$cfg" -c "0,0.5,$order" -e 2 \
   planet.hdf5 >planet.txt
 head -1 planet.txt
 grep -v "^cpu 0 " planet.txt >planet_default.txt
@@ -56,8 +56,8 @@ fi
 # device) meets the same bars and agrees with the CPU's tree: median and p99
 # within 1% of the CPU's at each evaluation (the summation order differs).
 if [ "${BOLIDE_GRAVITY_GPU:-0}" = 1 ]; then
-  "$B/tests/bench_gravity_accuracy" -g -t 2 -c "$cfg" -e 2 plummer2:20000 >plummer2_gpu.txt
-  "$B/tests/bench_gravity_accuracy" -g -t 2 -s auto -r ref.bin -c "$cfg" -e 2 planet.hdf5 >planet_gpu.txt
+  "$B/tests/helpers/bench_gravity_accuracy" -g -t 2 -c "$cfg" -e 2 plummer2:20000 >plummer2_gpu.txt
+  "$B/tests/helpers/bench_gravity_accuracy" -g -t 2 -s auto -r ref.bin -c "$cfg" -e 2 planet.hdf5 >planet_gpu.txt
   for f in plummer2 planet_default; do
     g=${f%_default}_gpu.txt
     check "$g" "GPU ${f%_default}" || fail=1

@@ -3,7 +3,7 @@
 # (distention alpha_0 = 1.8, bulk density rho0/1.8) squeezed isotropically,
 # v = -3000/s x, until its core is fully compacted, once with a Murnaghan and
 # once with a Tillotson matrix; the crush curve is the one of the model test
-# (tests/test_porosity.c: p_e = 1 MPa, p_t = 50 MPa, p_s = 200 MPa, alpha_t
+# (tests/unit/test_porosity.c: p_e = 1 MPa, p_t = 50 MPa, p_s = 200 MPa, alpha_t
 # = 1.3, n1 = 6, n2 = 3), written again here.  A snapshot after every step.
 # Asserts, for the core (initially |x| < 0.2 m, compressed homogeneously
 # until the release from the faces arrives):
@@ -22,7 +22,7 @@ set -uo pipefail
 B=${BOLIDE_BUILDDIR:?}
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
-cube="$PYTHON ${BOLIDE_SRCDIR:?}/tests/porous_cube.py"
+cube="$PYTHON ${BOLIDE_SRCDIR:?}/tests/helpers/porous_cube.py"
 $cube block.hdf5 1500 3000                 # 2700 / 1.8
 $cube wrong.hdf5 1600 3000                 # 1600 x 1.8 = 2880, not 2700
 $cube given.hdf5 1800 3000 1.5             # Distentions in the file: 2700 / 1.5

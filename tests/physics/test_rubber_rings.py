@@ -24,7 +24,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
-src = os.environ.get("BOLIDE_SRCDIR", os.path.join(os.path.dirname(__file__), ".."))
+src = os.environ.get("BOLIDE_SRCDIR", os.path.join(os.path.dirname(__file__), "..", ".."))
 build = os.environ.get("BOLIDE_BUILDDIR", ".")
 bolide = os.path.join(build, "bolide")
 example = os.path.join(src, "examples", "RubberRings")

@@ -31,7 +31,7 @@ import numpy as np
 import sph_density
 
 build = os.environ["BOLIDE_BUILDDIR"]
-dump = os.path.join(build, "tests", "sea_shell_dump")
+dump = os.path.join(build, "tests", "helpers", "sea_shell_dump")
 failures = []
 BAR = 0.01
 # the build's kernel (sea_shell_dump -s names it) and default resolution_eta

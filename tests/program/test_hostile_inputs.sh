@@ -66,7 +66,7 @@ else
   echo "ok   far_open: $(grep 'removed particle id 4' out.txt)"
 fi
 
-# a full disk during a snapshot (item 5): tests/faultfs.so fails HDF5's
+# a full disk during a snapshot (item 5): tests/helpers/faultfs.so fails HDF5's
 # writes with ENOSPC after FAULTFS_BYTES, at a dataset or at the flush on
 # closing (which crashed in HDF5's exit handler).  One line, exit 1, no
 # temporary file; the earlier snapshots equal the uninterrupted run's and
@@ -97,7 +97,7 @@ for k in 0 1 2; do
   for frac in 25 90; do
     bytes=$(( k * S + S * frac / 100 ))
     rm -rf full
-    (trap '' XFSZ; LD_PRELOAD="$B/tests/faultfs.so" FAULTFS_BYTES=$bytes timeout 30 "$B/bolide" -t 1 \
+    (trap '' XFSZ; LD_PRELOAD="$B/tests/helpers/faultfs.so" FAULTFS_BYTES=$bytes timeout 30 "$B/bolide" -t 1 \
        -P Snapshots:subdir:full -P Restarts:subdir:full/restart d.yml >full.log 2>err.txt)
     rc=$?
     snap=$(printf 'full/snapshot_%04d.hdf5' $k)

@@ -4,7 +4,7 @@
 # The files are made by tests/data/make_bad_ics.py.
 set -u
 [ -x "${PYTHON:-}" ] || { echo "no Python venv: skip"; exit 77; }
-dump="$BOLIDE_BUILDDIR/tests/ic_dump"
+dump="$BOLIDE_BUILDDIR/tests/helpers/ic_dump"
 dir="$(mktemp -d)"
 trap 'rm -rf "$dir"' EXIT
 "$PYTHON" "$BOLIDE_SRCDIR/tests/data/make_bad_ics.py" "$dir" || exit 1

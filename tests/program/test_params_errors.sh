@@ -2,9 +2,9 @@
 # Every class of parameter error stops params_read with exit status 1 and ONE
 # line on stderr that names the file (or the -P argument), the line and the
 # key, with the expected explanation.  The bad inputs are
-# tests/data/params_err_*.yml; tests/params_check reads them as bolide does.
+# tests/data/params_err_*.yml; tests/helpers/params_check reads them as bolide does.
 set -u
-check="$BOLIDE_BUILDDIR/tests/params_check"
+check="$BOLIDE_BUILDDIR/tests/helpers/params_check"
 data="$BOLIDE_SRCDIR/tests/data"
 valid="$data/params_valid.yml"
 fails=0

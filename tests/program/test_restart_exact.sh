@@ -5,7 +5,7 @@
 # 0.01 to 0.06; the run is stopped by --steps at several steps (before,
 # between and after snapshots), resumed each time with --restart, and every
 # snapshot and the statistics file are compared with the straight run
-# (tests/restart_compare.py).
+# (tests/helpers/restart_compare.py).
 # Then the same with self-gravity and Gravity:reuse_steps > 0 (Evrard
 # collapse, 912 particles): a step that reuses the far field of the
 # last full evaluation must do so after a resume too (the positions, lists,
@@ -15,7 +15,7 @@
 # it, and its gravity sums are not reproducible to the bit anyway.
 set -uo pipefail
 B=${BOLIDE_BUILDDIR:?}
-S=$(cd "$(dirname "$0")" && pwd)
+H=$(cd "$(dirname "$0")/../helpers" && pwd) # restart_compare.py
 PY=${PYTHON:-python3}
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
@@ -50,7 +50,7 @@ for n in 7 12 20 -1; do
   "$B/bolide" -t 1 --restart "${opt[@]}" "$@" p.yml >b$k.log 2>&1 || { echo "FAIL: resumed run $k"; tail -3 b$k.log; exit 1; }
 done
 grep -q "resumed from" b1.log || { echo "FAIL: no resume message"; fail=1; }
-"$PY" "$S/restart_compare.py" A B || fail=1
+"$PY" "$H/restart_compare.py" A B || fail=1
 
 # self-gravity with the far field reused (Gravity:reuse_steps 4, a loose
 # reuse_tolerance so that most steps reuse it)
@@ -81,5 +81,5 @@ for n in 5 7 11 14 -1; do
   "$B/bolide" -t 1 --restart "${opt[@]}" "$@" p.yml >b$k.log 2>&1 || { echo "FAIL: resumed gravity run $k"; tail -3 b$k.log; exit 1; }
 done
 grep -q "resumed from" b1.log || { echo "FAIL: no resume message (gravity)"; fail=1; }
-"$PY" "$S/restart_compare.py" A B || { echo "FAIL: the resumed run with Gravity:reuse_steps differs"; fail=1; }
+"$PY" "$H/restart_compare.py" A B || { echo "FAIL: the resumed run with Gravity:reuse_steps differs"; fail=1; }
 exit $fail

@@ -6,17 +6,17 @@
 # yet), and when it has finished every snapshot and the statistics file are
 # compared with the uninterrupted run: same file names, times and particle
 # data, bit for bit (one thread, Scheduler:deterministic;
-# tests/restart_compare.py).  Then the same with SIGTERM at random moments
+# tests/helpers/restart_compare.py).  Then the same with SIGTERM at random moments
 # (each stop must exit with status 0 after writing a restart file).
 #
-#   BOLIDE_BUILDDIR=_build PYTHON=_build/.venv/bin/python tests/test_restart_kill.sh 50
+#   BOLIDE_BUILDDIR=_build PYTHON=_build/.venv/bin/python tests/program/test_restart_kill.sh 50
 #                                      50 kills of each kind (about 4 min on
 #                                      2 loaded cores; the result is in
 #                                      theory/restarts.md)
 # make check runs it with BOLIDE_KILLS kills of each kind (default 15).
 set -uo pipefail
 B=${BOLIDE_BUILDDIR:?}
-S=$(cd "$(dirname "$0")" && pwd)
+H=$(cd "$(dirname "$0")/../helpers" && pwd) # restart_compare.py
 PY=${PYTHON:-python3}
 N=${1:-${BOLIDE_KILLS:-15}}
 work=$(mktemp -d); trap 'kill $(jobs -p) 2>/dev/null; rm -rf "$work"' EXIT
@@ -82,7 +82,7 @@ for sig in KILL TERM; do
     { wait $pid; } 2>/dev/null; rc=$?
     if [ $rc -eq 0 ] && grep -q "^\[.*\] done:" log.$runs && ! grep -q "received" log.$runs; then
       # finished before the signal: compare, then start over
-      "$PY" "$S/restart_compare.py" ../A/out out >cmp.txt || { echo "FAIL: SIG$sig: outputs differ:"; head -5 cmp.txt; bad=1; break; }
+      "$PY" "$H/restart_compare.py" ../A/out out >cmp.txt || { echo "FAIL: SIG$sig: outputs differ:"; head -5 cmp.txt; bad=1; break; }
       cycles=$((cycles + 1))
       rm -rf out; continue
     fi
@@ -102,7 +102,7 @@ for sig in KILL TERM; do
     echo "FAIL: SIG$sig: temporary files left: $(ls out/*.tmp out/restart/*.tmp 2>/dev/null)"; bad=1
   fi
   if [ $bad -eq 0 ]; then
-    if "$PY" "$S/restart_compare.py" ../A/out out >cmp.txt; then
+    if "$PY" "$H/restart_compare.py" ../A/out out >cmp.txt; then
       cycles=$((cycles + 1))
       echo "ok: SIG$sig: $kills kills in $runs runs, $cycles complete runs compared ($intmp kills during a restart write, $insnap during a snapshot write); last: $(cat cmp.txt)"
     else

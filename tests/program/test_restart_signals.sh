@@ -7,7 +7,7 @@
 # bit for bit (one thread, Scheduler:deterministic).
 set -uo pipefail
 B=${BOLIDE_BUILDDIR:?}
-S=$(cd "$(dirname "$0")" && pwd)
+H=$(cd "$(dirname "$0")/../helpers" && pwd) # restart_compare.py
 PY=${PYTHON:-python3}
 work=$(mktemp -d); trap 'kill $(jobs -p) 2>/dev/null; rm -rf "$work"' EXIT
 cd "$work"
@@ -43,7 +43,7 @@ start() {
 }
 resume_and_compare() {
   (cd "$1" && "$B/bolide" -t 1 --restart ../p.yml >log2 2>err2) || { echo "FAIL: $1: resumed run"; tail -2 "$1/err2"; fail=1; return; }
-  "$PY" "$S/restart_compare.py" A/out "$1/out" >cmp.txt || { echo "FAIL: $1: outputs differ"; cat cmp.txt; fail=1; return; }
+  "$PY" "$H/restart_compare.py" A/out "$1/out" >cmp.txt || { echo "FAIL: $1: outputs differ"; cat cmp.txt; fail=1; return; }
   echo "ok: $1: $(cat cmp.txt)"
 }
 k=0

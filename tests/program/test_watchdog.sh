@@ -14,7 +14,7 @@
 # that the GPU ran them.
 set -uo pipefail
 B=${BOLIDE_BUILDDIR:?}
-S=$(cd "$(dirname "$0")" && pwd)
+H=$(cd "$(dirname "$0")/../helpers" && pwd) # restart_compare.py
 PY=${PYTHON:-python3}
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
@@ -63,5 +63,5 @@ check V 3:vx:1e9 4 "moved .* more than its cell"
 (cd N && "$B/bolide" "${G[@]}" -t 1 --restart ../p.yml >log2 2>err2) || { echo "FAIL: resume after the watchdog"; cat N/err2; fail=1; }
 grep -q "resumed from out/restart/restart.bin at step 4" N/log2 || { echo "FAIL: not resumed from step 4"; fail=1; }
 rm -f N/out/crash_step*.hdf5
-"$PY" "$S/restart_compare.py" A/out N/out || fail=1
+"$PY" "$H/restart_compare.py" A/out N/out || fail=1
 exit $fail

@@ -2,7 +2,7 @@
 the HDF5 datasets: every DataItem points to an existing dataset of the same
 dimensions and number type, and every dataset of /PartType0 is described.
 Snapshots of both kinds are checked: an initial condition from bolide-ic and
-a full snapshot (with accelerations, gzip) written by tests/ic_dump.
+a full snapshot (with accelerations, gzip) written by tests/helpers/ic_dump.
 A run's time series (OUTDIR/BASENAME.xmf, issue 23 item 4) is a temporal
 collection of the grids of all its snapshots, in time order, each pointing
 to its own snapshot file."""
@@ -82,7 +82,7 @@ with tempfile.TemporaryDirectory() as tmp:
     snap = os.path.join(tmp, "snap_0000.hdf5")
     subprocess.run([os.path.join(build, "bolide-ic"), "box", "--n", "6", "--lattice", "fcc",
                     "-o", ic], check=True, stdout=subprocess.DEVNULL)
-    subprocess.run([os.path.join(build, "tests", "ic_dump"), ic, "--write", snap, "--acc",
+    subprocess.run([os.path.join(build, "tests", "helpers", "ic_dump"), ic, "--write", snap, "--acc",
                     "--gzip", "4"], check=True, stdout=subprocess.DEVNULL)
     check_pair(ic)
     check_pair(snap)

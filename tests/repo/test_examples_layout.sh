@@ -6,7 +6,7 @@
 # committed (what a run writes stays out of git; examples/README.md).
 # Reads the tracked files (git ls-files) in a git checkout, the tree otherwise.
 set -u
-S=${BOLIDE_SRCDIR:-$(cd "$(dirname "$0")/.." && pwd)}
+S=${BOLIDE_SRCDIR:-$(cd "$(dirname "$0")/../.." && pwd)}
 cd "$S/examples" || exit 1
 fails=0
 fail() { echo "FAIL: $*"; fails=$((fails + 1)); }

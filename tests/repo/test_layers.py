@@ -22,7 +22,7 @@ Fails (one FAIL line per finding) when
                  threads) -> not the scheduler: it calls the scheduler back
                  through the function runner_start() was given
              An arrow that exists today and is still to be removed is listed,
-             with its reason, in tests/layers.allow; an allowed arrow that no
+             with its reason, in tests/repo/layers.allow; an allowed arrow that no
              longer exists fails too, so that the list only shrinks.
 
   qualified  every #include "..." names its file from the top of the tree
@@ -37,7 +37,7 @@ import os
 import re
 import sys
 
-TOP = os.environ.get("BOLIDE_SRCDIR") or os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+TOP = os.environ.get("BOLIDE_SRCDIR") or os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 os.chdir(TOP)
 GENERATED = {"config.h"}  # written by configure into the build folder
 SOURCE_EXT = (".c", ".h", ".cu")
@@ -202,13 +202,13 @@ for p in sources:
             arrows[(p, dst)] = why
 
 allowed = {}
-for i, line in enumerate(read("tests/layers.allow").splitlines(), 1):
+for i, line in enumerate(read("tests/repo/layers.allow").splitlines(), 1):
     line = line.split("#", 1)[0].strip()
     if not line:
         continue
     parts = line.split()
     if len(parts) != 2:
-        fail("tests/layers.allow:%d: expected 'FILE INCLUDED-FILE  # reason'" % i)
+        fail("tests/repo/layers.allow:%d: expected 'FILE INCLUDED-FILE  # reason'" % i)
         continue
     allowed[tuple(parts)] = i
 for (src, dst), why in sorted(arrows.items()):
@@ -216,10 +216,10 @@ for (src, dst), why in sorted(arrows.items()):
         fail("%s includes %s: %s" % (src, dst, why))
 for (src, dst), i in sorted(allowed.items(), key=lambda kv: kv[1]):
     if (src, dst) not in arrows:
-        fail("tests/layers.allow:%d: %s no longer includes %s across the layers: remove the line"
+        fail("tests/repo/layers.allow:%d: %s no longer includes %s across the layers: remove the line"
              % (i, src, dst))
 
 print("%d families (%s), %d kinds of task, %d files read, %d arrows across the layers (all in "
-      "tests/layers.allow)" % (len(families), ", ".join(families), len(kinds), len(sources), len(arrows))
+      "tests/repo/layers.allow)" % (len(families), ", ".join(families), len(kinds), len(sources), len(arrows))
       if not fails else "%d findings" % len(fails))
 sys.exit(1 if fails else 0)

@@ -10,7 +10,7 @@
 # release tarball), every file under the source tree but build folders.
 # Fails with one line per hit.
 set -u
-S=${BOLIDE_SRCDIR:-$(cd "$(dirname "$0")/.." && pwd)}
+S=${BOLIDE_SRCDIR:-$(cd "$(dirname "$0")/../.." && pwd)}
 cd "$S" || exit 1
 # the names are built from pieces so that this file does not match itself
 names="VALIDATION|DESIGN|STYLE"
@@ -20,7 +20,7 @@ if git -C "$S" rev-parse --is-inside-work-tree >/dev/null 2>&1; then
 else
   list() { find . -path './_build*' -prune -o -path './autom4te.cache' -prune -o -type f -print0 | sed -z 's#^\./##'; }
 fi
-hits=$(list | grep -zv '^tests/test_no_external_refs\.sh$' \
+hits=$(list | grep -zv '^tests/repo/test_no_external_refs\.sh$' \
   | xargs -0 grep -I -n -E "$pattern" -- 2>/dev/null)
 if [ -n "$hits" ]; then
   printf '%s\n' "$hits" | sed 's/^/FAIL: /'

@@ -18,7 +18,7 @@ import subprocess
 import sys
 
 B = os.environ.get("BOLIDE_BUILDDIR", "_build")
-S = os.environ.get("BOLIDE_SRCDIR") or os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+S = os.environ.get("BOLIDE_SRCDIR") or os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 lib = os.path.join(B, "libbolide.a")
 if not os.path.isfile(lib):
     print("FAIL: no %s" % lib)

@@ -3,7 +3,7 @@
 1. An initial condition written by woma's SWIFT-format writer
    (woma.misc.io.save_particle_data: float32 datasets, uint64 ids, alias
    links, units of Earth mass and radius) from a SEAGen sphere of Tillotson
-   granite loads with Bolide's ic_read (tests/ic_dump) and gives the right
+   granite loads with Bolide's ic_read (tests/helpers/ic_dump) and gives the right
    count, SI values and material ids.
 2. A Bolide snapshot written from it opens with swiftsimio.load(), and
    swiftsimio's fields carry the values and units h5py reads.
@@ -29,7 +29,7 @@ except ImportError as e:  # the venv lacks a package: skip
     sys.exit(77)
 
 build = os.environ["BOLIDE_BUILDDIR"]
-dump = os.path.join(build, "tests", "ic_dump")
+dump = os.path.join(build, "tests", "helpers", "ic_dump")
 failures = []
 
 

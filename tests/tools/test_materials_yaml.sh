@@ -3,7 +3,7 @@
 # inline definitions, the default ideal gas, and one-line errors naming the
 # file, line, material and key.
 set -u
-prog="$BOLIDE_BUILDDIR/tests/test_material_params"
+prog="$BOLIDE_BUILDDIR/tests/unit/test_material_params"
 eos="$BOLIDE_BUILDDIR/bolide-eos"
 lib="$BOLIDE_SRCDIR/examples/materials.yml"
 tmp=$(mktemp -d)

@@ -8,7 +8,7 @@
 2. SEA shells against seagen (Kegerreis et al. 2019) for the same profile,
    both with the paper's settings: number of shells, particles per shell at
    the same radius, and the SPH density scatter about the profile.
-3. (Isolated shells: tests/test_sea_shells.py, every N from 20 to 200 and
+3. (Isolated shells: tests/physics/test_sea_shells.py, every N from 20 to 200 and
    log-spaced N up to 1e5.)
 4. Impact: the two centres of mass, integrated forward as a two-body
    problem from the written positions and velocities, meet at the requested

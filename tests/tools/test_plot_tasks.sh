@@ -4,7 +4,7 @@ set -eu
 "$PYTHON" -c 'import numpy, matplotlib' 2>/dev/null || { echo "no numpy/matplotlib: skip"; exit 77; }
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
-"$BOLIDE_BUILDDIR/tests/test_scheduler" --dump "$tmp/tasks.txt" >"$tmp/timers.txt"
+"$BOLIDE_BUILDDIR/tests/unit/test_scheduler" --dump "$tmp/tasks.txt" >"$tmp/timers.txt"
 cat "$tmp/timers.txt"
 # the timer table names the task kinds that ran
 grep -q '^  self *density ' "$tmp/timers.txt"

@@ -24,7 +24,7 @@ import numpy as np
 
 from bolide_tools import l1, riemann, sedov
 
-TOOLS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+TOOLS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools")
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
 

@@ -17,7 +17,7 @@
 #include "src/materials/material.h"
 #include "src/part.h"
 
-#include "tests/check.h"
+#include "tests/helpers/check.h"
 
 /** Tillotson granite of the library (SWIFT id 101), without strength. */
 static void granite(struct material *m) {

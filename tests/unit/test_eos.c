@@ -24,7 +24,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "tests/eos_tables.h"
+#include "tests/helpers/eos_tables.h"
 #include "src/materials/material.h"
 
 static int failures = 0;

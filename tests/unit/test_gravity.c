@@ -11,7 +11,7 @@
  *     (the adaptive criterion, Gravity:epsilon_fmm, on the second step; on
  *     the first step, with no acceleration scale yet, on the scale of
  *     gravity_estimate's cheaper pass; SWIFT's tighter bars:
- *     tests/test_gravity_accuracy.sh);
+ *     tests/physics/test_gravity_accuracy.sh);
  *   - with the geometric criterion alone (a run's first step), both fall
  *     monotonically as theta shrinks (0.9, 0.7, 0.5);
  *   - momentum: |sum m a| / sum m |a| at rounding level (the mutual M2L of
@@ -34,7 +34,7 @@
 #include <time.h>
 
 #include "src/error.h"
-#include "tests/gravity_sets.h"
+#include "tests/helpers/gravity_sets.h"
 #include "tasks/gravity/gravity_cpu.h"
 #include "src/part.h"
 #include "src/space.h"

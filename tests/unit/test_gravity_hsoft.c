@@ -30,7 +30,7 @@
 #include <string.h>
 
 #include "src/error.h"
-#include "tests/gravity_sets.h"
+#include "tests/helpers/gravity_sets.h"
 #include "tasks/gravity/gravity_cpu.h"
 #include "src/part.h"
 #include "src/space.h"

@@ -21,7 +21,7 @@
 #include "src/error.h"
 #include "tasks/gravity/gravity_cpu.h"
 #include "tasks/gravity/gravity_walk.h"
-#include "tests/gravity_sets.h"
+#include "tests/helpers/gravity_sets.h"
 #include "src/part.h"
 #include "src/space.h"
 

@@ -8,7 +8,7 @@
 #include "src/materials/material.h"
 #include "src/io/units.h"
 
-#include "tests/check.h"
+#include "tests/helpers/check.h"
 
 /** Basalt of Benz & Asphaug 1999 through material_set (as the parser does). */
 static void basalt(struct material *m, int id) {

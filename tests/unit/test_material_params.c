@@ -1,4 +1,4 @@
-/* Helper of tests/test_materials_yaml.sh: read a run's parameter file, build
+/* Helper of tests/tools/test_materials_yaml.sh: read a run's parameter file, build
  * its material table and print one line per material:
  *   ID NAME EOS RHO0 PARAM
  * where PARAM is a characteristic EOS parameter (A for Tillotson, gamma for

@@ -4,7 +4,7 @@
  * for every key of the table), params_write_used, the node API of free-form
  * sections, and the messages of params_error / param_node_error (in a forked
  * child, since they exit).  The error classes of params_read itself are
- * checked by tests/test_params_errors.sh. */
+ * checked by tests/program/test_params_errors.sh. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

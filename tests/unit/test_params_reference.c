@@ -62,7 +62,7 @@ int main(int argc, char **argv) {
   if (!ok)
     fprintf(stderr,
             "test_params_reference: %s differs from params_write_reference(); regenerate "
-            "it with: tests/test_params_reference --write %s\n",
+            "it with: tests/unit/test_params_reference --write %s\n",
             ref, ref);
   /* the generated text must read back (both the fresh one and the file) */
   struct params *p = params_read(tmp, 0, NULL);

@@ -14,7 +14,7 @@
 
 #include "src/timeline.h"
 
-#include "tests/check.h"
+#include "tests/helpers/check.h"
 
 static void test_round_trip(void) {
   const struct timeline tl = timeline_make(-3.0, 2e4, 1e30);

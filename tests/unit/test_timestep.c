@@ -19,7 +19,7 @@
 #include "src/materials/material.h"
 #include "src/part.h"
 
-#include "tests/check.h"
+#include "tests/helpers/check.h"
 
 static int close_to(double a, double b) {
   return fabs(a - b) <= 1e-14 * fabs(b);
