@@ -292,46 +292,32 @@ static int compare_solids(const struct parts *p, const struct parts *q, size_t n
   return fail;
 }
 
-/** One case: returns the number of failed comparisons. */
-static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
-                    unsigned long long seed) {
+/** The jittered lattice of a case (side^3 particles, h off by up to 40%),
+ *  the solids pre-stressed and partly damaged. */
+static void case_lattice(struct parts *p, int periodic, int side, enum test_kind kind, double eta,
+                         unsigned long long seed) {
   unsigned long long s = seed;
   const int granite = kind != KIND_GAS;
   const int cont = kind == KIND_BASALT_CONT, solid = kind == KIND_BASALT_SOLID || cont;
-  const size_t n = (size_t)side * side * side;
-  const double box[3] = {1.0, 1.0, 1.0};
   const double dx = (periodic ? 1.0 : 0.6) / side, rho0 = granite ? 2680.0 : 1.0;
   /* the solid case: velocities and a time step of the scale of the material */
   const double vscale = solid ? 10.0 : 1.0;
-  struct parts p;
-  parts_alloc(&p, n);
-  struct hydro_props hp = {.enabled = 1,
-                           .eta = 1.2348,
-                           .h_tolerance = 1e-4,
-                           .h_max = 1.0,
-                           .max_iterations = 60,
-                           .cfl = 0.2,
-                           .log_max_volume_change = log(1.4),
-                           .alpha = 1.5,
-                           .beta = 3.0,
-                           .balsara = 1,
-                           .alpha_u = 0.5};
   size_t i = 0;
   for (int a = 0; a < side; a++)
     for (int b = 0; b < side; b++)
       for (int c = 0; c < side; c++, i++) {
         const double o = periodic ? 0.0 : 0.2;
-        p.x[i] = o + (a + 0.5 + 0.3 * (urand(&s) - 0.5)) * dx;
-        p.y[i] = o + (b + 0.5 + 0.3 * (urand(&s) - 0.5)) * dx;
-        p.z[i] = o + (c + 0.5 + 0.3 * (urand(&s) - 0.5)) * dx;
-        p.vx[i] = p.vpx[i] = vscale * (0.3 * sin(6.283 * p.y[i]) + 0.1 * (urand(&s) - 0.5));
-        p.vy[i] = p.vpy[i] = vscale * (0.3 * cos(6.283 * p.z[i]) + 0.1 * (urand(&s) - 0.5));
-        p.vz[i] = p.vpz[i] = vscale * 0.1 * (urand(&s) - 0.5);
-        p.m[i] = rho0 * dx * dx * dx * (0.8 + 0.4 * urand(&s));
-        p.h[i] = hp.eta * dx * (0.7 + 0.7 * urand(&s));
-        p.u[i] = p.up[i] = (solid ? 1e4 : granite ? 1e6 : 1.0) * (0.5 + urand(&s));
-        p.mat[i] = granite ? 1 : 0;
-        p.id[i] = (int64_t)i;
+        p->x[i] = o + (a + 0.5 + 0.3 * (urand(&s) - 0.5)) * dx;
+        p->y[i] = o + (b + 0.5 + 0.3 * (urand(&s) - 0.5)) * dx;
+        p->z[i] = o + (c + 0.5 + 0.3 * (urand(&s) - 0.5)) * dx;
+        p->vx[i] = p->vpx[i] = vscale * (0.3 * sin(6.283 * p->y[i]) + 0.1 * (urand(&s) - 0.5));
+        p->vy[i] = p->vpy[i] = vscale * (0.3 * cos(6.283 * p->z[i]) + 0.1 * (urand(&s) - 0.5));
+        p->vz[i] = p->vpz[i] = vscale * 0.1 * (urand(&s) - 0.5);
+        p->m[i] = rho0 * dx * dx * dx * (0.8 + 0.4 * urand(&s));
+        p->h[i] = eta * dx * (0.7 + 0.7 * urand(&s));
+        p->u[i] = p->up[i] = (solid ? 1e4 : granite ? 1e6 : 1.0) * (0.5 + urand(&s));
+        p->mat[i] = granite ? 1 : 0;
+        p->id[i] = (int64_t)i;
         if (solid) {
           /* deviatoric stress of +-2e8 Pa (tension for many particles:
            * flaws activate; above the yield stress: radial return), a third
@@ -339,19 +325,24 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
           const double Sd[5] = {2e8 * (urand(&s) - 0.5), 2e8 * (urand(&s) - 0.5),
                                 2e8 * (urand(&s) - 0.5), 2e8 * (urand(&s) - 0.5),
                                 2e8 * (urand(&s) - 0.5)};
-          p.Sxx[i] = p.Spxx[i] = Sd[0];
-          p.Syy[i] = p.Spyy[i] = Sd[1];
-          p.Szz[i] = p.Spzz[i] = -Sd[0] - Sd[1];
-          p.Sxy[i] = p.Spxy[i] = Sd[2];
-          p.Sxz[i] = p.Spxz[i] = Sd[3];
-          p.Syz[i] = p.Spyz[i] = Sd[4];
-          p.dcbrt[i] = urand(&s) < 0.33 ? 0.5 * urand(&s) : 0.0;
-          p.dmg[i] = p.dcbrt[i] * p.dcbrt[i] * p.dcbrt[i];
+          p->Sxx[i] = p->Spxx[i] = Sd[0];
+          p->Syy[i] = p->Spyy[i] = Sd[1];
+          p->Szz[i] = p->Spzz[i] = -Sd[0] - Sd[1];
+          p->Sxy[i] = p->Spxy[i] = Sd[2];
+          p->Sxz[i] = p->Spxz[i] = Sd[3];
+          p->Syz[i] = p->Spyz[i] = Sd[4];
+          p->dcbrt[i] = urand(&s) < 0.33 ? 0.5 * urand(&s) : 0.0;
+          p->dmg[i] = p->dcbrt[i] * p->dcbrt[i] * p->dcbrt[i];
         }
-        if (cont) p.rho_full[i] = p.rho_fp[i] = rho0 * (0.95 + 0.1 * urand(&s));
+        if (cont) p->rho_full[i] = p->rho_fp[i] = rho0 * (0.95 + 0.1 * urand(&s));
       }
-  struct material_table mats;
-  material_table_init(&mats);
+}
+
+/** The material of a case into mats, and what it switches on in hp. */
+static void case_material(struct material_table *mats, struct hydro_props *hp,
+                          enum test_kind kind) {
+  const int granite = kind != KIND_GAS;
+  const int cont = kind == KIND_BASALT_CONT, solid = kind == KIND_BASALT_SOLID || cont;
   struct material m;
   char msg[256];
   if (solid) {
@@ -365,16 +356,16 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
     const double vals[] = {1e7, 3.5e9, 1.2, 1e5, 0.6, 5e34, 8.0};
     for (int k = 0; k < 7; k++)
       if (material_set(&m, keys[k], vals[k], msg, sizeof msg)) error_exit("%s", msg);
-    hp.solids = 1;
-    hp.gradient_correction = 1;
-    hp.momentum_form = HYDRO_MOMENTUM_STANDARD;
-    hp.as_eps = 0.3;
-    hp.as_n = 4.0;
-    hp.as_wdp_inv = 1.0 / kernel_W(1.0 / hp.eta, 1.0);
-    hp.max_rel_change = 0.25;
+    hp->solids = 1;
+    hp->gradient_correction = 1;
+    hp->momentum_form = HYDRO_MOMENTUM_STANDARD;
+    hp->as_eps = 0.3;
+    hp->as_n = 4.0;
+    hp->as_wdp_inv = 1.0 / kernel_W(1.0 / hp->eta, 1.0);
+    hp->max_rel_change = 0.25;
     if (cont) {
-      hp.continuity = 1;
-      hp.xsph = 0.5;
+      hp->continuity = 1;
+      hp->xsph = 0.5;
     }
   } else if (granite) {
     material_from_library(&m, material_default_library(), "granite", 1);
@@ -391,7 +382,129 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
     material_set(&m, "gamma", 5.0 / 3.0, msg, sizeof msg);
   }
   if (material_finalize(&m, msg, sizeof msg)) error_exit("%s", msg);
-  material_table_add(&mats, &m);
+  material_table_add(mats, &m);
+}
+
+/** The CPU side of a case: the engine's tasks, cell by cell (density, ghost,
+ *  with solids gradient and extra ghost, force, damage, kick2), dt_cpu the
+ *  time step of each top-level cell.  Returns whether a cell capped h. */
+static int case_cpu(struct parts *p, struct space *sp, const struct engine_cell_tasks *ct,
+                    const struct space_pair *pairs, size_t np, const double *top_h_cap,
+                    const struct hydro_props *hp, const struct material_table *mats,
+                    const struct flaws *fl, int solid, double dt_kick, double dt_damage,
+                    double damage_max_change, double *dt_cpu) {
+  const size_t n = p->count;
+  for (size_t k = 0; k < n; k++) hydro_density_reset(p, k);
+  for (int c = 0; c < sp->nr_top; c++) density_self_cpu(p, &sp->cells[c]);
+  for (size_t k = 0; k < np; k++)
+    density_pair_cpu(p, &sp->cells[pairs[k].ci], &sp->cells[pairs[k].cj], pairs[k].shift);
+  int capped_cpu = 0;
+  for (int c = 0; c < sp->nr_top; c++) {
+    struct cell *cells[32];
+    for (int k = 0; k < ct[c].nr_ngb; k++) cells[k] = &sp->cells[ct[c].ngb[k]];
+    struct ghost_ngbs ng = {ct[c].nr_ngb, cells, (const double(*)[3])ct[c].ngb_shift};
+    capped_cpu |= ghost_cell_cpu(p, &sp->cells[c], &ng, hp, mats, top_h_cap[c] * kernel_gamma);
+  }
+  if (solid) {
+    /* ghost -> gradient -> extra ghost -> force */
+    for (int c = 0; c < sp->nr_top; c++) gradient_self_cpu(p, &sp->cells[c]);
+    for (size_t k = 0; k < np; k++)
+      gradient_pair_cpu(p, &sp->cells[pairs[k].ci], &sp->cells[pairs[k].cj], pairs[k].shift);
+    for (int c = 0; c < sp->nr_top; c++) extra_ghost_cell_cpu(p, &sp->cells[c], hp, mats);
+  }
+  for (int c = 0; c < sp->nr_top; c++) force_self_cpu(p, &sp->cells[c], hp);
+  for (size_t k = 0; k < np; k++)
+    force_pair_cpu(p, &sp->cells[pairs[k].ci], &sp->cells[pairs[k].cj], pairs[k].shift, hp);
+  /* force -> damage -> kick2 (tasks/task_families.h) */
+  for (size_t k = 0; k < n && solid; k++) damage_part(p, k, mats, fl->eps, dt_damage);
+  /* the GPU kick's: hydrodynamics, porous rates (no-ops here), damage */
+  struct timestep_props tp;
+  memset(&tp, 0, sizeof tp);
+  tp.hydro = tp.porous = 1;
+  tp.damage_max_change = solid ? damage_max_change : 0.0;
+  for (int c = 0; c < sp->nr_top; c++)
+    dt_cpu[c] = sp->cells[c].count
+                    ? kick2_cell_cpu(p, &sp->cells[c], dt_kick, hp, mats, &tp, NULL, NULL)
+                    : 1e300;
+  return capped_cpu;
+}
+
+/** The fields of the FORCE phase on the CPU (p) and the GPU (q), each to
+ *  1e-10 relative: returns the number of failed comparisons. */
+static int compare_force(const struct parts *p, const struct parts *q, size_t n, double rho0) {
+  double amax = 0.0, hmean = 0.0;
+  for (size_t k = 0; k < n; k++) {
+    amax = fmax(amax, sqrt(p->ax[k] * p->ax[k] + p->ay[k] * p->ay[k] + p->az[k] * p->az[k]));
+    hmean += p->h[k] / n;
+  }
+  double vmax = 0.0, umax = 0.0, dumax = 0.0;
+  for (size_t k = 0; k < n; k++) {
+    vmax = fmax(vmax, fabs(p->vx[k]));
+    umax = fmax(umax, fabs(p->u[k]));
+    dumax = fmax(dumax, fabs(p->du_dt[k]));
+  }
+  struct {
+    const char *name;
+    const double *cpu, *gpu;
+    double floor;
+  } cmp[] = {
+      {"rho", p->rho, q->rho, 0.0},
+      {"wcount", p->wcount, q->wcount, 0.0},
+      {"h", p->h, q->h, 0.0},
+      {"div_v", p->div_v, q->div_v, 1e-3 * vmax / hmean},
+      {"P", p->P, q->P, 1e-12 * umax * rho0},
+      {"cs", p->cs, q->cs, 0.0},
+      {"ax", p->ax, q->ax, amax},
+      {"ay", p->ay, q->ay, amax},
+      {"az", p->az, q->az, amax},
+      {"du_dt", p->du_dt, q->du_dt, dumax},
+      {"v_sig", p->v_sig, q->v_sig, 0.0},
+      {"vx", p->vx, q->vx, vmax},
+      {"u", p->u, q->u, 0.0},
+      /* continuity + XSPH case (zero elsewhere: rho_full and the XSPH sums
+       * then compare as equal) */
+      {"drho_dt", p->drho_dt, q->drho_dt, 1e-3 * rho0 * vmax / hmean},
+      {"rho_full", p->rho_full, q->rho_full, 0.0},
+      {"xsphx", p->xsphx, q->xsphx, vmax},
+      {"xsphy", p->xsphy, q->xsphy, vmax},
+      {"xsphz", p->xsphz, q->xsphz, vmax},
+  };
+  int fail = 0;
+  for (size_t k = 0; k < sizeof cmp / sizeof cmp[0]; k++) {
+    const double w = worst_rel(cmp[k].gpu, cmp[k].cpu, n, cmp[k].floor);
+    const int bad = !(w < 1e-10);
+    printf("  %-7s worst relative difference %.3e%s\n", cmp[k].name, w,
+           bad ? "  FAIL (> 1e-10)" : "");
+    fail += bad;
+  }
+  return fail;
+}
+
+/** One case: returns the number of failed comparisons. */
+static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
+                    unsigned long long seed) {
+  const int granite = kind != KIND_GAS;
+  const int cont = kind == KIND_BASALT_CONT, solid = kind == KIND_BASALT_SOLID || cont;
+  const size_t n = (size_t)side * side * side;
+  const double box[3] = {1.0, 1.0, 1.0};
+  const double rho0 = granite ? 2680.0 : 1.0;
+  struct parts p;
+  parts_alloc(&p, n);
+  struct hydro_props hp = {.enabled = 1,
+                           .eta = 1.2348,
+                           .h_tolerance = 1e-4,
+                           .h_max = 1.0,
+                           .max_iterations = 60,
+                           .cfl = 0.2,
+                           .log_max_volume_change = log(1.4),
+                           .alpha = 1.5,
+                           .beta = 3.0,
+                           .balsara = 1,
+                           .alpha_u = 0.5};
+  case_lattice(&p, periodic, side, kind, hp.eta, seed);
+  struct material_table mats;
+  material_table_init(&mats);
+  case_material(&mats, &hp, kind);
   /* Weibull flaws (engine_init_flaws' procedure, index order) */
   struct flaws fl;
   memset(&fl, 0, sizeof fl);
@@ -430,40 +543,10 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
   const double dt_kick = solid ? 1e-6 : 1e-3;
 
   /* CPU: the engine's tasks, cell by cell */
-  double t0 = error_walltime();
-  for (size_t k = 0; k < n; k++) hydro_density_reset(&p, k);
-  for (int c = 0; c < sp.nr_top; c++) density_self_cpu(&p, &sp.cells[c]);
-  for (size_t k = 0; k < np; k++)
-    density_pair_cpu(&p, &sp.cells[pairs[k].ci], &sp.cells[pairs[k].cj], pairs[k].shift);
-  int capped_cpu = 0;
-  for (int c = 0; c < sp.nr_top; c++) {
-    struct cell *cells[32];
-    for (int k = 0; k < ct[c].nr_ngb; k++) cells[k] = &sp.cells[ct[c].ngb[k]];
-    struct ghost_ngbs ng = {ct[c].nr_ngb, cells, (const double(*)[3])ct[c].ngb_shift};
-    capped_cpu |= ghost_cell_cpu(&p, &sp.cells[c], &ng, &hp, &mats, top_h_cap[c] * kernel_gamma);
-  }
-  if (solid) {
-    /* ghost -> gradient -> extra ghost -> force */
-    for (int c = 0; c < sp.nr_top; c++) gradient_self_cpu(&p, &sp.cells[c]);
-    for (size_t k = 0; k < np; k++)
-      gradient_pair_cpu(&p, &sp.cells[pairs[k].ci], &sp.cells[pairs[k].cj], pairs[k].shift);
-    for (int c = 0; c < sp.nr_top; c++) extra_ghost_cell_cpu(&p, &sp.cells[c], &hp, &mats);
-  }
-  for (int c = 0; c < sp.nr_top; c++) force_self_cpu(&p, &sp.cells[c], &hp);
-  for (size_t k = 0; k < np; k++)
-    force_pair_cpu(&p, &sp.cells[pairs[k].ci], &sp.cells[pairs[k].cj], pairs[k].shift, &hp);
-  /* force -> damage -> kick2 (tasks/task_families.h) */
-  for (size_t k = 0; k < n && solid; k++) damage_part(&p, k, &mats, fl.eps, dt_damage);
   double *dt_cpu = malloc(sp.nr_top * sizeof(double)), *dt_gpu = malloc(sp.nr_top * sizeof(double));
-  /* the GPU kick's: hydrodynamics, porous rates (no-ops here), damage */
-  struct timestep_props tp;
-  memset(&tp, 0, sizeof tp);
-  tp.hydro = tp.porous = 1;
-  tp.damage_max_change = solid ? damage_max_change : 0.0;
-  for (int c = 0; c < sp.nr_top; c++)
-    dt_cpu[c] = sp.cells[c].count
-                    ? kick2_cell_cpu(&p, &sp.cells[c], dt_kick, &hp, &mats, &tp, NULL, NULL)
-                    : 1e300;
+  double t0 = error_walltime();
+  const int capped_cpu = case_cpu(&p, &sp, ct, pairs, np, top_h_cap, &hp, &mats, &fl, solid,
+                                  dt_kick, dt_damage, damage_max_change, dt_cpu);
   const double t_cpu = error_walltime() - t0;
 
   /* GPU: the runner's FORCE phase on the copy, cells reset to its h */
@@ -479,44 +562,6 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
                                          &mats, &dmg, NULL, dt_kick, 0, dt_gpu);
   const double t_gpu = error_walltime() - t0;
 
-  /* compare */
-  double amax = 0.0, hmean = 0.0;
-  for (size_t k = 0; k < n; k++) {
-    amax = fmax(amax, sqrt(p.ax[k] * p.ax[k] + p.ay[k] * p.ay[k] + p.az[k] * p.az[k]));
-    hmean += p.h[k] / n;
-  }
-  double vmax = 0.0, umax = 0.0, dumax = 0.0;
-  for (size_t k = 0; k < n; k++) {
-    vmax = fmax(vmax, fabs(p.vx[k]));
-    umax = fmax(umax, fabs(p.u[k]));
-    dumax = fmax(dumax, fabs(p.du_dt[k]));
-  }
-  struct {
-    const char *name;
-    const double *cpu, *gpu;
-    double floor;
-  } cmp[] = {
-      {"rho", p.rho, q.rho, 0.0},
-      {"wcount", p.wcount, q.wcount, 0.0},
-      {"h", p.h, q.h, 0.0},
-      {"div_v", p.div_v, q.div_v, 1e-3 * vmax / hmean},
-      {"P", p.P, q.P, 1e-12 * umax * rho0},
-      {"cs", p.cs, q.cs, 0.0},
-      {"ax", p.ax, q.ax, amax},
-      {"ay", p.ay, q.ay, amax},
-      {"az", p.az, q.az, amax},
-      {"du_dt", p.du_dt, q.du_dt, dumax},
-      {"v_sig", p.v_sig, q.v_sig, 0.0},
-      {"vx", p.vx, q.vx, vmax},
-      {"u", p.u, q.u, 0.0},
-      /* continuity + XSPH case (zero elsewhere: rho_full and the XSPH sums
-       * then compare as equal) */
-      {"drho_dt", p.drho_dt, q.drho_dt, 1e-3 * rho0 * vmax / hmean},
-      {"rho_full", p.rho_full, q.rho_full, 0.0},
-      {"xsphx", p.xsphx, q.xsphx, vmax},
-      {"xsphy", p.xsphy, q.xsphy, vmax},
-      {"xsphz", p.xsphz, q.xsphz, vmax},
-  };
   int fail = 0;
   printf(
       "%s box, %zu particles, %s: CPU %.3f s (1 thread), GPU %.3f s (lists %d leaves, %d "
@@ -533,13 +578,7 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
    * (in the periodic box these are the top-level cells: every candidate kept) */
   fail += compare_lists(g, &sp, tcells, sp.nr_top, ct, top_h_cap, 1.25, 0, 1);
   fail += compare_lists(g, &sp, tcells, sp.nr_top, ct, top_h_cap, 1.9, 250, !periodic);
-  for (size_t k = 0; k < sizeof cmp / sizeof cmp[0]; k++) {
-    const double w = worst_rel(cmp[k].gpu, cmp[k].cpu, n, cmp[k].floor);
-    const int bad = !(w < 1e-10);
-    printf("  %-7s worst relative difference %.3e%s\n", cmp[k].name, w,
-           bad ? "  FAIL (> 1e-10)" : "");
-    fail += bad;
-  }
+  fail += compare_force(&p, &q, n, rho0);
   if (solid) fail += compare_solids(&p, &q, n);
   const double wdt = worst_rel(dt_gpu, dt_cpu, (size_t)sp.nr_top, 0.0);
   printf("  %-7s worst relative difference %.3e%s\n", "dt", wdt,
