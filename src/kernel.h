@@ -9,7 +9,7 @@
  *      int W dV = 1 (the constant C is included in w).
  * The ratio gamma = H / h depends on the kernel only (Dehnen & Aly 2012,
  * Table 1); the values below are 1 / (2 sigma) for H = 1, closed forms in
- * theory/kernels.md, and tests/test_kernels.c recomputes them.
+ * theory/kernels.md, and tests/unit/test_kernels.c recomputes them.
  *
  * Every kernel is available under its own name (kernel_cubic_eval, ...,
  * kernel_wendland_c6_eval); the one chosen by configure --with-kernel

@@ -65,10 +65,12 @@ int paths_find(char *out, size_t size, const char *env, const char *installed, c
     if (paths_try(out, size, path, &first)) return 1;
   }
   if (source) {
-    char src[PATH_MAX], up[PATH_MAX + 8];
+    char src[PATH_MAX], up[PATH_MAX + 8], up2[PATH_MAX + 8];
     snprintf(up, sizeof up, "%s/..", exe);
+    snprintf(up2, sizeof up2, "%s/../..", exe);
     if (exe[0] &&
-        (paths_srcdir_file(src, sizeof src, exe) || paths_srcdir_file(src, sizeof src, up))) {
+        (paths_srcdir_file(src, sizeof src, exe) || paths_srcdir_file(src, sizeof src, up) ||
+         paths_srcdir_file(src, sizeof src, up2))) {
       snprintf(path, sizeof path, "%s/%s", src, source);
       if (paths_try(out, size, path, &first)) return 1;
     }
@@ -91,6 +93,8 @@ const char *paths_python(void) {
     snprintf(py, sizeof py, "%s/.venv/bin/python", exe);
     if (access(py, X_OK) == 0) return py;
     snprintf(py, sizeof py, "%s/../.venv/bin/python", exe);
+    if (access(py, X_OK) == 0) return py;
+    snprintf(py, sizeof py, "%s/../../.venv/bin/python", exe);
     if (access(py, X_OK) == 0) return py;
   }
   return "python3";

@@ -8,8 +8,8 @@
  *      (/proc/self/exe), e.g. ../share/bolide/materials.yml;
  *   3. the source tree the program was built from: the build writes the
  *      file .bolide-srcdir (one line, the source folder) beside the programs
- *      it builds; a program in a subfolder of the build (tests/) reads the
- *      one a folder up;
+ *      it builds; a program in a subfolder of the build (tests/helpers/,
+ *      tests/unit/, ...) reads the one a folder or two up;
  *   4. $BOLIDE_SRCDIR, the source tree (make check exports it).
  * Leaf module: includes only the C library. */
 #ifndef BOLIDE_PATHS_H
@@ -30,7 +30,7 @@ int paths_find(char *out, size_t size, const char *env, const char *installed, c
 
 /** The Python interpreter that runs the plotting scripts: $PYTHON when set,
  *  else the build's virtual environment when the program runs from its build
- *  folder (.venv/bin/python beside it or a folder up), else "python3" (looked
+ *  folder (.venv/bin/python beside it or a folder or two up), else "python3" (looked
  *  up in PATH; execvp). */
 const char *paths_python(void);
 

@@ -17,7 +17,7 @@
  *    fragment tasks/<family>/local.am;
  *  - the graph, for a family of shape chain (below): its tasks between the
  *    force and the kick of every task cell (src/engine_graph.c);
- *  - tests/test_layers.py, which fails when a folder of tasks/, a fragment
+ *  - tests/repo/test_layers.py, which fails when a folder of tasks/, a fragment
  *    or a list of family names elsewhere disagrees with this list.
  *
  * A new per-particle family between the force and the kick is its folder

@@ -9,7 +9,7 @@
 # BUILDDIR/fuzz/corpus-HARNESS.  A crash, a leak-free hang (-timeout) or a
 # sanitizer report stops the run with status 1 and leaves the input as
 # BUILDDIR/fuzz/crash-HARNESS-*: copy it to tests/data/fuzz/HARNESS-NAME and
-# it becomes a regression input that tests/test_fuzz_corpus.sh replays.
+# it becomes a regression input that tests/program/test_fuzz_corpus.sh replays.
 # Exit 77 (skip) when clang or its libFuzzer is missing.
 # Environment: FUZZ_SECONDS (default 60; 0: build only), FUZZ_TIMEOUT (seconds
 # for one input before it counts as a hang; default 60: a loaded machine

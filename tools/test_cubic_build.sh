@@ -15,12 +15,12 @@ mkdir -p "$top/_build_cubic" && cd "$top/_build_cubic"
 [ -f Makefile ] || ../configure --with-kernel=cubic-spline --without-cuda >configure.out 2>&1 ||
   { tail -20 configure.out; exit 1; }
 make -j"$jobs" >make.out 2>&1 || { tail -30 make.out; exit 1; }
-pass="tests/test_solid_timestep.sh tests/test_energy_budget.sh tests/test_restart_exact.sh tests/test_rubber_rings.py"
-make -j"$jobs" check TESTS="$pass tests/test_sod.sh" PYTHON="$top/_build/.venv/bin/python" >check.out 2>&1 || true
+pass="tests/physics/test_solid_timestep.sh tests/physics/test_energy_budget.sh tests/program/test_restart_exact.sh tests/physics/test_rubber_rings.py"
+make -j"$jobs" check TESTS="$pass tests/physics/test_sod.sh" PYTHON="$top/_build/.venv/bin/python" >check.out 2>&1 || true
 rc=0
 for t in $pass; do
   grep -q '^:test-result: PASS' "${t%.*}.trs" 2>/dev/null || { echo "cubic-spline build: $t FAIL"; tail -20 "${t%.*}.log"; rc=1; }
 done
-grep -q '^:test-result: SKIP' tests/test_sod.trs 2>/dev/null || { echo "cubic-spline build: test_sod did not skip"; tail -20 tests/test_sod.log; rc=1; }
+grep -q '^:test-result: SKIP' tests/physics/test_sod.trs 2>/dev/null || { echo "cubic-spline build: test_sod did not skip"; tail -20 tests/physics/test_sod.log; rc=1; }
 [ $rc -eq 0 ] && echo "cubic-spline build: $pass PASS, test_sod SKIP"
 exit $rc

@@ -30,21 +30,21 @@ export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1"
 # The fast tests (about 6 minutes under ASan on 2 cores): the unit tests, the
 # readers' and the CLI's error tests, the hostile inputs and the fuzz corpus,
 # and short runs of bolide (restart, porosity).
-SAN_FAST_TESTS="tests/test_graph tests/test_budget tests/test_scheduler tests/test_kernels
-  tests/test_pairs tests/test_space_errors tests/test_params tests/test_units
-  tests/test_params_reference tests/test_params_errors.sh tests/test_io_roundtrip
-  tests/test_ic_errors.sh tests/test_eos tests/test_material tests/test_bolide_eos.sh
-  tests/test_materials_yaml.sh tests/test_porosity tests/test_porosity_errors.sh
-  tests/test_damage tests/test_flaws tests/test_fof tests/test_gravity_ops tests/test_solids
-  tests/test_bolide_cli.sh tests/test_restart.sh tests/test_hostile_inputs.sh
-  tests/test_fuzz_corpus.sh tests/test_timeline tests/test_timestep tests/test_swift_params.sh
-  tests/test_miluphcuda_import.sh tests/test_miluphcuda_materials.sh tests/test_mesh_import.py"
+SAN_FAST_TESTS="tests/unit/test_graph tests/unit/test_budget tests/unit/test_scheduler tests/unit/test_kernels
+  tests/unit/test_pairs tests/unit/test_space_errors tests/unit/test_params tests/unit/test_units
+  tests/unit/test_params_reference tests/program/test_params_errors.sh tests/unit/test_io_roundtrip
+  tests/program/test_ic_errors.sh tests/unit/test_eos tests/unit/test_material tests/tools/test_bolide_eos.sh
+  tests/tools/test_materials_yaml.sh tests/unit/test_porosity tests/tools/test_porosity_errors.sh
+  tests/unit/test_damage tests/unit/test_flaws tests/unit/test_fof tests/unit/test_gravity_ops tests/unit/test_solids
+  tests/program/test_bolide_cli.sh tests/program/test_restart.sh tests/program/test_hostile_inputs.sh
+  tests/program/test_fuzz_corpus.sh tests/unit/test_timeline tests/unit/test_timestep tests/program/test_swift_params.sh
+  tests/tools/test_miluphcuda_import.sh tests/tools/test_miluphcuda_materials.sh tests/tools/test_mesh_import.py"
 # The heavy tests (hydrodynamic forms, self-gravity, the SEA shells, the
 # Evrard collapse, the energy budget, the solid benchmarks): part of FULL,
 # or alone with HEAVY.
-SAN_HEAVY_TESTS="tests/test_hydro_forms tests/test_gravity_walk tests/test_gravity_hsoft
-  tests/test_gravity_reuse tests/test_gravity tests/test_gravity_accuracy.sh tests/test_energy_budget.sh
-  tests/test_sea_shells.py tests/test_evrard.sh tests/test_rotating_sphere.py tests/test_rubber_rings.py"
+SAN_HEAVY_TESTS="tests/unit/test_hydro_forms tests/unit/test_gravity_walk tests/unit/test_gravity_hsoft
+  tests/unit/test_gravity_reuse tests/unit/test_gravity tests/physics/test_gravity_accuracy.sh tests/physics/test_energy_budget.sh
+  tests/physics/test_sea_shells.py tests/physics/test_evrard.sh tests/physics/test_rotating_sphere.py tests/physics/test_rubber_rings.py"
 status=0 summary=""
 
 # configure DIR SANITIZERS: a build folder with the sanitizers, sharing _build's venv
@@ -88,7 +88,7 @@ if [ "$what" = all ] || [ "$what" = tsan ]; then
   configure_in _build_tsan thread
   cd "$top/_build_tsan"
   start=$(date +%s)
-  if make -j"$jobs" tests/test_scheduler >make.out 2>&1 && ./tests/test_scheduler >tsan.out 2>&1; then
+  if make -j"$jobs" tests/unit/test_scheduler >make.out 2>&1 && ./tests/unit/test_scheduler >tsan.out 2>&1; then
     summary="$summary tsan: test_scheduler passed in $(( $(date +%s) - start )) s;"
   else
     tail -40 make.out tsan.out; status=1

@@ -4,7 +4,7 @@
 # speed"), tabulated by bolide-eos on the grid of params.yml and drawn by
 # plot.sh; the number behind the case -- the analytic c^2 against a
 # numerical isentropic derivative, 1e-6 relative -- is asserted by
-# tests/test_eos (make check), whose -v output lists every state.
+# tests/unit/test_eos (make check), whose -v output lists every state.
 # Usage: run.sh [BUILD_DIR]   (default: $BOLIDE_BUILD, else ../../_build)
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -22,5 +22,5 @@ for m in $materials; do
   echo "wrote $here/tillotson_$m.txt"
 done
 "$here/plot.sh" $materials
-"$build/tests/test_eos" -v | grep -E "Tillotson .* c2 analytic" >"$here/sound_speed_check.txt" || true
-echo "analytic vs numerical c^2 (tests/test_eos -v): $here/sound_speed_check.txt"
+"$build/tests/unit/test_eos" -v | grep -E "Tillotson .* c2 analytic" >"$here/sound_speed_check.txt" || true
+echo "analytic vs numerical c^2 (tests/unit/test_eos -v): $here/sound_speed_check.txt"

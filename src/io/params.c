@@ -1385,7 +1385,7 @@ void params_write_reference(FILE *f) {
       "# Bolide: reference of every parameter.\n"
       "#\n"
       "# Generated from src/io/param_list.h by params_write_reference(); do not edit by\n"
-      "# hand.  Regenerate with: tests/test_params_reference --write examples/parameters.yml\n"
+      "# hand.  Regenerate with: tests/unit/test_params_reference --write examples/parameters.yml\n"
       "#\n"
       "# Each key is shown with its default value, under a comment giving its meaning,\n"
       "# unit, type, allowed range and default.  Keys marked REQUIRED have no default:\n"

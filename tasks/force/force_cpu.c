@@ -2,7 +2,7 @@
  * symmetric form evaluates the gather interaction for (i, j) and for (j, i):
  * the pair function combines i and j with commutative operations only, so
  * the two are exact opposites (force_iact.h) and the result equals the
- * gather form's (tests/test_hydro_forms.c). */
+ * gather form's (tests/unit/test_hydro_forms.c). */
 #include "tasks/force/force_cpu.h"
 
 #include "tasks/hydro_parts.h"

@@ -3,7 +3,7 @@
  * CPU loops call) over every j of its neighbour list with
  * 0 < r < max(H_i, H_j), the pairs the symmetric CPU loop visits.
  * force_iact combines i and j commutatively, so the result equals the CPU's
- * up to the order of the sums (force_iact.h, tests/test_gpu.c).  The loop:
+ * up to the order of the sums (force_iact.h, tests/gpu/test_gpu.c).  The loop:
  * tasks/iact_loop_gpu.h. */
 #include "src/gpu/gpu_kernels.h"
 #include "tasks/hydro_parts.h"

@@ -85,7 +85,7 @@ struct gravity_iitem {
  *  evaluate the kept local expansions at the current positions (L2P).  The
  *  error is that of sources that moved since the full evaluation: of order
  *  displacement / distance of the far-field interactions (theory/gravity.md;
- *  measured in tests/test_gravity_reuse). */
+ *  measured in tests/unit/test_gravity_reuse). */
 struct gravity_ilist {
   struct gravity_iitem *item; /**< the interactions */
   int count, capacity;        /**< their number and the allocated length */

@@ -19,7 +19,7 @@
  *
  * Compared with the CPU the sums run in another order (the CPU adds each
  * interaction to the field or particle as the walk meets it): the results
- * differ by round-off (tests/test_gpu.c). */
+ * differ by round-off (tests/gpu/test_gpu.c). */
 #define GRAVITY_UNROLL_LOOPS 1
 #include "src/gpu/gpu_kernels.h"
 #include "tasks/gravity/gravity_iact.h"

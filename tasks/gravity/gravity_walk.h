@@ -4,7 +4,7 @@
  * (gravity_walk_decide), the near test of two top-level cells
  * (gravity_walk_top_near) and a walk with an explicit stack from one root
  * (gravity_walk_run).  The GPU's walk kernel (tasks/gravity/gravity_gpu.cu)
- * runs gravity_walk_run from every root; tests/test_gravity_walk.c runs it
+ * runs gravity_walk_run from every root; tests/unit/test_gravity_walk.c runs it
  * on the CPU and checks that it records the same interactions as the
  * recursive walks.  theory/gravity.md, "On the GPU". */
 #ifndef BOLIDE_GRAVITY_WALK_H

@@ -1,7 +1,7 @@
 """Write small malformed initial-condition files, one per error that ic_read
 must report, plus one valid file.  Usage: make_bad_ics.py OUTDIR
 
-Each file name is CASE.hdf5; tests/test_ic_errors.sh runs the reader on it and
+Each file name is CASE.hdf5; tests/program/test_ic_errors.sh runs the reader on it and
 checks the one-line message."""
 import os
 import sys

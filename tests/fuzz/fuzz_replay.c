@@ -2,7 +2,7 @@
  * one tests/fuzz/fuzz_*.c (any compiler) and calls its
  * LLVMFuzzerTestOneInput on every file named on the command line.  The
  * corpus of tests/data/fuzz (every crash the fuzzers found) is replayed so
- * by tests/test_fuzz_corpus.sh in every build, the sanitizer builds too. */
+ * by tests/program/test_fuzz_corpus.sh in every build, the sanitizer builds too. */
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -51,7 +51,7 @@ build() { # dir, extra configure options
     sed -n '/Bolide .* configuration/,/^---*$/p' configure.out
   fi
   make -j"$jobs" >make.out 2>&1 || { tail -30 make.out; return 1; }
-  make -j"$jobs" tests/test_gpu >>make.out 2>&1 || { tail -30 make.out; return 1; }
+  make -j"$jobs" tests/gpu/test_gpu >>make.out 2>&1 || { tail -30 make.out; return 1; }
   cd "$top"
 }
 

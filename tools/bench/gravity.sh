@@ -4,16 +4,16 @@
 # cost growing no faster than N log N (k close to 1; N log N over this range
 # fits k ~ 1.1).  One thread; keep the sizes small on a small machine.
 #   tools/bench/gravity.sh [BUILDDIR] [SET] [N...]
-# BUILDDIR: where `make tests/bench_gravity` was run (default .);
+# BUILDDIR: where `make tests/helpers/bench_gravity` was run (default .);
 # SET: plummer (default) or uniform; N: sizes (default 5000 10000 20000 40000).
 set -eu
 builddir=${1:-.}
 set_name=${2:-plummer}
 shift $(( $# > 2 ? 2 : $# ))
 sizes=${*:-5000 10000 20000 40000}
-bench="$builddir/tests/bench_gravity"
+bench="$builddir/tests/helpers/bench_gravity"
 if [ ! -x "$bench" ]; then
-  echo "gravity.sh: error: $bench not found (run make tests/bench_gravity in $builddir)" >&2
+  echo "gravity.sh: error: $bench not found (run make tests/helpers/bench_gravity in $builddir)" >&2
   exit 1
 fi
 echo "# N seconds ($set_name sphere, theta 0.5, the default order and epsilon_fmm)"

@@ -5,7 +5,7 @@
 # acceleration error |a - a_direct| / |a_direct| at the first evaluation (a
 # run's first step: no previous acceleration) and at the second (the
 # adaptive criterion on the first's |a|), and the time of each evaluation
-# (tests/bench_gravity_accuracy: the CPU's serial tree, or with -m gpu the
+# (tests/helpers/bench_gravity_accuracy: the CPU's serial tree, or with -m gpu the
 # upward pass, walks and interactions on the GPU).  The direct sum is
 # computed once per size and kept in the output directory.  SWIFT's figures
 # on these ICs (theory/validation.md, "Benchmarks"): median 3.3e-5, p90 8.2e-5, p99
@@ -38,8 +38,8 @@ while getopts "n:m:E:T:P:k:t:o:x:" o; do
              P) orders=$OPTARG ;; k) stride=$OPTARG ;; t) threads=$OPTARG ;; o) out=$OPTARG ;;
              x) extra=$OPTARG ;; *) exit 2 ;; esac
 done
-bench=$build/tests/bench_gravity_accuracy
-[ -x "$bench" ] || (cd "$build" && make tests/bench_gravity_accuracy >/dev/null) || {
+bench=$build/tests/helpers/bench_gravity_accuracy
+[ -x "$bench" ] || (cd "$build" && make tests/helpers/bench_gravity_accuracy >/dev/null) || {
   echo "gravity_accuracy.sh: error: cannot build $bench" >&2; exit 1; }
 [ -f "$gen" ] || { echo "gravity_accuracy.sh: error: $gen not found (set BOLIDE_BENCH_IC)" >&2; exit 1; }
 mkdir -p "$out"

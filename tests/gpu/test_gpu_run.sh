@@ -1,0 +1,221 @@
+#!/usr/bin/env bash
+# Runs on the CPU (--no-gpu) and on the GPU (--gpu): the conservation
+# budgets of the two statistics files (mass, momentum, angular momentum,
+# kinetic, internal and total energy) must agree.
+#  1. Sedov blast, 40 steps of 32,768 particles (fluid).
+#  2. A basalt impactor (25 m, 400 particles) hitting a basalt target (100 m,
+#     6,000 particles) at 2 km/s and 45 degrees, 40 steps through the
+#     contact: Tillotson, Collins strength, artificial stress, Grady-Kipp
+#     damage with Weibull flaws (the solid + damage FORCE phase on the GPU);
+#     2b. again with the continuity density and XSPH.
+#     2c. a porous (P-alpha) basalt cube squeezed: budgets, and distentions,
+#     densities and energies particle by particle; 2d. the same with an
+#     epsilon-alpha matrix.
+#  3. Evrard collapse (7,208 particles, hydro + tree self-gravity), 40 steps:
+#     multipoles and walks on the CPU, which record the interactions; M2L,
+#     L2L, L2P, M2P and P2P on the GPU.
+#  4. The same with Gravity:reuse_steps 2: the steps that reuse the far
+#     field replay the interactions on the GPU (gravity_replay on the CPU).
+#  5. Individual time steps (time bins): the Evrard collapse and the solid
+#     impact, the same steps and particles kicked on both.
+# The runs differ only by the order of the SPH sums (round-off, ~1e-15
+# relative per step, amplified along the run), so every column must agree
+# to 1e-8 relative to its scale (mass, E_tot, or sum m|v| for momenta).
+# Part of `make check-gpu` (needs a GPU); exits 77 without one.
+set -euo pipefail
+B=${BOLIDE_BUILDDIR:?}; S=${BOLIDE_SRCDIR:?}
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+cd "$work"
+
+# run NAME STEPS: bolide in NAME/cpu and NAME/gpu (each holds params.yml and the IC)
+run() {
+  for mode in cpu gpu; do
+    flag=--no-gpu; [ $mode = gpu ] && flag=--gpu
+    (cd "$1/$mode" && "$B/bolide" $flag -n "$2" params.yml >run.log 2>&1) ||
+      { tail -5 "$1/$mode/run.log"; exit 1; }
+  done
+  grep -h "GPU" "$1/gpu/run.log" | head -3
+}
+
+# compare NAME: the budgets of NAME/cpu and NAME/gpu
+compare() {
+  echo "$1: CPU against GPU"
+  paste <(grep -v '^#' "$1/cpu/statistics.txt") <(grep -v '^#' "$1/gpu/statistics.txt") | awk '
+  { n = NF / 2; for (k = 1; k <= n; k++) { c[k] = $k; g[k] = $(k + n) } rows++
+    # columns: step time dt mass px py pz Lx Ly Lz E_kin E_int E_pot E_tot n n_removed
+    scale_p = sqrt(2 * c[4] * (c[11] > 0 ? c[11] : 1e-300))
+    for (k = 4; k <= 14; k++) {
+      s = (k >= 5 && k <= 10) ? scale_p : ((k == 4) ? c[4] : (c[14] != 0 ? (c[14] < 0 ? -c[14] : c[14]) : 1))
+      d = c[k] - g[k]; if (d < 0) d = -d; e = d / s
+      if (e > worst[k]) worst[k] = e }
+  }
+  END { split("step time dt mass px py pz Lx Ly Lz E_kin E_int E_pot E_tot", name, " ")
+        fail = 0
+        for (k = 4; k <= 14; k++) { printf "  %-6s CPU vs GPU worst relative difference %.3e\n", name[k], worst[k]
+                                     if (worst[k] > 1e-8) fail = 1 }
+        printf "  %d statistics rows compared\n", rows
+        if (rows < 2) fail = 1
+        exit fail }'
+}
+
+mkdir -p sedov/cpu sedov/gpu
+"$B/bolide-ic" sedov --n 32 --energy 1 --rho 1 -o sedov/cpu/sedov.hdf5 >/dev/null
+cp sedov/cpu/sedov.hdf5 sedov/gpu/
+for m in cpu gpu; do cp "$S/examples/SedovBlast3D/params.yml" sedov/$m/; done
+run sedov 40
+
+mkdir -p impact/cpu impact/gpu
+"$B/bolide-ic" impact --target "sphere,material=basalt,radius=100,n=6000,u=1e4" \
+  --impactor "sphere,material=basalt,radius=25,n=400,u=1e4" --v-contact 2000 --angle 45 \
+  --separation 126 --impactor-mat-offset 1000 -o impact/cpu/impact.hdf5 >/dev/null
+cp impact/cpu/impact.hdf5 impact/gpu/
+for m in cpu gpu; do
+  cat >impact/$m/params.yml <<'YML'
+InitialConditions:
+  file_name: impact.hdf5
+  periodic: false
+TimeIntegration:
+  time_end: 1
+Snapshots:
+  delta_time: 1
+Statistics:
+  delta_time: 1e-4
+SPH:
+  resolution_eta: 1.2348
+  CFL_condition: 0.2
+  viscosity_alpha: 1.5
+  artificial_stress_epsilon: 0.3
+Materials:
+  103: &rock {name: basalt, strength: collins, yield_stress: 1e7, yield_stress_max: 3.5e9,
+              friction_intact: 1.2, cohesion_damaged: 1e5, friction_damaged: 0.6,
+              weibull_k: 5e34, weibull_m: 8}
+  1103: *rock
+Damage:
+  seed: 11
+YML
+done
+run impact 40
+grep -q "gradient, extra ghost (plasticity, dS/dt), force, damage, kick2" impact/gpu/run.log ||
+  { echo "FAIL: the solid + damage run did not run its FORCE phase on the GPU"; exit 1; }
+
+# 2b. the same impact with the density from the continuity equation and XSPH
+mkdir -p impactc/cpu impactc/gpu
+for m in cpu gpu; do
+  cp impact/cpu/impact.hdf5 impactc/$m/
+  sed -e 's/^  viscosity_alpha: 1.5/  viscosity_alpha: 1.5\n  density: continuity\n  xsph_epsilon: 0.5/' \
+    impact/$m/params.yml >impactc/$m/params.yml
+done
+grep -q "xsph_epsilon: 0.5" impactc/gpu/params.yml || { echo "FAIL: test set-up"; exit 1; }
+run impactc 40
+grep -q "GPU not used" impactc/gpu/run.log && { echo "FAIL: the continuity + XSPH run did not use the GPU"; exit 1; }
+
+# 2c. P-alpha porosity: the porous cube of test_porosity_run.sh (Tillotson
+# basalt matrix, alpha_0 1.8, continuity density) squeezed at -300/s x for
+# 80 steps (alpha 1.31 to 1.68 at the end)
+mkdir -p porous/cpu porous/gpu
+for m in cpu gpu; do "${PYTHON:-python3}" "$S/tests/helpers/porous_cube.py" porous/$m/block.hdf5 1500 300; done
+for m in cpu gpu; do
+  cat >porous/$m/params.yml <<'YML'
+InitialConditions:
+  file_name: block.hdf5
+TimeIntegration:
+  time_end: 1
+Snapshots:
+  delta_time: 1
+Statistics:
+  delta_time: 2.5e-6
+SPH:
+  density: continuity
+Materials:
+  0: {name: basalt, porosity: {model: palpha, alpha_0: 1.8, alpha_t: 1.3, p_e: 1e6, p_t: 5e7,
+                                p_s: 2e8, n1: 6, n2: 3}}
+YML
+done
+run porous 80
+grep -q "GPU not used" porous/gpu/run.log && { echo "FAIL: the porous run did not use the GPU"; exit 1; }
+# 2d. the same cube with an epsilon-alpha Murnaghan matrix (test_epsalpha_run.sh's curve)
+for m in cpu gpu; do
+  mkdir -p porousea/$m; cp porous/$m/block.hdf5 porousea/$m/
+  sed -e 's/^  0: {name: basalt, porosity: .*/  0: {name: porous, eos: murnaghan, rho0: 2700, K0: 2e10, n: 4,/' \
+      -e 's/^                                p_s: 2e8, n1: 6, n2: 3}}/      porosity: {model: epsalpha, alpha_0: 1.8, eps_e: -0.05, eps_x: -0.3, kappa: 1.2, chi: 0.5}}/' \
+      porous/$m/params.yml >porousea/$m/params.yml
+done
+grep -q "model: epsalpha" porousea/gpu/params.yml || { echo "FAIL: test set-up (epsilon-alpha)"; exit 1; }
+run porousea 80
+
+mkdir -p evrard/cpu evrard/gpu
+"${PYTHON:-python3}" "$S/examples/EvrardCollapse/make_ic.py" 24 evrard/cpu/evrard.hdf5 >/dev/null
+cp evrard/cpu/evrard.hdf5 evrard/gpu/
+for m in cpu gpu; do cp "$S/examples/EvrardCollapse/params.yml" evrard/$m/; done
+run evrard 40
+grep -q "self-gravity entirely on the GPU (Scheduler:gpu_walks: device: multipoles, walks, M2L" \
+  evrard/gpu/run.log || { echo "FAIL: the gravity run did not use the GPU"; exit 1; }
+
+mkdir -p reuse/cpu reuse/gpu
+for m in cpu gpu; do
+  cp evrard/cpu/evrard.hdf5 reuse/$m/
+  sed 's/^Gravity:$/Gravity:\n  reuse_steps: 2\n  reuse_tolerance: 0.05/' "$S/examples/EvrardCollapse/params.yml" >reuse/$m/params.yml
+done
+run reuse 40
+grep "reused the far field" reuse/gpu/run.log
+grep -q "GPU gravity, .* evaluations ([1-9][0-9]* replays)" reuse/gpu/run.log ||
+  { echo "FAIL: the reuse run replayed no step on the GPU"; exit 1; }
+
+# 5. individual time steps (TimeIntegration:global_step: false): the drift
+# and the kick of time bins on the GPU (drift_part_bins, kick2_part_bins,
+# the CPU's functions): the Evrard collapse (self-gravity) and the solid +
+# damage impact, 40 steps each; the same particles kicked in each step
+mkdir -p evbins/cpu evbins/gpu imbins/cpu imbins/gpu
+for m in cpu gpu; do
+  cp evrard/cpu/evrard.hdf5 evbins/$m/
+  sed 's/^  dt_max: 0.01$/  dt_max: 0.01\n  global_step: false/' "$S/examples/EvrardCollapse/params.yml" >evbins/$m/params.yml
+  cp impact/cpu/impact.hdf5 imbins/$m/
+  sed 's/^  time_end: 1$/  time_end: 1\n  global_step: false/' impact/$m/params.yml >imbins/$m/params.yml
+done
+grep -q "global_step: false" evbins/gpu/params.yml && grep -q "global_step: false" imbins/gpu/params.yml ||
+  { echo "FAIL: test set-up (bins)"; exit 1; }
+run evbins 40
+run imbins 40
+for b in evbins imbins; do
+  grep -q "GPU not used" $b/gpu/run.log && { echo "FAIL: the $b run did not use the GPU"; exit 1; }
+  # the step lines (step, time, dt, particles kicked) of the two runs
+  awk 'NF == 6 && $1 ~ /^[0-9]+$/ {print $1, $2, $3, $4}' $b/cpu/run.log >$b/cpu/steps.txt
+  awk 'NF == 6 && $1 ~ /^[0-9]+$/ {print $1, $2, $3, $4}' $b/gpu/run.log >$b/gpu/steps.txt
+  cmp -s $b/cpu/steps.txt $b/gpu/steps.txt ||
+    { echo "FAIL: $b: the CPU and GPU runs kicked other particles or took other steps"; diff $b/cpu/steps.txt $b/gpu/steps.txt | head -5; exit 1; }
+  echo "$b: $(wc -l <$b/cpu/steps.txt) steps, the same particles kicked on the CPU and the GPU ($(awk '{s += $4} END {print s}' $b/cpu/steps.txt) updates)"
+done
+
+fail=0
+compare sedov || fail=1
+compare impact || fail=1
+compare impactc || fail=1
+compare porous || fail=1
+compare porousea || fail=1
+# the distentions and densities at the end of the porous runs, particle by particle
+for case in porous porousea; do
+"${PYTHON:-python3}" - "$case" <<'PY' || fail=1
+import sys, glob, h5py, numpy as np
+case = sys.argv[1]
+def last(m):
+    f = h5py.File(sorted(glob.glob("%s/%s/snapshot_*.hdf5" % (case, m)))[-1], "r")["PartType0"]
+    o = np.argsort(f["ParticleIDs"][:])
+    return {k: f[k][:][o] for k in ("Distentions", "Densities", "InternalEnergies")}
+c, g = last("cpu"), last("gpu")
+a = c["Distentions"]
+print(case + ": %d of %d particles compacted (alpha < 1.8), %d fully (alpha = 1)" %
+      ((a < 1.8 - 1e-12).sum(), a.size, (a == 1.0).sum()))
+bad = 0
+for k in c:
+    d = np.max(np.abs(c[k] - g[k]) / (np.abs(c[k]) + 1e-300 + (1e-3 * np.abs(c[k]).max() if k == "InternalEnergies" else 0)))
+    print("  %-16s CPU vs GPU worst relative difference %.3e" % (k, d))
+    bad |= not d < 1e-8
+if not (a < 1.8 - 1e-12).sum() > 0: print("  FAIL: nothing compacted"); bad = 1
+raise SystemExit(bad)
+PY
+done
+compare evrard || fail=1
+compare reuse || fail=1
+compare evbins || fail=1
+compare imbins || fail=1
+exit $fail

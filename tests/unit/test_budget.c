@@ -1,0 +1,126 @@
+/* The pieces of the conservation budget that a run cannot show alone
+ * (theory/sph.md, "Conservation budget"; issue 17):
+ *  - the pressure floor P_min of a material: 0 by default without strength,
+ *    -inf (tension) with strength, applied by material_eos with c^2 = 0
+ *    (so c = cs_min) where it acts, and settable per material;
+ *  - the kick's floor on u acts only on particles whose material needs
+ *    u >= 0 (ideal gas, tables: PART_U_FLOOR, set from material.u_floor),
+ *    and counts the energy it adds in e_clamp; other particles keep an
+ *    undershoot below 0;
+ *  - the kick's radial return brings a stress outside the yield surface
+ *    back onto it and counts the plastic work Y d eps_p / rho. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "tasks/kick/kick.h"
+#include "src/materials/material.h"
+#include "src/part.h"
+
+#include "tests/helpers/check.h"
+
+/** Tillotson granite of the library (SWIFT id 101), without strength. */
+static void granite(struct material *m) {
+  material_init(m, 101, "granite", EOS_TILLOTSON);
+  const char *keys[] = {"rho0", "A", "B", "E0", "Eiv", "Ecv", "a", "b", "alpha", "beta"};
+  const double vals[] = {2680, 18e9, 18e9, 16e6, 3.5e6, 18e6, 0.5, 1.3, 5, 5};
+  char msg[256];
+  for (int k = 0; k < 10; k++)
+    CHECK(material_set(m, keys[k], vals[k], msg, sizeof msg) == 0, "set %s: %s", keys[k], msg);
+}
+
+static void test_pressure_floor(void) {
+  char msg[256];
+  struct material fluid, solid, asked;
+  granite(&fluid);
+  CHECK(material_finalize(&fluid, msg, sizeof msg) == 0, "%s", msg);
+  CHECK(fluid.P_min == 0.0, "P_min of a strengthless material: %g (must be 0)", fluid.P_min);
+  double P, cs;
+  material_eos(&fluid, 0.8 * 2680, 0.0, &P, &cs); /* cold expanded: T1 < 0 */
+  CHECK(P == 0.0 && cs == fluid.cs_min, "floor: P %g (0), cs %g (cs_min %g)", P, cs, fluid.cs_min);
+  granite(&solid);
+  solid.strength = STRENGTH_VON_MISES;
+  CHECK(material_set(&solid, "shear_modulus", 22e9, msg, sizeof msg) == 0, "%s", msg);
+  CHECK(material_set(&solid, "yield_stress", 1e9, msg, sizeof msg) == 0, "%s", msg);
+  CHECK(material_finalize(&solid, msg, sizeof msg) == 0, "%s", msg);
+  CHECK(isinf(solid.P_min) && solid.P_min < 0, "P_min with strength: %g (must be -inf)",
+        solid.P_min);
+  material_eos(&solid, 0.8 * 2680, 0.0, &P, &cs);
+  const double T1 = 18e9 * (0.8 - 1) + 18e9 * 0.04; /* A mu + B mu^2 at u = 0 */
+  CHECK(fabs(P - T1) <= 1e-12 * fabs(T1), "tension of a solid: P %g (T1 %g)", P, T1);
+  granite(&asked);
+  CHECK(material_set(&asked, "P_min", -1e8, msg, sizeof msg) == 0, "%s", msg);
+  CHECK(material_finalize(&asked, msg, sizeof msg) == 0, "%s", msg);
+  material_eos(&asked, 0.8 * 2680, 0.0, &P, &cs);
+  CHECK(P == -1e8, "P_min -1e8 asked: P %g", P);
+  CHECK(fluid.u_floor == 0, "Tillotson keeps u < 0");
+  struct material gas;
+  material_init(&gas, 0, "gas", EOS_IDEAL_GAS);
+  CHECK(material_set(&gas, "gamma", 5.0 / 3.0, msg, sizeof msg) == 0, "%s", msg);
+  CHECK(material_finalize(&gas, msg, sizeof msg) == 0, "%s", msg);
+  CHECK(gas.u_floor == 1, "the ideal gas needs u >= 0");
+}
+
+static void test_u_floor(void) {
+  struct parts p;
+  parts_alloc(&p, 2);
+  p.count = 2;
+  for (int i = 0; i < 2; i++) p.u[i] = 1.0, p.du_dt[i] = -10.0;
+  p.flags[0] = PART_U_FLOOR; /* an ideal gas */
+  p.flags[1] = 0;            /* Tillotson */
+  kick_part(&p, 0, 1.0);
+  kick_part(&p, 1, 1.0);
+  CHECK(p.u[0] == 0.5 && p.e_clamp[0] == 9.5,
+        "floored: u %g (0.5), e_clamp %g (9.5 = 0.5 - (1 - 10))", p.u[0], p.e_clamp[0]);
+  CHECK(p.u[1] == -9.0 && p.e_clamp[1] == 0.0, "not floored: u %g (-9), e_clamp %g (0)", p.u[1],
+        p.e_clamp[1]);
+  parts_free(&p);
+}
+
+static void test_kick_return(void) {
+  char msg[256];
+  struct material_table t;
+  material_table_init(&t);
+  struct material m;
+  granite(&m);
+  m.id = 0;
+  m.strength = STRENGTH_VON_MISES;
+  CHECK(material_set(&m, "shear_modulus", 22e9, msg, sizeof msg) == 0, "%s", msg);
+  CHECK(material_set(&m, "yield_stress", 1e8, msg, sizeof msg) == 0, "%s", msg);
+  CHECK(material_finalize(&m, msg, sizeof msg) == 0, "%s", msg);
+  material_table_add(&t, &m);
+  struct hydro_props hp;
+  memset(&hp, 0, sizeof hp);
+  hp.solids = 1;
+  hp.cfl = 0.2;
+  hp.log_max_volume_change = log(1.4);
+  struct parts p;
+  parts_alloc(&p, 1);
+  p.count = 1;
+  p.m[0] = 1.0, p.h[0] = 1.0, p.rho[0] = 2680.0, p.u[0] = p.up[0] = 0.0, p.mat[0] = 0;
+  p.P[0] = 0.0, p.v_sig[0] = 1e3;
+  /* a trial stress 10% above yield after the kick: pure shear xy,
+   * sqrt(3 J2) = sqrt(3) |S_xy| */
+  const double Sxy = 1.1e8 / sqrt(3.0);
+  p.Sxy[0] = 0.0, p.dSxy[0] = Sxy; /* kicked by dt 1 */
+  struct timestep_props tp;
+  memset(&tp, 0, sizeof tp);
+  tp.hydro = 1;
+  kick2_part(&p, 0, 1.0, &hp, &t, &tp);
+  const double seq = sqrt(3.0) * fabs(p.Sxy[0]);
+  CHECK(fabs(seq - 1e8) <= 1e-6, "after the kick sqrt(3 J2) = %.9g (Y = 1e8)", seq);
+  CHECK(p.Spxy[0] == p.Sxy[0], "the predicted stress is the returned one");
+  const double deps = (1.1e8 - 1e8) / (3.0 * 22e9);
+  CHECK(fabs(p.eps_p[0] - deps) <= 1e-12 * deps, "plastic strain %g (%g)", p.eps_p[0], deps);
+  CHECK(fabs(p.w_plastic[0] - 1e8 * deps / 2680.0) <= 1e-12 * p.w_plastic[0],
+        "plastic work %g (Y d eps_p / rho = %g)", p.w_plastic[0], 1e8 * deps / 2680.0);
+  parts_free(&p);
+}
+
+int main(void) {
+  test_pressure_floor();
+  test_u_floor();
+  test_kick_return();
+  printf("test_budget: %d checks, %d failed\n", checks, failures);
+  return failures ? 1 : 0;
+}

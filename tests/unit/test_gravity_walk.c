@@ -1,0 +1,230 @@
+/* The walk with an explicit stack on index arrays (gravity_walk.h, the one
+ * the GPU's walk kernel runs) against the CPU's recursive walks, both
+ * recording instead of computing: every root as gpu_grav_tree_all walks
+ * them (the self walk of each top-level cell, the symmetric walk of each
+ * near pair, the long-range walk of each far pair), and the four lists
+ * (part, field, part_sym, field_sym) must hold the same (target, source)
+ * entries, as multisets.  Sets: a uniform sphere and two clustered Plummer
+ * spheres (lopsided M2P and P2L), each at the first pass (no acceleration
+ * scale: the tighter geometric angle) and at a second pass (the adaptive
+ * criterion on |ga| of the first), with the constant softening and with
+ * the softening tied to h.  Exit 0 pass, 1 fail. */
+#ifdef HAVE_CONFIG_H
+#include "config.h"
+#endif
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "src/error.h"
+#include "tasks/gravity/gravity_cpu.h"
+#include "tasks/gravity/gravity_walk.h"
+#include "tests/helpers/gravity_sets.h"
+#include "src/part.h"
+#include "src/space.h"
+
+#define BOX 4.0
+
+/** Entries a walker takes from its stack before it hands the rest on, in
+ *  the test of the GPU's division of the walks (small: many rounds). */
+#define GRAVITY_TEST_BUDGET 5
+
+/** Stack of a walker that walks a root to its end (the GPU's walkers
+ *  hold GRAVITY_WALK_STACK entries and hand on what does not fit). */
+#define TEST_STACK 8192
+
+static int failures = 0;
+
+/** (target, source) entries as 64-bit keys, for sorting. */
+static int cmp_u64(const void *a, const void *b) {
+  const unsigned long long x = *(const unsigned long long *)a, y = *(const unsigned long long *)b;
+  return x < y ? -1 : x > y;
+}
+
+static unsigned long long *keys(const int *t, const int *s, size_t n) {
+  unsigned long long *k = malloc((n ? n : 1) * sizeof *k);
+  for (size_t i = 0; i < n; i++)
+    k[i] = ((unsigned long long)(unsigned)t[i] << 32) | (unsigned long long)(unsigned)s[i];
+  qsort(k, n, sizeof *k, cmp_u64);
+  return k;
+}
+
+/** Compare list k of the recursive walks (a) with the stack walk's (b). */
+static void compare(const char *what, const char *kind, const struct gravity_rec_list *a,
+                    const int *bt, const int *bs, unsigned long long bn) {
+  int ok = a->n == bn;
+  if (ok) {
+    unsigned long long *ka = keys(a->target, a->source, a->n), *kb = keys(bt, bs, bn);
+    ok = memcmp(ka, kb, a->n * sizeof *ka) == 0;
+    free(ka);
+    free(kb);
+  }
+  printf("  %-44s %-10s %9zu recursive, %9llu stack: %s\n", what, kind, a->n, bn,
+         ok ? "same" : "FAIL");
+  failures += !ok;
+}
+
+static void run(const char *name, int two_bodies, double h_factor) {
+  const size_t n = 30000;
+  struct parts p;
+  parts_alloc(&p, n);
+  p.count = n;
+  srand48(7);
+  const double c[3] = {0.5 * BOX, 0.5 * BOX, 0.5 * BOX};
+  for (size_t i = 0; i < n; i++) {
+    double x[3];
+    if (two_bodies)
+      gset_two_bodies(i, n, c, x);
+    else
+      gset_place(cbrt(drand48()), c, x);
+    p.x[i] = x[0], p.y[i] = x[1], p.z[i] = x[2];
+    p.m[i] = 1.0 / n;
+    p.h[i] = 0.01 * (1.0 + drand48());
+    p.id[i] = (int64_t)i;
+  }
+  const double box[3] = {BOX, BOX, BOX};
+  struct space sp;
+  space_init(&sp, &p, box, 0, 16, 8);
+  space_rebuild(&sp);
+  struct gravity_props gp;
+  gravity_props_set(&gp, 1.0, 0.5, 2e-3, GRAVITY_SOFTENING_SPLINE, GRAVITY_ORDER_DEFAULT);
+  gp.epsilon_fmm = GRAVITY_EPSILON_FMM_DEFAULT;
+  gp.h_factor = h_factor;
+  int cap = 0;
+  struct gravity_cell *gc = gravity_cells_reserve(NULL, &cap, sp.cells_capacity);
+  memset(gc, 0, (size_t)cap * sizeof *gc);
+  const int nc = sp.nr_cells, nt = sp.nr_top;
+  /* the tree as index arrays */
+  int *progeny = malloc(8 * (size_t)nc * sizeof(int)), *count = malloc((size_t)nc * sizeof(int));
+  unsigned char *split = malloc((size_t)nc);
+  gravity_walk_tree_arrays(sp.cells, nc, progeny, count, split);
+  struct gravity_multipole *mp = malloc((size_t)nc * sizeof *mp);
+  double *a_min = malloc((size_t)nc * sizeof(double)), *hs = malloc((size_t)nc * sizeof(double));
+  int *stack = malloc(3 * (size_t)TEST_STACK * sizeof(int));
+  for (int pass = 0; pass < 2; pass++) {
+    if (pass == 1) gravity_tree_all(&p, sp.cells, nt, gc, &gp); /* |ga| for the adaptive pass */
+    for (int i = 0; i < nt; i++) gravity_up(&p, sp.cells + i, gc, &gp);
+    /* the recursive walks, recorded */
+    struct gravity_gpu_rec rec;
+    memset(&rec, 0, sizeof rec);
+    gravity_gpu_record(&rec);
+    for (int i = 0; i < nt; i++) {
+      gravity_interact_cells(&p, sp.cells + i, sp.cells + i, gc, &gp);
+      for (int j = i + 1; j < nt; j++)
+        if (gravity_top_pair_is_near(sp.cells + i, sp.cells + j, &gp))
+          gravity_interact_cells(&p, sp.cells + i, sp.cells + j, gc, &gp);
+    }
+    for (int i = 0; i < nt; i++) gravity_long_range(&p, sp.cells + i, sp.cells, nt, gc, &gp);
+    gravity_gpu_record(NULL);
+    /* the stack walk from every root: as one walker per root (budget
+     * unlimited), and as the GPU's kernels divide it (gravity_gpu.cu):
+     * walkers of GRAVITY_TEST_BUDGET entries (or fewer: a full stack) that
+     * hand what is left on their stack to a queue (one too small to take it all: the rest stays
+     * with its walker), the queue then walked by the next round */
+    for (int k = 0; k < nc; k++) mp[k] = gc[k].mp, a_min[k] = gc[k].a_min, hs[k] = gc[k].h_support;
+    const struct gravity_walk_tree T = {progeny, count, split, mp, a_min, hs};
+    const struct gravity_walk_params wp = {gp.G,         gp.theta,    gp.epsilon_fmm,
+                                           gp.h_support, gp.h_factor, gp.order};
+    double *lo_hi = malloc(6 * (size_t)nt * sizeof(double));
+    for (int i = 0; i < nt; i++)
+      for (int d = 0; d < 3; d++)
+        lo_hi[6 * i + d] = sp.cells[i].bmin[d], lo_hi[6 * i + 3 + d] = sp.cells[i].bmax[d];
+    const size_t capk = 4 * (rec.part.n + rec.field.n + rec.part_sym.n + rec.field_sym.n) + 16;
+    for (int mode = 0; mode < 2; mode++) {
+      unsigned long long cnt[4] = {0, 0, 0, 0};
+      struct gravity_walk_lists L;
+      L.n = cnt;
+      for (int k = 0; k < 4; k++) {
+        L.target[k] = malloc(capk * sizeof(int));
+        L.source[k] = malloc(capk * sizeof(int));
+        L.cap[k] = capk;
+      }
+      int deep = 0, rounds = 0;
+      unsigned long long handed = 0, kept = 0;
+      struct gravity_walk_buf B;
+      memset(B.n, 0, sizeof B.n);
+      const long long budget = mode ? GRAVITY_TEST_BUDGET : (long long)1 << 62;
+      /* handed on: a stack of 48 entries (one self entry's 36 successors
+       * fill it), so that walkers also stop and hand on for want of room */
+      const int scap = mode ? 48 : TEST_STACK;
+      const unsigned long long qcap = 2048;
+      int *qi[2] = {malloc(3 * qcap * sizeof(int)), malloc(3 * qcap * sizeof(int))};
+      unsigned long long qn[2] = {0, 0};
+/* walk: the stack's n entries with the budget, the rest to queue o */
+#define WALK_ITEMS(n0, o)                                                                       \
+  do {                                                                                          \
+    const struct gravity_walk_queue Q = {qi[o], qn + (o), qcap};                                \
+    int nw = gravity_walk_run(&T, &wp, &L, &B, stack, scap, (n0), budget);                      \
+    if (nw > 0) {                                                                               \
+      const int left = gravity_walk_spill(&Q, stack, nw);                                       \
+      handed += (unsigned long long)(nw - left), kept += (unsigned long long)left;              \
+      nw = left > 0                                                                             \
+               ? gravity_walk_run(&T, &wp, &L, &B, stack, TEST_STACK, left, (long long)1 << 62) \
+               : 0;                                                                             \
+    }                                                                                           \
+    deep += nw > 0;                                                                             \
+  } while (0)
+      for (long long r = 0; r < (long long)nt * nt; r++)
+        if (gravity_walk_root(count, lo_hi, nt, gp.theta, gp.h_support, r, stack)) WALK_ITEMS(1, 0);
+      for (int cur = 0; qn[cur] > 0; cur ^= 1, rounds++) {
+        const unsigned long long m = qn[cur] < qcap ? qn[cur] : qcap;
+        qn[cur ^ 1] = 0;
+        for (unsigned long long q = 0; q < m; q++) {
+          memcpy(stack, qi[cur] + 3 * q, 3 * sizeof(int));
+          WALK_ITEMS(1, cur ^ 1);
+        }
+        qn[cur] = 0;
+      }
+#undef WALK_ITEMS
+      for (int k = 0; k < 4; k++) gravity_walk_flush(&L, &B, k);
+      char what[160];
+      snprintf(what, sizeof what, "%s, %s, %s, %s", name, pass ? "adaptive pass" : "first pass",
+               h_factor > 0.0 ? "eps tied to h" : "constant eps",
+               mode ? "handed on" : "one walker per root");
+      if (deep) {
+        printf("  %s: %d walks ran out of stack: FAIL\n", what, deep);
+        failures++;
+      }
+      if (mode) {
+        printf("  %s: %d rounds, %llu entries handed on, %llu kept for want of room\n", what,
+               rounds, handed, kept);
+        if (rounds < 2 || kept == 0) {
+          printf("  %s: the hand-on scheme was not exercised (rounds, a full queue): FAIL\n", what);
+          failures++;
+        }
+      }
+      compare(what, "part", &rec.part, L.target[0], L.source[0], cnt[0]);
+      compare(what, "field", &rec.field, L.target[1], L.source[1], cnt[1]);
+      compare(what, "part_sym", &rec.part_sym, L.target[2], L.source[2], cnt[2]);
+      compare(what, "field_sym", &rec.field_sym, L.target[3], L.source[3], cnt[3]);
+      for (int k = 0; k < 4; k++) free(L.target[k]), free(L.source[k]);
+      free(qi[0]), free(qi[1]);
+    }
+    free(lo_hi);
+    size_t n_m2p = 0;
+    for (size_t k = 0; k < rec.part.n; k++) n_m2p += rec.part.source[k] < 0;
+    if (rec.field_sym.n == 0 || rec.part_sym.n == 0 || rec.field.n == 0 ||
+        (two_bodies && n_m2p == 0)) {
+      printf("  %s, %s: a list the case must exercise is empty: FAIL\n", name,
+             pass ? "adaptive pass" : "first pass");
+      failures++;
+    }
+    gravity_gpu_rec_free(&rec);
+  }
+  free(progeny), free(count), free(split), free(mp), free(a_min), free(hs), free(stack);
+  free(gc);
+  space_free(&sp);
+  parts_free(&p);
+}
+
+int main(int argc, char **argv) {
+  error_init(argc > 0 ? argv[0] : "test_gravity_walk");
+  printf("stack walk (gravity_walk.h) against the recursive walks, recorded:\n");
+  run("uniform sphere", 0, 0.0);
+  run("two Plummer spheres", 1, 0.0);
+  run("two Plummer spheres", 1, 1.0);
+  printf(failures ? "FAIL\n" : "PASS\n");
+  return failures ? 1 : 0;
+}

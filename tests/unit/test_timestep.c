@@ -1,0 +1,96 @@
+/* The time step of one particle (tasks/kick/timestep.h, issue 19 item 2):
+ * the one function that the CPU kick, the CUDA kick and the dt_min message
+ * call.
+ *  - the Courant condition 2 C H / v_sig alone when nothing else limits;
+ *  - kick2_part adds ga to a (replacing a in a gravity-only run) and takes
+ *    the acceleration criterion of the sum;
+ *  - the gravitational criterion sqrt(2 eta eps_i / |ga|) with the
+ *    absolute softening, and with eps_i = softening_h_factor h_i when the
+ *    softening is tied to h (once applied by the CPU kick alone);
+ *  - without hydrodynamics only the gravitational criterion;
+ *  - the criteria's names. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "src/kernel.h"
+#include "tasks/kick/kick.h"
+#include "tasks/kick/timestep.h"
+#include "src/materials/material.h"
+#include "src/part.h"
+
+#include "tests/helpers/check.h"
+
+static int close_to(double a, double b) {
+  return fabs(a - b) <= 1e-14 * fabs(b);
+}
+
+/** One particle at rest with h 2, v_sig 1e3 and ga (0, 0, 9.81). */
+static void one_particle(struct parts *p) {
+  parts_alloc(p, 1);
+  p->count = 1;
+  p->m[0] = 1.0, p->h[0] = 2.0, p->rho[0] = 1.0, p->mat[0] = 0;
+  p->v_sig[0] = 1e3;
+  p->gaz[0] = 9.81;
+}
+
+int main(void) {
+  struct material_table t;
+  material_table_init(&t);
+  struct hydro_props hp;
+  memset(&hp, 0, sizeof hp);
+  hp.enabled = 1;
+  hp.cfl = 0.2;
+  hp.log_max_volume_change = log(1.4);
+  const double H = kernel_gamma * 2.0;
+  double d[TIMESTEP_NR];
+
+  struct parts p;
+  one_particle(&p);
+  struct timestep_props tp;
+  memset(&tp, 0, sizeof tp);
+  tp.hydro = 1;
+  const double courant = 2.0 * 0.2 * H / 1e3;
+  double dt = timestep_part_criteria(&p, 0, &hp, &t, &tp, d);
+  CHECK(close_to(dt, courant) && d[TIMESTEP_COURANT] == dt, "Courant alone: %g (%g)", dt, courant);
+  CHECK(d[TIMESTEP_ACCEL] == 1e300 && d[TIMESTEP_GRAVITY] == 1e300, "no acceleration, no gravity");
+
+  /* self-gravity, absolute softening 0.1: a = ga after the kick */
+  tp.gravity = 1;
+  tp.grav_eps = 0.1;
+  tp.grav_eta = 0.025;
+  dt = kick2_part(&p, 0, 0.0, &hp, &t, &tp);
+  CHECK(p.az[0] == 9.81, "the kick adds ga: az %g", p.az[0]);
+  timestep_part_criteria(&p, 0, &hp, &t, &tp, d);
+  const double acc = sqrt(2.0 * 0.2 * H / 9.81), grav = sqrt(2.0 * 0.025 * 0.1 / 9.81);
+  CHECK(close_to(d[TIMESTEP_ACCEL], acc), "acceleration criterion %g (%g)", d[TIMESTEP_ACCEL], acc);
+  CHECK(close_to(d[TIMESTEP_GRAVITY], grav), "gravity, eps: %g (%g)", d[TIMESTEP_GRAVITY], grav);
+  CHECK(dt == fmin(courant, fmin(acc, grav)), "the smallest: %g", dt);
+
+  /* softening tied to h: eps_i = 0.5 h_i = 1 */
+  tp.grav_eps = 0.0;
+  tp.grav_h_factor = 0.5;
+  timestep_part_criteria(&p, 0, &hp, &t, &tp, d);
+  const double grav_h = sqrt(2.0 * 0.025 * 1.0 / 9.81);
+  CHECK(close_to(d[TIMESTEP_GRAVITY], grav_h), "gravity, h_factor: %g (%g)", d[TIMESTEP_GRAVITY],
+        grav_h);
+  parts_free(&p);
+
+  /* gravity only: a is ga alone, no hydrodynamic criterion */
+  one_particle(&p);
+  p.az[0] = 5.0; /* a stale hydrodynamic acceleration */
+  tp.hydro = 0;
+  dt = kick2_part(&p, 0, 0.0, &hp, &t, &tp);
+  CHECK(p.az[0] == 9.81, "gravity only: az %g (ga alone)", p.az[0]);
+  CHECK(close_to(dt, grav_h), "gravity only: dt %g (%g)", dt, grav_h);
+  timestep_part_criteria(&p, 0, &hp, &t, &tp, d);
+  CHECK(d[TIMESTEP_COURANT] == 1e300 && d[TIMESTEP_ACCEL] == 1e300, "no hydrodynamic criterion");
+  parts_free(&p);
+
+  CHECK(strstr(timestep_criterion_name(TIMESTEP_COURANT), "Courant") != NULL, "Courant's name");
+  CHECK(strstr(timestep_criterion_name(TIMESTEP_GRAVITY), "gravitational") != NULL, "gravity's");
+  CHECK(strcmp(timestep_criterion_name(TIMESTEP_NR), "none") == 0, "no criterion: none");
+  material_table_free(&t);
+  printf("test_timestep: %d checks, %d failed\n", checks, failures);
+  return failures ? 1 : 0;
+}
