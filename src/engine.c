@@ -24,7 +24,7 @@
 #include "tasks/drift/drift.h"
 #include "tasks/hydro_parts.h"
 #include "src/io/ic.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 #include "src/materials/material.h"
 #include "src/io/params.h"
 #include "src/materials/porosity_eos.h"

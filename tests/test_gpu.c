@@ -40,7 +40,7 @@
 #include "src/gpu/gpu_engine.h"
 #include "src/gpu/gpu_lists.h"
 #include "tasks/hydro_parts.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 #include "tasks/kick/kick_cpu.h"
 #include "tasks/kick/timestep.h"
 #include "src/materials/material.h"

@@ -15,7 +15,7 @@
 #include <stdio.h>
 
 #include "tasks/gravity/gravity_cpu.h"
-#include "src/hydro_props.h"
+#include "tasks/hydro/hydro_props.h"
 #include "src/part.h"
 
 #ifdef __cplusplus

@@ -10,7 +10,7 @@
 #include "src/error.h"
 #include "src/gpu/gpu_policy.h"
 #include "src/gpu/gpu_lists.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 #include "src/materials/material.h"
 #include "src/io/params.h"
 #include "src/runner.h"

@@ -8,7 +8,7 @@
 #include "src/gpu/gpu.h"
 #include "src/gpu/gpu_check.h"
 #include "tasks/gravity/gravity_walk.h"
-#include "src/hydro_props.h"
+#include "tasks/hydro/hydro_props.h"
 #include "src/part.h"
 #include "tasks/task_families.h"
 

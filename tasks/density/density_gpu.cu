@@ -5,7 +5,7 @@
  * hydro_density_reset/hydro_density_add (hydro_parts.h). */
 #include "src/gpu/gpu_kernels.h"
 #include "tasks/hydro_parts.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 
 /** See density_gpu_launch. */
 __global__ void density_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, int only_unconverged) {

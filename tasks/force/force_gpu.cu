@@ -6,7 +6,7 @@
  * up to the order of the sums (force_iact.h, tests/test_gpu.c). */
 #include "src/gpu/gpu_kernels.h"
 #include "tasks/hydro_parts.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 
 /** See force_gpu_launch. */
 __global__ void force_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, struct hydro_props hp) {

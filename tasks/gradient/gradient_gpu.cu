@@ -9,7 +9,7 @@
 #include "tasks/gradient/extra_ghost_part.h"
 #include "src/gpu/gpu_kernels.h"
 #include "tasks/hydro_parts.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 
 /** See gradient_gpu_launch. */
 __global__ void gradient_gpu_kernel(struct parts p, struct gpu_leaves_dev lv) {
