@@ -39,6 +39,7 @@
 #include "tests/gravity_sets.h"
 #include "src/gpu/gpu_engine.h"
 #include "src/gpu/gpu_lists.h"
+#include "tasks/gravity/gpu_gravity.h"
 #include "tasks/hydro_parts.h"
 #include "tasks/hydro/kernel.h"
 #include "tasks/kick/kick_cpu.h"

@@ -14,6 +14,7 @@
 #include "src/materials/material.h"
 #include "src/io/params.h"
 #include "src/runner.h"
+#include "tasks/gravity/gpu_gravity.h"
 
 /** Where the work of a FORCE phase runs (Scheduler:gpu, gpu_policy.h). */
 enum gpu_engine_mode {
