@@ -9,9 +9,10 @@ Fails (one FAIL line per finding) when
              through tasks/families.am, which tools/families_am.sh writes from
              the registry (and which must be current), a shared folder's
              fragment is not included by Makefile.am, a kind of task
-             (TASK_FAMILY_TASKS) names a family that is not in the registry,
-             or a file of a folder tasks/<family>/ or tasks/<shared>/ is not
-             listed in its own local.am (or listed in another fragment);
+             (TASK_FAMILY_TASKS) or a hook (TASK_FAMILY_HOOKS) names a family
+             that is not in the registry, or a file of a folder
+             tasks/<family>/ or tasks/<shared>/ is not listed in its own
+             local.am (or listed in another fragment);
   hand list  a C or CUDA line outside the registry lists three or more family
              names as strings (a list kept by hand beside the registry: the
              names of Scheduler:gpu, of timers or of GPU stages);
@@ -86,12 +87,15 @@ def macro_body(name):
 
 families = [m.group(1) for l in macro_body("TASK_FAMILIES") for m in [re.match(r"\s*X\((\w+),", l)] if m]
 kinds = [m.group(1) for l in macro_body("TASK_FAMILY_TASKS") for m in [re.match(r"\s*X\((\w+),", l)] if m]
+hooks = [m.group(1) for l in macro_body("TASK_FAMILY_HOOKS") for m in [re.match(r"\s*X\((\w+),", l)] if m]
 if not families:
     fail("the registry lists no family")
 if len(set(families)) != len(families):
     fail("a family is listed twice in the registry: %s" % families)
 for k in sorted(set(kinds) - set(families)):
     fail("TASK_FAMILY_TASKS: '%s' is not a family of the registry" % k)
+for k in sorted(set(hooks) - set(families)):
+    fail("TASK_FAMILY_HOOKS: '%s' is not a family of the registry" % k)
 for f in families:
     if f not in kinds:
         fail("family %s makes no kind of task (TASK_FAMILY_TASKS)" % f)
