@@ -21,16 +21,15 @@
 #include "tasks/damage/damage_part.h"
 #include "tasks/damage/flaws.h"
 #include "src/error.h"
-#include "tasks/drift/drift.h"
-#include "tasks/hydro_parts.h"
 #include "src/io/ic.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 #include "src/materials/material.h"
 #include "src/io/params.h"
 #include "src/materials/porosity_eos.h"
 #include "src/io/restart.h"
 #include "tasks/kick/timestep.h"
 #include "src/version.h"
+#include "tasks/task_families.h"
 #include "src/gpu/gpu_policy.h"
 #ifdef HAVE_CUDA
 #include "src/gpu/gpu_engine.h"
@@ -283,6 +282,15 @@ static void engine_check_ic_motion(const struct engine *e, const char *icname, c
   }
 }
 
+/** The hooks of every family at point when (TASK_FAMILY_HOOKS), in the
+ *  registry's order. */
+static void engine_family_hooks(struct engine *e, enum task_family_when when) {
+#define ENGINE_FAMILY_HOOK_(family, at, fn) \
+  if (when == task_family_at_##at) fn(e);
+  TASK_FAMILY_HOOKS(ENGINE_FAMILY_HOOK_)
+#undef ENGINE_FAMILY_HOOK_
+}
+
 /** Read the initial conditions named by the parameters into e->parts, with
  *  the box size (from the file or InitialConditions:box_size), the shift and
  *  the smoothing-length scaling applied. */
@@ -322,8 +330,8 @@ static void engine_read_ics(struct engine *e, char *icname, size_t len, double b
     e->parts.up[i] = e->parts.u[i];
     /* continuity density from the ICs' Densities (0: from the first summation) */
     e->parts.rho_full[i] = e->parts.rho_fp[i] = e->parts.rho[i];
-    kick_sync_predicted(&e->parts, i);
   }
+  engine_family_hooks(e, task_family_at_ic);
   engine_check_ic_motion(e, icname, box, params_get_bool(params, "InitialConditions:periodic"));
   engine_init_porosity(e, icname, ic_field_read(&hdr, engine_field_index("alpha")));
   /* Weibull flaws stored in the ICs (bolide-flaws; FlawThresholds and
@@ -1347,7 +1355,7 @@ static void engine_first_force(struct engine *e) {
   e->first_force = 1;
   e->dt = 0.0;
   e->ti_next = e->ti_current;
-  for (size_t i = 0; i < e->parts.count; i++) hydro_density_reset(&e->parts, i);
+  engine_family_hooks(e, task_family_at_first_force);
   e->gp.replay = 0;
   /* the adaptive criterion's scale |ga| for the first evaluation (issue 25):
    * one cheaper geometric pass on the host, uploaded with the particles */

@@ -10,7 +10,7 @@
 
 #include "src/cell.h"
 #include "tasks/gravity/gravity_cpu.h"
-#include "src/hydro_props.h"
+#include "tasks/hydro/hydro_props.h"
 #include "src/part.h"
 #include "src/scheduler.h"
 #include "src/space.h"

@@ -58,7 +58,7 @@
 #include <string.h>
 
 #include "src/error.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 
 /** The per-task-cell tasks between the force tasks and the kick: the rows
  *  of shape chain(active) of the registry (tasks/task_families.h), in its

@@ -13,7 +13,7 @@
 #include <string.h>
 
 #include "src/error.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 #include "src/part.h"
 
 /** Particles removed from an open box that are logged one by one at level 0

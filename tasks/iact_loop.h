@@ -48,7 +48,7 @@
 #include <math.h>
 
 #include "src/cell.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 #include "src/part.h"
 
 #ifndef IACT_LOOP_NAME

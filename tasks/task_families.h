@@ -17,6 +17,8 @@
  *    fragment tasks/<family>/local.am;
  *  - the graph, for a family of shape chain (below): its tasks between the
  *    force and the kick of every task cell (src/engine_graph.c);
+ *  - what the engine has a family do outside its tasks, at start-up
+ *    (TASK_FAMILY_HOOKS, src/engine.c);
  *  - tests/repo/test_layers.py, which fails when a folder of tasks/, a fragment
  *    or a list of family names elsewhere disagrees with this list.
  *
@@ -120,6 +122,18 @@
   X(gravity,  cell, grav_long_range, grav,     gravity_long_range_task)       \
   X(gravity,  cell, grav_down,       grav,     gravity_down_task)
 
+/* TASK_FAMILY_HOOKS(X): X(family, when, fn): what a family does for the
+ * engine outside its tasks: void fn(struct engine *), in
+ * tasks/<family>/<family>_task.c, called by the engine at point when (in
+ * this order, engine.c: engine_family_hooks), so that src/ needs none of the
+ * family's headers for it.
+ *
+ *  when  ic: after the initial conditions are read (not on a restart)
+ *        first_force: at the start of the first force computation */
+#define TASK_FAMILY_HOOKS(X)                  \
+  X(drift,   ic,          drift_sync_ic)        \
+  X(density, first_force, density_reset_all)
+
 /* ------------------------------------------------------------ expansions */
 
 /** (a, b, c) -> a, b, c: the field lists. */
@@ -150,6 +164,12 @@ enum task_family {
   TASK_FAMILIES(TASK_FAMILY_ENUM_)
 #undef TASK_FAMILY_ENUM_
   task_family_count /**< number of families */
+};
+
+/** The points of TASK_FAMILY_HOOKS (column when). */
+enum task_family_when {
+  task_family_at_ic,          /**< the initial conditions are read */
+  task_family_at_first_force, /**< the first force computation starts */
 };
 
 /** The bit (1u << family) of every HYDRO family (column policy). */
@@ -185,6 +205,10 @@ struct task;
   TASK_FAMILY_ACTIVE_DECL_##shape
 TASK_FAMILY_TASKS(TASK_FAMILY_CPU_DECL_)
 #undef TASK_FAMILY_CPU_DECL_
+/* The hooks of TASK_FAMILY_HOOKS. */
+#define TASK_FAMILY_HOOK_DECL_(family, when, fn) void fn(struct engine *e);
+TASK_FAMILY_HOOKS(TASK_FAMILY_HOOK_DECL_)
+#undef TASK_FAMILY_HOOK_DECL_
 #endif
 
 #endif

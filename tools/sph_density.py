@@ -3,7 +3,7 @@
 The smoothing length of each particle solves sum_j W(r_ij, h) = (eta / h)^3
 (the number-density form used by SWIFT and Bolide, eta = resolution_eta),
 with the cubic spline (default) or the Wendland C2 kernel in the Dehnen &
-Aly (2012) convention of src/kernel.h (H = gamma h; cubic spline gamma =
+Aly (2012) convention of tasks/hydro/kernel.h (H = gamma h; cubic spline gamma =
 sqrt(10/3), Wendland C2 sqrt(15/4)); then rho_i = sum_j m_j W(r_ij, h_i).
 Written independently of the C code: the formulas are those of Dehnen & Aly
 (2012), Table 1.  `kernel_of(path)` reads the kernel a Bolide file was made
@@ -29,14 +29,14 @@ _WC2_F1 = (_WC2_P * Polynomial([0.0, 1.0])).integ()  # int_0^q w(t) t dt / C
 
 
 def w_cubic(q):
-    """w(q) of the cubic spline, support q < 1 (src/kernel.h)."""
+    """w(q) of the cubic spline, support q < 1 (tasks/hydro/kernel.h)."""
     a = np.clip(1.0 - q, 0.0, None)
     b = np.clip(0.5 - q, 0.0, None)
     return NORM * (a**3 - 4.0 * b**3)
 
 
 def w_wendland_c2(q):
-    """w(q) of the Wendland C2 kernel, support q < 1 (src/kernel.h)."""
+    """w(q) of the Wendland C2 kernel, support q < 1 (tasks/hydro/kernel.h)."""
     q = np.clip(q, 0.0, 1.0)
     return WC2_NORM * _WC2_P(q)
 

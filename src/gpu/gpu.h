@@ -14,8 +14,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "tasks/gravity/gravity_cpu.h"
-#include "src/hydro_props.h"
+#include "tasks/hydro/hydro_props.h"
 #include "src/part.h"
 #include "src/timeline.h"
 
@@ -73,28 +72,6 @@ struct gpu_force_out {
   int iterations; /**< rounds of the h iteration */
 };
 
-/** The cell tree of self-gravity on the GPU as index arrays (cells by
- *  struct cell.index): set again after each rebuild (gpu_grav_set_tree). */
-struct gpu_grav_tree {
-  int nr_cells;               /**< cells 0 .. nr_cells - 1 */
-  const size_t *offset;       /**< first particle of each cell */
-  const int *count;           /**< its particles */
-  int nr_l2l;                 /**< parent-child pairs of non-empty cells, level after level */
-  const int *l2l_child;       /**< child of each pair */
-  const int *l2l_parent;      /**< parent of each pair */
-  int nr_levels;              /**< tree levels below the top-level cells */
-  const int *level_start;     /**< nr_levels + 1: level L's pairs are [level_start[L], [L+1]) */
-  int nr_leaves;              /**< non-empty leaves */
-  const int *leaf;            /**< their cell indices */
-  const double *centre;       /**< 3 per cell: the centre of its box */
-  const int *progeny;         /**< 8 per cell: child cell or -1 (gravity_walk_tree_arrays) */
-  const unsigned char *split; /**< 1 per cell: it has progeny */
-};
-
-/** Self-gravity's device state (buffers of the tree, the multipoles, the
- *  local expansions and the grouped interactions; opaque). */
-struct gpu_grav;
-
 /** Find a CUDA device (cudaGetDeviceCount) and set it up; NULL when there
  *  is none, with the reason in why. */
 struct gpu *gpu_init(char *why, size_t len);
@@ -149,53 +126,6 @@ void gpu_upload_gravity(struct gpu *g, struct parts *p);
  *  hybrid runner: the CPU workers need the cores).  Returns 0 when the
  *  driver refuses (the waits then keep spinning). */
 int gpu_set_blocking_sync(struct gpu *g);
-/** Self-gravity's device state on g (freed by gpu_grav_free, before gpu_free). */
-struct gpu_grav *gpu_grav_new(struct gpu *g);
-void gpu_grav_free(struct gpu_grav *gg);
-/** Upload the cell tree (after each rebuild). */
-void gpu_grav_set_tree(struct gpu_grav *gg, const struct gpu_grav_tree *t);
-/** Pinned host array of at least nr_cells multipoles (kept while large
- *  enough): the caller writes each cell's multipole (gravity_up's) at its
- *  index before gpu_grav_run. */
-struct gravity_multipole *gpu_grav_multipoles(struct gpu_grav *gg, int nr_cells);
-/** The upward pass on the device (P2M, M2M; gravity_up_leaf and
- *  gravity_up_node of gravity_iact.h, as the CPU's gravity_up): every
- *  cell's multipole, a_min (from the device's gax, gay, gaz of the last
- *  evaluation) and h_support, left on the device for the next
- *  gpu_grav_run (which then uploads no multipoles) and copied back for the
- *  CPU's walks: *mp, *a_min, *h_support point to pinned host arrays by
- *  cell index, valid until the next call (mp NULL: nothing comes back,
- *  the walks being on the device too).  resident = 0: upload x, y, z, m,
- *  h, gax, gay, gaz first. */
-void gpu_grav_up(struct gpu_grav *gg, struct parts *p, int order, double h_factor, int resident,
-                 const struct gravity_multipole **mp, const double **a_min,
-                 const double **h_support);
-/** The walks on the device (gravity_walk.h, the CPU's decisions) from
- *  every pair of the nr_top top-level cells (cells 0 .. nr_top - 1, boxes
- *  lo_hi: 6 doubles each, as now on the host), on the multipoles of this
- *  evaluation's gpu_grav_up (required before): the interactions stay on
- *  the device for the next gpu_grav_run, which then uploads no records.
- *  theta, h_support (the constant support), G, epsilon_fmm, h_factor,
- *  order: as struct gravity_props. */
-void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_top, double theta,
-                   double h_support, double G, double epsilon_fmm, double h_factor, int order);
-/** One gravity evaluation on the device, ending with p's pot, gax, gay, gaz
- *  complete on the device and on the host.  replay = 0: the multipoles
- *  (gpu_grav_multipoles) and the interactions that the walks recorded in
- *  rec[0..nr_rec) (one struct per worker) go up; the device groups the
- *  interactions by receiving cell (counting sort with atomic cursors: the
- *  order within a cell varies from run to run, like the CPU's task order),
- *  zeroes the fields and runs M2L and P2L, L2L level by level, P2P and M2P,
- *  L2P.  replay = 1 (Gravity:reuse_steps): the multipoles, local
- *  expansions and grouped interactions of the last full evaluation stay;
- *  only P2P, M2P and L2P run, at the current positions (rec unused).
- *  resident = 0: upload x, y, z and m first.  G, eps, softening, eps2
- *  (softening^2 in the expansions), order: as struct gravity_props. */
-void gpu_grav_run(struct gpu_grav *gg, struct parts *p, const struct gravity_gpu_rec *rec,
-                  int nr_rec, double G, double eps, int softening, double eps2, int order,
-                  int resident, int replay);
-/** Print the accumulated times of the gravity kernels. */
-void gpu_grav_print(const struct gpu_grav *gg, FILE *f);
 /** Copy every particle field to the device (after a rebuild or a restart). */
 void gpu_upload_all(struct gpu *g, const struct parts *p);
 /** Copy every particle field back to the host (outputs, rebuilds). */

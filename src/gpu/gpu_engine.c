@@ -10,10 +10,11 @@
 #include "src/error.h"
 #include "src/gpu/gpu_policy.h"
 #include "src/gpu/gpu_lists.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 #include "src/materials/material.h"
 #include "src/io/params.h"
 #include "src/runner.h"
+#include "tasks/gravity/gpu_gravity.h"
 
 /** Where the work of a FORCE phase runs (Scheduler:gpu, gpu_policy.h). */
 enum gpu_engine_mode {

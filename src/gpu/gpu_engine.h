@@ -6,7 +6,6 @@
 
 #include "src/engine.h"
 #include "src/gpu/gpu.h"
-#include "tasks/gravity/gravity_cpu.h"
 
 struct gpu_cells_job;
 struct gpu_list_box;
@@ -85,58 +84,6 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
                     const struct material_table *mats, const struct gpu_damage *dmg,
                     const struct gpu_gravity *grav, double dt_kick, int resident, double *tc_dt_min,
                     struct timeline_sums *tc_sums);
-
-/** Host side of self-gravity on the GPU, grown and reused between steps:
- *  the cell tree as index arrays (gpu_grav_tree_build, at each rebuild). */
-struct gpu_grav_host {
-  struct gpu_grav_tree tree;      /**< the tree, as gpu_grav_set_tree reads it */
-  size_t *offset;                 /**< storage of the tree: by cell */
-  int *count, cells_cap;          /**< by cell; allocated cells */
-  double *centre;                 /**< by cell: its box centre (3 doubles) */
-  int *progeny;                   /**< by cell: 8 children or -1 (walks) */
-  unsigned char *split;           /**< by cell: split flag (walks) */
-  double *lo_hi;                  /**< by top-level cell: its box (6 doubles, walks) */
-  int lo_hi_cap;                  /**< top-level cells it holds */
-  int *l2l_tmp;                   /**< (child, parent, level) while building */
-  int *l2l_child, *l2l_parent;    /**< pairs by level */
-  int nr_l2l, l2l_cap;            /**< pairs and allocated length */
-  int *level_start;               /**< levels + 1 */
-  int *leaf, nr_leaf, leaf_cap;   /**< non-empty leaves */
-  int built_rebuild;              /**< space.nr_rebuilds of the tree */
-  const struct cell *built_cells; /**< space.cells of the tree */
-};
-/** The tree of s (its top-level cells' octrees) as index arrays into h->tree. */
-void gpu_grav_tree_build(struct gpu_grav_host *h, const struct space *s);
-/** Copy the multipoles of c's octree from gc into dst (by cell index). */
-void gpu_grav_pack_multipoles(struct gravity_multipole *dst, const struct cell *c,
-                              const struct gravity_cell *gc);
-/** Free the arrays of h and zero it. */
-void gpu_grav_host_free(struct gpu_grav_host *h);
-/** The upward pass of every cell of s on the device (gpu_grav_up), copied
- *  into gc (multipole, a_min, h_support; the field zeroed) for the CPU's
- *  walks, as gravity_up of every top-level cell would leave it (host ga
- *  and pot are not zeroed: the device's evaluation overwrites them); gc
- *  NULL: nothing copied back (the walks on the device too). */
-void gpu_grav_up_cells(struct gpu_grav *gg, struct parts *p, const struct space *s,
-                       struct gravity_cell *gc, const struct gravity_props *gp, int resident);
-/** The walks of every top-level cell of s on the device (gpu_grav_walk,
- *  after gpu_grav_up_cells), with the cells' boxes as they are now. */
-void gpu_grav_walk_cells(struct gpu_grav *gg, struct gpu_grav_host *h, const struct space *s,
-                         const struct gravity_props *gp);
-/** The whole tree method with the far field on the GPU, without tasks, in
- *  the order of gravity_tree_all: gravity_up of every top-level cell on
- *  the CPU, the walks recorded (gravity_gpu_record) into rec (emptied
- *  first; the caller keeps it, e.g. to count the interactions) and run on
- *  the device (gpu_grav_run; resident as there).  Sets p's ga and pot.
- *  up_on_device: the upward pass on the device instead (gpu_grav_up_cells);
- *  walk_on_device (with up_on_device): the walks too (gpu_grav_walk_cells;
- *  rec then stays empty).  resident = 0: gravity_estimate on the host
- *  first where needed (a first evaluation), as gravity_tree_all.  For
- *  tests; h->built_rebuild must start at -1. */
-void gpu_grav_tree_all(struct gpu_grav *gg, struct gpu_grav_host *h, struct gravity_gpu_rec *rec,
-                       struct parts *p, const struct space *s, struct gravity_cell *gc,
-                       const struct gravity_props *gp, int resident, int up_on_device,
-                       int walk_on_device);
 
 /** Choose where tasks run from Scheduler:gpu and --gpu/--no-gpu, set
  *  e->gpu when the FORCE phase goes to a device, and say so in one line. */

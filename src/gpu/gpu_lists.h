@@ -25,7 +25,7 @@
 #include <math.h>
 
 #include "src/inline.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -11,7 +11,7 @@
 #ifndef BOLIDE_PARAM_LIST_H
 #define BOLIDE_PARAM_LIST_H
 
-#include "src/kernel.h" /* KERNEL_ETA_DEFAULT_STR: the default resolution_eta of the kernel */
+#include "tasks/hydro/kernel.h" /* KERNEL_ETA_DEFAULT_STR: the default resolution_eta of the kernel */
 
 #define PARAM_INF 1e308
 

@@ -7,7 +7,7 @@
 
 #include "tasks/damage/damage_iact.h"
 #include "src/inline.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 #include "src/materials/material.h"
 #include "src/part.h"
 

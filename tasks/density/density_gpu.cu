@@ -4,8 +4,8 @@
  * r < H_i (the loop: tasks/iact_loop_gpu.h).  Sums are accumulated in registers and stored once
  * with hydro_density_reset/hydro_density_add (hydro_parts.h). */
 #include "src/gpu/gpu_kernels.h"
-#include "src/kernel.h"
 #include "tasks/hydro_parts.h"
+#include "tasks/hydro/kernel.h"
 
 /** See density_gpu_launch. */
 #define IACT_GPU_NAME density_gpu_kernel

@@ -3,7 +3,7 @@
 #define BOLIDE_FORCE_CPU_H
 
 #include "src/cell.h"
-#include "src/hydro_props.h"
+#include "tasks/hydro/hydro_props.h"
 #include "src/part.h"
 
 /** Hydrodynamic forces between every pair of particles of c. */

@@ -7,7 +7,7 @@
  * tasks/iact_loop_gpu.h. */
 #include "src/gpu/gpu_kernels.h"
 #include "tasks/hydro_parts.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 
 /** See force_gpu_launch.  r2 > 0: coincident particles (and i itself)
  *  exert no pairwise force. */

@@ -34,9 +34,9 @@
 
 #include <math.h>
 
-#include "src/hydro_props.h"
+#include "tasks/hydro/hydro_props.h"
 #include "src/inline.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 
 /** What the force loop reads of one particle. */
 struct force_in {

@@ -22,7 +22,7 @@
 #ifndef BOLIDE_CONTINUITY_FLOOR_H
 #define BOLIDE_CONTINUITY_FLOOR_H
 
-#include "src/hydro_props.h"
+#include "tasks/hydro/hydro_props.h"
 #include "src/inline.h"
 #include "src/materials/material.h"
 #include "src/part.h"

@@ -10,7 +10,7 @@
 #include "tasks/density/density_cpu.h"
 #include "src/error.h"
 #include "tasks/ghost/ghost_part.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 
 int ghost_cell_cpu(struct parts *p, struct cell *c, const struct ghost_ngbs *ngbs,
                    const struct hydro_props *hp, const struct material_table *mats,

@@ -12,7 +12,7 @@
 #include "tasks/damage/damage_iact.h"
 #include "tasks/ghost/ghost_iact.h"
 #include "tasks/hydro_parts.h"
-#include "src/hydro_props.h"
+#include "tasks/hydro/hydro_props.h"
 #include "src/inline.h"
 #include "src/materials/material.h"
 #include "src/part.h"

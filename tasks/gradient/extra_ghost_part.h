@@ -9,9 +9,9 @@
 
 #include "tasks/damage/damage_iact.h"
 #include "tasks/gradient/gradient_finish.h"
-#include "src/hydro_props.h"
+#include "tasks/hydro/hydro_props.h"
 #include "src/inline.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 #include "src/materials/material.h"
 #include "src/part.h"
 #include "src/materials/strength.h"

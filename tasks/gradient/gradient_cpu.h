@@ -3,7 +3,7 @@
 #define BOLIDE_GRADIENT_CPU_H
 
 #include "src/cell.h"
-#include "src/hydro_props.h"
+#include "tasks/hydro/hydro_props.h"
 #include "src/part.h"
 
 struct material_table;

@@ -10,7 +10,7 @@
 #include "tasks/gradient/extra_ghost_part.h"
 #include "src/gpu/gpu_kernels.h"
 #include "tasks/hydro_parts.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 
 /** See gradient_gpu_launch. */
 #define IACT_GPU_NAME gradient_gpu_kernel

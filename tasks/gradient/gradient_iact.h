@@ -17,7 +17,7 @@
 #include <math.h>
 
 #include "src/inline.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 
 /** Accumulators of the gradient loop for one particle. */
 struct gradient_acc {

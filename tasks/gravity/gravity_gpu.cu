@@ -1,7 +1,7 @@
 /* Self-gravity on the GPU: the operators of the fast multipole method on
  * the recorded interactions (of the CPU's walks, gravity_gpu_record, or of
  * the device's, gravity_tree_gpu.cu) and on the cell tree as index arrays
- * (src/gpu/gpu_gravity.cu uploads or groups both).  Each kernel calls the inline
+ * (tasks/gravity/gpu_gravity.cu uploads or groups both).  Each kernel calls the inline
  * operators of gravity_iact.h that the CPU walk calls (gravity_derivatives,
  * gravity_m2l, gravity_m2p_p2l, gravity_l2l, gravity_l2p, gravity_p2p),
  * with the expansion order a template constant so that nvcc unrolls their
@@ -22,6 +22,7 @@
  * differ by round-off (tests/gpu/test_gpu.c). */
 #define GRAVITY_UNROLL_LOOPS 1
 #include "src/gpu/gpu_kernels.h"
+#include "tasks/gravity/gravity_gpu.h"
 #include "tasks/gravity/gravity_iact.h"
 
 /** Every cell c with sources: the M2L of its multipole sources and the P2L

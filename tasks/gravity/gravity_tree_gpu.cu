@@ -25,6 +25,7 @@
 #include <limits.h>
 
 #include "src/gpu/gpu_kernels.h"
+#include "tasks/gravity/gravity_gpu.h"
 #include "tasks/gravity/gravity_iact.h"
 #include "tasks/gravity/gravity_walk.h"
 

@@ -8,7 +8,7 @@
 #include "tasks/drift/drift.h"
 #include "tasks/ghost/continuity_floor.h"
 #include "tasks/gradient/extra_ghost_part.h"
-#include "src/hydro_props.h"
+#include "tasks/hydro/hydro_props.h"
 #include "src/inline.h"
 #include "src/materials/material.h"
 #include "src/part.h"

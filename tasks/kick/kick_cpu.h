@@ -5,7 +5,7 @@
 #include <stdint.h>
 
 #include "src/cell.h"
-#include "src/hydro_props.h"
+#include "tasks/hydro/hydro_props.h"
 #include "src/materials/material.h"
 #include "src/part.h"
 #include "src/timeline.h"

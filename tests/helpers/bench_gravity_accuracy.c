@@ -61,6 +61,7 @@
 #ifdef HAVE_CUDA
 #include "src/gpu/gpu.h"
 #include "src/gpu/gpu_engine.h"
+#include "tasks/gravity/gpu_gravity.h"
 #endif
 
 #define MAX_CONFIGS 64

@@ -18,7 +18,7 @@
 #include "config.h"
 #include "src/error.h"
 #include "tools/ic/ic_planet.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 
 static int cmp_double(const void *p, const void *q) {
   const double a = *(const double *)p, b = *(const double *)q;

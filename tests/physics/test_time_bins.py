@@ -16,7 +16,7 @@ src/timeline.h, theory/sph.md "Time bins").
    (relative) of the start (measured 4.5e-7; 6.8e-7 global).
 2. The Evrard collapse (theory/validation.md) at 16^3 cells of its
    lattice, with bins, to t = 1.4: the total energy within 1% of its start
-   at every statistics line (the bound of tests/test_evrard.sh for the
+   at every statistics line (the bound of tests/physics/test_evrard.sh for the
    global step) and the thermal energy's peak within 15% of the free-fall
    time of the outer shell."""
 import os

@@ -2,18 +2,26 @@
 
 Fails (one FAIL line per finding) when
 
-  registry   a folder of tasks/ is not a family of the registry
-             (tasks/task_families.h), a family has no folder, the families'
-             fragments are not included through tasks/families.am, which
-             tools/families_am.sh writes from the registry (and which must be
-             current), a kind of task (TASK_FAMILY_TASKS) names a family that is
-             not in the registry, or a file of tasks/<family>/ is not listed
-             in its own local.am (or listed in another fragment);
+  registry   a folder of tasks/ is neither a family of the registry
+             (tasks/task_families.h) nor a shared folder (SHARED below:
+             tasks/hydro/, the kernels and SPH settings the families share),
+             a family has no folder, the families' fragments are not included
+             through tasks/families.am, which tools/families_am.sh writes from
+             the registry (and which must be current), a shared folder's
+             fragment is not included by Makefile.am, a kind of task
+             (TASK_FAMILY_TASKS) or a hook (TASK_FAMILY_HOOKS) names a family
+             that is not in the registry, or a file of a folder
+             tasks/<family>/ or tasks/<shared>/ is not listed in its own
+             local.am (or listed in another fragment);
   hand list  a C or CUDA line outside the registry lists three or more family
              names as strings (a list kept by hand beside the registry: the
              names of Scheduler:gpu, of timers or of GPU stages);
   layers     a file includes across the layers of theory/architecture.md, "Layers":
                src/ (engine, scheduler, io, gpu) -> tasks/: only the registry
+                 and tasks/hydro/ (the SPH settings the engine holds, the
+                 kernel whose support sizes its cells), never a family
+               tasks/hydro/ -> only itself and what src/materials/ may
+                 include (it sits below the families and the engine)
                src/materials/ -> anything but src/materials/, the portability
                  macros, errors, particles, units, parameters and the paths of
                  shipped files (src/paths.h)
@@ -42,6 +50,9 @@ os.chdir(TOP)
 GENERATED = {"config.h"}  # written by configure into the build folder
 SOURCE_EXT = (".c", ".h", ".cu")
 fails = []
+# folders of tasks/ that are not families: what the families share, each built
+# from its own tasks/<name>/local.am, which Makefile.am includes
+SHARED = ["hydro"]
 
 
 def fail(msg):
@@ -76,29 +87,42 @@ def macro_body(name):
 
 families = [m.group(1) for l in macro_body("TASK_FAMILIES") for m in [re.match(r"\s*X\((\w+),", l)] if m]
 kinds = [m.group(1) for l in macro_body("TASK_FAMILY_TASKS") for m in [re.match(r"\s*X\((\w+),", l)] if m]
+hooks = [m.group(1) for l in macro_body("TASK_FAMILY_HOOKS") for m in [re.match(r"\s*X\((\w+),", l)] if m]
 if not families:
     fail("the registry lists no family")
 if len(set(families)) != len(families):
     fail("a family is listed twice in the registry: %s" % families)
 for k in sorted(set(kinds) - set(families)):
     fail("TASK_FAMILY_TASKS: '%s' is not a family of the registry" % k)
+for k in sorted(set(hooks) - set(families)):
+    fail("TASK_FAMILY_HOOKS: '%s' is not a family of the registry" % k)
 for f in families:
     if f not in kinds:
         fail("family %s makes no kind of task (TASK_FAMILY_TASKS)" % f)
 
 folders = sorted(d for d in os.listdir("tasks") if os.path.isdir(os.path.join("tasks", d)))
 for d in folders:
-    if d not in families:
+    if d not in families and d not in SHARED:
         fail("tasks/%s/ is not a family of the registry (tasks/task_families.h)" % d)
+for d in SHARED:
+    if d in families:
+        fail("tasks/%s/ is a family of the registry and a shared folder (SHARED)" % d)
+    if d not in folders:
+        fail("the shared folder tasks/%s/ does not exist" % d)
 for f in families:
     if f not in folders:
         fail("family %s of the registry has no folder tasks/%s/" % (f, f))
 
 makefile = read("Makefile.am")
 for d, frag in re.findall(r"^include \$\(top_srcdir\)/tasks/(\w+)/(\S+)$", makefile, re.M):
+    if d in SHARED and frag == "local.am":
+        continue
     fail("Makefile.am includes tasks/%s/%s: the families' fragments come from tasks/families.am" % (d, frag))
 if not re.search(r"^include \$\(top_srcdir\)/tasks/families\.am$", makefile, re.M):
     fail("Makefile.am does not include tasks/families.am (the registry's fragments)")
+for d in SHARED:
+    if not re.search(r"^include \$\(top_srcdir\)/tasks/%s/local\.am$" % d, makefile, re.M):
+        fail("Makefile.am does not include tasks/%s/local.am (the shared folder's fragment)" % d)
 expected = ["include $(top_srcdir)/tasks/%s/local.am" % f for f in families]
 if not os.path.isfile("tasks/families.am"):
     fail("no tasks/families.am: run ./autogen.sh (tools/families_am.sh writes it from the registry)")
@@ -107,7 +131,7 @@ else:
     if got != expected:
         fail("tasks/families.am is not the registry's (%s): run tools/families_am.sh" % ", ".join(families))
 
-# every file of a family's folder listed in its own fragment, and in no other
+# every file of a family's (or shared) folder listed in its own fragment, and in no other
 fragments = {}
 for root, _, files in os.walk("."):
     if root.startswith(("./.git", "./_build", "./_dbuild", "./build", "./.venv", "./autom4te")):
@@ -116,10 +140,10 @@ for root, _, files in os.walk("."):
         if n.endswith(".am") or n == "Makefile.am":
             p = os.path.normpath(os.path.join(root, n))
             fragments[p] = read(p)
-for f in families:
+for f in families + [d for d in SHARED if d in folders]:
     own = "tasks/%s/local.am" % f
     if own not in fragments:
-        fail("family %s has no fragment %s" % (f, own))
+        fail("folder tasks/%s/ has no fragment %s" % (f, own))
         continue
     for n in sorted(os.listdir("tasks/" + f)):
         p = "tasks/%s/%s" % (f, n)
@@ -171,6 +195,8 @@ SCHED = {"src/task.h", "src/task.c", "src/queue.h", "src/queue.c", "src/schedule
          "src/scheduler.c", "src/runner.h", "src/runner.c"}
 MATERIALS_OK = ("src/materials/", "src/inline.h", "src/error.h", "src/part.h", "src/io/units.h",
                 "src/io/params.h", "src/paths.h")  # paths.h: a leaf (the C library only)
+ENGINE_OK = ("tasks/task_families.h", "tasks/hydro/")  # what src/ may include of tasks/
+HYDRO_OK = ("tasks/hydro/",) + MATERIALS_OK  # what tasks/hydro/ may include
 
 
 def violation(src, dst):
@@ -178,8 +204,10 @@ def violation(src, dst):
     sit on top of every layer."""
     if os.path.basename(src).startswith("main_"):
         return None
-    if src.startswith("src/") and dst.startswith("tasks/") and dst != "tasks/task_families.h":
-        return "src/ reaches into a family's internals (only tasks/task_families.h)"
+    if src.startswith("src/") and dst.startswith("tasks/") and not dst.startswith(ENGINE_OK):
+        return "src/ reaches into a family's internals (only tasks/task_families.h, tasks/hydro/)"
+    if src.startswith("tasks/hydro/") and not dst.startswith(HYDRO_OK):
+        return "tasks/hydro/ includes above its layer (families, engine)"
     if src.startswith("src/materials/") and not dst.startswith(MATERIALS_OK):
         return "src/materials/ includes above its layer"
     if src.startswith("src/runner.") and dst in SCHED and not dst.startswith("src/runner."):
@@ -191,7 +219,7 @@ def violation(src, dst):
 
 arrows = {}
 for p in sources:
-    if not p.startswith("src/"):
+    if not p.startswith(("src/", "tasks/hydro/")):
         continue
     for name in include_re.findall(read(p)):
         dst = resolve(p, name)

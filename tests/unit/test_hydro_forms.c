@@ -11,7 +11,7 @@
 #include "src/error.h"
 #include "tasks/force/force_cpu.h"
 #include "tasks/hydro_parts.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 #include "src/space.h"
 
 static double urand(unsigned long long *s) {

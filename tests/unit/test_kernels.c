@@ -1,4 +1,4 @@
-/* Kernel sums (theory/validation.md, "Kernel sums"): for every 3D kernel of src/kernel.h
+/* Kernel sums (theory/validation.md, "Kernel sums"): for every 3D kernel of tasks/hydro/kernel.h
  *  - int W dV = 1 and int grad W dV = 0 to 1e-6, as sums over a fine cubic
  *    lattice whose origin is offset from the kernel centre (so symmetry
  *    alone cannot make the gradient sum vanish);
@@ -13,7 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 
 static int failures = 0;
 

@@ -27,7 +27,7 @@
 #include <string.h>
 
 #include "src/error.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 #include "src/part.h"
 #include "src/space.h"
 

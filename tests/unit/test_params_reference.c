@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #include "src/error.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 #include "src/io/params.h"
 
 /** Whole content of a file (malloc'd), or NULL; *len gets its size. */
@@ -39,7 +39,7 @@ int main(int argc, char **argv) {
     return 0;
   }
   /* the file is that of the default build: SPH:resolution_eta's default
-   * depends on the kernel (KERNEL_ETA_DEFAULT, src/kernel.h) */
+   * depends on the kernel (KERNEL_ETA_DEFAULT, tasks/hydro/kernel.h) */
   if (KERNEL_TYPE != KERNEL_TYPE_WENDLAND_C2) {
     printf(
         "SKIP: examples/parameters.yml is written for the default kernel (wendland-C2), "

@@ -28,7 +28,7 @@
 #include "tasks/gradient/gradient_cpu.h"
 #include "tasks/gradient/gradient_finish.h"
 #include "tasks/hydro_parts.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 #include "src/materials/material.h"
 #include "src/space.h"
 #include "src/materials/strength.h"

@@ -13,7 +13,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 #include "tasks/kick/kick.h"
 #include "tasks/kick/timestep.h"
 #include "src/materials/material.h"

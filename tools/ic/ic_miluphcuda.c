@@ -29,7 +29,7 @@
 
 #include "src/error.h"
 #include "tools/ic/ic_impact.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 #include "src/part.h"
 #include "src/io/snapshot.h"
 #include "src/io/units.h"

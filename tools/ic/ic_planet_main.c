@@ -11,7 +11,7 @@
 #include "src/io/ic.h"
 #include "tools/ic/ic_impact.h"
 #include "tools/ic/ic_planet.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 #include "src/io/snapshot.h"
 #include "src/io/units.h"
 #include "src/version.h"

@@ -29,7 +29,7 @@
 
 #include "src/error.h"
 #include "tools/ic/ic_planet.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 
 /* Isolated shells (ic_sea_shell): the resolution_eta of the SPH density
  * whose spread the choice of stretching and collar count minimises (Bolide's

@@ -5,7 +5,7 @@
  * - ic_sph_density: h_i solves sum_j W(r_ij, h_i) = (eta / h_i)^3 (the
  *   number-density form of SWIFT and Bolide, self included), then
  *   rho_i = sum_j m_j W(r_ij, h_i), with the compiled-in kernel of
- *   src/kernel.h;
+ *   tasks/hydro/kernel.h;
  * - ic_sea_relax: moves particles along their shells (never radially) down
  *   the gradient of rho_SPH / rho_profile, so that the density scatter of
  *   the SEA collars evens out.
@@ -23,7 +23,7 @@
 
 #include "src/error.h"
 #include "tools/ic/ic_planet.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 
 /** Points sorted into cubic cells of side `cell`. */
 struct sea_grid {

@@ -14,7 +14,7 @@
 #include "src/error.h"
 #include "tools/ic/ic_impact.h"
 #include "tools/ic/ic_tools.h"
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 #include "src/io/snapshot.h"
 #include "src/io/units.h"
 #include "src/version.h"

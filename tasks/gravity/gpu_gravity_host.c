@@ -1,11 +1,14 @@
-/* Host side of self-gravity on the GPU (gpu_engine.h): the cell tree as
+/* Host side of self-gravity on the GPU (gpu_gravity.h): the cell tree as
  * index arrays, the multipoles packed for the upload, and the serial
  * sequence of a whole evaluation. */
+#include "tasks/gravity/gpu_gravity.h"
+
 #include <stdlib.h>
 #include <string.h>
 
+#include "src/cell.h"
 #include "src/error.h"
-#include "src/gpu/gpu_engine.h"
+#include "src/space.h"
 
 /* ------------------------------------------------------------------ tree */
 

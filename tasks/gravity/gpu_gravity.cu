@@ -1,4 +1,4 @@
-/* Self-gravity's device state (gpu.h, struct gpu_grav): the cell tree as
+/* Self-gravity's device state (gpu_gravity.h, struct gpu_grav): the cell tree as
  * index arrays (uploaded at rebuilds), the multipoles (each full
  * evaluation, from pinned staging), the local expansions (device only),
  * the interactions of the CPU walks (each full evaluation, grouped by
@@ -15,6 +15,8 @@ extern "C" {
 }
 #include "src/gpu/gpu.h"
 #include "src/gpu/gpu_kernels.h"
+#include "tasks/gravity/gpu_gravity.h"
+#include "tasks/gravity/gravity_gpu.h"
 
 /** A device buffer grown on demand (contents not kept). */
 struct gpu_grav_buf {

@@ -1,9 +1,9 @@
 /* Hydrodynamics settings from the SPH section. */
-#include "src/hydro_props.h"
+#include "tasks/hydro/hydro_props.h"
 
 #include <math.h>
 
-#include "src/kernel.h"
+#include "tasks/hydro/kernel.h"
 #include "src/io/params.h"
 
 void hydro_props_init(struct hydro_props *hp, const struct params *p) {
