@@ -1293,6 +1293,19 @@ static double engine_next_dt_bins(struct engine *e) {
   return (double)(ti - e->ti_current) * tl->time_base;
 }
 
+/** With individual time steps after a rebuild between the drift and the
+ *  FORCE phase: the task cells' counts of particles that end their step
+ *  (cell.active, ENGINE_CELL_IDLE), which the drift counted in the cells of
+ *  before. */
+static void engine_count_active_cells(struct engine *e) {
+  for (int t = 0; t < e->nr_tcells; t++) {
+    struct cell *c = e->tcells[t];
+    int n = 0;
+    for (size_t i = c->offset; i < c->offset + c->count; i++) n += !PART_IS_INACTIVE(&e->parts, i);
+    c->active = n;
+  }
+}
+
 /** With individual time steps after a resumed run's start: the earliest
  *  end of a particle's step from the particles' bins (what the kick of the
  *  step before the restart file left in e->cell_kick). */
@@ -1421,6 +1434,7 @@ void engine_run(struct engine *e) {
       atomic_store((_Atomic int *)&e->need_rebuild, 0);
       engine_rebuild(e);
       rebuilt = 1;
+      if (e->individual) engine_count_active_cells(e);
     }
     engine_gravity_reuse_decide(e, rebuilt);
     const double wf = error_walltime();

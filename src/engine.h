@@ -182,4 +182,12 @@ void engine_timestep_props(const struct engine *e, struct timestep_props *tp);
 /** Free everything. */
 void engine_clean(struct engine *e);
 
+/** With individual time steps, whether the tasks of a cell have nothing to
+ *  do in this step's FORCE phase: none of its particles ends its step
+ *  (c->active, counted by the drift, engine_count_active_cells after a
+ *  rebuild).  Never with the global step nor at the first force
+ *  computation. */
+#define ENGINE_CELL_IDLE(e, c) \
+  ((e)->individual && !(e)->first_force && !((const struct cell *)(c))->active)
+
 #endif

@@ -168,7 +168,14 @@ enum part_state {
                                negative (material.u_floor, set by the ghost; drift.h) */
   PART_FREE_SURFACE = 16, /**< a fluid particle on the free surface (SPH:free_surface): P = 0
                               (extra_ghost_part.h) */
+  PART_INACTIVE = 32,     /**< with individual time steps, in the middle of its step at the end
+                               of the step being taken: the FORCE phase leaves it as it is (its
+                               sums, rates and equation of state), its neighbours read its
+                               predicted state (drift_part_bins); never set with the global step */
 };
+
+/** Whether particle i sits out the FORCE phase of this step (time bins). */
+#define PART_IS_INACTIVE(p, i) ((p)->flags[i] & PART_INACTIVE)
 
 /** All particles, one array per field. */
 struct parts {

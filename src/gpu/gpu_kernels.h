@@ -92,10 +92,11 @@ void gradient_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev l
  *  dS/dt, artificial stress (tasks/gradient/gradient_gpu.cu). */
 void extra_ghost_gpu_launch(cudaStream_t s, struct parts p, struct hydro_props hp,
                             const struct material_table *mats);
-/** Damage update of every particle over the step dt, flaw thresholds eps
+/** Damage update of every particle over the step dt (with bins.on, of each
+ *  particle that ends its step, over its own step), flaw thresholds eps
  *  (tasks/damage/damage_gpu.cu). */
 void damage_gpu_launch(cudaStream_t s, struct parts p, const struct material_table *mats,
-                       const double *eps, double dt);
+                       const double *eps, double dt, struct gpu_bins bins);
 /** Internal services of the runner (src/gpu/gpu.cu) for the other runner
  *  files: stream k (0: fields and kernels), the device particle arrays
  *  grown to count particles (contents kept only if no growth was needed),

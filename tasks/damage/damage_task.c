@@ -15,6 +15,12 @@ void damage_task(struct engine *e, struct task *tk) {
   const struct cell *c = e->tcells[tk->cell_index];
   const double dt = e->first_force ? 0.0 : e->dt;
   if (e->time < e->damage_start) return; /* Damage:start_time: not yet */
-  for (size_t i = c->offset; i < c->offset + c->count; i++)
-    damage_part(p, i, e->mats, e->flaw_eps, dt);
+  if (ENGINE_CELL_IDLE(e, c)) return;
+  for (size_t i = c->offset; i < c->offset + c->count; i++) {
+    if (PART_IS_INACTIVE(p, i)) continue;
+    /* with time bins over the particle's own step (it ends now) */
+    const double dt_i =
+        e->individual && !e->first_force ? timeline_dt_of_bin(&e->timeline, p->time_bin[i]) : dt;
+    damage_part(p, i, e->mats, e->flaw_eps, dt_i);
+  }
 }

@@ -8,14 +8,15 @@
 
 /** Symmetric form: i (local accumulator acc_i, inverse smoothing length
  *  hi_inv, velocity vi) gets j's contribution if r < H_i; j gets i's, in the
- *  arrays, if r < H_j. */
+ *  arrays, if r < H_j.  A particle marked PART_INACTIVE (time bins) takes
+ *  no sums (IACT_LOOP_ACC_END drops i's). */
 BOLIDE_ALWAYS_INLINE void density_sym(struct parts *p, size_t i, size_t j, double r2,
                                       const double dx[3], double hi, double hi_inv, double hj,
                                       const double vi[3], struct density_acc *acc_i) {
   const double Hi = kernel_gamma * hi, Hj = kernel_gamma * hj;
   const double dv[3] = {vi[0] - p->vpx[j], vi[1] - p->vpy[j], vi[2] - p->vpz[j]};
   if (r2 < Hi * Hi) density_iact(r2, dx, hi_inv, p->m[j], dv, acc_i);
-  if (r2 < Hj * Hj) {
+  if (r2 < Hj * Hj && !PART_IS_INACTIVE(p, j)) {
     struct density_acc a = {0, 0, 0, 0, 0, {0, 0, 0}};
     const double mdx[3] = {-dx[0], -dx[1], -dx[2]};
     const double mdv[3] = {-dv[0], -dv[1], -dv[2]};
@@ -37,7 +38,8 @@ BOLIDE_ALWAYS_INLINE void density_gather(const struct parts *p, size_t j, double
   struct density_acc acc_i = {0, 0, 0, 0, 0, {0, 0, 0}};        \
   const double vi[3] = {(p)->vpx[i], (p)->vpy[i], (p)->vpz[i]}; \
   const double hi_inv = 1.0 / (p)->h[i]
-#define IACT_LOOP_ACC_END(p, i) hydro_density_add(p, i, &acc_i)
+#define IACT_LOOP_ACC_END(p, i) \
+  if (!PART_IS_INACTIVE(p, i)) hydro_density_add(p, i, &acc_i)
 #define IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj) \
   density_sym(p, i, j, r2, dx, hi, hi_inv, hj, vi, &acc_i)
 #define IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, hj) density_gather(p, j, r2, dx, hi_inv, vi, &acc_i)

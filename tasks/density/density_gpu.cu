@@ -10,7 +10,8 @@
 /** See density_gpu_launch. */
 #define IACT_GPU_NAME density_gpu_kernel
 #define IACT_GPU_PARAMS , int only_unconverged
-#define IACT_GPU_SKIP(p, i) (only_unconverged && ((p).flags[i] & PART_H_CONVERGED))
+#define IACT_GPU_SKIP(p, i) \
+  (PART_IS_INACTIVE(&(p), i) || (only_unconverged && ((p).flags[i] & PART_H_CONVERGED)))
 #define IACT_GPU_BEGIN(p, i)                                                            \
   const double hi = (p).h[i], hi_inv = 1.0 / hi, Hi = kernel_gamma * hi, Hi2 = Hi * Hi; \
   const double *__restrict__ m = (p).m;                                                 \

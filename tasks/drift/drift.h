@@ -114,7 +114,9 @@ BOLIDE_INLINE void drift_part(struct parts *BOLIDE_RESTRICT p, size_t i, double 
  *  time_base; a particle whose step begins at ti_old (its bin's step
  *  divides ti_old) first takes its half kick by half its step, and its
  *  predicted state is that of ti_new, from the middle of its own step
- *  (drift_part_to).  Returns 1 when the particle ends its step at ti_new. */
+ *  (drift_part_to).  Returns 1 when the particle ends its step at ti_new;
+ *  a particle that does not is marked PART_INACTIVE: the FORCE phase
+ *  skips it. */
 BOLIDE_INLINE int drift_part_bins(struct parts *BOLIDE_RESTRICT p, size_t i, double time_base,
                                   integertime_t ti_old, integertime_t ti_new, double xsph,
                                   double h_max, int h_continuity) {
@@ -124,7 +126,12 @@ BOLIDE_INLINE int drift_part_bins(struct parts *BOLIDE_RESTRICT p, size_t i, dou
   const integertime_t ti_mid = ti_old - since + step / 2;
   drift_part_to(p, i, (double)(ti_new - ti_old) * time_base, (double)(ti_new - ti_mid) * time_base,
                 xsph, h_max, h_continuity);
-  return ti_new % step == 0;
+  const int active = ti_new % step == 0;
+  if (active)
+    p->flags[i] &= ~PART_INACTIVE;
+  else
+    p->flags[i] |= PART_INACTIVE;
+  return active;
 }
 
 #endif

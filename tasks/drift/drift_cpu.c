@@ -20,9 +20,13 @@ void drift_cell_bins_cpu(struct parts *p, struct cell *c, const struct timeline 
                          integertime_t ti_old, integertime_t ti_new, double xsph, double h_max,
                          int h_continuity) {
   const size_t end = c->offset + c->count;
+  int active = 0;
   for (size_t i = c->offset; i < end; i++) {
-    drift_part_bins(p, i, tl->time_base, ti_old, ti_new, xsph, h_max, h_continuity);
-    hydro_density_reset(p, i);
+    if (drift_part_bins(p, i, tl->time_base, ti_old, ti_new, xsph, h_max, h_continuity)) {
+      hydro_density_reset(p, i);
+      active++;
+    }
   }
+  c->active = active;
   cell_update_bounds(p, c);
 }

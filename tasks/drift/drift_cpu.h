@@ -14,10 +14,8 @@ void drift_cell_cpu(struct parts *p, struct cell *c, double dt_kick, double dt, 
 
 /** The same with individual time steps (TimeIntegration:global_step:
  *  false): every particle of c drifts from ti_old to ti_new on the time
- *  line tl; a particle whose step begins at ti_old (its time bin's step
- *  divides ti_old) first takes its half kick by half its step, and every
- *  one's predicted state is that of ti_new (drift_part_to, from the middle
- *  of its own step). */
+ *  line tl (drift_part_bins); c->active: the number of its particles that
+ *  end their step at ti_new. */
 void drift_cell_bins_cpu(struct parts *p, struct cell *c, const struct timeline *tl,
                          integertime_t ti_old, integertime_t ti_new, double xsph, double h_max,
                          int h_continuity);

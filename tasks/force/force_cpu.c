@@ -11,7 +11,8 @@
  *  has a fixed signature); thread-local so that tasks can run in parallel. */
 static _Thread_local const struct hydro_props *force_hp;
 
-/** Both sides of one interacting pair. */
+/** Both sides of one interacting pair (a particle marked PART_INACTIVE,
+ *  time bins, takes none). */
 BOLIDE_ALWAYS_INLINE void force_sym(struct parts *p, size_t i, size_t j, double r2,
                                     const double dx[3]) {
   if (r2 <= 0.0) return; /* coincident particles exert no pairwise force */
@@ -22,12 +23,16 @@ BOLIDE_ALWAYS_INLINE void force_sym(struct parts *p, size_t i, size_t j, double 
   const double mdx[3] = {-dx[0], -dx[1], -dx[2]};
   const double mdv[3] = {-dv[0], -dv[1], -dv[2]};
   struct force_acc ai, aj;
-  force_acc_zero(&ai);
-  force_acc_zero(&aj);
-  force_iact(r2, dx, dv, &in_i, &in_j, force_hp, &ai);
-  force_iact(r2, mdx, mdv, &in_j, &in_i, force_hp, &aj);
-  hydro_force_add(p, i, &ai);
-  hydro_force_add(p, j, &aj);
+  if (!PART_IS_INACTIVE(p, i)) {
+    force_acc_zero(&ai);
+    force_iact(r2, dx, dv, &in_i, &in_j, force_hp, &ai);
+    hydro_force_add(p, i, &ai);
+  }
+  if (!PART_IS_INACTIVE(p, j)) {
+    force_acc_zero(&aj);
+    force_iact(r2, mdx, mdv, &in_j, &in_i, force_hp, &aj);
+    hydro_force_add(p, j, &aj);
+  }
 }
 
 #define IACT_LOOP_NAME force

@@ -12,6 +12,7 @@
 /** See force_gpu_launch.  r2 > 0: coincident particles (and i itself)
  *  exert no pairwise force. */
 #define IACT_GPU_NAME force_gpu_kernel
+#define IACT_GPU_SKIP(p, i) PART_IS_INACTIVE(&(p), i)
 #define IACT_GPU_PARAMS , struct hydro_props hp
 #define IACT_GPU_BEGIN(p, i)                            \
   const double *__restrict__ h = (p).h;                 \

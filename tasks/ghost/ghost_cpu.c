@@ -20,6 +20,10 @@ int ghost_cell_cpu(struct parts *p, struct cell *c, const struct ghost_ngbs *ngb
   int capped = 0;
   size_t left = 0;
   for (size_t i = beg; i < end; i++) {
+    if (PART_IS_INACTIVE(p, i)) { /* (time bins: it keeps its h and sums) */
+      p->flags[i] |= PART_H_CONVERGED;
+      continue;
+    }
     ghost_part_start(p, i);
     ghost_part_add_self(p, i);
     capped |= ghost_part_step(p, i, hp, h_cap);
@@ -51,6 +55,7 @@ int ghost_cell_cpu(struct parts *p, struct cell *c, const struct ghost_ngbs *ngb
     }
   }
   cell_update_h_max(p, c);
-  for (size_t i = beg; i < end; i++) ghost_part_finish(p, i, hp, mats);
+  for (size_t i = beg; i < end; i++)
+    if (!PART_IS_INACTIVE(p, i)) ghost_part_finish(p, i, hp, mats);
   return capped;
 }

@@ -28,6 +28,10 @@ __global__ void ghost_gpu_start_kernel(struct parts p, struct gpu_leaves_dev lv,
   const size_t beg = lv.offset[L];
   for (int t = threadIdx.x; t < lv.count[L]; t += blockDim.x) {
     const size_t i = beg + (size_t)t;
+    if (PART_IS_INACTIVE(&p, i)) { /* (time bins: it keeps its h and sums) */
+      p.flags[i] |= PART_H_CONVERGED;
+      continue;
+    }
     ghost_part_start(&p, i);
     ghost_gpu_one(&p, i, L, &lv, &hp, counters);
   }
@@ -51,7 +55,7 @@ __global__ void ghost_gpu_finish_kernel(struct parts p, struct gpu_leaves_dev lv
   const int L = blockIdx.x;
   const size_t beg = lv.offset[L];
   for (int t = threadIdx.x; t < lv.count[L]; t += blockDim.x)
-    ghost_part_finish(&p, beg + (size_t)t, &hp, mats);
+    if (!PART_IS_INACTIVE(&p, beg + (size_t)t)) ghost_part_finish(&p, beg + (size_t)t, &hp, mats);
 }
 
 void ghost_gpu_start_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,

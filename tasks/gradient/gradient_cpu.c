@@ -6,12 +6,13 @@
 #include "tasks/gradient/extra_ghost_part.h"
 #include "tasks/hydro_parts.h"
 
-/** Symmetric form: i gets j's contribution if r < H_i, j gets i's if r < H_j. */
+/** Symmetric form: i gets j's contribution if r < H_i, j gets i's if r < H_j
+ *  (a particle marked PART_INACTIVE, time bins, none). */
 static inline void gradient_sym(struct parts *p, size_t i, size_t j, double r2, const double dx[3],
                                 double hi, double hj) {
   const double Hi = kernel_gamma * hi, Hj = kernel_gamma * hj;
-  if (r2 < Hi * Hi) hydro_gradient_gather(p, i, j, r2, dx, 1.0 / hi);
-  if (r2 < Hj * Hj) {
+  if (r2 < Hi * Hi && !PART_IS_INACTIVE(p, i)) hydro_gradient_gather(p, i, j, r2, dx, 1.0 / hi);
+  if (r2 < Hj * Hj && !PART_IS_INACTIVE(p, j)) {
     const double mdx[3] = {-dx[0], -dx[1], -dx[2]};
     hydro_gradient_gather(p, j, i, r2, mdx, 1.0 / hj);
   }
@@ -47,5 +48,6 @@ void extra_ghost_part_cpu(struct parts *p, size_t i, const struct hydro_props *h
 void extra_ghost_cell_cpu(struct parts *p, const struct cell *c, const struct hydro_props *hp,
                           const struct material_table *mats) {
   const size_t end = c->offset + c->count;
-  for (size_t i = c->offset; i < end; i++) extra_ghost_part(p, i, hp, mats);
+  for (size_t i = c->offset; i < end; i++)
+    if (!PART_IS_INACTIVE(p, i)) extra_ghost_part(p, i, hp, mats);
 }

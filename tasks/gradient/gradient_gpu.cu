@@ -14,6 +14,7 @@
 
 /** See gradient_gpu_launch. */
 #define IACT_GPU_NAME gradient_gpu_kernel
+#define IACT_GPU_SKIP(p, i) PART_IS_INACTIVE(&(p), i)
 #define IACT_GPU_BEGIN(p, i)                                                         \
   const double hi_inv = 1.0 / (p).h[i], Hi = kernel_gamma * (p).h[i], Hi2 = Hi * Hi; \
   const double *__restrict__ m = (p).m, *__restrict__ rho = (p).rho;                 \
@@ -30,7 +31,7 @@
 __global__ void extra_ghost_gpu_kernel(struct parts p, struct hydro_props hp,
                                        const struct material_table *mats) {
   const size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
-  if (i >= p.count) return;
+  if (i >= p.count || PART_IS_INACTIVE(&p, i)) return;
   extra_ghost_part(&p, i, &hp, mats);
 }
 

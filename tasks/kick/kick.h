@@ -87,7 +87,7 @@ BOLIDE_INLINE double kick2_part(struct parts *BOLIDE_RESTRICT p, size_t i, doubl
  *  its second half kick by half its step (kick2_part) and the time bin of
  *  its new limit (timeline_bin; a longer bin only where ti_new allows it,
  *  timeline_bin_allowed), its new limit in *dt; the others, in the middle
- *  of their step, only the rates (kick2_rates), *dt = 1e300.  *ti_end: the
+ *  of their step, nothing (*dt = 1e300).  *ti_end: the
  *  end of its step.  Returns 1 when it was kicked. */
 BOLIDE_INLINE int kick2_part_bins(struct parts *BOLIDE_RESTRICT p, size_t i,
                                   const struct hydro_props *hp, const struct material_table *mats,
@@ -97,7 +97,8 @@ BOLIDE_INLINE int kick2_part_bins(struct parts *BOLIDE_RESTRICT p, size_t i,
   const int old_bin = p->time_bin[i];
   const integertime_t step = timeline_step_of_bin(old_bin > 0 ? old_bin : 1);
   if (!first && ti_new % step != 0) {
-    kick2_rates(p, i, hp, mats, tp);
+    /* (its rates are those of the start of its step: the FORCE phase
+     * skipped it, PART_INACTIVE) */
     *ti_end = ti_new - ti_new % step + step;
     *dt = 1e300;
     return 0;
