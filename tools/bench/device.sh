@@ -16,7 +16,8 @@
 #   check-gpu-native make check-gpu in the --enable-native build
 #   energy           tools/bench/energy.sh: the reference impact's budget to
 #                    t = 4000 s at 2.2e4 and 1.1e5 particles, CPU (16 threads)
-#                    and GPU (ENERGY_SIZES, ENERGY_MODES override)
+#                    and GPU (ENERGY_SIZES, ENERGY_MODES, ENERGY_T override;
+#                    modes cpu-bins, gpu-bins: individual time steps)
 #   cmd:'COMMAND'    any command, run in the repository root with the build's
 #                    environment (BOLIDE_BUILD, PYTHON, BOLIDE_BENCH_IC set)
 # DEVICE_NOBUILD=1 skips the CUDA build (for commands that build their own,
@@ -68,7 +69,7 @@ for step in "$@"; do
     check-gpu-native) (cd _dbuild_native && make check-gpu PYTHON="$PYTHON") 2>&1 | tee "$out/check-gpu-native.log" | tail -40
                       [ ${PIPESTATUS[0]} -eq 0 ] || rc=1 ;;
     energy) tools/bench/energy.sh -n "${ENERGY_SIZES:-2.2e4 1.1e5}" -m "${ENERGY_MODES:-gpu cpu}" -t "$jobs" \
-              -T 4000 -o "$out/energy" 2>&1 | tee "$out/energy.log" || rc=1 ;;
+              -T "${ENERGY_T:-4000}" -o "$out/energy" 2>&1 | tee "$out/energy.log" || rc=1 ;;
     cmd:*) bash -c "${step#cmd:}" 2>&1 | tee -a "$out/cmd.log" || rc=1 ;;
     *) echo "device.sh: error: unknown step '$step'"; rc=1 ;;
   esac

@@ -10,7 +10,9 @@
 #
 # Usage: tools/bench/energy.sh [-n "2.2e4 1.1e5"] [-m "cpu gpu"] [-t THREADS]
 #                              [-T 4000] [-o OUTDIR]
-#   -m  cpu: --no-gpu; gpu: the defaults with a GPU (the build must have CUDA)
+#   -m  cpu: --no-gpu; gpu: the defaults with a GPU (the build must have CUDA);
+#       cpu-bins, gpu-bins: the same with individual time steps
+#       (TimeIntegration:global_step: false)
 set -euo pipefail
 # ENERGY_ETA: SPH:resolution_eta (default SWIFT's 1.2348 for the cubic spline;
 # empty: the build kernel's default eta, e.g. Wendland C2's 1.7)
@@ -31,19 +33,21 @@ work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
 printf "# %s on %s (%s), %s threads\n" "$("$build/bolide" --version | head -1)" "$(uname -n)" \
   "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')" "$threads"
-printf "%-8s %-4s %8s %14s %12s %10s %8s %10s\n" N mode t dE/abs_Epot0 abs_dL/L removed steps wall_s
+printf "%-8s %-8s %8s %14s %12s %10s %8s %10s\n" N mode t dE/abs_Epot0 abs_dL/L removed steps wall_s
 for n in $sizes; do
   nt=$(awk -v n=$n 'BEGIN {printf "%d", n * 10 / 11}'); ni=$(awk -v n=$n 'BEGIN {printf "%d", n / 11}')
   "$python" "$gen" "$nt" "$ni" impact.hdf5 >ic.log
   soft=$(awk '/suggested softening/ {print $NF * 1e6}' ic.log)
   N=$(awk '/N_target=/ {sub(/.*N=/, ""); print}' ic.log)
   for m in $modes; do
-    gpu="--no-gpu"; [ "$m" = gpu ] && gpu=""
+    gpu="--no-gpu"; [ "${m%-bins}" = gpu ] && gpu=""
+    glob=true; [ "${m%-bins}" != "$m" ] && glob=false
     cat >p.yml <<YML
 InitialConditions:
   file_name: impact.hdf5
 TimeIntegration:
   time_end: $tend
+  global_step: $glob
 Snapshots:
   subdir: out_$m
   delta_time: 1e30
@@ -84,7 +88,7 @@ for t in sorted({1000.0, 2000.0, 3000.0, 4000.0, float(c["time"][-1])}):
     k = np.argmin(np.abs(c["time"] - t))
     if abs(c["time"][k] - t) > 60:
         continue
-    print(f"{N:8s} {mode:4s} {c['time'][k]:8.0f} {dE[k]:14.3e} {dL[k]:12.3e} {int(c['n_removed'][k]):10d} "
+    print(f"{N:8s} {mode:8s} {c['time'][k]:8.0f} {dE[k]:14.3e} {dL[k]:12.3e} {int(c['n_removed'][k]):10d} "
           f"{steps:>8s} {float(wall):10.1f}")
 PY
   done
