@@ -765,6 +765,8 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     params_error(params, "TimeIntegration:dt_min", "dt_min (%g) is larger than dt_max (%g)",
                  e->dt_min, e->dt_max);
   e->individual = !params_get_bool(params, "TimeIntegration:global_step");
+  e->hp.bin_limit =
+      e->individual ? (int)params_get_int(params, "TimeIntegration:max_bin_ratio") : 0;
   /* the time line of individual time steps (with the global step only to
    * report the bins that the particles' own limits would give, the
    * timesteps file) */

@@ -151,6 +151,8 @@ enum part_flags {
   X(double,  z0,  NULL,               2, 3, 0,  1,  0, 0, "position at the last rebuild")         \
   X(int64_t, id,  "ParticleIDs",      0, 1, 0,  0,  0, PART_IC_REQ | PART_SNAP, "unique particle id") \
   X(int32_t, flags, NULL,             0, 1, 0,  0,  0, 0, "internal state bits (enum part_state)") \
+  X(int32_t, ngb_bin_min, NULL,       0, 1, 0,  0,  0, 0, "time bins: the shortest bin among the particle's neighbours in the last force loop (the limiter's bound on its next bin)") \
+  X(int32_t, wake, NULL,              0, 1, 0,  0,  0, 0, "time bins: TIMELINE_NR_BINS + 1 - the bin a neighbour asks a particle in the middle of a longer step to take at once (the limiter's wake-up; 0: none)") \
   X(int32_t, time_bin, NULL,          0, 1, 0,  0,  0, 0, "time bin: with individual time steps (TimeIntegration:global_step: false) the particle steps by 2^time_bin ticks of the run's time line (src/timeline.h); 0 with the global step")
 /* clang-format on */
 

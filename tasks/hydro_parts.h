@@ -9,6 +9,7 @@
 #include "tasks/gradient/gradient_iact.h"
 #include "src/inline.h"
 #include "src/part.h"
+#include "src/timeline.h"
 
 /** Zero the density accumulators of particle i. */
 BOLIDE_INLINE void hydro_density_reset(struct parts *BOLIDE_RESTRICT p, size_t i) {
@@ -118,6 +119,7 @@ BOLIDE_INLINE void hydro_force_load(const struct parts *BOLIDE_RESTRICT p, size_
 /** Zero the force accumulators of particle i (v_sig starts at the sound speed
  *  pair of a particle with itself). */
 BOLIDE_INLINE void hydro_force_reset(struct parts *BOLIDE_RESTRICT p, size_t i) {
+  p->ngb_bin_min[i] = 64; /* (above every bin: no neighbour yet) */
   p->ax[i] = p->ay[i] = p->az[i] = 0.0;
   p->du_dt[i] = p->drho_dt[i] = 0.0;
   p->v_sig[i] = 2.0 * p->cs[i];
@@ -136,6 +138,31 @@ BOLIDE_INLINE void hydro_force_add(struct parts *BOLIDE_RESTRICT p, size_t i,
   p->xsphx[i] += a->xsph[0];
   p->xsphy[i] += a->xsph[1];
   p->xsphz[i] += a->xsph[2];
+}
+
+/** The time-step limiter of individual time steps (TimeIntegration:
+ *  max_bin_ratio = limit > 0; Saitoh & Makino 2009) for particle i, which
+ *  ends its step now, and its neighbour j in the force loop: i's bound
+ *  ngb_bin_min takes j's bin, and a neighbour j in the middle of a step
+ *  more than limit bins longer than i's is asked to wake (wake; the
+ *  kick ends its step, kick2_part_bins).  One function for the CPU loop
+ *  and the CUDA kernel (which passes atomic = 1: several threads may ask
+ *  the same j). */
+BOLIDE_INLINE void hydro_limiter_pair(struct parts *BOLIDE_RESTRICT p, size_t i, size_t j,
+                                      int limit, int atomic) {
+  const int bj = p->time_bin[j], bi = p->time_bin[i];
+  if (bj < p->ngb_bin_min[i]) p->ngb_bin_min[i] = bj;
+  if ((p->flags[j] & PART_INACTIVE) && bj > bi + limit) {
+    const int w = TIMELINE_NR_BINS + 1 - (bi + limit); /* > 0; larger: a shorter bin */
+#if defined(__CUDA_ARCH__)
+    if (atomic) {
+      atomicMax(&p->wake[j], w);
+      return;
+    }
+#endif
+    (void)atomic;
+    if (w > p->wake[j]) p->wake[j] = w;
+  }
 }
 
 #endif

@@ -27,11 +27,13 @@ BOLIDE_ALWAYS_INLINE void force_sym(struct parts *p, size_t i, size_t j, double 
     force_acc_zero(&ai);
     force_iact(r2, dx, dv, &in_i, &in_j, force_hp, &ai);
     hydro_force_add(p, i, &ai);
+    if (force_hp->bin_limit) hydro_limiter_pair(p, i, j, force_hp->bin_limit, 0);
   }
   if (!PART_IS_INACTIVE(p, j)) {
     force_acc_zero(&aj);
     force_iact(r2, mdx, mdv, &in_j, &in_i, force_hp, &aj);
     hydro_force_add(p, j, &aj);
+    if (force_hp->bin_limit) hydro_limiter_pair(p, j, i, force_hp->bin_limit, 0);
   }
 }
 

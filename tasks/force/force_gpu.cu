@@ -27,6 +27,7 @@
       hydro_force_load(&(p), j, &in_j, hp.solids);                        \
       const double dv[3] = {vi[0] - vx[j], vi[1] - vy[j], vi[2] - vz[j]}; \
       force_iact(r2, dx, dv, &in_i, &in_j, &hp, &a);                      \
+      if (hp.bin_limit) hydro_limiter_pair(&(p), i, j, hp.bin_limit, 1);  \
     }                                                                     \
   }
 #define IACT_GPU_END(p, i) hydro_force_add(&(p), i, &a)

@@ -13,6 +13,8 @@ struct hydro_props {
   double h_max;       /**< largest smoothing length */
   int max_iterations; /**< of the h iteration */
   int h_continuity;   /**< SPH:h_evolution: continuity (dh/dt = -h/(3 rho) drho/dt, no iteration) */
+  int bin_limit;      /**< time bins: TimeIntegration:max_bin_ratio (the force loop's limiter);
+                           0 with the global step */
   double cfl;         /**< Courant factor */
   double log_max_volume_change; /**< ln of the largest kernel-volume change per step */
   double alpha;                 /**< artificial viscosity alpha (Monaghan 1997) */

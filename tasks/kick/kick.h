@@ -99,12 +99,39 @@ BOLIDE_INLINE int kick2_part_bins(struct parts *BOLIDE_RESTRICT p, size_t i,
   if (!first && ti_new % step != 0) {
     /* (its rates are those of the start of its step: the FORCE phase
      * skipped it, PART_INACTIVE) */
+    if (p->wake[i] > 0) {
+      /* the limiter: a neighbour with a much shorter step asks it to wake.
+       * Its step ends now, at ti_new, after d = ti_new - its start: the
+       * first half kick gave it a dt_old / 2 of its rates, a whole step
+       * of d gives it d of them (those of the step's start: its force at
+       * ti_new was not computed), so it takes d - dt_old / 2 more; then it
+       * starts a step of the bin asked for (at most the longest that ti_new
+       * allows) with its next drift's half kick */
+      const integertime_t ti_begin = ti_new - ti_new % step;
+      kick_part(p, i, ((double)(ti_new - ti_begin) - 0.5 * (double)step) * tl->time_base);
+      if (hp->solids) kick2_plastic_return(p, i, mats);
+      kick_sync_predicted(p, i);
+      int bin = TIMELINE_NR_BINS + 1 - p->wake[i];
+      const int sync = timeline_max_active_bin(ti_new);
+      if (bin > sync) bin = sync;
+      if (bin < 1) bin = 1;
+      p->wake[i] = 0;
+      p->time_bin[i] = bin;
+      *ti_end = ti_new + timeline_step_of_bin(bin);
+      *dt = 1e300;
+      return 0;
+    }
     *ti_end = ti_new - ti_new % step + step;
     *dt = 1e300;
     return 0;
   }
   *dt = kick2_part(p, i, first ? 0.0 : 0.5 * (double)step * tl->time_base, hp, mats, tp);
-  const int want = timeline_bin(tl, *dt);
+  int want = timeline_bin(tl, *dt);
+  /* the limiter: at most bin_limit bins longer than the shortest neighbour's
+   * (the force loop's; none in a gravity-only run) */
+  if (hp->bin_limit && hp->enabled && !first && p->ngb_bin_min[i] + hp->bin_limit < want)
+    want = p->ngb_bin_min[i] + hp->bin_limit;
+  p->wake[i] = 0;
   const int bin = first ? want : timeline_bin_allowed(old_bin, want, ti_new);
   p->time_bin[i] = bin;
   *ti_end = ti_new + timeline_step_of_bin(bin > 0 ? bin : 1);
