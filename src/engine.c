@@ -18,7 +18,6 @@
 #include <unistd.h>
 
 #include "src/engine_tasks.h"
-#include "tasks/damage/damage_part.h"
 #include "tasks/damage/flaws.h"
 #include "src/error.h"
 #include "src/io/ic.h"
@@ -27,7 +26,6 @@
 #include "src/io/params.h"
 #include "src/materials/porosity_eos.h"
 #include "src/io/restart.h"
-#include "tasks/kick/timestep.h"
 #include "src/version.h"
 #include "tasks/task_families.h"
 #include "src/gpu/gpu_policy.h"
@@ -1166,51 +1164,6 @@ static void engine_run_phase(struct engine *e, int phase) {
   scheduler_run(&e->sched, engine_run_task, e);
 }
 
-void engine_timestep_props(const struct engine *e, struct timestep_props *tp) {
-  memset(tp, 0, sizeof *tp);
-  tp->hydro = e->hp.enabled;
-  tp->porous = e->porous;
-  tp->damage_max_change = e->damage ? e->damage_max_change : 0.0;
-  tp->gravity = e->gp.enabled;
-  tp->grav_eps = e->gp.eps;
-  tp->grav_h_factor = e->gp.h_factor;
-  tp->grav_eta = e->gp.eta;
-}
-
-/** Which particle and which criterion set the smallest time step (the
- *  criteria of the kick, timestep_part_criteria, recomputed from the state
- *  of the last kick), written into why. */
-static void engine_dt_culprit(const struct engine *e, char *why, size_t len) {
-  const struct parts *p = &e->parts;
-  struct timestep_props tp;
-  engine_timestep_props(e, &tp);
-  double best = HUGE_VAL;
-  size_t ib = 0;
-  int crit = TIMESTEP_NR;
-  for (size_t i = 0; i < p->count; i++) {
-    double d[TIMESTEP_NR];
-    timestep_part_criteria(p, i, &e->hp, e->mats, &tp, d);
-    for (int k = 0; k < TIMESTEP_NR; k++)
-      if (d[k] < best) {
-        best = d[k];
-        ib = i;
-        crit = k;
-      }
-  }
-  if (p->count == 0) {
-    snprintf(why, len, "no particles");
-    return;
-  }
-  const size_t i = ib;
-  snprintf(
-      why, len,
-      "particle id %lld (material %d) at (%g, %g, %g) limited by the %s: h %g, rho %g, u %g, P %g, "
-      "c_s %g, v_sig %g, |a| %g, div v %g",
-      (long long)p->id[i], (int)p->mat[i], p->x[i], p->y[i], p->z[i], timestep_criterion_name(crit),
-      p->h[i], p->rho[i], p->u[i], p->P[i], p->cs[i], p->v_sig[i],
-      sqrt(p->ax[i] * p->ax[i] + p->ay[i] * p->ay[i] + p->az[i] * p->az[i]), p->div_v[i]);
-}
-
 /** The particles by time bin of their own limit after this step's kick
  *  (the CPU kick's cell_bins; the GPU kick does not count them yet: all 0)
  *  into e->bins, and what time bins would have updated to the run's sums. */
@@ -1240,7 +1193,7 @@ static double engine_next_dt(struct engine *e) {
     if (e->cell_dt_min[t] < dt) dt = e->cell_dt_min[t];
   if (dt < e->dt_min) {
     char why[512];
-    engine_dt_culprit(e, why, sizeof why);
+    kick_dt_culprit(e, why, sizeof why);
     error_exit("time step %g at t = %g is below TimeIntegration:dt_min = %g: %s", dt, e->time,
                e->dt_min, why);
   }
@@ -1278,7 +1231,7 @@ static double engine_next_dt_bins(struct engine *e) {
   }
   if (dt_lim < e->dt_min || bin0 > 0) {
     char why[512];
-    engine_dt_culprit(e, why, sizeof why);
+    kick_dt_culprit(e, why, sizeof why);
     error_exit("time step %g at t = %g is below %s = %g: %s", dt_lim, e->time,
                bin0 > 0 ? "the time line's shortest step (two ticks of (time_end - time_begin) / "
                           "2^56)"

@@ -21,7 +21,6 @@
 struct params;
 struct material_table;
 struct gpu_engine;
-struct timestep_props;
 
 /** Command-line choices that shape the run. */
 struct engine_options {
@@ -176,9 +175,6 @@ struct engine {
 void engine_init(struct engine *e, const struct params *params, const struct engine_options *opt);
 /** Run to TimeIntegration:time_end or the step limit. */
 void engine_run(struct engine *e);
-/** What decides the kick and the time step of a particle in this run
- *  (tasks/kick/timestep.h): hydrodynamics, porosity, damage, gravity. */
-void engine_timestep_props(const struct engine *e, struct timestep_props *tp);
 /** Free everything. */
 void engine_clean(struct engine *e);
 

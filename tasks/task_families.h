@@ -18,7 +18,8 @@
  *  - the graph, for a family of shape chain (below): its tasks between the
  *    force and the kick of every task cell (src/engine_graph.c);
  *  - what the engine has a family do outside its tasks, at start-up
- *    (TASK_FAMILY_HOOKS, src/engine.c);
+ *    (TASK_FAMILY_HOOKS, src/engine.c), and the other functions of a
+ *    family that src/ calls (TASK_FAMILY_ENTRIES);
  *  - tests/repo/test_layers.py, which fails when a folder of tasks/, a fragment
  *    or a list of family names elsewhere disagrees with this list.
  *
@@ -134,6 +135,18 @@
   X(drift,   ic,          drift_sync_ic)        \
   X(density, first_force, density_reset_all)
 
+/* TASK_FAMILY_ENTRIES(X): X(family, ret, fn, params): the other functions of
+ * a family that src/ calls by name, each with its own signature
+ * (ret fn params, declared below from this list), so that src/ reaches them
+ * through this header and none of the family's own:
+ *
+ *  kick_dt_culprit     which particle and which criterion of the kick's time
+ *                      step (tasks/kick/timestep.h) set the smallest step,
+ *                      written into why: the message of a step below
+ *                      TimeIntegration:dt_min (engine.c) */
+#define TASK_FAMILY_ENTRIES(X) \
+  X(kick, void, kick_dt_culprit, (const struct engine *e, char *why, size_t len))
+
 /* ------------------------------------------------------------ expansions */
 
 /** (a, b, c) -> a, b, c: the field lists. */
@@ -192,6 +205,9 @@ enum task_family_when {
 /* clang-format on */
 
 #ifndef __cplusplus
+#include <stddef.h>
+#include <stdint.h>
+
 struct engine;
 struct task;
 /* The CPU function of every kind of task, and the predicate of every chain
@@ -209,6 +225,10 @@ TASK_FAMILY_TASKS(TASK_FAMILY_CPU_DECL_)
 #define TASK_FAMILY_HOOK_DECL_(family, when, fn) void fn(struct engine *e);
 TASK_FAMILY_HOOKS(TASK_FAMILY_HOOK_DECL_)
 #undef TASK_FAMILY_HOOK_DECL_
+/* The entry points of TASK_FAMILY_ENTRIES. */
+#define TASK_FAMILY_ENTRY_DECL_(family, ret, fn, params) ret fn params;
+TASK_FAMILY_ENTRIES(TASK_FAMILY_ENTRY_DECL_)
+#undef TASK_FAMILY_ENTRY_DECL_
 #endif
 
 #endif
