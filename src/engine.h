@@ -151,9 +151,11 @@ struct engine {
       restart_h_max; /**< > 0: the first rebuild restores the cells of the file (space_restore) */
   struct restart_cells restart_cells; /**< the cells' h_max and dx_max from the file */
   char restart_file[4096];            /**< the restart file this run resumed from */
-  double *wd_x;        /**< watchdog: positions before the drift of the step (3 per particle) */
-  double t_watchdog;   /**< wall seconds of the watchdog's checks */
-  long wd_inject_step; /**< BOLIDE_TEST_INJECT: step whose end gets a bad value (0: none) */
+  char input_file[4096]; /**< the file the particles were read from: the initial conditions, or
+                              the restart file this run resumed from */
+  double *wd_x;          /**< watchdog: positions before the drift of the step (3 per particle) */
+  double t_watchdog;     /**< wall seconds of the watchdog's checks */
+  long wd_inject_step;   /**< BOLIDE_TEST_INJECT: step whose end gets a bad value (0: none) */
   char wd_inject_field[32];  /**< its particle field */
   double wd_inject_value;    /**< its value */
   long restart_delta_steps;  /**< Restarts:delta_steps */

@@ -130,9 +130,13 @@
  * family's headers for it.
  *
  *  when  ic: after the initial conditions are read (not on a restart)
+ *        start: after the particles are read, from the initial conditions
+ *          or a restart file (e->restarted), and their smoothing lengths
+ *          guessed; e->input_file names that file
  *        first_force: at the start of the first force computation */
 #define TASK_FAMILY_HOOKS(X)                  \
   X(drift,   ic,          drift_sync_ic)        \
+  X(damage,  start,       damage_init_flaws)    \
   X(density, first_force, density_reset_all)
 
 /* TASK_FAMILY_ENTRIES(X): X(family, ret, fn, params): the other functions of
@@ -143,9 +147,14 @@
  *  kick_dt_culprit     which particle and which criterion of the kick's time
  *                      step (tasks/kick/timestep.h) set the smallest step,
  *                      written into why: the message of a step below
- *                      TimeIntegration:dt_min (engine.c) */
-#define TASK_FAMILY_ENTRIES(X) \
-  X(kick, void, kick_dt_culprit, (const struct engine *e, char *why, size_t len))
+ *                      TimeIntegration:dt_min (engine.c)
+ *  flaws_check_values  the damage family's check of the flaw thresholds of
+ *                      a restart file (struct restart_expect, flaws_check),
+ *                      tasks/damage/flaws.c */
+#define TASK_FAMILY_ENTRIES(X)                                                     \
+  X(kick,   void, kick_dt_culprit, (const struct engine *e, char *why, size_t len)) \
+  X(damage, int,  flaws_check_values,                                              \
+    (size_t n, const int64_t *offset, const double *eps, char *msg, size_t len))
 
 /* ------------------------------------------------------------ expansions */
 
@@ -182,6 +191,7 @@ enum task_family {
 /** The points of TASK_FAMILY_HOOKS (column when). */
 enum task_family_when {
   task_family_at_ic,          /**< the initial conditions are read */
+  task_family_at_start,       /**< the particles are read (ICs or restart file) */
   task_family_at_first_force, /**< the first force computation starts */
 };
 
