@@ -18,8 +18,6 @@
 #include <unistd.h>
 
 #include "src/engine_tasks.h"
-#include "tasks/damage/damage_part.h"
-#include "tasks/damage/flaws.h"
 #include "src/error.h"
 #include "src/io/ic.h"
 #include "tasks/hydro/kernel.h"
@@ -27,7 +25,6 @@
 #include "src/io/params.h"
 #include "src/materials/porosity_eos.h"
 #include "src/io/restart.h"
-#include "tasks/kick/timestep.h"
 #include "src/version.h"
 #include "tasks/task_families.h"
 #include "src/gpu/gpu_policy.h"
@@ -334,102 +331,6 @@ static void engine_read_ics(struct engine *e, char *icname, size_t len, double b
   engine_family_hooks(e, task_family_at_ic);
   engine_check_ic_motion(e, icname, box, params_get_bool(params, "InitialConditions:periodic"));
   engine_init_porosity(e, icname, ic_field_read(&hdr, engine_field_index("alpha")));
-  /* Weibull flaws stored in the ICs (bolide-flaws; FlawThresholds and
-   * FlawOffsets in the particle order of the file) */
-  struct flaws fl;
-  if (flaws_io_read(icname, e->parts.count, &fl)) {
-    for (size_t i = 0; i < e->parts.count; i++) {
-      e->parts.flaw_first[i] = fl.offset[i];
-      e->parts.n_flaws[i] = (int32_t)(fl.offset[i + 1] - fl.offset[i]);
-    }
-    e->flaw_eps = fl.eps;
-    e->nr_flaws = fl.offset[e->parts.count];
-    e->flaws_from = "the initial conditions";
-    free(fl.offset);
-  }
-}
-
-/** Order of particle indices by id (flaws are drawn in id order, so that a
- *  run resumed from a restart file, whose particles are sorted by cell,
- *  draws the same flaws). */
-static const int64_t *engine_sort_ids;
-static int engine_cmp_by_id(const void *a, const void *b) {
-  const int64_t x = engine_sort_ids[*(const size_t *)a], y = engine_sort_ids[*(const size_t *)b];
-  return (x > y) - (x < y);
-}
-
-/** Weibull flaws for the brittle materials (weibull_k > 0 with a shear
- *  modulus): kept as read from a restart file or the initial conditions,
- *  else drawn from Damage:seed by the procedure of Benz & Asphaug (1995).
- *  Each particle keeps the slice flaw_first .. + n_flaws of e->flaw_eps. */
-static void engine_init_flaws(struct engine *e, const char *icname) {
-  for (int k = 0; k < e->mats->n; k++)
-    if (e->mats->mats[k].weibull_k > 0.0 && e->mats->mats[k].shear_modulus > 0.0) e->damage = 1;
-  struct parts *p = &e->parts;
-  const size_t n = p->count;
-  if (e->flaw_eps) {
-    /* flaws given: particles of materials that take no damage keep theirs unused */
-    size_t idle = 0, bare = 0;
-    for (size_t i = 0; i < n; i++) {
-      const struct material *mat = material_table_find(e->mats, p->mat[i]);
-      const int brittle = mat && mat->weibull_k > 0.0 && mat->shear_modulus > 0.0;
-      idle += !brittle && p->n_flaws[i] > 0;
-      bare += brittle && p->n_flaws[i] == 0;
-    }
-    if (idle && !e->restarted)
-      error_warning(
-          "%s: %zu particles have flaws but a material without weibull_k or shear_modulus: "
-          "they take no damage",
-          icname, idle);
-    if (bare && !e->restarted)
-      error_warning("%s: %zu particles of brittle materials have no flaws: they take no damage",
-                    icname, bare);
-  }
-  if (!e->damage) return;
-  if (!e->flaw_eps) {
-    size_t *order = error_malloc(n * sizeof(size_t), "flaw order");
-    for (size_t i = 0; i < n; i++) order[i] = i;
-    engine_sort_ids = p->id;
-    qsort(order, n, sizeof(size_t), engine_cmp_by_id);
-    int32_t *mat = error_malloc(n * sizeof(int32_t), "flaw order");
-    double *m = error_malloc(n * sizeof(double), "flaw order"),
-           *rho = error_malloc(n * sizeof(double), "flaw order");
-    for (size_t k = 0; k < n; k++) {
-      mat[k] = p->mat[order[k]];
-      m[k] = p->m[order[k]];
-      rho[k] = p->rho[order[k]];
-    }
-    struct flaws fl;
-    e->nr_flaws = flaws_generate_materials(n, mat, m, rho, e->mats,
-                                           (uint64_t)params_get_int(e->params, "Damage:seed"), &fl);
-    for (size_t k = 0; k < n; k++) {
-      const size_t i = order[k];
-      p->flaw_first[i] = fl.offset[k];
-      p->n_flaws[i] = (int32_t)(fl.offset[k + 1] - fl.offset[k]);
-    }
-    e->flaw_eps = fl.eps;
-    fl.eps = NULL;
-    free(fl.offset);
-    free(order);
-    free(mat);
-    free(m);
-    free(rho);
-  }
-  if (!e->restarted)
-    for (size_t i = 0; i < n; i++)
-      if (p->dmg[i] > 0.0 && !(p->dcbrt[i] > 0.0)) p->dcbrt[i] = cbrt(p->dmg[i]);
-  e->damage_max_change = params_get_real(e->params, "Damage:max_change");
-  e->damage_start = params_get_real(e->params, "Damage:start_time");
-  char from[64];
-  snprintf(from, sizeof from, "Damage:seed %ld", params_get_int(e->params, "Damage:seed"));
-  error_log(0, "damage: %lld Weibull flaws (%.1f per particle, %.1f MiB) from %s",
-            (long long)e->nr_flaws, n ? (double)e->nr_flaws / (double)n : 0.0,
-            (double)e->nr_flaws * sizeof(double) / 1048576.0, e->flaws_from ? e->flaws_from : from);
-  if (e->damage_start > 0.0)
-    error_log(0, "damage: no flaw activation or growth before t = %g (Damage:start_time)",
-              e->damage_start);
-  if (!e->hp.solids)
-    error_warning("brittle materials without strength: damage has no stress to act on");
 }
 
 /* ------------------------------------------------------------------------ */
@@ -806,7 +707,6 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     e->nr_flaws = rd.nr_flaws;
     e->restart_cells = rd.cells;
     e->restart_grav = rd.grav;
-    e->flaws_from = "the restart file";
     for (int k = 0; k < 3; k++) box[k] = rs.box[k];
     periodic = (int)rs.periodic;
     e->time = rs.time;
@@ -828,7 +728,8 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     for (int k = 0; k < e->mats->n; k++)
       e->porous |= e->mats->mats[k].porosity.model != POROSITY_NONE;
   engine_guess_h(e);
-  engine_init_flaws(e, icname);
+  snprintf(e->input_file, sizeof e->input_file, "%s", icname);
+  engine_family_hooks(e, task_family_at_start);
   if (e->gp.enabled && periodic)
     params_error(params, "InitialConditions:periodic",
                  "self-gravity in a periodic box is not implemented");
@@ -1168,51 +1069,6 @@ static void engine_run_phase(struct engine *e, int phase) {
   scheduler_run(&e->sched, engine_run_task, e);
 }
 
-void engine_timestep_props(const struct engine *e, struct timestep_props *tp) {
-  memset(tp, 0, sizeof *tp);
-  tp->hydro = e->hp.enabled;
-  tp->porous = e->porous;
-  tp->damage_max_change = e->damage ? e->damage_max_change : 0.0;
-  tp->gravity = e->gp.enabled;
-  tp->grav_eps = e->gp.eps;
-  tp->grav_h_factor = e->gp.h_factor;
-  tp->grav_eta = e->gp.eta;
-}
-
-/** Which particle and which criterion set the smallest time step (the
- *  criteria of the kick, timestep_part_criteria, recomputed from the state
- *  of the last kick), written into why. */
-static void engine_dt_culprit(const struct engine *e, char *why, size_t len) {
-  const struct parts *p = &e->parts;
-  struct timestep_props tp;
-  engine_timestep_props(e, &tp);
-  double best = HUGE_VAL;
-  size_t ib = 0;
-  int crit = TIMESTEP_NR;
-  for (size_t i = 0; i < p->count; i++) {
-    double d[TIMESTEP_NR];
-    timestep_part_criteria(p, i, &e->hp, e->mats, &tp, d);
-    for (int k = 0; k < TIMESTEP_NR; k++)
-      if (d[k] < best) {
-        best = d[k];
-        ib = i;
-        crit = k;
-      }
-  }
-  if (p->count == 0) {
-    snprintf(why, len, "no particles");
-    return;
-  }
-  const size_t i = ib;
-  snprintf(
-      why, len,
-      "particle id %lld (material %d) at (%g, %g, %g) limited by the %s: h %g, rho %g, u %g, P %g, "
-      "c_s %g, v_sig %g, |a| %g, div v %g",
-      (long long)p->id[i], (int)p->mat[i], p->x[i], p->y[i], p->z[i], timestep_criterion_name(crit),
-      p->h[i], p->rho[i], p->u[i], p->P[i], p->cs[i], p->v_sig[i],
-      sqrt(p->ax[i] * p->ax[i] + p->ay[i] * p->ay[i] + p->az[i] * p->az[i]), p->div_v[i]);
-}
-
 /** The particles by time bin of their own limit after this step's kick
  *  (the CPU kick's cell_bins; the GPU kick does not count them yet: all 0)
  *  into e->bins, and what time bins would have updated to the run's sums. */
@@ -1242,7 +1098,7 @@ static double engine_next_dt(struct engine *e) {
     if (e->cell_dt_min[t] < dt) dt = e->cell_dt_min[t];
   if (dt < e->dt_min) {
     char why[512];
-    engine_dt_culprit(e, why, sizeof why);
+    kick_dt_culprit(e, why, sizeof why);
     error_exit("time step %g at t = %g is below TimeIntegration:dt_min = %g: %s", dt, e->time,
                e->dt_min, why);
   }
@@ -1280,7 +1136,7 @@ static double engine_next_dt_bins(struct engine *e) {
   }
   if (dt_lim < e->dt_min || bin0 > 0) {
     char why[512];
-    engine_dt_culprit(e, why, sizeof why);
+    kick_dt_culprit(e, why, sizeof why);
     error_exit("time step %g at t = %g is below %s = %g: %s", dt_lim, e->time,
                bin0 > 0 ? "the time line's shortest step (two ticks of (time_end - time_begin) / "
                           "2^56)"

@@ -21,7 +21,6 @@
 struct params;
 struct material_table;
 struct gpu_engine;
-struct timestep_props;
 
 /** Command-line choices that shape the run. */
 struct engine_options {
@@ -152,9 +151,11 @@ struct engine {
       restart_h_max; /**< > 0: the first rebuild restores the cells of the file (space_restore) */
   struct restart_cells restart_cells; /**< the cells' h_max and dx_max from the file */
   char restart_file[4096];            /**< the restart file this run resumed from */
-  double *wd_x;        /**< watchdog: positions before the drift of the step (3 per particle) */
-  double t_watchdog;   /**< wall seconds of the watchdog's checks */
-  long wd_inject_step; /**< BOLIDE_TEST_INJECT: step whose end gets a bad value (0: none) */
+  char input_file[4096]; /**< the file the particles were read from: the initial conditions, or
+                              the restart file this run resumed from */
+  double *wd_x;          /**< watchdog: positions before the drift of the step (3 per particle) */
+  double t_watchdog;     /**< wall seconds of the watchdog's checks */
+  long wd_inject_step;   /**< BOLIDE_TEST_INJECT: step whose end gets a bad value (0: none) */
   char wd_inject_field[32];  /**< its particle field */
   double wd_inject_value;    /**< its value */
   long restart_delta_steps;  /**< Restarts:delta_steps */
@@ -176,9 +177,6 @@ struct engine {
 void engine_init(struct engine *e, const struct params *params, const struct engine_options *opt);
 /** Run to TimeIntegration:time_end or the step limit. */
 void engine_run(struct engine *e);
-/** What decides the kick and the time step of a particle in this run
- *  (tasks/kick/timestep.h): hydrodynamics, porosity, damage, gravity. */
-void engine_timestep_props(const struct engine *e, struct timestep_props *tp);
 /** Free everything. */
 void engine_clean(struct engine *e);
 

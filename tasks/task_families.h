@@ -18,7 +18,8 @@
  *  - the graph, for a family of shape chain (below): its tasks between the
  *    force and the kick of every task cell (src/engine_graph.c);
  *  - what the engine has a family do outside its tasks, at start-up
- *    (TASK_FAMILY_HOOKS, src/engine.c);
+ *    (TASK_FAMILY_HOOKS, src/engine.c), and the other functions of a
+ *    family that src/ calls (TASK_FAMILY_ENTRIES);
  *  - tests/repo/test_layers.py, which fails when a folder of tasks/, a fragment
  *    or a list of family names elsewhere disagrees with this list.
  *
@@ -129,10 +130,31 @@
  * family's headers for it.
  *
  *  when  ic: after the initial conditions are read (not on a restart)
+ *        start: after the particles are read, from the initial conditions
+ *          or a restart file (e->restarted), and their smoothing lengths
+ *          guessed; e->input_file names that file
  *        first_force: at the start of the first force computation */
 #define TASK_FAMILY_HOOKS(X)                  \
   X(drift,   ic,          drift_sync_ic)        \
+  X(damage,  start,       damage_init_flaws)    \
   X(density, first_force, density_reset_all)
+
+/* TASK_FAMILY_ENTRIES(X): X(family, ret, fn, params): the other functions of
+ * a family that src/ calls by name, each with its own signature
+ * (ret fn params, declared below from this list), so that src/ reaches them
+ * through this header and none of the family's own:
+ *
+ *  kick_dt_culprit     which particle and which criterion of the kick's time
+ *                      step (tasks/kick/timestep.h) set the smallest step,
+ *                      written into why: the message of a step below
+ *                      TimeIntegration:dt_min (engine.c)
+ *  flaws_check_values  the damage family's check of the flaw thresholds of
+ *                      a restart file (struct restart_expect, flaws_check),
+ *                      tasks/damage/flaws.c */
+#define TASK_FAMILY_ENTRIES(X)                                                     \
+  X(kick,   void, kick_dt_culprit, (const struct engine *e, char *why, size_t len)) \
+  X(damage, int,  flaws_check_values,                                              \
+    (size_t n, const int64_t *offset, const double *eps, char *msg, size_t len))
 
 /* ------------------------------------------------------------ expansions */
 
@@ -169,6 +191,7 @@ enum task_family {
 /** The points of TASK_FAMILY_HOOKS (column when). */
 enum task_family_when {
   task_family_at_ic,          /**< the initial conditions are read */
+  task_family_at_start,       /**< the particles are read (ICs or restart file) */
   task_family_at_first_force, /**< the first force computation starts */
 };
 
@@ -192,6 +215,9 @@ enum task_family_when {
 /* clang-format on */
 
 #ifndef __cplusplus
+#include <stddef.h>
+#include <stdint.h>
+
 struct engine;
 struct task;
 /* The CPU function of every kind of task, and the predicate of every chain
@@ -209,6 +235,10 @@ TASK_FAMILY_TASKS(TASK_FAMILY_CPU_DECL_)
 #define TASK_FAMILY_HOOK_DECL_(family, when, fn) void fn(struct engine *e);
 TASK_FAMILY_HOOKS(TASK_FAMILY_HOOK_DECL_)
 #undef TASK_FAMILY_HOOK_DECL_
+/* The entry points of TASK_FAMILY_ENTRIES. */
+#define TASK_FAMILY_ENTRY_DECL_(family, ret, fn, params) ret fn params;
+TASK_FAMILY_ENTRIES(TASK_FAMILY_ENTRY_DECL_)
+#undef TASK_FAMILY_ENTRY_DECL_
 #endif
 
 #endif

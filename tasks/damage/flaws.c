@@ -9,6 +9,7 @@
 #include "src/error.h"
 #include "src/materials/material.h"
 #include "src/io/ragged_io.h"
+#include "tasks/task_families.h" /* declares flaws_check_values too (an entry point) */
 
 /** splitmix64 step (Steele, Lea & Flood 2014): seeds xoshiro's state. */
 static uint64_t flaws_splitmix64(uint64_t *x) {

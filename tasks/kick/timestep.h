@@ -1,7 +1,7 @@
 /* The time step of one particle (theory/sph.md, "Time steps"): every
  * criterion once, used by the CPU kick (kick_cpu.c), the CUDA kick
  * (kick_gpu.cu) and the diagnostic of a step below dt_min
- * (engine_dt_culprit) through timestep_part_criteria. */
+ * (kick_dt_culprit) through timestep_part_criteria. */
 #ifndef BOLIDE_TIMESTEP_H
 #define BOLIDE_TIMESTEP_H
 
@@ -58,7 +58,7 @@ enum timestep_criterion {
 };
 
 /** What, besides hydro_props, decides the kick and the time step of a
- *  particle (filled by engine_timestep_props on the host, by the kick
+ *  particle (filled by kick_timestep_props on the host, by the kick
  *  kernel from its arguments on the GPU). */
 struct timestep_props {
   int hydro;                /**< hydrodynamics on: the hydrodynamic criteria */

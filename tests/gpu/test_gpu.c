@@ -506,7 +506,7 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
   struct material_table mats;
   material_table_init(&mats);
   case_material(&mats, &hp, kind);
-  /* Weibull flaws (engine_init_flaws' procedure, index order) */
+  /* Weibull flaws (damage_init_flaws' procedure, index order) */
   struct flaws fl;
   memset(&fl, 0, sizeof fl);
   const int64_t nr_flaws =

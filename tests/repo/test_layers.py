@@ -9,8 +9,9 @@ Fails (one FAIL line per finding) when
              through tasks/families.am, which tools/families_am.sh writes from
              the registry (and which must be current), a shared folder's
              fragment is not included by Makefile.am, a kind of task
-             (TASK_FAMILY_TASKS) or a hook (TASK_FAMILY_HOOKS) names a family
-             that is not in the registry, or a file of a folder
+             (TASK_FAMILY_TASKS), a hook (TASK_FAMILY_HOOKS) or an entry
+             point (TASK_FAMILY_ENTRIES) names a family that is not in the
+             registry, or a file of a folder
              tasks/<family>/ or tasks/<shared>/ is not listed in its own
              local.am (or listed in another fragment);
   hand list  a C or CUDA line outside the registry lists three or more family
@@ -88,6 +89,7 @@ def macro_body(name):
 families = [m.group(1) for l in macro_body("TASK_FAMILIES") for m in [re.match(r"\s*X\((\w+),", l)] if m]
 kinds = [m.group(1) for l in macro_body("TASK_FAMILY_TASKS") for m in [re.match(r"\s*X\((\w+),", l)] if m]
 hooks = [m.group(1) for l in macro_body("TASK_FAMILY_HOOKS") for m in [re.match(r"\s*X\((\w+),", l)] if m]
+entries = [m.group(1) for l in macro_body("TASK_FAMILY_ENTRIES") for m in [re.match(r"\s*X\((\w+),", l)] if m]
 if not families:
     fail("the registry lists no family")
 if len(set(families)) != len(families):
@@ -96,6 +98,8 @@ for k in sorted(set(kinds) - set(families)):
     fail("TASK_FAMILY_TASKS: '%s' is not a family of the registry" % k)
 for k in sorted(set(hooks) - set(families)):
     fail("TASK_FAMILY_HOOKS: '%s' is not a family of the registry" % k)
+for k in sorted(set(entries) - set(families)):
+    fail("TASK_FAMILY_ENTRIES: '%s' is not a family of the registry" % k)
 for f in families:
     if f not in kinds:
         fail("family %s makes no kind of task (TASK_FAMILY_TASKS)" % f)
