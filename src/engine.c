@@ -1171,8 +1171,7 @@ static void engine_bins_resume(struct engine *e) {
   integertime_t ti = INT64_MAX;
   for (size_t i = 0; i < e->parts.count; i++) {
     const int b = e->parts.time_bin[i];
-    const integertime_t step = timeline_step_of_bin(b > 0 ? b : 1);
-    const integertime_t end = e->ti_current - e->ti_current % step + step;
+    const integertime_t end = timeline_next_sync(b > 0 ? b : 1, e->ti_current);
     if (end < ti) ti = end;
   }
   for (int t = 0; t < e->nr_tcells; t++) {

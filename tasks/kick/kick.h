@@ -121,7 +121,7 @@ BOLIDE_INLINE int kick2_part_bins(struct parts *BOLIDE_RESTRICT p, size_t i,
       *dt = 1e300;
       return 0;
     }
-    *ti_end = ti_new - ti_new % step + step;
+    *ti_end = timeline_next_sync(old_bin > 0 ? old_bin : 1, ti_new);
     *dt = 1e300;
     return 0;
   }
