@@ -27,6 +27,16 @@
 #define BOLIDE_INLINE static inline
 #endif
 
+/** 1/sqrt(x): on the GPU the device's rsqrt (one approximation and Newton
+ *  steps, at most 1 ulp off; a double division and square root are long
+ *  instruction sequences there), on the CPU the correctly rounded
+ *  1.0 / sqrt(x).  The two differ by round-off. */
+#if defined(__CUDA_ARCH__)
+#define BOLIDE_RSQRT(x) rsqrt(x)
+#else
+#define BOLIDE_RSQRT(x) (1.0 / sqrt(x))
+#endif
+
 /** For CPU-only helpers of the innermost loops. */
 #if defined(__GNUC__)
 #define BOLIDE_ALWAYS_INLINE static inline __attribute__((always_inline))

@@ -7,11 +7,13 @@
  * with the expansion order a template constant so that nvcc unrolls their
  * loops as gcc does for gravity_cpu.c's M2L_ORDER.
  *
- *   field kernel: one thread per cell, its M2L and P2L summed in
- *                 registers, then stored (the cells' expansions start at 0)
+ *   field kernel: one warp per cell, its M2L and P2L summed in
+ *                 registers by the lanes, added across the warp, then
+ *                 stored (the cells' expansions start at 0)
  *   L2L kernel:   one thread per parent-child pair of one tree level, the
  *                 levels one launch after the other (parents first)
- *   P2P, M2P:     one block per leaf, one thread per particle,
+ *   P2P, M2P:     one block per leaf, one thread per particle (P2P: a
+ *                 small leaf's idle threads take slices of its sources),
  *                 its P2P (gather form: a leaf with itself skips i == j),
  *                 then (second kernel) its M2P summed in registers, added
  *                 to pot and ga
@@ -26,12 +28,18 @@
 #include "tasks/gravity/gravity_iact.h"
 
 /** Every cell c with sources: the M2L of its multipole sources and the P2L
- *  of its leaf sources (struct gravity_gpu_rec.field), stored as its field. */
+ *  of its leaf sources (struct gravity_gpu_rec.field), stored as its field.
+ *  One warp per cell: lane l takes the sources l, l + 32, ... of the list
+ *  (a cell has hundreds: the lanes stay busy whatever the lists' lengths),
+ *  sums them in registers, and the warp adds the 32 partial fields by a
+ *  butterfly of shuffles (every lane ends with the same sums; the order is
+ *  fixed, so the result is reproducible). */
 template <int P>
 __global__ void gravity_field_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
                                          struct gravity_gpu_groups l) {
-  const int c = blockIdx.x * blockDim.x + threadIdx.x;
-  if (c >= l.nr_cells) return;
+  const int lane = threadIdx.x & 31;
+  const int c = (int)((blockIdx.x * (size_t)blockDim.x + threadIdx.x) >> 5);
+  if (c >= l.nr_cells) return; /* the whole warp */
   const int k0 = l.start[c], k1 = l.start[c + 1];
   if (k0 == k1) return;
   const struct gravity_multipole *mc = d.mp + c;
@@ -39,7 +47,7 @@ __global__ void gravity_field_gpu_kernel(struct parts p, struct gravity_gpu_dev 
   struct gravity_field f;
 #pragma unroll
   for (int i = 0; i < GRAVITY_NCOMP(P); i++) f.F[i] = 0.0;
-  for (int k = k0; k < k1; k++) {
+  for (int k = k0 + lane; k < k1; k += 32) {
     const int s = l.source[k];
     double D[GRAVITY_NCOMP(P)];
     if (s >= 0) {
@@ -62,7 +70,12 @@ __global__ void gravity_field_gpu_kernel(struct parts p, struct gravity_gpu_dev 
   }
   struct gravity_field *out = d.field + c;
 #pragma unroll
-  for (int i = 0; i < GRAVITY_NCOMP(P); i++) out->F[i] = f.F[i];
+  for (int i = 0; i < GRAVITY_NCOMP(P); i++) {
+    double v = f.F[i];
+#pragma unroll
+    for (int o = 16; o > 0; o >>= 1) v += __shfl_xor_sync(0xffffffffu, v, o);
+    if ((i & 31) == lane) out->F[i] = v;
+  }
 }
 
 /** L2L of the pairs [k0, k1) of one level: parent's expansion shifted to
@@ -78,21 +91,54 @@ __global__ void gravity_l2l_gpu_kernel(struct gravity_gpu_dev d, const int *__re
   gravity_l2l(d.field + c, d.field + q, t, P);
 }
 
-/** Every leaf (one block): its particles' P2P with the source
- *  leaves (struct gravity_gpu_rec.part, sources >= 0). */
+/** Every leaf (one block of B threads): its particles' P2P with the
+ *  source leaves (struct gravity_gpu_rec.part, sources >= 0).  A leaf of
+ *  cnt < B particles splits its source list into B / cnt slices (thread t:
+ *  particle t % cnt, sources t / cnt, t / cnt + slices, ...), so that the
+ *  threads a small leaf would leave idle share its sources; the slices'
+ *  sums are then added in slice order (shared memory, 4 doubles per
+ *  thread: launch with 4 B doubles). */
 __global__ void gravity_p2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
                                        struct gravity_gpu_groups l, const int *__restrict__ leaf) {
+  extern __shared__ double part_sum[];
   const int c = leaf[blockIdx.x];
   const size_t beg = d.offset[c];
   const int cnt = d.count[c];
+  if (cnt == 0) return; /* the whole block */
   const int k0 = l.start[c], k1 = l.start[c + 1];
+  const int B = (int)blockDim.x;
+  const int slices = cnt >= B ? 1 : B / cnt;
   const double *__restrict__ x = p.x, *__restrict__ y = p.y, *__restrict__ z = p.z;
   const double *__restrict__ m = p.m;
-  for (int t = threadIdx.x; t < cnt; t += blockDim.x) {
-    const size_t i = beg + (size_t)t;
+  if (slices == 1) {
+    for (int t = threadIdx.x; t < cnt; t += B) {
+      const size_t i = beg + (size_t)t;
+      const double xi[3] = {x[i], y[i], z[i]};
+      double pot = 0.0, a[3] = {0.0, 0.0, 0.0};
+      for (int k = k0; k < k1; k++) {
+        const int s = l.source[k];
+        if (s < 0) continue;
+        const size_t jb = d.offset[s], je = jb + (size_t)d.count[s];
+        for (size_t j = jb; j < je; j++) {
+          if (j == i) continue;
+          const double dx[3] = {xi[0] - x[j], xi[1] - y[j], xi[2] - z[j]};
+          const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+          gravity_p2p(dx, r2, m[j], d.G, d.eps, d.softening, &pot, a);
+        }
+      }
+      p.pot[i] += pot;
+      p.gax[i] += a[0];
+      p.gay[i] += a[1];
+      p.gaz[i] += a[2];
+    }
+    return;
+  }
+  const int t = threadIdx.x, slice = t / cnt;
+  double pot = 0.0, a[3] = {0.0, 0.0, 0.0};
+  if (slice < slices) {
+    const size_t i = beg + (size_t)(t % cnt);
     const double xi[3] = {x[i], y[i], z[i]};
-    double pot = 0.0, a[3] = {0.0, 0.0, 0.0};
-    for (int k = k0; k < k1; k++) {
+    for (int k = k0 + slice; k < k1; k += slices) {
       const int s = l.source[k];
       if (s < 0) continue;
       const size_t jb = d.offset[s], je = jb + (size_t)d.count[s];
@@ -103,10 +149,21 @@ __global__ void gravity_p2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
         gravity_p2p(dx, r2, m[j], d.G, d.eps, d.softening, &pot, a);
       }
     }
-    p.pot[i] += pot;
-    p.gax[i] += a[0];
-    p.gay[i] += a[1];
-    p.gaz[i] += a[2];
+  }
+  part_sum[4 * t] = pot;
+  part_sum[4 * t + 1] = a[0];
+  part_sum[4 * t + 2] = a[1];
+  part_sum[4 * t + 3] = a[2];
+  __syncthreads();
+  if (t < cnt) {
+    double sum[4] = {0.0, 0.0, 0.0, 0.0};
+    for (int q = 0; q < slices; q++)
+      for (int r = 0; r < 4; r++) sum[r] += part_sum[4 * (q * cnt + t) + r];
+    const size_t i = beg + (size_t)t;
+    p.pot[i] += sum[0];
+    p.gax[i] += sum[1];
+    p.gay[i] += sum[2];
+    p.gaz[i] += sum[3];
   }
 }
 
@@ -167,8 +224,10 @@ __global__ void gravity_l2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
 void gravity_field_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_dev d,
                               struct gravity_gpu_groups l) {
   if (l.nr_cells == 0) return;
-  const int grid = (l.nr_cells + GRAVITY_GPU_CELL_BLOCK - 1) / GRAVITY_GPU_CELL_BLOCK;
-  GRAVITY_GPU_DISPATCH(gravity_field_gpu_kernel, grid, GRAVITY_GPU_CELL_BLOCK, p, d, l);
+  /* one warp per cell */
+  const int grid = (int)(((size_t)l.nr_cells * 32 + GRAVITY_GPU_FIELD_BLOCK - 1) /
+                         GRAVITY_GPU_FIELD_BLOCK);
+  GRAVITY_GPU_DISPATCH(gravity_field_gpu_kernel, grid, GRAVITY_GPU_FIELD_BLOCK, p, d, l);
 }
 
 void gravity_l2l_gpu_launch(cudaStream_t s, struct gravity_gpu_dev d, const int *child,
@@ -183,7 +242,7 @@ void gravity_part_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_
                              struct gravity_gpu_groups l, const int *leaf, int nr_leaves,
                              int block) {
   if (nr_leaves == 0) return;
-  gravity_p2p_gpu_kernel<<<nr_leaves, block, 0, s>>>(p, d, l, leaf);
+  gravity_p2p_gpu_kernel<<<nr_leaves, block, 4 * block * sizeof(double), s>>>(p, d, l, leaf);
   gpu_check_launch(gravity_p2p_gpu_kernel);
   GRAVITY_GPU_DISPATCH(gravity_m2p_gpu_kernel, nr_leaves, block, p, d, l, leaf);
 }

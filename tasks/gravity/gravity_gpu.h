@@ -10,6 +10,8 @@
 
 /** Threads per block of the one-thread-per-cell kernels. */
 #define GRAVITY_GPU_CELL_BLOCK 64
+/** Threads per block of the field kernel (M2L, P2L): one warp per cell. */
+#define GRAVITY_GPU_FIELD_BLOCK 128
 
 /** Instantiate kernel K for the orders 1..GRAVITY_ORDER_MAX and launch the
  *  one of d.order on stream s (the gravity kernels). */

@@ -274,28 +274,39 @@ BOLIDE_INLINE void gravity_up_node(struct gravity_multipole *BOLIDE_RESTRICT mp,
   gravity_multipole_power(mp, order);
 }
 
+/** Coefficient of R^(n-2k) in the one-dimensional factor of (G4),
+ *  n! / (2^k k! (n-2k)!) (the coefficients of the Hermite polynomials
+ *  He_n): an integer, so that gravity_derivatives multiplies by exact
+ *  constants instead of dividing (a double division is a long sequence of
+ *  instructions on the GPU).  0 <= 2k <= n <= 12. */
+BOLIDE_INLINE double gravity_hermite_coeff(int n, int k) {
+  long num = 1, den = 1;
+  for (int i = n - 2 * k + 1; i <= n; i++) num *= i; /* n! / (n-2k)! */
+  for (int i = 2; i <= k; i++) den *= i;             /* k! */
+  return (double)(num / (den << k));
+}
+
 /** Derivatives D_n(R) = d^n f(|R|) for |n| <= q of f = 1/sqrt(|R|^2 + eps2)
  *  (eps2 = 0: Newtonian 1/r; eps2 = eps^2: Plummer-softened).  For a radial
  *  function f(u), u = r^2/2, (G4):
  *    D_n = sum_{2k <= n} n! / (2^|k| k! (n-2k)!) R^(n-2k) f^(|n|-|k|)(u)
- *  with f^(m) = (-1)^m (2m-1)!! (r^2 + eps2)^(-(2m+1)/2).  D has
- *  GRAVITY_NCOMP(q) entries, q <= GRAVITY_ORDER_MAX + 1. */
+ *  with f^(m) = (-1)^m (2m-1)!! (r^2 + eps2)^(-(2m+1)/2).  The coefficient
+ *  is the product of the three integers gravity_hermite_coeff(n_i, k_i).
+ *  D has GRAVITY_NCOMP(q) entries, q <= GRAVITY_ORDER_MAX + 1. */
 BOLIDE_INLINE void gravity_derivatives(const double R[3], double eps2, int q,
                                        double *BOLIDE_RESTRICT D) {
   const double r2 = R[0] * R[0] + R[1] * R[1] + R[2] * R[2] + eps2;
   const double inv_r2 = 1.0 / r2;
   double fm[GRAVITY_ORDER_MAX + 2]; /* f^(m) */
   double xp[GRAVITY_ORDER_MAX + 2], yp[GRAVITY_ORDER_MAX + 2], zp[GRAVITY_ORDER_MAX + 2];
-  double fact[GRAVITY_ORDER_MAX + 2];
   fm[0] = sqrt(inv_r2);
-  xp[0] = yp[0] = zp[0] = fact[0] = 1.0;
+  xp[0] = yp[0] = zp[0] = 1.0;
   GRAVITY_UNROLL
   for (int m = 1; m <= q; m++) {
     fm[m] = -(2 * m - 1) * fm[m - 1] * inv_r2;
     xp[m] = xp[m - 1] * R[0];
     yp[m] = yp[m - 1] * R[1];
     zp[m] = zp[m - 1] * R[2];
-    fact[m] = fact[m - 1] * m;
   }
   int i = 0;
   GRAVITY_UNROLL
@@ -306,18 +317,18 @@ BOLIDE_INLINE void gravity_derivatives(const double R[3], double eps2, int q,
     double s = 0.0;
     GRAVITY_UNROLL
     for (int kx = 0; 2 * kx <= nx; kx++) {
-      const double cx = xp[nx - 2 * kx] / (fact[kx] * fact[nx - 2 * kx] * (double)(1 << kx));
+      const double cx = gravity_hermite_coeff(nx, kx) * xp[nx - 2 * kx];
       GRAVITY_UNROLL
       for (int ky = 0; 2 * ky <= ny; ky++) {
-        const double cy = yp[ny - 2 * ky] / (fact[ky] * fact[ny - 2 * ky] * (double)(1 << ky));
+        const double cy = gravity_hermite_coeff(ny, ky) * yp[ny - 2 * ky];
         GRAVITY_UNROLL
         for (int kz = 0; 2 * kz <= nz; kz++) {
-          const double cz = zp[nz - 2 * kz] / (fact[kz] * fact[nz - 2 * kz] * (double)(1 << kz));
+          const double cz = gravity_hermite_coeff(nz, kz) * zp[nz - 2 * kz];
           s += cx * cy * cz * fm[n - kx - ky - kz];
         }
       }
     }
-    D[i] = s * fact[nx] * fact[ny] * fact[nz];
+    D[i] = s;
   }
 }
 
@@ -326,6 +337,33 @@ BOLIDE_INLINE void gravity_derivatives(const double R[3], double eps2, int q,
 BOLIDE_INLINE void gravity_m2l(struct gravity_field *BOLIDE_RESTRICT fb,
                                const struct gravity_multipole *BOLIDE_RESTRICT ma,
                                const double *BOLIDE_RESTRICT D, int p) {
+#ifdef __CUDA_ARCH__
+  /* The device: the same terms with the moments in the outer loop, each
+   * M_n loaded once and added to every F_k it reaches (|k| <= p - |n|, the
+   * first GRAVITY_NCOMP(p - |n|) entries in graded order).  A GPU thread
+   * then holds F and D in registers but not the moments as well: at p = 5
+   * the other order needs more than the 255 registers a thread has. */
+  int j = 0;
+  GRAVITY_UNROLL
+  for (int n = 0; n <= p; n++) {
+    if (n == 1) { /* the dipole vanishes about the centre of mass */
+      j += 3;
+      continue;
+    }
+    GRAVITY_UNROLL
+    for (int nx = n; nx >= 0; nx--) GRAVITY_UNROLL
+    for (int ny = n - nx; ny >= 0; ny--, j++) {
+      const int nz = n - nx - ny;
+      const double m = gravity_sign(n) * ma->M[j];
+      int i = 0;
+      GRAVITY_UNROLL
+      for (int k = 0; k <= p - n; k++) GRAVITY_UNROLL
+      for (int kx = k; kx >= 0; kx--) GRAVITY_UNROLL
+      for (int ky = k - kx; ky >= 0; ky--, i++)
+        fb->F[i] -= m * D[gravity_index(nx + kx, ny + ky, nz + k - kx - ky)];
+    }
+  }
+#else
   int i = 0;
   GRAVITY_UNROLL
   for (int k = 0; k <= p; k++) GRAVITY_UNROLL
@@ -348,6 +386,7 @@ BOLIDE_INLINE void gravity_m2l(struct gravity_field *BOLIDE_RESTRICT fb,
     }
     fb->F[i] -= s;
   }
+#endif
 }
 
 /** M2L, both directions at once (the symmetric pair interaction): with
@@ -553,7 +592,7 @@ BOLIDE_INLINE void gravity_softened_kernel(double r2, double eps, int softening,
   }
   const double H = GRAVITY_SPLINE_H_OVER_EPS * eps;
   if (r2 >= H * H) { /* outside the support: no polynomial (a warp-uniform branch on the GPU) */
-    const double q = 1.0 / sqrt(r2);
+    const double q = BOLIDE_RSQRT(r2);
     *wpot = q;
     *wacc = q * q * q;
     return;

@@ -4,7 +4,9 @@
 # multipole_order: the step's gravity time is the difference (issue 25,
 # item 4: against SWIFT's 2.79 s hydro + gravity, 0.385 s hydro, per step at
 # 1.1e6 on the 16-core H200 host, epsilon_fmm 1e-3, theta 0.5).  Median of
-# steps 2..S of one run each (the first step includes the set-up).
+# steps 2..S of one run each (the first step includes the set-up).  A GPU
+# run's row is followed by its gravity stages (ms per evaluation) as a
+# comment.
 #
 # Usage: tools/bench/gravity_step.sh [-n "1.1e5 1.1e6"] [-m "cpu gpu"] [-t THREADS]
 #          [-s STEPS] [-c "5e-5,5 1e-3,4"]
@@ -68,6 +70,8 @@ YML
       [ "$t" != 0 ] || { echo "gravity_step.sh: error: no step lines in the run's log; its end:" >&2; tail -15 run.log >&2; }
       label=$c; [ "$c" = off ] || label="$e,p$p"
       printf "%-8s %-4s %-10s %12s\n" "$N" "$m" "$label" "$t"
+      # the GPU's gravity stages (ms per evaluation), under the row
+      grep -m1 '^GPU gravity' run.log | sed 's/^/# /' || true
     done
   done
 done
