@@ -225,8 +225,8 @@ void gravity_field_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu
                               struct gravity_gpu_groups l) {
   if (l.nr_cells == 0) return;
   /* one warp per cell */
-  const int grid = (int)(((size_t)l.nr_cells * 32 + GRAVITY_GPU_FIELD_BLOCK - 1) /
-                         GRAVITY_GPU_FIELD_BLOCK);
+  const int grid =
+      (int)(((size_t)l.nr_cells * 32 + GRAVITY_GPU_FIELD_BLOCK - 1) / GRAVITY_GPU_FIELD_BLOCK);
   GRAVITY_GPU_DISPATCH(gravity_field_gpu_kernel, grid, GRAVITY_GPU_FIELD_BLOCK, p, d, l);
 }
 
