@@ -591,7 +591,23 @@ BOLIDE_INLINE void gravity_softened_kernel(double r2, double eps, int softening,
     return;
   }
   const double H = GRAVITY_SPLINE_H_OVER_EPS * eps;
-  if (r2 >= H * H) { /* outside the support: no polynomial (a warp-uniform branch on the GPU) */
+#ifdef __CUDA_ARCH__
+  /* The device: both sides from one reciprocal square root, then a select.
+   * Near neighbours' leaves mix pairs inside and outside the support in one
+   * warp, and a branch would run both sides with a square root on one of
+   * them.  The same formulas; r2 = 0 (coincident particles, only inside
+   * the support with eps > 0) takes the spline at u = 0. */
+  {
+    const double inv_H = 1.0 / H;
+    const double q = r2 > 0.0 ? BOLIDE_RSQRT(r2) : 0.0;
+    const double u = r2 * q * inv_H, u2 = u * u;
+    const int in = r2 < H * H;
+    *wpot = in ? inv_H * GRAVITY_SPLINE_POT(u, u2) : q;
+    *wacc = in ? inv_H * inv_H * inv_H * GRAVITY_SPLINE_ACC(u, u2) : q * q * q;
+    return;
+  }
+#endif
+  if (r2 >= H * H) { /* outside the support: no polynomial */
     const double q = BOLIDE_RSQRT(r2);
     *wpot = q;
     *wacc = q * q * q;
