@@ -27,7 +27,7 @@
  * So does every family of shape chain in the registry (tasks/task_families.h),
  * in its order, in the runs its predicate selects.
  *
- * Self-gravity works on the top-level cells (gravity_cpu.h):
+ * Self-gravity works on the top-level cells (tasks/gravity/gravity_cpu.h):
  *
  *   grav_up(c) -> grav(c,c'), grav(c) -> grav_down(c)       near pairs
  *   grav_up(all) -> grav_long_range(c) -> grav_down(c)      far field

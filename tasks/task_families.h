@@ -17,9 +17,11 @@
  *    fragment tasks/<family>/local.am;
  *  - the graph, for a family of shape chain (below): its tasks between the
  *    force and the kick of every task cell (src/engine_graph.c);
- *  - what the engine has a family do outside its tasks, at start-up
- *    (TASK_FAMILY_HOOKS, src/engine.c), and the other functions of a
- *    family that src/ calls (TASK_FAMILY_ENTRIES);
+ *  - what the engine has a family do outside its tasks, at points of its
+ *    start-up and end (TASK_FAMILY_HOOKS, src/engine.c), the other
+ *    functions of a family that src/ calls (TASK_FAMILY_ENTRIES), and the
+ *    header of what the engine holds of a family, the one header of the
+ *    family's folder that src/ may include (TASK_FAMILY_INTERFACES);
  *  - tests/repo/test_layers.py, which fails when a folder of tasks/, a fragment
  *    or a list of family names elsewhere disagrees with this list.
  *

@@ -638,18 +638,21 @@ void gpu_engine_init(struct engine *e) {
 
 /** Scheduler callback of the gravity pass: the engine's task, with the
  *  calling worker's interactions recorded in its own list; after a
- *  grav_up task, its cell's multipoles go to the upload staging. */
+ *  grav_up task, its cell's multipoles go to the upload staging (the
+ *  family's gravity_gpu_task). */
 static void gpu_engine_grav_task(void *ctx, struct task *t, int thread_id) {
   struct engine *e = ctx;
   gravity_gpu_task(e, e->gpu->grav, t, thread_id);
 }
 
-/** Self-gravity of the FORCE phase, in three parts.  Prepare (here): the
- *  tree on the device after a rebuild, the staging of the multipoles, the
- *  workers' lists emptied, the gravity tasks of the graph activated (with
- *  on_gpu, grav_down, the GPU's, skipped).  Returns 0 when the step reuses
- *  the far field (Gravity:reuse_steps): the GPU alone then, nothing on the
- *  CPU.  These make CUDA calls: before any thread drives the GPU beside. */
+/** Self-gravity of the FORCE phase, in three parts.  Prepare (here): with
+ *  on_gpu the family's gravity_gpu_prepare (the tree on the device after a
+ *  rebuild, the staging of the multipoles, the workers' lists emptied),
+ *  then the gravity tasks of the graph activated (with on_gpu, grav_down,
+ *  the GPU's, skipped).  Returns 0 when the step reuses the far field
+ *  (Gravity:reuse_steps) or the walks run on the device: the GPU alone
+ *  then, nothing on the CPU.  These make CUDA calls: before any thread
+ *  drives the GPU beside. */
 static int gpu_engine_grav_prepare(struct engine *e, int on_gpu) {
   struct gpu_engine *ge = e->gpu;
   if (on_gpu) {
@@ -682,9 +685,10 @@ static void gpu_engine_set_bins(struct engine *e) {
   gpu_set_bins(e->gpu->gpu, &b);
 }
 
-/** The device part (gpu_grav_run: grouping included, or the replay of a
- *  step that reuses the far field), which leaves ga and pot complete on
- *  both sides for the kick, on stream 0 after whatever is queued there. */
+/** The device part (the family's gravity_gpu_device: gpu_grav_run,
+ *  grouping included, or the replay of a step that reuses the far field),
+ *  which leaves ga and pot complete on both sides for the kick, on stream 0
+ *  after whatever is queued there. */
 static void gpu_engine_grav_device(struct engine *e) {
   struct gpu_engine *ge = e->gpu;
   const double w0 = error_walltime();
