@@ -627,7 +627,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   e->opt = *opt;
   units_init_from_params(&e->us, params);
   hydro_props_init(&e->hp, params);
-  gravity_props_init(&e->gp, params, &e->us);
+  engine_family_hooks(e, task_family_at_init); /* self-gravity: e->gp, e->grav */
   if (!e->gp.enabled && !e->hp.enabled)
     params_error(params, "SPH:hydro", "neither hydrodynamics nor self-gravity is switched on");
   e->restarts = params_get_bool(params, "Restarts:enable");
@@ -690,12 +690,10 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
       ids[k] = e->mats->mats[k].id;
       u_floor[k] = e->mats->mats[k].u_floor;
     }
-    const struct restart_expect ex = {
-        e->params_text,    ids,
-        e->mats->n,        e->nr_out,
-        e->time,           e->time_end,
-        u_floor,           (int64_t)(sizeof(struct gravity_cell) / sizeof(double)),
-        flaws_check_values};
+    const int64_t grav_doubles = gravity_cell_doubles();
+    const struct restart_expect ex = {e->params_text, ids,          e->mats->n,
+                                      e->nr_out,      e->time,      e->time_end,
+                                      u_floor,        grav_doubles, flaws_check_values};
     struct restart_data rd;
     restart_read(e->restart_stem, &ex, &rd, icname, sizeof icname);
     snprintf(e->restart_file, sizeof e->restart_file, "%s", icname);
@@ -706,7 +704,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     e->flaw_eps = rd.flaw_eps;
     e->nr_flaws = rd.nr_flaws;
     e->restart_cells = rd.cells;
-    e->restart_grav = rd.grav;
+    gravity_restart_read(e, &rd.grav);
     for (int k = 0; k < 3; k++) box[k] = rs.box[k];
     periodic = (int)rs.periodic;
     e->time = rs.time;
@@ -856,157 +854,6 @@ static int engine_should_rebuild(const struct engine *e) {
   return kernel_gamma * h_max + 2.0 * dx_max > e->reach;
 }
 
-/** Whether the coming force phase may reuse the gravitational far field of
- *  the last full evaluation (Gravity:reuse_steps, gravity_cpu.h): not after
- *  a rebuild, not more than reuse_steps times in a row, and only while
- *  every particle has moved less than reuse_tolerance times the shortest
- *  far-field distance of that evaluation.  Sets e->gp.replay. */
-static void engine_gravity_reuse_decide(struct engine *e, int rebuilt) {
-  e->gp.replay = 0;
-  if (!e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0 || e->grav_x0 == NULL || rebuilt ||
-      e->grav_reused >= e->gp.reuse_steps || !(e->grav_d_min < HUGE_VAL))
-    return;
-  const struct parts *p = &e->parts;
-  const double *x0 = e->grav_x0;
-  double d2max = 0.0;
-  for (size_t i = 0; i < p->count; i++) {
-    const double dx = p->x[i] - x0[3 * i], dy = p->y[i] - x0[3 * i + 1],
-                 dz = p->z[i] - x0[3 * i + 2];
-    const double d2 = dx * dx + dy * dy + dz * dz;
-    if (d2 > d2max) d2max = d2;
-  }
-  const double lim = e->gp.reuse_tol * e->grav_d_min;
-  if (d2max < lim * lim) {
-    e->gp.replay = 1;
-    e->grav_reused++;
-    e->grav_replays++;
-  }
-}
-
-/** After a force phase that evaluated gravity in full (reuse on): remember
- *  the positions and the shortest far-field distance of the walks. */
-static void engine_gravity_reuse_remember(struct engine *e) {
-  if (!e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0 || e->gp.replay) return;
-  const struct parts *p = &e->parts;
-  e->grav_x0 = error_realloc(e->grav_x0, 3 * (p->count ? p->count : 1) * sizeof(double),
-                             "gravity reuse positions");
-  for (size_t i = 0; i < p->count; i++) {
-    e->grav_x0[3 * i] = p->x[i];
-    e->grav_x0[3 * i + 1] = p->y[i];
-    e->grav_x0[3 * i + 2] = p->z[i];
-  }
-  e->grav_d_min = HUGE_VAL;
-  for (int k = 0; k < e->nr_gilists; k++)
-    if (e->gilists[k].d_min > 0.0 && e->gilists[k].d_min < e->grav_d_min)
-      e->grav_d_min = e->gilists[k].d_min;
-  e->grav_reused = 0;
-}
-
-/** The far field that the coming steps may reuse, for the restart file
- *  (g->present 0: none; CPU runs only, the GPU's stays on the device):
- *  the positions and shortest distance of the last full evaluation, the
- *  multipole and local expansion of every cell with particles (the walks
- *  skip empty cells, and gravity_up leaves those below the top level
- *  unset) and every task's interaction list (cells by index).  Free with restart_gravity_free. */
-static void engine_gravity_reuse_save(const struct engine *e, struct restart_gravity *g) {
-  memset(g, 0, sizeof *g);
-  if (!e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0 || !e->grav_x0 ||
-      !(e->grav_d_min < HUGE_VAL) || e->gpu || e->nr_gilists < 1)
-    return;
-  const struct parts *p = &e->parts;
-  const int nc = e->space.nr_cells;
-  g->present = 1;
-  g->reused = e->grav_reused;
-  g->replays = e->grav_replays;
-  g->d_min = e->grav_d_min;
-  g->x0 = error_malloc(3 * (p->count ? p->count : 1) * sizeof(double), "restart far field");
-  memcpy(g->x0, e->grav_x0, 3 * p->count * sizeof(double));
-  g->nr_cells = nc;
-  g->cell_doubles = sizeof(struct gravity_cell) / sizeof(double);
-  g->cell_index =
-      error_malloc(((size_t)nc ? (size_t)nc : 1) * sizeof(int32_t), "restart far field");
-  g->cells = error_malloc(((size_t)nc ? (size_t)nc : 1) * sizeof(struct gravity_cell),
-                          "restart far field");
-  for (int c = 0; c < nc; c++)
-    if (e->space.cells[c].count > 0) {
-      g->cell_index[g->nr_saved] = c;
-      memcpy((struct gravity_cell *)g->cells + g->nr_saved++, e->gcells + c,
-             sizeof(struct gravity_cell));
-    }
-  g->nr_lists = e->nr_gilists;
-  g->list_count = error_malloc((size_t)e->nr_gilists * sizeof(int64_t), "restart far field");
-  g->list_d_min = error_malloc((size_t)e->nr_gilists * sizeof(double), "restart far field");
-  size_t items = 0;
-  for (int k = 0; k < e->nr_gilists; k++) items += (size_t)e->gilists[k].count;
-  g->items = error_malloc(16 * (items ? items : 1), "restart far field");
-  size_t q = 0;
-  for (int k = 0; k < e->nr_gilists; k++) {
-    const struct gravity_ilist *il = &e->gilists[k];
-    g->list_count[k] = il->count;
-    g->list_d_min[k] = il->d_min;
-    for (int j = 0; j < il->count; j++, q++) {
-      const struct gravity_iitem *it = &il->item[j];
-      int32_t *o = g->items + 4 * q;
-      o[0] = it->a->index;
-      o[1] = it->b ? it->b->index : -1;
-      o[2] = it->kind;
-      o[3] = it->symmetric;
-    }
-  }
-}
-
-/** After the first rebuild of a resumed run (the cells and task graph of
- *  the uninterrupted run, space_restore): the far field of the restart
- *  file back in place, so that the coming steps reuse it as the
- *  uninterrupted run does.  A GPU run drops it (its far field lives on the
- *  device): its first step evaluates gravity in full, within the reuse
- *  tolerance of the uninterrupted run. */
-static void engine_gravity_reuse_restore(struct engine *e) {
-  struct restart_gravity *g = &e->restart_grav;
-  if (!g->present) return;
-  if (e->gpu || !e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0) {
-    if (e->gpu)
-      error_log(0,
-                "gravity: the far field of the restart file is not used on the GPU: the first step "
-                "evaluates it in full");
-    restart_gravity_free(g);
-    return;
-  }
-  const struct parts *p = &e->parts;
-  if (g->nr_cells != e->space.nr_cells || g->nr_lists != e->nr_gilists)
-    error_exit(
-        "%s: the far field of %lld cells and %lld gravity tasks does not match the restored cells "
-        "(%d) and task graph (%d gravity tasks)",
-        e->restart_file, (long long)g->nr_cells, (long long)g->nr_lists, e->space.nr_cells,
-        e->nr_gilists);
-  e->grav_x0 = error_realloc(e->grav_x0, 3 * (p->count ? p->count : 1) * sizeof(double),
-                             "gravity reuse positions");
-  memcpy(e->grav_x0, g->x0, 3 * p->count * sizeof(double));
-  e->grav_d_min = g->d_min;
-  e->grav_reused = (int)g->reused;
-  e->grav_replays = (long)g->replays;
-  for (int64_t c = 0; c < g->nr_saved; c++)
-    memcpy(e->gcells + g->cell_index[c], (const struct gravity_cell *)g->cells + c,
-           sizeof(struct gravity_cell));
-  size_t q = 0;
-  for (int k = 0; k < e->nr_gilists; k++) {
-    struct gravity_ilist *il = &e->gilists[k];
-    const int n = (int)g->list_count[k];
-    if (n > il->capacity) {
-      il->item = error_realloc(il->item, (size_t)n * sizeof *il->item, "gravity interaction list");
-      il->capacity = n;
-    }
-    il->count = n;
-    il->d_min = g->list_d_min[k];
-    for (int j = 0; j < n; j++, q++) {
-      const int32_t *it = g->items + 4 * q;
-      il->item[j] = (struct gravity_iitem){
-          &e->space.cells[it[0]], it[1] >= 0 ? &e->space.cells[it[1]] : NULL, it[2], it[3]};
-    }
-  }
-  restart_gravity_free(g);
-}
-
 /** Save the state for --restart. */
 static void engine_write_restart(struct engine *e) {
 #ifdef HAVE_CUDA
@@ -1046,7 +893,7 @@ static void engine_write_restart(struct engine *e) {
   }
   engine_mkdir(e->restart_dir);
   struct restart_gravity grav;
-  engine_gravity_reuse_save(e, &grav);
+  gravity_restart_save(e, &grav);
   restart_write(e->restart_stem, &st, &e->parts, e->flaw_eps, &cells, e->params_text, &grav);
   restart_gravity_free(&grav);
   free(cells.h_max);
@@ -1229,14 +1076,13 @@ static void engine_first_force(struct engine *e) {
   e->gp.replay = 0;
   /* the adaptive criterion's scale |ga| for the first evaluation (issue 25):
    * one cheaper geometric pass on the host, uploaded with the particles */
-  if (e->gp.enabled && gravity_estimate(&e->parts, e->space.cells, e->space.nr_top, e->gcells,
-                                        &e->gp, e->nr_threads)) {
+  if (gravity_estimate_first(e)) {
 #ifdef HAVE_CUDA
     if (e->gpu) gpu_engine_host_modified(e);
 #endif
   }
   engine_run_phase(e, ENGINE_PHASE_FORCE);
-  engine_gravity_reuse_remember(e);
+  gravity_reuse_remember(e);
   e->first_force = 0;
 }
 
@@ -1261,7 +1107,7 @@ void engine_run(struct engine *e) {
      * predicted velocities and change the run */
     for (int t = 0; t < e->nr_tcells; t++) e->cell_dt_min[t] = e->restart_dt_next;
     if (e->individual) engine_bins_resume(e);
-    engine_gravity_reuse_restore(e);
+    gravity_restart_restore(e);
     error_log(0, "resumed from %s at step %ld, t = %g", e->restart_file, e->step, e->time);
   }
   e->wall_start = error_walltime();
@@ -1293,14 +1139,14 @@ void engine_run(struct engine *e) {
       rebuilt = 1;
       if (e->individual) engine_count_active_cells(e);
     }
-    engine_gravity_reuse_decide(e, rebuilt);
+    gravity_reuse_decide(e, rebuilt);
     const double wf = error_walltime();
     engine_run_phase(e, ENGINE_PHASE_FORCE);
     e->t_eval += error_walltime() - wf;
     e->nr_eval++;
     engine_bins_collect(e);
     engine_count_active(e);
-    engine_gravity_reuse_remember(e);
+    gravity_reuse_remember(e);
     e->step++;
     e->updates += (long long)e->nr_active;
     engine_watchdog_after_step(e);
@@ -1381,11 +1227,7 @@ void engine_run(struct engine *e) {
               e->t_rebuild_part[1] / e->nr_rebuild, e->t_rebuild_part[2] / e->nr_rebuild);
   error_log(0, "watchdog: %.4f s per step on average (every field of every particle checked)",
             e->step > 0 ? e->t_watchdog / (double)e->step : 0.0);
-  if (e->gp.enabled && e->gp.reuse_steps > 0)
-    error_log(0,
-              "gravity: %ld of %ld steps reused the far field (Gravity:reuse_steps %d, "
-              "reuse_tolerance %g)",
-              e->grav_replays, e->step, e->gp.reuse_steps, e->gp.reuse_tol);
+  gravity_log_end(e);
   scheduler_print_timers(&e->sched, stdout);
 #ifdef HAVE_CUDA
   gpu_engine_print(e, stdout);
@@ -1407,12 +1249,10 @@ void engine_clean(struct engine *e) {
   free(e->cell_dt_min);
   free(e->cell_bins);
   free(e->cell_kick);
-  free(e->gcells);
-  free(e->grav_x0);
-  restart_gravity_free(&e->restart_grav);
   free(e->wd_x);
   free(e->flaw_eps);
   free(e->params_text);
+  engine_family_hooks(e, task_family_at_clean); /* self-gravity's state */
   if (e->mats) material_table_free(e->mats);
   free(e->mats);
   parts_free(&e->parts);

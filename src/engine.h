@@ -9,7 +9,7 @@
 #include <stdio.h>
 
 #include "src/cell.h"
-#include "tasks/gravity/gravity_cpu.h"
+#include "tasks/gravity/gravity_props.h"
 #include "tasks/hydro/hydro_props.h"
 #include "src/part.h"
 #include "src/scheduler.h"
@@ -64,45 +64,38 @@ struct engine {
   struct scheduler sched;      /**< tasks and workers */
   int nr_threads;              /**< workers in use */
 
-  struct cell **tcells;                /**< the task cells (engine_graph.c) */
-  int nr_tcells;                       /**< their number */
-  int cell_task_size;                  /**< Scheduler:cell_task_size */
-  int grav_task_size;                  /**< Scheduler:gravity_task_size */
-  double reach;                        /**< task cells closer than this have pair tasks */
-  int damage;                          /**< 1 when a material is brittle (tasks/damage) */
-  double *flaw_eps;                    /**< every particle's flaw thresholds, one flat array */
-  int64_t nr_flaws;                    /**< their number */
-  const char *flaws_from;              /**< where they came from (log), NULL: Damage:seed */
-  double damage_max_change;            /**< Damage:max_change */
-  double damage_start;                 /**< Damage:start_time: no damage before it */
-  int porous;                          /**< 1 when a material has a porosity model */
-  struct gravity_props gp;             /**< self-gravity settings (gp.enabled) */
-  struct gravity_cell *gcells;         /**< gravity data of every cell, by cell index */
-  int gcells_cap;                      /**< its allocated length */
-  struct sched_lock *glocks;           /**< per top-level cell: taken by gravity tasks writing it */
-  struct sched_lock *gsublocks;        /**< by cell index: taken by the split self-gravity tasks */
-  struct task **grav_down;             /**< per top-level cell: its gravity_down task (or NULL) */
-  struct gravity_ilist *gilists;       /**< interaction list of each gravity task, by task id
-                                            (Gravity:reuse_steps > 0; else NULL) */
-  int nr_gilists;                      /**< their number */
-  double *grav_x0;                     /**< positions at the last full gravity evaluation (reuse) */
-  double grav_d_min;                   /**< shortest far-field distance of that evaluation */
-  int grav_reused;                     /**< steps since it that reused its far field */
-  long grav_replays;                   /**< steps of the run that reused the far field */
-  struct restart_gravity restart_grav; /**< the far field read from the restart file, restored
-                                            after the first rebuild (grav.present 0: none) */
-  int *tcell_top;                      /**< top-level cell of each task cell */
-  struct engine_cell_tasks *ct;        /**< per task cell */
-  int nr_ct;                           /**< number of entries of ct */
-  struct task **phase_tasks[2];        /**< tasks of each phase */
-  int phase_count[2];                  /**< their numbers */
-  struct space_pair *pairs; /**< pairs of task cells (numbers in tcells, periodic shift) */
-  int nr_pairs;             /**< their number */
-  int *task_pair;           /**< pair number of each pair task, by task id */
-  double *cell_dt_min;      /**< smallest new time step per task cell */
-  struct timeline timeline; /**< integer time line of the run (src/timeline.h) */
-  int64_t *cell_bins;       /**< per task cell, TIMELINE_NR_BINS + 1 counts of its particles by
-                                 the time bin of their own limit (CPU kick; issue 20) */
+  struct cell **tcells;         /**< the task cells (engine_graph.c) */
+  int nr_tcells;                /**< their number */
+  int cell_task_size;           /**< Scheduler:cell_task_size */
+  int grav_task_size;           /**< Scheduler:gravity_task_size */
+  double reach;                 /**< task cells closer than this have pair tasks */
+  int damage;                   /**< 1 when a material is brittle (tasks/damage) */
+  double *flaw_eps;             /**< every particle's flaw thresholds, one flat array */
+  int64_t nr_flaws;             /**< their number */
+  const char *flaws_from;       /**< where they came from (log), NULL: Damage:seed */
+  double damage_max_change;     /**< Damage:max_change */
+  double damage_start;          /**< Damage:start_time: no damage before it */
+  int porous;                   /**< 1 when a material has a porosity model */
+  struct gravity_props gp;      /**< self-gravity settings (gp.enabled) */
+  struct gravity_state *grav;   /**< self-gravity's state: the cells' multipoles and
+                                     expansions, the interaction lists, the far field
+                                     that steps reuse (tasks/gravity, through the
+                                     registry's hooks and entry points) */
+  struct sched_lock *glocks;    /**< per top-level cell: taken by gravity tasks writing it */
+  struct sched_lock *gsublocks; /**< by cell index: taken by the split self-gravity tasks */
+  struct task **grav_down;      /**< per top-level cell: its gravity_down task (or NULL) */
+  int *tcell_top;               /**< top-level cell of each task cell */
+  struct engine_cell_tasks *ct; /**< per task cell */
+  int nr_ct;                    /**< number of entries of ct */
+  struct task **phase_tasks[2]; /**< tasks of each phase */
+  int phase_count[2];           /**< their numbers */
+  struct space_pair *pairs;     /**< pairs of task cells (numbers in tcells, periodic shift) */
+  int nr_pairs;                 /**< their number */
+  int *task_pair;               /**< pair number of each pair task, by task id */
+  double *cell_dt_min;          /**< smallest new time step per task cell */
+  struct timeline timeline;     /**< integer time line of the run (src/timeline.h) */
+  int64_t *cell_bins;           /**< per task cell, TIMELINE_NR_BINS + 1 counts of its particles by
+                                     the time bin of their own limit (CPU kick; issue 20) */
   int64_t bins[TIMELINE_NR_BINS + 1]; /**< the sum of cell_bins after the last step */
   double bin_updates;       /**< sum over the CPU steps of this process of the particle updates
                                  that time bins would have done (timeline_active_fraction) */

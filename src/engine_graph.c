@@ -27,7 +27,7 @@
  * So does every family of shape chain in the registry (tasks/task_families.h),
  * in its order, in the runs its predicate selects.
  *
- * Self-gravity works on the top-level cells (gravity_cpu.h):
+ * Self-gravity works on the top-level cells (tasks/gravity/gravity_cpu.h):
  *
  *   grav_up(c) -> grav(c,c'), grav(c) -> grav_down(c)       near pairs
  *   grav_up(all) -> grav_long_range(c) -> grav_down(c)      far field
@@ -59,6 +59,7 @@
 
 #include "src/error.h"
 #include "tasks/hydro/kernel.h"
+#include "tasks/task_families.h"
 
 /** The per-task-cell tasks between the force tasks and the kick: the rows
  *  of shape chain(active) of the registry (tasks/task_families.h), in its
@@ -173,10 +174,7 @@ static void engine_graph_free(struct engine *e) {
   e->glocks = NULL;
   free(e->gsublocks);
   e->gsublocks = NULL;
-  for (int k = 0; k < e->nr_gilists; k++) gravity_ilist_free(&e->gilists[k]);
-  free(e->gilists);
-  e->gilists = NULL;
-  e->nr_gilists = 0;
+  gravity_graph_free(e);
 }
 
 /** A top-level cell's self gravity is split while a cell holds more than
@@ -242,7 +240,6 @@ static void engine_make_gravity_tasks(struct engine *e, const int *first, int *c
   struct space *s = &e->space;
   struct scheduler *sched = &e->sched;
   const int nt = s->nr_top;
-  e->gcells = gravity_cells_reserve(e->gcells, &e->gcells_cap, s->cells_capacity);
   e->glocks = error_calloc(nt, sizeof(struct sched_lock), "gravity locks");
   e->gsublocks = error_calloc(s->cells_capacity, sizeof(struct sched_lock), "gravity locks");
   e->grav_down = error_calloc(nt, sizeof(struct task *), "gravity tasks");
@@ -542,11 +539,9 @@ void engine_make_graph(struct engine *e) {
     engine_phase_add(e, ENGINE_PHASE_FORCE, d, cap);
   } else if (e->gp.enabled) {
     engine_make_gravity_tasks(e, first, cap);
-    if (e->gp.reuse_steps > 0) {
-      /* the gravity tasks are the first sched->nr_tasks: one list each */
-      e->nr_gilists = sched->nr_tasks;
-      e->gilists = error_calloc(e->nr_gilists, sizeof *e->gilists, "gravity interaction lists");
-    }
+    /* the gravity tasks are the first sched->nr_tasks: the family's per-cell
+     * data and interaction lists for them */
+    gravity_graph_made(e, sched->nr_tasks);
   }
   if (!e->hp.enabled) {
     free(first);

@@ -11,6 +11,7 @@
 #include "src/io/units.h"
 #include "src/io/params.h"
 #include "src/io/snapshot.h"
+#include "tasks/task_families.h"
 #include "src/version.h"
 #ifdef HAVE_CUDA
 #include "src/gpu/gpu_engine.h"

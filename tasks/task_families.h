@@ -17,9 +17,11 @@
  *    fragment tasks/<family>/local.am;
  *  - the graph, for a family of shape chain (below): its tasks between the
  *    force and the kick of every task cell (src/engine_graph.c);
- *  - what the engine has a family do outside its tasks, at start-up
- *    (TASK_FAMILY_HOOKS, src/engine.c), and the other functions of a
- *    family that src/ calls (TASK_FAMILY_ENTRIES);
+ *  - what the engine has a family do outside its tasks, at points of its
+ *    start-up and end (TASK_FAMILY_HOOKS, src/engine.c), the other
+ *    functions of a family that src/ calls (TASK_FAMILY_ENTRIES), and the
+ *    header of what the engine holds of a family, the one header of the
+ *    family's folder that src/ may include (TASK_FAMILY_INTERFACES);
  *  - tests/repo/test_layers.py, which fails when a folder of tasks/, a fragment
  *    or a list of family names elsewhere disagrees with this list.
  *
@@ -125,19 +127,26 @@
 
 /* TASK_FAMILY_HOOKS(X): X(family, when, fn): what a family does for the
  * engine outside its tasks: void fn(struct engine *), in
- * tasks/<family>/<family>_task.c, called by the engine at point when (in
- * this order, engine.c: engine_family_hooks), so that src/ needs none of the
- * family's headers for it.
+ * tasks/<family>/<family>_task.c (or <family>_engine.c), called by the
+ * engine at point when (in this order, engine.c: engine_family_hooks), so
+ * that src/ needs none of the family's headers for it.
  *
- *  when  ic: after the initial conditions are read (not on a restart)
+ *  when  init: at the start of engine_init, once the units and the SPH
+ *          settings are read: the family reads its settings and makes its
+ *          state (gravity: e->gp, e->grav)
+ *        ic: after the initial conditions are read (not on a restart)
  *        start: after the particles are read, from the initial conditions
  *          or a restart file (e->restarted), and their smoothing lengths
  *          guessed; e->input_file names that file
- *        first_force: at the start of the first force computation */
+ *        first_force: at the start of the first force computation
+ *        clean: engine_clean, after the task graph is freed: the family
+ *          frees its state */
 #define TASK_FAMILY_HOOKS(X)                  \
+  X(gravity, init,        gravity_engine_init)  \
   X(drift,   ic,          drift_sync_ic)        \
   X(damage,  start,       damage_init_flaws)    \
-  X(density, first_force, density_reset_all)
+  X(density, first_force, density_reset_all)    \
+  X(gravity, clean,       gravity_engine_clean)
 
 /* TASK_FAMILY_ENTRIES(X): X(family, ret, fn, params): the other functions of
  * a family that src/ calls by name, each with its own signature
@@ -150,11 +159,82 @@
  *                      TimeIntegration:dt_min (engine.c)
  *  flaws_check_values  the damage family's check of the flaw thresholds of
  *                      a restart file (struct restart_expect, flaws_check),
- *                      tasks/damage/flaws.c */
-#define TASK_FAMILY_ENTRIES(X)                                                     \
-  X(kick,   void, kick_dt_culprit, (const struct engine *e, char *why, size_t len)) \
-  X(damage, int,  flaws_check_values,                                              \
-    (size_t n, const int64_t *offset, const double *eps, char *msg, size_t len))
+ *                      tasks/damage/flaws.c
+ *  gravity_*           self-gravity's part of the engine's rebuild, restart
+ *                      and step loop, on its state e->grav
+ *                      (tasks/gravity/gravity_engine.c):
+ *    gravity_cell_doubles      doubles of one cell's gravity data in a
+ *                              restart file (struct restart_expect)
+ *    gravity_restart_read      keep the far field that restart_read found
+ *                              (moved out of *g) until gravity_restart_restore
+ *    gravity_restart_save      the far field the coming steps may reuse, for
+ *                              the restart file (restart_gravity_free it)
+ *    gravity_restart_restore   after the first rebuild of a resumed run: the
+ *                              restart file's far field back in place
+ *    gravity_reuse_decide      before a FORCE phase: whether it reuses the
+ *                              far field of the last full evaluation (sets
+ *                              e->gp.replay; not after a rebuild)
+ *    gravity_reuse_remember    after a FORCE phase that evaluated in full:
+ *                              the positions and distances the next decide
+ *                              compares with
+ *    gravity_estimate_first    before the first FORCE phase: the adaptive
+ *                              criterion's scale (gravity_estimate); 1 if it
+ *                              changed the particles' ga and pot
+ *    gravity_graph_made        the gravity tasks are the graph's first
+ *                              nr_tasks: the per-cell data grown to the new
+ *                              cells, one interaction list per task (reuse)
+ *    gravity_graph_free        the task graph is freed: the lists too
+ *    gravity_top_pair_is_near  whether two top-level cells get a pair task
+ *                              (tasks/gravity/gravity_cpu.c)
+ *    gravity_potential_energy  1/2 sum_i m_i pot_i (the statistics)
+ *    gravity_log_end           the run's closing line on the far-field reuse
+ *  gravity_gpu_*       self-gravity's part of the GPU runner's FORCE phase,
+ *                      on its device state (tasks/gravity/gpu_gravity_runner.c,
+ *                      CUDA builds only; src/gpu/gpu_engine.c):
+ *    gravity_gpu_new      the device state on g (Scheduler:gpu_multipoles,
+ *                         Scheduler:gpu_walks: device: up_on_device,
+ *                         walk_on_device)
+ *    gravity_gpu_prepare  the tree, the multipoles' staging and the workers'
+ *                         lists for a device evaluation; 0 when the CPU has
+ *                         nothing to do (a step that reuses the far field,
+ *                         or the walks on the device)
+ *    gravity_gpu_task     run a gravity task on a CPU worker, its walks
+ *                         recording their interactions for the device
+ *    gravity_gpu_device   the device part: ga and pot complete on both sides
+ *    gravity_gpu_print, gravity_gpu_free */
+#define TASK_FAMILY_ENTRIES(X)                                                              \
+  X(kick,    void, kick_dt_culprit, (const struct engine *e, char *why, size_t len))         \
+  X(damage,  int,  flaws_check_values,                                                       \
+    (size_t n, const int64_t *offset, const double *eps, char *msg, size_t len))             \
+  X(gravity, int64_t, gravity_cell_doubles, (void))                                          \
+  X(gravity, void, gravity_restart_read, (struct engine *e, struct restart_gravity *g))      \
+  X(gravity, void, gravity_restart_save, (const struct engine *e, struct restart_gravity *g)) \
+  X(gravity, void, gravity_restart_restore, (struct engine *e))                              \
+  X(gravity, void, gravity_reuse_decide, (struct engine *e, int rebuilt))                    \
+  X(gravity, void, gravity_reuse_remember, (struct engine *e))                               \
+  X(gravity, int,  gravity_estimate_first, (struct engine *e))                               \
+  X(gravity, void, gravity_graph_made, (struct engine *e, int nr_tasks))                     \
+  X(gravity, void, gravity_graph_free, (struct engine *e))                                   \
+  X(gravity, int,  gravity_top_pair_is_near,                                                 \
+    (const struct cell *ci, const struct cell *cj, const struct gravity_props *gp))          \
+  X(gravity, double, gravity_potential_energy, (const struct parts *p))                      \
+  X(gravity, void, gravity_log_end, (const struct engine *e))                                \
+  X(gravity, struct gravity_gpu *, gravity_gpu_new,                                          \
+    (struct gpu *g, int up_on_device, int walk_on_device))                                   \
+  X(gravity, int,  gravity_gpu_prepare, (struct engine *e, struct gravity_gpu *gg))          \
+  X(gravity, void, gravity_gpu_task,                                                         \
+    (struct engine *e, struct gravity_gpu *gg, struct task *t, int thread_id))               \
+  X(gravity, void, gravity_gpu_device, (struct engine *e, struct gravity_gpu *gg))           \
+  X(gravity, void, gravity_gpu_print, (const struct gravity_gpu *gg, FILE *f))               \
+  X(gravity, void, gravity_gpu_free, (struct gravity_gpu *gg))
+
+/* TASK_FAMILY_INTERFACES(X): X(family, header): the header of a family that
+ * src/ may include besides this one: what the engine holds of the family by
+ * value (gravity: its settings, struct gravity_props, and its state behind
+ * a pointer).  Such a header includes nothing of tasks/ but this registry
+ * and tasks/hydro/ (tests/repo/test_layers.py checks both). */
+#define TASK_FAMILY_INTERFACES(X) \
+  X(gravity, "tasks/gravity/gravity_props.h")
 
 /* ------------------------------------------------------------ expansions */
 
@@ -190,9 +270,11 @@ enum task_family {
 
 /** The points of TASK_FAMILY_HOOKS (column when). */
 enum task_family_when {
+  task_family_at_init,        /**< the units and SPH settings are read (engine_init) */
   task_family_at_ic,          /**< the initial conditions are read */
   task_family_at_start,       /**< the particles are read (ICs or restart file) */
   task_family_at_first_force, /**< the first force computation starts */
+  task_family_at_clean,       /**< the engine is freed (engine_clean) */
 };
 
 /** The bit (1u << family) of every HYDRO family (column policy). */
@@ -217,9 +299,16 @@ enum task_family_when {
 #ifndef __cplusplus
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 struct engine;
 struct task;
+struct cell;
+struct parts;
+struct gpu;
+struct gravity_props;
+struct gravity_gpu;
+struct restart_gravity;
 /* The CPU function of every kind of task, and the predicate of every chain
  * (tasks/<family>/<family>_task.c). */
 #define TASK_FAMILY_ACTIVE_DECL_chain(active) int active(const struct engine *e);

@@ -14,7 +14,7 @@
 #include "src/materials/material.h"
 #include "src/io/params.h"
 #include "src/runner.h"
-#include "tasks/gravity/gpu_gravity.h"
+#include "tasks/task_families.h"
 
 /** Where the work of a FORCE phase runs (Scheduler:gpu, gpu_policy.h). */
 enum gpu_engine_mode {
@@ -26,31 +26,28 @@ enum gpu_engine_mode {
 
 /** The engine's GPU state. */
 struct gpu_engine {
-  int mode;                       /**< enum gpu_engine_mode */
-  struct gpu *gpu;                /**< the device */
-  struct gpu_cells cells;         /**< leaves and lists */
-  int dev_valid;                  /**< the device holds the current particles */
-  int host_stale;                 /**< the device has changed them since the last copy back */
-  double t_bounds;                /**< host seconds updating cell bounds after drifts */
-  long steps;                     /**< FORCE phases run */
-  double *tc_h_cap;               /**< cap on h per task cell */
-  int nr_tc;                      /**< its length */
-  struct gravity_gpu_rec *rec;    /**< interactions recorded by each CPU worker */
-  int nr_rec;                     /**< workers (length of rec) */
-  struct gpu_grav *grav;          /**< self-gravity's device state */
-  struct gpu_grav_host grav_host; /**< its host side: the tree as index arrays */
-  struct gravity_multipole *mp;   /**< pinned staging of the multipoles (grav_up tasks fill it) */
-  int up_on_device;               /**< Scheduler:gpu_multipoles: device (P2M, M2M on the GPU) */
-  int walk_on_device;             /**< Scheduler:gpu_walks: device (the walks on the GPU too) */
-  double t_grav_walk;             /**< host seconds of the gravity tasks (up, walks) */
-  double t_grav_gpu;              /**< seconds of the device part (copies included) */
-  long grav_evals;                /**< gravity evaluations */
-  double t_phase;                 /**< host seconds of the FORCE phases */
-  long phases;                    /**< FORCE phases */
-  double t_cpu_side;              /**< hybrid: seconds of the CPU's gravity tasks */
-  double t_gpu_side;              /**< hybrid: seconds of the hydro thread until the kick */
-  double t_waited;                /**< hybrid: seconds the kick waited for the CPU */
-  long hybrid_phases;             /**< FORCE phases run hybrid (with CPU work beside) */
+  int mode;                 /**< enum gpu_engine_mode */
+  struct gpu *gpu;          /**< the device */
+  struct gpu_cells cells;   /**< leaves and lists */
+  int dev_valid;            /**< the device holds the current particles */
+  int host_stale;           /**< the device has changed them since the last copy back */
+  double t_bounds;          /**< host seconds updating cell bounds after drifts */
+  long steps;               /**< FORCE phases run */
+  double *tc_h_cap;         /**< cap on h per task cell */
+  int nr_tc;                /**< its length */
+  struct gravity_gpu *grav; /**< self-gravity's part (tasks/gravity, through the
+                                 registry's gravity_gpu_* entry points), NULL: none */
+  int up_on_device;         /**< Scheduler:gpu_multipoles: device (P2M, M2M on the GPU) */
+  int walk_on_device;       /**< Scheduler:gpu_walks: device (the walks on the GPU too) */
+  double t_grav_walk;       /**< host seconds of the gravity tasks (up, walks) */
+  double t_grav_gpu;        /**< seconds of the device part (copies included) */
+  long grav_evals;          /**< gravity evaluations */
+  double t_phase;           /**< host seconds of the FORCE phases */
+  long phases;              /**< FORCE phases */
+  double t_cpu_side;        /**< hybrid: seconds of the CPU's gravity tasks */
+  double t_gpu_side;        /**< hybrid: seconds of the hydro thread until the kick */
+  double t_waited;          /**< hybrid: seconds the kick waited for the CPU */
+  long hybrid_phases;       /**< FORCE phases run hybrid (with CPU work beside) */
 };
 
 /** Grow the per-leaf arrays to n. */
@@ -595,8 +592,7 @@ void gpu_engine_init(struct engine *e) {
         "yet (the reuse's tolerance is measured by the CPU's walks)",
         params_filename(e->params));
   if (e->gp.enabled && mode != GPU_MODE_CPU_GRAV) {
-    ge->grav = gpu_grav_new(g);
-    ge->grav_host.built_rebuild = -1;
+    ge->grav = gravity_gpu_new(g, ge->up_on_device, ge->walk_on_device);
   }
   /* the host thread driving the GPU then sleeps while it waits: the CPU
    * workers have every core */
@@ -642,51 +638,26 @@ void gpu_engine_init(struct engine *e) {
 
 /** Scheduler callback of the gravity pass: the engine's task, with the
  *  calling worker's interactions recorded in its own list; after a
- *  grav_up task, its cell's multipoles go to the upload staging. */
+ *  grav_up task, its cell's multipoles go to the upload staging (the
+ *  family's gravity_gpu_task). */
 static void gpu_engine_grav_task(void *ctx, struct task *t, int thread_id) {
   struct engine *e = ctx;
-  gravity_gpu_record(&e->gpu->rec[thread_id]);
-  engine_run_task(ctx, t, thread_id);
-  gravity_gpu_record(NULL);
-  if (t->type == task_type_grav_up) gpu_grav_pack_multipoles(e->gpu->mp, t->ci, e->gcells);
+  gravity_gpu_task(e, e->gpu->grav, t, thread_id);
 }
 
-/** Self-gravity of the FORCE phase, in three parts.  Prepare (here): the
- *  tree on the device after a rebuild, the staging of the multipoles, the
- *  workers' lists emptied, the gravity tasks of the graph activated (with
- *  on_gpu, grav_down, the GPU's, skipped).  Returns 0 when the step reuses
- *  the far field (Gravity:reuse_steps): the GPU alone then, nothing on the
- *  CPU.  These make CUDA calls: before any thread drives the GPU beside. */
+/** Self-gravity of the FORCE phase, in three parts.  Prepare (here): with
+ *  on_gpu the family's gravity_gpu_prepare (the tree on the device after a
+ *  rebuild, the staging of the multipoles, the workers' lists emptied),
+ *  then the gravity tasks of the graph activated (with on_gpu, grav_down,
+ *  the GPU's, skipped).  Returns 0 when the step reuses the far field
+ *  (Gravity:reuse_steps) or the walks run on the device: the GPU alone
+ *  then, nothing on the CPU.  These make CUDA calls: before any thread
+ *  drives the GPU beside. */
 static int gpu_engine_grav_prepare(struct engine *e, int on_gpu) {
   struct gpu_engine *ge = e->gpu;
   if (on_gpu) {
     ge->grav_evals++;
-    if (e->gp.replay) return 0;
-    struct gpu_grav_host *h = &ge->grav_host;
-    if (h->built_rebuild != e->space.nr_rebuilds || h->built_cells != e->space.cells) {
-      gpu_grav_tree_build(h, &e->space);
-      gpu_grav_set_tree(ge->grav, &h->tree);
-    }
-    ge->mp = gpu_grav_multipoles(ge->grav, e->space.nr_cells);
-    /* Scheduler:gpu_multipoles: device: P2M and M2M on the GPU, the
-     * multipoles back where the CPU walks; the grav_up tasks are skipped
-     * below */
-    if (ge->up_on_device)
-      gpu_grav_up_cells(ge->grav, &e->parts, &e->space, ge->walk_on_device ? NULL : e->gcells,
-                        &e->gp, 1);
-    /* Scheduler:gpu_walks: device: the walks too; nothing left for the CPU */
-    if (ge->walk_on_device) {
-      gpu_grav_walk_cells(ge->grav, h, &e->space, &e->gp);
-      return 0;
-    }
-    const int nw = e->sched.nr_threads > 0 ? e->sched.nr_threads : 1;
-    if (nw > ge->nr_rec) {
-      ge->rec = error_realloc(ge->rec, nw * sizeof *ge->rec, "gravity lists");
-      memset(ge->rec + ge->nr_rec, 0, (nw - ge->nr_rec) * sizeof *ge->rec);
-      ge->nr_rec = nw;
-    }
-    for (int w = 0; w < ge->nr_rec; w++)
-      ge->rec[w].part.n = ge->rec[w].field.n = ge->rec[w].part_sym.n = ge->rec[w].field_sym.n = 0;
+    if (!gravity_gpu_prepare(e, ge->grav)) return 0;
   }
   engine_activate_phase(e, ENGINE_PHASE_FORCE);
   for (int k = 0; k < e->sched.nr_tasks; k++) {
@@ -714,15 +685,14 @@ static void gpu_engine_set_bins(struct engine *e) {
   gpu_set_bins(e->gpu->gpu, &b);
 }
 
-/** The device part (gpu_grav_run: grouping included, or the replay of a
- *  step that reuses the far field), which leaves ga and pot complete on
- *  both sides for the kick, on stream 0 after whatever is queued there. */
+/** The device part (the family's gravity_gpu_device: gpu_grav_run,
+ *  grouping included, or the replay of a step that reuses the far field),
+ *  which leaves ga and pot complete on both sides for the kick, on stream 0
+ *  after whatever is queued there. */
 static void gpu_engine_grav_device(struct engine *e) {
   struct gpu_engine *ge = e->gpu;
-  const struct gravity_props *gp = &e->gp;
   const double w0 = error_walltime();
-  gpu_grav_run(ge->grav, &e->parts, gp->replay ? NULL : ge->rec, gp->replay ? 0 : ge->nr_rec, gp->G,
-               gp->eps, gp->softening, gp->eps2_expansion, gp->order, 1, gp->replay);
+  gravity_gpu_device(e, ge->grav);
   ge->t_grav_gpu += error_walltime() - w0;
 }
 
@@ -962,7 +932,7 @@ void gpu_engine_print(const struct engine *e, FILE *f) {
               1e3 * ge->t_gpu_side / ge->hybrid_phases, 1e3 * ge->t_waited / ge->hybrid_phases);
     fprintf(f, "\n");
   }
-  gpu_grav_print(ge->grav, f);
+  gravity_gpu_print(ge->grav, f);
   double run = 0.0, total = 0.0;
   gpu_memory_used(ge->gpu, &run, &total);
   fprintf(f, "GPU memory: %.1f MiB held by the run (%.0f bytes per particle) of %.1f GiB\n",
@@ -979,13 +949,10 @@ void gpu_engine_free(struct engine *e) {
   struct gpu_engine *ge = e->gpu;
   if (!ge) return;
   gpu_unpin(ge->gpu);
-  gpu_grav_free(ge->grav);
+  gravity_gpu_free(ge->grav);
   gpu_free(ge->gpu);
   gpu_cells_free(&ge->cells);
   free(ge->tc_h_cap);
-  for (int w = 0; w < ge->nr_rec; w++) gravity_gpu_rec_free(&ge->rec[w]);
-  free(ge->rec);
-  gpu_grav_host_free(&ge->grav_host);
   free(ge);
   e->gpu = NULL;
 }

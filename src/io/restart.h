@@ -63,15 +63,15 @@ struct restart_cells {
 };
 
 /** The far field of the last full gravity evaluation (Gravity:reuse_steps
- *  > 0, CPU runs), what the steps that reuse it read (engine.c,
- *  engine_gravity_reuse_decide; gravity_replay): saved since format 4 so
+ *  > 0, CPU runs), what the steps that reuse it read (the gravity family's
+ *  gravity_reuse_decide and gravity_replay): saved since format 4 so
  *  that a resumed run reuses it where the uninterrupted run does, and stays
  *  bit-identical.  present = 0: none (no reuse, no full evaluation yet, or
  *  a GPU run, whose far field stays on the device); the rest is then empty. */
 struct restart_gravity {
   int64_t present;      /**< 1: the members below hold the state */
-  int64_t reused;       /**< steps since the evaluation that reused it (engine grav_reused) */
-  int64_t replays;      /**< steps of the run that reused a far field (engine grav_replays) */
+  int64_t reused;       /**< steps since the evaluation that reused it (gravity_state.reused) */
+  int64_t replays;      /**< steps of the run that reused a far field (gravity_state.replays) */
   double d_min;         /**< shortest far-field distance of the evaluation (finite, > 0) */
   double *x0;           /**< positions at the evaluation, 3 per particle (x, y, z) */
   int64_t nr_cells;     /**< the space's cells (restart_cells.n) */

@@ -3,8 +3,9 @@
  * (tasks/gravity/gpu_gravity.cu) and its host side
  * (tasks/gravity/gpu_gravity_host.c: the cell tree as index arrays, the
  * multipoles packed for the upload, a whole evaluation in sequence).  The
- * GPU runner (src/gpu/gpu_engine.c) runs it in its FORCE phase.  Built only
- * when configure finds nvcc (HAVE_CUDA). */
+ * GPU runner (src/gpu/gpu_engine.c) runs it in its FORCE phase through the
+ * registry's entry points gravity_gpu_* (gpu_gravity_runner.c), without
+ * this header.  Built only when configure finds nvcc (HAVE_CUDA). */
 #ifndef BOLIDE_GPU_GRAVITY_H
 #define BOLIDE_GPU_GRAVITY_H
 

@@ -38,36 +38,11 @@
 #include <stddef.h>
 
 #include "tasks/gravity/gravity_iact.h"
+#include "tasks/gravity/gravity_props.h"
+#include "tasks/task_families.h"
 
 struct cell;
 struct parts;
-struct params;
-struct unit_system;
-
-/** Default of Gravity:epsilon_fmm (the same value as in src/io/param_list.h). */
-#define GRAVITY_EPSILON_FMM_DEFAULT 5e-5
-
-/** Parameters of self-gravity (section Gravity of the parameter file). */
-struct gravity_props {
-  int enabled;           /**< Gravity:enabled */
-  int direct;            /**< Gravity:direct: exact O(N^2) summation instead of the tree */
-  double G;              /**< gravitational constant in internal units */
-  double theta;          /**< Gravity:theta_cr, opening angle of the acceptance criterion */
-  double eps;            /**< Plummer-equivalent softening length (Gravity:softening) */
-  int softening;         /**< enum gravity_softening (Gravity:softening_kernel) */
-  int order;             /**< expansion order p (Gravity:multipole_order), 1..GRAVITY_ORDER_MAX */
-  double eta;            /**< Gravity:eta, time-step factor: dt = sqrt(2 eta eps / |a|) */
-  double epsilon_fmm;    /**< Gravity:epsilon_fmm, tolerance of the adaptive criterion (0: off) */
-  double h_support;      /**< distance beyond which the pair force is Newtonian (3 eps for the
-                              spline, 0 for Plummer whose expansions are softened) */
-  double eps2_expansion; /**< softening squared inside the expansions (eps^2 for Plummer, else 0) */
-  double h_factor;       /**< Gravity:softening_h_factor: > 0: eps_i = h_factor h_i, a pair's
-                              softening max(eps_i, eps_j), spline only (0: the constant eps) */
-  int reuse_steps;       /**< Gravity:reuse_steps: most steps in a row that reuse the far field */
-  double reuse_tol;      /**< Gravity:reuse_tolerance: largest displacement since the last full
-                              evaluation, in units of the shortest far-field distance */
-  int replay;            /**< set by the engine for one step: 1 = reuse the far field (below) */
-};
 
 /** One particle-level interaction of a walk: what a step that reuses the
  *  far field recomputes (gravity_replay). */
@@ -115,16 +90,6 @@ void gravity_replay(struct parts *p, const struct gravity_ilist *il, struct grav
 /** Free the interactions of il. */
 void gravity_ilist_free(struct gravity_ilist *il);
 
-/** Fill gp from the Gravity section of params; G from the unit system. */
-void gravity_props_init(struct gravity_props *gp, const struct params *params,
-                        const struct unit_system *us);
-
-/** Fill gp directly (tests, tools): softening eps with kernel `softening`,
- *  opening angle theta, expansion order p.  Out-of-range p stops with an
- *  error line. */
-void gravity_props_set(struct gravity_props *gp, double G, double theta, double eps, int softening,
-                       int order);
-
 /** Stop with a one-line error if gravity cannot run in this box (periodic). */
 void gravity_check_space(const struct gravity_props *gp, int periodic);
 
@@ -155,7 +120,7 @@ void gravity_long_range(struct parts *p, const struct cell *ci, const struct cel
 void gravity_down(struct parts *p, const struct cell *c, struct gravity_cell *gc,
                   const struct gravity_props *gp);
 
-/** 1 if top-level cells ci and cj should interact in a pair task: their
+/* gravity_top_pair_is_near: 1 if top-level cells ci and cj should interact in a pair task: their
  *  boxes fail the opening criterion (radius: half-diagonal of the particles'
  *  bounding box at the rebuild; distance between box centres).  It must give
  *  the same answer from one rebuild to the next: the pair tasks are made
@@ -165,9 +130,9 @@ void gravity_down(struct parts *p, const struct cell *c, struct gravity_cell *gc
  *  pair task and were skipped by the long-range task, so that collapsing
  *  bodies lost part of their gravity and energy drifted by ~1% in the
  *  Evrard test.)  The walks stay exact for any classification: they apply
- *  the acceptance criterion to the current multipoles at every level. */
-int gravity_top_pair_is_near(const struct cell *ci, const struct cell *cj,
-                             const struct gravity_props *gp);
+ *  the acceptance criterion to the current multipoles at every level.
+ *  Declared by the registry (TASK_FAMILY_ENTRIES): the engine builds the
+ *  graph with it. */
 
 /** The whole tree method without tasks, in the order the task graph runs
  *  it: gravity_estimate (when needed), up for every top-level cell, self
@@ -259,7 +224,8 @@ struct gravity_counters {
  *  reset them if reset. */
 void gravity_counters_get(struct gravity_counters *out, int reset);
 
-/** Potential energy 1/2 sum_i m_i pot_i (pot from a complete gravity pass). */
-double gravity_potential_energy(const struct parts *p);
+/* double gravity_potential_energy(const struct parts *p): potential energy
+ * 1/2 sum_i m_i pot_i (pot from a complete gravity pass), declared by the
+ * registry (TASK_FAMILY_ENTRIES). */
 
 #endif

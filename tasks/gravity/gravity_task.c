@@ -2,7 +2,7 @@
  * walks (self, near pair, long range) and the downward pass of the
  * top-level cells and their split (engine_graph.c). */
 #include "src/engine.h"
-#include "tasks/gravity/gravity_cpu.h"
+#include "tasks/gravity/gravity_state.h"
 
 /** A gravity walk task: self (cj == ci), near pair, or long range (cj
  *  NULL); records its particle-level interactions when the far field may
@@ -10,21 +10,21 @@
 static void gravity_walk_task(struct engine *e, const struct task *t, const struct cell *ci,
                               const struct cell *cj) {
   struct parts *p = &e->parts;
-  struct gravity_ilist *il = t->id < e->nr_gilists ? &e->gilists[t->id] : NULL;
+  struct gravity_ilist *il = t->id < e->grav->nr_lists ? &e->grav->lists[t->id] : NULL;
   if (e->gp.replay) {
-    gravity_replay(p, il, e->gcells, &e->gp);
+    gravity_replay(p, il, e->grav->cells, &e->gp);
     return;
   }
   gravity_record_begin(il);
   if (cj)
-    gravity_interact_cells(p, ci, cj, e->gcells, &e->gp);
+    gravity_interact_cells(p, ci, cj, e->grav->cells, &e->gp);
   else
-    gravity_long_range(p, ci, e->space.cells, e->space.nr_top, e->gcells, &e->gp);
+    gravity_long_range(p, ci, e->space.cells, e->space.nr_top, e->grav->cells, &e->gp);
   gravity_record_end();
 }
 
 void gravity_up_task(struct engine *e, struct task *t) {
-  gravity_up(&e->parts, t->ci, e->gcells, &e->gp);
+  gravity_up(&e->parts, t->ci, e->grav->cells, &e->gp);
 }
 
 void gravity_self_task(struct engine *e, struct task *t) {
@@ -43,5 +43,5 @@ void gravity_long_range_task(struct engine *e, struct task *t) {
 }
 
 void gravity_down_task(struct engine *e, struct task *t) {
-  gravity_down(&e->parts, t->ci, e->gcells, &e->gp);
+  gravity_down(&e->parts, t->ci, e->grav->cells, &e->gp);
 }

@@ -16,7 +16,7 @@ B=${BOLIDE_BUILDDIR:?}; S=${BOLIDE_SRCDIR:?}
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
 defaults=$(awk '/define GRAVITY_EPSILON_FMM_DEFAULT/ {e = $3}
-                END {print e}' "$S/tasks/gravity/gravity_cpu.h")
+                END {print e}' "$S/tasks/gravity/gravity_props.h")
 order=$(awk '/define GRAVITY_ORDER_DEFAULT/ {print $3}' "$S/tasks/gravity/gravity_iact.h")
 cfg="$defaults,0.5,$order"
 echo "defaults: epsilon_fmm, theta_cr, order = $cfg"

@@ -9,18 +9,23 @@ Fails (one FAIL line per finding) when
              through tasks/families.am, which tools/families_am.sh writes from
              the registry (and which must be current), a shared folder's
              fragment is not included by Makefile.am, a kind of task
-             (TASK_FAMILY_TASKS), a hook (TASK_FAMILY_HOOKS) or an entry
-             point (TASK_FAMILY_ENTRIES) names a family that is not in the
-             registry, or a file of a folder
+             (TASK_FAMILY_TASKS), a hook (TASK_FAMILY_HOOKS), an entry
+             point (TASK_FAMILY_ENTRIES) or an interface header
+             (TASK_FAMILY_INTERFACES) names a family that is not in the
+             registry, an interface header is not a file of its family's
+             folder, or a file of a folder
              tasks/<family>/ or tasks/<shared>/ is not listed in its own
              local.am (or listed in another fragment);
   hand list  a C or CUDA line outside the registry lists three or more family
              names as strings (a list kept by hand beside the registry: the
              names of Scheduler:gpu, of timers or of GPU stages);
   layers     a file includes across the layers of theory/architecture.md, "Layers":
-               src/ (engine, scheduler, io, gpu) -> tasks/: only the registry
-                 and tasks/hydro/ (the SPH settings the engine holds, the
-                 kernel whose support sizes its cells), never a family
+               src/ (engine, scheduler, io, gpu) -> tasks/: only the registry,
+                 tasks/hydro/ (the SPH settings the engine holds, the
+                 kernel whose support sizes its cells) and the interface
+                 headers the registry names (TASK_FAMILY_INTERFACES: what the
+                 engine holds of a family), never a family's internals
+               an interface header -> tasks/: only what src/ may include
                tasks/hydro/ -> only itself and what src/materials/ may
                  include (it sits below the families and the engine)
                src/materials/ -> anything but src/materials/, the portability
@@ -90,6 +95,9 @@ families = [m.group(1) for l in macro_body("TASK_FAMILIES") for m in [re.match(r
 kinds = [m.group(1) for l in macro_body("TASK_FAMILY_TASKS") for m in [re.match(r"\s*X\((\w+),", l)] if m]
 hooks = [m.group(1) for l in macro_body("TASK_FAMILY_HOOKS") for m in [re.match(r"\s*X\((\w+),", l)] if m]
 entries = [m.group(1) for l in macro_body("TASK_FAMILY_ENTRIES") for m in [re.match(r"\s*X\((\w+),", l)] if m]
+interfaces = [m.groups() for l in macro_body("TASK_FAMILY_INTERFACES")
+              for m in [re.match(r'\s*X\((\w+),\s*"([^"]+)"\)', l)] if m]
+INTERFACES = {h for _, h in interfaces}  # the family headers src/ may include
 if not families:
     fail("the registry lists no family")
 if len(set(families)) != len(families):
@@ -100,6 +108,11 @@ for k in sorted(set(hooks) - set(families)):
     fail("TASK_FAMILY_HOOKS: '%s' is not a family of the registry" % k)
 for k in sorted(set(entries) - set(families)):
     fail("TASK_FAMILY_ENTRIES: '%s' is not a family of the registry" % k)
+for k, h in interfaces:
+    if k not in families:
+        fail("TASK_FAMILY_INTERFACES: '%s' is not a family of the registry" % k)
+    elif not h.startswith("tasks/%s/" % k) or not os.path.isfile(h):
+        fail("TASK_FAMILY_INTERFACES: %s is not a header of tasks/%s/" % (h, k))
 for f in families:
     if f not in kinds:
         fail("family %s makes no kind of task (TASK_FAMILY_TASKS)" % f)
@@ -208,8 +221,13 @@ def violation(src, dst):
     sit on top of every layer."""
     if os.path.basename(src).startswith("main_"):
         return None
-    if src.startswith("src/") and dst.startswith("tasks/") and not dst.startswith(ENGINE_OK):
-        return "src/ reaches into a family's internals (only tasks/task_families.h, tasks/hydro/)"
+    if src.startswith("src/") and dst.startswith("tasks/") and not dst.startswith(ENGINE_OK) \
+            and dst not in INTERFACES:
+        return ("src/ reaches into a family's internals (only tasks/task_families.h, tasks/hydro/ "
+                "and the interface headers of TASK_FAMILY_INTERFACES)")
+    if src in INTERFACES and dst.startswith("tasks/") and not dst.startswith(ENGINE_OK) \
+            and dst not in INTERFACES:
+        return "a family's interface header includes what src/ may not (its family's internals)"
     if src.startswith("tasks/hydro/") and not dst.startswith(HYDRO_OK):
         return "tasks/hydro/ includes above its layer (families, engine)"
     if src.startswith("src/materials/") and not dst.startswith(MATERIALS_OK):
@@ -223,7 +241,7 @@ def violation(src, dst):
 
 arrows = {}
 for p in sources:
-    if not p.startswith(("src/", "tasks/hydro/")):
+    if not p.startswith(("src/", "tasks/hydro/")) and p not in INTERFACES:
         continue
     for name in include_re.findall(read(p)):
         dst = resolve(p, name)

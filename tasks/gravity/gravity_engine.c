@@ -1,0 +1,226 @@
+/* Self-gravity's part of the engine outside its tasks (tasks/task_families.h:
+ * the hooks gravity_engine_init and gravity_engine_clean, the entry points
+ * gravity_*): its settings and state, the per-cell data and interaction
+ * lists at each rebuild of the task graph, the far field that steps reuse
+ * (Gravity:reuse_steps) and its place in the restart file.  The engine
+ * (src/engine.c, src/engine_graph.c) holds the state behind e->grav and calls
+ * these through the registry. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "src/engine.h"
+#include "src/error.h"
+#include "tasks/gravity/gravity_state.h"
+
+void gravity_engine_init(struct engine *e) {
+  gravity_props_init(&e->gp, e->params, &e->us);
+  e->grav = error_calloc(1, sizeof *e->grav, "gravity state");
+}
+
+void gravity_engine_clean(struct engine *e) {
+  struct gravity_state *g = e->grav;
+  if (!g) return;
+  free(g->cells);
+  free(g->x0);
+  restart_gravity_free(&g->restart);
+  free(g);
+  e->grav = NULL;
+}
+
+int64_t gravity_cell_doubles(void) {
+  return (int64_t)(sizeof(struct gravity_cell) / sizeof(double));
+}
+
+void gravity_graph_made(struct engine *e, int nr_tasks) {
+  struct gravity_state *g = e->grav;
+  g->cells = gravity_cells_reserve(g->cells, &g->cells_cap, e->space.cells_capacity);
+  if (e->gp.reuse_steps > 0) {
+    /* the gravity tasks are the first nr_tasks: one list each */
+    g->nr_lists = nr_tasks;
+    g->lists = error_calloc(g->nr_lists, sizeof *g->lists, "gravity interaction lists");
+  }
+}
+
+void gravity_graph_free(struct engine *e) {
+  struct gravity_state *g = e->grav;
+  if (!g) return;
+  for (int k = 0; k < g->nr_lists; k++) gravity_ilist_free(&g->lists[k]);
+  free(g->lists);
+  g->lists = NULL;
+  g->nr_lists = 0;
+}
+
+int gravity_estimate_first(struct engine *e) {
+  return e->gp.enabled && gravity_estimate(&e->parts, e->space.cells, e->space.nr_top,
+                                           e->grav->cells, &e->gp, e->nr_threads);
+}
+
+/** Whether the coming force phase may reuse the gravitational far field of
+ *  the last full evaluation (Gravity:reuse_steps, gravity_cpu.h): not after
+ *  a rebuild, not more than reuse_steps times in a row, and only while
+ *  every particle has moved less than reuse_tolerance times the shortest
+ *  far-field distance of that evaluation.  Sets e->gp.replay. */
+void gravity_reuse_decide(struct engine *e, int rebuilt) {
+  struct gravity_state *g = e->grav;
+  e->gp.replay = 0;
+  if (!e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0 || g->x0 == NULL || rebuilt ||
+      g->reused >= e->gp.reuse_steps || !(g->d_min < HUGE_VAL))
+    return;
+  const struct parts *p = &e->parts;
+  const double *x0 = g->x0;
+  double d2max = 0.0;
+  for (size_t i = 0; i < p->count; i++) {
+    const double dx = p->x[i] - x0[3 * i], dy = p->y[i] - x0[3 * i + 1],
+                 dz = p->z[i] - x0[3 * i + 2];
+    const double d2 = dx * dx + dy * dy + dz * dz;
+    if (d2 > d2max) d2max = d2;
+  }
+  const double lim = e->gp.reuse_tol * g->d_min;
+  if (d2max < lim * lim) {
+    e->gp.replay = 1;
+    g->reused++;
+    g->replays++;
+  }
+}
+
+/** After a force phase that evaluated gravity in full (reuse on): remember
+ *  the positions and the shortest far-field distance of the walks. */
+void gravity_reuse_remember(struct engine *e) {
+  if (!e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0 || e->gp.replay) return;
+  struct gravity_state *g = e->grav;
+  const struct parts *p = &e->parts;
+  g->x0 = error_realloc(g->x0, 3 * (p->count ? p->count : 1) * sizeof(double),
+                        "gravity reuse positions");
+  for (size_t i = 0; i < p->count; i++) {
+    g->x0[3 * i] = p->x[i];
+    g->x0[3 * i + 1] = p->y[i];
+    g->x0[3 * i + 2] = p->z[i];
+  }
+  g->d_min = HUGE_VAL;
+  for (int k = 0; k < g->nr_lists; k++)
+    if (g->lists[k].d_min > 0.0 && g->lists[k].d_min < g->d_min) g->d_min = g->lists[k].d_min;
+  g->reused = 0;
+}
+
+/** The far field that the coming steps may reuse, for the restart file
+ *  (r->present 0: none; CPU runs only, the GPU's stays on the device):
+ *  the positions and shortest distance of the last full evaluation, the
+ *  multipole and local expansion of every cell with particles (the walks
+ *  skip empty cells, and gravity_up leaves those below the top level
+ *  unset) and every task's interaction list (cells by index).  Free with
+ *  restart_gravity_free. */
+void gravity_restart_save(const struct engine *e, struct restart_gravity *r) {
+  const struct gravity_state *g = e->grav;
+  memset(r, 0, sizeof *r);
+  if (!e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0 || !g->x0 ||
+      !(g->d_min < HUGE_VAL) || e->gpu || g->nr_lists < 1)
+    return;
+  const struct parts *p = &e->parts;
+  const int nc = e->space.nr_cells;
+  r->present = 1;
+  r->reused = g->reused;
+  r->replays = g->replays;
+  r->d_min = g->d_min;
+  r->x0 = error_malloc(3 * (p->count ? p->count : 1) * sizeof(double), "restart far field");
+  memcpy(r->x0, g->x0, 3 * p->count * sizeof(double));
+  r->nr_cells = nc;
+  r->cell_doubles = sizeof(struct gravity_cell) / sizeof(double);
+  r->cell_index =
+      error_malloc(((size_t)nc ? (size_t)nc : 1) * sizeof(int32_t), "restart far field");
+  r->cells = error_malloc(((size_t)nc ? (size_t)nc : 1) * sizeof(struct gravity_cell),
+                          "restart far field");
+  for (int c = 0; c < nc; c++)
+    if (e->space.cells[c].count > 0) {
+      r->cell_index[r->nr_saved] = c;
+      memcpy((struct gravity_cell *)r->cells + r->nr_saved++, g->cells + c,
+             sizeof(struct gravity_cell));
+    }
+  r->nr_lists = g->nr_lists;
+  r->list_count = error_malloc((size_t)g->nr_lists * sizeof(int64_t), "restart far field");
+  r->list_d_min = error_malloc((size_t)g->nr_lists * sizeof(double), "restart far field");
+  size_t items = 0;
+  for (int k = 0; k < g->nr_lists; k++) items += (size_t)g->lists[k].count;
+  r->items = error_malloc(16 * (items ? items : 1), "restart far field");
+  size_t q = 0;
+  for (int k = 0; k < g->nr_lists; k++) {
+    const struct gravity_ilist *il = &g->lists[k];
+    r->list_count[k] = il->count;
+    r->list_d_min[k] = il->d_min;
+    for (int j = 0; j < il->count; j++, q++) {
+      const struct gravity_iitem *it = &il->item[j];
+      int32_t *o = r->items + 4 * q;
+      o[0] = it->a->index;
+      o[1] = it->b ? it->b->index : -1;
+      o[2] = it->kind;
+      o[3] = it->symmetric;
+    }
+  }
+}
+
+void gravity_restart_read(struct engine *e, struct restart_gravity *r) {
+  restart_gravity_free(&e->grav->restart);
+  e->grav->restart = *r;
+  memset(r, 0, sizeof *r);
+}
+
+/** After the first rebuild of a resumed run (the cells and task graph of
+ *  the uninterrupted run, space_restore): the far field of the restart
+ *  file back in place, so that the coming steps reuse it as the
+ *  uninterrupted run does.  A GPU run drops it (its far field lives on the
+ *  device): its first step evaluates gravity in full, within the reuse
+ *  tolerance of the uninterrupted run. */
+void gravity_restart_restore(struct engine *e) {
+  struct gravity_state *g = e->grav;
+  struct restart_gravity *r = &g->restart;
+  if (!r->present) return;
+  if (e->gpu || !e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0) {
+    if (e->gpu)
+      error_log(0,
+                "gravity: the far field of the restart file is not used on the GPU: the first step "
+                "evaluates it in full");
+    restart_gravity_free(r);
+    return;
+  }
+  const struct parts *p = &e->parts;
+  if (r->nr_cells != e->space.nr_cells || r->nr_lists != g->nr_lists)
+    error_exit(
+        "%s: the far field of %lld cells and %lld gravity tasks does not match the restored cells "
+        "(%d) and task graph (%d gravity tasks)",
+        e->restart_file, (long long)r->nr_cells, (long long)r->nr_lists, e->space.nr_cells,
+        g->nr_lists);
+  g->x0 = error_realloc(g->x0, 3 * (p->count ? p->count : 1) * sizeof(double),
+                        "gravity reuse positions");
+  memcpy(g->x0, r->x0, 3 * p->count * sizeof(double));
+  g->d_min = r->d_min;
+  g->reused = (int)r->reused;
+  g->replays = (long)r->replays;
+  for (int64_t c = 0; c < r->nr_saved; c++)
+    memcpy(g->cells + r->cell_index[c], (const struct gravity_cell *)r->cells + c,
+           sizeof(struct gravity_cell));
+  size_t q = 0;
+  for (int k = 0; k < g->nr_lists; k++) {
+    struct gravity_ilist *il = &g->lists[k];
+    const int n = (int)r->list_count[k];
+    if (n > il->capacity) {
+      il->item = error_realloc(il->item, (size_t)n * sizeof *il->item, "gravity interaction list");
+      il->capacity = n;
+    }
+    il->count = n;
+    il->d_min = r->list_d_min[k];
+    for (int j = 0; j < n; j++, q++) {
+      const int32_t *it = r->items + 4 * q;
+      il->item[j] = (struct gravity_iitem){
+          &e->space.cells[it[0]], it[1] >= 0 ? &e->space.cells[it[1]] : NULL, it[2], it[3]};
+    }
+  }
+  restart_gravity_free(r);
+}
+
+void gravity_log_end(const struct engine *e) {
+  if (e->gp.enabled && e->gp.reuse_steps > 0)
+    error_log(0,
+              "gravity: %ld of %ld steps reused the far field (Gravity:reuse_steps %d, "
+              "reuse_tolerance %g)",
+              e->grav->replays, e->step, e->gp.reuse_steps, e->gp.reuse_tol);
+}

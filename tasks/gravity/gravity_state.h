@@ -1,0 +1,27 @@
+/* The gravity family's state in a run: what struct engine holds behind its
+ * pointer e->grav (tasks/gravity/gravity_props.h declares it opaque).  The
+ * family's tasks (gravity_task.c), its part of the engine's rebuild,
+ * restart and step loop (gravity_engine.c) and its part of the GPU runner
+ * (gpu_gravity_runner.c) read it; src/ does not. */
+#ifndef BOLIDE_GRAVITY_STATE_H
+#define BOLIDE_GRAVITY_STATE_H
+
+#include "src/io/restart.h"
+#include "tasks/gravity/gravity_cpu.h"
+
+/** Self-gravity's data of a run. */
+struct gravity_state {
+  struct gravity_cell *cells;     /**< gravity data of every cell, by cell index */
+  int cells_cap;                  /**< its allocated length */
+  struct gravity_ilist *lists;    /**< interaction list of each gravity task, by task id
+                                       (Gravity:reuse_steps > 0; else NULL) */
+  int nr_lists;                   /**< their number */
+  double *x0;                     /**< positions at the last full gravity evaluation (reuse) */
+  double d_min;                   /**< shortest far-field distance of that evaluation */
+  int reused;                     /**< steps since it that reused its far field */
+  long replays;                   /**< steps of the run that reused the far field */
+  struct restart_gravity restart; /**< the far field read from the restart file, restored
+                                       after the first rebuild (restart.present 0: none) */
+};
+
+#endif
