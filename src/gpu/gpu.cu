@@ -545,16 +545,21 @@ extern "C" void gpu_download_all(struct gpu *g, struct parts *p) {
   gpu_check(cudaStreamSynchronize(g->stream[0]));
 }
 
-extern "C" void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt, double xsph,
-                          double h_max, int h_continuity) {
+extern "C" void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt,
+                          const struct hydro_props *hp, const struct material_table *mats) {
   if (p->count != g->dev.count) error_bug("GPU and host particle counts differ");
   gpu_pin(g, p);
   cudaStream_t s = g->stream[0];
   gpu_check(cudaEventRecord(g->ev_drift[0], s));
-  if (g->bins.on)
-    drift_bins_gpu_launch(s, g->dev, &g->bins, xsph, h_max, h_continuity);
-  else
-    drift_gpu_launch(s, g->dev, dt_kick, dt, xsph, h_max, h_continuity);
+  if (g->bins.on) {
+    /* the materials of the sleeping particles' prediction (a resumed run
+     * drifts before its first force phase has uploaded them) */
+    gpu_stage_materials(g, mats);
+    gpu_check(cudaMemcpyAsync(g->mats_dev, g->mats_host, sizeof *mats, cudaMemcpyHostToDevice, s));
+    drift_bins_gpu_launch(s, g->dev, &g->bins, *hp, g->mats_dev);
+  } else {
+    drift_gpu_launch(s, g->dev, dt_kick, dt, hp->xsph, hp->h_max, hp->h_continuity);
+  }
   const int idx[4] = {gpu_field_index("x"), gpu_field_index("y"), gpu_field_index("z"),
                       gpu_field_index("h")};
   gpu_copy_fields(g, p, idx, 4, 0);

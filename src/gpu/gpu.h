@@ -131,11 +131,13 @@ void gpu_upload_all(struct gpu *g, const struct parts *p);
 /** Copy every particle field back to the host (outputs, rebuilds). */
 void gpu_download_all(struct gpu *g, struct parts *p);
 /** First half kick by dt_kick and drift by dt of the resident particles
- *  (with the time bins of gpu_set_bins: from bins.ti_old to bins.ti_new,
- *  drift_part_bins); copy back the positions and smoothing lengths (what
- *  the CPU needs to decide on a rebuild and to build the neighbour lists). */
-void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt, double xsph, double h_max,
-               int h_continuity);
+ *  with the SPH settings hp (with the time bins of gpu_set_bins: from
+ *  bins.ti_old to bins.ti_new, drift_part_bins, which predicts the
+ *  sleeping particles' equation of state with the materials mats); copy
+ *  back the positions and smoothing lengths (what the CPU needs to decide
+ *  on a rebuild and to build the neighbour lists). */
+void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt,
+               const struct hydro_props *hp, const struct material_table *mats);
 /** The watchdog (engine.c) on the resident particles.  gpu_watchdog_save:
  *  keep the positions before the drift on the device (a device copy, queued
  *  before the drift).  gpu_watchdog_moved: after the drift, the first

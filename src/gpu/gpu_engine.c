@@ -859,7 +859,7 @@ void gpu_engine_drift(struct engine *e) {
     gpu_upload_all(ge->gpu, &e->parts);
     ge->dev_valid = 1;
   }
-  gpu_drift(ge->gpu, &e->parts, 0.5 * e->dt, e->dt, e->hp.xsph, e->hp.h_max, e->hp.h_continuity);
+  gpu_drift(ge->gpu, &e->parts, 0.5 * e->dt, e->dt, &e->hp, e->mats);
   ge->host_stale = 1;
   /* positions and h are back: the bounds the rebuild test and the lists read */
   const double w0 = error_walltime();

@@ -114,9 +114,10 @@ void force_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
 /** First half kick and drift of every particle (tasks/drift/drift_gpu.cu). */
 void drift_gpu_launch(cudaStream_t s, struct parts p, double dt_kick, double dt, double xsph,
                       double h_max, int h_continuity);
-/** The same with time bins, from bins.ti_old to bins.ti_new (drift_part_bins). */
-void drift_bins_gpu_launch(cudaStream_t s, struct parts p, const struct gpu_bins *bins, double xsph,
-                           double h_max, int h_continuity);
+/** The same with time bins, from bins.ti_old to bins.ti_new (drift_part_bins,
+ *  with the device's material table mats). */
+void drift_bins_gpu_launch(cudaStream_t s, struct parts p, const struct gpu_bins *bins,
+                           struct hydro_props hp, const struct material_table *mats);
 /** Second half kick and time step; leaf_dt[L] the smallest of leaf L; with
  *  damage_max_change > 0 the damage limit joins, with grav.enabled the
  *  gravitational acceleration and its limit; with bins.on the kick of time

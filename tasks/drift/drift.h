@@ -8,6 +8,10 @@
 #include "src/inline.h"
 #include "src/part.h"
 #include "src/timeline.h"
+#include "tasks/ghost/continuity_floor.h"
+#include "tasks/ghost/ghost_part.h"
+#include "tasks/hydro/hydro_props.h"
+#include "src/materials/material.h"
 
 /** Half kick of particle i by dt_kick: v += a dt, u += du/dt dt; the
  *  deviatoric stress and the continuity density are integrated like u
@@ -60,6 +64,17 @@ BOLIDE_INLINE void kick_sync_predicted(struct parts *BOLIDE_RESTRICT p, size_t i
   p->alpha_p[i] = p->alpha[i];
 }
 
+/** The exponent w of the smoothing length's change over a drift by dt,
+ *  h -> h exp(w): dh/dt = h div v / 3, or with h_continuity
+ *  dh/dt = -h/(3 rho) drho/dt (drift_part_to), within +-0.2. */
+BOLIDE_INLINE double drift_h_exponent(const struct parts *BOLIDE_RESTRICT p, size_t i, double dt,
+                                      int h_continuity) {
+  double w = h_continuity ? -p->drho_dt[i] * dt / (3.0 * p->rho[i]) : p->div_v[i] * dt / 3.0;
+  if (w > 0.2) w = 0.2;
+  if (w < -0.2) w = -0.2;
+  return w;
+}
+
 /** Drift of particle i by dt after its first half kick: positions move with
  *  the half-step velocity; the velocity and energy used by the next force
  *  computation are predicted to the new time, half after the middle of the
@@ -95,10 +110,7 @@ BOLIDE_INLINE void drift_part_to(struct parts *BOLIDE_RESTRICT p, size_t i, doub
   p->vpz[i] = p->vz[i] + p->az[i] * half;
   const double up = p->u[i] + p->du_dt[i] * half;
   p->up[i] = (up >= 0.0 || !(p->flags[i] & PART_U_FLOOR)) ? up : 0.5 * p->u[i];
-  double w = h_continuity ? -p->drho_dt[i] * dt / (3.0 * p->rho[i]) : p->div_v[i] * dt / 3.0;
-  if (w > 0.2) w = 0.2;
-  if (w < -0.2) w = -0.2;
-  const double h = p->h[i] * exp(w);
+  const double h = p->h[i] * exp(drift_h_exponent(p, i, dt, h_continuity));
   p->h[i] = h < h_max ? h : h_max;
 }
 
@@ -109,6 +121,35 @@ BOLIDE_INLINE void drift_part(struct parts *BOLIDE_RESTRICT p, size_t i, double 
   drift_part_to(p, i, dt, 0.5 * dt, xsph, h_max, h_continuity);
 }
 
+/** With individual time steps: the state that the neighbours of particle
+ *  i, asleep in the middle of its step, read in the FORCE phase, predicted
+ *  at the end of its drift from the rates of its step's start (its sums,
+ *  equation of state and rates are not recomputed: PART_INACTIVE).  Its
+ *  position, velocity, energy, stress, continuity density and distention
+ *  are predicted by drift_part_to, its h by dh/dt = h div v / 3 (exponent
+ *  w, drift_h_exponent); here its density follows the same compression,
+ *  rho -> rho exp(-3 w) (rho h^3 constant: d ln rho/dt = -div v), or with
+ *  the continuity equation is the predicted continuity density (at least
+ *  its floor), and its pressure, sound speed and (solids) longitudinal
+ *  sound speed are its material's equation of state at the predicted
+ *  density and energy (ghost_part_eos, the ghost's; theory/sph.md, "Time
+ *  integration").  The grad-h factor, the Balsara switch and the
+ *  velocity gradients stay those of its step's start. */
+BOLIDE_INLINE void drift_predict_hydro(struct parts *BOLIDE_RESTRICT p, size_t i, double w,
+                                       const struct hydro_props *hp,
+                                       const struct material_table *mats) {
+  if (!hp->enabled) return;
+  const struct material *mat = material_table_find(mats, p->mat[i]);
+  if (!mat) return;
+  if (hp->continuity) {
+    const double floor = continuity_rho_floor(hp, mat);
+    p->rho[i] = p->rho_fp[i] > floor ? p->rho_fp[i] : floor;
+  } else {
+    p->rho[i] *= exp(-3.0 * w);
+  }
+  ghost_part_eos(p, i, hp, mat, 1);
+}
+
 /** With individual time steps (TimeIntegration:global_step: false):
  *  particle i drifts from ti_old to ti_new on a time line of ticks of
  *  time_base; a particle whose step begins at ti_old (its bin's step
@@ -116,21 +157,28 @@ BOLIDE_INLINE void drift_part(struct parts *BOLIDE_RESTRICT p, size_t i, double 
  *  predicted state is that of ti_new, from the middle of its own step
  *  (drift_part_to).  Returns 1 when the particle ends its step at ti_new;
  *  a particle that does not is marked PART_INACTIVE: the FORCE phase
- *  skips it. */
+ *  skips it, and its density, pressure and sound speeds are predicted
+ *  (drift_predict_hydro).  hp: the SPH settings (SPH:xsph, h_max,
+ *  h_evolution), mats: the materials (the host's table on the CPU, the
+ *  device's on the GPU). */
 BOLIDE_INLINE int drift_part_bins(struct parts *BOLIDE_RESTRICT p, size_t i, double time_base,
-                                  integertime_t ti_old, integertime_t ti_new, double xsph,
-                                  double h_max, int h_continuity) {
+                                  integertime_t ti_old, integertime_t ti_new,
+                                  const struct hydro_props *hp, const struct material_table *mats) {
   const integertime_t step = timeline_step_of_bin(p->time_bin[i] > 0 ? p->time_bin[i] : 1);
   const integertime_t since = ti_old % step; /* 0: its step begins at ti_old */
   if (since == 0) kick_part(p, i, 0.5 * (double)step * time_base);
   const integertime_t ti_mid = ti_old - since + step / 2;
-  drift_part_to(p, i, (double)(ti_new - ti_old) * time_base, (double)(ti_new - ti_mid) * time_base,
-                xsph, h_max, h_continuity);
+  const double dt = (double)(ti_new - ti_old) * time_base;
+  const double w = drift_h_exponent(p, i, dt, hp->h_continuity);
+  drift_part_to(p, i, dt, (double)(ti_new - ti_mid) * time_base, hp->xsph, hp->h_max,
+                hp->h_continuity);
   const int active = ti_new % step == 0;
-  if (active)
+  if (active) {
     p->flags[i] &= ~PART_INACTIVE;
-  else
+  } else {
     p->flags[i] |= PART_INACTIVE;
+    drift_predict_hydro(p, i, w, hp, mats);
+  }
   return active;
 }
 

@@ -17,12 +17,12 @@ void drift_cell_cpu(struct parts *p, struct cell *c, double dt_kick, double dt, 
 }
 
 void drift_cell_bins_cpu(struct parts *p, struct cell *c, const struct timeline *tl,
-                         integertime_t ti_old, integertime_t ti_new, double xsph, double h_max,
-                         int h_continuity) {
+                         integertime_t ti_old, integertime_t ti_new, const struct hydro_props *hp,
+                         const struct material_table *mats) {
   const size_t end = c->offset + c->count;
   int active = 0;
   for (size_t i = c->offset; i < end; i++) {
-    if (drift_part_bins(p, i, tl->time_base, ti_old, ti_new, xsph, h_max, h_continuity)) {
+    if (drift_part_bins(p, i, tl->time_base, ti_old, ti_new, hp, mats)) {
       hydro_density_reset(p, i);
       active++;
     }

@@ -6,6 +6,9 @@
 #include "src/part.h"
 #include "src/timeline.h"
 
+struct hydro_props;
+struct material_table;
+
 /** First half kick by dt_kick, then drift by dt, of every particle of c;
  *  updates the cell's h_max and dx_max.  h_continuity: SPH:h_evolution:
  *  continuity (drift_part). */
@@ -14,10 +17,12 @@ void drift_cell_cpu(struct parts *p, struct cell *c, double dt_kick, double dt, 
 
 /** The same with individual time steps (TimeIntegration:global_step:
  *  false): every particle of c drifts from ti_old to ti_new on the time
- *  line tl (drift_part_bins); c->active: the number of its particles that
- *  end their step at ti_new. */
+ *  line tl (drift_part_bins; the sleeping ones' hydrodynamic state
+ *  predicted with the SPH settings hp and the materials mats);
+ *  c->active: the number of its particles that end their step at
+ *  ti_new. */
 void drift_cell_bins_cpu(struct parts *p, struct cell *c, const struct timeline *tl,
-                         integertime_t ti_old, integertime_t ti_new, double xsph, double h_max,
-                         int h_continuity);
+                         integertime_t ti_old, integertime_t ti_new, const struct hydro_props *hp,
+                         const struct material_table *mats);
 
 #endif

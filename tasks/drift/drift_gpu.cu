@@ -25,18 +25,18 @@ void drift_gpu_launch(cudaStream_t s, struct parts p, double dt_kick, double dt,
 
 /** See drift_bins_gpu_launch. */
 __global__ void drift_bins_gpu_kernel(struct parts p, double time_base, integertime_t ti_old,
-                                      integertime_t ti_new, double xsph, double h_max,
-                                      int h_continuity) {
+                                      integertime_t ti_new, struct hydro_props hp,
+                                      const struct material_table *mats) {
   const size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= p.count) return;
-  drift_part_bins(&p, i, time_base, ti_old, ti_new, xsph, h_max, h_continuity);
+  drift_part_bins(&p, i, time_base, ti_old, ti_new, &hp, mats);
 }
 
-void drift_bins_gpu_launch(cudaStream_t s, struct parts p, const struct gpu_bins *bins, double xsph,
-                           double h_max, int h_continuity) {
+void drift_bins_gpu_launch(cudaStream_t s, struct parts p, const struct gpu_bins *bins,
+                           struct hydro_props hp, const struct material_table *mats) {
   if (p.count == 0) return;
   const unsigned nb = (unsigned)((p.count + GPU_BLOCK - 1) / GPU_BLOCK);
   drift_bins_gpu_kernel<<<nb, GPU_BLOCK, 0, s>>>(p, bins->tl.time_base, bins->ti_old, bins->ti_new,
-                                                 xsph, h_max, h_continuity);
+                                                 hp, mats);
   gpu_check_launch(drift_bins_gpu_kernel);
 }

@@ -7,8 +7,7 @@
 
 void drift_task(struct engine *e, struct task *t) {
   if (e->individual)
-    drift_cell_bins_cpu(&e->parts, t->ci, &e->timeline, e->ti_current, e->ti_next, e->hp.xsph,
-                        e->hp.h_max, e->hp.h_continuity);
+    drift_cell_bins_cpu(&e->parts, t->ci, &e->timeline, e->ti_current, e->ti_next, &e->hp, e->mats);
   else
     drift_cell_cpu(&e->parts, t->ci, 0.5 * e->dt, e->dt, e->hp.xsph, e->hp.h_max,
                    e->hp.h_continuity);

@@ -65,6 +65,50 @@ BOLIDE_INLINE int ghost_part_step(struct parts *BOLIDE_RESTRICT p, size_t i,
   return capped;
 }
 
+/** The equation of state of particle i at its density p->rho and
+ *  predicted energy p->up (and distention p->alpha_p, which a porous
+ *  material returns to its crush curve): P, cs, with solids c_l, and the
+ *  PART_U_FLOOR flag of its material.  Fractured material (Johnson & Cook
+ *  1985; theory/solids.md E6f) carries no tension; with spall_pressure, a
+ *  tension beyond it fractures (E6g): the ghost (predict = 0) records the
+ *  fracture in dmg_shear, the prediction of a sleeping particle's state
+ *  (predict = 1, drift_predict_hydro) only takes P = 0 and changes no
+ *  damage.  A fluid particle on the free surface (PART_FREE_SURFACE, flagged
+ *  by its last extra ghost) keeps P = 0 in the prediction. */
+BOLIDE_INLINE void ghost_part_eos(struct parts *BOLIDE_RESTRICT p, size_t i,
+                                  const struct hydro_props *hp, const struct material *mat,
+                                  int predict) {
+  double P, cs;
+  if (mat->porosity.model != POROSITY_NONE)
+    porosity_eos(mat, p->rho[i], p->up[i], &p->alpha_p[i], &P,
+                 &cs); /* P = P_s(alpha rho, u)/alpha */
+  else
+    material_eos(mat, p->rho[i], p->up[i], &P, &cs);
+  if (hp->solids && P < 0.0 && strength_jc_fracture(mat)) {
+    const int spall = mat->spall_pressure > 0.0 && P < -mat->spall_pressure;
+    if (spall && !predict) p->dmg_shear[i] = 1.0;
+    if (spall || p->dmg_shear[i] >= 1.0) P = 0.0;
+  }
+  if (predict && (p->flags[i] & PART_FREE_SURFACE)) P = 0.0;
+  p->P[i] = P;
+  p->cs[i] = cs;
+  if (mat->u_floor)
+    p->flags[i] |= PART_U_FLOOR;
+  else
+    p->flags[i] &= ~PART_U_FLOOR;
+  if (hp->solids) {
+    /* the time step of a solid follows its fastest wave, the longitudinal
+     * one: c_l^2 = (K + 4 G / 3) / rho = c_s^2 + 4 G / (3 rho), with the
+     * shear modulus of the damaged material (1 - D) G (theory/solids.md,
+     * "Time step"); c_s alone would give an effective Courant number
+     * c_l / c_s times the one asked for (1.46 for basalt) */
+    double G = 0.0;
+    if (mat->strength != STRENGTH_NONE && mat->shear_modulus > 0.0)
+      G = (1.0 - damage_total(p->dmg[i], p->dmg_shear[i])) * mat->shear_modulus;
+    p->cl[i] = sqrt(cs * cs + 4.0 * G / (3.0 * p->rho[i]));
+  }
+}
+
 /** Density-derived quantities and the equation of state of particle i
  *  (grad-h factor, Springel & Hernquist 2002 eq. 8; div v and curl v
  *  normalised by rho; Balsara 1995 switch); zeroes its force sums. */
@@ -93,38 +137,10 @@ BOLIDE_INLINE void ghost_part_finish(struct parts *BOLIDE_RESTRICT p, size_t i,
     continuity_floor_part(p, i, continuity_rho_floor(hp, mat));
     p->rho[i] = p->rho_fp[i];
   }
-  double P, cs;
-  if (mat->porosity.model != POROSITY_NONE)
-    porosity_eos(mat, p->rho[i], p->up[i], &p->alpha_p[i], &P,
-                 &cs); /* P = P_s(alpha rho, u)/alpha */
-  else
-    material_eos(mat, p->rho[i], p->up[i], &P, &cs);
-  /* fractured material (Johnson & Cook 1985; theory/solids.md E6f) carries
-   * no tension; with spall_pressure, a tension beyond it fractures (E6g) */
-  if (hp->solids && P < 0.0 && strength_jc_fracture(mat)) {
-    if (mat->spall_pressure > 0.0 && P < -mat->spall_pressure) p->dmg_shear[i] = 1.0;
-    if (p->dmg_shear[i] >= 1.0) P = 0.0;
-  }
-  p->P[i] = P;
-  p->cs[i] = cs;
-  if (mat->u_floor)
-    p->flags[i] |= PART_U_FLOOR;
-  else
-    p->flags[i] &= ~PART_U_FLOOR;
-  if (hp->solids) {
-    /* the time step of a solid follows its fastest wave, the longitudinal
-     * one: c_l^2 = (K + 4 G / 3) / rho = c_s^2 + 4 G / (3 rho), with the
-     * shear modulus of the damaged material (1 - D) G (theory/solids.md,
-     * "Time step"); c_s alone would give an effective Courant number
-     * c_l / c_s times the one asked for (1.46 for basalt) */
-    double G = 0.0;
-    if (mat->strength != STRENGTH_NONE && mat->shear_modulus > 0.0)
-      G = (1.0 - damage_total(p->dmg[i], p->dmg_shear[i])) * mat->shear_modulus;
-    p->cl[i] = sqrt(cs * cs + 4.0 * G / (3.0 * p->rho[i]));
-  }
+  ghost_part_eos(p, i, hp, mat, 0);
   const double curl = sqrt(p->curl_vx[i] * p->curl_vx[i] + p->curl_vy[i] * p->curl_vy[i] +
                            p->curl_vz[i] * p->curl_vz[i]);
-  p->balsara[i] = hp->balsara ? ghost_balsara(p->div_v[i], curl, cs, h) : 1.0;
+  p->balsara[i] = hp->balsara ? ghost_balsara(p->div_v[i], curl, p->cs[i], h) : 1.0;
   /* zero the force sums here: every force task of the cell runs after its ghost */
   hydro_force_reset(p, i);
   if (hp->solids) hydro_gradient_reset(p, i);
