@@ -268,6 +268,18 @@ static int main_partition(int nr, const char *method, const struct params *param
       struct partition p;
       partition_make(&p, &g, nr, (enum partition_method)m);
       partition_print(&p, &g, !all || error_verbosity > 0, stdout);
+      if (measured) {
+        /* how good the estimate is: its partition, judged by the measured costs */
+        struct partition_graph ge;
+        struct partition pe;
+        partition_graph_make(&ge, &e.space, &e.sched, 0);
+        partition_make(&pe, &ge, nr, (enum partition_method)m);
+        partition_stats(&pe, &g);
+        printf("partition: (the partition of the estimated costs, with the measured ones)\n");
+        partition_print(&pe, &g, 0, stdout);
+        partition_free(&pe);
+        partition_graph_free(&ge);
+      }
       if (!assign) {
         assign = p.rank;
         p.rank = NULL;

@@ -12,7 +12,9 @@
 #include "src/error.h"
 #include "src/scheduler.h"
 #include "src/space.h"
+#include "src/part.h"
 #include "src/task.h"
+#include "tasks/hydro/kernel.h"
 
 #ifdef HAVE_METIS
 #include <metis.h>
@@ -65,12 +67,47 @@ static void partition_link_add(struct partition_graph *g, int ta, int tb, int ca
   g->nr_links++;
 }
 
-static double partition_task_estimate(const struct task *t, const struct cell *ci,
-                                      const struct cell *cj) {
+/** Particles of a that lie within r of the bounding box of b (b seen at
+ *  shift from a): the ones a pair loop takes beyond its pruning. */
+static double partition_near(const struct space *s, const struct cell *a, const struct cell *b,
+                             const double shift[3], double r) {
+  const struct parts *p = s->parts;
+  size_t n = 0;
+  for (size_t i = a->offset; i < a->offset + a->count; i++) {
+    const double x[3] = {p->x[i], p->y[i], p->z[i]};
+    n += cell_point_dist2(b, x, shift) <= r * r;
+  }
+  return (double)n;
+}
+
+/** The pair tests of a pair loop over ci and cj (cj seen at x + shift):
+ *  every particle of both cells against the other's box, then the pairs of
+ *  those within reach. */
+static double partition_pair_estimate(const struct space *s, const struct cell *ci,
+                                      const struct cell *cj, const double shift[3]) {
+  const double back[3] = {-shift[0], -shift[1], -shift[2]};
+  const double r = kernel_gamma * (ci->h_max > cj->h_max ? ci->h_max : cj->h_max);
+  return (double)ci->count + (double)cj->count +
+         partition_near(s, ci, cj, shift, r) * partition_near(s, cj, ci, back, r);
+}
+
+/** The estimated work of a task, in the pair tests of a self loop. */
+static double partition_task_estimate(const struct space *s, const struct task *t,
+                                      const struct cell *ci, const struct cell *cj) {
   const double ni = (double)ci->count;
   if (t->type == task_type_implicit) return 0.0;
   if (t->type == task_type_self) return 0.5 * ni * (ni - 1.0);
-  if (t->type == task_type_pair && cj) return ni * (double)cj->count;
+  if (t->type == task_type_pair && cj) {
+    /* cj at the periodic image nearest ci */
+    double shift[3] = {0.0, 0.0, 0.0};
+    if (s->periodic)
+      for (int k = 0; k < 3; k++) {
+        const double d = cj->loc[k] - ci->loc[k];
+        if (d > 0.5 * s->dim[k]) shift[k] = -s->dim[k];
+        if (d < -0.5 * s->dim[k]) shift[k] = s->dim[k];
+      }
+    return partition_pair_estimate(s, ci, cj, shift);
+  }
   return PARTITION_PER_PARTICLE * ni;
 }
 
@@ -96,7 +133,7 @@ void partition_graph_make(struct partition_graph *g, const struct space *s,
       const struct cell *ci = t->ci, *cj = t->cj;
       if (!ci) continue;
       if (cj == ci) cj = NULL;
-      const double w = g->measured ? (double)t->cost : partition_task_estimate(t, ci, cj);
+      const double w = g->measured ? (double)t->cost : partition_task_estimate(s, t, ci, cj);
       if (cj && cj->top != ci->top) {
         g->cost[ci->top] += 0.5 * w;
         g->cost[cj->top] += 0.5 * w;
@@ -116,7 +153,7 @@ void partition_graph_make(struct partition_graph *g, const struct space *s,
     for (size_t k = 0; k < np; k++) {
       const struct cell *ci = &s->cells[pairs[k].ci], *cj = &s->cells[pairs[k].cj];
       if (ci == cj) continue;
-      const double w = (double)ci->count * (double)cj->count;
+      const double w = partition_pair_estimate(s, ci, cj, pairs[k].shift);
       g->cost[pairs[k].ci] += 0.5 * w;
       g->cost[pairs[k].cj] += 0.5 * w;
       partition_edge_add(el, pairs[k].ci, pairs[k].cj, (double)(ci->count + cj->count));

@@ -72,11 +72,13 @@ struct partition {
  *  goes to the top-level cell of its first cell, half to each for a pair
  *  across two top-level cells, which also adds the particles of both its
  *  cells to their edge.  measured: 1 takes the tasks' measured times
- *  (task.cost after a scheduler_run), 0 the estimate: a self task tests
- *  n (n - 1) / 2 pairs, a pair task n_i n_j, a task on one cell costs
- *  PARTITION_PER_PARTICLE pair tests per particle.  sched NULL: the
- *  estimate from the top-level cells alone (a self task per cell, a pair
- *  task per pair of neighbouring non-empty cells). */
+ *  (task.cost after a scheduler_run), 0 the estimate, in the pair tests of
+ *  the loops (tasks/iact_loop.h): a self task on n particles n (n - 1) / 2,
+ *  a pair task n_i + n_j (every particle against the other cell's box) plus
+ *  the product of the particles of each cell within a kernel support of the
+ *  other's box, a task on one cell PARTITION_PER_PARTICLE per particle.
+ *  sched NULL: the estimate from the top-level cells alone (a self task per
+ *  cell, a pair task per pair of neighbouring non-empty cells). */
 void partition_graph_make(struct partition_graph *g, const struct space *s,
                           const struct scheduler *sched, int measured);
 
@@ -84,8 +86,10 @@ void partition_graph_make(struct partition_graph *g, const struct space *s,
 void partition_graph_free(struct partition_graph *g);
 
 /** Pair tests that one particle's work in a task on one cell (drift, ghost,
- *  kick, multipoles) is counted as in the estimate. */
-#define PARTITION_PER_PARTICLE 50.0
+ *  kick, multipoles) is counted as in the estimate: on the reference impact
+ *  (2026-12-03, BENCHMARKS.md) the drift, ghost and kick of a particle took
+ *  69, 292 and 35 times a self loop's pair test, 130 on average. */
+#define PARTITION_PER_PARTICLE 130.0
 
 /** 1 if this build can partition with METIS (configure found libmetis). */
 int partition_have_metis(void);

