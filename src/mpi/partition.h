@@ -65,6 +65,7 @@ struct partition {
   double edge_cut;    /**< comm of the edges between ranks, each edge once */
   int max_pieces;     /**< largest rank_pieces */
   int unassigned;     /**< cells without a valid rank (must be 0) */
+  int fallback;       /**< METIS: 1 when the Morton ranges were taken, 5% better balanced */
 };
 
 /** The graph of the top-level cells of s from the tasks of sched (their
