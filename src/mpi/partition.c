@@ -290,29 +290,81 @@ static void partition_split_slabs(struct partition *p, const struct partition_gr
         p->rank[(i * g->cdim[1] + j) * g->cdim[2] + k] = (int)((long)i * p->nr_ranks / g->cdim[0]);
 }
 
+/** Give every cell without particles the rank of the nearest cell with one
+ *  (breadth first over the graph's edges, the grid's face neighbours among
+ *  them, so that every cell is reached); rank[c] < 0 marks the ones to fill.
+ *  No cell with particles: all on rank 0. */
+static void partition_fill_empty(int *rank, const struct partition_graph *g) {
+  const int n = g->nr_cells;
+  int *queue = error_malloc((size_t)(n ? n : 1) * sizeof(int), "partition fill");
+  int head = 0, tail = 0;
+  for (int c = 0; c < n; c++)
+    if (rank[c] >= 0) queue[tail++] = c;
+  if (tail == 0)
+    for (int c = 0; c < n; c++) rank[c] = 0;
+  while (head < tail) {
+    const int v = queue[head++];
+    for (int e = g->xadj[v]; e < g->xadj[v + 1]; e++)
+      if (rank[g->adj[e]] < 0) {
+        rank[g->adj[e]] = rank[v];
+        queue[tail++] = g->adj[e];
+      }
+  }
+  for (int c = 0; c < n; c++)
+    if (rank[c] < 0) rank[c] = 0; /* unreachable: the grid is connected */
+  free(queue);
+}
+
 #ifdef HAVE_METIS
-/** METIS_PartGraphKway on the cell graph: vertex weights the costs, edge
- *  weights the communication (at least 1: the grid edges), both scaled to
- *  integers that cannot overflow METIS's sums. */
+/** METIS on the graph of the cells with particles (the empty ones, most of
+ *  an impact's box, then take a neighbour's rank): vertex weights the costs,
+ *  edge weights the communication (at least 1: the grid edges), both scaled
+ *  to integers that cannot overflow METIS's sums.  k-way first; on a coarse
+ *  graph (a few heavy cells) it can miss the balance by far, where recursive
+ *  bisection does better: the better balanced of the two is kept (the
+ *  smaller cut when within 1%). */
 static void partition_split_metis(struct partition *p, const struct partition_graph *g) {
-  const int n = g->nr_cells, ne = g->xadj[n];
-  idx_t nv = n, ncon = 1, nparts = p->nr_ranks, objval = 0;
-  idx_t *xadj = error_malloc((size_t)(n + 1) * sizeof(idx_t), "METIS graph");
+  const int n = g->nr_cells;
+  int *local = error_malloc((size_t)(n ? n : 1) * sizeof(int), "METIS graph");
+  int nv_ = 0, ne = 0;
+  for (int c = 0; c < n; c++) local[c] = g->count[c] > 0 ? nv_++ : -1;
+  for (int c = 0; c < n; c++)
+    if (local[c] >= 0)
+      for (int e = g->xadj[c]; e < g->xadj[c + 1]; e++) ne += local[g->adj[e]] >= 0;
+  for (int c = 0; c < n; c++) p->rank[c] = -1;
+  if (nv_ == 0) {
+    partition_fill_empty(p->rank, g);
+    free(local);
+    return;
+  }
+  idx_t nv = nv_, ncon = 1, nparts = p->nr_ranks, objval = 0;
+  idx_t *xadj = error_malloc((size_t)(nv_ + 1) * sizeof(idx_t), "METIS graph");
   idx_t *adj = error_malloc((size_t)(ne ? ne : 1) * sizeof(idx_t), "METIS graph");
-  idx_t *vwgt = error_malloc((size_t)n * sizeof(idx_t), "METIS graph");
+  idx_t *vwgt = error_malloc((size_t)nv_ * sizeof(idx_t), "METIS graph");
   idx_t *adjwgt = error_malloc((size_t)(ne ? ne : 1) * sizeof(idx_t), "METIS graph");
-  idx_t *part = error_malloc((size_t)n * sizeof(idx_t), "METIS graph");
+  idx_t *part = error_malloc((size_t)nv_ * sizeof(idx_t), "METIS graph");
+  idx_t *alt = error_malloc((size_t)nv_ * sizeof(idx_t), "METIS graph");
+  double *vcost = error_malloc((size_t)nv_ * sizeof(double), "METIS graph");
   /* weights: sums up to about 1e8, far from idx_t's limit */
   const double vscale = g->total_cost > 0.0 ? 1e8 / g->total_cost : 1.0;
   double cmax = 0.0;
-  for (int e = 0; e < ne; e++)
+  for (int e = 0; e < g->xadj[n]; e++)
     if (g->comm[e] > cmax) cmax = g->comm[e];
   const double cscale = cmax > 0.0 ? 1e5 / cmax : 1.0;
-  for (int c = 0; c <= n; c++) xadj[c] = g->xadj[c];
-  for (int c = 0; c < n; c++) vwgt[c] = (idx_t)llround(g->cost[c] * vscale);
-  for (int e = 0; e < ne; e++) {
-    adj[e] = g->adj[e];
-    adjwgt[e] = 1 + (idx_t)llround(g->comm[e] * cscale);
+  int k = 0;
+  xadj[0] = 0;
+  for (int c = 0; c < n; c++) {
+    if (local[c] < 0) continue;
+    const int v = local[c];
+    vcost[v] = g->cost[c];
+    vwgt[v] = (idx_t)llround(g->cost[c] * vscale);
+    for (int e = g->xadj[c]; e < g->xadj[c + 1]; e++)
+      if (local[g->adj[e]] >= 0) {
+        adj[k] = local[g->adj[e]];
+        adjwgt[k] = 1 + (idx_t)llround(g->comm[e] * cscale);
+        k++;
+      }
+    xadj[v + 1] = k;
   }
   idx_t options[METIS_NOPTIONS];
   METIS_SetDefaultOptions(options);
@@ -320,10 +372,6 @@ static void partition_split_metis(struct partition *p, const struct partition_gr
   options[METIS_OPTION_SEED] = 1;     /* the same partition every run */
   options[METIS_OPTION_UFACTOR] = 10; /* 1.01: the cells are coarse enough as it is */
   options[METIS_OPTION_NCUTS] = 4;    /* the best of four tries */
-  /* k-way first; on a coarse graph (a few heavy cells) it can miss the
-   * balance by far, where recursive bisection does better: keep the better
-   * balanced of the two (the smaller cut when within 1%) */
-  idx_t *alt = error_malloc((size_t)n * sizeof(idx_t), "METIS graph");
   double *load = error_malloc((size_t)p->nr_ranks * sizeof(double), "METIS graph");
   double best_max = 0.0, best_cut = 0.0;
   for (int method = 0; method < 2; method++) {
@@ -335,9 +383,9 @@ static void partition_split_metis(struct partition *p, const struct partition_gr
                                                   &nparts, NULL, NULL, options, &objval, out);
     if (rc != METIS_OK)
       error_exit("METIS_PartGraph%s failed (code %d) on %d top-level cells over %d ranks",
-                 method == 0 ? "Kway" : "Recursive", rc, n, p->nr_ranks);
+                 method == 0 ? "Kway" : "Recursive", rc, nv_, p->nr_ranks);
     for (int r = 0; r < p->nr_ranks; r++) load[r] = 0.0;
-    for (int c = 0; c < n; c++) load[out[c]] += g->cost[c];
+    for (int v = 0; v < nv_; v++) load[out[v]] += vcost[v];
     double mx = 0.0;
     for (int r = 0; r < p->nr_ranks; r++)
       if (load[r] > mx) mx = load[r];
@@ -346,14 +394,18 @@ static void partition_split_metis(struct partition *p, const struct partition_gr
       best_max = mx;
       best_cut = cut;
     } else if (mx < best_max * 0.99 || (mx <= best_max * 1.01 && cut < best_cut)) {
-      memcpy(part, alt, (size_t)n * sizeof(idx_t));
+      memcpy(part, alt, (size_t)nv_ * sizeof(idx_t));
       best_max = mx;
       best_cut = cut;
     }
   }
-  free(alt);
+  for (int c = 0; c < n; c++)
+    if (local[c] >= 0) p->rank[c] = (int)part[local[c]];
+  partition_fill_empty(p->rank, g);
   free(load);
-  for (int c = 0; c < n; c++) p->rank[c] = (int)part[c];
+  free(alt);
+  free(vcost);
+  free(local);
   free(xadj);
   free(adj);
   free(vwgt);

@@ -4,7 +4,7 @@
 # diameter, nearly all of it empty.  Costs estimated (deterministic).
 #  - every method assigns every top-level cell (unassigned 0);
 #  - with 64 top-level cells per side METIS balances 2, 4 and 8 ranks within
-#    1.03, 1.03 and 1.05 (measured 1.0026, 1.0094, 1.0067: METIS's tolerance
+#    1.03, 1.03 and 1.05 (measured 1.0026, 1.0099, 1.0157: METIS's tolerance
 #    is 1.01, the rest is the granularity of the cells, 66 of them
 #    non-empty), as well as Morton ranges of equal cost (+0.01; Morton
 #    measured 1.0095, 1.0788, 1.2105) and with no larger edge cut (+5%), each
