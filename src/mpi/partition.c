@@ -97,6 +97,9 @@ static double partition_task_estimate(const struct space *s, const struct task *
   const double ni = (double)ci->count;
   if (t->type == task_type_implicit) return 0.0;
   if (t->type == task_type_self) return 0.5 * ni * (ni - 1.0);
+  /* gravity's near field: every pair of the two cells, directly */
+  if (t->type == task_type_pair && cj && t->subtype == task_subtype_grav)
+    return ni * (double)cj->count;
   if (t->type == task_type_pair && cj) {
     /* cj at the periodic image nearest ci */
     double shift[3] = {0.0, 0.0, 0.0};

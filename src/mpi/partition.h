@@ -75,9 +75,10 @@ struct partition {
  *  cells to their edge.  measured: 1 takes the tasks' measured times
  *  (task.cost after a scheduler_run), 0 the estimate, in the pair tests of
  *  the loops (tasks/iact_loop.h): a self task on n particles n (n - 1) / 2,
- *  a pair task n_i + n_j (every particle against the other cell's box) plus
- *  the product of the particles of each cell within a kernel support of the
- *  other's box, a task on one cell PARTITION_PER_PARTICLE per particle.
+ *  a hydro pair task n_i + n_j (every particle against the other cell's
+ *  box) plus the product of the particles of each cell within a kernel
+ *  support of the other's box, a gravity pair task n_i n_j, a task on one
+ *  cell PARTITION_PER_PARTICLE per particle (calibrated on hydro only).
  *  sched NULL: the estimate from the top-level cells alone (a self task per
  *  cell, a pair task per pair of neighbouring non-empty cells). */
 void partition_graph_make(struct partition_graph *g, const struct space *s,
