@@ -293,6 +293,7 @@ static void partition_split_slabs(struct partition *p, const struct partition_gr
         p->rank[(i * g->cdim[1] + j) * g->cdim[2] + k] = (int)((long)i * p->nr_ranks / g->cdim[0]);
 }
 
+#ifdef HAVE_METIS
 /** Give every cell without particles the rank of the nearest cell with one
  *  (breadth first over the graph's edges, the grid's face neighbours among
  *  them, so that every cell is reached); rank[c] < 0 marks the ones to fill.
@@ -318,7 +319,6 @@ static void partition_fill_empty(int *rank, const struct partition_graph *g) {
   free(queue);
 }
 
-#ifdef HAVE_METIS
 /** METIS on the graph of the cells with particles (the empty ones, most of
  *  an impact's box, then take a neighbour's rank): vertex weights the costs,
  *  edge weights the communication (at least 1: the grid edges), both scaled
