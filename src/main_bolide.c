@@ -16,8 +16,12 @@
 #include <unistd.h>
 
 #include "src/engine.h"
+#include "src/engine_tasks.h" /* engine_rebuild: the cells and tasks of --partition */
 #include "src/error.h"
 #include "src/io/params.h"
+#include "src/mpi/partition.h"
+#include "src/mpi/ranks.h"
+#include "src/space.h"
 #include "src/version.h"
 
 static void usage(FILE *f) {
@@ -46,6 +50,13 @@ static void usage(FILE *f) {
           "                        then exit\n"
           "      --gpu, --no-gpu   use a GPU when one is present (default) / never\n"
           "      --param-reference print the documented reference parameter file and exit\n"
+          "      --partition N     report the domain decomposition of the top-level cells over\n"
+          "                        N ranks (0: the ranks of mpirun) and exit: imbalance, edge\n"
+          "                        cut, halo; costs estimated from the particles, or measured\n"
+          "                        over the steps of -n N > 0 (theory/mpi.md)\n"
+          "      --partition-method M\n"
+          "                        metis (default when built with METIS), morton, slabs, or\n"
+          "                        all (the three, one line each)\n"
           "  -v, --verbose [N]     more output: -v, -vv, or a level (-v 2, --verbose=2)\n"
           "  -h, --help            this help\n"
           "  -V, --version         version and build configuration\n"
@@ -60,6 +71,13 @@ static void usage(FILE *f) {
           "\n"
           "Every key of PARAMS.yml is documented in examples/parameters.yml; a SWIFT\n"
           "parameter file runs as it is (keys without an effect in Bolide get a note).\n");
+}
+
+/** Top-level cells with particles. */
+static int main_nonempty(const struct partition_graph *g) {
+  int n = 0;
+  for (int c = 0; c < g->nr_cells; c++) n += g->count[c] > 0;
+  return n;
 }
 
 static void version(void) {
@@ -218,6 +236,79 @@ static void main_join_verbose(int *argc, char **argv) {
   argv[out] = NULL;
 }
 
+/** --partition N: the domain decomposition of the top-level cells over N
+ *  ranks (0: the ranks of mpirun), with the costs estimated after the first
+ *  rebuild or measured over the steps of -n.  Rank 0 reads the initial
+ *  conditions and partitions; every rank gets the assignment and says how
+ *  many cells it holds. */
+static int main_partition(int nr, const char *method, const struct params *params,
+                          const struct engine_options *opt) {
+  if (nr == 0) nr = ranks_size();
+  int ncells = 0;
+  int *assign = NULL;
+  if (ranks_rank() == 0) {
+    struct engine e;
+    struct engine_options o = *opt;
+    o.check_only = 0;
+    const int measured = o.max_steps > 0;
+    engine_init(&e, params, &o);
+    if (measured)
+      engine_run(&e);
+    else
+      engine_rebuild(&e);
+    struct partition_graph g;
+    partition_graph_make(&g, &e.space, &e.sched, measured);
+    printf("partition: %zu particles in %d top-level cells (%d non-empty), %s costs\n",
+           e.parts.count, g.nr_cells, main_nonempty(&g), measured ? "measured" : "estimated");
+    const int all = strcmp(method, "all") == 0;
+    for (int m = 0; m <= (int)partition_method_slabs; m++) {
+      if (all ? (m == partition_method_metis && !partition_have_metis())
+              : m != partition_method_parse(method))
+        continue;
+      struct partition p;
+      partition_make(&p, &g, nr, (enum partition_method)m);
+      partition_print(&p, &g, !all || error_verbosity > 0, stdout);
+      if (measured) {
+        /* how good the estimate is: its partition, judged by the measured costs */
+        struct partition_graph ge;
+        struct partition pe;
+        partition_graph_make(&ge, &e.space, &e.sched, 0);
+        partition_make(&pe, &ge, nr, (enum partition_method)m);
+        partition_stats(&pe, &g);
+        printf("partition: (the partition of the estimated costs, with the measured ones)\n");
+        partition_print(&pe, &g, 0, stdout);
+        partition_free(&pe);
+        partition_graph_free(&ge);
+      }
+      if (!assign) {
+        assign = p.rank;
+        p.rank = NULL;
+      }
+      partition_free(&p);
+    }
+    ncells = g.nr_cells;
+    partition_graph_free(&g);
+    engine_clean(&e);
+    fflush(stdout);
+  }
+  if (ranks_size() > 1) {
+    /* the assignment to every rank, which counts its cells */
+    ranks_bcast_ints(&ncells, 1);
+    if (ranks_rank() != 0) assign = error_malloc((size_t)ncells * sizeof(int), "partition");
+    ranks_bcast_ints(assign, ncells);
+    int mine = 0;
+    for (int c = 0; c < ncells; c++) mine += assign[c] == ranks_rank();
+    int *all = error_malloc((size_t)ranks_size() * sizeof(int), "partition");
+    ranks_gather_int(mine, all);
+    if (ranks_rank() == 0 && nr == ranks_size())
+      for (int r = 0; r < ranks_size(); r++)
+        printf("partition: rank %d of %d holds %d top-level cells\n", r, ranks_size(), all[r]);
+    free(all);
+  }
+  free(assign);
+  return 0;
+}
+
 int main(int argc, char **argv) {
   error_init(argv[0]);
   struct engine_options opt;
@@ -232,24 +323,30 @@ int main(int argc, char **argv) {
   int n_user = 0, with_hydro = 0, with_gravity = 0, fpe = 0;
   char dump_tasks[64] = "";
 
-  enum { OPT_CHECK = 1000, OPT_GPU, OPT_NO_GPU, OPT_REFERENCE };
+  enum { OPT_CHECK = 1000, OPT_GPU, OPT_NO_GPU, OPT_REFERENCE, OPT_PARTITION, OPT_PART_METHOD };
+  int partition = -1;
+  const char *partition_method = partition_have_metis() ? "metis" : "morton";
+  ranks_init(&argc, &argv);
   struct option longopts[64 + MAIN_NR_SWIFT];
-  static const struct option own[] = {{"threads", required_argument, NULL, 't'},
-                                      {"steps", required_argument, NULL, 'n'},
-                                      {"param", required_argument, NULL, 'P'},
-                                      {"check", no_argument, NULL, OPT_CHECK},
-                                      {"dry-run", no_argument, NULL, 'd'},
-                                      {"hydro", no_argument, NULL, 's'},
-                                      {"self-gravity", no_argument, NULL, 'G'},
-                                      {"task-dumps", required_argument, NULL, 'y'},
-                                      {"fpe", no_argument, NULL, 'e'},
-                                      {"gpu", no_argument, NULL, OPT_GPU},
-                                      {"no-gpu", no_argument, NULL, OPT_NO_GPU},
-                                      {"restart", no_argument, NULL, 'r'},
-                                      {"param-reference", no_argument, NULL, OPT_REFERENCE},
-                                      {"verbose", optional_argument, NULL, 'v'},
-                                      {"help", no_argument, NULL, 'h'},
-                                      {"version", no_argument, NULL, 'V'}};
+  static const struct option own[] = {
+      {"threads", required_argument, NULL, 't'},
+      {"steps", required_argument, NULL, 'n'},
+      {"param", required_argument, NULL, 'P'},
+      {"check", no_argument, NULL, OPT_CHECK},
+      {"dry-run", no_argument, NULL, 'd'},
+      {"hydro", no_argument, NULL, 's'},
+      {"self-gravity", no_argument, NULL, 'G'},
+      {"task-dumps", required_argument, NULL, 'y'},
+      {"fpe", no_argument, NULL, 'e'},
+      {"gpu", no_argument, NULL, OPT_GPU},
+      {"no-gpu", no_argument, NULL, OPT_NO_GPU},
+      {"restart", no_argument, NULL, 'r'},
+      {"param-reference", no_argument, NULL, OPT_REFERENCE},
+      {"partition", required_argument, NULL, OPT_PARTITION},
+      {"partition-method", required_argument, NULL, OPT_PART_METHOD},
+      {"verbose", optional_argument, NULL, 'v'},
+      {"help", no_argument, NULL, 'h'},
+      {"version", no_argument, NULL, 'V'}};
   int nl = 0;
   for (size_t k = 0; k < sizeof own / sizeof own[0]; k++) longopts[nl++] = own[k];
   for (int k = 0; k < MAIN_NR_SWIFT; k++)
@@ -321,16 +418,32 @@ int main(int argc, char **argv) {
         params_write_reference(stdout);
         free(overrides);
         free(user);
+        ranks_finalize();
         return 0;
+      case OPT_PARTITION:
+        partition = (int)parse_count("--partition", optarg);
+        break;
+      case OPT_PART_METHOD:
+        if (strcmp(optarg, "all") != 0 && partition_method_parse(optarg) < 0)
+          error_exit("option --partition-method expects metis, morton, slabs or all, not '%s'",
+                     optarg);
+        if (strcmp(optarg, "metis") == 0 && !partition_have_metis())
+          error_exit(
+              "--partition-method metis: this build has no METIS (apt-get install "
+              "libmetis-dev and configure again)");
+        partition_method = optarg;
+        break;
       case 'h':
         usage(stdout);
         free(overrides);
         free(user);
+        ranks_finalize();
         return 0;
       case 'V':
         version();
         free(overrides);
         free(user);
+        ranks_finalize();
         return 0;
       case ':':
         error_exit("option %s needs a value (see --help)", argv[optind - 1]);
@@ -353,6 +466,16 @@ int main(int argc, char **argv) {
     error_exit("no parameter file given (usage: bolide [OPTIONS] PARAMS.yml; see --help)");
   if (optind + 1 < argc)
     error_exit("unexpected argument '%s' after the parameter file", argv[optind + 1]);
+  if (partition < 0 && ranks_size() > 1) {
+    /* every rank stops, none waits for another: rank 0 says why */
+    if (ranks_rank() == 0)
+      fprintf(stderr,
+              "%s: error: multi-rank runs are not implemented yet (%d ranks): run with mpirun -n "
+              "1, or see the domain decomposition with --partition 0 (theory/mpi.md)\n",
+              error_progname, ranks_size());
+    ranks_finalize();
+    return 1;
+  }
 
   /* the flags first, so that -P can still say otherwise */
   int n_overrides = 0;
@@ -385,6 +508,14 @@ int main(int argc, char **argv) {
         "(--self-gravity) as in SWIFT, or with 'enabled: true' in the Gravity section",
         file, gline);
   if (fpe) main_enable_fpe();
+  if (partition >= 0) {
+    const int rc = main_partition(partition, partition_method, params, &opt);
+    params_free(params);
+    free(overrides);
+    free(user);
+    ranks_finalize();
+    return rc;
+  }
   struct engine e;
   engine_init(&e, params, &opt);
   if (!opt.check_only) engine_run(&e);
@@ -392,5 +523,6 @@ int main(int argc, char **argv) {
   params_free(params);
   free(overrides);
   free(user);
+  ranks_finalize();
   return 0;
 }

@@ -1,6 +1,7 @@
 /* Version, git hash and configuration of this build, and the one --version
  * text of every Bolide program (issue 23 item 6): "PROGRAM (Bolide) VERSION
- * (git HASH)", then the configure line, compiler, kernel and CUDA. */
+ * (git HASH)", then the configure line, compiler, kernel, CUDA, MPI and
+ * METIS. */
 #ifndef BOLIDE_VERSION_H
 #define BOLIDE_VERSION_H
 #include <stdio.h>
@@ -20,6 +21,16 @@ static inline void bolide_version_print(const char *prog) {
   printf("CUDA: yes\n");
 #else
   printf("CUDA: no\n");
+#endif
+#ifdef HAVE_MPI
+  printf("MPI: yes\n");
+#else
+  printf("MPI: no\n");
+#endif
+#ifdef HAVE_METIS
+  printf("METIS: yes\n");
+#else
+  printf("METIS: no\n");
 #endif
 }
 #endif

@@ -2,13 +2,15 @@
 # Install the Debian packages Bolide needs (if missing), then build it in
 # ./_build with its Python virtual environment.  Used by tools/demo.sh,
 # tools/test.sh and .ci/run.  (clang and its libFuzzer runtime are for the
-# fuzzing harnesses: make fuzz, tools/test_sanitizers.sh.)
+# fuzzing harnesses: make fuzz, tools/test_sanitizers.sh; METIS for the domain
+# decomposition, bolide --partition.  The MPI build is tools/test_mpi_build.sh.)
 set -euo pipefail
 top="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$top"
 need=""
 for pkg in build-essential autoconf automake libtool pkg-config libhdf5-dev libyaml-dev \
-           libhwloc-dev python3 python3-venv python3-dev clang libclang-rt-14-dev help2man libconfig-dev; do
+           libhwloc-dev python3 python3-venv python3-dev clang libclang-rt-14-dev help2man libconfig-dev \
+           libmetis-dev; do
   dpkg -s "$pkg" >/dev/null 2>&1 || need="$need $pkg"
 done
 if [ -n "$need" ]; then

@@ -31,7 +31,7 @@ export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1"
 # readers' and the CLI's error tests, the hostile inputs and the fuzz corpus,
 # and short runs of bolide (restart, porosity).
 SAN_FAST_TESTS="tests/unit/test_graph tests/unit/test_budget tests/unit/test_scheduler tests/unit/test_kernels
-  tests/unit/test_pairs tests/unit/test_space_errors tests/unit/test_params tests/unit/test_units
+  tests/unit/test_pairs tests/unit/test_space_errors tests/unit/test_partition tests/unit/test_params tests/unit/test_units
   tests/unit/test_params_reference tests/program/test_params_errors.sh tests/unit/test_io_roundtrip
   tests/program/test_ic_errors.sh tests/unit/test_eos tests/unit/test_material tests/tools/test_bolide_eos.sh
   tests/tools/test_materials_yaml.sh tests/unit/test_porosity tests/tools/test_porosity_errors.sh
