@@ -15,6 +15,12 @@ Formats:
           with rho varying fastest; SI.
   rho_T   Bolide's own: first line N_RHO N_T, then rows "rho T u P c"
           (rho varying slowest).
+  miluphcuda
+          miluphcuda's ANEOS lookup tables (its material.cfg: eos.type = 7,
+          eos.table_path, eos.n_rho, eos.n_e): 3 header lines, then one row
+          "rho e P T cs s phase_flag" for every (rho, e) node, e varying
+          fastest (rho slowest); SI.  The nodes are on (rho, e), not (rho, T):
+          --u gives the energy range, --n N_RHO N_E.
 
 EOS (SI):
   ideal_gas  P = (gamma - 1) rho u, u = c_v T, c^2 = gamma (gamma - 1) u
@@ -22,7 +28,9 @@ EOS (SI):
 Usage:
   eos_tables.py --eos ideal_gas --format swift -o table.txt
   eos_tables.py --format rho_T --rho 100 20000 --T 10 1e5 --n 32 48 -o t.txt
-As a module: ideal_gas(rho, u), evaluate(...), write_swift(...), write_rho_T(...)."""
+  eos_tables.py --format miluphcuda --rho 1 1e4 --u 1e4 1e8 --n 40 50 -o aneos.table
+As a module: ideal_gas(rho, u), evaluate(...), write_swift(...), write_rho_T(...),
+write_miluphcuda(...)."""
 import argparse
 import sys
 
@@ -73,15 +81,35 @@ def write_rho_T(path, rho, T, U, P, c):
                 f.write("%.12e %.12e %.12e %.12e %.12e\n" % (rho[i], T[j], U[i, j], P[i, j], c[i, j]))
 
 
+def write_miluphcuda(path, rho, e, gamma=5.0 / 3.0, cv=None, title="ideal_gas"):
+    """miluphcuda's ANEOS table layout (see the module docstring) of the
+    ideal gas on the (rho, e) nodes; the phase flag is 1 (one phase)."""
+    cv = 1000.0 if cv is None else cv
+    with open(path, "w") as f:
+        f.write("# Bolide tools/eos_tables.py: %s, in the layout of miluphcuda's ANEOS tables "
+                "(written from a formula, for tests: not a real material table)\n" % title)
+        f.write("# n_rho = %d  n_e = %d  (rows: rho slowest, e fastest)\n" % (len(rho), len(e)))
+        f.write("# rho [kg/m^3]  e [J/kg]  P [Pa]  T [K]  cs [m/s]  s [J/kg/K]  phase_flag\n")
+        for r in rho:
+            P, c = ideal_gas(r, e, gamma)
+            T = e / cv
+            s = cv * np.log(np.maximum(T, 1e-300))
+            for j in range(len(e)):
+                f.write("%.9e %.9e %.9e %.9e %.9e %.9e %d\n" % (r, e[j], P[j], T[j], c[j], s[j], 1))
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--eos", choices=["ideal_gas"], default="ideal_gas")
-    ap.add_argument("--format", choices=["swift", "rho_T"], default="swift")
+    ap.add_argument("--format", choices=["swift", "rho_T", "miluphcuda"], default="swift")
     ap.add_argument("--rho", nargs=2, type=float, default=[1.0, 1e4], metavar=("MIN", "MAX"),
                     help="density range, kg/m^3 (log-spaced)")
     ap.add_argument("--T", nargs=2, type=float, default=[10.0, 1e5], metavar=("MIN", "MAX"),
                     help="temperature range, K (log-spaced)")
-    ap.add_argument("--n", nargs=2, type=int, default=[64, 64], metavar=("N_RHO", "N_T"))
+    ap.add_argument("--u", nargs=2, type=float, default=[1e4, 1e8], metavar=("MIN", "MAX"),
+                    help="specific energy range of format miluphcuda, J/kg (log-spaced)")
+    ap.add_argument("--n", nargs=2, type=int, default=[64, 64], metavar=("N_RHO", "N_T"),
+                    help="node counts (N_RHO N_E for format miluphcuda)")
     ap.add_argument("--gamma", type=float, default=5.0 / 3.0, help="ideal gas gamma")
     ap.add_argument("--cv", type=float, default=None, help="c_v, J/kg/K")
     ap.add_argument("-o", "--output", required=True)
@@ -89,6 +117,11 @@ def main(argv=None):
     if min(a.n) < 2 or a.rho[0] <= 0 or a.T[0] <= 0 or a.rho[1] <= a.rho[0] or a.T[1] <= a.T[0]:
         sys.exit("eos_tables.py: error: ranges must be positive and increasing, at least 2 nodes")
     rho = np.geomspace(a.rho[0], a.rho[1], a.n[0])
+    if a.format == "miluphcuda":
+        if a.u[0] <= 0 or a.u[1] <= a.u[0]:
+            sys.exit("eos_tables.py: error: the energy range must be positive and increasing")
+        write_miluphcuda(a.output, rho, np.geomspace(a.u[0], a.u[1], a.n[1]), a.gamma, a.cv, a.eos)
+        return
     T = np.geomspace(a.T[0], a.T[1], a.n[1])
     R, TT, U, P, c, s = evaluate(a.eos, rho, T, a.gamma, a.cv)
     if a.format == "swift":

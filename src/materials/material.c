@@ -490,6 +490,10 @@ void material_eos_table_load(struct eos_table *tab, const char *filename, int fo
     material_eos_table_load_swift(tab, filename);
     return;
   }
+  if (format == 3) {
+    material_eos_table_load_miluphcuda(tab, filename, 0, 0);
+    return;
+  }
   FILE *f = fopen(filename, "r");
   if (!f) error_exit("%s: cannot open the EOS table: %s", filename, strerror(errno));
   char line[1024];
@@ -679,6 +683,118 @@ void material_eos_table_load_swift(struct eos_table *tab, const char *filename) 
   free(rho_axis);
   free(T_axis);
   material_table_build(tab, filename, 1, nr, nt, rho, T, u, P, cs, 1);
+}
+
+/** Append x to a growing array (doubling its capacity). */
+static void material_push(double **a, size_t *cap, size_t n, double x) {
+  if (n == *cap) {
+    *cap = *cap ? 2 * *cap : 1024;
+    double *b = realloc(*a, *cap * sizeof(double));
+    if (!b) error_exit("out of memory reading an EOS table");
+    *a = b;
+  }
+  (*a)[n] = x;
+}
+
+void material_eos_table_load_miluphcuda(struct eos_table *tab, const char *filename, int n_rho,
+                                        int n_e) {
+  FILE *f = fopen(filename, "r");
+  if (!f) error_exit("%s: cannot open the EOS table: %s", filename, strerror(errno));
+  /* miluphcuda's ANEOS lookup tables (eos.type = 7; its src/aneos.cu): 3
+   * header lines, then one row per (rho, e) node, "rho e P T cs [s
+   * phase_flag ...]", e varying fastest; SI units; the counts are the
+   * material file's n_rho and n_e (here optional, else taken from the file) */
+  int lineno = 0;
+  for (int k = 0; k < 3; k++) {
+    int c;
+    long len = 0;
+    while ((c = fgetc(f)) != '\n' && c != EOF)
+      if (++len > 65536)
+        error_exit(
+            "%s: miluphcuda ANEOS table: header line %d is longer than 64 KiB (not a table?)",
+            filename, k + 1);
+    if (c == EOF)
+      error_exit("%s: miluphcuda ANEOS table: the file ends within its 3 header lines", filename);
+    lineno++;
+  }
+  double *rho = NULL, *e = NULL, *P = NULL, *T = NULL, *cs = NULL;
+  size_t cap[5] = {0, 0, 0, 0, 0}, m = 0;
+  char line[1024];
+  double v[16];
+  while (material_table_line(f, line, sizeof line, &lineno)) {
+    const int n = material_table_numbers(line, v, 16);
+    if (n < 5)
+      error_exit("%s:%d: miluphcuda ANEOS table: expected the numbers 'rho e P T cs [s phase]'",
+                 filename, lineno);
+    for (int k = 0; k < 5; k++)
+      if (!isfinite(v[k]))
+        error_exit("%s:%d: miluphcuda ANEOS table: column %d is %g (rho e P T cs must be finite)",
+                   filename, lineno, k + 1, v[k]);
+    if (!(v[4] >= 0.0))
+      error_exit("%s:%d: miluphcuda ANEOS table: sound speed %g < 0", filename, lineno, v[4]);
+    if (m > 0 && rho && v[0] != rho[m - 1] && !(v[0] > rho[m - 1]))
+      error_exit("%s:%d: miluphcuda ANEOS table: density %g after %g: the densities must increase",
+                 filename, lineno, v[0], rho[m - 1]);
+    material_push(&rho, &cap[0], m, v[0]);
+    material_push(&e, &cap[1], m, v[1]);
+    material_push(&P, &cap[2], m, v[2]);
+    material_push(&T, &cap[3], m, v[3]);
+    material_push(&cs, &cap[4], m, v[4]);
+    m++;
+  }
+  fclose(f);
+  if (m == 0) error_exit("%s: miluphcuda ANEOS table: no rows after the 3 header lines", filename);
+  /* the energies of one density: the first block of equal densities */
+  size_t ne = 1;
+  while (ne < m && rho[ne] == rho[0]) ne++;
+  if (n_e > 0 || n_rho > 0) {
+    if (n_e <= 0 || n_rho <= 0)
+      error_exit("%s: miluphcuda ANEOS table: give both n_rho and n_e, or neither", filename);
+    if (m != (size_t)n_rho * (size_t)n_e)
+      error_exit("%s: miluphcuda ANEOS table: %zu rows, but n_rho x n_e = %d x %d = %zu", filename,
+                 m, n_rho, n_e, (size_t)n_rho * (size_t)n_e);
+    if (ne != (size_t)n_e)
+      error_exit("%s: miluphcuda ANEOS table: the first density has %zu energies, but n_e = %d",
+                 filename, ne, n_e);
+  }
+  if (ne < 2 || m % ne != 0 || m / ne < 2)
+    error_exit(
+        "%s: miluphcuda ANEOS table: %zu rows are not N_RHO >= 2 blocks of the %zu energies "
+        "of the first density",
+        filename, m, ne);
+  const int nr = (int)(m / ne), nu = (int)ne;
+  for (int j = 1; j < nu; j++)
+    if (!(e[j] > e[j - 1]))
+      error_exit(
+          "%s: miluphcuda ANEOS table: energy node %d (%g) after %g: the energies must "
+          "increase",
+          filename, j, e[j], e[j - 1]);
+  for (int i = 1; i < nr; i++) {
+    const size_t b = (size_t)i * nu;
+    if (!(rho[b] > rho[b - 1]))
+      error_exit(
+          "%s: miluphcuda ANEOS table: row %zu: density block %d has %g, not above %g "
+          "(each density must have n_e = %d rows)",
+          filename, b + 1, i + 1, rho[b], rho[b - 1], nu);
+    for (int j = 0; j < nu; j++) {
+      /* miluphcuda's tolerance: one energy axis for all densities */
+      if (fabs(e[b + j] - e[j]) > 1e-6 * fabs(e[nu - 1]))
+        error_exit(
+            "%s: miluphcuda ANEOS table: row %zu: energy %g differs from %g of the first "
+            "density (one energy axis for all densities)",
+            filename, b + j + 1, e[b + j], e[j]);
+      if (rho[b + j] != rho[b])
+        error_exit(
+            "%s: miluphcuda ANEOS table: row %zu: density %g differs from %g at the start "
+            "of its block of %d rows",
+            filename, b + j + 1, rho[b + j], rho[b], nu);
+      e[b + j] = e[j];
+    }
+  }
+  /* the builder takes rho, e, P, cs (rows: rho slowest, as here); T is
+   * kept as the table's temperature */
+  material_table_build(tab, filename, 0, nr, nu, rho, e, NULL, P, cs, 1);
+  tab->T = T;
 }
 
 /* ------------------------------------------------------------ library */

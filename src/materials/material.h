@@ -305,7 +305,8 @@ void material_table_convert_units(struct material_table *t, const struct unit_sy
 
 /** Load a tabulated EOS from a text file (format 0: columns rho u P [cs];
  *  format 1: rho T u P [cs], converted to a (rho, u) grid; format 2: SWIFT's
- *  planetary tables, material_eos_table_load_swift).  Errors stop with
+ *  planetary tables, material_eos_table_load_swift; format 3: miluphcuda's
+ *  ANEOS tables, material_eos_table_load_miluphcuda).  Errors stop with
  *  "FILE:LINE: ..." naming the table file. */
 void material_eos_table_load(struct eos_table *tab, const char *filename, int format);
 
@@ -315,6 +316,14 @@ void material_eos_table_load(struct eos_table *tab, const char *filename, int fo
  *  "u P c s" for every (rho, T) with rho varying fastest, in SI.  Converted to
  *  a (rho, u) grid as format 1 is. */
 void material_eos_table_load_swift(struct eos_table *tab, const char *filename);
+
+/** Load a table in the format of miluphcuda's ANEOS lookup tables (its
+ *  eos.type = 7, eos.table_path): 3 header lines, then one row per (rho, e)
+ *  node, "rho e P T cs [s phase_flag ...]", e varying fastest, in SI.  Both
+ *  axes must be log-spaced (Bolide's grid).  n_rho and n_e (miluphcuda's
+ *  keys) are checked against the file when > 0, else taken from it. */
+void material_eos_table_load_miluphcuda(struct eos_table *tab, const char *filename, int n_rho,
+                                        int n_e);
 
 /** Fill the table from the parameter file's Materials section (values in SI;
  *  see examples/parameters.yml and examples/materials.yml).  Without a

@@ -38,8 +38,9 @@ struct material_libraries {
 
 /** Extra state of one material while its keys are applied. */
 struct material_extra {
-  char table_file[PATH_MAX]; /**< file: of a tabulated EOS */
-  int table_format;          /**< format: 0 rho_u, 1 rho_T, 2 swift */
+  char table_file[PATH_MAX];  /**< file: of a tabulated EOS */
+  int table_format;           /**< format: 0 rho_u, 1 rho_T, 2 swift, 3 miluphcuda */
+  int table_n_rho, table_n_e; /**< n_rho, n_e of format miluphcuda (0: from the file) */
 };
 
 /** path relative to the folder of `ref_file` unless absolute. */
@@ -146,10 +147,21 @@ static void material_apply(struct material *mat, struct material_extra *x,
         x->table_format = 1;
       else if (strcmp(s, "swift") == 0)
         x->table_format = 2;
+      else if (strcmp(s, "miluphcuda") == 0)
+        x->table_format = 3;
       else
         param_node_error(owner, v,
-                         "material '%s': key 'format' must be rho_u, rho_T or swift (got '%s')",
+                         "material '%s': key 'format' must be rho_u, rho_T, swift or miluphcuda "
+                         "(got '%s')",
                          mat->name, s);
+    } else if (mat->eos_type == EOS_TABLE &&
+               (strcmp(key, "n_rho") == 0 || strcmp(key, "n_e") == 0)) {
+      snprintf(what, sizeof what, "material '%s': key '%s'", mat->name, key);
+      const long n = param_node_int(owner, v, what);
+      if (n < 2 || n > 100000)
+        param_node_error(owner, v, "material '%s': key '%s' must be 2 to 100000 (got %ld)",
+                         mat->name, key, n);
+      *(strcmp(key, "n_rho") == 0 ? &x->table_n_rho : &x->table_n_e) = (int)n;
     } else {
       snprintf(what, sizeof what, "material '%s': key '%s'", mat->name, key);
       const double value = param_node_real(owner, v, what);
@@ -165,7 +177,14 @@ static void material_complete(struct material *mat, struct material_extra *x,
   if (mat->eos_type == EOS_TABLE) {
     if (!x->table_file[0])
       param_node_error(owner, at, "material '%s': key 'file' is required for EOS table", mat->name);
-    material_eos_table_load(&mat->eos.table, x->table_file, x->table_format);
+    if ((x->table_n_rho || x->table_n_e) && x->table_format != 3)
+      param_node_error(owner, at, "material '%s': keys n_rho, n_e belong to format: miluphcuda",
+                       mat->name);
+    if (x->table_format == 3)
+      material_eos_table_load_miluphcuda(&mat->eos.table, x->table_file, x->table_n_rho,
+                                         x->table_n_e);
+    else
+      material_eos_table_load(&mat->eos.table, x->table_file, x->table_format);
   }
   if (material_finalize(mat, msg, sizeof msg)) param_node_error(owner, at, "%s", msg);
 }

@@ -9,13 +9,17 @@
 #     rescaled to alpha_e = alpha_0, sqrt(3) on the pressure-dependent
 #     yield strengths, friction angles as coefficients);
 #   - every key not converted is named (a comment and a note);
-#   - an EOS Bolide does not have (ANEOS, type 7) is an error, all problems
-#     in one pass, and nothing is written;
+#   - ANEOS (type 7) becomes `eos: table, format: miluphcuda` with its
+#     table_path, n_rho, n_e, aneos_rho_0 and the cs_limit default, and a
+#     table written by tools/eos_tables.py passes `bolide --check`;
+#   - an EOS Bolide does not have (ANEOS + P-alpha, type 13) is an error, all
+#     problems in one pass, and nothing is written;
 #   - an integer where miluphcuda reads a float is warned about.
 # Skips (77) when bolide-ic was built without libconfig, after checking that
 # the subcommand then says so in one line.
 set -u
 S=${BOLIDE_SRCDIR:?} B=${BOLIDE_BUILDDIR:?}
+PY=${PYTHON:-$B/.venv/bin/python}
 ic="$B/bolide-ic" bolide="$B/bolide"
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/bolide_milucfg.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
@@ -108,12 +112,36 @@ grep -q 'strength' m_hydro.yml && FAIL "--hydro: a material with strength"
 params m_hydro.yml >p_hydro.yml
 "$bolide" --check p_hydro.yml >c_hydro 2>&1 || { FAIL "--hydro: bolide --check"; cat c_hydro; }
 
-# errors: ANEOS and a missing ID in one pass, nothing written; an integer
+# ANEOS: the lookup table read in miluphcuda's format (n_rho, n_e are ints there)
+"$PY" "$S/tools/eos_tables.py" --format miluphcuda --rho 100 1e4 --u 1e3 1e8 --n 20 30 -o aneos.table ||
+  FAIL "eos_tables.py --format miluphcuda"
+cat >aneos.cfg <<'EOF'
+materials = (
+{
+    ID = 0
+    name = "gas.ANEOS"
+    eos = { type = 7; table_path = "aneos.table"; n_rho = 20; n_e = 30;
+            aneos_rho_0 = 2680.0; aneos_bulk_cs = 5500.0; aneos_e_norm = 335418.4; };
+}
+);
+EOF
+"$ic" miluphcuda-materials aneos.cfg --hydro -o m_aneos.yml 2>e_aneos || { FAIL "ANEOS: conversion failed"; cat e_aneos; }
+grep -q 'is an integer' e_aneos && FAIL "ANEOS: n_rho, n_e (ints in miluphcuda) warned about"
+grep -q "aneos.cfg:[0-9]*: material 0: eos.aneos_e_norm not converted" e_aneos || FAIL "ANEOS: no note on aneos_e_norm"
+grep -q '^    eos: table' m_aneos.yml && grep -q '^    format: miluphcuda' m_aneos.yml &&
+  grep -q '^    file: "aneos.table"' m_aneos.yml || FAIL "ANEOS: not eos: table, format: miluphcuda, file"
+for kv in n_rho=20 n_e=30 rho0=2680 cs_min=55; do
+  near "$(value m_aneos.yml 0 "${kv%%=*}")" "${kv#*=}" || FAIL "ANEOS: ${kv%%=*} is '$(value m_aneos.yml 0 "${kv%%=*}")', not ${kv#*=}"
+done
+params m_aneos.yml >p_aneos.yml
+"$bolide" --check p_aneos.yml >c_aneos 2>&1 || { FAIL "ANEOS: bolide --check"; cat c_aneos; }
+
+# errors: ANEOS + P-alpha and a missing ID in one pass, nothing written; an integer
 cat >bad.cfg <<'EOF'
 materials = (
 {
     ID = 0
-    eos = { type = 7; table_path = "aneos.table"; n_rho = 10; n_e = 10; };
+    eos = { type = 13; table_path = "aneos.table"; n_rho = 10; n_e = 10; };
 },
 {
     name = "no ID"
@@ -127,7 +155,7 @@ materials = (
 EOF
 "$ic" miluphcuda-materials bad.cfg -o bad.yml >bad.out 2>bad.err && FAIL "bad.cfg: exit 0"
 [ -e bad.yml ] && FAIL "bad.cfg: a file was written"
-grep -q "bad.cfg:4: material 0: eos.type 7 (ANEOS)" bad.err || FAIL "bad.cfg: ANEOS not reported: $(cat bad.err)"
+grep -q "bad.cfg:4: material 0: eos.type 13 (ANEOS + P-alpha)" bad.err || FAIL "bad.cfg: ANEOS + P-alpha not reported: $(cat bad.err)"
 grep -q "bad.cfg:[0-9]*: a material without an integer ID" bad.err || FAIL "bad.cfg: missing ID not reported"
 grep -q "bad.cfg:12: n = 7 is an integer" bad.err || FAIL "bad.cfg: integer not warned about"
 grep -q "2 problems above: nothing written" bad.err || FAIL "bad.cfg: last line: $(tail -1 bad.err)"

@@ -108,7 +108,8 @@ static int milucfg_num(struct milucfg *c, const config_setting_t *g, const char 
     case CONFIG_TYPE_INT64:
       *v = (double)config_setting_get_int64(s);
       if (!again && strcmp(name, "type") != 0 && strcmp(name, "ID") != 0 &&
-          strcmp(name, "crushcurve_style") != 0 && strcmp(name, "interactions") != 0)
+          strcmp(name, "crushcurve_style") != 0 && strcmp(name, "interactions") != 0 &&
+          strcmp(name, "n_rho") != 0 && strcmp(name, "n_e") != 0)
         error_warning(
             "%s:%d: %s = %lld is an integer: miluphcuda reads floats only (libconfig) and "
             "takes its default instead; converted as written (write %lld.0 for miluphcuda)",
@@ -175,6 +176,9 @@ static const char *milucfg_why(const char *key) {
       {"alpha_shakura", "no Shakura-Sunyaev viscosity in Bolide"},
       {"eta", "no bulk viscosity in Bolide"},
       {"zeta", "no bulk viscosity in Bolide"},
+      {"aneos_e_norm", "Bolide's initial conditions take u from the particle file"},
+      {"aneos_molar_mass", "no ideal-gas fallback above a table: Bolide clamps to its edge"},
+      {"aneos_gamma", "no ideal-gas fallback above a table: Bolide clamps to its edge"},
   };
   for (size_t i = 0; i < sizeof why / sizeof why[0]; i++)
     if (strcmp(why[i].key, key) == 0) return why[i].why;
@@ -428,14 +432,41 @@ static int milucfg_material(struct milucfg *c, const config_setting_t *m, int *i
                 0.01 * sqrt(A / rho0));
       break;
     }
+    case 7: { /* ANEOS: its lookup table, read by Bolide as format miluphcuda */
+      config_setting_t *tp = config_setting_get_member(eos, "table_path");
+      if (!tp || config_setting_type(tp) != CONFIG_TYPE_STRING) {
+        error_warning("%s:%d: material %d: ANEOS without a string eos.table_path", c->file, line,
+                      id);
+        c->errors++;
+        return 0;
+      }
+      milucfg_use(c, tp);
+      fprintf(c->out,
+              "    eos: table   # miluphcuda's ANEOS lookup table\n"
+              "    format: miluphcuda\n"
+              "    file: \"%s\"   # Bolide: relative to the YAML file (miluphcuda: to the "
+              "run's folder)\n",
+              config_setting_get_string(tp));
+      milucfg_copy(c, eos, "n_rho", "n_rho", 1.0);
+      milucfg_copy(c, eos, "n_e", "n_e", 1.0);
+      double rho0 = 0;
+      if (milucfg_num(c, eos, "aneos_rho_0", &rho0)) milucfg_put(c, "rho0", rho0);
+      double bulk_cs = 0;
+      const int have_cs = milucfg_num(c, eos, "aneos_bulk_cs", &bulk_cs);
+      if (milucfg_num(c, eos, "cs_limit", &v))
+        milucfg_put(c, "cs_min", v);
+      else if (have_cs && bulk_cs > 0)
+        fprintf(c->out, "    cs_min: %.15g   # miluphcuda's default: 1%% of aneos_bulk_cs\n",
+                0.01 * bulk_cs);
+      break;
+    }
     default:
       error_warning(
           "%s:%d: material %d: eos.type %d (%s) has no Bolide equation of state%s", c->file,
           config_setting_source_line(config_setting_get_member(eos, "type")), id, t, tname,
-          t == 7 || t == 13
-              ? " read from miluphcuda's files (ANEOS tables: convert the table to Bolide's "
-                "'eos: table' format, theory/eos.md, and write this material by hand)"
-              : "");
+          t == 13 ? " read from miluphcuda's files (ANEOS + P-alpha: convert as eos.type 7 and "
+                    "add the porosity by hand)"
+                  : "");
       c->errors++;
       return 0;
   }
