@@ -91,6 +91,27 @@ __global__ void gravity_l2l_gpu_kernel(struct gravity_gpu_dev d, const int *__re
   gravity_l2l(d.field + c, d.field + q, t, P);
 }
 
+/** P2P of particle i from the source leaves source[k0], source[k0 +
+ *  stride], ... below k1 (entries < 0, M2P, skipped), added to *pot, a. */
+__device__ static void gravity_p2p_sources(struct parts p, const struct gravity_gpu_dev &d,
+                                           const int *__restrict__ source, size_t i, int k0, int k1,
+                                           int stride, double *pot, double a[3]) {
+  const double *__restrict__ x = p.x, *__restrict__ y = p.y, *__restrict__ z = p.z;
+  const double *__restrict__ m = p.m;
+  const double xi[3] = {x[i], y[i], z[i]};
+  for (int k = k0; k < k1; k += stride) {
+    const int s = source[k];
+    if (s < 0) continue;
+    const size_t jb = d.offset[s], je = jb + (size_t)d.count[s];
+    for (size_t j = jb; j < je; j++) {
+      if (j == i) continue;
+      const double dx[3] = {xi[0] - x[j], xi[1] - y[j], xi[2] - z[j]};
+      const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+      gravity_p2p(dx, r2, m[j], d.G, d.eps, d.softening, pot, a);
+    }
+  }
+}
+
 /** Every leaf (one block of B threads): its particles' P2P with the
  *  source leaves (struct gravity_gpu_rec.part, sources >= 0).  A leaf of
  *  cnt < B particles splits its source list into B / cnt slices (thread t:
@@ -108,24 +129,11 @@ __global__ void gravity_p2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
   const int k0 = l.start[c], k1 = l.start[c + 1];
   const int B = (int)blockDim.x;
   const int slices = cnt >= B ? 1 : B / cnt;
-  const double *__restrict__ x = p.x, *__restrict__ y = p.y, *__restrict__ z = p.z;
-  const double *__restrict__ m = p.m;
   if (slices == 1) {
     for (int t = threadIdx.x; t < cnt; t += B) {
       const size_t i = beg + (size_t)t;
-      const double xi[3] = {x[i], y[i], z[i]};
       double pot = 0.0, a[3] = {0.0, 0.0, 0.0};
-      for (int k = k0; k < k1; k++) {
-        const int s = l.source[k];
-        if (s < 0) continue;
-        const size_t jb = d.offset[s], je = jb + (size_t)d.count[s];
-        for (size_t j = jb; j < je; j++) {
-          if (j == i) continue;
-          const double dx[3] = {xi[0] - x[j], xi[1] - y[j], xi[2] - z[j]};
-          const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-          gravity_p2p(dx, r2, m[j], d.G, d.eps, d.softening, &pot, a);
-        }
-      }
+      gravity_p2p_sources(p, d, l.source, i, k0, k1, 1, &pot, a);
       p.pot[i] += pot;
       p.gax[i] += a[0];
       p.gay[i] += a[1];
@@ -135,21 +143,8 @@ __global__ void gravity_p2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
   }
   const int t = threadIdx.x, slice = t / cnt;
   double pot = 0.0, a[3] = {0.0, 0.0, 0.0};
-  if (slice < slices) {
-    const size_t i = beg + (size_t)(t % cnt);
-    const double xi[3] = {x[i], y[i], z[i]};
-    for (int k = k0 + slice; k < k1; k += slices) {
-      const int s = l.source[k];
-      if (s < 0) continue;
-      const size_t jb = d.offset[s], je = jb + (size_t)d.count[s];
-      for (size_t j = jb; j < je; j++) {
-        if (j == i) continue;
-        const double dx[3] = {xi[0] - x[j], xi[1] - y[j], xi[2] - z[j]};
-        const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-        gravity_p2p(dx, r2, m[j], d.G, d.eps, d.softening, &pot, a);
-      }
-    }
-  }
+  if (slice < slices)
+    gravity_p2p_sources(p, d, l.source, beg + (size_t)(t % cnt), k0 + slice, k1, slices, &pot, a);
   part_sum[4 * t] = pot;
   part_sum[4 * t + 1] = a[0];
   part_sum[4 * t + 2] = a[1];
