@@ -1139,6 +1139,9 @@ void engine_run(struct engine *e) {
       rebuilt = 1;
       if (e->individual) engine_count_active_cells(e);
     }
+    /* (the same test as after the phase: an output needs every potential) */
+    gravity_active_decide(e, e->time >= e->next_stats || e->time >= e->time_end ||
+                                 (e->next_out < e->nr_out && e->time >= e->out_times[e->next_out]));
     gravity_reuse_decide(e, rebuilt);
     const double wf = error_walltime();
     engine_run_phase(e, ENGINE_PHASE_FORCE);

@@ -171,6 +171,10 @@
  *                              the restart file (restart_gravity_free it)
  *    gravity_restart_restore   after the first rebuild of a resumed run: the
  *                              restart file's far field back in place
+ *    gravity_active_decide     before a FORCE phase (time bins, CPU): whether
+ *                              only the cells with particles that end their
+ *                              step receive gravity (sets e->gp.active; all
+ *                              when an output follows)
  *    gravity_reuse_decide      before a FORCE phase: whether it reuses the
  *                              far field of the last full evaluation (sets
  *                              e->gp.replay; not after a rebuild)
@@ -210,6 +214,7 @@
   X(gravity, void, gravity_restart_read, (struct engine *e, struct restart_gravity *g))      \
   X(gravity, void, gravity_restart_save, (const struct engine *e, struct restart_gravity *g)) \
   X(gravity, void, gravity_restart_restore, (struct engine *e))                              \
+  X(gravity, void, gravity_active_decide, (struct engine *e, int full))                      \
   X(gravity, void, gravity_reuse_decide, (struct engine *e, int rebuilt))                    \
   X(gravity, void, gravity_reuse_remember, (struct engine *e))                               \
   X(gravity, int,  gravity_estimate_first, (struct engine *e))                               \

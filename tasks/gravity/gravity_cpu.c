@@ -55,13 +55,18 @@ struct gravity_cell *gravity_cells_reserve(struct gravity_cell *gc, int *capacit
 /* ------------------------------------------------------------------ up */
 
 /** Multipole of c from its particles (leaf) or its progeny (split cell):
- *  gravity_up_leaf and gravity_up_node, shared with the GPU's kernels. */
+ *  gravity_up_leaf and gravity_up_node, shared with the GPU's kernels.
+ *  act (a step of active particles only, gravity_props.active; else
+ *  NULL): whether each cell holds a particle that ends its step, by cell
+ *  index; a leaf without one keeps its particles' ga and pot, since no
+ *  walk adds to them this step. */
 static void up_rec(struct parts *p, const struct cell *c, struct gravity_cell *gc, int order,
-                   double h_factor) {
+                   double h_factor, unsigned char *act) {
   struct gravity_cell *g = gc + c->index;
   gravity_field_zero(&g->field);
   const double centre[3] = {c->loc[0] + 0.5 * c->width[0], c->loc[1] + 0.5 * c->width[1],
                             c->loc[2] + 0.5 * c->width[2]};
+  if (act) act[c->index] = 0;
   if (c->count == 0) {
     gravity_up_leaf(&g->mp, &g->a_min, &g->h_support, p->x, p->y, p->z, p->m, p->h, p->gax, p->gay,
                     p->gaz, 0, 0, order, h_factor, centre);
@@ -74,7 +79,8 @@ static void up_rec(struct parts *p, const struct cell *c, struct gravity_cell *g
     for (int q = 0; q < 8; q++) {
       const struct cell *cp = c->progeny[q];
       if (cp == NULL || cp->count == 0) continue;
-      up_rec(p, cp, gc, order, h_factor);
+      up_rec(p, cp, gc, order, h_factor, act);
+      if (act) act[c->index] |= act[cp->index];
       ch[n] = &gc[cp->index].mp, ch_a[n] = gc[cp->index].a_min, ch_h[n] = gc[cp->index].h_support;
       n++;
     }
@@ -83,8 +89,13 @@ static void up_rec(struct parts *p, const struct cell *c, struct gravity_cell *g
     /* |ga| of the previous pass read, then a fresh start of the sums */
     gravity_up_leaf(&g->mp, &g->a_min, &g->h_support, p->x, p->y, p->z, p->m, p->h, p->gax, p->gay,
                     p->gaz, c->offset, c->offset + c->count, order, h_factor, centre);
-    for (size_t i = c->offset; i < c->offset + c->count; i++)
-      p->gax[i] = p->gay[i] = p->gaz[i] = p->pot[i] = 0.0;
+    const size_t end = c->offset + c->count;
+    if (act) {
+      for (size_t i = c->offset; i < end && !act[c->index]; i++)
+        act[c->index] = !PART_IS_INACTIVE(p, i);
+      if (!act[c->index]) return;
+    }
+    for (size_t i = c->offset; i < end; i++) p->gax[i] = p->gay[i] = p->gaz[i] = p->pot[i] = 0.0;
   }
 }
 
@@ -96,7 +107,7 @@ void gravity_up(struct parts *p, const struct cell *c, struct gravity_cell *gc,
       p->gax[i] = p->gay[i] = p->gaz[i] = p->pot[i] = 0.0;
     return;
   }
-  up_rec(p, c, gc, gp->order, gp->h_factor);
+  up_rec(p, c, gc, gp->order, gp->h_factor, gp->active);
 }
 
 /* ------------------------------------------------------------------ P2P */
@@ -506,6 +517,17 @@ static struct gravity_walk_params walk_params(const struct gravity_props *gp) {
 static void walk_pair(struct parts *p, const struct cell *a, const struct cell *b, int symmetric,
                       struct gravity_cell *gc, const struct gravity_props *gp) {
   if (a->count == 0 || b->count == 0) return;
+  if (gp->active) {
+    /* a step of active particles only: a cell without one receives nothing
+     * (the decisions are symmetric in a and b, so b may take a's place) */
+    const int ra = gp->active[a->index], rb = symmetric && gp->active[b->index];
+    if (!ra && !rb) return;
+    if (!ra) {
+      walk_pair(p, b, a, 0, gc, gp);
+      return;
+    }
+    if (!rb) symmetric = 0;
+  }
   struct gravity_cell *ga = gc + a->index, *gb = gc + b->index;
   const struct gravity_walk_params wp = walk_params(gp);
   int a_big = 0;
@@ -562,7 +584,7 @@ static void walk_pair(struct parts *p, const struct cell *a, const struct cell *
 /** All interactions within c: self of every progeny and every pair of them. */
 static void walk_self(struct parts *p, const struct cell *c, struct gravity_cell *gc,
                       const struct gravity_props *gp) {
-  if (c->count < 2) return;
+  if (c->count < 2 || (gp->active && !gp->active[c->index])) return;
   if (!c->split) {
     p2p_self(p, c, gp);
     return;
@@ -602,7 +624,7 @@ void gravity_walk_tree_arrays(const struct cell *cells, int nr_cells, int *proge
 
 void gravity_long_range(struct parts *p, const struct cell *ci, const struct cell *tops, int nr_top,
                         struct gravity_cell *gc, const struct gravity_props *gp) {
-  if (ci->count == 0) return;
+  if (ci->count == 0 || (gp->active && !gp->active[ci->index])) return;
   for (int j = 0; j < nr_top; j++) {
     const struct cell *cj = tops + j;
     if (cj == ci || cj->count == 0 || gravity_top_pair_is_near(ci, cj, gp)) continue;
@@ -615,7 +637,7 @@ void gravity_long_range(struct parts *p, const struct cell *ci, const struct cel
 /** Push c's local expansion to its progeny (L2L) or its particles (L2P). */
 static void down_rec(struct parts *p, const struct cell *c, struct gravity_cell *gc,
                      const struct gravity_props *gp) {
-  if (c->count == 0) return;
+  if (c->count == 0 || (gp->active && !gp->active[c->index])) return;
   const struct gravity_cell *g = gc + c->index;
   if (c->split) {
     for (int q = 0; q < 8; q++) {

@@ -22,6 +22,7 @@ void gravity_engine_clean(struct engine *e) {
   struct gravity_state *g = e->grav;
   if (!g) return;
   free(g->cells);
+  free(g->active);
   free(g->x0);
   restart_gravity_free(&g->restart);
   free(g);
@@ -34,7 +35,11 @@ int64_t gravity_cell_doubles(void) {
 
 void gravity_graph_made(struct engine *e, int nr_tasks) {
   struct gravity_state *g = e->grav;
+  const int cap = g->cells_cap;
   g->cells = gravity_cells_reserve(g->cells, &g->cells_cap, e->space.cells_capacity);
+  if (g->cells_cap != cap || !g->active)
+    g->active = error_realloc(g->active, (size_t)(g->cells_cap ? g->cells_cap : 1),
+                              "gravity active cells");
   if (e->gp.reuse_steps > 0) {
     /* the gravity tasks are the first nr_tasks: one list each */
     g->nr_lists = nr_tasks;
@@ -56,6 +61,28 @@ int gravity_estimate_first(struct engine *e) {
                                            e->grav->cells, &e->gp, e->nr_threads);
 }
 
+/** With individual time steps (TimeIntegration:global_step: false) on
+ *  the CPU: whether the coming FORCE phase computes gravity only for the
+ *  cells that hold a particle ending its step (sets e->gp.active; NULL:
+ *  every cell).  The particles in the middle of their step keep the
+ *  acceleration and potential of their last evaluation, which nothing
+ *  reads until their step ends (the kick adds it only to particles that
+ *  end their step); `full` (an output follows: statistics and snapshots
+ *  need every potential) computes all.  Such a step is not a full
+ *  evaluation for the far-field reuse (Gravity:reuse_steps): it drops the
+ *  far field kept for it.  Gravity:active_only false, and the GPU, compute
+ *  all (issue 20 item 6). */
+void gravity_active_decide(struct engine *e, int full) {
+  struct gravity_state *g = e->grav;
+  e->gp.active = NULL;
+  if (!e->gp.enabled || !e->gp.active_only || e->gp.direct || !e->individual || e->gpu ||
+      e->first_force || full)
+    return;
+  e->gp.active = g->active;
+  g->active_steps++;
+  g->d_min = HUGE_VAL; /* (no replay of a far field these steps overwrite) */
+}
+
 /** Whether the coming force phase may reuse the gravitational far field of
  *  the last full evaluation (Gravity:reuse_steps, gravity_cpu.h): not after
  *  a rebuild, not more than reuse_steps times in a row, and only while
@@ -65,6 +92,7 @@ void gravity_reuse_decide(struct engine *e, int rebuilt) {
   struct gravity_state *g = e->grav;
   e->gp.replay = 0;
   if (!e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0 || g->x0 == NULL || rebuilt ||
+      e->gp.active ||
       g->reused >= e->gp.reuse_steps || !(g->d_min < HUGE_VAL))
     return;
   const struct parts *p = &e->parts;
@@ -87,7 +115,8 @@ void gravity_reuse_decide(struct engine *e, int rebuilt) {
 /** After a force phase that evaluated gravity in full (reuse on): remember
  *  the positions and the shortest far-field distance of the walks. */
 void gravity_reuse_remember(struct engine *e) {
-  if (!e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0 || e->gp.replay) return;
+  if (!e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0 || e->gp.replay || e->gp.active)
+    return;
   struct gravity_state *g = e->grav;
   const struct parts *p = &e->parts;
   g->x0 = error_realloc(g->x0, 3 * (p->count ? p->count : 1) * sizeof(double),
@@ -218,6 +247,11 @@ void gravity_restart_restore(struct engine *e) {
 }
 
 void gravity_log_end(const struct engine *e) {
+  if (e->gp.enabled && e->individual)
+    error_log(0,
+              "gravity: %ld of %ld steps computed it only for the cells with particles that end "
+              "their step (time bins; the others and every output step for all)",
+              e->grav->active_steps, e->step);
   if (e->gp.enabled && e->gp.reuse_steps > 0)
     error_log(0,
               "gravity: %ld of %ld steps reused the far field (Gravity:reuse_steps %d, "

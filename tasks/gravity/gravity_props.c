@@ -21,6 +21,7 @@ void gravity_props_init(struct gravity_props *gp, const struct params *params,
   gp->eta = params_get_real(params, "Gravity:eta");
   gp->epsilon_fmm = params_get_real(params, "Gravity:epsilon_fmm");
   gp->reuse_steps = (int)params_get_int(params, "Gravity:reuse_steps");
+  gp->active_only = params_get_bool(params, "Gravity:active_only");
   gp->reuse_tol = params_get_real(params, "Gravity:reuse_tolerance");
   gp->h_factor = params_get_real(params, "Gravity:softening_h_factor");
   if (gp->h_factor > 0.0 && kind != GRAVITY_SOFTENING_SPLINE)

@@ -31,11 +31,17 @@ struct gravity_props {
   double eps2_expansion; /**< softening squared inside the expansions (eps^2 for Plummer, else 0) */
   double h_factor;       /**< Gravity:softening_h_factor: > 0: eps_i = h_factor h_i, a pair's
                               softening max(eps_i, eps_j), spline only (0: the constant eps) */
+  int active_only;       /**< Gravity:active_only: with time bins, gravity for the cells with
+                              particles that end their step only (gravity_active_decide) */
   int reuse_steps;       /**< Gravity:reuse_steps: most steps in a row that reuse the far field */
   double reuse_tol;      /**< Gravity:reuse_tolerance: largest displacement since the last full
                               evaluation, in units of the shortest far-field distance */
   int replay;            /**< set by the engine for one step: 1 = reuse the far field
                               (gravity_reuse_decide) */
+  unsigned char *active; /**< set by the engine for one step (gravity_active_decide): with time
+                              bins, per cell index, whether the cell holds a particle that ends
+                              its step (the upward pass fills it); only those cells receive
+                              (walks, local expansions, L2P); NULL: every cell receives */
 };
 
 /** The family's state in a run (tasks/gravity/gravity_state.h), opaque to

@@ -13,6 +13,10 @@
 struct gravity_state {
   struct gravity_cell *cells;     /**< gravity data of every cell, by cell index */
   int cells_cap;                  /**< its allocated length */
+  unsigned char *active;          /**< per cell, whether it receives on a step of active
+                                       particles only (gravity_active_decide; cells_cap long) */
+  long active_steps;              /**< steps of the run that computed gravity only for the
+                                       particles that end their step */
   struct gravity_ilist *lists;    /**< interaction list of each gravity task, by task id
                                        (Gravity:reuse_steps > 0; else NULL) */
   int nr_lists;                   /**< their number */
