@@ -12,7 +12,9 @@
 #                              [-T 4000] [-o OUTDIR]
 #   -m  cpu: --no-gpu; gpu: the defaults with a GPU (the build must have CUDA);
 #       cpu-bins, gpu-bins: the same with individual time steps
-#       (TimeIntegration:global_step: false)
+#       (TimeIntegration:global_step: false); cpu-binsall: cpu-bins with
+#       self-gravity for every particle at every step (Gravity:active_only:
+#       false, as the GPU computes it)
 set -euo pipefail
 # ENERGY_ETA: SPH:resolution_eta (default SWIFT's 1.2348 for the cubic spline;
 # empty: the build kernel's default eta, e.g. Wendland C2's 1.7)
@@ -40,8 +42,10 @@ for n in $sizes; do
   soft=$(awk '/suggested softening/ {print $NF * 1e6}' ic.log)
   N=$(awk '/N_target=/ {sub(/.*N=/, ""); print}' ic.log)
   for m in $modes; do
-    gpu="--no-gpu"; [ "${m%-bins}" = gpu ] && gpu=""
-    glob=true; [ "${m%-bins}" != "$m" ] && glob=false
+    base=${m%-bins}; base=${base%-binsall}
+    gpu="--no-gpu"; [ "$base" = gpu ] && gpu=""
+    glob=true; [ "$base" != "$m" ] && glob=false
+    active=true; [ "${m%-binsall}" != "$m" ] && active=false
     cat >p.yml <<YML
 InitialConditions:
   file_name: impact.hdf5
@@ -62,6 +66,7 @@ Gravity:
   enabled: true
   theta_cr: 0.5
   softening: $soft
+  active_only: $active
 Scheduler:
   max_top_level_cells: 16
 YML
