@@ -40,6 +40,9 @@ struct gpu_grav {
   struct gpu_grav_buf cursor;         /**< scatter positions of each cell */
   struct gpu_grav_buf centre;         /**< box centre of each cell (3 doubles) */
   struct gpu_grav_buf scale;          /**< a_min then h_support of each cell (upward pass) */
+  struct gpu_grav_buf active;         /**< per cell: it receives (a step of active particles) */
+  int active_on;                      /**< the coming evaluation is such a step
+                                           (gpu_grav_set_active) */
   double *scale_host;                 /**< pinned copy of scale */
   int scale_host_cap;                 /**< its cells */
   int mp_on_device;                   /**< gpu_grav_up left this evaluation's multipoles */
@@ -203,6 +206,8 @@ extern "C" void gpu_grav_up(struct gpu_grav *gg, struct parts *p, int order, dou
   u.count = (const int *)gg->count.ptr;
   u.h_factor = h_factor;
   u.order = order;
+  u.active = gg->active_on ? (unsigned char *)gg_reserve(&gg->active, nc + 16, "gravity active cells")
+                           : NULL;
   const int nl = gg->level_start[gg->nr_levels];
   const int *l2l = (const int *)gg->l2l.ptr;
   gravity_up_gpu_launch(s, dp, u, (int)nc, (const int *)gg->leaf.ptr, gg->nr_leaves, l2l, l2l + nl,
@@ -249,6 +254,7 @@ extern "C" void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_t
   T.mp = (const struct gravity_multipole *)gg->mp.ptr;
   T.a_min = (const double *)gg->scale.ptr;
   T.h_support = (const double *)gg->scale.ptr + nc;
+  T.active = gg->active_on ? (const unsigned char *)gg->active.ptr : NULL;
   struct gravity_walk_params wp;
   wp.G = G;
   wp.theta = theta;
@@ -437,10 +443,6 @@ extern "C" void gpu_grav_run(struct gpu_grav *gg, struct parts *p,
   gpu_check(cudaEventRecord(gg->ev[GG_UP], s));
   if (!resident) gpu_copy_named(gg->g, p, xyzm, 4, 1);
   const size_t n = p->count;
-  gpu_check(cudaMemsetAsync(dp.gax, 0, n * sizeof(double), s));
-  gpu_check(cudaMemsetAsync(dp.gay, 0, n * sizeof(double), s));
-  gpu_check(cudaMemsetAsync(dp.gaz, 0, n * sizeof(double), s));
-  gpu_check(cudaMemsetAsync(dp.pot, 0, n * sizeof(double), s));
   struct gravity_gpu_dev d;
   d.mp = (const struct gravity_multipole *)gg->mp.ptr;
   d.field = (struct gravity_field *)gg->field.ptr;
@@ -451,6 +453,18 @@ extern "C" void gpu_grav_run(struct gpu_grav *gg, struct parts *p,
   d.eps2 = eps2;
   d.softening = softening;
   d.order = order;
+  /* a step of active particles only (the upward pass marked the cells, the
+   * walk recorded their interactions only): the particles of the other
+   * leaves keep their ga and pot */
+  d.active = gg->active_on && !replay ? (const unsigned char *)gg->active.ptr : NULL;
+  if (d.active) {
+    gravity_zero_gpu_launch(s, dp, d, (const int *)gg->leaf.ptr, gg->nr_leaves, gg->block);
+  } else {
+    gpu_check(cudaMemsetAsync(dp.gax, 0, n * sizeof(double), s));
+    gpu_check(cudaMemsetAsync(dp.gay, 0, n * sizeof(double), s));
+    gpu_check(cudaMemsetAsync(dp.gaz, 0, n * sizeof(double), s));
+    gpu_check(cudaMemsetAsync(dp.pot, 0, n * sizeof(double), s));
+  }
   const size_t nc = (size_t)gg->nr_cells;
   if (!replay && !gg->mp_on_device)
     gg_up(gg, s, gg->mp.ptr, gg->mp_host, nc * sizeof(struct gravity_multipole));
@@ -491,6 +505,10 @@ extern "C" void gpu_grav_run(struct gpu_grav *gg, struct parts *p,
   gg->have_eval = 1;
   gg->calls++;
   gg->replays += replay;
+}
+
+extern "C" void gpu_grav_set_active(struct gpu_grav *gg, int on) {
+  gg->active_on = on;
 }
 
 extern "C" void gpu_grav_print(const struct gpu_grav *gg, FILE *f) {

@@ -90,6 +90,14 @@ void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_top, double 
 void gpu_grav_run(struct gpu_grav *gg, struct parts *p, const struct gravity_gpu_rec *rec,
                   int nr_rec, double G, double eps, int softening, double eps2, int order,
                   int resident, int replay);
+/** Whether the coming evaluation is a step of active particles only
+ *  (gravity_props.active_step; time bins): gpu_grav_up marks the cells
+ *  that hold a particle that ends its step (PART_INACTIVE not set),
+ *  gpu_grav_walk records the interactions that such cells receive only
+ *  (gravity_walk_run's rules), gpu_grav_run zeroes and completes the ga and
+ *  pot of their leaves only.  Needs the walks on the device; on == 0 (the
+ *  default): every cell. */
+void gpu_grav_set_active(struct gpu_grav *gg, int on);
 /** Print the accumulated times of the gravity kernels. */
 void gpu_grav_print(const struct gpu_grav *gg, FILE *f);
 

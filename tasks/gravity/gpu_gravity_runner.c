@@ -51,6 +51,9 @@ int gravity_gpu_prepare(struct engine *e, struct gravity_gpu *gg) {
     gpu_grav_set_tree(gg->dev, &h->tree);
   }
   gg->mp = gpu_grav_multipoles(gg->dev, e->space.nr_cells);
+  /* a step of active particles only (time bins): the cells marked, walked
+   * and completed on the device; with the walks on the host all */
+  gpu_grav_set_active(gg->dev, e->gp.active_step && gg->up_on_device && gg->walk_on_device);
   /* Scheduler:gpu_multipoles: device: P2M and M2M on the GPU, the
    * multipoles back where the CPU walks; the runner skips the grav_up
    * tasks */

@@ -70,15 +70,18 @@ int gravity_estimate_first(struct engine *e) {
  *  end their step); `full` (an output follows: statistics and snapshots
  *  need every potential) computes all.  Such a step is not a full
  *  evaluation for the far-field reuse (Gravity:reuse_steps): it drops the
- *  far field kept for it.  Gravity:active_only false, and the GPU, compute
- *  all (issue 20 item 6). */
+ *  far field kept for it.  The GPU runner does the same on the device when
+ *  its walks run there (Scheduler:gpu_walks: device, the default), and
+ *  computes all otherwise. */
 void gravity_active_decide(struct engine *e, int full) {
   struct gravity_state *g = e->grav;
   e->gp.active = NULL;
-  if (!e->gp.enabled || !e->gp.active_only || e->gp.direct || !e->individual || e->gpu ||
-      e->first_force || full)
+  e->gp.active_step = 0;
+  if (!e->gp.enabled || !e->gp.active_only || e->gp.direct || !e->individual || e->first_force ||
+      full)
     return;
-  e->gp.active = g->active;
+  e->gp.active_step = 1;
+  if (!e->gpu) e->gp.active = g->active; /* (the GPU runner marks its cells on the device) */
   g->active_steps++;
   g->d_min = HUGE_VAL; /* (no replay of a far field these steps overwrite) */
 }
@@ -92,7 +95,7 @@ void gravity_reuse_decide(struct engine *e, int rebuilt) {
   struct gravity_state *g = e->grav;
   e->gp.replay = 0;
   if (!e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0 || g->x0 == NULL || rebuilt ||
-      e->gp.active ||
+      e->gp.active_step ||
       g->reused >= e->gp.reuse_steps || !(g->d_min < HUGE_VAL))
     return;
   const struct parts *p = &e->parts;
@@ -115,7 +118,7 @@ void gravity_reuse_decide(struct engine *e, int rebuilt) {
 /** After a force phase that evaluated gravity in full (reuse on): remember
  *  the positions and the shortest far-field distance of the walks. */
 void gravity_reuse_remember(struct engine *e) {
-  if (!e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0 || e->gp.replay || e->gp.active)
+  if (!e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0 || e->gp.replay || e->gp.active_step)
     return;
   struct gravity_state *g = e->grav;
   const struct parts *p = &e->parts;

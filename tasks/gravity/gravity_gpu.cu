@@ -201,6 +201,7 @@ template <int P>
 __global__ void gravity_l2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
                                        const int *__restrict__ leaf) {
   const int c = leaf[blockIdx.x];
+  if (d.active && !d.active[c]) return; /* (its particles keep their last ga and pot) */
   const size_t beg = d.offset[c];
   const int cnt = d.count[c];
   const struct gravity_multipole *mc = d.mp + c;
@@ -214,6 +215,27 @@ __global__ void gravity_l2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
     p.gay[i] += a[1];
     p.gaz[i] += a[2];
   }
+}
+
+/** ga and pot of the particles of every leaf that receives (d.active) set
+ *  to zero, one block per leaf; the others keep those of their last
+ *  evaluation (the CPU's up_rec). */
+__global__ void gravity_zero_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
+                                        const int *__restrict__ leaf) {
+  const int c = leaf[blockIdx.x];
+  if (!d.active[c]) return;
+  const size_t beg = d.offset[c];
+  for (int t = threadIdx.x; t < d.count[c]; t += blockDim.x) {
+    const size_t i = beg + (size_t)t;
+    p.gax[i] = p.gay[i] = p.gaz[i] = p.pot[i] = 0.0;
+  }
+}
+
+void gravity_zero_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_dev d,
+                             const int *leaf, int nr_leaves, int block) {
+  if (nr_leaves == 0) return;
+  gravity_zero_gpu_kernel<<<nr_leaves, block, 0, s>>>(p, d, leaf);
+  gpu_check_launch(gravity_zero_gpu_kernel);
 }
 
 void gravity_field_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_dev d,

@@ -43,6 +43,8 @@ struct gravity_gpu_dev {
   const int *count;                   /**< its particles */
   double G, eps, eps2;                /**< constant, softening, softening^2 in the expansions */
   int softening, order;               /**< enum gravity_softening, expansion order */
+  const unsigned char *active;        /**< a step of active particles only: per cell, whether it
+                                           receives (gravity_walk_tree.active); NULL: all */
 };
 
 /** The upward pass on the device (gravity_up_gpu_launch): by cell index. */
@@ -54,6 +56,8 @@ struct gravity_gpu_up {
   const int *count;             /**< its particles */
   double h_factor;              /**< Gravity:softening_h_factor */
   int order;                    /**< expansion order */
+  unsigned char *active;        /**< a step of active particles only: per cell, whether it holds
+                                     a particle that ends its step (out); NULL: not such a step */
 };
 
 /** Recorded interactions grouped by receiving cell (tasks/gravity/gpu_gravity.cu). */
@@ -99,7 +103,12 @@ void gravity_l2l_gpu_launch(cudaStream_t s, struct gravity_gpu_dev d, const int 
 void gravity_part_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_dev d,
                              struct gravity_gpu_groups l, const int *leaf, int nr_leaves,
                              int block);
-/** L2P at the leaves leaf[0..nr_leaves), added to pot and ga. */
+/** ga and pot of the particles of the leaves leaf[0..nr_leaves) that
+ *  receive (d.active, required) set to zero. */
+void gravity_zero_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_dev d,
+                             const int *leaf, int nr_leaves, int block);
+/** L2P at the leaves leaf[0..nr_leaves) that receive (d.active; NULL:
+ *  all), added to pot and ga. */
 void gravity_l2p_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_dev d,
                             const int *leaf, int nr_leaves, int block);
 

@@ -38,6 +38,9 @@ struct gravity_props {
                               evaluation, in units of the shortest far-field distance */
   int replay;            /**< set by the engine for one step: 1 = reuse the far field
                               (gravity_reuse_decide) */
+  int active_step;       /**< set by the engine for one step (gravity_active_decide): 1 = only
+                              the cells with particles that end their step receive (on the CPU
+                              through `active`, on the GPU through gpu_grav_set_active) */
   unsigned char *active; /**< set by the engine for one step (gravity_active_decide): with time
                               bins, per cell index, whether the cell holds a particle that ends
                               its step (the upward pass fills it); only those cells receive

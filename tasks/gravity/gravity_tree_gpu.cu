@@ -35,6 +35,7 @@ __global__ void gravity_up_empty_gpu_kernel(struct gravity_gpu_up u, int nr_cell
   if (c >= nr_cells) return;
   gravity_up_leaf(u.mp + c, u.a_min + c, u.h_support + c, NULL, NULL, NULL, NULL, NULL, NULL, NULL,
                   NULL, 0, 0, 1, 0.0, u.centre + 3 * (size_t)c);
+  if (u.active) u.active[c] = 0;
 }
 
 /** P2M of every non-empty leaf (one thread each). */
@@ -47,6 +48,11 @@ __global__ void gravity_up_leaf_gpu_kernel(struct parts p, struct gravity_gpu_up
   const size_t i0 = u.offset[c];
   gravity_up_leaf(u.mp + c, u.a_min + c, u.h_support + c, p.x, p.y, p.z, p.m, p.h, p.gax, p.gay,
                   p.gaz, i0, i0 + (size_t)u.count[c], P, u.h_factor, u.centre + 3 * (size_t)c);
+  if (u.active) {
+    unsigned char act = 0;
+    for (size_t i = i0; i < i0 + (size_t)u.count[c] && !act; i++) act = !PART_IS_INACTIVE(&p, i);
+    u.active[c] = act;
+  }
 }
 
 /** M2M of one level: the thread of the first pair of each parent sums
@@ -60,12 +66,15 @@ __global__ void gravity_up_node_gpu_kernel(struct gravity_gpu_up u, const int *_
   const struct gravity_multipole *ch[8];
   double ch_a[8], ch_h[8];
   int n = 0;
+  unsigned char act = 0;
   for (int j = k; j < k1 && parent[j] == q && n < 8; j++, n++) {
     const int c = child[j];
     ch[n] = u.mp + c;
     ch_a[n] = u.a_min[c];
     ch_h[n] = u.h_support[c];
+    if (u.active) act |= u.active[c];
   }
+  if (u.active) u.active[q] = act;
   gravity_up_node(u.mp + q, u.a_min + q, u.h_support + q, ch, ch_a, ch_h, n, P,
                   u.centre + 3 * (size_t)q);
 }

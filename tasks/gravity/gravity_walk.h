@@ -36,6 +36,9 @@ struct gravity_walk_tree {
   const unsigned char *split;         /**< 1: the cell has progeny */
   const struct gravity_multipole *mp; /**< multipoles (com, r_max, M[0]) */
   const double *a_min, *h_support;    /**< struct gravity_cell's (gravity_up) */
+  const unsigned char *active;        /**< a step of active particles only (time bins): per cell,
+                                           whether it receives (gravity_props.active); NULL:
+                                           every cell */
 };
 
 /** The acceptance parameters of struct gravity_props. */
@@ -225,7 +228,23 @@ BOLIDE_INLINE int gravity_walk_run(const struct gravity_walk_tree *T,
                                    int *stack, int cap, int n, long long budget) {
   for (long long step = 0; n > 0 && step < budget; step++) {
     n--;
-    const int a = stack[3 * n], b = stack[3 * n + 1], s = stack[3 * n + 2];
+    int a = stack[3 * n], b = stack[3 * n + 1], s = stack[3 * n + 2];
+    if (T->active) {
+      /* a step of active particles only: a cell that is not marked receives
+       * nothing; the decisions are symmetric in a and b, so b may take a's
+       * place (the CPU's walk_pair, tasks/gravity/gravity_cpu.c) */
+      if (a == b) {
+        if (!T->active[a]) continue;
+      } else {
+        const int ra = T->active[a], rb = s && T->active[b];
+        if (!ra && !rb) continue;
+        if (!ra) {
+          const int t = a;
+          a = b, b = t;
+        }
+        if (!ra || !rb) s = 0;
+      }
+    }
     if (a == b) { /* self */
       if (T->count[a] < 2) continue;
       if (!T->split[a]) {

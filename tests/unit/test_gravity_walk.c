@@ -8,7 +8,10 @@
  * spheres (lopsided M2P and P2L), each at the first pass (no acceleration
  * scale: the tighter geometric angle) and at a second pass (the adaptive
  * criterion on |ga| of the first), with the constant softening and with
- * the softening tied to h.  Exit 0 pass, 1 fail. */
+ * the softening tied to h; and a third pass of a time-bins step of active
+ * particles only (gravity_props.active: half the particles and every third
+ * of the rest sleep), where both walks must skip the same cells and turn
+ * the same pairs one-way.  Exit 0 pass, 1 fail. */
 #ifdef HAVE_CONFIG_H
 #include "config.h"
 #endif
@@ -103,8 +106,18 @@ static void run(const char *name, int two_bodies, double h_factor) {
   struct gravity_multipole *mp = malloc((size_t)nc * sizeof *mp);
   double *a_min = malloc((size_t)nc * sizeof(double)), *hs = malloc((size_t)nc * sizeof(double));
   int *stack = malloc(3 * (size_t)TEST_STACK * sizeof(int));
-  for (int pass = 0; pass < 2; pass++) {
+  unsigned char *act = malloc((size_t)nc);
+  size_t entries_all = 0;
+  for (int pass = 0; pass < 3; pass++) {
     if (pass == 1) gravity_tree_all(&p, sp.cells, nt, gc, &gp); /* |ga| for the adaptive pass */
+    if (pass == 2) {
+      /* time bins, a step of active particles only (gravity_props.active):
+       * the particles of the lower half in x and every third one elsewhere
+       * sleep, so that whole cells, and parts of cells, do not receive */
+      for (size_t i = 0; i < n; i++)
+        p.flags[i] = p.x[i] < c[0] || i % 3 == 0 ? PART_INACTIVE : 0;
+      gp.active = act;
+    }
     for (int i = 0; i < nt; i++) gravity_up(&p, sp.cells + i, gc, &gp);
     /* the recursive walks, recorded */
     struct gravity_gpu_rec rec;
@@ -124,7 +137,21 @@ static void run(const char *name, int two_bodies, double h_factor) {
      * hand what is left on their stack to a queue (one too small to take it all: the rest stays
      * with its walker), the queue then walked by the next round */
     for (int k = 0; k < nc; k++) mp[k] = gc[k].mp, a_min[k] = gc[k].a_min, hs[k] = gc[k].h_support;
-    const struct gravity_walk_tree T = {progeny, count, split, mp, a_min, hs};
+    const struct gravity_walk_tree T = {progeny, count, split, mp, a_min, hs, gp.active};
+    const size_t entries = rec.part.n + rec.field.n + rec.part_sym.n + rec.field_sym.n;
+    if (pass == 1) entries_all = entries;
+    if (pass == 2) {
+      int marked = 0, top_marked = 0;
+      for (int k = 0; k < nc; k++) marked += act[k];
+      for (int k = 0; k < nt; k++) top_marked += act[k];
+      printf("  %s, active cells only: %d of %d cells receive (%d of %d top-level), %zu of %zu "
+             "recorded entries\n",
+             name, marked, nc, top_marked, nt, entries, entries_all);
+      if (!(marked > 0 && marked < nc && entries < entries_all)) {
+        printf("  %s: the active-only walk was not exercised: FAIL\n", name);
+        failures++;
+      }
+    }
     const struct gravity_walk_params wp = {gp.G,         gp.theta,    gp.epsilon_fmm,
                                            gp.h_support, gp.h_factor, gp.order};
     double *lo_hi = malloc(6 * (size_t)nt * sizeof(double));
@@ -180,7 +207,8 @@ static void run(const char *name, int two_bodies, double h_factor) {
 #undef WALK_ITEMS
       for (int k = 0; k < 4; k++) gravity_walk_flush(&L, &B, k);
       char what[160];
-      snprintf(what, sizeof what, "%s, %s, %s, %s", name, pass ? "adaptive pass" : "first pass",
+      snprintf(what, sizeof what, "%s, %s, %s, %s", name,
+               pass == 2 ? "active only" : pass ? "adaptive pass" : "first pass",
                h_factor > 0.0 ? "eps tied to h" : "constant eps",
                mode ? "handed on" : "one walker per root");
       if (deep) {
@@ -213,7 +241,7 @@ static void run(const char *name, int two_bodies, double h_factor) {
     }
     gravity_gpu_rec_free(&rec);
   }
-  free(progeny), free(count), free(split), free(mp), free(a_min), free(hs), free(stack);
+  free(progeny), free(count), free(split), free(mp), free(a_min), free(hs), free(stack), free(act);
   free(gc);
   space_free(&sp);
   parts_free(&p);
