@@ -28,6 +28,9 @@ static void table_from_tillotson(struct eos_table *t, const struct eos_tillotson
   t->P = P;
   t->c2 = c2;
   t->T = NULL;
+  t->ln_rho = t->ln_u = NULL;
+  t->gamma_vapor = 0.0;
+  t->rho_extrapolate = 0;
 }
 
 #endif
