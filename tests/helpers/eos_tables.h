@@ -33,4 +33,35 @@ static void table_from_tillotson(struct eos_table *t, const struct eos_tillotson
   t->rho_extrapolate = 0;
 }
 
+/** Fill t from Tillotson p on the given density and energy nodes (any
+ *  increasing positive values: ln_rho and ln_u node arrays, the bisection
+ *  path of eos_table.h), with rho extrapolated linearly outside the nodes
+ *  and an ideal gas of gamma_vapor above the last energy (format
+ *  miluphcuda's behaviour); all arrays malloc'ed. */
+static void table_from_tillotson_nodes(struct eos_table *t, const struct eos_tillotson *p,
+                                       const double *rho, int nr, const double *u, int nu,
+                                       double gamma_vapor) {
+  double *P = malloc(sizeof(double) * nr * nu), *c2 = malloc(sizeof(double) * nr * nu);
+  double *lr = malloc(sizeof(double) * nr), *lu = malloc(sizeof(double) * nu);
+  for (int i = 0; i < nr; i++) lr[i] = log(rho[i]);
+  for (int j = 0; j < nu; j++) lu[j] = log(u[j]);
+  t->rho0 = p->rho0;
+  t->n_rho = nr;
+  t->n_u = nu;
+  t->ln_rho_min = lr[0];
+  t->dln_rho = (lr[nr - 1] - lr[0]) / (nr - 1);
+  t->ln_u_min = lu[0];
+  t->dln_u = (lu[nu - 1] - lu[0]) / (nu - 1);
+  for (int i = 0; i < nr; i++)
+    for (int j = 0; j < nu; j++)
+      eos_tillotson_eval(p, rho[i], u[j], &P[i * nu + j], &c2[i * nu + j]);
+  t->P = P;
+  t->c2 = c2;
+  t->T = NULL;
+  t->ln_rho = lr;
+  t->ln_u = lu;
+  t->gamma_vapor = gamma_vapor;
+  t->rho_extrapolate = 1;
+}
+
 #endif
