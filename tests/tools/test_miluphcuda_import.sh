@@ -21,6 +21,9 @@ work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
 fail=0
 ic="$B/bolide-ic"
+params_for() { # IC MATERIAL_0 MATERIAL_1: a parameter file for the initial conditions IC
+  printf 'InitialConditions:\n  file_name: %s\nTimeIntegration:\n  time_end: 1\nMaterials:\n  0: %s\n  1: %s\n' "$@"
+}
 
 "$PY" - <<'PY' || exit 1
 import numpy as np
@@ -85,16 +88,6 @@ PY
 "$ic" import-miluphcuda solid.h5 -o solid_h5.hdf5 >solid_h5.log 2>&1 ||
   { echo "FAIL: import solid.h5"; cat solid_h5.log; fail=1; }
 grep -q "deviatoric_stress alpha_jutzi" solid_h5.log || { echo "FAIL: solid.h5: datasets read: $(cat solid_h5.log)"; fail=1; }
-"$PY" - <<'PY' || fail=1
-import h5py, numpy as np, sys
-# the HDF5 import equals the ASCII import of the same particles, field by field
-with h5py.File("solid.hdf5", "r") as a, h5py.File("solid_h5.hdf5", "r") as b:
-    ga, gb = a["PartType0"], b["PartType0"]
-    bad = [k for k in ga if not np.array_equal(ga[k][...], gb[k][...])]
-    print(("FAIL solid.h5 differs from solid.0000 in " + " ".join(bad)) if bad
-          else "ok   solid.h5 (HDF5) imports as solid.0000 (ASCII): %d fields equal" % len(ga))
-    sys.exit(1 if bad else 0)
-PY
 # FRAGMENTATION's flaws and damage, ASCII and HDF5
 "$ic" import-miluphcuda frag.0000 --sml --fragmentation --solid -o frag.hdf5 >frag.log 2>&1 ||
   { echo "FAIL: import frag.0000"; cat frag.log; fail=1; }
@@ -103,36 +96,20 @@ PY
 grep -q "activation_thresholds DIM_root_of_damage_tensile" frag_h5.log || { echo "FAIL: frag.h5: datasets read: $(cat frag_h5.log)"; fail=1; }
 "$PY" - <<'PY' || fail=1
 import h5py, numpy as np, sys
-t = np.load("frag_truth.npz")
-bad = 0
-def check(c, msg):
-    global bad
-    print(("ok  " if c else "FAIL") + " " + msg)
-    bad += not c
-for name in ("frag.hdf5", "frag_h5.hdf5"):
-    with h5py.File(name, "r") as f:
-        g = f["PartType0"]
-        off, eps = g["FlawOffsets"][...], g["FlawThresholds"][...]
-        check(off[0] == 0 and np.array_equal(np.diff(off), t["nf"]), "%s: flaw counts per particle" % name)
-        ref = np.concatenate([np.sort(t["eps"][a:b]) for a, b in zip(np.r_[0, np.cumsum(t["nf"])[:-1]], np.cumsum(t["nf"]))])
-        check(np.array_equal(eps, ref), "%s: thresholds, sorted per particle (%d)" % (name, len(eps)))
-        check(np.array_equal(g["DamageCubeRoot"][...], t["d"]), "%s: DamageCubeRoot = d" % name)
-        check(np.allclose(g["Damage"][...], t["d"] ** 3, rtol=1e-15, atol=0), "%s: Damage = d^3" % name)
-with h5py.File("frag.hdf5", "r") as a, h5py.File("frag_h5.hdf5", "r") as b:
-    ga, gb = a["PartType0"], b["PartType0"]
-    diff = [k for k in ga if not np.array_equal(ga[k][...], gb[k][...])]
-    check(not diff and set(ga) == set(gb), "frag.h5 (HDF5) imports as frag.0000 (ASCII) %s" % " ".join(diff))
-sys.exit(1 if bad else 0)
+# the HDF5 import equals the ASCII import of the same particles, field by
+# field (the flaws' datasets included)
+fails = 0
+for name in ("solid", "frag"):
+    with h5py.File(name + ".hdf5", "r") as a, h5py.File(name + "_h5.hdf5", "r") as b:
+        ga, gb = a["PartType0"], b["PartType0"]
+        bad = [k for k in ga if not np.array_equal(ga[k][...], gb[k][...])] + sorted(set(ga) ^ set(gb))
+        print(("FAIL %s.h5 differs from %s.0000 in %s" % (name, name, " ".join(bad))) if bad
+              else "ok   %s.h5 (HDF5) imports as %s.0000 (ASCII): %d fields equal" % (name, name, len(ga)))
+        fails += len(bad)
+sys.exit(1 if fails else 0)
 PY
-cat >pf.yml <<'YML'
-InitialConditions:
-  file_name: frag.hdf5
-TimeIntegration:
-  time_end: 1
-Materials:
-  0: {name: iron, shear_modulus: 80e9, weibull_k: 1e61, weibull_m: 16}
-  1: {name: granite, shear_modulus: 24e9, weibull_k: 1e61, weibull_m: 16}
-YML
+params_for frag.hdf5 "{name: iron, shear_modulus: 80e9, weibull_k: 1e61, weibull_m: 16}" \
+  "{name: granite, shear_modulus: 24e9, weibull_k: 1e61, weibull_m: 16}" >pf.yml
 "$B/bolide" --check pf.yml >checkf.log 2>&1 || { echo "FAIL: bolide --check on the import with flaws"; cat checkf.log; fail=1; }
 # a step of the run takes the flaws from the initial conditions, all of them
 nflaws=$("$PY" -c 'import numpy as np; print(int(np.load("frag_truth.npz")["nf"].sum()))')
@@ -183,19 +160,22 @@ for name in ("hydro", "solid"):
             ref = np.stack([S[:, 0, 0], S[:, 0, 1], S[:, 0, 2], S[:, 1, 1], S[:, 1, 2], S[:, 2, 2]], 1)
             check(np.allclose(S6, ref, rtol=1e-12), "solid: deviatoric stress (6 of 9)")
             check(np.allclose(g["Distentions"][...], t["alpha"]), "solid: distention from alpha_jutzi")
+# FRAGMENTATION: flaws and damage, ASCII and HDF5
+t = np.load("frag_truth.npz")
+for name in ("frag.hdf5", "frag_h5.hdf5"):
+    with h5py.File(name, "r") as f:
+        g = f["PartType0"]
+        off, eps = g["FlawOffsets"][...], g["FlawThresholds"][...]
+        check(off[0] == 0 and np.array_equal(np.diff(off), t["nf"]), "%s: flaw counts per particle" % name)
+        ref = np.concatenate([np.sort(t["eps"][a:b]) for a, b in zip(np.r_[0, np.cumsum(t["nf"])[:-1]], np.cumsum(t["nf"]))])
+        check(np.array_equal(eps, ref), "%s: thresholds, sorted per particle (%d)" % (name, len(eps)))
+        check(np.array_equal(g["DamageCubeRoot"][...], t["d"]), "%s: DamageCubeRoot = d" % name)
+        check(np.allclose(g["Damage"][...], t["d"] ** 3, rtol=1e-15, atol=0), "%s: Damage = d^3" % name)
 sys.exit(1 if bad else 0)
 PY
 
 # the imported file runs through --check with materials for its ids
-cat >p.yml <<'YML'
-InitialConditions:
-  file_name: hydro.hdf5
-TimeIntegration:
-  time_end: 1
-Materials:
-  0: {name: iron}
-  1: {name: granite}
-YML
+params_for hydro.hdf5 "{name: iron}" "{name: granite}" >p.yml
 "$B/bolide" --check p.yml >check.log 2>&1 || { echo "FAIL: bolide --check on the import"; cat check.log; fail=1; }
 
 # a wrong column count: one line naming file, line and the expected layout

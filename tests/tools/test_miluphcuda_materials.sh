@@ -62,6 +62,14 @@ value() { # FILE ID KEY: the value of KEY of material ID
 near() { # A B: |A - B| <= 1e-9 |B|
   awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; m = b < 0 ? -b : b; exit !(a != "" && d <= 1e-9 * m) }'
 }
+keys_near() { # FILE WHAT KEY=VALUE...: the first KEY: of FILE near VALUE
+  local file=$1 what=$2 kv v
+  shift 2
+  for kv; do
+    v=$(awk -v k="${kv%%=*}:" '$1 == k { print $2; exit }' "$file")
+    near "$v" "${kv#*=}" || FAIL "$what: ${kv%%=*} is '$v', not ${kv#*=}"
+  done
+}
 
 for pl in none von_mises drucker_prager mohr_coulomb collins collins_simple; do
   "$ic" miluphcuda-materials "$cfg" --plasticity "$pl" --fragmentation -o "m_$pl.yml" 2>"e_$pl" ||
@@ -87,10 +95,7 @@ near "$(value $m 0 friction_intact)" "$(awk 'BEGIN { x = 0.9827937232; printf "%
 grep -q '^    strength: collins' $m || FAIL "no strength: collins"
 # P-alpha, crush curve 1: alpha_e = alpha_0, alpha_t = 1 + (1.9 - 1)(2 - 1)/(4.64 - 1)
 sed -n '/^  1:/,/^  2:/p' $m >mat1
-for kv in alpha_0=2 alpha_e=2 p_e=1e6 p_t=6.8e7 p_s=2.13e8 n1=12 n2=3; do
-  v=$(awk -v k="${kv%%=*}:" '$1 == k { print $2; exit }' mat1)
-  near "$v" "${kv#*=}" || FAIL "material 1 porosity: ${kv%%=*} is '$v', not ${kv#*=}"
-done
+keys_near mat1 "material 1 porosity" alpha_0=2 alpha_e=2 p_e=1e6 p_t=6.8e7 p_s=2.13e8 n1=12 n2=3
 near "$(awk '$1 == "alpha_t:" { print $2 }' mat1)" "$(awk 'BEGIN { printf "%.17g", 1 + 0.9 / 3.64 }')" ||
   FAIL "material 1: alpha_t"
 grep -q 'model: palpha' mat1 || FAIL "material 1: no palpha"
@@ -157,17 +162,11 @@ done
 grep -q 'model: palpha' ap0 && grep -q 'model: palpha' ap1 || FAIL "type 13: no palpha"
 grep -q 'model: palpha' ap2 && FAIL "type 7: has a porosity"
 # crush curve 1 rescaled to alpha_e = alpha_0: alpha_t = 1 + (1.9 - 1)(1.8 - 1)/(4.64 - 1)
-for kv in alpha_0=1.8 alpha_e=1.8 p_e=1e6 p_t=6.8e7 p_s=2.13e8 n1=12 n2=3; do
-  v=$(awk -v k="${kv%%=*}:" '$1 == k { print $2; exit }' ap0)
-  near "$v" "${kv#*=}" || FAIL "type 13 porosity: ${kv%%=*} is '$v', not ${kv#*=}"
-done
+keys_near ap0 "type 13 porosity" alpha_0=1.8 alpha_e=1.8 p_e=1e6 p_t=6.8e7 p_s=2.13e8 n1=12 n2=3
 near "$(awk '$1 == "alpha_t:" { print $2 }' ap0)" "$(awk 'BEGIN { printf "%.17g", 1 + 0.9 * 0.8 / 3.64 }')" ||
   FAIL "type 13: alpha_t"
 # crush curve 0: the quadratic curve through alpha_0
-for kv in alpha_0=2.5 alpha_e=2.5 p_e=1e5 p_s=1e8 gamma_vapor=1.3 rho0=910; do
-  v=$(awk -v k="${kv%%=*}:" '$1 == k { print $2; exit }' ap1)
-  near "$v" "${kv#*=}" || FAIL "type 13, crush curve 0: ${kv%%=*} is '$v', not ${kv#*=}"
-done
+keys_near ap1 "type 13, crush curve 0" alpha_0=2.5 alpha_e=2.5 p_e=1e5 p_s=1e8 gamma_vapor=1.3 rho0=910
 grep -q 'alpha_t:' ap1 && FAIL "type 13, crush curve 0: has alpha_t"
 grep -q "aneos_palpha.cfg:[0-9]*: material 0: eos.cs_porous not converted" e_ap || FAIL "type 13: no note on cs_porous"
 grep -q "material 2: no eos.aneos_gamma" e_ap || FAIL "type 7: no note on aneos_gamma"
