@@ -490,7 +490,7 @@ static void material_table_axis_any(const char *file, const char *what, const do
   *dln = (l[n - 1] - l[0]) / (n - 1);
   int regular = 1;
   for (int i = 0; i < n; i++)
-    if (fabs(l[i] - (*ln0 + i * *dln)) > 1e-9 * fmax(1.0, fabs(l[i]))) regular = 0;
+    if (fabs(l[i] - (*ln0 + i * *dln)) > 1e-9) regular = 0;
   if (regular) {
     free(l);
     *nodes = NULL;

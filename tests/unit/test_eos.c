@@ -632,6 +632,47 @@ static void test_dispatch(void) {
   CHECK(c2 < m.cs_min * m.cs_min && cs == m.cs_min, "cs floor in tension: c2 %g -> cs %g", c2, cs);
 }
 
+/** A miluphcuda table (3 header lines, rows rho e P T cs, %.9e as
+ *  tools/eos_tables.py writes) of the ideal gas, nodes from rho(i), e(j). */
+static void write_miluphcuda_table(const char *path, const double *rho, int nr, const double *e,
+                                   int ne) {
+  FILE *f = fopen(path, "w");
+  fprintf(f, "# test_eos\n# ideal gas\n# rho e P T cs\n");
+  for (int i = 0; i < nr; i++)
+    for (int j = 0; j < ne; j++)
+      fprintf(f, "%.9e %.9e %.9e %.9e %.9e\n", rho[i], e[j], 2.0 / 3.0 * rho[i] * e[j],
+              e[j] / 1000.0, sqrt(10.0 / 9.0 * e[j]));
+  fclose(f);
+}
+
+/* format miluphcuda: log-spaced nodes written with 10 digits keep the
+ * division of the log grid (no node arrays), other spacings get them */
+static void test_table_miluphcuda_axes(void) {
+  enum { NR = 30, NE = 40 };
+  double rho[NR], e[NE];
+  for (int i = 0; i < NR; i++) rho[i] = pow(1e4, i / (NR - 1.0));
+  for (int j = 0; j < NE; j++) e[j] = 1e4 * pow(1e4, j / (NE - 1.0));
+  char fname[] = "/tmp/test_eos_milu_XXXXXX";
+  close(mkstemp(fname));
+  for (int linear = 0; linear < 2; linear++) {
+    if (linear)
+      for (int j = 0; j < NE; j++) e[j] = 1e4 + j * (1e8 - 1e4) / (NE - 1.0);
+    write_miluphcuda_table(fname, rho, NR, e, NE);
+    struct eos_table t;
+    memset(&t, 0, sizeof t);
+    material_eos_table_load_miluphcuda(&t, fname, NR, NE);
+    CHECK(!t.ln_rho && (linear ? t.ln_u != NULL : !t.ln_u), "miluphcuda table, %s energies: %s",
+          linear ? "linear" : "log-spaced",
+          linear ? "bisection of the energy nodes" : "the division of the log grid");
+    free((void *)t.P);
+    free((void *)t.c2);
+    free((void *)t.T);
+    free((void *)t.ln_rho);
+    free((void *)t.ln_u);
+  }
+  unlink(fname);
+}
+
 int main(int argc, char **argv) {
   verbose = argc > 1 && strcmp(argv[1], "-v") == 0;
   const struct eos_tillotson g = granite(), b = basalt();
@@ -645,6 +686,7 @@ int main(int argc, char **argv) {
   test_tillotson_round_trips("basalt", &b);
   test_other_eos();
   test_table();
+  test_table_miluphcuda_axes();
   test_dispatch();
   printf("test_eos: %d checks, %d failed\n", checks, failures);
   return failures ? 1 : 0;
