@@ -26,6 +26,7 @@
 
 #include "tests/helpers/eos_tables.h"
 #include "src/materials/material.h"
+#include "src/io/units.h"
 
 static int failures = 0;
 static int checks = 0;
@@ -664,11 +665,36 @@ static void test_table_miluphcuda_axes(void) {
     CHECK(!t.ln_rho && (linear ? t.ln_u != NULL : !t.ln_u), "miluphcuda table, %s energies: %s",
           linear ? "linear" : "log-spaced",
           linear ? "bisection of the energy nodes" : "the division of the log grid");
-    free((void *)t.P);
-    free((void *)t.c2);
-    free((void *)t.T);
-    free((void *)t.ln_rho);
-    free((void *)t.ln_u);
+    /* in cgs (node arrays shifted by the units): P x 10, c x 100 at the
+     * converted states, inside, beyond the densities (linear in rho) and
+     * above the last energy (gamma_vapor) */
+    struct material m;
+    char msg[256] = "";
+    material_init(&m, 0, "milu", EOS_TABLE);
+    m.eos.table = t;
+    CHECK(material_set(&m, "rho0", 100.0, msg, sizeof msg) == 0 &&
+              material_set(&m, "gamma_vapor", 1.4, msg, sizeof msg) == 0 &&
+              material_finalize(&m, msg, sizeof msg) == 0,
+          "table material: %s", msg);
+    struct material_table mt;
+    material_table_init(&mt);
+    material_table_add(&mt, &m);
+    const double states[4][2] = {{37.0, 3.3e6}, {2e4, 3.3e6}, {0.4, 5.5e5}, {37.0, 2e8}};
+    double P_si[4], c_si[4];
+    for (int k = 0; k < 4; k++)
+      material_eos(&mt.mats[0], states[k][0], states[k][1], &P_si[k], &c_si[k]);
+    const struct unit_system cgs = {1.0, 1.0, 1.0, 1.0, 1.0, 0.0};
+    material_table_convert_units(&mt, &cgs);
+    double worst = 0.0;
+    for (int k = 0; k < 4; k++) {
+      double P, c;
+      material_eos(&mt.mats[0], 1e-3 * states[k][0], 1e4 * states[k][1], &P, &c);
+      worst = fmax(worst, fmax(fabs(P / (10 * P_si[k]) - 1), fabs(c / (100 * c_si[k]) - 1)));
+    }
+    CHECK(worst < 1e-12 && fabs(P_si[3] - 0.4 * 37.0 * 2e8) < 1e-9 * P_si[3],
+          "miluphcuda table, %s energies, in cgs: P and c as in SI (max rel %.2g)",
+          linear ? "linear" : "log-spaced", worst);
+    material_table_free(&mt);
   }
   unlink(fname);
 }
