@@ -20,7 +20,10 @@ Formats:
           eos.table_path, eos.n_rho, eos.n_e): 3 header lines, then one row
           "rho e P T cs s phase_flag" for every (rho, e) node, e varying
           fastest (rho slowest); SI.  The nodes are on (rho, e), not (rho, T):
-          --u gives the energy range, --n N_RHO N_E.
+          --u gives the energy range, --n N_RHO N_E, --spacing the spacing
+          of both axes: log (default), linear, or irregular (log-spaced
+          nodes each moved by up to 30% of their spacing, --seed; miluphcuda
+          takes any increasing axes).
 
 EOS (SI):
   ideal_gas  P = (gamma - 1) rho u, u = c_v T, c^2 = gamma (gamma - 1) u
@@ -29,8 +32,9 @@ Usage:
   eos_tables.py --eos ideal_gas --format swift -o table.txt
   eos_tables.py --format rho_T --rho 100 20000 --T 10 1e5 --n 32 48 -o t.txt
   eos_tables.py --format miluphcuda --rho 1 1e4 --u 1e4 1e8 --n 40 50 -o aneos.table
-As a module: ideal_gas(rho, u), evaluate(...), write_swift(...), write_rho_T(...),
-write_miluphcuda(...)."""
+  eos_tables.py --format miluphcuda --spacing linear --rho 1e3 1e4 --u 1e6 1e7 -o lin.table
+As a module: ideal_gas(rho, u), evaluate(...), axis(...), write_swift(...),
+write_rho_T(...), write_miluphcuda(...)."""
 import argparse
 import sys
 
@@ -52,6 +56,22 @@ def evaluate(eos, rho, T, gamma=5.0 / 3.0, cv=None):
     P, c = ideal_gas(R, U, gamma)
     s = cv * np.log(np.maximum(TT, 1e-300))  # an entropy-like column (not read by Bolide)
     return R, TT, U, P, c, s
+
+
+def axis(lo, hi, n, spacing="log", seed=1):
+    """n strictly increasing nodes from lo to hi: log-spaced, linearly
+    spaced, or irregular (log-spaced with the interior nodes moved by up to
+    30% of the spacing in ln, from a seeded generator)."""
+    if spacing == "linear":
+        return np.linspace(lo, hi, n)
+    x = np.geomspace(lo, hi, n)
+    if spacing == "irregular" and n > 2:
+        h = np.log(hi / lo) / (n - 1)
+        rng = np.random.default_rng(seed)
+        x[1:-1] = np.exp(np.log(x[1:-1]) + rng.uniform(-0.3, 0.3, n - 2) * h)
+    elif spacing != "log":
+        raise ValueError("unknown spacing %r" % spacing)
+    return x
 
 
 def write_swift(path, rho, T, U, P, c, s, title="analytic EOS"):
@@ -110,17 +130,24 @@ def main(argv=None):
                     help="specific energy range of format miluphcuda, J/kg (log-spaced)")
     ap.add_argument("--n", nargs=2, type=int, default=[64, 64], metavar=("N_RHO", "N_T"),
                     help="node counts (N_RHO N_E for format miluphcuda)")
+    ap.add_argument("--spacing", choices=["log", "linear", "irregular"], default="log",
+                    help="node spacing of both axes of format miluphcuda (default log)")
+    ap.add_argument("--seed", type=int, default=1, help="seed of --spacing irregular")
     ap.add_argument("--gamma", type=float, default=5.0 / 3.0, help="ideal gas gamma")
     ap.add_argument("--cv", type=float, default=None, help="c_v, J/kg/K")
     ap.add_argument("-o", "--output", required=True)
     a = ap.parse_args(argv)
     if min(a.n) < 2 or a.rho[0] <= 0 or a.T[0] <= 0 or a.rho[1] <= a.rho[0] or a.T[1] <= a.T[0]:
         sys.exit("eos_tables.py: error: ranges must be positive and increasing, at least 2 nodes")
-    rho = np.geomspace(a.rho[0], a.rho[1], a.n[0])
+    if a.spacing != "log" and a.format != "miluphcuda":
+        sys.exit("eos_tables.py: error: --spacing %s: only format miluphcuda takes axes that "
+                 "are not log-spaced" % a.spacing)
+    rho = axis(a.rho[0], a.rho[1], a.n[0], a.spacing, a.seed)
     if a.format == "miluphcuda":
         if a.u[0] <= 0 or a.u[1] <= a.u[0]:
             sys.exit("eos_tables.py: error: the energy range must be positive and increasing")
-        write_miluphcuda(a.output, rho, np.geomspace(a.u[0], a.u[1], a.n[1]), a.gamma, a.cv, a.eos)
+        e = axis(a.u[0], a.u[1], a.n[1], a.spacing, a.seed + 1)
+        write_miluphcuda(a.output, rho, e, a.gamma, a.cv, a.eos)
         return
     T = np.geomspace(a.T[0], a.T[1], a.n[1])
     R, TT, U, P, c, s = evaluate(a.eos, rho, T, a.gamma, a.cv)

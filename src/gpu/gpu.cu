@@ -337,23 +337,34 @@ static void gpu_stage_materials(struct gpu *g, const struct material_table *mats
     if (mats->mats[k].eos_type != EOS_TABLE) continue;
     const struct eos_table *t = &mats->mats[k].eos.table;
     const size_t nn = (size_t)t->n_rho * (size_t)t->n_u, nf = t->T ? 3 : 2;
+    /* after the node arrays: the ln axes of a table that is not log-spaced */
+    const size_t nr = t->ln_rho ? (size_t)t->n_rho : 0, nu = t->ln_u ? (size_t)t->n_u : 0;
+    const size_t total = nf * nn + nr + nu;
     if (!g->table_dev[k] || memcmp(&g->table_src[k], t, sizeof *t) != 0) {
       if (g->table_dev[k]) gpu_check(cudaFree(g->table_dev[k]));
       char what[160];
       snprintf(what, sizeof what, "tabulated EOS of material %s (%zu nodes)", mats->mats[k].name,
                nn);
-      g->table_dev[k] = (double *)gpu_alloc(nf * nn * sizeof(double), what);
+      g->table_dev[k] = (double *)gpu_alloc(total * sizeof(double), what);
       const double *src[3] = {t->P, t->c2, t->T};
       for (size_t f = 0; f < nf; f++)
         gpu_check(cudaMemcpy(g->table_dev[k] + f * nn, src[f], nn * sizeof(double),
                              cudaMemcpyHostToDevice));
-      g->bytes_h2d += (double)(nf * nn * sizeof(double));
+      if (nr)
+        gpu_check(cudaMemcpy(g->table_dev[k] + nf * nn, t->ln_rho, nr * sizeof(double),
+                             cudaMemcpyHostToDevice));
+      if (nu)
+        gpu_check(cudaMemcpy(g->table_dev[k] + nf * nn + nr, t->ln_u, nu * sizeof(double),
+                             cudaMemcpyHostToDevice));
+      g->bytes_h2d += (double)(total * sizeof(double));
       g->table_src[k] = *t;
     }
     struct eos_table *d = &g->mats_host->mats[k].eos.table;
     d->P = g->table_dev[k];
     d->c2 = g->table_dev[k] + nn;
     d->T = t->T ? g->table_dev[k] + 2 * nn : NULL;
+    d->ln_rho = nr ? g->table_dev[k] + nf * nn : NULL;
+    d->ln_u = nu ? g->table_dev[k] + nf * nn + nr : NULL;
   }
 }
 

@@ -357,7 +357,10 @@ void material_table_free(struct material_table *t) {
     free((void *)m->eos.table.P);
     free((void *)m->eos.table.c2);
     free((void *)m->eos.table.T);
+    free((void *)m->eos.table.ln_rho);
+    free((void *)m->eos.table.ln_u);
     m->eos.table.P = m->eos.table.c2 = m->eos.table.T = NULL;
+    m->eos.table.ln_rho = m->eos.table.ln_u = NULL;
   }
   t->n = 0;
 }
@@ -412,6 +415,9 @@ void material_table_convert_units(struct material_table *t, const struct unit_sy
       }
       tab->ln_rho_min += log(f_rho);
       tab->ln_u_min += log(f_u);
+      double *lr = (double *)tab->ln_rho, *lu = (double *)tab->ln_u;
+      for (int i = 0; lr && i < tab->n_rho; i++) lr[i] += log(f_rho);
+      for (int j = 0; lu && j < tab->n_u; j++) lu[j] += log(f_u);
     }
   }
 }
@@ -463,19 +469,51 @@ static void material_table_axis(const char *file, const char *what, const double
   }
 }
 
+/** Strictly increasing, positive nodes x[0], x[stride], ... (n values) of
+ *  any spacing (format miluphcuda).  Log-spaced nodes (each within 1e-9 of
+ *  the grid in ln x, below the rounding of a file's 10 significant digits)
+ *  give *ln0, *dln and *nodes = NULL (the division of eos_table_locate);
+ *  others an array of their ln in *nodes (bisection, eos_table_search). */
+static void material_table_axis_any(const char *file, const char *what, const double *x, int n,
+                                    size_t stride, double *ln0, double *dln, const double **nodes) {
+  double *l = error_malloc((size_t)n * sizeof(double), "EOS table axis");
+  for (int i = 0; i < n; i++) {
+    if (!(x[i * stride] > 0.0))
+      error_exit("%s: %s node %d is %g: table axes must be positive (interpolated in ln)", file,
+                 what, i, x[i * stride]);
+    l[i] = log(x[i * stride]);
+    if (i > 0 && !(l[i] > l[i - 1]))
+      error_exit("%s: %s node %d (%g) after %g: the nodes must increase", file, what, i,
+                 x[i * stride], x[(i - 1) * stride]);
+  }
+  *ln0 = l[0];
+  *dln = (l[n - 1] - l[0]) / (n - 1);
+  int regular = 1;
+  for (int i = 0; i < n; i++)
+    if (fabs(l[i] - (*ln0 + i * *dln)) > 1e-9) regular = 0;
+  if (regular) {
+    free(l);
+    *nodes = NULL;
+  } else {
+    *nodes = l;
+  }
+}
+
 /** c^2 = dP/drho + P/rho^2 dP/du at the nodes by centred (one-sided at the
  *  edges) differences in ln rho and ln u. */
 static void material_table_sound_speed(struct eos_table *tab, double *c2) {
   const int nr = tab->n_rho, nu = tab->n_u;
   for (int i = 0; i < nr; i++) {
     const int i0 = i > 0 ? i - 1 : 0, i1 = i < nr - 1 ? i + 1 : nr - 1;
-    const double rho = exp(tab->ln_rho_min + i * tab->dln_rho);
+    const double rho = exp(eos_table_ln_rho_node(tab, i));
+    const double hr = eos_table_ln_rho_node(tab, i1) - eos_table_ln_rho_node(tab, i0);
     for (int j = 0; j < nu; j++) {
       const int j0 = j > 0 ? j - 1 : 0, j1 = j < nu - 1 ? j + 1 : nu - 1;
-      const double u = exp(tab->ln_u_min + j * tab->dln_u);
+      const double u = exp(eos_table_ln_u_node(tab, j));
+      const double hu = eos_table_ln_u_node(tab, j1) - eos_table_ln_u_node(tab, j0);
       const double P = tab->P[i * nu + j];
-      const double dPdlr = (tab->P[i1 * nu + j] - tab->P[i0 * nu + j]) / ((i1 - i0) * tab->dln_rho);
-      const double dPdlu = (tab->P[i * nu + j1] - tab->P[i * nu + j0]) / ((j1 - j0) * tab->dln_u);
+      const double dPdlr = (tab->P[i1 * nu + j] - tab->P[i0 * nu + j]) / hr;
+      const double dPdlu = (tab->P[i * nu + j1] - tab->P[i * nu + j0]) / hu;
       c2[i * nu + j] = dPdlr / rho + P / (rho * rho) * dPdlu / u;
     }
   }
@@ -538,7 +576,8 @@ void material_eos_table_load(struct eos_table *tab, const char *filename, int fo
 }
 
 /** Fill tab from the nr x nu rows read from a table file (rho varies
- *  slowest): format 0, x holds u; format 1, x holds T and uu holds u.
+ *  slowest): format 0, x holds u; format 1, x holds T and uu holds u;
+ *  format 3 (miluphcuda), x holds u on increasing axes of any spacing.
  *  Takes the arrays (P and cs may be replaced, all are freed or kept). */
 static void material_table_build(struct eos_table *tab, const char *filename, int format, int nr,
                                  int nu, double *rho, double *x, double *uu, double *P, double *cs,
@@ -552,9 +591,17 @@ static void material_table_build(struct eos_table *tab, const char *filename, in
                    filename, i * nu + j + 1, rho[i * nu + j], rho[i * nu], nu);
   tab->n_rho = nr;
   tab->n_u = nu;
-  material_table_axis(filename, "density", rho, nr, (size_t)nu, &tab->ln_rho_min, &tab->dln_rho);
+  tab->ln_rho = tab->ln_u = NULL;
+  tab->rho_extrapolate = 0;
+  if (format == 3)
+    material_table_axis_any(filename, "density", rho, nr, (size_t)nu, &tab->ln_rho_min,
+                            &tab->dln_rho, &tab->ln_rho);
+  else
+    material_table_axis(filename, "density", rho, nr, (size_t)nu, &tab->ln_rho_min, &tab->dln_rho);
   double *T = NULL;
-  if (format == 0) {
+  if (format == 3) {
+    material_table_axis_any(filename, "energy", x, nu, 1, &tab->ln_u_min, &tab->dln_u, &tab->ln_u);
+  } else if (format == 0) {
     for (int i = 0; i < nr; i++)
       if (memcmp(x + i * nu, x, nu * sizeof(double)) != 0)
         error_exit("%s: the energy nodes of density block %d differ from the first block", filename,
@@ -793,8 +840,9 @@ void material_eos_table_load_miluphcuda(struct eos_table *tab, const char *filen
   }
   /* the builder takes rho, e, P, cs (rows: rho slowest, as here); T is
    * kept as the table's temperature */
-  material_table_build(tab, filename, 0, nr, nu, rho, e, NULL, P, cs, 1);
+  material_table_build(tab, filename, 3, nr, nu, rho, e, NULL, P, cs, 1);
   tab->T = T;
+  tab->rho_extrapolate = 1; /* miluphcuda: linear in rho beyond the density nodes */
 }
 
 /* ------------------------------------------------------------ library */

@@ -319,9 +319,12 @@ void material_eos_table_load_swift(struct eos_table *tab, const char *filename);
 
 /** Load a table in the format of miluphcuda's ANEOS lookup tables (its
  *  eos.type = 7, eos.table_path): 3 header lines, then one row per (rho, e)
- *  node, "rho e P T cs [s phase_flag ...]", e varying fastest, in SI.  Both
- *  axes must be log-spaced (Bolide's grid).  n_rho and n_e (miluphcuda's
- *  keys) are checked against the file when > 0, else taken from it. */
+ *  node, "rho e P T cs [s phase_flag ...]", e varying fastest, in SI.  The
+ *  axes may have any strictly increasing, positive nodes (log-spaced ones
+ *  take the fast path of eos_table.h); outside the densities the table is
+ *  extrapolated linearly in rho, as miluphcuda does.  n_rho and n_e
+ *  (miluphcuda's keys) are checked against the file when > 0, else taken
+ *  from it. */
 void material_eos_table_load_miluphcuda(struct eos_table *tab, const char *filename, int n_rho,
                                         int n_e);
 

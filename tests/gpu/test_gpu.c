@@ -209,8 +209,17 @@ static int compare_lists(struct gpu *g, const struct space *sp, struct cell *con
 /** The three cases. */
 /** KIND_BASALT_CONT: the solid case with the density from the continuity
  *  equation (from perturbed densities) and XSPH; KIND_GRANITE_TABLE: the
- *  granite case with its Tillotson EOS as a table (eos_tables.h). */
-enum test_kind { KIND_GAS, KIND_GRANITE, KIND_BASALT_SOLID, KIND_BASALT_CONT, KIND_GRANITE_TABLE };
+ *  granite case with its Tillotson EOS as a table (eos_tables.h);
+ *  KIND_GRANITE_TABLE_NODES: the same on irregular axes narrower than the
+ *  states (bisection, linear in rho outside, ideal gas above the last u). */
+enum test_kind {
+  KIND_GAS,
+  KIND_GRANITE,
+  KIND_BASALT_SOLID,
+  KIND_BASALT_CONT,
+  KIND_GRANITE_TABLE,
+  KIND_GRANITE_TABLE_NODES
+};
 
 /** The solids and damage fields of the CPU run p and the GPU run q: tensors
  *  relative to their largest component over the particles, damage relative
@@ -377,6 +386,19 @@ static void case_material(struct material_table *mats, struct hydro_props *hp,
       m.eos_type = EOS_TABLE;
       memset(&m.eos, 0, sizeof m.eos);
       table_from_tillotson(&m.eos.table, &till, 96, 96, 0.4 * till.rho0, 2.5 * till.rho0, 1e4, 1e8);
+    } else if (kind == KIND_GRANITE_TABLE_NODES) {
+      /* 40 x 40 irregular nodes over rho 0.8 to 1.6 rho0 and u 3e4 to 1e6
+       * J/kg: many states of the case lie outside */
+      const struct eos_tillotson till = m.eos.tillotson;
+      double rho[40], u[40];
+      for (int k = 0; k < 40; k++) {
+        const double w = (k + (k % 3 == 1 ? 0.3 : k % 3 == 2 ? -0.2 : 0.0)) / 39.0;
+        rho[k] = till.rho0 * (0.8 + 0.8 * w);
+        u[k] = 3e4 * pow(1e6 / 3e4, w);
+      }
+      m.eos_type = EOS_TABLE;
+      memset(&m.eos, 0, sizeof m.eos);
+      table_from_tillotson_nodes(&m.eos.table, &till, rho, 40, u, 40, 1.4);
     }
   } else {
     material_init(&m, 0, "gas", EOS_IDEAL_GAS);
@@ -568,7 +590,8 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
       "%s box, %zu particles, %s: CPU %.3f s (1 thread), GPU %.3f s (lists %d leaves, %d "
       "entries)\n",
       periodic ? "periodic" : "open", n,
-      kind == KIND_GRANITE_TABLE ? "granite as a 96 x 96 (rho, u) EOS table"
+      kind == KIND_GRANITE_TABLE         ? "granite as a 96 x 96 (rho, u) EOS table"
+      : kind == KIND_GRANITE_TABLE_NODES ? "granite as a 40 x 40 table on irregular, narrow axes"
       : cont    ? "Tillotson basalt, Collins strength, damage, continuity density, XSPH"
       : solid   ? "Tillotson basalt, Collins strength, artificial stress, Weibull flaws"
       : granite ? "Tillotson granite"
@@ -839,6 +862,7 @@ int main(int argc, char **argv) {
   fail += run_case(g, 0, 20, KIND_BASALT_SOLID, 4242);
   fail += run_case(g, 0, 20, KIND_BASALT_CONT, 4343);
   fail += run_case(g, 0, 20, KIND_GRANITE_TABLE, 778);
+  fail += run_case(g, 0, 20, KIND_GRANITE_TABLE_NODES, 779);
   fail += run_gravity_case(g, 40000, GRAVITY_SOFTENING_SPLINE, 99, 0);
   fail += run_gravity_case(g, 20000, GRAVITY_SOFTENING_PLUMMER, 98, 0);
   fail += run_gravity_case(g, 40000, GRAVITY_SOFTENING_SPLINE, 97, 1);

@@ -10,10 +10,15 @@
 #     yield strengths, friction angles as coefficients);
 #   - every key not converted is named (a comment and a note);
 #   - ANEOS (type 7) becomes `eos: table, format: miluphcuda` with its
-#     table_path, n_rho, n_e, aneos_rho_0 and the cs_limit default, and a
-#     table written by tools/eos_tables.py passes `bolide --check`;
-#   - an EOS Bolide does not have (ANEOS + P-alpha, type 13) is an error, all
-#     problems in one pass, and nothing is written;
+#     table_path, n_rho, n_e, aneos_rho_0, aneos_gamma (gamma_vapor) and the
+#     cs_limit default, and a table written by tools/eos_tables.py passes
+#     `bolide --check`;
+#   - ANEOS + P-alpha (type 13, tests/data/miluphcuda/aneos_palpha.cfg)
+#     becomes the same table with the P-alpha porosity of types 5 and 6
+#     (crush curves 0 and 1), and passes `bolide --check`;
+#   - an EOS Bolide does not have (Sirono, type 10) and a measured crush
+#     curve (crushcurve_style 2) are errors naming the key, all problems in
+#     one pass, and nothing is written;
 #   - an integer where miluphcuda reads a float is warned about.
 # Skips (77) when bolide-ic was built without libconfig, after checking that
 # the subcommand then says so in one line.
@@ -57,6 +62,14 @@ value() { # FILE ID KEY: the value of KEY of material ID
 near() { # A B: |A - B| <= 1e-9 |B|
   awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; m = b < 0 ? -b : b; exit !(a != "" && d <= 1e-9 * m) }'
 }
+keys_near() { # FILE WHAT KEY=VALUE...: the first KEY: of FILE near VALUE
+  local file=$1 what=$2 kv v
+  shift 2
+  for kv; do
+    v=$(awk -v k="${kv%%=*}:" '$1 == k { print $2; exit }' "$file")
+    near "$v" "${kv#*=}" || FAIL "$what: ${kv%%=*} is '$v', not ${kv#*=}"
+  done
+}
 
 for pl in none von_mises drucker_prager mohr_coulomb collins collins_simple; do
   "$ic" miluphcuda-materials "$cfg" --plasticity "$pl" --fragmentation -o "m_$pl.yml" 2>"e_$pl" ||
@@ -82,10 +95,7 @@ near "$(value $m 0 friction_intact)" "$(awk 'BEGIN { x = 0.9827937232; printf "%
 grep -q '^    strength: collins' $m || FAIL "no strength: collins"
 # P-alpha, crush curve 1: alpha_e = alpha_0, alpha_t = 1 + (1.9 - 1)(2 - 1)/(4.64 - 1)
 sed -n '/^  1:/,/^  2:/p' $m >mat1
-for kv in alpha_0=2 alpha_e=2 p_e=1e6 p_t=6.8e7 p_s=2.13e8 n1=12 n2=3; do
-  v=$(awk -v k="${kv%%=*}:" '$1 == k { print $2; exit }' mat1)
-  near "$v" "${kv#*=}" || FAIL "material 1 porosity: ${kv%%=*} is '$v', not ${kv#*=}"
-done
+keys_near mat1 "material 1 porosity" alpha_0=2 alpha_e=2 p_e=1e6 p_t=6.8e7 p_s=2.13e8 n1=12 n2=3
 near "$(awk '$1 == "alpha_t:" { print $2 }' mat1)" "$(awk 'BEGIN { printf "%.17g", 1 + 0.9 / 3.64 }')" ||
   FAIL "material 1: alpha_t"
 grep -q 'model: palpha' mat1 || FAIL "material 1: no palpha"
@@ -135,13 +145,44 @@ for kv in n_rho=20 n_e=30 rho0=2680 cs_min=55; do
 done
 params m_aneos.yml >p_aneos.yml
 "$bolide" --check p_aneos.yml >c_aneos 2>&1 || { FAIL "ANEOS: bolide --check"; cat c_aneos; }
+grep -q "material 0: no eos.aneos_gamma > 1: .* Bolide clamps e" e_aneos || FAIL "ANEOS: no note on aneos_gamma"
+[ -z "$(value m_aneos.yml 0 gamma_vapor)" ] || FAIL "ANEOS without aneos_gamma: gamma_vapor written"
 
-# errors: ANEOS + P-alpha and a missing ID in one pass, nothing written; an integer
+# ANEOS + P-alpha (type 13): the table, gamma_vapor and the porosity of types 5, 6
+"$ic" miluphcuda-materials "$S/tests/data/miluphcuda/aneos_palpha.cfg" -o m_ap.yml 2>e_ap ||
+  { FAIL "ANEOS + P-alpha: conversion failed"; cat e_ap; }
+for id in 0 1 2; do
+  sed -n "/^  $id:/,/^  $((id + 1)):/p" m_ap.yml >ap$id
+  grep -q '^    eos: table' ap$id && grep -q '^    format: miluphcuda' ap$id &&
+    grep -q '^    file: "aneos.table"' ap$id || FAIL "ANEOS + P-alpha: material $id not eos: table, format: miluphcuda"
+done
+for kv in n_rho=20 n_e=30 rho0=3320 gamma_vapor=1.4 cs_min=65 shear_modulus=40e9; do
+  near "$(value m_ap.yml 0 "${kv%%=*}")" "${kv#*=}" || FAIL "type 13: ${kv%%=*} is '$(value m_ap.yml 0 "${kv%%=*}")', not ${kv#*=}"
+done
+grep -q 'model: palpha' ap0 && grep -q 'model: palpha' ap1 || FAIL "type 13: no palpha"
+grep -q 'model: palpha' ap2 && FAIL "type 7: has a porosity"
+# crush curve 1 rescaled to alpha_e = alpha_0: alpha_t = 1 + (1.9 - 1)(1.8 - 1)/(4.64 - 1)
+keys_near ap0 "type 13 porosity" alpha_0=1.8 alpha_e=1.8 p_e=1e6 p_t=6.8e7 p_s=2.13e8 n1=12 n2=3
+near "$(awk '$1 == "alpha_t:" { print $2 }' ap0)" "$(awk 'BEGIN { printf "%.17g", 1 + 0.9 * 0.8 / 3.64 }')" ||
+  FAIL "type 13: alpha_t"
+# crush curve 0: the quadratic curve through alpha_0
+keys_near ap1 "type 13, crush curve 0" alpha_0=2.5 alpha_e=2.5 p_e=1e5 p_s=1e8 gamma_vapor=1.3 rho0=910
+grep -q 'alpha_t:' ap1 && FAIL "type 13, crush curve 0: has alpha_t"
+grep -q "aneos_palpha.cfg:[0-9]*: material 0: eos.cs_porous not converted" e_ap || FAIL "type 13: no note on cs_porous"
+grep -q "material 2: no eos.aneos_gamma" e_ap || FAIL "type 7: no note on aneos_gamma"
+# (initial conditions of the plain ANEOS material 2: the porous ones are
+# checked as materials all the same)
+"$ic" box --n 6 --size 1 --rho 2680 --u 1e4 --mat 2 -o cube2.hdf5 >/dev/null || FAIL "bolide-ic box (material 2)"
+params m_ap.yml | sed 's/cube.hdf5/cube2.hdf5/' >p_ap.yml
+"$bolide" --check p_ap.yml >c_ap 2>&1 || { FAIL "ANEOS + P-alpha: bolide --check"; cat c_ap; }
+
+# errors: Sirono, a measured crush curve and a missing ID in one pass,
+# nothing written; an integer
 cat >bad.cfg <<'EOF'
 materials = (
 {
     ID = 0
-    eos = { type = 13; table_path = "aneos.table"; n_rho = 10; n_e = 10; };
+    eos = { type = 10; porsirono_K_0 = 1e5; };
 },
 {
     name = "no ID"
@@ -150,15 +191,24 @@ materials = (
 {
     ID = 2
     eos = { type = 1; rho_0 = 1000.0; bulk_modulus = 2.2e9; n = 7; };
+},
+{
+    ID = 3
+    eos = { type = 13; table_path = "aneos.table"; aneos_rho_0 = 2000.0; aneos_gamma = 1.4;
+            porjutzi_alpha_0 = 2.0; porjutzi_p_elastic = 1e3; porjutzi_p_compacted = 1e7;
+            crushcurve_style = 2; };
 }
 );
 EOF
 "$ic" miluphcuda-materials bad.cfg -o bad.yml >bad.out 2>bad.err && FAIL "bad.cfg: exit 0"
 [ -e bad.yml ] && FAIL "bad.cfg: a file was written"
-grep -q "bad.cfg:4: material 0: eos.type 13 (ANEOS + P-alpha)" bad.err || FAIL "bad.cfg: ANEOS + P-alpha not reported: $(cat bad.err)"
+grep -q "bad.cfg:4: material 0: eos.type 10 (Sirono porosity) has no Bolide equation of state" bad.err ||
+  FAIL "bad.cfg: Sirono not reported: $(cat bad.err)"
+grep -q "bad.cfg:18: material 3: eos.crushcurve_style = 2 cannot be converted: .* not of Bolide's P-alpha form" bad.err ||
+  FAIL "bad.cfg: crush curve 2 not reported: $(cat bad.err)"
 grep -q "bad.cfg:[0-9]*: a material without an integer ID" bad.err || FAIL "bad.cfg: missing ID not reported"
 grep -q "bad.cfg:12: n = 7 is an integer" bad.err || FAIL "bad.cfg: integer not warned about"
-grep -q "2 problems above: nothing written" bad.err || FAIL "bad.cfg: last line: $(tail -1 bad.err)"
+grep -q "3 problems above: nothing written" bad.err || FAIL "bad.cfg: last line: $(tail -1 bad.err)"
 # libconfig's own syntax errors: one line with file and line
 printf 'materials = ( { ID = 0 \n eos = { type = ; } } );\n' >syntax.cfg
 "$ic" miluphcuda-materials syntax.cfg >/dev/null 2>syn.err && FAIL "syntax error: exit 0"

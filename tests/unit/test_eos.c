@@ -26,6 +26,7 @@
 
 #include "tests/helpers/eos_tables.h"
 #include "src/materials/material.h"
+#include "src/io/units.h"
 
 static int failures = 0;
 static int checks = 0;
@@ -481,6 +482,31 @@ static void test_table(void) {
                                     exp(t.ln_u_min + 7 * t.dln_u)) -
                  t.P[5 * nu + 7]) <= 1e-12 * fabs(t.P[5 * nu + 7]),
         "table reproduces its nodes");
+  /* the bisection of node arrays (eos_table_search, for axes of any spacing)
+   * gives the division's cells and weights on log-spaced nodes: the same
+   * values inside and (clamped) outside the grid, to rounding */
+  {
+    double rn[48], un[48];
+    for (int i = 0; i < nr; i++) rn[i] = exp(t.ln_rho_min + i * t.dln_rho);
+    for (int j = 0; j < nu; j++) un[j] = exp(t.ln_u_min + j * t.dln_u);
+    struct eos_table tn;
+    table_from_tillotson_nodes(&tn, &g, rn, nr, un, nu, 0.0);
+    tn.rho_extrapolate = 0;
+    double worst = 0.0;
+    for (int k = 0; k < 4000; k++) {
+      const double rc = 0.5 * r0 * pow(2.4 * r1 / r0, (k * 0.6180339887) - floor(k * 0.6180339887));
+      const double uc = 0.3 * u0 * pow(4.0 * u1 / u0, (k * 0.7548776662) - floor(k * 0.7548776662));
+      const double a = eos_table_pressure(&t, rc, uc), b = eos_table_pressure(&tn, rc, uc);
+      worst = fmax(worst, fabs(a - b) / fmax(fabs(a), 1.0));
+    }
+    CHECK(worst <= 1e-12,
+          "bisection of the nodes = division of the log grid, in and outside it (max rel %.2g)",
+          worst);
+    free((void *)tn.P);
+    free((void *)tn.c2);
+    free((void *)tn.ln_rho);
+    free((void *)tn.ln_u);
+  }
   /* the error falls as h^2: halve the spacing, error / 4 (within 30%) */
   {
     struct eos_table t2;
@@ -607,6 +633,72 @@ static void test_dispatch(void) {
   CHECK(c2 < m.cs_min * m.cs_min && cs == m.cs_min, "cs floor in tension: c2 %g -> cs %g", c2, cs);
 }
 
+/** A miluphcuda table (3 header lines, rows rho e P T cs, %.9e as
+ *  tools/eos_tables.py writes) of the ideal gas, nodes from rho(i), e(j). */
+static void write_miluphcuda_table(const char *path, const double *rho, int nr, const double *e,
+                                   int ne) {
+  FILE *f = fopen(path, "w");
+  fprintf(f, "# test_eos\n# ideal gas\n# rho e P T cs\n");
+  for (int i = 0; i < nr; i++)
+    for (int j = 0; j < ne; j++)
+      fprintf(f, "%.9e %.9e %.9e %.9e %.9e\n", rho[i], e[j], 2.0 / 3.0 * rho[i] * e[j],
+              e[j] / 1000.0, sqrt(10.0 / 9.0 * e[j]));
+  fclose(f);
+}
+
+/* format miluphcuda: log-spaced nodes written with 10 digits keep the
+ * division of the log grid (no node arrays), other spacings get them */
+static void test_table_miluphcuda_axes(void) {
+  enum { NR = 30, NE = 40 };
+  double rho[NR], e[NE];
+  for (int i = 0; i < NR; i++) rho[i] = pow(1e4, i / (NR - 1.0));
+  for (int j = 0; j < NE; j++) e[j] = 1e4 * pow(1e4, j / (NE - 1.0));
+  char fname[] = "/tmp/test_eos_milu_XXXXXX";
+  close(mkstemp(fname));
+  for (int linear = 0; linear < 2; linear++) {
+    if (linear)
+      for (int j = 0; j < NE; j++) e[j] = 1e4 + j * (1e8 - 1e4) / (NE - 1.0);
+    write_miluphcuda_table(fname, rho, NR, e, NE);
+    struct eos_table t;
+    memset(&t, 0, sizeof t);
+    material_eos_table_load_miluphcuda(&t, fname, NR, NE);
+    CHECK(!t.ln_rho && (linear ? t.ln_u != NULL : !t.ln_u), "miluphcuda table, %s energies: %s",
+          linear ? "linear" : "log-spaced",
+          linear ? "bisection of the energy nodes" : "the division of the log grid");
+    /* in cgs (node arrays shifted by the units): P x 10, c x 100 at the
+     * converted states, inside, beyond the densities (linear in rho) and
+     * above the last energy (gamma_vapor) */
+    struct material m;
+    char msg[256] = "";
+    material_init(&m, 0, "milu", EOS_TABLE);
+    m.eos.table = t;
+    CHECK(material_set(&m, "rho0", 100.0, msg, sizeof msg) == 0 &&
+              material_set(&m, "gamma_vapor", 1.4, msg, sizeof msg) == 0 &&
+              material_finalize(&m, msg, sizeof msg) == 0,
+          "table material: %s", msg);
+    struct material_table mt;
+    material_table_init(&mt);
+    material_table_add(&mt, &m);
+    const double states[4][2] = {{37.0, 3.3e6}, {2e4, 3.3e6}, {0.4, 5.5e5}, {37.0, 2e8}};
+    double P_si[4], c_si[4];
+    for (int k = 0; k < 4; k++)
+      material_eos(&mt.mats[0], states[k][0], states[k][1], &P_si[k], &c_si[k]);
+    const struct unit_system cgs = {1.0, 1.0, 1.0, 1.0, 1.0, 0.0};
+    material_table_convert_units(&mt, &cgs);
+    double worst = 0.0;
+    for (int k = 0; k < 4; k++) {
+      double P, c;
+      material_eos(&mt.mats[0], 1e-3 * states[k][0], 1e4 * states[k][1], &P, &c);
+      worst = fmax(worst, fmax(fabs(P / (10 * P_si[k]) - 1), fabs(c / (100 * c_si[k]) - 1)));
+    }
+    CHECK(worst < 1e-12 && fabs(P_si[3] - 0.4 * 37.0 * 2e8) < 1e-9 * P_si[3],
+          "miluphcuda table, %s energies, in cgs: P and c as in SI (max rel %.2g)",
+          linear ? "linear" : "log-spaced", worst);
+    material_table_free(&mt);
+  }
+  unlink(fname);
+}
+
 int main(int argc, char **argv) {
   verbose = argc > 1 && strcmp(argv[1], "-v") == 0;
   const struct eos_tillotson g = granite(), b = basalt();
@@ -620,6 +712,7 @@ int main(int argc, char **argv) {
   test_tillotson_round_trips("basalt", &b);
   test_other_eos();
   test_table();
+  test_table_miluphcuda_axes();
   test_dispatch();
   printf("test_eos: %d checks, %d failed\n", checks, failures);
   return failures ? 1 : 0;

@@ -6,10 +6,15 @@
  * given here as options.  One line per particle, 3-D, SI units:
  *   x y z  vx vy vz  m  [rho (INTEGRATE_DENSITY)]  [e (INTEGRATE_ENERGY)]
  *   [sml (READ_INITIAL_SML_FROM_PARTICLE_FILE)]  material_id
- *   [ep T (JC_PLASTICITY)]  [S: 9 values, row by row (SOLID)]
+ *   [ep T (JC_PLASTICITY)]  [n_flaws d (FRAGMENTATION)]  [S: 9 values, row by row (SOLID)]
  *   [alpha_jutzi p (PALPHA_POROSITY)]  [alpha_epspor epsilon_v (EPSALPHA_POROSITY)]
- * FRAGMENTATION's flaw columns and SIRONO_POROSITY are not read (the flaws
- * of Bolide come from bolide-flaws or Damage:seed).  miluphcuda's sml is the
+ *   [n_flaws activation thresholds (FRAGMENTATION)]
+ * (miluphcuda's io.cu, read_particles_from_file; d is the cube root of the
+ * tensile damage).  The flaws become Bolide's FlawThresholds/FlawOffsets
+ * (tasks/damage/flaws.h), sorted ascending per particle (miluphcuda counts
+ * the thresholds below the strain, which does not depend on their order),
+ * d its DamageCubeRoot and d^3 its Damage.  SIRONO_POROSITY is not read.
+ * miluphcuda's sml is the
  * kernel's support radius: h = sml / kernel_gamma.  Without sml, h =
  * SPH:resolution_eta's default x (m/rho)^(1/3) (Bolide iterates h anyway).
  * Material ids are kept (miluphcuda's start at 0); theory/miluphcuda.md maps
@@ -18,7 +23,9 @@
  * An HDF5 input file (miluphcuda's HDF5IO; its output files too) names its
  * datasets, so no switch is needed: /x, /v (N x 3), /m, /material_type and,
  * where present, /rho, /e, /sml, /deviatoric_stress (N x 9), /alpha_jutzi or
- * /alpha_epspor, /ep.  Flaws (/activation_thresholds) are not read. */
+ * /alpha_epspor, /ep, and FRAGMENTATION's /activation_thresholds (N x
+ * maximum_number_of_flaws; a particle's flaws are its leading values > 0, as
+ * miluphcuda reads them) with /DIM_root_of_damage_tensile. */
 #include <errno.h>
 #include <getopt.h>
 #include <hdf5.h>
@@ -33,24 +40,57 @@
 #include "src/part.h"
 #include "src/io/snapshot.h"
 #include "src/io/units.h"
+#include "tasks/damage/flaws.h"
 
 /** The columns a set of miluphcuda switches gives. */
 struct milu_format {
-  int density, energy, sml, jc, solid, palpha, epsalpha;
+  int density, energy, sml, jc, solid, palpha, epsalpha, frag;
 };
 
-/** Number of columns of a line. */
+/** Number of columns of a line (without FRAGMENTATION's thresholds). */
 static int milu_columns(const struct milu_format *f) {
-  return 7 + f->density + f->energy + f->sml + 1 + 2 * f->jc + 9 * f->solid + 2 * f->palpha +
-         2 * f->epsalpha;
+  return 7 + f->density + f->energy + f->sml + 1 + 2 * f->jc + 2 * f->frag + 9 * f->solid +
+         2 * f->palpha + 2 * f->epsalpha;
 }
 
 /** The switches as text, for messages. */
 static void milu_describe(const struct milu_format *f, char *buf, size_t len) {
-  snprintf(buf, len, "x y z vx vy vz m%s%s%s mat%s%s%s%s", f->density ? " rho" : "",
+  snprintf(buf, len, "x y z vx vy vz m%s%s%s mat%s%s%s%s%s%s", f->density ? " rho" : "",
            f->energy ? " e" : "", f->sml ? " sml" : "", f->jc ? " ep T" : "",
-           f->solid ? " S(9)" : "", f->palpha ? " alpha_jutzi p" : "",
-           f->epsalpha ? " alpha_epspor epsilon_v" : "");
+           f->frag ? " n_flaws d" : "", f->solid ? " S(9)" : "", f->palpha ? " alpha_jutzi p" : "",
+           f->epsalpha ? " alpha_epspor epsilon_v" : "", f->frag ? " flaws(n_flaws)" : "");
+}
+
+/** Append particle i's n thresholds t (sorted here) to fl (offsets of
+ *  particles 0..i already set); in names the particle for errors. */
+static void milu_add_flaws(struct flaws *fl, size_t *cap, size_t i, double *t, size_t n,
+                           const char *where) {
+  for (size_t k = 0; k < n; k++)
+    if (!(t[k] >= 0.0) || !isfinite(t[k]))
+      error_exit("%s: activation threshold %zu is %g (must be finite and >= 0)", where, k + 1,
+                 t[k]);
+  for (size_t k = 1; k < n; k++) /* insertion sort: a few tens per particle */
+    for (size_t j = k; j > 0 && t[j - 1] > t[j]; j--) {
+      const double x = t[j];
+      t[j] = t[j - 1];
+      t[j - 1] = x;
+    }
+  const size_t first = (size_t)fl->offset[i];
+  if (first + n > *cap) {
+    *cap = 2 * (first + n) + 1024;
+    fl->eps = realloc(fl->eps, *cap * sizeof(double));
+    if (!fl->eps) error_exit("out of memory for the flaws");
+  }
+  memcpy(fl->eps + first, t, n * sizeof(double));
+  fl->offset[i + 1] = (int64_t)(first + n);
+}
+
+/** The cube root of the tensile damage d of FRAGMENTATION into p. */
+static void milu_set_damage(struct parts *p, size_t i, double d, const char *where) {
+  if (!(d >= 0.0 && d <= 1.0))
+    error_exit("%s: the cube root of the tensile damage is %g (must be in [0, 1])", where, d);
+  p->dcbrt[i] = d;
+  p->dmg[i] = d * d * d;
 }
 
 static void milu_usage(FILE *f) {
@@ -68,17 +108,21 @@ static void milu_usage(FILE *f) {
           "  --solid             SOLID 1: the deviatoric stress, 9 columns\n"
           "  --palpha            PALPHA_POROSITY 1: alpha_jutzi and p columns\n"
           "  --epsalpha          EPSALPHA_POROSITY 1: alpha_epspor and epsilon_v columns\n"
+          "  --fragmentation     FRAGMENTATION 1: n_flaws and d (the cube root of the\n"
+          "                      tensile damage) after mat (and ep T), the n_flaws\n"
+          "                      activation thresholds at the end of the line\n"
           "  -h, --help          this help\n"
-          "FRAGMENTATION's flaw columns are not read (bolide-flaws draws flaws).\n"
+          "The flaws become Bolide's FlawThresholds and FlawOffsets (sorted per particle).\n"
           "An HDF5 input file (miluphcuda's HDF5IO) needs no switches: its datasets /x, /v,\n"
           "/m, /material_type and, where present, /rho, /e, /sml, /deviatoric_stress,\n"
-          "/alpha_jutzi or /alpha_epspor and /ep are read.\n"
+          "/alpha_jutzi or /alpha_epspor, /ep, /activation_thresholds (a particle's leading\n"
+          "values > 0) and /DIM_root_of_damage_tensile are read.\n"
           "The switches and material keys in Bolide's terms: theory/miluphcuda.md.\n");
 }
 
 /** Read miluphcuda's ASCII input file (columns after the switches fmt). */
 static void milu_read_ascii(const char *in, const struct milu_format *fmtp, struct parts *p,
-                            char *desc, size_t len) {
+                            struct flaws *fl, char *desc, size_t len) {
   const struct milu_format fmt = *fmtp;
   FILE *f = fopen(in, "r");
   if (!f) error_exit("%s: cannot open: %s", in, strerror(errno));
@@ -87,9 +131,14 @@ static void milu_read_ascii(const char *in, const struct milu_format *fmtp, stru
   parts_alloc(p, 1024);
   p->count = 0;
   char *line = NULL;
-  size_t cap = 0;
+  size_t cap = 0, vcap = 64, fcap = 0, ocap = 1024;
   long lineno = 0;
-  double v[32];
+  double *v = malloc(vcap * sizeof *v);
+  if (fmt.frag) {
+    fl->offset = calloc(ocap, sizeof *fl->offset);
+    if (!fl->offset) error_exit("out of memory for the flaws");
+  }
+  if (!v) error_exit("out of memory");
   while (getline(&line, &cap, f) > 0) {
     lineno++;
     char *s = line, *end;
@@ -102,13 +151,24 @@ static void milu_read_ascii(const char *in, const struct milu_format *fmtp, stru
       const double x = strtod(s, &end);
       if (end == s || !isfinite(x))
         error_exit("%s:%ld: column %d: not a finite number ('%.20s')", in, lineno, n + 1, s);
-      if (n < 32) v[n] = x;
-      n++;
+      if ((size_t)n == vcap) {
+        v = realloc(v, (vcap *= 2) * sizeof *v);
+        if (!v) error_exit("out of memory");
+      }
+      v[n++] = x;
       s = end;
     }
-    if (n != ncol)
+    /* FRAGMENTATION: n_flaws after the material (and ep T) */
+    const int kf = 7 + fmt.density + fmt.energy + fmt.sml + 1 + 2 * fmt.jc;
+    double nf = 0;
+    if (fmt.frag && n > kf) {
+      nf = v[kf];
+      if (nf < 0 || nf != floor(nf) || nf > 1e6)
+        error_exit("%s:%ld: number of flaws %g must be an integer >= 0", in, lineno, nf);
+    }
+    if (n != ncol + (int)nf)
       error_exit("%s:%ld: %d columns, expected %d for these switches (%s; see --help)", in, lineno,
-                 n, ncol, desc);
+                 n, ncol + (int)nf, desc);
     const size_t i = p->count;
     if (i + 1 > p->capacity) parts_reserve(p, 2 * p->capacity);
     p->count = i + 1;
@@ -135,6 +195,17 @@ static void milu_read_ascii(const char *in, const struct milu_format *fmtp, stru
       p->eps_p[i] = v[k++];
       k++; /* T: Bolide's temperature follows from the EOS and u */
     }
+    char where[4200];
+    snprintf(where, sizeof where, "%s:%ld", in, lineno);
+    if (fmt.frag) {
+      k++; /* n_flaws, read above */
+      milu_set_damage(p, i, v[k++], where);
+      if (i + 2 > ocap) {
+        fl->offset = realloc(fl->offset, (ocap *= 2) * sizeof *fl->offset);
+        if (!fl->offset) error_exit("out of memory for the flaws");
+      }
+      milu_add_flaws(fl, &fcap, i, v + ncol, (size_t)nf, where);
+    }
     if (fmt.solid) {
       const double *S = v + k; /* 3 x 3, row by row */
       p->Sxx[i] = S[0], p->Sxy[i] = 0.5 * (S[1] + S[3]), p->Sxz[i] = 0.5 * (S[2] + S[6]);
@@ -155,8 +226,10 @@ static void milu_read_ascii(const char *in, const struct milu_format *fmtp, stru
     p->id[i] = (int64_t)i + 1;
   }
   free(line);
+  free(v);
   fclose(f);
   if (p->count == 0) error_exit("%s: no particles", in);
+  if (fmt.frag) fl->n_parts = p->count;
 }
 
 /** Dataset `name` of miluphcuda's HDF5 file as n x ncomp doubles (HDF5
@@ -201,7 +274,8 @@ static int milu_is_hdf5(const char *in) {
 }
 
 /** Read miluphcuda's HDF5 input file into p; desc gets the datasets read. */
-static void milu_read_hdf5(const char *in, struct parts *p, char *desc, size_t len) {
+static void milu_read_hdf5(const char *in, struct parts *p, struct flaws *fl, char *desc,
+                           size_t len) {
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   const hid_t f = H5Fopen(in, H5F_ACC_RDONLY, H5P_DEFAULT);
   if (f < 0) error_exit("%s: cannot open as HDF5", in);
@@ -228,18 +302,38 @@ static void milu_read_hdf5(const char *in, struct parts *p, char *desc, size_t l
   double *ae = aj ? NULL : milu_h5_read(f, in, "/alpha_epspor", n, 1, 0);
   double *ep = milu_h5_read(f, in, "/ep", n, 1, 0);
   if (!rho && !sml) error_exit("%s: neither /rho nor /sml: h cannot be set", in);
-  if (H5Lexists(f, "/activation_thresholds", H5P_DEFAULT) > 0)
-    error_note(
-        "%s: /activation_thresholds (FRAGMENTATION's flaws) not read: bolide-flaws or "
-        "Damage:seed draws Bolide's",
-        in);
+  /* FRAGMENTATION: N x maxnof thresholds, zero-padded */
+  double *at = NULL, *dr = NULL;
+  int maxnof = 0;
+  if (H5Lexists(f, "/activation_thresholds", H5P_DEFAULT) > 0) {
+    const hid_t da = H5Dopen2(f, "/activation_thresholds", H5P_DEFAULT);
+    const hid_t sa = H5Dget_space(da);
+    hsize_t ad[2] = {0, 0};
+    if (H5Sget_simple_extent_ndims(sa) != 2)
+      error_exit("%s: /activation_thresholds is not N x M", in);
+    H5Sget_simple_extent_dims(sa, ad, NULL);
+    H5Sclose(sa);
+    H5Dclose(da);
+    if (ad[1] > 1000000)
+      error_exit("%s: /activation_thresholds has %llu columns", in, (unsigned long long)ad[1]);
+    maxnof = (int)ad[1];
+    at = milu_h5_read(f, in, "/activation_thresholds", n, maxnof, 1);
+    dr = milu_h5_read(f, in, "/DIM_root_of_damage_tensile", n, 1, 0);
+  }
   H5Fclose(f);
-  snprintf(desc, len, "HDF5: x v m material_type%s%s%s%s%s%s", rho ? " rho" : "", e ? " e" : "",
+  snprintf(desc, len, "HDF5: x v m material_type%s%s%s%s%s%s%s%s", rho ? " rho" : "", e ? " e" : "",
            sml ? " sml" : "", S ? " deviatoric_stress" : "",
            aj   ? " alpha_jutzi"
            : ae ? " alpha_epspor"
                 : "",
-           ep ? " ep" : "");
+           ep ? " ep" : "", at ? " activation_thresholds" : "",
+           dr ? " DIM_root_of_damage_tensile" : "");
+  if (at) {
+    fl->n_parts = n;
+    fl->offset = calloc(n + 1, sizeof *fl->offset);
+    if (!fl->offset) error_exit("out of memory for the flaws");
+  }
+  size_t fcap = 0;
   parts_alloc(p, n);
   p->count = n;
   for (size_t i = 0; i < n; i++) {
@@ -273,21 +367,35 @@ static void milu_read_hdf5(const char *in, struct parts *p, char *desc, size_t l
     if (!(p->alpha[i] >= 1.0))
       error_exit("%s: particle %zu: distention %g must be >= 1", in, i, p->alpha[i]);
     p->id[i] = (int64_t)i + 1;
+    if (at) {
+      char where[4200];
+      snprintf(where, sizeof where, "%s: particle %zu", in, i);
+      double *row = at + (size_t)maxnof * i;
+      size_t nof = 0; /* miluphcuda: the leading values > 0 */
+      while ((int)nof < maxnof && row[nof] > 0) nof++;
+      milu_add_flaws(fl, &fcap, i, row, nof, where);
+      if (dr) milu_set_damage(p, i, dr[i], where);
+    }
   }
   free(x), free(v), free(m), free(mat), free(rho), free(e), free(sml), free(S), free(aj), free(ae),
-      free(ep);
+      free(ep), free(at), free(dr);
 }
 
 int icgen_miluphcuda_main(int argc, char **argv) {
-  struct milu_format fmt = {1, 1, 0, 0, 0, 0, 0};
+  struct milu_format fmt = {1, 1, 0, 0, 0, 0, 0, 0};
   const char *out = NULL;
-  enum { O_NODENS = 300, O_NOENER, O_SML, O_JC, O_SOLID, O_PALPHA, O_EPSALPHA };
-  static const struct option opts[] = {
-      {"output", required_argument, NULL, 'o'},   {"no-density", no_argument, NULL, O_NODENS},
-      {"no-energy", no_argument, NULL, O_NOENER}, {"sml", no_argument, NULL, O_SML},
-      {"jc-plasticity", no_argument, NULL, O_JC}, {"solid", no_argument, NULL, O_SOLID},
-      {"palpha", no_argument, NULL, O_PALPHA},    {"epsalpha", no_argument, NULL, O_EPSALPHA},
-      {"help", no_argument, NULL, 'h'},           {NULL, 0, NULL, 0}};
+  enum { O_NODENS = 300, O_NOENER, O_SML, O_JC, O_SOLID, O_PALPHA, O_EPSALPHA, O_FRAG };
+  static const struct option opts[] = {{"output", required_argument, NULL, 'o'},
+                                       {"no-density", no_argument, NULL, O_NODENS},
+                                       {"no-energy", no_argument, NULL, O_NOENER},
+                                       {"sml", no_argument, NULL, O_SML},
+                                       {"jc-plasticity", no_argument, NULL, O_JC},
+                                       {"solid", no_argument, NULL, O_SOLID},
+                                       {"palpha", no_argument, NULL, O_PALPHA},
+                                       {"epsalpha", no_argument, NULL, O_EPSALPHA},
+                                       {"fragmentation", no_argument, NULL, O_FRAG},
+                                       {"help", no_argument, NULL, 'h'},
+                                       {NULL, 0, NULL, 0}};
   int c;
   opterr = 0;
   optind = 1;
@@ -317,6 +425,9 @@ int icgen_miluphcuda_main(int argc, char **argv) {
       case O_EPSALPHA:
         fmt.epsalpha = 1;
         break;
+      case O_FRAG:
+        fmt.frag = 1;
+        break;
       case 'h':
         milu_usage(stdout);
         return 0;
@@ -337,11 +448,13 @@ int icgen_miluphcuda_main(int argc, char **argv) {
   }
   char desc[256];
   struct parts p;
+  struct flaws fl;
+  memset(&fl, 0, sizeof fl);
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   if (milu_is_hdf5(in)) {
-    milu_read_hdf5(in, &p, desc, sizeof desc);
+    milu_read_hdf5(in, &p, &fl, desc, sizeof desc);
   } else {
-    milu_read_ascii(in, &fmt, &p, desc, sizeof desc);
+    milu_read_ascii(in, &fmt, &p, &fl, desc, sizeof desc);
   }
 
   /* the engine's open box is [0, L]^3: the particles' centre at its centre */
@@ -373,6 +486,12 @@ int icgen_miluphcuda_main(int argc, char **argv) {
                                .hydro = 1};
   for (int d = 0; d < 3; d++) meta.box_size[d] = L;
   snapshot_write(out, &meta, &p, &si, 0);
+  if (fl.offset) {
+    flaws_io_write_file(out, &fl);
+    printf("bolide-ic import-miluphcuda: %lld flaws (FlawThresholds, FlawOffsets)\n",
+           (long long)fl.offset[p.count]);
+    flaws_free(&fl);
+  }
   printf("bolide-ic import-miluphcuda: %zu particles of %s (%s) written to %s\n", p.count, in, desc,
          out);
   parts_free(&p);

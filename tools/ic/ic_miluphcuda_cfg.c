@@ -223,10 +223,16 @@ static void milucfg_palpha(struct milucfg *c, const config_setting_t *eos, int i
   milucfg_num(c, eos, "porjutzi_n2", &n2);
   milucfg_num(c, eos, "crushcurve_style", &style);
   if (style != 0 && style != 1) {
+    /* miluphcuda's src/pressure.cu: 2 (Blum et al. 2023) and 3, 4 (Malamud
+     * et al. 2023) are fitted laws with constants fixed in the code, not of
+     * the keys above; Bolide's crush curve (theory/porosity.md PA2) has
+     * another form (theory/miluphcuda.md) */
     error_warning(
-        "%s: material %d: crushcurve_style %g: Bolide has the crush curves 0 "
-        "(quadratic) and 1 (Jutzi et al. 2009) only",
-        c->file, id, style);
+        "%s:%d: material %d: eos.crushcurve_style = %g cannot be converted: miluphcuda's "
+        "measured crush curves 2-4 (constants fixed in its pressure.cu) are not of Bolide's "
+        "P-alpha form (crush curves 0 and 1 only)",
+        c->file, config_setting_source_line(config_setting_get_member(eos, "crushcurve_style")), id,
+        style);
     c->errors++;
     return;
   }
@@ -432,7 +438,8 @@ static int milucfg_material(struct milucfg *c, const config_setting_t *m, int *i
                 0.01 * sqrt(A / rho0));
       break;
     }
-    case 7: { /* ANEOS: its lookup table, read by Bolide as format miluphcuda */
+    case 7:
+    case 13: { /* ANEOS (13: + P-alpha): its lookup table, read as format miluphcuda */
       config_setting_t *tp = config_setting_get_member(eos, "table_path");
       if (!tp || config_setting_type(tp) != CONFIG_TYPE_STRING) {
         error_warning("%s:%d: material %d: ANEOS without a string eos.table_path", c->file, line,
@@ -458,19 +465,26 @@ static int milucfg_material(struct milucfg *c, const config_setting_t *m, int *i
       else if (have_cs && bulk_cs > 0)
         fprintf(c->out, "    cs_min: %.15g   # miluphcuda's default: 1%% of aneos_bulk_cs\n",
                 0.01 * bulk_cs);
+      /* above the table's last energy: miluphcuda's ideal gas of aneos_gamma
+       * (theory/eos.md T1) */
+      if (milucfg_num(c, eos, "aneos_gamma", &v) && v > 1.0)
+        milucfg_put(c, "gamma_vapor", v);
+      else
+        error_note(
+            "%s:%d: material %d: no eos.aneos_gamma > 1: miluphcuda's ideal-gas fallback above "
+            "the table's last energy would use gamma = %g; Bolide clamps e to that energy "
+            "(give gamma_vapor for the fallback)",
+            c->file, line, id, config_setting_get_member(eos, "aneos_gamma") ? v : 0.0);
       break;
     }
     default:
-      error_warning(
-          "%s:%d: material %d: eos.type %d (%s) has no Bolide equation of state%s", c->file,
-          config_setting_source_line(config_setting_get_member(eos, "type")), id, t, tname,
-          t == 13 ? " read from miluphcuda's files (ANEOS + P-alpha: convert as eos.type 7 and "
-                    "add the porosity by hand)"
-                  : "");
+      error_warning("%s:%d: material %d: eos.type %d (%s) has no Bolide equation of state", c->file,
+                    config_setting_source_line(config_setting_get_member(eos, "type")), id, t,
+                    tname);
       c->errors++;
       return 0;
   }
-  if (t == 5 || t == 6) milucfg_palpha(c, eos, id);
+  if (t == 5 || t == 6 || t == 13) milucfg_palpha(c, eos, id);
   if (t == 11) {
     fprintf(c->out, "    porosity:   # eps-alpha\n      model: epsalpha\n");
     static const char *const ea[][2] = {{"porepsilon_alpha_0", "alpha_0"},
