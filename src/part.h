@@ -174,6 +174,8 @@ enum part_state {
                                of the step being taken: the FORCE phase leaves it as it is (its
                                sums, rates and equation of state), its neighbours read its
                                predicted state (drift_part_bins); never set with the global step */
+  PART_SOLID = 64,        /**< a particle of a material with strength (set by the extra ghost): the
+                               fluid-solid interface's phase (force_iact.h) */
 };
 
 /** Whether particle i sits out the FORCE phase of this step (time bins). */

@@ -91,6 +91,7 @@ BOLIDE_INLINE void hydro_force_load(const struct parts *BOLIDE_RESTRICT p, size_
   in->f = p->f_gradh[i];
   in->balsara = p->balsara[i];
   in->h = p->h[i];
+  in->solid = (p->flags[i] & PART_SOLID) != 0;
   /* the stress tensors only where a material has strength: fluids skip twelve
    * arrays' worth of memory traffic per neighbour (force_iact reads S and R
    * only when hp->solids) */

@@ -25,6 +25,10 @@
  * Sec. 4) and its energy term, and the XSPH sum
  *   xsph_i = sum_j m_j / rho_ij (v_j - v_i) W_ij   (Monaghan 1989).
  *
+ * A pair of a fluid and a solid particle with SPH:fluid_solid_interface
+ * (theory/fluids.md F6-F8): the symmetric form whatever SPH:momentum_form,
+ * pressures below zero taken as zero (no tension across the interface).
+ *
  * Every expression combines i and j terms with commutative operations only,
  * so that the gather form evaluated for (i, j) and for (j, i) gives forces
  * that are exact negatives of each other: momentum is conserved to round-off
@@ -52,6 +56,7 @@ struct force_in {
   double h;       /**< smoothing length (artificial stress) */
   double S[6];    /**< predicted deviatoric stress (xx xy xz yy yz zz), 0 for fluids */
   double R[6];    /**< artificial stress R / rho^2 (Monaghan 2000), 0 when off */
+  int solid;      /**< 1: a material with strength (PART_SOLID), 0: a fluid */
 };
 
 /** Accumulators of the force loop for one particle. */
@@ -98,12 +103,24 @@ BOLIDE_INLINE void force_iact(double r2, const double dx[3], const double dv[3],
   const double visc = -0.25 * hp->alpha * v_sig * mu_ij * (pi->balsara + pj->balsara) / rho_ij;
   const double w_mean_dr = 0.5 * (wi_dr + wj_dr);
 
+  /* fluid-solid interface (SPH:fluid_solid_interface; theory/fluids.md
+   * F6-F8): a pair of a fluid and a solid particle, met only by particles
+   * whose kernel holds both phases, takes the solid's pressure and
+   * deviatoric stress against the fluid's pressure and viscous stress in
+   * the form (sigma_i + sigma_j)/(rho_i rho_j), which a uniform stress
+   * leaves without force across the density jump, and carries no tension
+   * across the unbonded interface (P at least 0 on both sides) */
+  const int cross = hp->fluid_solid_interface && pi->solid != pj->solid;
+  const double P_i = cross && pi->P < 0.0 ? 0.0 : pi->P;
+  const double P_j = cross && pj->P < 0.0 ? 0.0 : pj->P;
+  const int sym = hp->momentum_form == HYDRO_MOMENTUM_SYMMETRIC || cross;
+
   double acc_term, du;
-  if (hp->momentum_form == HYDRO_MOMENTUM_SYMMETRIC) {
+  if (sym) {
     /* (P_i + P_j) / (rho_i rho_j) with the mean kernel gradient */
     const double rr_inv = 1.0 / (pi->rho * pj->rho);
-    acc_term = ((pi->P + pj->P) * rr_inv + visc) * w_mean_dr * r_inv;
-    du = (pi->P * rr_inv + 0.5 * visc) * w_mean_dr * dvdr * r_inv;
+    acc_term = ((P_i + P_j) * rr_inv + visc) * w_mean_dr * r_inv;
+    du = (P_i * rr_inv + 0.5 * visc) * w_mean_dr * dvdr * r_inv;
   } else {
     /* pressure terms with grad-h corrections (Springel & Hernquist 2002) */
     const double Pi_rho2 = pi->f * pi->P / (pi->rho * pi->rho);
@@ -124,7 +141,7 @@ BOLIDE_INLINE void force_iact(double r2, const double dx[3], const double dv[3],
     force_sym_dot(pi->S, dx, Si_dx);
     force_sym_dot(pj->S, dx, Sj_dx);
     double ci;
-    if (hp->momentum_form == HYDRO_MOMENTUM_SYMMETRIC) {
+    if (sym) {
       ci = w_mean_dr * r_inv / (pi->rho * pj->rho);
       for (int k = 0; k < 3; k++) t[k] = (Si_dx[k] + Sj_dx[k]) * ci;
     } else {

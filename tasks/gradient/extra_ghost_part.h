@@ -115,6 +115,11 @@ BOLIDE_INLINE void extra_ghost_part(struct parts *BOLIDE_RESTRICT p, size_t i,
                                     const struct material_table *mats) {
   const struct material *mat = material_table_find(mats, p->mat[i]);
   const double zero[6] = {0, 0, 0, 0, 0, 0};
+  /* the phase the force loop's fluid-solid interface reads (force_iact.h) */
+  if (mat && mat->strength != STRENGTH_NONE)
+    p->flags[i] |= PART_SOLID;
+  else
+    p->flags[i] &= ~PART_SOLID;
   extra_ghost_free_surface(p, i, hp, mat);
   if (hp->continuity_cspm) {
     /* CSPM continuity (theory/solids.md E14), every particle, fluids

@@ -32,6 +32,10 @@ void hydro_props_init(struct hydro_props *hp, const struct params *p) {
    * neighbours (theory/fluids.md) */
   if (hp->free_surface && !hp->continuity)
     params_error(p, "SPH:free_surface", "needs SPH:density: continuity");
+  hp->fluid_solid_interface = params_get_bool(p, "SPH:fluid_solid_interface");
+  if (hp->fluid_solid_interface && !hp->continuity_cspm)
+    params_error(p, "SPH:fluid_solid_interface",
+                 "needs SPH:density: continuity and SPH:continuity_correction: true");
   hp->solids = 0; /* set by the engine from the materials */
   hp->momentum_form = params_get_enum(p, "SPH:momentum_form");
   hp->gradient_correction = params_get_bool(p, "SPH:velocity_gradient_correction");

@@ -28,6 +28,8 @@ struct hydro_props {
   int free_surface; /**< 1: pressure 0 on fluid particles at the free surface (SPH:free_surface) */
   double free_surface_threshold; /**< kernel sum sum_j V_j W_ij below which a fluid particle is on
                                     it */
+  int fluid_solid_interface;     /**< 1: fluid-solid pairs take the interface treatment
+                                    (SPH:fluid_solid_interface, theory/fluids.md F6-F8) */
   int solids;        /**< 1 when a material has strength: gradient tasks and stress terms run */
   int momentum_form; /**< HYDRO_MOMENTUM_STANDARD or HYDRO_MOMENTUM_SYMMETRIC */
   int gradient_correction; /**< 1: linear-consistency correction of the velocity gradient */

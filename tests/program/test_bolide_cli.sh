@@ -52,6 +52,8 @@ expect_error "bad -P value" "TimeIntegration:time_end" "$bolide" -P TimeIntegrat
   { echo "FAIL: TimeIntegration:global_step: false refused"; cat bins.txt; fail=1; }
 expect_error "CSPM continuity without continuity density" "SPH:continuity_correction" "$bolide" --check \
   -P SPH:continuity_correction:true params.yml
+expect_error "fluid-solid interface without CSPM continuity" "SPH:fluid_solid_interface" "$bolide" \
+  --check -P SPH:density:continuity -P SPH:fluid_solid_interface:true params.yml
 sed 's/ics.hdf5/missing.hdf5/' params.yml >noic.yml
 expect_error "missing initial conditions" "missing.hdf5" "$bolide" noic.yml
 
