@@ -206,8 +206,9 @@ extern "C" void gpu_grav_up(struct gpu_grav *gg, struct parts *p, int order, dou
   u.count = (const int *)gg->count.ptr;
   u.h_factor = h_factor;
   u.order = order;
-  u.active = gg->active_on ? (unsigned char *)gg_reserve(&gg->active, nc + 16, "gravity active cells")
-                           : NULL;
+  u.active = gg->active_on
+                 ? (unsigned char *)gg_reserve(&gg->active, nc + 16, "gravity active cells")
+                 : NULL;
   const int nl = gg->level_start[gg->nr_levels];
   const int *l2l = (const int *)gg->l2l.ptr;
   gravity_up_gpu_launch(s, dp, u, (int)nc, (const int *)gg->leaf.ptr, gg->nr_leaves, l2l, l2l + nl,

@@ -38,8 +38,8 @@ void gravity_graph_made(struct engine *e, int nr_tasks) {
   const int cap = g->cells_cap;
   g->cells = gravity_cells_reserve(g->cells, &g->cells_cap, e->space.cells_capacity);
   if (g->cells_cap != cap || !g->active)
-    g->active = error_realloc(g->active, (size_t)(g->cells_cap ? g->cells_cap : 1),
-                              "gravity active cells");
+    g->active =
+        error_realloc(g->active, (size_t)(g->cells_cap ? g->cells_cap : 1), "gravity active cells");
   if (e->gp.reuse_steps > 0) {
     /* the gravity tasks are the first nr_tasks: one list each */
     g->nr_lists = nr_tasks;
@@ -95,8 +95,7 @@ void gravity_reuse_decide(struct engine *e, int rebuilt) {
   struct gravity_state *g = e->grav;
   e->gp.replay = 0;
   if (!e->gp.enabled || e->gp.direct || e->gp.reuse_steps <= 0 || g->x0 == NULL || rebuilt ||
-      e->gp.active_step ||
-      g->reused >= e->gp.reuse_steps || !(g->d_min < HUGE_VAL))
+      e->gp.active_step || g->reused >= e->gp.reuse_steps || !(g->d_min < HUGE_VAL))
     return;
   const struct parts *p = &e->parts;
   const double *x0 = g->x0;

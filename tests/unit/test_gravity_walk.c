@@ -114,8 +114,7 @@ static void run(const char *name, int two_bodies, double h_factor) {
       /* time bins, a step of active particles only (gravity_props.active):
        * the particles of the lower half in x and every third one elsewhere
        * sleep, so that whole cells, and parts of cells, do not receive */
-      for (size_t i = 0; i < n; i++)
-        p.flags[i] = p.x[i] < c[0] || i % 3 == 0 ? PART_INACTIVE : 0;
+      for (size_t i = 0; i < n; i++) p.flags[i] = p.x[i] < c[0] || i % 3 == 0 ? PART_INACTIVE : 0;
       gp.active = act;
     }
     for (int i = 0; i < nt; i++) gravity_up(&p, sp.cells + i, gc, &gp);
@@ -144,9 +143,10 @@ static void run(const char *name, int two_bodies, double h_factor) {
       int marked = 0, top_marked = 0;
       for (int k = 0; k < nc; k++) marked += act[k];
       for (int k = 0; k < nt; k++) top_marked += act[k];
-      printf("  %s, active cells only: %d of %d cells receive (%d of %d top-level), %zu of %zu "
-             "recorded entries\n",
-             name, marked, nc, top_marked, nt, entries, entries_all);
+      printf(
+          "  %s, active cells only: %d of %d cells receive (%d of %d top-level), %zu of %zu "
+          "recorded entries\n",
+          name, marked, nc, top_marked, nt, entries, entries_all);
       if (!(marked > 0 && marked < nc && entries < entries_all)) {
         printf("  %s: the active-only walk was not exercised: FAIL\n", name);
         failures++;
@@ -208,7 +208,9 @@ static void run(const char *name, int two_bodies, double h_factor) {
       for (int k = 0; k < 4; k++) gravity_walk_flush(&L, &B, k);
       char what[160];
       snprintf(what, sizeof what, "%s, %s, %s, %s", name,
-               pass == 2 ? "active only" : pass ? "adaptive pass" : "first pass",
+               pass == 2 ? "active only"
+               : pass    ? "adaptive pass"
+                         : "first pass",
                h_factor > 0.0 ? "eps tied to h" : "constant eps",
                mode ? "handed on" : "one walker per root");
       if (deep) {

@@ -81,7 +81,7 @@ static void milu_add_flaws(struct flaws *fl, size_t *cap, size_t i, double *t, s
     fl->eps = realloc(fl->eps, *cap * sizeof(double));
     if (!fl->eps) error_exit("out of memory for the flaws");
   }
-  memcpy(fl->eps + first, t, n * sizeof(double));
+  if (n > 0) memcpy(fl->eps + first, t, n * sizeof(double)); /* (t may be NULL when n is 0) */
   fl->offset[i + 1] = (int64_t)(first + n);
 }
 
