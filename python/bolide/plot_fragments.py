@@ -10,39 +10,22 @@ the legend.  Prints "largest_fraction TABLE X" for each table.
 
 import argparse
 import os
-import re
 import sys
 
+import numpy as np
 
-import numpy as np  # noqa: E402
-
-from bolide import common  # noqa: E402
+from bolide import common, snapshot
 
 
 def read_table(path):
-    """Columns (dict name -> array) and the total mass of a fragment table."""
+    """Columns (dict name -> array) and the total mass of a fragment table
+    (bolide.snapshot.read_fragments); a table that cannot be read ends the
+    program with one line."""
     try:
-        with open(path) as f:
-            lines = f.read().splitlines()
-    except OSError as e:
-        common.die("%s: cannot read: %s" % (path, e.strerror))
-    header = [ln for ln in lines if ln.startswith("#")]
-    names = header[-1].lstrip("#").split() if header else []
-    if "mass" not in names:
-        common.die("%s: no '# rank mass ...' header line (not a bolide-fof table?)" % path)
-    total = None
-    for ln in header:
-        m = re.search(r"total mass ([0-9.eE+-]+) kg", ln)
-        if m:
-            total = float(m.group(1))
-    rows = [ln.split() for ln in lines if ln.strip() and not ln.startswith("#")]
-    if any(len(r) != len(names) for r in rows):
-        common.die("%s: a row does not have %d columns" % (path, len(names)))
-    data = np.array(rows, dtype=float).reshape(-1, len(names))
-    cols = {n: data[:, i] for i, n in enumerate(names)}
-    if total is None:
-        total = cols["mass"].sum()
-    return cols, total
+        cols, info = snapshot.read_fragments(path)
+    except snapshot.SnapshotError as exc:
+        common.die(str(exc))
+    return cols, info["total_mass"]
 
 
 def main(argv=None):

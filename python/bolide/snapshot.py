@@ -12,6 +12,9 @@ SWIFT snapshot can be compared with a Bolide one by the same scripts.
 `read_stats` reads the statistics file: whitespace-separated columns under a
 '#' header line that names them.  Columns are found by name, never by
 position.
+
+`read_fragments` reads a fragment table of bolide-fof (its columns by the
+names of the last '#' line, its total mass and time from the header).
 """
 
 import os
@@ -265,3 +268,47 @@ def read_stats(path, si=False):
         for i in range(len(names)):
             table[:, i] *= factors.get(i, 1.0)
     return {name: table[:, i] for i, name in enumerate(names)}
+
+
+def read_fragments(path):
+    """Read a fragment table written by bolide-fof (--out).
+
+    Returns (columns, info): columns a dict name -> 1D float array, by the
+    names of the last '#' header line ("# rank mass count x y z ...",
+    frac_matN per material), one entry per fragment; info a dict with
+    "total_mass" (kg: the header's "total mass M kg", else the sum of the
+    fragments' masses) and "time" (s: the header's "time T s", None without
+    one).  bolide-fof writes SI whatever the snapshot's units.  Raises
+    SnapshotError for a missing file, no header naming a mass column, or
+    rows of the wrong length.
+    """
+    try:
+        with open(path) as f:
+            lines = f.read().splitlines()
+    except OSError as exc:
+        raise SnapshotError("%s: cannot read: %s" % (path, exc.strerror))
+    header = [ln for ln in lines if ln.startswith("#")]
+    names = header[-1].lstrip("#").split() if header else []
+    if "mass" not in names:
+        raise SnapshotError("%s: no '# rank mass ...' header line (not a bolide-fof table?)" % path)
+    info = {"total_mass": None, "time": None}
+    for ln in header:
+        m = re.search(r"total mass ([0-9.eE+-]+) kg", ln)
+        if m:
+            info["total_mass"] = float(m.group(1))
+        m = re.match(r"#\s*time ([0-9.eE+-]+) s\b", ln)
+        if m:
+            info["time"] = float(m.group(1))
+    rows = [ln.split() for ln in lines if ln.strip() and not ln.startswith("#")]
+    for k, r in enumerate(rows):
+        if len(r) != len(names):
+            raise SnapshotError("%s: fragment %d has %d columns, the header names %d"
+                                % (path, k + 1, len(r), len(names)))
+    try:
+        data = np.array(rows, dtype=float).reshape(-1, len(names))
+    except ValueError:
+        raise SnapshotError("%s: non-numeric value in a fragment row" % path)
+    cols = {n: data[:, i] for i, n in enumerate(names)}
+    if info["total_mass"] is None:
+        info["total_mass"] = float(cols["mass"].sum())
+    return cols, info

@@ -56,6 +56,8 @@ YML
     { echo "FAIL: $sys units: bound fraction '$frac' of an intact planet"; fail=1; }
   [ -f $sys/out/${sys}_bound.png ] && [ -f $sys/out/${sys}_energy.png ] || { echo "FAIL: plots ($sys)"; fail=1; }
 done
+# a bolide-fof table of the planet in Earth units, for snapshot.read_fragments
+"$B/bolide-fof" earth/out/snapshot_0000.hdf5 -o fragments.txt >/dev/null 2>&1 || { echo "FAIL: bolide-fof"; fail=1; }
 # load_snapshot / load_statistics: the same SI numbers from both unit systems
 (cd / && "$work/fresh/bin/python" - "$work" <<'PY') || fail=1
 import sys, numpy as np, bolide
@@ -74,6 +76,20 @@ for name in ("mass", "E_int", "E_pot", "time"):
     print("ok " if same else "FAIL", "load_statistics %s(t=0): %s in both unit systems" % (name, x.units))
     ok &= same
 ok &= bool(abs(a.masses.sum().to("kg").value - 5.97e24) < 1e-6 * 5.97e24)
+# read_fragments (what tools/ and examples/ read bolide-fof tables with):
+# SI columns, the header's total mass and time; the intact planet is one fragment
+from bolide import snapshot
+cols, info = snapshot.read_fragments("%s/fragments.txt" % w)
+same = (abs(info["total_mass"] - 5.97e24) < 1e-6 * 5.97e24 and info["time"] == 0.0
+        and abs(cols["mass"][0] / info["total_mass"] - 1.0) < 1e-9 and int(cols["count"][0]) == a.masses.size)
+print("ok " if same else "FAIL", "read_fragments: total mass %.6g kg, time %s s, largest fragment %.6g kg of %d particles"
+      % (info["total_mass"], info["time"], cols["mass"][0], int(cols["count"][0])))
+ok &= same
+try:
+    snapshot.read_fragments("%s/si/out/statistics.txt" % w)
+    print("FAIL read_fragments accepts a statistics file"); ok = False
+except snapshot.SnapshotError as exc:
+    print("ok  read_fragments refuses a statistics file:", exc)
 sys.exit(0 if ok else 1)
 PY
 exit $fail
