@@ -5,19 +5,11 @@ runs it from a source tree or an install.  --help lists the options."""
 import os
 import sys
 
-try:
-    from bolide.plot_profile import main
-except ImportError:
-    # the source tree's package beside tools/, or an install's (PREFIX/bin/SCRIPT:
-    # PREFIX/share/bolide/python)
-    _here = os.path.dirname(os.path.abspath(__file__))
-    sys.path[:0] = [os.path.join(_here, "..", "python"),
-                    os.path.join(_here, "..", "share", "bolide", "python")]
-    try:
-        from bolide.plot_profile import main
-    except ImportError as exc:
-        sys.exit("%s: error: the bolide Python package is not installed (pip install BUILD/python): %s"
-                 % (os.path.basename(sys.argv[0]), exc))
+# an installed bolide first, else the source tree's (python/ beside tools/)
+# or an install's (PREFIX/bin/SCRIPT: PREFIX/share/bolide/python)
+_here = os.path.dirname(os.path.abspath(__file__))
+sys.path += [os.path.join(_here, "..", "python"), os.path.join(_here, "..", "share", "bolide", "python")]
+from bolide.plot_profile import main  # noqa: E402
 
 if __name__ == "__main__":
     sys.exit(main())

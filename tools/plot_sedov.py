@@ -2,13 +2,13 @@
 """Compare a Sedov-Taylor blast-wave snapshot with the similarity solution.
 
 Plots the radial profiles of density, radial velocity and pressure
-(particles as points, binned means, the solution of bolide_tools.sedov as a
+(particles as points, binned means, the solution of bolide.sedov as a
 line), writes a PNG and prints
 
     shock_radius measured X analytic Y rel_error Z
     bin_width W
     L1 density X      (likewise velocity (radial) and pressure; inside --rmax,
-                       plain mean over particles, see bolide_tools/l1.py)
+                       plain mean over particles, see python/bolide/l1.py)
 
 The measured shock radius is where the binned mean density, going outwards
 from its peak, falls through half-way between the peak and the ambient
@@ -40,12 +40,11 @@ import sys
 
 import numpy as np
 
-try:
-    from bolide_tools import common, l1, sedov, snapshot
-except ImportError:  # an install: PREFIX/bin/SCRIPT, the package in PREFIX/share/bolide/python
-    _here = os.path.dirname(os.path.abspath(__file__))
-    sys.path.insert(0, os.path.join(_here, "..", "share", "bolide", "python"))
-    from bolide_tools import common, l1, sedov, snapshot
+# an installed bolide first, else the source tree's (python/ beside tools/)
+# or an install's (PREFIX/bin/SCRIPT: PREFIX/share/bolide/python)
+_here = os.path.dirname(os.path.abspath(__file__))
+sys.path += [os.path.join(_here, "..", "python"), os.path.join(_here, "..", "share", "bolide", "python")]
+from bolide import common, l1, sedov, snapshot  # noqa: E402
 
 
 def parse_args(argv):

@@ -21,12 +21,11 @@ import sys
 
 import numpy as np
 
-try:
-    from bolide_tools import common, snapshot
-except ImportError:  # an install: PREFIX/bin/SCRIPT, the package in PREFIX/share/bolide/python
-    _here = os.path.dirname(os.path.abspath(__file__))
-    sys.path.insert(0, os.path.join(_here, "..", "share", "bolide", "python"))
-    from bolide_tools import common, snapshot
+# an installed bolide first, else the source tree's (python/ beside tools/)
+# or an install's (PREFIX/bin/SCRIPT: PREFIX/share/bolide/python)
+_here = os.path.dirname(os.path.abspath(__file__))
+sys.path += [os.path.join(_here, "..", "python"), os.path.join(_here, "..", "share", "bolide", "python")]
+from bolide import common, snapshot  # noqa: E402
 
 #: Short colour names -> dataset names (any dataset name is accepted too).
 SHORT_NAMES = {

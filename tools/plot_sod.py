@@ -3,7 +3,7 @@
 
 Plots density, x-velocity, pressure and specific internal energy against x
 (particles as points, their binned means, the exact solution as a line),
-writes a PNG and prints the L1 errors (bolide_tools.l1: plain mean over the
+writes a PNG and prints the L1 errors (bolide.l1: plain mean over the
 particles of |f_i - f_exact(x_i)|, in the snapshot's units) as lines
 "L1 density X", "L1 velocity X", "L1 pressure X", then the star state as
 lines "star QUANTITY MEASURED EXACT" for left_density, right_density,
@@ -35,12 +35,11 @@ import sys
 
 import numpy as np
 
-try:
-    from bolide_tools import common, l1, riemann, snapshot
-except ImportError:  # an install: PREFIX/bin/SCRIPT, the package in PREFIX/share/bolide/python
-    _here = os.path.dirname(os.path.abspath(__file__))
-    sys.path.insert(0, os.path.join(_here, "..", "share", "bolide", "python"))
-    from bolide_tools import common, l1, riemann, snapshot
+# an installed bolide first, else the source tree's (python/ beside tools/)
+# or an install's (PREFIX/bin/SCRIPT: PREFIX/share/bolide/python)
+_here = os.path.dirname(os.path.abspath(__file__))
+sys.path += [os.path.join(_here, "..", "python"), os.path.join(_here, "..", "share", "bolide", "python")]
+from bolide import common, l1, riemann, snapshot  # noqa: E402
 
 
 def parse_args(argv):

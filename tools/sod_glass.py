@@ -35,11 +35,14 @@ Usage:
 """
 
 import argparse
+import os
 import sys
 
 import numpy as np
 
-from bolide_tools import common
+# an installed bolide first, else the source tree's (python/ beside tools/)
+sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+from bolide import common  # noqa: E402
 
 STEP = 0.3
 GLASS_LEFT = 16  # particles along an edge of the left half's glass cube

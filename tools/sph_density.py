@@ -11,11 +11,17 @@ with (Header/Kernel) and `eta_default(bolide)` the default resolution_eta of
 a Bolide build (its --param-reference), so that a test measures the density
 Bolide computes.
 """
+import os
 import subprocess
+import sys
 
 import numpy as np
 from numpy.polynomial import Polynomial
 from scipy.spatial import cKDTree
+
+# an installed bolide first, else the source tree's (python/ beside tools/)
+sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+from bolide import snapshot  # noqa: E402
 
 GAMMA = np.sqrt(10.0 / 3.0)
 NORM = 16.0 / np.pi
@@ -49,10 +55,7 @@ def _f1_wendland_c2(q):
 def kernel_of(path):
     """Name of the kernel recorded in the Header of a Bolide HDF5 file
     ("cubic-spline" when there is none)."""
-    import h5py
-
-    with h5py.File(path, "r") as f:
-        k = f["Header"].attrs.get("Kernel", b"cubic-spline")
+    k = snapshot.load(path, [])["header"].get("Kernel", b"cubic-spline")
     return k.decode() if isinstance(k, bytes) else str(k)
 
 

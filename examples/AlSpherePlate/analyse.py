@@ -37,8 +37,8 @@ Usage: analyse.py [--dx 0.0008] [--out plate.png] OUTPUT_DIR"""
 import argparse
 import glob
 import os
+import sys
 
-import h5py
 import matplotlib
 
 matplotlib.use("Agg")
@@ -48,16 +48,19 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
+sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from bolide import snapshot  # noqa: E402  (python/bolide, unless the package is installed)
+
 RHO0 = 2710.0
 THICK = 0.004
 
 
 def read(path):
-    with h5py.File(path, "r") as f:
-        t = float(np.ravel(f["Header"].attrs["Time"])[0])
-        p = f["PartType0"]
-        dmg = p["ShearDamage"][:] if "ShearDamage" in p else np.zeros(len(p["Densities"]))
-        return t, p["Coordinates"][:], p["Densities"][:], p["MaterialIDs"][:], dmg
+    """Time, positions, densities, material ids and shear damage (0 without
+    it), in SI whatever the run's units (bolide.snapshot)."""
+    s = snapshot.load(path, ["Coordinates", "Densities", "MaterialIDs"], optional=["ShearDamage"], si=True)
+    dmg = s.get("ShearDamage", np.zeros(len(s["Densities"])))
+    return snapshot.snapshot_time(s), s["Coordinates"], s["Densities"], s["MaterialIDs"], dmg
 
 
 def in_plate(d, rho, mat, rho_frac):

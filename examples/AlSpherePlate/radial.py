@@ -11,18 +11,20 @@ Usage: radial.py [--dx 0.001] RUN_DIR   (RUN_DIR holds output/plate_*.hdf5)"""
 import argparse
 import glob
 import os
+import sys
 
-import h5py
 import numpy as np
+
+sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from bolide import snapshot  # noqa: E402  (python/bolide, unless the package is installed)
 
 RHO0, THICK, T_REF, CP = 2710.0, 0.004, 293.0, 875.0
 
 
 def read(path):
-    with h5py.File(path, "r") as f:
-        p = f["PartType0"]
-        return {k: p[k][:] for k in ("Coordinates", "Densities", "MaterialIDs", "ShearDamage",
-                                     "PlasticStrains", "InternalEnergies")}
+    """The fields of the profile, in SI (bolide.snapshot)."""
+    return snapshot.load(path, ("Coordinates", "Densities", "MaterialIDs", "ShearDamage",
+                                "PlasticStrains", "InternalEnergies"), si=True)
 
 
 def main():

@@ -4,9 +4,13 @@ Boss-Bodenheimer collapse, from every snapshot in the folder.
 Usage: plot_density.py [SNAPSHOT_GLOB] [--out PNG]"""
 import argparse
 import glob
+import os
+import sys
 
-import h5py
 import numpy as np
+
+sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from bolide import snapshot  # noqa: E402  (python/bolide, unless the package is installed)
 
 TFF = 5.529e11
 RHO0 = 1.44e-14
@@ -22,9 +26,9 @@ def main():
         raise SystemExit("plot_density.py: error: no snapshot matches %s" % a.pattern)
     t, rmax = [], []
     for f in files:
-        with h5py.File(f, "r") as h:
-            t.append(float(np.ravel(h["Header"].attrs["Time"])[0]) / TFF)
-            rmax.append(float(h["PartType0/Densities"][:].max()))
+        s = snapshot.load(f, ["Densities"], si=True)
+        t.append(snapshot.snapshot_time(s) / TFF)
+        rmax.append(float(s["Densities"].max()))
     for ti, ri in zip(t, rmax):
         print("t/t_ff %.3f max_density %.4e kg/m^3 (%.3g rho0)" % (ti, ri, ri / RHO0))
     import matplotlib
@@ -37,7 +41,6 @@ def main():
     ax.set_title("Boss-Bodenheimer collapse")
     fig.tight_layout()
     fig.savefig(a.out + ".tmp.png", dpi=120)
-    import os
     os.replace(a.out + ".tmp.png", a.out)
     print("plot:", a.out)
 

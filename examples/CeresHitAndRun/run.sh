@@ -25,6 +25,6 @@ rm -f ceres_0*.hdf5 ceres_0*.xmf statistics.txt
 "$build/bolide" -P Gravity:softening:"$eps" "$@" params.yml
 last=$(ls ceres_0*.hdf5 | tail -1)
 "$build/bolide-fof" "$last" --link-h 2 --min-count 10 -o fragments.txt
-PYTHONPATH=$top/tools "$python" survivors.py fragments.txt "$last" | tee survivors.txt
+"$python" survivors.py fragments.txt "$last" | tee survivors.txt
 ./plot.sh
 echo "survivors: $(pwd)/survivors.txt"

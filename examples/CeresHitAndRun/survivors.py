@@ -5,9 +5,13 @@
 
 Usage: survivors.py FRAGMENTS.txt [SNAPSHOT]   (the snapshot only names the time)
 """
+import os
 import sys
 
 import numpy as np
+
+sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from bolide import snapshot  # noqa: E402  (python/bolide, unless the package is installed)
 
 G = 6.67430e-11
 PAPER_MASS = (9.55e20, 9.17e20)
@@ -18,21 +22,16 @@ def main(argv):
     if len(argv) < 2:
         print("usage: survivors.py FRAGMENTS.txt [SNAPSHOT]", file=sys.stderr)
         return 2
-    names, rows, time, total = None, [], None, np.nan
-    with open(argv[1]) as f:
-        for line in f:
-            if line.startswith("# time"):
-                time = line.split()[2]
-            if line.startswith("# total mass"):
-                total = float(line.split()[3])
-            if line.startswith("# rank"):
-                names = line[1:].split()
-            elif line.strip() and not line.startswith("#"):
-                rows.append([float(v) for v in line.split()])
-    if names is None or len(rows) < 2:
+    try:
+        t, info = snapshot.read_fragments(argv[1])
+    except snapshot.SnapshotError as exc:
+        print("survivors.py: error: %s" % exc, file=sys.stderr)
+        return 1
+    names, total, nrows = list(t), info["total_mass"], len(t["mass"])
+    time = "%.9g" % info["time"] if info["time"] is not None else "?"
+    if nrows < 2:
         print("survivors.py: %s: fewer than two fragments" % argv[1], file=sys.stderr)
         return 1
-    t = {k: np.array([r[i] for r in rows]) for i, k in enumerate(names)}
     order = np.argsort(-t["mass"])[:2]
     fracs = [k for k in names if k.startswith("frac_mat")]
     print("# Ceres hit-and-run survivors at t = %s s (bolide-fof, the two largest fragments)"
@@ -51,7 +50,7 @@ def main(argv):
     print("# separation %.4g m, relative speed %.4g m/s, two-body energy %.4g J/kg: %s"
           % (r, v, e, "they escape each other" if e > 0 else "bound to each other"))
     print("# the rest: %.4e kg (%d more listed fragments, the others below --min-count)"
-          % (total - t["mass"][order].sum(), len(rows) - 2))
+          % (total - t["mass"][order].sum(), nrows - 2))
     return 0
 
 

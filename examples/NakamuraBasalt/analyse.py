@@ -17,8 +17,10 @@ import os
 import subprocess
 import sys
 
-import h5py
 import numpy as np
+
+sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from bolide import snapshot  # noqa: E402  (python/bolide, unless the package is installed)
 
 BASALT = 103          # material id of the target (bolide-ic: the library's swift_id)
 EXPERIMENT = 0.31     # intact core of Nakamura & Fujiwara (1991)
@@ -29,27 +31,22 @@ def fof(snap, build):
     out = snap.replace("nakamura_", "fragments_").replace(".hdf5", ".txt")
     subprocess.run([os.path.join(build, "bolide-fof"), snap, "--min-damage-drop", "1",
                     "--link-h", "1", "-o", out], check=True, stdout=subprocess.DEVNULL)
-    lines = open(out).read().splitlines()
-    names = [ln for ln in lines if ln.startswith("#")][-1].lstrip("#").split()
-    rows = [ln.split() for ln in lines if ln.strip() and not ln.startswith("#")]
-    data = np.array(rows, dtype=float).reshape(-1, len(names))
-    return {n: data[:, i] for i, n in enumerate(names)}, out
+    return snapshot.read_fragments(out)[0], out
 
 
 def analyse(run, build):
     snaps = sorted(glob.glob(os.path.join(run, "nakamura_[0-9]*.hdf5")))
     if not snaps:
         sys.exit("%s: no snapshots" % run)
-    with h5py.File(snaps[0], "r") as f:
-        g = f["PartType0"]
-        mat = g["MaterialIDs"][:]
-        m_target = g["Masses"][:][mat == BASALT].sum()
-        n_target = int((mat == BASALT).sum())
+    first = snapshot.load(snaps[0], ["MaterialIDs", "Masses"], si=True)
+    mat = first["MaterialIDs"]
+    m_target = first["Masses"][mat == BASALT].sum()
+    n_target = int((mat == BASALT).sum())
     rows = []
     for s in snaps:
-        with h5py.File(s, "r") as f:
-            t = float(np.ravel(f["Header"].attrs["Time"])[0])
-            d = f["PartType0"]["Damage"][:][f["PartType0"]["MaterialIDs"][:] == BASALT]
+        snap = snapshot.load(s, ["Damage", "MaterialIDs"], si=True)
+        t = snapshot.snapshot_time(snap)
+        d = snap["Damage"][snap["MaterialIDs"] == BASALT]
         cols, _ = fof(s, build)
         basalt = cols["mass"] * cols.get("frac_mat%d" % BASALT, np.ones_like(cols["mass"]))
         core = basalt.max() / m_target if basalt.size else 0.0

@@ -18,8 +18,10 @@ import glob
 import os
 import sys
 
-import h5py
 import numpy as np
+
+sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from bolide import snapshot  # noqa: E402  (python/bolide, unless the package is installed)
 
 BASALT = 103
 ANGLE = np.radians(30.0)
@@ -28,11 +30,10 @@ COMP = [(0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)]
 
 
 def load(path):
-    with h5py.File(path, "r") as f:
-        g = f["PartType0"]
-        out = {k: g[k][:] for k in ("Coordinates", "Damage", "Pressures", "DeviatoricStress",
-                                    "MaterialIDs", "Masses")}
-        out["t"] = float(np.ravel(f["Header"].attrs["Time"])[0])
+    """The fields of the diagnosis, in SI (bolide.snapshot); "t" the time."""
+    out = snapshot.load(path, ("Coordinates", "Damage", "Pressures", "DeviatoricStress",
+                               "MaterialIDs", "Masses"), si=True)
+    out["t"] = snapshot.snapshot_time(out)
     return out
 
 

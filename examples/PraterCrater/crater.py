@@ -18,22 +18,25 @@ Usage: crater.py [--dx 0.002] [--out crater.png] OUTPUT_DIR"""
 import argparse
 import glob
 import os
+import sys
 
-import h5py
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
+sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from bolide import snapshot  # noqa: E402  (python/bolide, unless the package is installed)
+
 RHO0 = 2700.0
 
 
 def read(path):
-    with h5py.File(path, "r") as f:
-        t = float(np.ravel(f["Header"].attrs["Time"])[0])
-        p = f["PartType0"]
-        return t, p["Coordinates"][:], p["Densities"][:], p["MaterialIDs"][:], p["PlasticStrains"][:]
+    """Time, positions, densities, material ids and plastic strains, in SI
+    (bolide.snapshot)."""
+    s = snapshot.load(path, ["Coordinates", "Densities", "MaterialIDs", "PlasticStrains"], si=True)
+    return snapshot.snapshot_time(s), s["Coordinates"], s["Densities"], s["MaterialIDs"], s["PlasticStrains"]
 
 
 def profile(x, rho, mat, origin, dx, rho_frac):

@@ -11,8 +11,8 @@ Usage: plot_rings.py [--dx 0.0025] [--out rings.png] DIR_WITH_AS DIR_WITHOUT"""
 import argparse
 import glob
 import os
+import sys
 
-import h5py
 import matplotlib
 
 matplotlib.use("Agg")
@@ -20,6 +20,9 @@ import matplotlib.pyplot as plt
 import numpy as np
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
+
+sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from bolide import snapshot  # noqa: E402  (python/bolide, unless the package is installed)
 
 
 def fragments(pos, link):
@@ -36,13 +39,13 @@ def fragments(pos, link):
 
 
 def read(path):
-    with h5py.File(path, "r") as f:
-        t = float(np.ravel(f["Header"].attrs["Time"])[0])
-        p = f["PartType0"]
-        ids = p["ParticleIDs"][:]
-        o = np.argsort(ids)
-        S = p["DeviatoricStress"][:][o] if "DeviatoricStress" in p else None
-        return t, p["Coordinates"][:][o], p["Velocities"][:][o], S
+    """Time, positions, velocities and deviatoric stress (None without it),
+    in SI (bolide.snapshot), the particles in the order of their ids."""
+    s = snapshot.load(path, ["ParticleIDs", "Coordinates", "Velocities"], optional=["DeviatoricStress"],
+                      si=True)
+    o = np.argsort(s["ParticleIDs"])
+    S = s["DeviatoricStress"][o] if "DeviatoricStress" in s else None
+    return snapshot.snapshot_time(s), s["Coordinates"][o], s["Velocities"][o], S
 
 
 def main():
