@@ -23,11 +23,20 @@ mkdir -p tables
 "$B/bolide-ic" sod -o sod.hdf5 >/dev/null
 "$B/bolide-ic" box --n 8 --size 2 --rho 1 --u 0.05 -o evrard.hdf5 >/dev/null
 "$B/bolide-ic" box --n 6 --size 1 --rho 1 --u 1 -o box.hdf5 >/dev/null
+"$B/bolide-ic" sedov --n 8 -o sedov.hdf5 >/dev/null
+"$B/bolide-ic" box --n 8 --size 2 --rho 3300 --u 1e6 --mat 301 -o earth_impact.hdf5 >/dev/null
+for m in iron basalt; do  # SESAME_iron (300), SESAME_basalt (301) in SWIFT's format
+  "$PY" "$S/tools/eos_tables.py" --format swift --rho 1 1e4 --T 10 1e5 --n 24 32 \
+    -o tables/SESAME_${m}_like.txt || { echo "FAIL: eos_tables.py ($m)"; exit 1; }
+done
 
-# 1. every file passes --check (with SWIFT's flags: -s for the hydro test,
-# -s -G for the others) and gives no error
-for f in planetary_impact.yml sod_shock.yml evrard.yml every_key.yml; do
-  flags="-s -G"; [ "$f" = sod_shock.yml ] && flags=-s
+# 1. every file of tests/data/swift passes --check (with SWIFT's flags: -s
+# for the hydro tests, -s -G for a file with a Gravity section) and gives
+# no error
+files=$(cd "$S/tests/data/swift" && ls ./*.yml | sed 's|^\./||')
+[ "$(echo "$files" | wc -w)" -ge 6 ] || { echo "FAIL: fewer than 6 SWIFT-style files in tests/data/swift"; fail=1; }
+for f in $files; do
+  flags=-s; grep -q '^Gravity:' "$f" && flags="-s -G"
   # shellcheck disable=SC2086
   if "$bolide" --check $flags "$f" >"$f.out" 2>"$f.err"; then
     echo "ok: $f passes --check ($(grep -c 'note:' "$f.err") notes, $(grep -c 'warning:' "$f.err") warnings)"
@@ -46,6 +55,9 @@ expect_line planetary_impact.yml "note: planetary_impact.yml:[0-9]+: Gravity:mes
 expect_line planetary_impact.yml "note: planetary_impact.yml: SWIFT's EoS section read as materials 400 \(ANEOS_forsterite\), 100 \(iron\), 101 \(granite\).*Materials"
 expect_line sod_shock.yml "note: sod_shock.yml:[0-9]+: section 'EAGLECooling' \(SWIFT's\) has no effect in Bolide"
 expect_line evrard.yml "note: evrard.yml:[0-9]+: SPH:H_mass_fraction"
+expect_line earth_impact_sesame.yml "note: earth_impact_sesame.yml: SWIFT's EoS section read as materials 300 \(SESAME_iron\), 301 \(SESAME_basalt\)"
+expect_line earth_impact_sesame.yml "note: earth_impact_sesame.yml:[0-9]+: Snapshots:int_time_label_on \(SWIFT's\) has no effect"
+expect_line sedov_blast.yml "note: sedov_blast.yml:[0-9]+: Snapshots:distributed \(SWIFT's\) has no effect"
 expect_line every_key.yml "warning: every_key.yml:[0-9]+: section 'Cosmology' \(SWIFT's\) has no effect"
 expect_line every_key.yml "warning: every_key.yml:[0-9]+: EoS:isothermal_internal_energy"
 n=$(grep -c "every_key.yml:[0-9]*: .*(SWIFT's) has no effect" every_key.yml.err)
