@@ -7,6 +7,8 @@ import sys
 
 import numpy as np
 
+from bolide import common
+
 
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else list(argv)
@@ -18,9 +20,9 @@ def main(argv=None):
     try:
         d = np.loadtxt(path, ndmin=2)
     except (OSError, ValueError) as e:
-        sys.exit(f"plot_profile.py: error: {path}: {e}")
+        common.die(f"{path}: {e}")
     if d.shape[1] != 7:
-        sys.exit(f"plot_profile.py: error: {path}: expected 7 columns (r m rho P T u layer)")
+        common.die(f"{path}: expected 7 columns (r m rho P T u layer)")
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -40,7 +42,10 @@ def main(argv=None):
         a.set_xlabel("r [km]")
     ax[0, 0].legend()
     fig.tight_layout()
-    fig.savefig(out, dpi=100)
+    try:
+        common.save_figure(fig, out, dpi=100)
+    except OSError as e:
+        common.die(str(e))
     print(out)
     return 0
 

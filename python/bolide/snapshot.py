@@ -186,26 +186,38 @@ def snapshot_time(snap, override=None):
     return snap["header"]["Time"]
 
 
-def _cgs_unit_to_si(factor, unit):
-    """SI value of FACTOR x UNIT, UNIT as the statistics file writes it
-    ("gram * cm**2 * s**-2", "s", "dimensionless")."""
-    base = {"gram": 1e-3, "g": 1e-3, "cm": 1e-2, "s": 1.0, "erg": 1e-7}
-    f = factor
+#: cgs symbols of the statistics file's units: (SI value, (mass, length, time) exponents).
+_CGS_SYMBOLS = {"gram": (1e-3, (1, 0, 0)), "g": (1e-3, (1, 0, 0)), "cm": (1e-2, (0, 1, 0)),
+                "s": (1.0, (0, 0, 1)), "erg": (1e-7, (1, 2, -2))}
+
+
+def _cgs_unit(factor, unit):
+    """SI value of FACTOR x UNIT and its (mass, length, time) exponents,
+    UNIT as the statistics file writes it ("gram * cm**2 * s**-2", "s",
+    "dimensionless")."""
+    f, dim = factor, [0.0, 0.0, 0.0]
     if unit.strip() in ("", "dimensionless"):
-        return f
+        return f, tuple(dim)
     for term in re.split(r"\s+\*\s+", unit.strip()):
         term = term.strip()
         if not term:
             continue
         sym, _, exp = term.partition("**") if "**" in term else (term, "", "1")
-        if sym.strip() not in base:
+        if sym.strip() not in _CGS_SYMBOLS:
             raise ValueError("unknown unit %r" % sym)
-        f *= base[sym.strip()] ** float(exp)
-    return f
+        si, d = _CGS_SYMBOLS[sym.strip()]
+        f *= si ** float(exp)
+        dim = [a + b * float(exp) for a, b in zip(dim, d)]
+    return f, tuple(dim)
 
 
 def read_stats(path, si=False):
-    """Read a statistics file.
+    """Read a statistics file: read_stats_units without the units."""
+    return read_stats_units(path, si)[0]
+
+
+def read_stats_units(path, si=False):
+    """Read a statistics file and the units of its columns.
 
     The '#' line of Bolide's one-word column names ("# step time dt ...")
     names the columns; without one (another program's file), the last '#'
@@ -215,15 +227,18 @@ def read_stats(path, si=False):
     swiftsimio.load_statistics.  Returns a dict
     name -> 1D float array.  With si, every column with a "Unit = F UNIT"
     line in the header (Bolide's files: one per numbered column) is
-    converted to SI.  Raises SnapshotError for a missing file, no header
-    line, rows of the wrong length or non-numeric values.
+    converted to SI.  Returns (columns, dimensions): dimensions maps the
+    name of each column with a "Unit =" line to its (mass, length, time)
+    exponents, as that line gives them.  Raises SnapshotError for a
+    missing file, no header line, rows of the wrong length or non-numeric
+    values.
     """
     if not os.path.exists(path):
         raise SnapshotError("%s: no such file" % path)
     names = None
     bolide_names = False
     rows = []
-    factors = {}  # column number -> factor to SI
+    units = {}  # column number -> (factor to SI, dimension)
     column = None
     with open(path) as f:
         for lineno, line in enumerate(f, 1):
@@ -234,11 +249,11 @@ def read_stats(path, si=False):
                 w = text.lstrip("#").split()
                 if w and w[0].startswith("(") and w[0].endswith(")") and w[0][1:-1].isdigit():
                     column = int(w[0][1:-1])
-                elif (si and len(w) >= 3 and w[0] == "Unit" and w[1] == "=" and column is not None
-                      and column not in factors):
+                elif (len(w) >= 3 and w[0] == "Unit" and w[1] == "=" and column is not None
+                      and column not in units):
                     try:
-                        factors[column] = 1.0 if w[2] == "dimensionless" else \
-                            _cgs_unit_to_si(float(w[2]), " ".join(w[3:]))
+                        units[column] = (1.0, (0.0, 0.0, 0.0)) if w[2] == "dimensionless" else \
+                            _cgs_unit(float(w[2]), " ".join(w[3:]))
                     except ValueError as exc:
                         raise SnapshotError("%s:%d: %s" % (path, lineno, exc))
                 if not rows:
@@ -266,8 +281,9 @@ def read_stats(path, si=False):
     table = np.array(rows, dtype=float).reshape(len(rows), len(names))
     if si:
         for i in range(len(names)):
-            table[:, i] *= factors.get(i, 1.0)
-    return {name: table[:, i] for i, name in enumerate(names)}
+            table[:, i] *= units[i][0] if i in units else 1.0
+    dims = {name: units[i][1] for i, name in enumerate(names) if i in units}
+    return {name: table[:, i] for i, name in enumerate(names)}, dims
 
 
 def read_fragments(path):

@@ -69,23 +69,14 @@ def load_snapshot(path):
     return snap
 
 
-#: Dimension of Bolide's statistics columns (the file's units say the scale).
-_STATS_DIMS = {"time": (0, 0, 1), "dt": (0, 0, 1), "mass": (1, 0, 0), "m_removed": (1, 0, 0)}
-for _k in ("px", "py", "pz"):
-    _STATS_DIMS[_k] = _STATS_DIMS[_k + "_removed"] = (1, 1, -1)
-for _k in ("Lx", "Ly", "Lz"):
-    _STATS_DIMS[_k] = _STATS_DIMS[_k + "_removed"] = (1, 2, -1)
-for _k in ("E_kin", "E_int", "E_pot", "E_tot", "E_removed", "E_clamp", "W_plastic", "dE"):
-    _STATS_DIMS[_k] = (1, 2, -2)
-
-
 def load_statistics(path):
-    """Every column of a Bolide statistics file as a unyt array in SI."""
+    """Every column of a Bolide statistics file as a unyt array in SI, of
+    the dimension the file's "Unit =" line of the column gives
+    (dimensionless without one)."""
     import unyt
-    cols = _snapshot.read_stats(path, si=True)
+    cols, dims = _snapshot.read_stats_units(path, si=True)
     st = Statistics()
     st.path = path
     for name, values in cols.items():
-        dim = _STATS_DIMS.get(name, (0, 0, 0))
-        st._set(name, unyt.unyt_array(np.asarray(values), _si_unit(dim)))
+        st._set(name, unyt.unyt_array(np.asarray(values), _si_unit(dims.get(name, (0, 0, 0)))))
     return st

@@ -32,7 +32,13 @@ done
 
 # an intact planet, in SI and in SWIFT's planetary units, run for one step
 "$B/bolide-ic" planet --materials iron,granite --mass 5.97e24 --mass-fractions 0.3,0.7 --n 2000 \
-  -o planet.hdf5 >/dev/null 2>&1 || { echo "FAIL: bolide-ic planet"; exit 1; }
+  --profile profile.txt -o planet.hdf5 >/dev/null 2>&1 || { echo "FAIL: bolide-ic planet"; exit 1; }
+# the profile plot of the planet's profile, and one of a file that is not one
+fresh/bin/bolide-plot-profile profile.txt profile.png >/dev/null 2>&1 && [ -s profile.png ] &&
+  echo "ok: bolide-plot-profile" || { echo "FAIL: bolide-plot-profile profile.txt"; fail=1; }
+fresh/bin/bolide-plot-profile planet.hdf5 bad.png >/dev/null 2>bad.err
+[ $? -ne 0 ] && [ "$(wc -l <bad.err)" -eq 1 ] && grep -q "^bolide-plot-profile: error: planet.hdf5" bad.err &&
+  [ ! -e bad.png ] || { echo "FAIL: bolide-plot-profile on an HDF5 file: not one error line:"; cat bad.err; fail=1; }
 for sys in si earth; do
   mkdir -p $sys
   if [ $sys = earth ]; then
@@ -58,6 +64,14 @@ YML
 done
 # a bolide-fof table of the planet in Earth units, for snapshot.read_fragments
 "$B/bolide-fof" earth/out/snapshot_0000.hdf5 -o fragments.txt >/dev/null 2>&1 || { echo "FAIL: bolide-fof"; fail=1; }
+# the fragment plot: the intact planet is one fragment, all of the mass
+fresh/bin/bolide-plot-fragments fragments.txt -o spectrum.png >spectrum.txt 2>&1 && [ -s spectrum.png ] &&
+  awk '/^largest_fraction/ {f = $3} END {exit !(f > 0.999999)}' spectrum.txt &&
+  echo "ok: bolide-plot-fragments: $(cat spectrum.txt)" || { echo "FAIL: bolide-plot-fragments"; cat spectrum.txt; fail=1; }
+# the task plot of a task dump (-y 1)
+(cd si && "$B/bolide" -s -G -n 1 -y 1 -P Snapshots:subdir:out_y p.yml >/dev/null 2>&1) &&
+  fresh/bin/bolide-plot-tasks si/out_y/tasks_step000001.txt -o tasks.png >tasks.txt 2>&1 && [ -s tasks.png ] &&
+  echo "ok: bolide-plot-tasks" || { echo "FAIL: bolide-plot-tasks"; cat tasks.txt; ls si/out_y; fail=1; }
 # load_snapshot / load_statistics: the same SI numbers from both unit systems
 (cd / && "$work/fresh/bin/python" - "$work" <<'PY') || fail=1
 import sys, numpy as np, bolide
@@ -76,6 +90,13 @@ for name in ("mass", "E_int", "E_pot", "time"):
     print("ok " if same else "FAIL", "load_statistics %s(t=0): %s in both unit systems" % (name, x.units))
     ok &= same
 ok &= bool(abs(a.masses.sum().to("kg").value - 5.97e24) < 1e-6 * 5.97e24)
+# every column's dimension is the one its "Unit =" line gives (no list by hand)
+import unyt
+for name, unit in (("time", "s"), ("mass", "kg"), ("px", "kg*m/s"), ("Lz", "kg*m**2/s"),
+                   ("E_tot", "J"), ("W_plastic", "J"), ("m_removed", "kg"), ("n_particles", "dimensionless")):
+    same = getattr(sb, name).units.dimensions == unyt.Unit(unit).dimensions
+    print("ok " if same else "FAIL", "load_statistics %s in %s" % (name, getattr(sb, name).units))
+    ok &= same
 # read_fragments (what tools/ and examples/ read bolide-fof tables with):
 # SI columns, the header's total mass and time; the intact planet is one fragment
 from bolide import snapshot
