@@ -10,7 +10,8 @@ planetary units (Earth mass and radius); then
    snapshot loaded with swiftsimio, both converted to SI by unyt;
 3. every step has one line (-n 3: steps 0..3, none twice), and Bolide's
    reader (tools/bolide_tools) still finds its own column names;
-4. the timesteps file has one line per step with the statistics' times."""
+4. the timesteps file has one line per step with the statistics' times,
+   time steps, particle updates and a wall-clock time."""
 import os
 import subprocess
 import sys
@@ -126,6 +127,9 @@ Gravity:
     ts = np.loadtxt(os.path.join(out, "timesteps.txt"), ndmin=2)
     check(ts.shape[0] == 3 and np.array_equal(ts[:, 0], [1, 2, 3]), "timesteps: one line per step")
     check(np.allclose(ts[:, 1], st.time.value[1:], rtol=1e-9), "timesteps: the times of the statistics")
+    check(np.allclose(ts[:, 2], np.diff(st.time.value), rtol=1e-9), "timesteps: dt, the step from the time before")
+    check(np.array_equal(ts[:, 3], np.full(3, 512)), "timesteps: updates, every one of the 512 particles per step")
+    check(np.all(ts[:, 4] > 0), "timesteps: wall-clock time of each step > 0")
 
 print("FAIL" if failures else "PASS")
 sys.exit(1 if failures else 0)
