@@ -62,8 +62,11 @@ static void usage(FILE *f) {
           "  -V, --version         version and build configuration\n"
           "\n"
           "Accepted for SWIFT's run scripts, without effect: -a/--pin (workers are always\n"
-          "pinned), -D/--drift-all, --limiter, --sync (every particle is drifted and\n"
-          "kicked every step), -M/--multipole-reconstruction (multipoles are rebuilt every\n"
+          "pinned), -D/--drift-all (every particle is drifted every step), --limiter,\n"
+          "--sync (the time-step limiter and the wake-up of the particles it shortens are\n"
+          "always on with TimeIntegration:global_step: false, set by\n"
+          "TimeIntegration:max_bin_ratio; the global step needs neither),\n"
+          "-M/--multipole-reconstruction (multipoles are rebuilt every\n"
           "step unless Gravity:reuse_steps > 0), --temperature, --interleave,\n"
           "--nointerleave, --pool-threads N, -T/--timers N (timers are printed at the end).\n"
           "SWIFT's options for physics or outputs Bolide does not have (cosmology, cooling,\n"
@@ -165,8 +168,12 @@ static const struct {
     {"dump-tasks-threshold", 1, 0, "task dumps triggered by a time threshold (use -y N)"},
     {"pin", 0, 1, "the workers are always pinned to cores"},
     {"drift-all", 0, 1, "every particle is drifted every step"},
-    {"limiter", 0, 1, "every particle is kicked every step with the global time step"},
-    {"sync", 0, 1, "every particle is kicked every step with the global time step"},
+    {"limiter", 0, 1,
+     "the time-step limiter is always on with individual time steps "
+     "(TimeIntegration:max_bin_ratio); the global step needs none"},
+    {"sync", 0, 1,
+     "particles whose step the limiter shortens are always woken with individual time steps "
+     "(TimeIntegration:max_bin_ratio); the global step needs no wake-up"},
     {"multipole-reconstruction", 0, 1,
      "the multipoles are rebuilt every step unless Gravity:reuse_steps > 0"},
     {"temperature", 0, 1, "temperatures are computed where the equation of state has one"},
