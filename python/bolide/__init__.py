@@ -5,14 +5,20 @@ Modules:
 
   units           load_snapshot, load_statistics: unyt arrays in SI (as
                   swiftsimio gives them), whatever units the run used
-  snapshot        the readers underneath (numpy arrays; si=True converts)
+  snapshot        the readers underneath (numpy arrays; si=True converts):
+                  load, read_stats, read_stats_units, read_fragments
   plot_impact     collision pictures, mass bound to the largest remnant,
-                  energy budget (console script bolide-plot-impact)
-  plot_fragments  cumulative fragment mass spectrum of bolide-fof tables
-                  (bolide-plot-fragments)
-  plot_profile    a planet profile of bolide-ic planet --profile
-                  (bolide-plot-profile)
-  plot_tasks      the task timeline of a task dump (bolide-plot-tasks)
+                  energy budget: load_snapshots, bound_history,
+                  bound_figure, collision_figure, energy_figure (console
+                  script bolide-plot-impact)
+  plot_fragments  cumulative fragment mass spectrum of bolide-fof tables:
+                  spectrum (bolide-plot-fragments)
+  plot_profile    a planet profile of bolide-ic planet --profile:
+                  read_profile, profile_figure (bolide-plot-profile)
+  plot_tasks      the task timeline of a task dump: read_dump, timeline
+                  (bolide-plot-tasks)
+  The *_figure functions, spectrum and timeline return matplotlib figures;
+  each module's main(argv) is its console script.
   riemann         exact Riemann solver for an ideal gas (Toro 2009, ch. 4)
   sedov           Sedov-Taylor point explosion in 3D (Sedov 1959; Kamm &
                   Timmes 2007)

@@ -58,61 +58,64 @@ def bound_mass(pos, vel, m, seed, G, iters=100):
     return bound
 
 
-def main(argv=None):
-    args = parse_args(sys.argv[1:] if argv is None else argv)
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+def load_snapshots(paths):
+    """The snapshots' positions, velocities, masses, material ids (and
+    smoothing lengths) in SI whatever their units (SWIFT's planetary runs
+    use Earth masses and radii; G is in SI).  Raises SnapshotError."""
+    return [snapshot.load(path, ["Coordinates", "Velocities", "Masses", "MaterialIDs"],
+                          optional=["SmoothingLengths"], si=True) for path in paths]
 
-    snaps = []
-    for path in args.snapshots:
-        try:
-            # in SI whatever the snapshot's units (SWIFT's planetary runs
-            # use Earth masses and radii): G is in SI
-            s = snapshot.load(path, ["Coordinates", "Velocities", "Masses", "MaterialIDs"],
-                              optional=["SmoothingLengths"], si=True)
-        except snapshot.SnapshotError as exc:
-            common.die(str(exc))
-        snaps.append(s)
+
+def bound_history(snaps, impactor_offset=1000, G=G_SI):
+    """The mass bound to the largest remnant in each snapshot (loaded with
+    load_snapshots or snapshot.load(si=True)), grown from the target's
+    particles (material id < impactor_offset).  Returns a dict: "time" (s),
+    "bound" (kg), "fraction" (of the total mass), "materials" (the ids) and
+    "per_material" (kg, one column per id)."""
     mats = np.unique(np.concatenate([s["MaterialIDs"] for s in snaps]).astype(int))
-
-    # ---- bound mass
-    print("# t[s] M_bound[kg] M_bound/M_total " + " ".join("M_b(mat %d)" % k for k in mats))
-    times, fb, fmat = [], [], []
+    times, bound, frac, per = [], [], [], []
     for s in snaps:
         pos, vel, m = s["Coordinates"], s["Velocities"], s["Masses"]
         mat = s["MaterialIDs"].astype(int)
-        b = bound_mass(pos, vel, m, mat < args.impactor_offset, args.G)
-        t = float(s["header"].get("Time", np.nan))
-        per = [m[b & (mat == k)].sum() for k in mats]
-        times.append(t)
-        fb.append(m[b].sum() / m.sum())
-        fmat.append(per)
-        print("%.6e %.6e %.6f " % (t, m[b].sum(), m[b].sum() / m.sum())
-              + " ".join("%.6e" % v for v in per))
+        b = bound_mass(pos, vel, m, mat < impactor_offset, G)
+        times.append(float(s["header"].get("Time", np.nan)))
+        bound.append(m[b].sum())
+        frac.append(m[b].sum() / m.sum())
+        per.append([m[b & (mat == k)].sum() for k in mats])
+    return {"time": np.array(times), "bound": np.array(bound), "fraction": np.array(frac),
+            "materials": mats, "per_material": np.array(per).reshape(len(snaps), len(mats))}
+
+
+def bound_figure(hist, total_mass):
+    """The bound mass against time (bound_history's dict), in total and per
+    material, as fractions of total_mass; a matplotlib figure."""
+    import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(6.5, 4.5))
-    times = np.array(times)
-    ax.plot(times / 3600, fb, "k-o", label="all")
-    mtot = snaps[0]["Masses"].sum()
-    for k, mk in enumerate(mats):
-        ax.plot(times / 3600, np.array(fmat)[:, k] / mtot, "-", label="material %d" % mk)
+    t = hist["time"]
+    ax.plot(t / 3600, hist["fraction"], "k-o", label="all")
+    for k, mk in enumerate(hist["materials"]):
+        ax.plot(t / 3600, hist["per_material"][:, k] / total_mass, "-", label="material %d" % mk)
     ax.set_xlabel("t [h]")
     ax.set_ylabel("mass bound to the largest remnant / total mass")
     ax.legend(fontsize="small")
     ax.grid(alpha=0.3)
     fig.tight_layout()
-    common.save_figure(fig, args.prefix + "bound.png")
+    return fig
 
-    # ---- collision pictures
-    pick = np.unique(np.linspace(0, len(snaps) - 1, min(6, len(snaps))).round().astype(int))
+
+def collision_figure(snaps, length_unit=6.371e6, length_name="R_E", panels=6):
+    """x-y slices through the centre of mass of up to PANELS snapshots
+    (evenly chosen), coloured by material, lengths in length_unit (m); a
+    matplotlib figure."""
+    import matplotlib.pyplot as plt
+    mats = np.unique(np.concatenate([s["MaterialIDs"] for s in snaps]).astype(int))
+    pick = np.unique(np.linspace(0, len(snaps) - 1, min(panels, len(snaps))).round().astype(int))
     ncol = min(3, len(pick))
     nrow = (len(pick) + ncol - 1) // ncol
     fig, axes = plt.subplots(nrow, ncol, figsize=(4.2 * ncol, 4.0 * nrow), squeeze=False)
-    colours = {}
     base = plt.get_cmap("tab10")
-    for k, mk in enumerate(mats):
-        colours[mk] = base(k % 10)
-    L = args.length_unit
+    colours = {mk: base(k % 10) for k, mk in enumerate(mats)}
+    L = length_unit
     for a, i in zip(axes.flat, pick):
         s = snaps[i]
         pos, m = s["Coordinates"], s["Masses"]
@@ -128,15 +131,62 @@ def main(argv=None):
                       color=colours[mk], label="mat %d" % mk, rasterized=True)
         a.set_aspect("equal")
         a.set_title("t = %.2f h" % (float(s["header"].get("Time", np.nan)) / 3600))
-        a.set_xlabel("x [%s]" % args.length_name)
-        a.set_ylabel("y [%s]" % args.length_name)
+        a.set_xlabel("x [%s]" % length_name)
+        a.set_ylabel("y [%s]" % length_name)
     for a in list(axes.flat)[len(pick):]:
         a.axis("off")
     handles, labels = axes.flat[0].get_legend_handles_labels()
     fig.tight_layout(rect=(0, 0.05, 1, 1))
     fig.legend(handles, labels, loc="lower center", ncol=len(mats), fontsize="small",
                markerscale=5)
-    common.save_figure(fig, args.prefix + "collision.png")
+    return fig
+
+
+def energy_figure(stats):
+    """Kinetic, internal, potential and total energy against time, and the
+    drift |E_tot(t) - E_tot(0)| / max|E_pot|, of a statistics file's columns
+    (snapshot.read_stats(path, si=True)).  Returns (figure, drift)."""
+    import matplotlib.pyplot as plt
+    t = stats["time"]
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(6.5, 6), sharex=True)
+    for key in ("E_kin", "E_int", "E_pot", "E_tot"):
+        a1.plot(t / 3600, stats[key], label=key)
+    a1.set_ylabel("energy")
+    a1.legend(fontsize="small")
+    a1.grid(alpha=0.3)
+    scale = np.abs(stats["E_pot"]).max()
+    drift = np.abs(stats["E_tot"] - stats["E_tot"][0]) / scale
+    a2.semilogy(t / 3600, np.maximum(drift, 1e-16))
+    a2.set_ylabel("|E_tot - E_tot(0)| / max|E_pot|")
+    a2.set_xlabel("t [h]")
+    a2.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig, drift
+
+
+def main(argv=None):
+    """Command line (console script bolide-plot-impact); returns the exit status."""
+    args = parse_args(sys.argv[1:] if argv is None else argv)
+    import matplotlib
+    matplotlib.use("Agg")
+
+    try:
+        snaps = load_snapshots(args.snapshots)
+    except snapshot.SnapshotError as exc:
+        common.die(str(exc))
+
+    # ---- bound mass
+    hist = bound_history(snaps, args.impactor_offset, args.G)
+    print("# t[s] M_bound[kg] M_bound/M_total "
+          + " ".join("M_b(mat %d)" % k for k in hist["materials"]))
+    for i in range(len(snaps)):
+        print("%.6e %.6e %.6f " % (hist["time"][i], hist["bound"][i], hist["fraction"][i])
+              + " ".join("%.6e" % v for v in hist["per_material"][i]))
+    common.save_figure(bound_figure(hist, snaps[0]["Masses"].sum()), args.prefix + "bound.png")
+
+    # ---- collision pictures
+    common.save_figure(collision_figure(snaps, args.length_unit, args.length_name),
+                       args.prefix + "collision.png")
 
     # ---- energy budget
     if args.stats:
@@ -144,21 +194,9 @@ def main(argv=None):
             st = snapshot.read_stats(args.stats, si=True)
         except snapshot.SnapshotError as exc:
             common.die(str(exc))
-        t = st["time"]
-        fig, (a1, a2) = plt.subplots(2, 1, figsize=(6.5, 6), sharex=True)
-        for key in ("E_kin", "E_int", "E_pot", "E_tot"):
-            a1.plot(t / 3600, st[key], label=key)
-        a1.set_ylabel("energy")
-        a1.legend(fontsize="small")
-        a1.grid(alpha=0.3)
-        scale = np.abs(st["E_pot"]).max()
-        drift = np.abs(st["E_tot"] - st["E_tot"][0]) / scale
-        a2.semilogy(t / 3600, np.maximum(drift, 1e-16))
-        a2.set_ylabel("|E_tot - E_tot(0)| / max|E_pot|")
-        a2.set_xlabel("t [h]")
-        a2.grid(alpha=0.3)
-        fig.tight_layout()
+        fig, drift = energy_figure(st)
         common.save_figure(fig, args.prefix + "energy.png")
+        t = st["time"]
         print("# energy: E_tot(0) = %.6e, E_tot(end) = %.6e, drift %.3e of max|E_pot| at t = %.4g s"
               % (st["E_tot"][0], st["E_tot"][-1], drift[-1], t[-1]))
     return 0

@@ -9,32 +9,38 @@ import numpy as np
 
 from bolide import common
 
+#: The columns of a profile file (bolide-ic planet --profile), SI.
+COLUMNS = ("r", "m", "rho", "P", "T", "u", "layer")
 
-def main(argv=None):
-    argv = sys.argv[1:] if argv is None else list(argv)
-    if len(argv) not in (1, 2) or argv[0] in ("-h", "--help"):
-        print(__doc__)
-        return 0 if argv and argv[0] in ("-h", "--help") else 2
-    path = argv[0]
-    out = argv[1] if len(argv) == 2 else path.rsplit(".", 1)[0] + ".png"
+
+def read_profile(path):
+    """The profile's columns as a dict (COLUMNS, SI); ValueError for a file
+    that is not one."""
     try:
         d = np.loadtxt(path, ndmin=2)
     except (OSError, ValueError) as e:
-        common.die(f"{path}: {e}")
-    if d.shape[1] != 7:
-        common.die(f"{path}: expected 7 columns (r m rho P T u layer)")
-    import matplotlib
-    matplotlib.use("Agg")
+        raise ValueError(f"{path}: {e}")
+    if d.shape[1] != len(COLUMNS):
+        raise ValueError(f"{path}: expected {len(COLUMNS)} columns ({' '.join(COLUMNS)})")
+    return {name: d[:, k] for k, name in enumerate(COLUMNS)}
+
+
+def profile_figure(prof):
+    """Density, pressure, temperature and enclosed mass against radius (km),
+    one line per layer, of a profile (read_profile's dict or a file name)
+    as a matplotlib figure."""
     import matplotlib.pyplot as plt
-    r = d[:, 0] / 1e3
+    if isinstance(prof, str):
+        prof = read_profile(prof)
+    r = prof["r"] / 1e3
     fig, ax = plt.subplots(2, 2, figsize=(9, 7), sharex=True)
-    for a, col, lab, log in ((ax[0, 0], 2, r"$\rho$ [kg m$^{-3}$]", False),
-                             (ax[0, 1], 3, "P [Pa]", True),
-                             (ax[1, 0], 4, "T [K]", False),
-                             (ax[1, 1], 1, "m(<r) [kg]", False)):
-        for k in np.unique(d[:, 6]):
-            s = d[:, 6] == k
-            a.plot(r[s], d[s, col], label=f"layer {int(k)}")
+    for a, col, lab, log in ((ax[0, 0], "rho", r"$\rho$ [kg m$^{-3}$]", False),
+                             (ax[0, 1], "P", "P [Pa]", True),
+                             (ax[1, 0], "T", "T [K]", False),
+                             (ax[1, 1], "m", "m(<r) [kg]", False)):
+        for k in np.unique(prof["layer"]):
+            s = prof["layer"] == k
+            a.plot(r[s], prof[col][s], label=f"layer {int(k)}")
         a.set_ylabel(lab)
         if log:
             a.set_yscale("log")
@@ -42,8 +48,25 @@ def main(argv=None):
         a.set_xlabel("r [km]")
     ax[0, 0].legend()
     fig.tight_layout()
+    return fig
+
+
+def main(argv=None):
+    """Command line (console script bolide-plot-profile); returns the exit status."""
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if len(argv) not in (1, 2) or argv[0] in ("-h", "--help"):
+        print(__doc__)
+        return 0 if argv and argv[0] in ("-h", "--help") else 2
+    path = argv[0]
+    out = argv[1] if len(argv) == 2 else path.rsplit(".", 1)[0] + ".png"
     try:
-        common.save_figure(fig, out, dpi=100)
+        prof = read_profile(path)
+    except ValueError as e:
+        common.die(str(e))
+    import matplotlib
+    matplotlib.use("Agg")
+    try:
+        common.save_figure(profile_figure(prof), out, dpi=100)
     except OSError as e:
         common.die(str(e))
     print(out)

@@ -13,6 +13,8 @@ import sys
 
 import numpy as np
 
+from bolide import common
+
 
 def read_dump(path):
     """Return (thread, start, end, kind) arrays; kind is "type/subtype"."""
@@ -37,22 +39,14 @@ def read_dump(path):
     return np.array(thread), np.array(start), np.array(end), np.array(kind)
 
 
-def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("dump", help="task dump written by scheduler_dump_tasks()")
-    ap.add_argument("-o", "--output", default=None,
-                    help="PNG to write (default: the dump's name with .png)")
-    ap.add_argument("--title", default=None, help="plot title (default: the file name)")
-    ap.add_argument("--ms", action="store_true", help="time axis in milliseconds")
-    args = ap.parse_args(argv)
-
-    import matplotlib
-    matplotlib.use("Agg")
+def timeline(path, ms=False, title=None):
+    """The task timeline of the dump PATH as a matplotlib figure: one row
+    per thread (with its busy fraction), one bar per task, one colour per
+    type/subtype; ms: the time axis in milliseconds."""
     import matplotlib.pyplot as plt
 
-    thread, start, end, kind = read_dump(args.dump)
-    scale, unit = (1e3, "ms") if args.ms else (1.0, "s")
+    thread, start, end, kind = read_dump(path)
+    scale, unit = (1e3, "ms") if ms else (1.0, "s")
     kinds = sorted(set(kind))
     cmap = plt.get_cmap("tab20" if len(kinds) > 10 else "tab10")
     colour = {k: cmap(i % cmap.N) for i, k in enumerate(kinds)}
@@ -74,14 +68,33 @@ def main(argv=None):
     ax.invert_yaxis()
     ax.set_xlabel(f"time since the start of the run [{unit}]")
     ax.set_ylabel("thread (busy fraction)")
-    ax.set_title(args.title or os.path.basename(args.dump))
+    ax.set_title(title or os.path.basename(path))
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small", frameon=False)
     fig.tight_layout()
+    return fig
 
+
+def main(argv=None):
+    """Command line (console script bolide-plot-tasks); returns the exit status."""
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("dump", help="task dump written by scheduler_dump_tasks()")
+    ap.add_argument("-o", "--output", default=None,
+                    help="PNG to write (default: the dump's name with .png)")
+    ap.add_argument("--title", default=None, help="plot title (default: the file name)")
+    ap.add_argument("--ms", action="store_true", help="time axis in milliseconds")
+    args = ap.parse_args(argv)
+
+    import matplotlib
+    matplotlib.use("Agg")
+
+    fig = timeline(args.dump, ms=args.ms, title=args.title)
     out = args.output or os.path.splitext(args.dump)[0] + ".png"
-    tmp = out + ".tmp.png"
-    fig.savefig(tmp, dpi=120)
-    os.replace(tmp, out)
+    try:
+        common.save_figure(fig, out)
+    except OSError as exc:
+        common.die(str(exc))
+    return 0
 
 
 if __name__ == "__main__":

@@ -106,6 +106,26 @@ same = (abs(info["total_mass"] - 5.97e24) < 1e-6 * 5.97e24 and info["time"] == 0
 print("ok " if same else "FAIL", "read_fragments: total mass %.6g kg, time %s s, largest fragment %.6g kg of %d particles"
       % (info["total_mass"], info["time"], cols["mass"][0], int(cols["count"][0])))
 ok &= same
+# the plots as functions (what the console scripts call), on the same files
+import matplotlib
+matplotlib.use("Agg")
+from bolide import plot_fragments, plot_impact, plot_profile, plot_tasks
+snaps = plot_impact.load_snapshots(["%s/earth/out/snapshot_0000.hdf5" % w])
+hist = plot_impact.bound_history(snaps)
+fig = plot_impact.collision_figure(snaps)
+same = hist["fraction"][0] > 0.999 and list(hist["materials"]) == [100, 101] and len(fig.axes) >= 1
+print("ok " if same else "FAIL", "plot_impact.bound_history: bound fraction %.6f, materials %s; collision_figure"
+      % (hist["fraction"][0], [int(k) for k in hist["materials"]]))
+ok &= bool(same)
+fig, fr = plot_fragments.spectrum(["%s/fragments.txt" % w])
+print("ok " if fr[0] > 0.999999 else "FAIL", "plot_fragments.spectrum: largest fraction %.6f" % fr[0])
+ok &= bool(fr[0] > 0.999999)
+fig = plot_profile.profile_figure("%s/profile.txt" % w)
+print("ok " if len(fig.axes) == 4 else "FAIL", "plot_profile.profile_figure: %d panels" % len(fig.axes))
+ok &= len(fig.axes) == 4
+fig = plot_tasks.timeline("%s/si/out_y/tasks_step000001.txt" % w)
+print("ok " if len(fig.axes) == 1 else "FAIL", "plot_tasks.timeline")
+ok &= len(fig.axes) == 1
 try:
     snapshot.read_fragments("%s/si/out/statistics.txt" % w)
     print("FAIL read_fragments accepts a statistics file"); ok = False
