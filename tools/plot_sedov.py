@@ -207,10 +207,7 @@ def main(argv=None):
                                                      r_me, r_an))
     fig.tight_layout()
     out = args.out or common.default_output(args.snapshot, "_sedov.png")
-    try:
-        common.save_figure(fig, out)
-    except OSError as exc:
-        common.die(str(exc))
+    common.write_figure(fig, out)
     return 0
 
 

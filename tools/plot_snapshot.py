@@ -143,10 +143,7 @@ def main(argv=None):
                  % (args.colour, "" if t is None else " at t = %.4g" % t, what, x.size))
     fig.tight_layout()
     out = args.out or common.default_output(args.snapshot, "_%s.png" % args.colour)
-    try:
-        common.save_figure(fig, out)
-    except OSError as exc:
-        common.die(str(exc))
+    common.write_figure(fig, out)
     return 0
 
 

@@ -140,10 +140,7 @@ def main(argv=None):
     fig.suptitle("Conservation: %s" % args.stats)
     fig.tight_layout()
     out = args.out or common.default_output(args.stats, "_stats.png")
-    try:
-        common.save_figure(fig, out)
-    except OSError as exc:
-        common.die(str(exc))
+    common.write_figure(fig, out)
     return 0
 
 

@@ -34,6 +34,15 @@ def save_figure(fig, path, dpi=120):
             os.remove(tmp)
 
 
+def write_figure(fig, path, dpi=120):
+    """save_figure, or "PROGRAM: error: ..." and exit 1 when PATH cannot be
+    written (the ending of every plotting command)."""
+    try:
+        save_figure(fig, path, dpi)
+    except OSError as exc:
+        die(str(exc))
+
+
 def default_output(input_path, suffix):
     """Default PNG name: the input's base name without extension + SUFFIX,
     in the current directory (e.g. snap_0005.hdf5 -> snap_0005_sod.png)."""

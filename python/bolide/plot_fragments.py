@@ -74,10 +74,7 @@ def main(argv=None):
         else:
             print("largest_fraction %s %.6f" % (path, frac))
     out = args.out or common.default_output(args.tables[0], "_spectrum.png")
-    try:
-        common.save_figure(fig, out)
-    except OSError as e:
-        common.die(str(e))
+    common.write_figure(fig, out)
     return 0
 
 

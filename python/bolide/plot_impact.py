@@ -182,10 +182,10 @@ def main(argv=None):
     for i in range(len(snaps)):
         print("%.6e %.6e %.6f " % (hist["time"][i], hist["bound"][i], hist["fraction"][i])
               + " ".join("%.6e" % v for v in hist["per_material"][i]))
-    common.save_figure(bound_figure(hist, snaps[0]["Masses"].sum()), args.prefix + "bound.png")
+    common.write_figure(bound_figure(hist, snaps[0]["Masses"].sum()), args.prefix + "bound.png")
 
     # ---- collision pictures
-    common.save_figure(collision_figure(snaps, args.length_unit, args.length_name),
+    common.write_figure(collision_figure(snaps, args.length_unit, args.length_name),
                        args.prefix + "collision.png")
 
     # ---- energy budget
@@ -195,7 +195,7 @@ def main(argv=None):
         except snapshot.SnapshotError as exc:
             common.die(str(exc))
         fig, drift = energy_figure(st)
-        common.save_figure(fig, args.prefix + "energy.png")
+        common.write_figure(fig, args.prefix + "energy.png")
         t = st["time"]
         print("# energy: E_tot(0) = %.6e, E_tot(end) = %.6e, drift %.3e of max|E_pot| at t = %.4g s"
               % (st["E_tot"][0], st["E_tot"][-1], drift[-1], t[-1]))

@@ -65,10 +65,7 @@ def main(argv=None):
         common.die(str(e))
     import matplotlib
     matplotlib.use("Agg")
-    try:
-        common.save_figure(profile_figure(prof), out, dpi=100)
-    except OSError as e:
-        common.die(str(e))
+    common.write_figure(profile_figure(prof), out, dpi=100)
     print(out)
     return 0
 

@@ -90,10 +90,7 @@ def main(argv=None):
 
     fig = timeline(args.dump, ms=args.ms, title=args.title)
     out = args.output or os.path.splitext(args.dump)[0] + ".png"
-    try:
-        common.save_figure(fig, out)
-    except OSError as exc:
-        common.die(str(exc))
+    common.write_figure(fig, out)
     return 0
 
 
