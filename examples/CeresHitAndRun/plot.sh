@@ -8,6 +8,6 @@ cd "$(dirname "$0")"
 top=${TOP:-../..}
 build=${BOLIDE_BUILD:-$top/_build}
 python=${PYTHON:-$build/.venv/bin/python}
-PYTHONPATH=$top/tools "$python" $top/tools/plot_impact.py --stats statistics.txt \
+"$python" $top/tools/plot_impact.py --stats statistics.txt \
   --length-unit 1e3 --length-name km --impactor-offset 3 ceres_0*.hdf5 > bound_mass.txt
 echo "pictures: $(pwd)/collision.png $(pwd)/energy.png; bound mass: $(pwd)/bound_mass.txt"

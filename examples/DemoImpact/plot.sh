@@ -10,6 +10,6 @@ python=${PYTHON:-$build/.venv/bin/python}
 [ $# -gt 0 ] || set -- demo_0000.hdf5 demo_0004.hdf5
 for f in "$@"; do
   s=${f%.hdf5}
-  PYTHONPATH=$top/tools "$python" $top/tools/plot_snapshot.py "$s.hdf5" --slice 200 --out "$s.png"
+  "$python" $top/tools/plot_snapshot.py "$s.hdf5" --slice 200 --out "$s.png"
   echo "picture: $(pwd)/$s.png"
 done

@@ -8,4 +8,4 @@ cd "$(dirname "$0")"
 top=${TOP:-../..}
 build=${BOLIDE_BUILD:-$top/_build}
 python=${PYTHON:-$build/.venv/bin/python}
-PYTHONPATH=$top/tools "$python" $top/tools/plot_impact.py --stats statistics.txt earth_0*.hdf5 | tee bound_mass.txt
+"$python" $top/tools/plot_impact.py --stats statistics.txt earth_0*.hdf5 | tee bound_mass.txt

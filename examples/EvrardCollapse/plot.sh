@@ -7,5 +7,5 @@ cd "$(dirname "$0")"
 top=../..
 build=${BOLIDE_BUILD:-$top/_build}
 python=${PYTHON:-$build/.venv/bin/python}
-PYTHONPATH=$top/tools "$python" $top/tools/plot_stats.py statistics.txt --out energies.png
+"$python" $top/tools/plot_stats.py statistics.txt --out energies.png
 echo "plot: $(pwd)/energies.png"

@@ -44,4 +44,4 @@ echo "run: $(( $(date +%s) - t0 )) s wall on $threads threads ($(nproc) cores he
 grep -E "Weibull flaws|done:" "$dir/bolide.log"
 BOLIDE_BUILD=$build "$python" analyse.py "$dir"
 last=$(ls "$dir"/nakamura_[0-9]*.hdf5 | tail -1)
-PYTHONPATH=$top/tools "$python" $top/tools/plot_snapshot.py "$last" --colour damage --out "$dir/damage.png"
+"$python" $top/tools/plot_snapshot.py "$last" --colour damage --out "$dir/damage.png"

@@ -10,6 +10,6 @@ build=${BOLIDE_BUILD:-$top/_build}
 python=${PYTHON:-$build/.venv/bin/python}
 initial=""; [ -f sedov.hdf5 ] && initial="--initial sedov.hdf5"  # the moment estimate of the radius
 # shellcheck disable=SC2086
-PYTHONPATH=$top/tools "$python" $top/tools/plot_sedov.py "${1:-sedov_0002.hdf5}" --E 1 --rho0 1 $initial --out sedov.png
-PYTHONPATH=$top/tools "$python" $top/tools/plot_stats.py statistics.txt --out statistics.png
+"$python" $top/tools/plot_sedov.py "${1:-sedov_0002.hdf5}" --E 1 --rho0 1 $initial --out sedov.png
+"$python" $top/tools/plot_stats.py statistics.txt --out statistics.png
 echo "plots: $(pwd)/sedov.png $(pwd)/statistics.png"

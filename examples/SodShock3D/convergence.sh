@@ -33,7 +33,6 @@ while getopts "n:i:t:P:w:q" o; do
 done
 [ -n "$work" ] || work=$here/convergence
 mkdir -p "$work"
-export PYTHONPATH=$top/tools${PYTHONPATH:+:$PYTHONPATH}
 printf '%-8s %5s %8s %9s %9s %9s %6s %6s %6s %7s %7s %8s %6s\n' ic NX N "L1(rho)" "L1(v)" "L1(P)" \
   "r_rho" "r_v" "r_P" "rho*_L" "P*_L" "dP_c/P" "wall_s"
 for ic in $ics; do

@@ -7,5 +7,5 @@ cd "$(dirname "$0")"
 top=../..
 build=${BOLIDE_BUILD:-$top/_build}
 python=${PYTHON:-$build/.venv/bin/python}
-PYTHONPATH=$top/tools "$python" $top/tools/plot_sod.py "${1:-sod_0002.hdf5}" --out sod.png
+"$python" $top/tools/plot_sod.py "${1:-sod_0002.hdf5}" --out sod.png
 echo "plot: $(pwd)/sod.png"
