@@ -42,8 +42,8 @@ Writes the text file that `bolide --partition-counts` reads:
 Bit d = (oi+1)*9 + (oj+1)*3 + (ok+1) of a mask stands for the neighbour at
 offset (oi, oj, ok) (bit 13, the cell itself, is never set).
 
-Usage: impact_counts.py [--cells C] [--gamma G] N_target N_impactor OUT
-       impact_counts.py [--cells C] [--gamma G] --from-ic IC.hdf5 OUT
+Usage: impact_counts.py [--cells C] [--kernel K] N_target N_impactor OUT
+       impact_counts.py [--cells C] [--kernel K] --from-ic IC.hdf5 OUT
 """
 import argparse
 import sys
@@ -61,8 +61,10 @@ BOX = 20.0e6
 ETA = 1.2348
 UL = 1.0e6
 
-# wendland-C2, the default kernel (tasks/hydro/kernel.h)
-GAMMA_WENDLAND_C2 = 1.936491673103709
+# H / h of the kernels (tasks/hydro/kernel.h), by the name `bolide --version` prints
+GAMMAS = {"cubic-spline": 1.825741858350554, "quartic-spline": 2.018932132718121,
+          "wendland-C2": 1.936491673103709, "wendland-C4": 2.207940216581962,
+          "wendland-C6": 2.449489742783178}
 # ENGINE_REACH_FACTOR (src/engine.h): pairs of cells closer than this many supports
 REACH_FACTOR = 1.5
 
@@ -161,7 +163,7 @@ def analytic_chunks(n_t, n_i, seed):
             for pos in body.planes():
                 yield (pos + shift) / UL
 
-    return chunks, float(np.float32(h)), lo, hi, n_t + n_i
+    return chunks, float(np.float32(h)), lo, hi, n_t + n_i, BOX / UL
 
 
 def file_chunks(path, size=1 << 20):
@@ -170,6 +172,9 @@ def file_chunks(path, size=1 << 20):
         x = f["PartType0/Coordinates"]
         n = x.shape[0]
         h = float(np.max(f["PartType0/SmoothingLength"][:]))
+        box = np.atleast_1d(f["Header"].attrs["BoxSize"]).astype(float)
+        if np.ptp(box) > 0:
+            sys.exit(f"impact_counts: {path}: the box is not a cube ({box})")
         lo, hi = np.full(3, np.inf), np.full(3, -np.inf)
         for s in range(0, n, size):
             c = x[s:s + size]
@@ -181,14 +186,14 @@ def file_chunks(path, size=1 << 20):
             for s in range(0, n, size):
                 yield np.asarray(x[s:s + size], dtype=np.float64)
 
-    return chunks, h, lo, hi, n
+    return chunks, h, lo, hi, n, float(box[0])
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--cells", type=int, default=640, help="top-level cells per side (default 640)")
-    ap.add_argument("--gamma", type=float, default=GAMMA_WENDLAND_C2,
-                    help="kernel support over h (default: wendland-C2's)")
+    ap.add_argument("--kernel", default="wendland-C2", choices=sorted(GAMMAS),
+                    help="the build's kernel, as bolide --version names it (default wendland-C2)")
     ap.add_argument("--seed", type=int, default=12345)
     ap.add_argument("--loops", type=int, default=2,
                     help="pair loops per pair of cells: 2 hydro (density, force), 3 with solids")
@@ -200,19 +205,19 @@ def main():
     if o.from_ic:
         if len(o.args) != 1:
             ap.error("--from-ic takes one more argument: OUT")
-        chunks, h, lo, hi, ntot = file_chunks(o.from_ic)
+        chunks, h, lo, hi, ntot, box = file_chunks(o.from_ic)
         out = o.args[0]
         source = f"the particles of {o.from_ic}"
     else:
         if len(o.args) != 3:
             ap.error("expected N_target N_impactor OUT")
         n_t, n_i = int(float(o.args[0])), int(float(o.args[1]))
-        chunks, h, lo, hi, ntot = analytic_chunks(n_t, n_i, o.seed)
+        chunks, h, lo, hi, ntot, box = analytic_chunks(n_t, n_i, o.seed)
         out = o.args[2]
         source = f"the analytic layout of make_impact_ic.py {n_t} {n_i} (seed {o.seed})"
 
+    o.gamma = GAMMAS[o.kernel]
     C = o.cells
-    box = BOX / UL
     width = box / C
     H = o.gamma * h
     reach = min(width, REACH_FACTOR * H)
