@@ -84,7 +84,7 @@ def model(info, rows, a, b, o):
     per_part = sum(o.phase_bytes.values())
     comp = max(a + b * r["cost"] * N / P for r in rows)
     lg = math.log2(P) if P > 1 else 0.0
-    comm, bytes_max = 0.0, 0.0
+    comm, bytes_max, halo_t, mp_t = 0.0, 0.0, 0.0, 0.0
     # multipoles: every rank receives those of the other ranks' cells
     for r in rows:
         halo = r["halo"] if o.whole_cells else r["layer"]
@@ -94,6 +94,9 @@ def model(info, rows, a, b, o):
              + o.reductions * lg * lat)
         comm = max(comm, t)
         bytes_max = max(bytes_max, by)
+        halo_t = max(halo_t, halo * per_part / bw + len(o.phase_bytes) * r["peers"] * lat)
+        mp_t = max(mp_t, (C - r["cells"]) * o.multipole_bytes / bw + lg * lat)
+    o.parts[P] = (halo_t, mp_t)
     return comp, comm, bytes_max
 
 
@@ -110,11 +113,11 @@ def main():
     ap.add_argument("dir")
     ap.add_argument("--bandwidth", type=float, default=100.0, help="Gbit/s per rank (100: HDR/EDR IB)")
     ap.add_argument("--latency", type=float, default=2.0, help="microseconds per message")
-    ap.add_argument("--phases", default="xv:68,rho:64",
-                    help="bytes per halo particle per exchange phase (hydro: positions, "
-                         "velocities, mass, h, flags after the drift; density, pressure, sound "
-                         "speed, h, balsara, f_gradh, alpha, u after the ghost); solids add "
-                         "e.g. gradient:64,stress:120")
+    ap.add_argument("--phases", default="xv:72,rho:64",
+                    help="bytes per halo particle per exchange phase (hydro: x, predicted v, m, "
+                         "h as doubles, flags, material after the drift: 72; h, rho, P, cs, "
+                         "balsara, f_gradh, alpha, u after the ghost: 64); solids add e.g. "
+                         "gradient:160 (stress, artificial stress, correction tensor, damage)")
     ap.add_argument("--multipole-bytes", type=float, default=528.0,
                     help="bytes of one top-level multipole (order 5: 56 moments, centre, "
                          "r_max, 6 powers: 66 doubles)")
@@ -126,6 +129,7 @@ def main():
     ap.add_argument("--plot", help="write the step time against ranks here (PNG)")
     o = ap.parse_args()
     o.phase_bytes = parse_phases(o.phases)
+    o.parts = {}
     costs = {}
     for c in o.cost:
         name, ab = c.split(":")
@@ -168,10 +172,19 @@ def main():
               f"{info['layer_mean']:,.0f} / {info['layer_max']:,.0f} | "
               f"{info['halo_mean']:,.0f} / {info['halo_max']:,.0f} | {info['peers_max']:.0f} | "
               f"{by / 1e6:.2f} | " + " | ".join(cells) + " |")
+    imb = data[-1][0]["imbalance"]
     for n, (a, b) in costs.items():
         t1 = a + b * N
         P, comp, comm = curves[n][-1]
-        print(f"# {n}: communication exceeds compute from {cross[n] or 'beyond ' + str(P)} ranks; "
+        if cross[n]:
+            where = f"from {cross[n]} ranks"
+        elif comm > a:
+            # beyond the last rank count: compute a + b imb N / P against the
+            # last communication time (its multipole part does not shrink)
+            where = f"beyond {P} ranks (extrapolated: about {b * imb * N / (comm - a):,.0f})"
+        else:
+            where = f"never (compute's fixed part {a:.3g} s exceeds the communication {comm:.3g} s)"
+        print(f"# {n}: communication exceeds compute {where}; "
               f"speed-up at {P} ranks {t1 / (comp + comm):.0f} "
               f"(efficiency {t1 / (comp + comm) / P:.2f}; with full overlap "
               f"{t1 / max(comp, comm) / P:.2f})")
@@ -185,9 +198,16 @@ def main():
             P = [c[0] for c in cv]
             ax.loglog(P, [c[1] + c[2] for c in cv], "-o", color=col, label=f"{n}: step")
             ax.loglog(P, [c[1] for c in cv], "--", color=col, label=f"{n}: compute")
-            ax.loglog(P, [c[2] for c in cv], ":", color=col, label=f"{n}: communication")
             a, b = costs[n]
-            ax.loglog(P, [(a + b * N) / p for p in P], "-", color=col, lw=0.5, alpha=0.5)
+            ax.loglog(P, [(a + b * N) / p for p in P], "-", color=col, lw=0.5, alpha=0.5,
+                      label=f"{n}: ideal (one rank's time / ranks)")
+        P = sorted(o.parts)
+        cv = next(iter(curves.values()))
+        ax.loglog(P, [c[2] for c in cv], ":", color="k", label="communication (the same for both)")
+        ax.loglog(P, [o.parts[p][0] for p in P], ":", color="0.5", lw=1,
+                  label="  of which the halo exchanges")
+        ax.loglog(P, [o.parts[p][1] for p in P], "-.", color="0.5", lw=1,
+                  label="  of which the top-level multipoles")
         ax.set_xlabel("ranks")
         ax.set_ylabel("s per step")
         ax.set_title(f"{N:.3g} particles, {o.bandwidth:g} Gbit/s, {o.latency:g} us "
