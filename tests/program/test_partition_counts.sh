@@ -28,7 +28,7 @@ fail() { echo "FAIL: $*"; exit 1; }
 "$B/bolide" --help | grep -q -- "--partition-counts FILE" || fail "bolide --help does not document --partition-counts"
 "$PY" -c "import h5py, numpy" 2>/dev/null || { echo "no Python with h5py: skip"; exit 77; }
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
-cd "$work"
+cd "$work" || exit 1
 "$B/bolide-ic" impact --target sphere,material=granite,radius=1e6,n=20000,u=237000 \
   --impactor sphere,material=granite,radius=4.642e5,n=2000,u=237000 --v-contact 2000 --angle 45 \
   --separation 1.52e6 --time-end 4000 -o impact.hdf5 >ic.log 2>&1 || { tail -3 ic.log; fail "bolide-ic impact"; }

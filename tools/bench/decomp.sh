@@ -26,7 +26,7 @@ while getopts "n:r:c:m:t:ao:x:" o; do
              t) threads=$OPTARG ;; a) counts=1 ;; o) outdir=$OPTARG ;; x) extra=$OPTARG ;;
              *) exit 2 ;; esac
 done
-nt=$(awk -v n=$size 'BEGIN {printf "%d", n}'); ni=$(awk -v n=$size 'BEGIN {printf "%d", n / 10}')
+nt=$(awk -v n="$size" 'BEGIN {printf "%d", n}'); ni=$(awk -v n="$size" 'BEGIN {printf "%d", n / 10}')
 if [ $counts = 1 ]; then
   # scaling on paper: -n is the target's particles, the impactor has a tenth
   mkdir -p "$outdir"

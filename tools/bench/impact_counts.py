@@ -22,7 +22,9 @@ cell's particle count and bounding box, (3) per particle, the neighbour
 cells whose bounding box lies within the kernel support H = kernel_gamma h
 (a mask of 26 bits), counted per (cell, mask).  With --from-ic FILE the same
 passes (2) and (3) run on the particles of an existing IC file instead
-(the check of the analytic path against the real file).
+(the check of the analytic path against the real file).  H is taken from
+the largest smoothing length (the generator's are all equal), as the pair
+estimate of a cell pair takes the larger h_max of the two.
 
 Writes the text file that `bolide --partition-counts` reads:
 
