@@ -54,6 +54,11 @@ static void usage(FILE *f) {
           "                        N ranks (0: the ranks of mpirun) and exit: imbalance, edge\n"
           "                        cut, halo; costs estimated from the particles, or measured\n"
           "                        over the steps of -n N > 0 (theory/mpi.md)\n"
+          "      --partition-counts FILE\n"
+          "                        with --partition N: partition the top-level cells listed\n"
+          "                        in FILE (per-cell particle counts, tools/bench/\n"
+          "                        impact_counts.py) instead of a run's, no PARAMS.yml;\n"
+          "                        adds the particles each rank receives per exchange\n"
           "      --partition-method M\n"
           "                        metis (default when built with METIS), morton, slabs, or\n"
           "                        all (the three, one line each)\n"
@@ -316,6 +321,65 @@ static int main_partition(int nr, const char *method, const struct params *param
   return 0;
 }
 
+/** --partition N --partition-counts FILE: the partition of the cells a
+ *  counts file lists (theory/mpi.md, "Scaling on paper"), with what each
+ *  rank receives per exchange. */
+static int main_partition_counts(int nr, const char *method, const char *file) {
+  if (nr == 0) nr = ranks_size();
+  if (ranks_rank() != 0) return 0;
+  struct partition_counts pc;
+  partition_counts_read(&pc, file);
+  struct partition_graph g;
+  partition_graph_counts(&g, &pc);
+  printf(
+      "partition: %zu particles in %d non-empty top-level cells of %dx%dx%d, %s: estimated "
+      "costs (%d pair loops, %d cell tasks)\n",
+      pc.particles, g.nr_cells, g.cdim[0], g.cdim[1], g.cdim[2], file, pc.loops, pc.cell_tasks);
+  const int all = strcmp(method, "all") == 0;
+  for (int m = 0; m <= (int)partition_method_slabs; m++) {
+    if (all ? (m == partition_method_metis && !partition_have_metis())
+            : m != partition_method_parse(method))
+      continue;
+    struct partition p;
+    partition_make(&p, &g, nr, (enum partition_method)m);
+    partition_print(&p, &g, 0, stdout);
+    double *layer = error_malloc((size_t)nr * sizeof(double), "exchange");
+    double *sent = error_malloc((size_t)nr * sizeof(double), "exchange");
+    int *peers = error_malloc((size_t)nr * sizeof(int), "exchange");
+    partition_exchange(&p, &pc, layer, sent, peers);
+    double lsum = 0, lmax = 0, smax = 0, psum = 0, pmax = 0, nmax = 0;
+    for (int r = 0; r < nr; r++) {
+      lsum += layer[r];
+      psum += peers[r];
+      if (layer[r] > lmax) lmax = layer[r];
+      if (sent[r] > smax) smax = sent[r];
+      if (peers[r] > pmax) pmax = peers[r];
+      if ((double)p.rank_parts[r] > nmax) nmax = (double)p.rank_parts[r];
+    }
+    printf(
+        "exchange: method %s ranks %d particles_max %.0f layer_mean %.0f layer_max %.0f "
+        "sent_max %.0f peers_mean %.2f peers_max %.0f multipoles %d\n",
+        partition_method_name(p.method), nr, nmax, lsum / nr, lmax, smax, psum / nr, pmax,
+        g.nr_cells);
+    if (!all) {
+      const double mean = g.total_cost / nr;
+      printf("#  rank  cells  particles    cost/mean       halo      layer       sent  peers\n");
+      for (int r = 0; r < nr; r++)
+        printf("  %5d %6d %10zu %12.4f %10.0f %10.0f %10.0f %6d\n", r, p.rank_cells[r],
+               p.rank_parts[r], mean > 0.0 ? p.rank_cost[r] / mean : 0.0, p.rank_halo[r], layer[r],
+               sent[r], peers[r]);
+    }
+    free(layer);
+    free(sent);
+    free(peers);
+    partition_free(&p);
+  }
+  partition_graph_free(&g);
+  partition_counts_free(&pc);
+  fflush(stdout);
+  return 0;
+}
+
 int main(int argc, char **argv) {
   error_init(argv[0]);
   struct engine_options opt;
@@ -330,9 +394,18 @@ int main(int argc, char **argv) {
   int n_user = 0, with_hydro = 0, with_gravity = 0, fpe = 0;
   char dump_tasks[64] = "";
 
-  enum { OPT_CHECK = 1000, OPT_GPU, OPT_NO_GPU, OPT_REFERENCE, OPT_PARTITION, OPT_PART_METHOD };
+  enum {
+    OPT_CHECK = 1000,
+    OPT_GPU,
+    OPT_NO_GPU,
+    OPT_REFERENCE,
+    OPT_PARTITION,
+    OPT_PART_METHOD,
+    OPT_PART_COUNTS
+  };
   int partition = -1;
   const char *partition_method = partition_have_metis() ? "metis" : "morton";
+  const char *partition_counts = NULL;
   ranks_init(&argc, &argv);
   struct option longopts[64 + MAIN_NR_SWIFT];
   static const struct option own[] = {
@@ -351,6 +424,7 @@ int main(int argc, char **argv) {
       {"param-reference", no_argument, NULL, OPT_REFERENCE},
       {"partition", required_argument, NULL, OPT_PARTITION},
       {"partition-method", required_argument, NULL, OPT_PART_METHOD},
+      {"partition-counts", required_argument, NULL, OPT_PART_COUNTS},
       {"verbose", optional_argument, NULL, 'v'},
       {"help", no_argument, NULL, 'h'},
       {"version", no_argument, NULL, 'V'}};
@@ -430,6 +504,9 @@ int main(int argc, char **argv) {
       case OPT_PARTITION:
         partition = (int)parse_count("--partition", optarg);
         break;
+      case OPT_PART_COUNTS:
+        partition_counts = optarg;
+        break;
       case OPT_PART_METHOD:
         if (strcmp(optarg, "all") != 0 && partition_method_parse(optarg) < 0)
           error_exit("option --partition-method expects metis, morton, slabs or all, not '%s'",
@@ -468,6 +545,15 @@ int main(int argc, char **argv) {
                 main_swift_option(j);
         break;
     }
+  }
+  if (partition_counts) {
+    if (partition < 0) error_exit("--partition-counts needs --partition N");
+    if (optind < argc) error_exit("--partition-counts takes no parameter file");
+    const int rc = main_partition_counts(partition, partition_method, partition_counts);
+    free(overrides);
+    free(user);
+    ranks_finalize();
+    return rc;
   }
   if (optind >= argc)
     error_exit("no parameter file given (usage: bolide [OPTIONS] PARAMS.yml; see --help)");

@@ -26,7 +26,7 @@ mkdir -p "$top/_build_mpi" && cd "$top/_build_mpi"
   { tail -20 configure.out; exit 1; }
 make -j"$jobs" >make.out 2>&1 || { tail -30 make.out; exit 1; }
 if grep -q 'warning:' make.out; then grep 'warning:' make.out; echo "MPI build: warnings" >&2; exit 1; fi
-tests="tests/program/test_mpi.sh tests/program/test_partition.sh tests/unit/test_partition"
+tests="tests/program/test_mpi.sh tests/program/test_partition.sh tests/program/test_partition_counts.sh tests/unit/test_partition"
 BOLIDE_SERIAL_BUILDDIR="$top/_build" make -j"$jobs" check TESTS="$tests" \
   PYTHON="$top/_build/.venv/bin/python" >check.out 2>&1 || true
 rc=0

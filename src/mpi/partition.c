@@ -210,6 +210,7 @@ void partition_graph_free(struct partition_graph *g) {
   free(g->comm);
   free(g->link_cell);
   free(g->link_top);
+  free(g->ijk);
   memset(g, 0, sizeof *g);
 }
 
@@ -265,13 +266,18 @@ static int partition_key_cmp(const void *a, const void *b) {
 /** Contiguous ranges of the Morton order, each about total / N of the work. */
 static void partition_split_morton(struct partition *p, const struct partition_graph *g) {
   const int n = g->nr_cells;
-  struct partition_key *keys = error_malloc((size_t)n * sizeof *keys, "partition keys");
-  for (int i = 0; i < g->cdim[0]; i++)
-    for (int j = 0; j < g->cdim[1]; j++)
-      for (int k = 0; k < g->cdim[2]; k++) {
-        const int c = (i * g->cdim[1] + j) * g->cdim[2] + k;
-        keys[c] = (struct partition_key){partition_morton(i, j, k), c};
-      }
+  struct partition_key *keys = error_malloc((size_t)(n ? n : 1) * sizeof *keys, "partition keys");
+  if (g->ijk)
+    for (int c = 0; c < n; c++)
+      keys[c] = (struct partition_key){
+          partition_morton(g->ijk[3 * c], g->ijk[3 * c + 1], g->ijk[3 * c + 2]), c};
+  else
+    for (int i = 0; i < g->cdim[0]; i++)
+      for (int j = 0; j < g->cdim[1]; j++)
+        for (int k = 0; k < g->cdim[2]; k++) {
+          const int c = (i * g->cdim[1] + j) * g->cdim[2] + k;
+          keys[c] = (struct partition_key){partition_morton(i, j, k), c};
+        }
   qsort(keys, (size_t)n, sizeof *keys, partition_key_cmp);
   const double total = g->total_cost > 0.0 ? g->total_cost : 1.0;
   double before = 0.0;
@@ -287,6 +293,11 @@ static void partition_split_morton(struct partition *p, const struct partition_g
 
 /** Slabs of equal width along x: the naive split. */
 static void partition_split_slabs(struct partition *p, const struct partition_graph *g) {
+  if (g->ijk) {
+    for (int c = 0; c < g->nr_cells; c++)
+      p->rank[c] = (int)((long)g->ijk[3 * c] * p->nr_ranks / g->cdim[0]);
+    return;
+  }
   for (int i = 0; i < g->cdim[0]; i++)
     for (int j = 0; j < g->cdim[1]; j++)
       for (int k = 0; k < g->cdim[2]; k++)

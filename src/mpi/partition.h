@@ -49,6 +49,9 @@ struct partition_graph {
   int *link_top;      /**< [2 nr_links] their top-level cells */
   double total_cost;
   double total_comm; /**< sum of comm over the edges, each edge once */
+  int *ijk;          /**< [3 nr_cells] grid coordinates of the vertices when the graph lists only
+                          some cells of the grid (partition_graph_counts); NULL: every cell, in
+                          space.cells order */
 };
 
 /** A partition and what it costs. */
@@ -92,6 +95,47 @@ void partition_graph_free(struct partition_graph *g);
  *  (2026-12-03, BENCHMARKS.md) the drift, ghost and kick of a particle took
  *  69, 292 and 35 times a self loop's pair test, 130 on average. */
 #define PARTITION_PER_PARTICLE 130.0
+
+/** The particles of a run's top-level cells without the particles
+ *  (tools/bench/impact_counts.py writes them; theory/mpi.md, "Scaling on
+ *  paper"): each non-empty cell's count, which neighbours its pair tasks
+ *  join, and per particle the neighbours within the kernel support, as
+ *  counts of (cell, mask of 26 neighbour bits). */
+struct partition_counts {
+  int cdim[3];
+  double support;     /**< kernel support H */
+  int loops;          /**< pair loops per pair of cells (density, force: 2) */
+  int cell_tasks;     /**< tasks on one cell counted PARTITION_PER_PARTICLE each */
+  size_t particles;   /**< total, as the file says */
+  int nr_cells;       /**< non-empty cells listed */
+  int *ijk;           /**< [3 nr_cells] */
+  size_t *count;      /**< [nr_cells] */
+  int *pairmask;      /**< [nr_cells] bit d: a pair with neighbour d (d = 9(oi+1)+3(oj+1)+ok+1) */
+  int *nbr;           /**< [27 nr_cells] vertex of neighbour d, -1: none or no pair */
+  size_t nr_masks;    /**< rows of (cell, mask, count) */
+  int *mask_cell;     /**< [nr_masks] */
+  int *mask_bits;     /**< [nr_masks] neighbours within the support of these particles */
+  size_t *mask_count; /**< [nr_masks] */
+  double *near;       /**< [27 nr_cells] particles of the cell within the support of neighbour d */
+};
+
+/** Read a counts file; exits with one line naming the file on an error. */
+void partition_counts_read(struct partition_counts *pc, const char *file);
+void partition_counts_free(struct partition_counts *pc);
+
+/** The graph of the listed cells with the estimated costs of
+ *  partition_graph_make's task loop, every top-level cell taken as one task
+ *  cell: loops * (n(n-1)/2 + the halves of its pairs' n_i + n_j + b_i b_j)
+ *  + cell_tasks * PARTITION_PER_PARTICLE * n. */
+void partition_graph_counts(struct partition_graph *g, const struct partition_counts *pc);
+
+/** What each rank receives per exchange: `layer[r]`, the particles of other
+ *  ranks' cells within the support of one of r's cells (each particle once
+ *  per rank; the halo of partition_stats counts whole cells), `sent[r]`
+ *  the particles r sends (once per receiving rank), `peers[r]` the ranks r
+ *  shares a pair task with. */
+void partition_exchange(const struct partition *p, const struct partition_counts *pc, double *layer,
+                        double *sent, int *peers);
 
 /** 1 if this build can partition with METIS (configure found libmetis). */
 int partition_have_metis(void);
