@@ -44,7 +44,8 @@
   X(Lz, "Ang. mom. z", "Angular momentum about the origin (z coordinate)", 1, 2, -1)              \
   X(E_kin, "Kin. Energy", "Total kinetic energy", 1, 2, -2)                                       \
   X(E_int, "Int. Energy", "Total internal energy", 1, 2, -2)                                      \
-  X(E_pot, "Pot. energy", "Total potential energy of self-gravity", 1, 2, -2)                     \
+  X(E_pot, "Pot. energy", "Total potential energy of self-gravity and the external field", 1, 2,  \
+    -2)                                                                                           \
   X(E_tot, "Tot. energy", "Total energy E_kin + E_int + E_pot", 1, 2, -2)                         \
   X(n_particles, "Particles", "Number of particles in the box", 0, 0, 0)                          \
   X(n_removed, "Removed particles", "Number of particles that left the open box", 0, 0, 0)        \
@@ -183,6 +184,7 @@ void engine_timesteps_write(struct engine *e, double wall_step) {
 /** The totals of the particles in the box, and what the counters hold. */
 struct engine_totals {
   double mass, p[3], L[3], E_kin, E_int, E_pot, p_abs, E_clamp, W_plastic;
+  double E_ext; /**< the part of E_pot of the external field, -sum m g.x */
 };
 
 /** Sum the particles' totals (the particles must be on the host). */
@@ -208,6 +210,13 @@ static void engine_totals(const struct engine *e, struct engine_totals *t) {
     t->W_plastic += m * p->w_plastic[i];
   }
   t->E_pot = e->gp.enabled ? gravity_potential_energy(p) : 0.0;
+  if (e->hp.external) {
+    /* the uniform field ConstantPotential:g_cgs: phi = -g.x (theory/boundaries.md) */
+    const double *g = e->hp.g_ext;
+    for (size_t i = 0; i < p->count; i++)
+      t->E_ext -= p->m[i] * (g[0] * p->x[i] + g[1] * p->y[i] + g[2] * p->z[i]);
+    t->E_pot += t->E_ext;
+  }
   t->E_clamp += e->space.removed.E_clamp;
   t->W_plastic += e->space.removed.W_plastic;
 }
@@ -217,7 +226,8 @@ static void engine_totals(const struct engine *e, struct engine_totals *t) {
 static void engine_budget_start(struct engine *e, const struct engine_totals *t) {
   struct budget_start *b = &e->budget0;
   b->E_tot = t->E_kin + t->E_int + t->E_pot;
-  b->E_pot = t->E_pot;
+  b->E_pot = t->E_pot - t->E_ext; /* (the scale of energy errors: self-gravity's alone; the
+                                      external field's depends on the origin) */
   b->E_abs = fabs(t->E_kin) + fabs(t->E_int) + fabs(t->E_pot);
   for (int k = 0; k < 3; k++) {
     b->p[k] = t->p[k];

@@ -82,6 +82,8 @@
   X("SPH:hydro", PARAM_BOOL, "true", 0, 0, NULL, "-", "compute hydrodynamics (false: gravity-only run)") \
   X("SPH:gamma", PARAM_REAL, "1.6666666666666667", 1.0001, 10, NULL, "-", "adiabatic index of the default ideal-gas material (id 0) when no Materials section is given") \
                                                                                                          \
+  X("ConstantPotential:g_cgs", PARAM_REAL_ARRAY, "[0, 0, 0]", -PARAM_INF, PARAM_INF, "3", "cm/s^2", "uniform external acceleration g acting on every particle but the fixed boundary particles (the potential -g.x, counted in the statistics' E_pot), as SWIFT's key of the same name: [0, 0, -981] is the Earth's surface gravity along -z (theory/boundaries.md)") \
+                                                                                                         \
   X("Gravity:enabled", PARAM_BOOL, "false", 0, 0, NULL, "-", "self-gravity on or off") \
   X("Gravity:direct", PARAM_BOOL, "false", 0, 0, NULL, "-", "exact O(N^2) summation instead of multipoles") \
   X("Gravity:theta_cr", PARAM_REAL, "0.5", 0, 1, NULL, "-", "opening angle of the multipole acceptance criterion") \

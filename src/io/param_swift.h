@@ -158,7 +158,6 @@
   X("DiscPatchPotential", PARAM_SWIFT_WARN, "Bolide has no external potentials")                       \
   X("SineWavePotential", PARAM_SWIFT_WARN, "Bolide has no external potentials")                        \
   X("MWPotential2014Potential", PARAM_SWIFT_WARN, "Bolide has no external potentials")                 \
-  X("ConstantPotential", PARAM_SWIFT_WARN, "Bolide has no external potentials")                        \
   X("BoundaryParticles", PARAM_SWIFT_WARN, "Bolide has no fixed boundary particles")                   \
   X("RobertsFlowForcing", PARAM_SWIFT_WARN, "Bolide has no forcing")                                   \
   X("RobertsFlowAccelerationForcing", PARAM_SWIFT_WARN, "Bolide has no forcing")                       \
