@@ -841,7 +841,10 @@ void engine_rebuild(struct engine *e) {
     free(e->restart_cells.dx_max);
     memset(&e->restart_cells, 0, sizeof e->restart_cells);
   } else {
+    /* (mirror ghosts: removed before, made again after, tasks/drift/drift_mirror.c) */
+    engine_family_hooks(e, task_family_at_rebuild_start);
     removed = space_rebuild(&e->space);
+    engine_family_hooks(e, task_family_at_rebuild);
   }
   e->nr_removed += (long long)removed;
   const double w2 = error_walltime();
@@ -916,6 +919,7 @@ static void engine_write_restart(struct engine *e) {
 
 /** Run the tasks of one phase on every worker. */
 static void engine_run_phase(struct engine *e, int phase) {
+  if (phase == ENGINE_PHASE_FORCE) engine_family_hooks(e, task_family_at_force);
 #ifdef HAVE_CUDA
   if (e->gpu) {
     if (phase == ENGINE_PHASE_FORCE)
