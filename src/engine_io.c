@@ -304,8 +304,8 @@ void engine_stats_write(struct engine *e) {
       "%ld %.12e %.6e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %zu %lld"
       " %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.6e\n",
       e->step, e->time, e->dt, t.mass, t.p[0], t.p[1], t.p[2], t.L[0], t.L[1], t.L[2], t.E_kin,
-      t.E_int, t.E_pot, etot, e->parts.count - e->nr_mirror, e->nr_removed, r->m, r->E, r->p[0], r->p[1], r->p[2],
-      r->L[0], r->L[1], r->L[2], t.E_clamp, t.W_plastic, dE);
+      t.E_int, t.E_pot, etot, e->parts.count - e->nr_mirror, e->nr_removed, r->m, r->E, r->p[0],
+      r->p[1], r->p[2], r->L[0], r->L[1], r->L[2], t.E_clamp, t.W_plastic, dE);
   if (fflush(e->stats)) error_exit("cannot write the statistics file (disk full?)");
   e->stats_last_step = e->step;
   engine_check_angular_momentum(e, &t);

@@ -174,11 +174,11 @@ static void drift_mirror_set(struct engine *e, size_t g) {
   drift_mirror_velocity(n, e->mirror_no_slip, &p->vx[g], &p->vy[g], &p->vz[g]);
   drift_mirror_velocity(n, e->mirror_no_slip, &p->vpx[g], &p->vpy[g], &p->vpz[g]);
   double t[6];
-#define DRIFT_MIRROR_TENSOR_(S)                                                             \
-  t[0] = p->S##xx[g], t[1] = p->S##xy[g], t[2] = p->S##xz[g], t[3] = p->S##yy[g],           \
-  t[4] = p->S##yz[g], t[5] = p->S##zz[g];                                                   \
-  drift_mirror_tensor(n, t);                                                                \
-  p->S##xx[g] = t[0], p->S##xy[g] = t[1], p->S##xz[g] = t[2], p->S##yy[g] = t[3],           \
+#define DRIFT_MIRROR_TENSOR_(S)                                                   \
+  t[0] = p->S##xx[g], t[1] = p->S##xy[g], t[2] = p->S##xz[g], t[3] = p->S##yy[g], \
+  t[4] = p->S##yz[g], t[5] = p->S##zz[g];                                         \
+  drift_mirror_tensor(n, t);                                                      \
+  p->S##xx[g] = t[0], p->S##xy[g] = t[1], p->S##xz[g] = t[2], p->S##yy[g] = t[3], \
   p->S##yz[g] = t[4], p->S##zz[g] = t[5];
   DRIFT_MIRROR_TENSOR_(S)
   DRIFT_MIRROR_TENSOR_(Sp)
