@@ -176,8 +176,8 @@ void engine_timesteps_write(struct engine *e, double wall_step) {
       b_max = b;
     }
   fprintf(e->timesteps, "  %8ld %16.9e %16.9e %14zu %16.6f %7d %7d %15.6f\n", e->step, e->time,
-          e->dt, e->parts.count, 1e3 * wall_step, b_min < 0 ? 0 : b_min, b_max < 0 ? 0 : b_max,
-          b_min < 0 ? -1.0 : timeline_active_fraction(e->bins));
+          e->dt, e->parts.count - e->nr_mirror, 1e3 * wall_step, b_min < 0 ? 0 : b_min,
+          b_max < 0 ? 0 : b_max, b_min < 0 ? -1.0 : timeline_active_fraction(e->bins));
   if (fflush(e->timesteps)) error_exit("cannot write the timesteps file (disk full?)");
 }
 

@@ -28,7 +28,8 @@
  *  - force: before every FORCE phase (after the drift and any rebuild),
  *    each ghost takes its source's predicted state, mirrored: position,
  *    velocity (free or no slip), stress tensors; continuity density,
- *    energy, smoothing length, material as they are.
+ *    energy, smoothing length, material as they are; then the cells' drift
+ *    bounds and h_max are computed again (cell_update_bounds).
  *
  * CPU only (the refresh writes the host's arrays between the phases): the
  * GPU runner, self-gravity (the ghosts would carry mass), individual time
@@ -38,6 +39,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "src/cell.h"
 #include "src/engine.h"
 #include "src/error.h"
 #include "src/io/params.h"
@@ -135,8 +137,8 @@ static void drift_mirror_tensor(const double n[3], double t[6]) {
 }
 
 /** The velocity (vx, vy, vz) of a ghost of plane normal n: free slip
- *  reverses its normal component, no slip the whole of it (the velocity
- *  2 v_wall - v of a wall at rest). */
+ *  reverses its normal component (the mirror image of the vector), no slip
+ *  the whole of it (the velocity 2 v_wall - v of a wall at rest). */
 static void drift_mirror_velocity(const double n[3], int no_slip, double *vx, double *vy,
                                   double *vz) {
   if (no_slip) {
@@ -171,8 +173,15 @@ static void drift_mirror_set(struct engine *e, size_t g) {
   p->x[g] -= d * n[0];
   p->y[g] -= d * n[1];
   p->z[g] -= d * n[2];
-  drift_mirror_velocity(n, e->mirror_no_slip, &p->vx[g], &p->vy[g], &p->vz[g]);
+  /* the velocity the interactions read (vp) is the ghost's of B4; the
+   * velocity, acceleration and XSPH term the next drift moves it with are
+   * the mirror images of its source's, so that the drift keeps it (to
+   * round-off) at the image of its drifted source, where the cells' drift
+   * bounds (dx_max) expect it before this refresh puts it there */
   drift_mirror_velocity(n, e->mirror_no_slip, &p->vpx[g], &p->vpy[g], &p->vpz[g]);
+  drift_mirror_velocity(n, 0, &p->vx[g], &p->vy[g], &p->vz[g]);
+  drift_mirror_velocity(n, 0, &p->ax[g], &p->ay[g], &p->az[g]);
+  drift_mirror_velocity(n, 0, &p->xsphx[g], &p->xsphy[g], &p->xsphz[g]);
   double t[6];
 #define DRIFT_MIRROR_TENSOR_(S)                                                   \
   t[0] = p->S##xx[g], t[1] = p->S##xy[g], t[2] = p->S##xz[g], t[3] = p->S##yy[g], \
@@ -242,4 +251,8 @@ void drift_mirror_refresh(struct engine *e) {
   struct parts *p = &e->parts;
   for (size_t i = 0; i < p->count; i++)
     if (p->flags[i] & PART_MIRROR) drift_mirror_set(e, i);
+  /* the ghosts moved (and took their sources' h) after the drift set the
+   * cells' bounds: the loops' pruning needs them again */
+  for (int c = 0; c < e->space.nr_top; c++)
+    if (e->space.cells[c].count) cell_update_bounds(p, &e->space.cells[c]);
 }
