@@ -246,9 +246,31 @@ void drift_mirror_make(struct engine *e) {
   error_log(1, "mirror ghosts: %zu at %d plane(s), band %g", add, e->nr_planes, band);
 }
 
+/** A real particle that the drift took behind plane k (d < 0) is put back
+ *  in front of it, at its mirror image, with the normal components of its
+ *  velocities reversed (a specular reflection: its kinetic energy is kept).
+ *  Head-on with its own ghost, a particle at distance d from the plane feels
+ *  a repulsion through grad W(2 d), which vanishes as d goes to 0: a block
+ *  striking the plane at a tenth of the sound speed otherwise passes it
+ *  (theory/boundaries.md). */
+static void drift_mirror_reflect(struct engine *e, size_t i, int k) {
+  struct parts *p = &e->parts;
+  const double d = drift_mirror_distance(e, p, i, k);
+  if (!(d < 0.0)) return;
+  const double *n = e->planes[k] + 3;
+  p->x[i] -= 2.0 * d * n[0];
+  p->y[i] -= 2.0 * d * n[1];
+  p->z[i] -= 2.0 * d * n[2];
+  drift_mirror_velocity(n, 0, &p->vx[i], &p->vy[i], &p->vz[i]);
+  drift_mirror_velocity(n, 0, &p->vpx[i], &p->vpy[i], &p->vpz[i]);
+}
+
 void drift_mirror_refresh(struct engine *e) {
   if (!e->nr_mirror) return;
   struct parts *p = &e->parts;
+  for (size_t i = 0; i < p->count; i++)
+    if (!(p->flags[i] & PART_MIRROR))
+      for (int k = 0; k < e->nr_planes; k++) drift_mirror_reflect(e, i, k);
   for (size_t i = 0; i < p->count; i++)
     if (p->flags[i] & PART_MIRROR) drift_mirror_set(e, i);
   /* the ghosts moved (and took their sources' h) after the drift set the
