@@ -272,6 +272,12 @@ static void engine_check_ic_motion(const struct engine *e, const char *icname, c
             "periodic box [0, %g)",
             icname, i, (long long)p->id[i], "xyz"[k], x[k], box[k]);
     const double v = hypot(hypot(p->vx[i], p->vy[i]), p->vz[i]);
+    const struct material *mat = material_table_find(e->mats, p->mat[i]);
+    if (mat && mat->boundary && v != 0.0)
+      error_exit(
+          "%s: particle %zu (id %lld): a fixed boundary particle (material %d '%s', "
+          "boundary: true) must be at rest (speed %g)",
+          icname, i, (long long)p->id[i], (int)p->mat[i], mat->name, v);
     if (!(v < c_light))
       error_exit(
           "%s: particle %zu (id %lld): speed %g is above the speed of light (%g in internal units)",
@@ -654,6 +660,13 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   /* the CSPM continuity equation takes div v, and the free-surface detection
    * its kernel sum, from the gradient tasks: run them */
   if (e->hp.continuity_cspm || e->hp.free_surface) e->hp.solids = 1;
+  /* the uniform external field (theory/boundaries.md), SWIFT's key in cm/s^2 */
+  double g_cgs[3];
+  params_get_real_array(params, "ConstantPotential:g_cgs", g_cgs, 3);
+  for (int k = 0; k < 3; k++) {
+    e->hp.g_ext[k] = g_cgs[k] / units_cgs_factor(&e->us, 0, 1, -2);
+    if (g_cgs[k] != 0.0) e->hp.external = 1;
+  }
 
   e->time = params_get_real(params, "TimeIntegration:time_begin");
   e->time_end = params_get_real(params, "TimeIntegration:time_end");
@@ -828,7 +841,10 @@ void engine_rebuild(struct engine *e) {
     free(e->restart_cells.dx_max);
     memset(&e->restart_cells, 0, sizeof e->restart_cells);
   } else {
+    /* (mirror ghosts: removed before, made again after, tasks/drift/drift_mirror.c) */
+    engine_family_hooks(e, task_family_at_rebuild_start);
     removed = space_rebuild(&e->space);
+    engine_family_hooks(e, task_family_at_rebuild);
   }
   e->nr_removed += (long long)removed;
   const double w2 = error_walltime();
@@ -903,6 +919,7 @@ static void engine_write_restart(struct engine *e) {
 
 /** Run the tasks of one phase on every worker. */
 static void engine_run_phase(struct engine *e, int phase) {
+  if (phase == ENGINE_PHASE_FORCE) engine_family_hooks(e, task_family_at_force);
 #ifdef HAVE_CUDA
   if (e->gpu) {
     if (phase == ENGINE_PHASE_FORCE)

@@ -44,7 +44,8 @@
   X(Lz, "Ang. mom. z", "Angular momentum about the origin (z coordinate)", 1, 2, -1)              \
   X(E_kin, "Kin. Energy", "Total kinetic energy", 1, 2, -2)                                       \
   X(E_int, "Int. Energy", "Total internal energy", 1, 2, -2)                                      \
-  X(E_pot, "Pot. energy", "Total potential energy of self-gravity", 1, 2, -2)                     \
+  X(E_pot, "Pot. energy", "Total potential energy of self-gravity and the external field", 1, 2,  \
+    -2)                                                                                           \
   X(E_tot, "Tot. energy", "Total energy E_kin + E_int + E_pot", 1, 2, -2)                         \
   X(n_particles, "Particles", "Number of particles in the box", 0, 0, 0)                          \
   X(n_removed, "Removed particles", "Number of particles that left the open box", 0, 0, 0)        \
@@ -175,14 +176,15 @@ void engine_timesteps_write(struct engine *e, double wall_step) {
       b_max = b;
     }
   fprintf(e->timesteps, "  %8ld %16.9e %16.9e %14zu %16.6f %7d %7d %15.6f\n", e->step, e->time,
-          e->dt, e->parts.count, 1e3 * wall_step, b_min < 0 ? 0 : b_min, b_max < 0 ? 0 : b_max,
-          b_min < 0 ? -1.0 : timeline_active_fraction(e->bins));
+          e->dt, e->parts.count - e->nr_mirror, 1e3 * wall_step, b_min < 0 ? 0 : b_min,
+          b_max < 0 ? 0 : b_max, b_min < 0 ? -1.0 : timeline_active_fraction(e->bins));
   if (fflush(e->timesteps)) error_exit("cannot write the timesteps file (disk full?)");
 }
 
 /** The totals of the particles in the box, and what the counters hold. */
 struct engine_totals {
   double mass, p[3], L[3], E_kin, E_int, E_pot, p_abs, E_clamp, W_plastic;
+  double E_ext; /**< the part of E_pot of the external field, -sum m g.x */
 };
 
 /** Sum the particles' totals (the particles must be on the host). */
@@ -190,6 +192,7 @@ static void engine_totals(const struct engine *e, struct engine_totals *t) {
   const struct parts *p = &e->parts;
   memset(t, 0, sizeof *t);
   for (size_t i = 0; i < p->count; i++) {
+    if (p->flags[i] & PART_MIRROR) continue; /* (a mirror ghost is no part of the system) */
     const double m = p->m[i];
     const double vx = p->vx[i], vy = p->vy[i], vz = p->vz[i];
     const double x = p->x[i], y = p->y[i], z = p->z[i];
@@ -208,6 +211,14 @@ static void engine_totals(const struct engine *e, struct engine_totals *t) {
     t->W_plastic += m * p->w_plastic[i];
   }
   t->E_pot = e->gp.enabled ? gravity_potential_energy(p) : 0.0;
+  if (e->hp.external) {
+    /* the uniform field ConstantPotential:g_cgs: phi = -g.x (theory/boundaries.md) */
+    const double *g = e->hp.g_ext;
+    for (size_t i = 0; i < p->count; i++)
+      if (!(p->flags[i] & PART_MIRROR))
+        t->E_ext -= p->m[i] * (g[0] * p->x[i] + g[1] * p->y[i] + g[2] * p->z[i]);
+    t->E_pot += t->E_ext;
+  }
   t->E_clamp += e->space.removed.E_clamp;
   t->W_plastic += e->space.removed.W_plastic;
 }
@@ -217,7 +228,8 @@ static void engine_totals(const struct engine *e, struct engine_totals *t) {
 static void engine_budget_start(struct engine *e, const struct engine_totals *t) {
   struct budget_start *b = &e->budget0;
   b->E_tot = t->E_kin + t->E_int + t->E_pot;
-  b->E_pot = t->E_pot;
+  b->E_pot = t->E_pot - t->E_ext; /* (the scale of energy errors: self-gravity's alone; the
+                                      external field's depends on the origin) */
   b->E_abs = fabs(t->E_kin) + fabs(t->E_int) + fabs(t->E_pot);
   for (int k = 0; k < 3; k++) {
     b->p[k] = t->p[k];
@@ -292,8 +304,8 @@ void engine_stats_write(struct engine *e) {
       "%ld %.12e %.6e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %zu %lld"
       " %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.6e\n",
       e->step, e->time, e->dt, t.mass, t.p[0], t.p[1], t.p[2], t.L[0], t.L[1], t.L[2], t.E_kin,
-      t.E_int, t.E_pot, etot, e->parts.count, e->nr_removed, r->m, r->E, r->p[0], r->p[1], r->p[2],
-      r->L[0], r->L[1], r->L[2], t.E_clamp, t.W_plastic, dE);
+      t.E_int, t.E_pot, etot, e->parts.count - e->nr_mirror, e->nr_removed, r->m, r->E, r->p[0],
+      r->p[1], r->p[2], r->L[0], r->L[1], r->L[2], t.E_clamp, t.W_plastic, dE);
   if (fflush(e->stats)) error_exit("cannot write the statistics file (disk full?)");
   e->stats_last_step = e->step;
   engine_check_angular_momentum(e, &t);
@@ -378,6 +390,23 @@ void engine_snapshot(struct engine *e) {
   snapshot_write_series(e->outdir, e->snap_basename, e->snap_index);
 }
 
+/** A copy of the particles without the mirror ghosts (PART_MIRROR; the
+ *  snapshots' particles). */
+static void engine_real_parts(const struct engine *e, struct parts *out) {
+  const struct parts *p = &e->parts;
+  parts_alloc(out, p->count - e->nr_mirror);
+  size_t n = 0;
+  for (size_t i = 0; i < p->count; i++) {
+    if (p->flags[i] & PART_MIRROR) continue;
+    for (int f = 0; f < part_nr_fields; f++) {
+      const struct part_field *pf = &part_fields[f];
+      memcpy((char *)part_field_array(out, pf) + n * pf->size,
+             (const char *)part_field_array(p, pf) + i * pf->size, pf->size);
+    }
+    n++;
+  }
+}
+
 void engine_snapshot_to(struct engine *e, const char *path) {
 #ifdef HAVE_CUDA
   gpu_engine_to_host(e);
@@ -392,7 +421,15 @@ void engine_snapshot_to(struct engine *e, const char *path) {
   meta.hydro = e->hp.enabled;
   meta.self_gravity = e->gp.enabled;
   meta.compression = e->compression;
-  snapshot_write(path, &meta, &e->parts, &e->us, e->write_acc);
+  if (e->nr_mirror) {
+    /* the real particles only: a copy without the mirror ghosts */
+    struct parts real;
+    engine_real_parts(e, &real);
+    snapshot_write(path, &meta, &real, &e->us, e->write_acc);
+    parts_free(&real);
+  } else {
+    snapshot_write(path, &meta, &e->parts, &e->us, e->write_acc);
+  }
   error_log(0, "snapshot %s at t = %g", path, e->time);
 }
 

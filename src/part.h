@@ -151,6 +151,8 @@ enum part_flags {
   X(double,  z0,  NULL,               2, 3, 0,  1,  0, 0, "position at the last rebuild")         \
   X(int64_t, id,  "ParticleIDs",      0, 1, 0,  0,  0, PART_IC_REQ | PART_SNAP, "unique particle id") \
   X(int32_t, flags, NULL,             0, 1, 0,  0,  0, 0, "internal state bits (enum part_state)") \
+  X(int64_t, msrc, NULL,              0, 1, 0,  0,  0, 0, "mirror ghost (PART_MIRROR): the index of the particle it mirrors, and (msrc_plane) the plane; unused by the others (theory/boundaries.md)") \
+  X(int32_t, msrc_plane, NULL,        0, 1, 0,  0,  0, 0, "mirror ghost: the plane of Boundaries:planes it is the image through") \
   X(int32_t, ngb_bin_min, NULL,       0, 1, 0,  0,  0, 0, "time bins: the shortest bin among the particle's neighbours in the last force loop (the limiter's bound on its next bin)") \
   X(int32_t, wake, NULL,              0, 1, 0,  0,  0, 0, "time bins: TIMELINE_NR_BINS + 1 - the bin a neighbour asks a particle in the middle of a longer step to take at once (the limiter's wake-up; 0: none)") \
   X(int32_t, time_bin, NULL,          0, 1, 0,  0,  0, 0, "time bin: with individual time steps (TimeIntegration:global_step: false) the particle steps by 2^time_bin ticks of the run's time line (src/timeline.h); 0 with the global step")
@@ -176,6 +178,9 @@ enum part_state {
                                predicted state (drift_part_bins); never set with the global step */
   PART_SOLID = 64,        /**< a particle of a material with strength (set by the extra ghost): the
                                fluid-solid interface's phase (force_iact.h) */
+  PART_MIRROR = 128,      /**< a mirror ghost of a plane of Boundaries:planes: its sums are
+                               computed, its h is its source's, it is never kicked, written or
+                               counted (tasks/drift/drift_mirror.c) */
 };
 
 /** Whether particle i sits out the FORCE phase of this step (time bins). */

@@ -139,14 +139,23 @@
  *          or a restart file (e->restarted), and their smoothing lengths
  *          guessed; e->input_file names that file
  *        first_force: at the start of the first force computation
+ *        rebuild_start, rebuild: before and after the space's rebuild (the
+ *          cells and particles of the rebuild; not on a restart's)
+ *        force: before every force computation (FORCE phase), after the
+ *          drift and the rebuild
  *        clean: engine_clean, after the task graph is freed: the family
  *          frees its state */
 #define TASK_FAMILY_HOOKS(X)                  \
   X(gravity, init,        gravity_engine_init)  \
+  X(drift,   init,        drift_mirror_init)    \
   X(drift,   ic,          drift_sync_ic)        \
   X(damage,  start,       damage_init_flaws)    \
+  X(drift,   rebuild_start, drift_mirror_strip) \
+  X(drift,   rebuild,     drift_mirror_make)    \
   X(density, first_force, density_reset_all)    \
-  X(gravity, clean,       gravity_engine_clean)
+  X(drift,   force,       drift_mirror_refresh) \
+  X(gravity, clean,       gravity_engine_clean) \
+  X(drift,   clean,       drift_mirror_clean)
 
 /* TASK_FAMILY_ENTRIES(X): X(family, ret, fn, params): the other functions of
  * a family that src/ calls by name, each with its own signature
@@ -279,6 +288,9 @@ enum task_family_when {
   task_family_at_ic,          /**< the initial conditions are read */
   task_family_at_start,       /**< the particles are read (ICs or restart file) */
   task_family_at_first_force, /**< the first force computation starts */
+  task_family_at_rebuild_start, /**< the space is about to be rebuilt */
+  task_family_at_rebuild,       /**< the space was rebuilt */
+  task_family_at_force,         /**< a FORCE phase is about to run */
   task_family_at_clean,       /**< the engine is freed (engine_clean) */
 };
 

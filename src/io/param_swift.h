@@ -158,8 +158,7 @@
   X("DiscPatchPotential", PARAM_SWIFT_WARN, "Bolide has no external potentials")                       \
   X("SineWavePotential", PARAM_SWIFT_WARN, "Bolide has no external potentials")                        \
   X("MWPotential2014Potential", PARAM_SWIFT_WARN, "Bolide has no external potentials")                 \
-  X("ConstantPotential", PARAM_SWIFT_WARN, "Bolide has no external potentials")                        \
-  X("BoundaryParticles", PARAM_SWIFT_WARN, "Bolide has no fixed boundary particles")                   \
+  X("BoundaryParticles", PARAM_SWIFT_WARN, "Bolide's fixed boundary particles are those of a material with boundary: true (theory/boundaries.md)") \
   X("RobertsFlowForcing", PARAM_SWIFT_WARN, "Bolide has no forcing")                                   \
   X("RobertsFlowAccelerationForcing", PARAM_SWIFT_WARN, "Bolide has no forcing")                       \
   X("ABC_Flow_Forcing", PARAM_SWIFT_WARN, "Bolide has no forcing")                                     \

@@ -189,6 +189,9 @@ struct material {
   int u_floor;                            /**< 1 when the EOS has no meaning at u < 0 (ideal gas,
                                                tables): the kick keeps u >= 0 (drift.h) */
   MATERIAL_PARAMS(EOS_PARAM_FIELD)        /**< the keys of MATERIAL_PARAMS, see there */
+  /** 1: fixed boundary particles (key boundary: true): they take part in their neighbours' sums
+   *  as any particle but are never moved or kicked (kick2_rates; theory/boundaries.md) */
+  int boundary;
 };
 
 /** The materials of a run. */

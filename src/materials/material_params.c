@@ -134,6 +134,16 @@ static void material_apply(struct material *mat, struct material_extra *x,
                          mat->name, known, s);
       }
       mat->strength = (enum material_strength_type)st;
+    } else if (strcmp(key, "boundary") == 0) {
+      /* fixed boundary particles (theory/boundaries.md) */
+      const char *s = material_text(owner, v, mat, key);
+      if (strcmp(s, "true") == 0 || strcmp(s, "yes") == 0)
+        mat->boundary = 1;
+      else if (strcmp(s, "false") == 0 || strcmp(s, "no") == 0)
+        mat->boundary = 0;
+      else
+        param_node_error(owner, v, "material '%s': key 'boundary' must be true or false (got '%s')",
+                         mat->name, s);
     } else if (strcmp(key, "porosity") == 0) {
       porosity_from_node(&mat->porosity, mat->name, owner, v); /* theory/porosity.md */
     } else if (mat->eos_type == EOS_TABLE && strcmp(key, "file") == 0) {

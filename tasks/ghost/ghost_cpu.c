@@ -26,6 +26,11 @@ int ghost_cell_cpu(struct parts *p, struct cell *c, const struct ghost_ngbs *ngb
     }
     ghost_part_start(p, i);
     ghost_part_add_self(p, i);
+    if (p->flags[i] & PART_MIRROR) {
+      /* a mirror ghost keeps its source's h (tasks/drift/drift_mirror.c) */
+      p->flags[i] |= PART_H_CONVERGED;
+      continue;
+    }
     capped |= ghost_part_step(p, i, hp, h_cap);
     left += !(p->flags[i] & PART_H_CONVERGED);
   }

@@ -37,6 +37,8 @@ struct hydro_props {
   double as_n;             /**< artificial stress exponent n */
   double as_wdp_inv;       /**< 1 / W(dp, h = 1) with dp = h / eta, the mean particle spacing */
   double max_rel_change; /**< time-step limit on relative changes of rho, u, S per step (0 = off) */
+  int external;          /**< 1: a uniform external acceleration g_ext (ConstantPotential:g_cgs) */
+  double g_ext[3];       /**< the external acceleration in internal units (set by the engine) */
 };
 
 /** Forms of the momentum equation (SPH:momentum_form). */

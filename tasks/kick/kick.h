@@ -39,7 +39,9 @@ BOLIDE_INLINE void kick2_plastic_return(struct parts *BOLIDE_RESTRICT p, size_t 
 
 /** The rates of particle i that the force phase leaves for the kick to
  *  complete: with self-gravity the gravitational acceleration joins the
- *  hydrodynamic one (a gravity-only run has no hydrodynamic one); for
+ *  hydrodynamic one (a gravity-only run has no hydrodynamic one), and so
+ *  does a uniform external acceleration (ConstantPotential:g_cgs); a fixed
+ *  boundary particle's acceleration is 0 (theory/boundaries.md); for
  *  porous materials dalpha/dt (kick_porous.h); with the continuity
  *  equation the density rate of a particle on its floor
  *  (continuity_floor.h).  With time bins the particles that do not end
@@ -47,11 +49,24 @@ BOLIDE_INLINE void kick2_plastic_return(struct parts *BOLIDE_RESTRICT p, size_t 
 BOLIDE_INLINE void kick2_rates(struct parts *BOLIDE_RESTRICT p, size_t i,
                                const struct hydro_props *hp, const struct material_table *mats,
                                const struct timestep_props *tp) {
+  if (!tp->hydro && (tp->gravity || hp->external)) p->ax[i] = p->ay[i] = p->az[i] = 0.0;
   if (tp->gravity) {
-    if (!tp->hydro) p->ax[i] = p->ay[i] = p->az[i] = 0.0;
     p->ax[i] += p->gax[i];
     p->ay[i] += p->gay[i];
     p->az[i] += p->gaz[i];
+  }
+  if (hp->external) {
+    p->ax[i] += hp->g_ext[0];
+    p->ay[i] += hp->g_ext[1];
+    p->az[i] += hp->g_ext[2];
+  }
+  const struct material *mat = material_table_find(mats, p->mat[i]);
+  if (mat && mat->boundary) {
+    /* a fixed boundary particle: an infinite mass that no force moves (its
+     * velocity, zero, stays; theory/boundaries.md B1); its density, energy
+     * and stress still change with its rates */
+    p->ax[i] = p->ay[i] = p->az[i] = 0.0;
+    p->xsphx[i] = p->xsphy[i] = p->xsphz[i] = 0.0;
   }
   if (tp->porous) kick2_porous_rate(p, i, mats);
   if (hp->continuity) continuity_floor_rate(p, i);
