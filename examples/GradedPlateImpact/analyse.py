@@ -82,6 +82,7 @@ class Run:
         self.plate = pl
         self.dx = dx
         self.wall = wall_time(d)
+        self.cpu = cpu_time(d)
 
     def measure(self, s):
         dx = self.dx
@@ -127,6 +128,17 @@ def wall_time(d):
     return np.nan
 
 
+def cpu_time(d):
+    """User plus system seconds of the run from time.txt ("wall user sys",
+    written by run.sh; nan if absent)."""
+    try:
+        with open(os.path.join(d, "time.txt")) as f:
+            w = f.read().split()
+        return float(w[1]) + float(w[2])
+    except (OSError, IndexError, ValueError):
+        return np.nan
+
+
 COLS = (("depth", "crater depth [mm]", 1e3), ("diam", "dent diameter [mm]", 1e3), ("bulge", "rear bulge [mm]", 1e3),
         ("thin", "thinning [mm]", 1e3),
         ("far", "rear at 2.5 cm [um]", 1e6), ("sph_d", "Al median diam. [mm]", 1e3),
@@ -143,7 +155,7 @@ def main():
     runs = [Run(d, a.dx) for d in a.dirs]
     finals = []
     for run in runs:
-        print(f"{run.dir}: {run.n} particles, wall time {run.wall:.1f} s")
+        print(f"{run.dir}: {run.n} particles, wall time {run.wall:.1f} s, CPU time {run.cpu:.1f} s")
         print("   t [us]  " + "  ".join(f"{c[1]:>20s}" for c in COLS))
         rows = []
         for path in run.snaps[1:]:
@@ -163,6 +175,8 @@ def main():
         print(f"  {name:24s}" + "".join(f"{v:14.3f}" for v in vals) + diff)
     print(f"  {'wall time [s]':24s}" + "".join(f"{r.wall:14.1f}" for r in runs) +
           "".join(f"    speed-up {ref.wall / r.wall:.2f} x (paper: 3.8 x)" for r in runs[1:]))
+    print(f"  {'CPU time [s]':24s}" + "".join(f"{r.cpu:14.1f}" for r in runs) +
+          "".join(f"    ratio {ref.cpu / r.cpu:.2f} x" for r in runs[1:]))
 
     fig, ax = plt.subplots(2, 2, figsize=(12, 8))
     styles = ("-", "--", ":", "-.")

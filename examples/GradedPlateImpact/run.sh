@@ -16,14 +16,17 @@ build=$(cd "${BOLIDE_BUILD:-$top/_build}" && pwd)
 python=${PYTHON:-$build/.venv/bin/python}
 dx=${1:-0.001}
 threads=${2:-2}
+read -r -a extra <<<"${BOLIDE_ARGS:-}"
 mkdir -p results
 for kind in uniform graded; do
   mkdir -p "run_$kind"
   "$python" make_ic.py "$kind" --dx "$dx" --bolide-ic "$build/bolide-ic" -o "run_$kind/plate.hdf5"
   echo "running the $kind plate (log: run_$kind/log.txt)"
-  # shellcheck disable=SC2086
   cp params.yml "run_$kind/"
-  (cd "run_$kind" && "$build/bolide" -t "$threads" ${BOLIDE_ARGS:-} params.yml >log.txt)
+  # wall, user and system seconds of the run (time.txt): the VM may be shared,
+  # and the CPU time is the steadier measure of the work there
+  TIMEFORMAT="%R %U %S"
+  { time (cd "run_$kind" && "$build/bolide" -t "$threads" ${extra[@]+"${extra[@]}"} params.yml >log.txt); } 2>"run_$kind/time.txt"
   grep -h "done:" "run_$kind/log.txt"
 done
 "$python" analyse.py --dx "$dx" --out deformation.png run_uniform run_graded | tee results/compare.txt
