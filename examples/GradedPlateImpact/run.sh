@@ -3,11 +3,11 @@
 # steel 4340 plate, once with uniform particles and once with graded ones
 # (fine within 1.65 cm of the axis, twice as coarse outside: a third of the
 # particles), each through a node file and bolide-ic import-mesh; then the
-# deformation of both compared and the wall-time ratio printed
+# deformation of both compared and the wall- and CPU-time ratios printed
 # (results/compare.txt, deformation.png).
 # Usage: ./run.sh [DX] [THREADS]  (fine spacing in m, default 0.001: 6 layers
-# through the plate, 22,152 / 7,620 particles, to 20 us: about 3.5 minutes
-# on 2 cores; 0.0005 for a real run, 12 layers, 170,000 / 56,000 particles)
+# through the plate, 22,152 / 7,620 particles, to 20 us: 4 to 8 minutes on
+# 2 cores; 0.0005 for a real run, 12 layers, 177,024 / 61,440 particles)
 # BOLIDE_ARGS (optional): more bolide options, e.g. BOLIDE_ARGS="-P Scheduler:gpu:all".
 set -euo pipefail
 cd "$(dirname "$0")"
