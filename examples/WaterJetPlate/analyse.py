@@ -130,6 +130,8 @@ def main():
     g1.set_ylabel("fluid-solid distance [dx]")
     g1.set_title("gap between water and plate")
     g1.legend(fontsize=7)
+    top = max(max(m["below_front"] for m in rows) for _, _, _, rows in runs)
+    g2.set_ylim(-0.5, max(5, 1.1 * top))
     g2.set_xlabel("t [us]")
     g2.set_ylabel("water particles")
     g2.set_title("penetration: water below the plate's front face")

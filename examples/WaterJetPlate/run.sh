@@ -3,7 +3,7 @@
 # the fluid-solid gap, penetration and plate deflection against time
 # (results/*.txt) and the picture interface.png.
 # Usage: ./run.sh [DX] [THREADS]  (lattice spacing in m, default 0.0005: 4
-# layers through the plate, 10,048 particles, to 20 us: about 2 minutes on
+# layers through the plate, 10,048 particles, to 20 us: about 4 minutes on
 # 2 cores; 0.00025 for 8 layers, 80,000 particles)
 # PARAMS (optional): another parameter file, e.g. PARAMS=variants/no_interface.yml;
 # each parameter file runs in its own folder run_NAME/ (run_params/ for
