@@ -37,23 +37,27 @@ import argparse
 import glob
 import os
 import re
+import sys
 
-import h5py
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
+sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from bolide import snapshot  # noqa: E402  (python/bolide, unless the package is installed)
+
 R_FAR = 0.025
+FIELDS = ("Coordinates", "Velocities", "Masses", "MaterialIDs", "ParticleIDs", "PlasticStrains")
 
 
 def read(path):
-    with h5py.File(path, "r") as f:
-        p = f["PartType0"]
-        d = {k: p[k][:] for k in ("Coordinates", "Velocities", "Masses", "MaterialIDs", "ParticleIDs",
-                                  "PlasticStrains")}
-        d["t"] = float(np.ravel(f["Header"].attrs["Time"])[0])
+    """The fields of a snapshot in SI (bolide.snapshot), sorted by particle
+    id, and its time "t"."""
+    s = snapshot.load(path, FIELDS, si=True)
+    d = {k: s[k] for k in FIELDS}
+    d["t"] = snapshot.snapshot_time(s)
     o = np.argsort(d["ParticleIDs"])
     return {k: (v[o] if isinstance(v, np.ndarray) else v) for k, v in d.items()}
 

@@ -32,11 +32,13 @@ import os
 import subprocess
 import sys
 
-import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
 import ichelpers  # noqa: E402  (examples/common/ichelpers.py)
+
+sys.path.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from bolide import snapshot  # noqa: E402  (python/bolide, unless the package is installed)
 
 RHO_PLATE = 7830.0  # steel_4340 (examples/materials.yml)
 RHO_SPHERE = 2710.0  # aluminium_6061
@@ -88,9 +90,9 @@ def main():
     plate = os.path.splitext(a.output)[0] + "_plate.hdf5"
     subprocess.run([a.bolide_ic, "import-mesh", nodes, "--rho", str(RHO_PLATE), "--mat", "0",
                     "--eta", str(a.eta), "-o", plate], check=True, stdout=subprocess.DEVNULL)
-    with h5py.File(plate, "r") as f:
-        box = f["Header"].attrs["BoxSize"][:]
-        p = {k: f["PartType0"][k][:] for k in f["PartType0"]}
+    # the file import-mesh wrote, in the units it was given (SI): no conversion
+    p = snapshot.load(plate)
+    box = p["header"]["BoxSize"]
     # import-mesh shifted the nodes (ids 1..N in file order): recover the shift
     order = np.argsort(p["ParticleIDs"])
     shift = p["Coordinates"][order[0]] - x[0]
