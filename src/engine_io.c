@@ -149,6 +149,7 @@ void engine_stats_open(struct engine *e) {
   fprintf(e->timesteps,
           "# Bolide %s time steps, one line per step (SWIFT's timesteps file)\n"
           "# Time and time-step in internal units (%g s); wall-clock time of the step in ms\n"
+          "# Updates: the particles kicked (with time bins those that ended their step, issue 20)\n"
           "# Bin-min, Bin-max: the time bins (src/timeline.h) of the particles' own limits after "
           "the step;\n"
           "# Active-fraction: the particle updates individual time steps would do per step of "
@@ -175,9 +176,12 @@ void engine_timesteps_write(struct engine *e, double wall_step) {
       if (b_min < 0) b_min = b;
       b_max = b;
     }
+  /* (with time bins the particles that ended their step: e->nr_active) */
+  const size_t updates =
+      e->individual ? (size_t)e->nr_active : (size_t)(e->parts.count - e->nr_mirror);
   fprintf(e->timesteps, "  %8ld %16.9e %16.9e %14zu %16.6f %7d %7d %15.6f\n", e->step, e->time,
-          e->dt, e->parts.count - e->nr_mirror, 1e3 * wall_step, b_min < 0 ? 0 : b_min,
-          b_max < 0 ? 0 : b_max, b_min < 0 ? -1.0 : timeline_active_fraction(e->bins));
+          e->dt, updates, 1e3 * wall_step, b_min < 0 ? 0 : b_min, b_max < 0 ? 0 : b_max,
+          b_min < 0 ? -1.0 : timeline_active_fraction(e->bins));
   if (fflush(e->timesteps)) error_exit("cannot write the timesteps file (disk full?)");
 }
 

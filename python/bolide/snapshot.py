@@ -160,6 +160,31 @@ def load(path, fields=None, optional=(), si=False):
     return data
 
 
+def iter_chunks(path, name, size=1 << 20):
+    """Yield one dataset of /PartType0 (Bolide's name or SWIFT's alias) in
+    blocks of at most size rows, as float64 arrays in the file's units: for
+    files too large to load at once (tools/bench/impact_counts.py).  Raises
+    SnapshotError as load does."""
+    import h5py
+
+    if not os.path.exists(path):
+        raise SnapshotError("%s: no such file" % path)
+    try:
+        f = h5py.File(path, "r")
+    except OSError as exc:
+        raise SnapshotError("%s: not an HDF5 file (%s)" % (path, exc))
+    with f:
+        if "PartType0" not in f:
+            raise SnapshotError("%s: no /PartType0 group" % path)
+        group = f["PartType0"]
+        found = [k for k in group.keys() if ALIASES.get(k, k) == name]
+        if not found:
+            raise SnapshotError("%s: no dataset /PartType0/%s" % (path, name))
+        dset = group[found[0]]
+        for start in range(0, dset.shape[0], size):
+            yield np.asarray(dset[start:start + size], dtype=np.float64)
+
+
 def _normalise_header(header, path):
     """Time as a float, BoxSize as a length-3 float array (a scalar BoxSize,
     as older SWIFT files have, means a cube)."""

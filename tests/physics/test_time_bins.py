@@ -46,7 +46,10 @@ src/timeline.h, theory/sph.md "Time bins").
    and 1.8e-8: the adaptive opening criterion of a cell whose particles did
    not move to a new step reads their acceleration of their last
    evaluation, not of the last step), and most steps (more than half) were
-   steps of active particles only."""
+   steps of active particles only.
+7. The timesteps file of the impact of 5: its Updates column counts the
+   particles that ended their step (fewer than all at some step) and sums
+   to the log's total of particle updates, one line per step."""
 import os
 import re
 import subprocess
@@ -287,6 +290,15 @@ def impact_am(d):
     check(m is not None and 2 * int(m.group(1)) > int(m.group(2)),
           "impact in bins: most steps computed gravity for the active particles only (%s)" %
           (m.group(0) if m else "no such line in the log"))
+    # item 7: the timesteps file's Updates column counts the particles that
+    # ended their step, and sums to the run's particle updates
+    upd = re.search(r"time bins: (\d+) particle updates in (\d+) steps", r.stdout + r.stderr)
+    col = [int(line.split()[3]) for line in open(os.path.join(sub, "timesteps.txt"))
+           if not line.startswith("#")]
+    check(upd is not None and sum(col) == int(upd.group(1)) and len(col) == int(upd.group(2))
+          and min(col) < 2200,
+          "impact in bins: the timesteps file's updates sum to the log's (%d in %d lines, log: %s)" %
+          (sum(col), len(col), upd.group(0) if upd else "no such line"))
     # item 6: the same with gravity for every particle at every step
     full = os.path.join(d, "impact_full")
     os.makedirs(full, exist_ok=True)

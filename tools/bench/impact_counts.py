@@ -169,24 +169,22 @@ def analytic_chunks(n_t, n_i, seed):
 
 
 def file_chunks(path, size=1 << 20):
-    import h5py
-    with h5py.File(path, "r") as f:
-        x = f["PartType0/Coordinates"]
-        n = x.shape[0]
-        h = float(np.max(f["PartType0/SmoothingLength"][:]))
-        box = np.atleast_1d(f["Header"].attrs["BoxSize"]).astype(float)
+    from bolide import snapshot
+    try:
+        snap = snapshot.load(path, fields=["SmoothingLengths"])
+        h = float(np.max(snap["SmoothingLengths"]))
+        box = np.atleast_1d(snap["header"].get("BoxSize", np.zeros(3))).astype(float)
         if np.ptp(box) > 0:
             sys.exit(f"impact_counts: {path}: the box is not a cube ({box})")
-        lo, hi = np.full(3, np.inf), np.full(3, -np.inf)
-        for s in range(0, n, size):
-            c = x[s:s + size]
+        lo, hi, n = np.full(3, np.inf), np.full(3, -np.inf), 0
+        for c in snapshot.iter_chunks(path, "Coordinates", size):
             lo, hi = np.minimum(lo, c.min(axis=0)), np.maximum(hi, c.max(axis=0))
+            n += c.shape[0]
+    except snapshot.SnapshotError as exc:
+        sys.exit(f"impact_counts: {exc}")
 
     def chunks():
-        with h5py.File(path, "r") as f:
-            x = f["PartType0/Coordinates"]
-            for s in range(0, n, size):
-                yield np.asarray(x[s:s + size], dtype=np.float64)
+        yield from snapshot.iter_chunks(path, "Coordinates", size)
 
     return chunks, h, lo, hi, n, float(box[0])
 
