@@ -539,6 +539,8 @@ void gpu_engine_init(struct engine *e) {
                             : e->gp.enabled && e->gp.h_factor > 0.0
                                 ? "Gravity:softening_h_factor > 0 (softening tied to h) has no GPU "
                                   "implementation yet"
+                            : e->nr_planes > 0
+                                ? "Boundaries:planes (mirror ghosts) has no GPU implementation yet"
                                 : gpu_engine_cpu_only(e);
   if (unsupported) {
     if (required) error_exit("a GPU was required (%s) but %s", asked, unsupported);
