@@ -461,7 +461,7 @@ static void engine_watchdog_init(struct engine *e) {
 
 /** Remember the positions before the drift (the displacement check; on
  *  the GPU a copy on the device). */
-static void engine_watchdog_before_drift(struct engine *e) {
+void engine_watchdog_before_drift(struct engine *e) {
 #ifdef HAVE_CUDA
   if (e->gpu) {
     const double w0 = error_walltime();
@@ -480,7 +480,7 @@ static void engine_watchdog_before_drift(struct engine *e) {
 
 /** After the drift: no particle may have moved more than the width of a
  *  top-level cell (the neighbour search would miss its neighbours). */
-static void engine_watchdog_after_drift(struct engine *e) {
+void engine_watchdog_after_drift(struct engine *e) {
   const struct parts *p = &e->parts;
   const size_t n = p->count;
   double w = e->space.width[0];
@@ -798,6 +798,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
               e->hp.as_eps, e->hp.as_n, e->hp.continuity_cspm ? ", CSPM continuity" : "");
   error_log(0, "particle memory: %zu bytes per particle", parts_bytes_per_particle());
 
+  engine_integrate_init(e);
   if (opt->check_only) {
     printf("%s: parameters, materials and initial conditions are valid (%zu particles)\n",
            params_filename(params), e->parts.count);
@@ -860,7 +861,7 @@ void engine_rebuild(struct engine *e) {
 /** 1 if the cells or the task graph no longer hold every interaction: the
  *  space's own criterion, or a kernel support plus twice the largest drift
  *  beyond the reach of the pair tasks (engine_graph.c). */
-static int engine_should_rebuild(const struct engine *e) {
+int engine_should_rebuild(const struct engine *e) {
   if (space_should_rebuild(&e->space)) return 1;
   double h_max = 0.0, dx_max = 0.0;
   for (int t = 0; t < e->nr_tcells; t++) {
@@ -918,7 +919,7 @@ static void engine_write_restart(struct engine *e) {
 }
 
 /** Run the tasks of one phase on every worker. */
-static void engine_run_phase(struct engine *e, int phase) {
+void engine_run_phase(struct engine *e, int phase) {
   if (phase == ENGINE_PHASE_FORCE) engine_family_hooks(e, task_family_at_force);
 #ifdef HAVE_CUDA
   if (e->gpu) {
@@ -956,7 +957,7 @@ static void engine_count_active(struct engine *e) {
 
 /** The next global time step: the smallest particle step, limited by dt_max,
  *  the next output time and the end of the run. */
-static double engine_next_dt(struct engine *e) {
+double engine_next_dt(struct engine *e) {
   double dt = e->dt_max;
   for (int t = 0; t < e->nr_tcells; t++)
     if (e->cell_dt_min[t] < dt) dt = e->cell_dt_min[t];
@@ -1103,6 +1104,44 @@ static void engine_first_force(struct engine *e) {
   e->first_force = 0;
 }
 
+/** One step of the kick-drift-kick leapfrog (TimeIntegration:scheme: kdk),
+ *  with the global step or in time bins: the first half kicks and the
+ *  drift, a rebuild when the particles have moved too far, the FORCE phase
+ *  with the second half kicks.  Returns 0 when there is no step to take. */
+static int engine_step_kdk(struct engine *e) {
+  e->dt = e->individual ? engine_next_dt_bins(e) : engine_next_dt(e);
+  if (!(e->dt > 0.0)) return 0;
+  engine_watchdog_before_drift(e);
+  engine_run_phase(e, ENGINE_PHASE_DRIFT);
+  engine_watchdog_after_drift(e);
+  if (e->individual) {
+    e->ti_current = e->ti_next;
+    e->time = e->ti_current == (integertime_t)1 << TIMELINE_NR_BINS
+                  ? e->time_end
+                  : timeline_time(&e->timeline, e->ti_current);
+  } else {
+    e->time += e->dt;
+  }
+  if (e->next_out < e->nr_out && fabs(e->time - e->out_times[e->next_out]) <= 1e-12 * fabs(e->time))
+    e->time = e->out_times[e->next_out];
+  int rebuilt = 0;
+  if (atomic_load((_Atomic int *)&e->need_rebuild) || engine_should_rebuild(e)) {
+    atomic_store((_Atomic int *)&e->need_rebuild, 0);
+    engine_rebuild(e);
+    rebuilt = 1;
+    if (e->individual) engine_count_active_cells(e);
+  }
+  /* (the same test as after the phase: an output needs every potential) */
+  gravity_active_decide(e, e->time >= e->next_stats || e->time >= e->time_end ||
+                               (e->next_out < e->nr_out && e->time >= e->out_times[e->next_out]));
+  gravity_reuse_decide(e, rebuilt);
+  const double wf = error_walltime();
+  engine_run_phase(e, ENGINE_PHASE_FORCE);
+  e->t_eval += error_walltime() - wf;
+  e->nr_eval++;
+  return 1;
+}
+
 void engine_run(struct engine *e) {
   const double t_begin = e->time;
   if (e->opt.max_steps == 0) {
@@ -1133,37 +1172,11 @@ void engine_run(struct engine *e) {
   printf("#   step           time             dt      updates    wall[s]     ETA[s]\n");
   while (e->time < e->time_end && (e->opt.max_steps < 0 || e->step < e->opt.max_steps)) {
     const double w0 = error_walltime();
-    e->dt = e->individual ? engine_next_dt_bins(e) : engine_next_dt(e);
-    if (!(e->dt > 0.0)) break;
-    engine_watchdog_before_drift(e);
-    engine_run_phase(e, ENGINE_PHASE_DRIFT);
-    engine_watchdog_after_drift(e);
-    if (e->individual) {
-      e->ti_current = e->ti_next;
-      e->time = e->ti_current == (integertime_t)1 << TIMELINE_NR_BINS
-                    ? e->time_end
-                    : timeline_time(&e->timeline, e->ti_current);
-    } else {
-      e->time += e->dt;
+    if (e->scheme == ENGINE_SCHEME_KDK) {
+      if (!engine_step_kdk(e)) break;
+    } else if (!engine_integrate_step(e)) {
+      break;
     }
-    if (e->next_out < e->nr_out &&
-        fabs(e->time - e->out_times[e->next_out]) <= 1e-12 * fabs(e->time))
-      e->time = e->out_times[e->next_out];
-    int rebuilt = 0;
-    if (atomic_load((_Atomic int *)&e->need_rebuild) || engine_should_rebuild(e)) {
-      atomic_store((_Atomic int *)&e->need_rebuild, 0);
-      engine_rebuild(e);
-      rebuilt = 1;
-      if (e->individual) engine_count_active_cells(e);
-    }
-    /* (the same test as after the phase: an output needs every potential) */
-    gravity_active_decide(e, e->time >= e->next_stats || e->time >= e->time_end ||
-                                 (e->next_out < e->nr_out && e->time >= e->out_times[e->next_out]));
-    gravity_reuse_decide(e, rebuilt);
-    const double wf = error_walltime();
-    engine_run_phase(e, ENGINE_PHASE_FORCE);
-    e->t_eval += error_walltime() - wf;
-    e->nr_eval++;
     engine_bins_collect(e);
     engine_count_active(e);
     gravity_reuse_remember(e);
@@ -1247,6 +1260,7 @@ void engine_run(struct engine *e) {
               e->t_rebuild_part[1] / e->nr_rebuild, e->t_rebuild_part[2] / e->nr_rebuild);
   error_log(0, "watchdog: %.4f s per step on average (every field of every particle checked)",
             e->step > 0 ? e->t_watchdog / (double)e->step : 0.0);
+  engine_integrate_log(e);
   gravity_log_end(e);
   scheduler_print_timers(&e->sched, stdout);
 #ifdef HAVE_CUDA
@@ -1270,6 +1284,7 @@ void engine_clean(struct engine *e) {
   free(e->cell_bins);
   free(e->cell_kick);
   free(e->wd_x);
+  engine_integrate_free(e);
   free(e->flaw_eps);
   free(e->params_text);
   engine_family_hooks(e, task_family_at_clean); /* self-gravity's state */

@@ -541,6 +541,8 @@ void gpu_engine_init(struct engine *e) {
                                   "implementation yet"
                             : e->nr_planes > 0
                                 ? "Boundaries:planes (mirror ghosts) has no GPU implementation yet"
+                            : e->scheme != ENGINE_SCHEME_KDK
+                                ? "TimeIntegration:scheme rk2 and pc have no GPU implementation yet"
                                 : gpu_engine_cpu_only(e);
   if (unsupported) {
     if (required) error_exit("a GPU was required (%s) but %s", asked, unsupported);

@@ -3,6 +3,7 @@
 #include "tasks/drift/drift_cpu.h"
 
 #include "tasks/drift/drift.h"
+#include "tasks/drift/drift_rk.h"
 #include "tasks/hydro_parts.h"
 
 void drift_cell_cpu(struct parts *p, struct cell *c, double dt_kick, double dt, double xsph,
@@ -29,4 +30,17 @@ void drift_cell_bins_cpu(struct parts *p, struct cell *c, const struct timeline 
   }
   c->active = active;
   cell_update_bounds(p, c);
+}
+
+double drift_cell_stage_cpu(struct parts *p, struct cell *c, const struct drift_stage *st,
+                            const struct hydro_props *hp) {
+  const size_t end = c->offset + c->count;
+  double err = 0.0;
+  for (size_t i = c->offset; i < end; i++) {
+    const double e = drift_rk_stage(p, i, st, hp);
+    if (e > err) err = e;
+    hydro_density_reset(p, i);
+  }
+  cell_update_bounds(p, c);
+  return err;
 }

@@ -8,6 +8,7 @@
 
 struct hydro_props;
 struct material_table;
+struct drift_stage;
 
 /** First half kick by dt_kick, then drift by dt, of every particle of c;
  *  updates the cell's h_max and dx_max.  h_continuity: SPH:h_evolution:
@@ -24,5 +25,12 @@ void drift_cell_cpu(struct parts *p, struct cell *c, double dt_kick, double dt, 
 void drift_cell_bins_cpu(struct parts *p, struct cell *c, const struct timeline *tl,
                          integertime_t ti_old, integertime_t ti_new, const struct hydro_props *hp,
                          const struct material_table *mats);
+
+/** A stage of TimeIntegration:scheme rk2 or pc (drift_rk_stage, st) for
+ *  every particle of c, the density accumulators zeroed and the cell's
+ *  h_max and dx_max updated; returns the largest scaled error estimate
+ *  of its particles (0 without st->err). */
+double drift_cell_stage_cpu(struct parts *p, struct cell *c, const struct drift_stage *st,
+                            const struct hydro_props *hp);
 
 #endif

@@ -6,7 +6,9 @@
 #include "tasks/drift/drift.h"
 
 void drift_task(struct engine *e, struct task *t) {
-  if (e->individual)
+  if (e->stage)
+    e->stage_err[t->cell_index] = drift_cell_stage_cpu(&e->parts, t->ci, e->stage, &e->hp);
+  else if (e->individual)
     drift_cell_bins_cpu(&e->parts, t->ci, &e->timeline, e->ti_current, e->ti_next, &e->hp, e->mats);
   else
     drift_cell_cpu(&e->parts, t->ci, 0.5 * e->dt, e->dt, e->hp.xsph, e->hp.h_max,

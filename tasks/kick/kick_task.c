@@ -6,13 +6,17 @@
 
 #include "src/engine.h"
 #include "tasks/kick/kick_cpu.h"
+#include "tasks/kick/kick_porous.h"
 #include "tasks/kick/timestep.h"
 
 /** Second half kick and new time step of a task cell (kick2_part, the same
  *  function as the GPU's): the smallest time step of its particles into
  *  e->cell_dt_min, their counts by time bin into e->cell_bins; with
  *  individual time steps only the particles whose step ends now
- *  (kick2_cell_bins_cpu), the cell's earliest step end into e->cell_kick. */
+ *  (kick2_cell_bins_cpu), the cell's earliest step end into e->cell_kick.
+ *  With TimeIntegration:scheme rk2 or pc nothing is kicked (the drift's
+ *  stages put the states; src/engine_integrate.c): the rates and the time
+ *  step only. */
 /** What decides the kick and the time step of a particle in this run
  *  (tasks/kick/timestep.h): hydrodynamics, porosity, damage, gravity. */
 static void kick_timestep_props(const struct engine *e, struct timestep_props *tp) {
@@ -36,8 +40,17 @@ void kick2_task(struct engine *e, struct task *tk) {
         kick2_cell_bins_cpu(&e->parts, e->tcells[t], &e->hp, e->mats, &tp, &e->timeline, e->ti_next,
                             e->first_force, bins, &e->cell_kick[t]);
   else
-    e->cell_dt_min[t] = kick2_cell_cpu(&e->parts, e->tcells[t], e->first_force ? 0.0 : 0.5 * e->dt,
-                                       &e->hp, e->mats, &tp, &e->timeline, bins);
+    e->cell_dt_min[t] =
+        kick2_cell_cpu(&e->parts, e->tcells[t],
+                       e->first_force || e->scheme != ENGINE_SCHEME_KDK ? 0.0 : 0.5 * e->dt, &e->hp,
+                       e->mats, &tp, &e->timeline, bins);
+  if (e->rk_final_eval && tp.porous) {
+    /* rk2/pc (nothing kicked: the drift put the step's end): porous
+     * particles back on their crush curve, as after the leapfrog's kick */
+    const struct cell *c = e->tcells[t];
+    for (size_t i = c->offset; i < c->offset + c->count; i++)
+      kick2_porous_return(&e->parts, i, e->mats, e->hp.continuity);
+  }
 }
 
 /** Which particle and which criterion set the smallest time step (the
