@@ -149,8 +149,7 @@ def run(d, scheme, ic, dt, tag):
     r = subprocess.run(cmd, cwd=d, capture_output=True, text=True)
     if r.returncode != 0:
         print(r.stdout[-2000:], r.stderr[-2000:])
-        print(f"FAIL {scheme}: bolide exited with {r.returncode} ({' '.join(cmd[1:])})")
-        sys.exit(1)
+        raise RuntimeError(f"bolide exited with {r.returncode} ({' '.join(cmd[1:])})")
     out = os.path.join(d, f"out_{tag}")
     with h5py.File(os.path.join(out, "s_0001.hdf5"), "r") as f:
         g = f["PartType0"]
@@ -187,10 +186,14 @@ def main():
         for scheme in SCHEMES:
             ts = time.time()
             runs = {}
-            for m in HALVINGS + (REF,):
-                runs[m] = run(d, scheme, "wave.hdf5", DT / m, f"{scheme}_{m}")
-            for m in HALVINGS:
-                runs[("late", m)] = run(d, scheme, f"late{m}.hdf5", DT / m, f"{scheme}_late{m}")
+            try:
+                for m in HALVINGS + (REF,):
+                    runs[m] = run(d, scheme, "wave.hdf5", DT / m, f"{scheme}_{m}")
+                for m in HALVINGS:
+                    runs[("late", m)] = run(d, scheme, f"late{m}.hdf5", DT / m, f"{scheme}_late{m}")
+            except RuntimeError as err:
+                check(False, f"{scheme}: {err}")
+                continue
             for key, (t, x, v, n, dev) in runs.items():
                 m = key[1] if isinstance(key, tuple) else key
                 want = round(T_END * m / DT)
