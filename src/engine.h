@@ -117,8 +117,6 @@ struct engine {
   int scheme;                      /**< TimeIntegration:scheme (enum engine_scheme) */
   int stage_eval;    /**< 1 while evaluating a stage of an rk2/pc step that is not its end: the
                           damage does not grow (it grows once, over the step, at its end) */
-  int rk_final_eval; /**< 1 while evaluating the end of an rk2/pc step (the kick returns porous
-                          particles to their crush curve) */
   const struct drift_stage *stage; /**< the stage the drift tasks put (rk2/pc), NULL: kdk */
   double *stage_err;        /**< per task cell, the largest error estimate of its drift (rk2) */
   struct engine_rk *rk;     /**< the rk2/pc integrator's state (src/engine_integrate.c) */

@@ -28,6 +28,9 @@
 #include "src/io/params.h"
 #include "tasks/drift/drift_rk.h"
 #include "tasks/task_families.h"
+#ifdef HAVE_CUDA
+#include "src/gpu/gpu_engine.h"
+#endif
 
 /** What the integrator keeps between the stages of a step. */
 struct engine_rk {
@@ -35,6 +38,7 @@ struct engine_rk {
   double *y0;      /**< the state at the step's start, DRIFT_RK_NY per particle */
   double *r1, *r2; /**< the evaluations at its start and (rk2) at its middle */
   size_t cap;      /**< particles the arrays hold */
+  int on_gpu;      /**< the arrays are the device's (gpu_engine_rk_arrays) */
   long rejected;   /**< rk2 steps taken again with a shorter step */
   long redone;     /**< steps taken again after a rebuild in their middle */
   long stages;     /**< evaluations inside the steps (the ends' not counted) */
@@ -68,9 +72,11 @@ void engine_integrate_init(struct engine *e) {
 
 void engine_integrate_free(struct engine *e) {
   if (!e->rk) return;
-  free(e->rk->y0);
-  free(e->rk->r1);
-  free(e->rk->r2);
+  if (!e->rk->on_gpu) {
+    free(e->rk->y0);
+    free(e->rk->r1);
+    free(e->rk->r2);
+  }
   free(e->stage_err);
   free(e->rk);
   e->rk = NULL;
@@ -82,7 +88,18 @@ void engine_integrate_free(struct engine *e) {
 static void engine_integrate_alloc(struct engine *e) {
   struct engine_rk *rk = e->rk;
   const size_t n = e->parts.count ? e->parts.count : 1;
-  if (n > rk->cap) {
+#ifdef HAVE_CUDA
+  if (e->gpu) {
+    /* on the device, beside the resident particles */
+    double *r[2] = {NULL, NULL};
+    gpu_engine_rk_arrays(e, DRIFT_RK_NY, DRIFT_RK_NR, e->scheme == ENGINE_SCHEME_RK2 ? 2 : 1,
+                         &rk->y0, r);
+    rk->r1 = r[0];
+    rk->r2 = r[1];
+    rk->on_gpu = 1;
+  }
+#endif
+  if (!rk->on_gpu && n > rk->cap) {
     rk->y0 = error_realloc(rk->y0, n * DRIFT_RK_NY * sizeof(double), "integrator state");
     rk->r1 = error_realloc(rk->r1, n * DRIFT_RK_NR * sizeof(double), "integrator rates");
     if (e->scheme == ENGINE_SCHEME_RK2)
@@ -112,7 +129,7 @@ static double engine_integrate_stage(struct engine *e, const struct drift_stage 
  *  put; rebuilt: a rebuild came before it (no far field to reuse). */
 static void engine_integrate_eval(struct engine *e, int rebuilt, int final) {
   e->stage_eval = !final;
-  e->rk_final_eval = final;
+  e->hp.stage_end = final;
   gravity_active_decide(e, 1);
   gravity_reuse_decide(e, rebuilt);
   const double wf = error_walltime();
@@ -120,7 +137,7 @@ static void engine_integrate_eval(struct engine *e, int rebuilt, int final) {
   e->t_eval += error_walltime() - wf;
   e->nr_eval++;
   gravity_reuse_remember(e);
-  e->stage_eval = e->rk_final_eval = 0;
+  e->stage_eval = e->hp.stage_end = 0;
   if (!final) e->rk->stages++;
 }
 
@@ -128,6 +145,12 @@ static void engine_integrate_eval(struct engine *e, int rebuilt, int final) {
  *  evaluation there), for a rebuild before the step is taken again. */
 static void engine_integrate_restore(struct engine *e) {
   struct engine_rk *rk = e->rk;
+#ifdef HAVE_CUDA
+  if (rk->on_gpu) {
+    gpu_engine_rk_restore(e, rk->y0, rk->r1);
+    return;
+  }
+#endif
   for (size_t i = 0; i < e->parts.count; i++)
     drift_rk_restore(&e->parts, i, rk->y0 + (size_t)DRIFT_RK_NY * i,
                      rk->r1 + (size_t)DRIFT_RK_NR * i);

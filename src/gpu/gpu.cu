@@ -110,6 +110,9 @@ struct gpu {
   size_t wd_cap;                /**< their allocated length per coordinate */
   unsigned long long *wd_dev;   /**< watchdog: first bad particle per check (GPU_WD_N) */
   unsigned long long *wd_host;  /**< pinned copy of it */
+  double *rk_buf;               /**< the rk2/pc integrator's arrays (gpu_rk_arrays) */
+  size_t rk_bytes;              /**< their size */
+  unsigned long long *rk_err;   /**< the largest error estimate of a stage */
 };
 
 /** Slots of the watchdog's results (gpu_watchdog_check): one per double
@@ -582,6 +585,48 @@ extern "C" void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double
   g->drifts++;
 }
 
+extern "C" void gpu_rk_arrays(struct gpu *g, size_t n, int ny, int nr, int nrec, double **y0,
+                              double **r) {
+  const size_t bytes = (n ? n : 1) * (size_t)(ny + nrec * nr) * sizeof(double);
+  if (bytes > g->rk_bytes) {
+    if (g->rk_buf) gpu_check(cudaFree(g->rk_buf));
+    gpu_check(cudaMalloc((void **)&g->rk_buf, bytes));
+    g->rk_bytes = bytes;
+  }
+  if (!g->rk_err) gpu_check(cudaMalloc((void **)&g->rk_err, sizeof *g->rk_err));
+  *y0 = g->rk_buf;
+  for (int k = 0; k < nrec; k++) r[k] = g->rk_buf + (n ? n : 1) * (size_t)(ny + k * nr);
+}
+
+extern "C" double gpu_drift_stage(struct gpu *g, struct parts *p, const struct drift_stage *st,
+                                  const struct hydro_props *hp) {
+  if (p->count != g->dev.count) error_bug("GPU and host particle counts differ");
+  gpu_pin(g, p);
+  cudaStream_t s = g->stream[0];
+  gpu_check(cudaEventRecord(g->ev_drift[0], s));
+  gpu_check(cudaMemsetAsync(g->rk_err, 0, sizeof *g->rk_err, s));
+  drift_stage_gpu_launch(s, g->dev, st, *hp, g->rk_err);
+  const int idx[4] = {gpu_field_index("x"), gpu_field_index("y"), gpu_field_index("z"),
+                      gpu_field_index("h")};
+  gpu_copy_fields(g, p, idx, 4, 0);
+  unsigned long long bits = 0;
+  gpu_check(cudaMemcpyAsync(&bits, g->rk_err, sizeof bits, cudaMemcpyDeviceToHost, s));
+  gpu_check(cudaEventRecord(g->ev_drift[1], s));
+  gpu_check(cudaStreamSynchronize(s));
+  float ms = 0.0f;
+  gpu_check(cudaEventElapsedTime(&ms, g->ev_drift[0], g->ev_drift[1]));
+  g->t_drift += ms;
+  g->drifts++;
+  double err;
+  memcpy(&err, &bits, sizeof err);
+  return err;
+}
+
+extern "C" void gpu_rk_restore(struct gpu *g, const double *y0, const double *r1) {
+  drift_restore_gpu_launch(g->stream[0], g->dev, y0, r1);
+  gpu_check(cudaStreamSynchronize(g->stream[0]));
+}
+
 /* ------------------------------------------------------------------------ */
 /* the watchdog (engine.c): the checks of the CPU's engine_watchdog_* on the  */
 /* resident particles, each a pass over the device arrays that records the    */
@@ -747,6 +792,8 @@ extern "C" void gpu_bytes_moved(const struct gpu *g, double *h2d, double *d2h) {
 extern "C" void gpu_free(struct gpu *g) {
   if (!g) return;
   gpu_unpin(g);
+  if (g->rk_buf) gpu_check(cudaFree(g->rk_buf));
+  if (g->rk_err) gpu_check(cudaFree(g->rk_err));
   for (int k = 0; k < part_nr_fields; k++) {
     void **slot = gpu_field_slot(&g->dev, k);
     if (*slot) gpu_check(cudaFree(*slot));

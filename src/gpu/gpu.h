@@ -138,6 +138,21 @@ void gpu_download_all(struct gpu *g, struct parts *p);
  *  on a rebuild and to build the neighbour lists). */
 void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt,
                const struct hydro_props *hp, const struct material_table *mats);
+/** The rk2/pc integrator's device arrays (src/engine_integrate.c): for n
+ *  particles ny doubles of state (*y0) and nrec records of nr doubles
+ *  (r[0 .. nrec)); kept, and made again only for a larger n, until
+ *  gpu_free. */
+void gpu_rk_arrays(struct gpu *g, size_t n, int ny, int nr, int nrec, double **y0, double **r);
+struct drift_stage;
+/** A stage of rk2 or pc on the resident particles (drift_rk_stage, st's
+ *  arrays those of gpu_rk_arrays), then the positions and smoothing
+ *  lengths back to the host as gpu_drift; returns the largest error
+ *  estimate (0 without st->err). */
+double gpu_drift_stage(struct gpu *g, struct parts *p, const struct drift_stage *st,
+                       const struct hydro_props *hp);
+/** The step's start (y0, r1 of gpu_rk_arrays) back into the resident
+ *  particles (drift_rk_restore). */
+void gpu_rk_restore(struct gpu *g, const double *y0, const double *r1);
 /** The watchdog (engine.c) on the resident particles.  gpu_watchdog_save:
  *  keep the positions before the drift on the device (a device copy, queued
  *  before the drift).  gpu_watchdog_moved: after the drift, the first

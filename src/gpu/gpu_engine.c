@@ -541,8 +541,6 @@ void gpu_engine_init(struct engine *e) {
                                   "implementation yet"
                             : e->nr_planes > 0
                                 ? "Boundaries:planes (mirror ghosts) has no GPU implementation yet"
-                            : e->scheme != ENGINE_SCHEME_KDK
-                                ? "TimeIntegration:scheme rk2 and pc have no GPU implementation yet"
                                 : gpu_engine_cpu_only(e);
   if (unsupported) {
     if (required) error_exit("a GPU was required (%s) but %s", asked, unsupported);
@@ -776,10 +774,12 @@ void gpu_engine_force(struct engine *e) {
   struct gpu_hydro_job jb;
   memset(&jb, 0, sizeof jb);
   jb.e = e;
-  jb.dt_kick = e->first_force ? 0.0 : 0.5 * e->dt;
+  /* (rk2/pc: no kick, the drift's stages put the states; damage grows
+   * only at a step's end: src/engine_integrate.c) */
+  jb.dt_kick = e->first_force || e->scheme != ENGINE_SCHEME_KDK ? 0.0 : 0.5 * e->dt;
   /* no damage before Damage:start_time (damage_task does the same) */
   jb.dmg = (struct gpu_damage){e->damage && !(e->time < e->damage_start),
-                               e->first_force ? 0.0 : e->dt, e->damage_max_change};
+                               e->first_force || e->stage_eval ? 0.0 : e->dt, e->damage_max_change};
   jb.grav = (struct gpu_gravity){e->gp.enabled, e->gp.eps, e->gp.eta, e->gp.h_factor};
   const int hybrid = e->gp.enabled && ge->mode != GPU_MODE_SERIAL;
   const int on_gpu = ge->mode != GPU_MODE_CPU_GRAV;
@@ -863,7 +863,10 @@ void gpu_engine_drift(struct engine *e) {
     gpu_upload_all(ge->gpu, &e->parts);
     ge->dev_valid = 1;
   }
-  gpu_drift(ge->gpu, &e->parts, 0.5 * e->dt, e->dt, &e->hp, e->mats);
+  if (e->stage) /* a stage of rk2 or pc (src/engine_integrate.c) */
+    e->stage_err[0] = gpu_drift_stage(ge->gpu, &e->parts, e->stage, &e->hp);
+  else
+    gpu_drift(ge->gpu, &e->parts, 0.5 * e->dt, e->dt, &e->hp, e->mats);
   ge->host_stale = 1;
   /* positions and h are back: the bounds the rebuild test and the lists read */
   const double w0 = error_walltime();
@@ -879,6 +882,16 @@ static void gpu_engine_resident(struct engine *e) {
     gpu_upload_all(ge->gpu, &e->parts);
     ge->dev_valid = 1;
   }
+}
+
+void gpu_engine_rk_arrays(struct engine *e, int ny, int nr, int nrec, double **y0, double **r) {
+  gpu_rk_arrays(e->gpu->gpu, e->parts.count, ny, nr, nrec, y0, r);
+}
+
+void gpu_engine_rk_restore(struct engine *e, const double *y0, const double *r1) {
+  gpu_engine_resident(e);
+  gpu_rk_restore(e->gpu->gpu, y0, r1);
+  e->gpu->host_stale = 1;
 }
 
 void gpu_engine_watchdog_save(struct engine *e) {

@@ -93,6 +93,12 @@ void gpu_engine_force(struct engine *e);
 /** The DRIFT phase on the GPU: kick1 and drift of the resident particles;
  *  positions and h come back, the cells' bounds are updated. */
 void gpu_engine_drift(struct engine *e);
+/** TimeIntegration:scheme rk2 and pc on the GPU (src/engine_integrate.c):
+ *  the device arrays of the step's start and records (gpu_rk_arrays: ny
+ *  and nrec x nr doubles per particle) into *y0 and r[]; the step's start
+ *  put back into the resident particles (drift_rk_restore). */
+void gpu_engine_rk_arrays(struct engine *e, int ny, int nr, int nrec, double **y0, double **r);
+void gpu_engine_rk_restore(struct engine *e, const double *y0, const double *r1);
 /** The watchdog's checks on the device (engine.c; gpu_watchdog_*): keep
  *  the positions before the drift; after it, the first particle that moved
  *  more than width (-1: none; else the saved positions are copied into

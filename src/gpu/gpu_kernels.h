@@ -114,6 +114,14 @@ void force_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
 /** First half kick and drift of every particle (tasks/drift/drift_gpu.cu). */
 void drift_gpu_launch(cudaStream_t s, struct parts p, double dt_kick, double dt, double xsph,
                       double h_max, int h_continuity);
+/** A stage of TimeIntegration:scheme rk2 or pc (drift_rk_stage; st's arrays
+ *  on the device); the largest error estimate into *err (as the bits of a
+ *  non-negative double, atomicMax; zero it first). */
+struct drift_stage;
+void drift_stage_gpu_launch(cudaStream_t s, struct parts p, const struct drift_stage *st,
+                            struct hydro_props hp, unsigned long long *err);
+/** The state y0 and the evaluation r1 back into the particles (drift_rk_restore). */
+void drift_restore_gpu_launch(cudaStream_t s, struct parts p, const double *y0, const double *r1);
 /** The same with time bins, from bins.ti_old to bins.ti_new (drift_part_bins,
  *  with the device's material table mats). */
 void drift_bins_gpu_launch(cudaStream_t s, struct parts p, const struct gpu_bins *bins,

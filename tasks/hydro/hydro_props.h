@@ -15,6 +15,9 @@ struct hydro_props {
   int h_continuity;   /**< SPH:h_evolution: continuity (dh/dt = -h/(3 rho) drho/dt, no iteration) */
   int bin_limit;      /**< time bins: TimeIntegration:max_bin_ratio (the force loop's limiter);
                            0 with the global step */
+  int stage_end;      /**< 1 during the evaluation at the end of a step of TimeIntegration:scheme
+                           rk2 or pc: the kick, which kicks nothing there, returns porous
+                           particles to their crush curve (src/engine_integrate.c) */
   double cfl;         /**< Courant factor */
   double log_max_volume_change; /**< ln of the largest kernel-volume change per step */
   double alpha;                 /**< artificial viscosity alpha (Monaghan 1997) */

@@ -92,7 +92,8 @@ BOLIDE_INLINE double kick2_part(struct parts *BOLIDE_RESTRICT p, size_t i, doubl
   if (hp->solids) kick2_plastic_return(p, i, mats);
   kick_sync_predicted(p, i);
   const double dt = timestep_part(p, i, hp, mats, tp);
-  if (tp->porous && dt_kick > 0.0) kick2_porous_return(p, i, mats, hp->continuity);
+  if (tp->porous && (dt_kick > 0.0 || hp->stage_end))
+    kick2_porous_return(p, i, mats, hp->continuity);
   return dt;
 }
 

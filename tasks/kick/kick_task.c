@@ -6,7 +6,6 @@
 
 #include "src/engine.h"
 #include "tasks/kick/kick_cpu.h"
-#include "tasks/kick/kick_porous.h"
 #include "tasks/kick/timestep.h"
 
 /** Second half kick and new time step of a task cell (kick2_part, the same
@@ -44,13 +43,6 @@ void kick2_task(struct engine *e, struct task *tk) {
         kick2_cell_cpu(&e->parts, e->tcells[t],
                        e->first_force || e->scheme != ENGINE_SCHEME_KDK ? 0.0 : 0.5 * e->dt, &e->hp,
                        e->mats, &tp, &e->timeline, bins);
-  if (e->rk_final_eval && tp.porous) {
-    /* rk2/pc (nothing kicked: the drift put the step's end): porous
-     * particles back on their crush curve, as after the leapfrog's kick */
-    const struct cell *c = e->tcells[t];
-    for (size_t i = c->offset; i < c->offset + c->count; i++)
-      kick2_porous_return(&e->parts, i, e->mats, e->hp.continuity);
-  }
 }
 
 /** Which particle and which criterion set the smallest time step (the
