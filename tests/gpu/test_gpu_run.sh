@@ -18,6 +18,8 @@
 #     field replay the interactions on the GPU (gravity_replay on the CPU).
 #  5. Individual time steps (time bins): the Evrard collapse and the solid
 #     impact, the same steps and particles kicked on both.
+#  6. The rk2 and pc integrators: the solid impact and the Evrard collapse
+#     with rk2, the porous cube with pc, the same steps on both.
 # The runs differ only by the order of the SPH sums (round-off, ~1e-15
 # relative per step, amplified along the run), so every column must agree
 # to 1e-8 relative to its scale (mass, E_tot, or sum m|v| for momenta).
@@ -194,6 +196,30 @@ for b in evbins imbins; do
   echo "$b: $(wc -l <$b/cpu/steps.txt) steps, the same particles kicked on the CPU and the GPU ($(awk '{s += $4} END {print s}' $b/cpu/steps.txt) updates)"
 done
 
+# 6. the rk2 and pc integrators (TimeIntegration:scheme, theory/integrators.md):
+# their stages on the device (drift_rk_stage in tasks/drift/drift_gpu.cu, the
+# step's start and records in device memory): the solid + damage impact and
+# the Evrard collapse with rk2, the porous cube with pc (its crush-curve
+# return at each step's end); the same steps on both
+for c in imrk2 evrk2 porpc; do mkdir -p $c/cpu $c/gpu; done
+for m in cpu gpu; do
+  cp impact/$m/impact.hdf5 impact/$m/params.yml imrk2/$m/
+  cp evrard/$m/evrard.hdf5 evrard/$m/params.yml evrk2/$m/
+  cp porous/$m/block.hdf5 porous/$m/params.yml porpc/$m/
+done
+run imrk2 20 -P TimeIntegration:scheme:rk2
+run evrk2 20 -P TimeIntegration:scheme:rk2
+run porpc 40 -P TimeIntegration:scheme:pc
+for c in imrk2 evrk2 porpc; do
+  grep -q "GPU not used" $c/gpu/run.log && { echo "FAIL: the $c run did not use the GPU"; exit 1; }
+  grep -q "time integration: \(rk2\|pc\)" $c/gpu/run.log || { echo "FAIL: $c: not the scheme asked for"; exit 1; }
+  awk 'NF == 6 && $1 ~ /^[0-9]+$/ {print $1, $2, $3}' $c/cpu/run.log >$c/cpu/steps.txt
+  awk 'NF == 6 && $1 ~ /^[0-9]+$/ {print $1, $2, $3}' $c/gpu/run.log >$c/gpu/steps.txt
+  cmp -s $c/cpu/steps.txt $c/gpu/steps.txt ||
+    { echo "FAIL: $c: the CPU and GPU runs took other steps"; diff $c/cpu/steps.txt $c/gpu/steps.txt | head -5; exit 1; }
+  echo "$c: $(wc -l <$c/cpu/steps.txt) steps, the same on the CPU and the GPU; $(grep -h "time integration [rp]" $c/gpu/run.log | sed 's/.*time integration //')"
+done
+
 fail=0
 compare sedov || fail=1
 compare impact || fail=1
@@ -226,4 +252,7 @@ compare evrard || fail=1
 compare reuse || fail=1
 compare evbins || fail=1
 compare imbins || fail=1
+compare imrk2 || fail=1
+compare evrk2 || fail=1
+compare porpc || fail=1
 exit $fail
