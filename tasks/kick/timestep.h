@@ -15,6 +15,8 @@
 #include "src/materials/material.h"
 #include "src/part.h"
 #include "src/materials/viscosity.h"
+#include "src/sym3.h"
+#include "tasks/gradient/gradient_finish.h"
 
 /** Norm sqrt(T:T) of a symmetric tensor (xx xy xz yy yz zz). */
 BOLIDE_INLINE double timestep_sym_norm(const double T[6]) {
@@ -45,6 +47,23 @@ BOLIDE_INLINE double timestep_relative_change(const struct hydro_props *hp, doub
   return dt;
 }
 
+/** With SPH:continuity_correction (CSPM continuity, theory/solids.md E14):
+ *  the factor sqrt(lambda_min) on the Courant step of particle i, lambda_min
+ *  the smallest eigenvalue of its correction-tensor sum M (gradient_iact.h;
+ *  the identity for a full kernel), where it is below 1: a truncated
+ *  kernel (a free surface, an edge, a corner) whose M^-1 multiplies the
+ *  density rate's response to a compression by up to 1/lambda_min, a
+ *  stiffer oscillator whose stable step is shorter by sqrt(lambda_min)
+ *  (theory/fluids.md, "CSPM density at free corners").  1 where M is not
+ *  inverted (gradient_invert_sym: the uncorrected divergence is used). */
+BOLIDE_INLINE double timestep_cspm_factor(const struct parts *BOLIDE_RESTRICT p, size_t i) {
+  const double M[6] = {p->gmxx[i], p->gmxy[i], p->gmxz[i], p->gmyy[i], p->gmyz[i], p->gmzz[i]};
+  double Minv[9], lam[3];
+  if (gradient_invert_sym(M, Minv) != 0) return 1.0;
+  sym3_eigen(M, lam, NULL);
+  return lam[2] > 0.0 && lam[2] < 1.0 ? sqrt(lam[2]) : 1.0;
+}
+
 /** The criteria of timestep_part_criteria, in the order of its array. */
 enum timestep_criterion {
   TIMESTEP_COURANT = 0, /**< 2 C H / v_sig */
@@ -54,6 +73,7 @@ enum timestep_criterion {
   TIMESTEP_RELATIVE,    /**< relative change of rho, u or S (SPH:max_relative_change) */
   TIMESTEP_DAMAGE,      /**< damage growth (Damage:max_change) */
   TIMESTEP_GRAVITY,     /**< sqrt(2 eta eps_i / |a_grav|) */
+  TIMESTEP_CSPM,        /**< the Courant step times sqrt(lambda_min(M)) (CSPM continuity) */
   TIMESTEP_NR
 };
 
@@ -87,6 +107,8 @@ BOLIDE_INLINE const char *timestep_criterion_name(int k) {
       return "damage growth";
     case TIMESTEP_GRAVITY:
       return "gravitational criterion (eps_i, |a_grav|)";
+    case TIMESTEP_CSPM:
+      return "Courant condition of a truncated kernel with CSPM continuity (h, v_sig, M)";
     default:
       return "none";
   }
@@ -110,6 +132,8 @@ BOLIDE_INLINE double timestep_part_criteria(const struct parts *BOLIDE_RESTRICT 
     const double H = kernel_gamma * p->h[i];
     const double a = sqrt(p->ax[i] * p->ax[i] + p->ay[i] * p->ay[i] + p->az[i] * p->az[i]);
     if (p->v_sig[i] > 0.0) d[TIMESTEP_COURANT] = 2.0 * hp->cfl * H / p->v_sig[i];
+    if (hp->continuity_cspm && d[TIMESTEP_COURANT] < 1e300)
+      d[TIMESTEP_CSPM] = d[TIMESTEP_COURANT] * timestep_cspm_factor(p, i);
     if (a > 0.0) d[TIMESTEP_ACCEL] = sqrt(2.0 * hp->cfl * H / a);
     if (p->div_v[i] != 0.0) d[TIMESTEP_VOLUME] = hp->log_max_volume_change / fabs(p->div_v[i]);
     if (hp->solids) {

@@ -8,6 +8,9 @@
  *    absolute softening, and with eps_i = softening_h_factor h_i when the
  *    softening is tied to h (once applied by the CPU kick alone);
  *  - without hydrodynamics only the gravitational criterion;
+ *  - with CSPM continuity the Courant step times sqrt(lambda_min(M)) of a
+ *    truncated kernel (M = diag(1, 1, 0.25), rotated: 0.5), none for a
+ *    full one (M = I), none without the option or where M is singular;
  *  - the criteria's names. */
 #include <math.h>
 #include <stdio.h>
@@ -85,6 +88,28 @@ int main(void) {
   CHECK(close_to(dt, grav_h), "gravity only: dt %g (%g)", dt, grav_h);
   timestep_part_criteria(&p, 0, &hp, &t, &tp, d);
   CHECK(d[TIMESTEP_COURANT] == 1e300 && d[TIMESTEP_ACCEL] == 1e300, "no hydrodynamic criterion");
+  parts_free(&p);
+
+  /* CSPM continuity: a truncated kernel's M, diag(1, 1, 0.25) rotated by
+   * 45 degrees about x (its eigenvalues unchanged): sqrt(0.25) = 0.5 */
+  one_particle(&p);
+  tp.hydro = 1;
+  tp.gravity = 0;
+  p.gmxx[0] = 1.0, p.gmyy[0] = p.gmzz[0] = 0.625, p.gmyz[0] = 0.375;
+  timestep_part_criteria(&p, 0, &hp, &t, &tp, d);
+  CHECK(d[TIMESTEP_CSPM] == 1e300, "no CSPM criterion without continuity_correction");
+  hp.continuity_cspm = 1;
+  dt = timestep_part_criteria(&p, 0, &hp, &t, &tp, d);
+  CHECK(close_to(d[TIMESTEP_CSPM], 0.5 * courant) && dt == d[TIMESTEP_CSPM],
+        "CSPM, lambda_min 0.25: %g (%g)", d[TIMESTEP_CSPM], 0.5 * courant);
+  p.gmyy[0] = p.gmzz[0] = 1.0, p.gmyz[0] = 0.0;
+  dt = timestep_part_criteria(&p, 0, &hp, &t, &tp, d);
+  CHECK(close_to(d[TIMESTEP_CSPM], courant) && close_to(dt, courant), "CSPM, full kernel: %g (%g)",
+        d[TIMESTEP_CSPM], courant);
+  p.gmyy[0] = p.gmzz[0] = p.gmyz[0] = 0.0; /* singular: the uncorrected divergence */
+  timestep_part_criteria(&p, 0, &hp, &t, &tp, d);
+  CHECK(close_to(d[TIMESTEP_CSPM], courant), "CSPM, singular M: no limit (%g)", d[TIMESTEP_CSPM]);
+  hp.continuity_cspm = 0;
   parts_free(&p);
 
   CHECK(strstr(timestep_criterion_name(TIMESTEP_COURANT), "Courant") != NULL, "Courant's name");
