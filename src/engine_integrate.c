@@ -55,11 +55,6 @@ void engine_integrate_init(struct engine *e) {
                  "scheme %s takes one step for every particle: set TimeIntegration:global_step: "
                  "true (time bins run with kdk only)",
                  name);
-  if (e->nr_planes > 0)
-    params_error(e->params, "TimeIntegration:scheme",
-                 "scheme %s does not run with Boundaries:planes (mirror ghosts follow the "
-                 "leapfrog's drift); use kdk or fixed boundary particles",
-                 name);
   struct engine_rk *rk = error_calloc(1, sizeof *rk, "integrator state");
   rk->tol = params_get_real(e->params, "TimeIntegration:rk2_tolerance");
   e->rk = rk;
