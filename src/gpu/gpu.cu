@@ -559,6 +559,25 @@ extern "C" void gpu_download_all(struct gpu *g, struct parts *p) {
   gpu_check(cudaStreamSynchronize(g->stream[0]));
 }
 
+/** After a drift's kernel on stream 0: the positions and smoothing lengths
+ *  back to the host (what the rebuild test and the neighbour lists read),
+ *  with err_bits the stage's error estimate (gpu_drift_stage; NULL: none),
+ *  then the drift's time. */
+static void gpu_drift_finish(struct gpu *g, struct parts *p, unsigned long long *err_bits) {
+  cudaStream_t s = g->stream[0];
+  const int idx[4] = {gpu_field_index("x"), gpu_field_index("y"), gpu_field_index("z"),
+                      gpu_field_index("h")};
+  gpu_copy_fields(g, p, idx, 4, 0);
+  if (err_bits)
+    gpu_check(cudaMemcpyAsync(err_bits, g->rk_err, sizeof *err_bits, cudaMemcpyDeviceToHost, s));
+  gpu_check(cudaEventRecord(g->ev_drift[1], s));
+  gpu_check(cudaStreamSynchronize(s));
+  float ms = 0.0f;
+  gpu_check(cudaEventElapsedTime(&ms, g->ev_drift[0], g->ev_drift[1]));
+  g->t_drift += ms;
+  g->drifts++;
+}
+
 extern "C" void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt,
                           const struct hydro_props *hp, const struct material_table *mats) {
   if (p->count != g->dev.count) error_bug("GPU and host particle counts differ");
@@ -574,15 +593,7 @@ extern "C" void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double
   } else {
     drift_gpu_launch(s, g->dev, dt_kick, dt, hp->xsph, hp->h_max, hp->h_continuity);
   }
-  const int idx[4] = {gpu_field_index("x"), gpu_field_index("y"), gpu_field_index("z"),
-                      gpu_field_index("h")};
-  gpu_copy_fields(g, p, idx, 4, 0);
-  gpu_check(cudaEventRecord(g->ev_drift[1], s));
-  gpu_check(cudaStreamSynchronize(s));
-  float ms = 0.0f;
-  gpu_check(cudaEventElapsedTime(&ms, g->ev_drift[0], g->ev_drift[1]));
-  g->t_drift += ms;
-  g->drifts++;
+  gpu_drift_finish(g, p, NULL);
 }
 
 extern "C" void gpu_rk_arrays(struct gpu *g, size_t n, int ny, int nr, int nrec, double **y0,
@@ -606,17 +617,8 @@ extern "C" double gpu_drift_stage(struct gpu *g, struct parts *p, const struct d
   gpu_check(cudaEventRecord(g->ev_drift[0], s));
   gpu_check(cudaMemsetAsync(g->rk_err, 0, sizeof *g->rk_err, s));
   drift_stage_gpu_launch(s, g->dev, st, *hp, g->rk_err);
-  const int idx[4] = {gpu_field_index("x"), gpu_field_index("y"), gpu_field_index("z"),
-                      gpu_field_index("h")};
-  gpu_copy_fields(g, p, idx, 4, 0);
   unsigned long long bits = 0;
-  gpu_check(cudaMemcpyAsync(&bits, g->rk_err, sizeof bits, cudaMemcpyDeviceToHost, s));
-  gpu_check(cudaEventRecord(g->ev_drift[1], s));
-  gpu_check(cudaStreamSynchronize(s));
-  float ms = 0.0f;
-  gpu_check(cudaEventElapsedTime(&ms, g->ev_drift[0], g->ev_drift[1]));
-  g->t_drift += ms;
-  g->drifts++;
+  gpu_drift_finish(g, p, &bits);
   double err;
   memcpy(&err, &bits, sizeof err);
   return err;

@@ -33,26 +33,15 @@ import tempfile
 
 import h5py
 import numpy as np
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
-from scipy.spatial import cKDTree
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from test_rubber_rings import DX, V0, pieces  # noqa: E402  (friends-of-friends pieces, linking 1.5 dx)
 
 src = os.environ.get("BOLIDE_SRCDIR", os.path.join(os.path.dirname(__file__), "..", ".."))
 build = os.environ.get("BOLIDE_BUILDDIR", ".")
 bolide = os.path.join(build, "bolide")
 example = os.path.join(src, "examples", "RubberRings")
-DX = 0.0025
 T_END = 2.0e-3
-V0 = 0.059 * 852.0
-
-
-def pieces(pos):
-    """Friends-of-friends groups (linking length 1.5 dx) of >= 10 particles."""
-    pairs = cKDTree(pos).query_pairs(1.5 * DX, output_type="ndarray")
-    n = len(pos)
-    g = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
-    _, lab = connected_components(g, directed=False)
-    return int(np.sum(np.bincount(lab) >= 10))
 
 
 def run(d, scheme):

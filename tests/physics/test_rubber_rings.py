@@ -29,6 +29,7 @@ build = os.environ.get("BOLIDE_BUILDDIR", ".")
 bolide = os.path.join(build, "bolide")
 example = os.path.join(src, "examples", "RubberRings")
 DX = 0.0025
+V0 = 0.059 * 852.0  # each ring's approach speed (examples/RubberRings/make_ic.py)
 
 
 def pieces(pos):
@@ -80,7 +81,7 @@ def main():
         a_l, a_r, _, _ = state(os.path.join(d, "no_as", "rings_0001.hdf5"))
         b_l, b_r, b_big, _ = state(os.path.join(d, "no_as", "rings_0003.hdf5"))
         c_l, c_r, c_big, c_vx = state(os.path.join(d, "with_as", "rings_0004.hdf5"))
-    v0 = 0.059 * 852.0
+    v0 = V0
     print("colliding rubber rings, plane strain, dx = 2.5 mm:")
     checks = [
         ("no artificial stress, 0.5 ms: pieces L+R = 1+1", f"{a_l}+{a_r}", a_l == 1 and a_r == 1),

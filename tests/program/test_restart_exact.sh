@@ -21,6 +21,19 @@ H=$(cd "$(dirname "$0")/../helpers" && pwd) # restart_compare.py
 PY=${PYTHON:-python3}
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
+
+# resume WHAT "N1 N2 ... -1" ARGS...: resume from the restart file of the
+# part before with --restart, stopping at each step count N (-1: to the end),
+# bolide's other arguments ARGS; logs b1.log, b2.log, ...
+resume() {
+  local what=$1 stops=$2 k=0 n
+  shift 2
+  for n in $stops; do
+    k=$((k + 1))
+    if [ "$n" -lt 0 ]; then opt=(); else opt=(-n "$n"); fi
+    "$B/bolide" -t 1 --restart "${opt[@]}" "$@" p.yml >b$k.log 2>&1 || { echo "FAIL: resumed $what $k"; tail -3 b$k.log; exit 1; }
+  done
+}
 "$B/bolide-ic" sod --nx 16 --size 2,1,1 -o sod.hdf5 >/dev/null
 cat >p.yml <<'YML'
 InitialConditions:
@@ -45,12 +58,7 @@ echo "uninterrupted run: $steps steps, $(ls A/*.hdf5 | wc -l) snapshots"
 # stop at a few steps, resume each time from the last stop
 set -- -P Snapshots:subdir:B -P Restarts:subdir:B/restart
 "$B/bolide" -t 1 -n 3 "$@" p.yml >b0.log 2>&1 || { echo "FAIL: first part"; tail -3 b0.log; exit 1; }
-k=0
-for n in 7 12 20 -1; do
-  k=$((k + 1))
-  if [ "$n" -lt 0 ]; then opt=(); else opt=(-n "$n"); fi
-  "$B/bolide" -t 1 --restart "${opt[@]}" "$@" p.yml >b$k.log 2>&1 || { echo "FAIL: resumed run $k"; tail -3 b$k.log; exit 1; }
-done
+resume "run" "7 12 20 -1" "$@"
 grep -q "resumed from" b1.log || { echo "FAIL: no resume message"; fail=1; }
 "$PY" "$H/restart_compare.py" A B || fail=1
 
@@ -76,12 +84,7 @@ echo "uninterrupted gravity run: $steps steps, ${reused:-0} reused the far field
 [ "${reused:-0}" -gt 0 ] || { echo "FAIL: no step reused the far field (test set-up)"; exit 1; }
 set -- --no-gpu -P Snapshots:subdir:B -P Restarts:subdir:B/restart
 "$B/bolide" -t 1 -n 2 "$@" p.yml >b0.log 2>&1 || { echo "FAIL: first part (gravity)"; tail -3 b0.log; exit 1; }
-k=0
-for n in 5 7 11 14 -1; do
-  k=$((k + 1))
-  if [ "$n" -lt 0 ]; then opt=(); else opt=(-n "$n"); fi
-  "$B/bolide" -t 1 --restart "${opt[@]}" "$@" p.yml >b$k.log 2>&1 || { echo "FAIL: resumed gravity run $k"; tail -3 b$k.log; exit 1; }
-done
+resume "gravity run" "5 7 11 14 -1" "$@"
 grep -q "resumed from" b1.log || { echo "FAIL: no resume message (gravity)"; fail=1; }
 "$PY" "$H/restart_compare.py" A B || { echo "FAIL: the resumed run with Gravity:reuse_steps differs"; fail=1; }
 
@@ -96,12 +99,7 @@ steps=$(awk 'NF == 6 && $1 ~ /^[0-9]+$/ {n = $1} END {print n}' a.log)
 echo "uninterrupted run in bins: $steps steps, $(ls A/*.hdf5 | wc -l) snapshots"
 set -- "$@" -P Snapshots:subdir:B -P Restarts:subdir:B/restart
 "$B/bolide" -t 1 -n 3 "$@" p.yml >b0.log 2>&1 || { echo "FAIL: first part (bins)"; tail -3 b0.log; exit 1; }
-k=0
-for n in 6 9 13 -1; do
-  k=$((k + 1))
-  if [ "$n" -lt 0 ]; then opt=(); else opt=(-n "$n"); fi
-  "$B/bolide" -t 1 --restart "${opt[@]}" "$@" p.yml >b$k.log 2>&1 || { echo "FAIL: resumed run in bins $k"; tail -3 b$k.log; exit 1; }
-done
+resume "run in bins" "6 9 13 -1" "$@"
 "$PY" "$H/restart_compare.py" A B || { echo "FAIL: the resumed run in time bins differs"; fail=1; }
 
 # the Runge-Kutta 2 and predictor-corrector integrators (TimeIntegration:
@@ -120,12 +118,7 @@ for scheme in rk2 pc; do
   echo "uninterrupted run ($scheme): $steps steps, $(ls A/*.hdf5 | wc -l) snapshots"
   set -- "$@" -P Snapshots:subdir:B -P Restarts:subdir:B/restart
   "$B/bolide" -t 1 -n 3 "$@" p.yml >b0.log 2>&1 || { echo "FAIL: first part ($scheme)"; tail -3 b0.log; exit 1; }
-  k=0
-  for n in 7 12 20 -1; do
-    k=$((k + 1))
-    if [ "$n" -lt 0 ]; then opt=(); else opt=(-n "$n"); fi
-    "$B/bolide" -t 1 --restart "${opt[@]}" "$@" p.yml >b$k.log 2>&1 || { echo "FAIL: resumed run ($scheme) $k"; tail -3 b$k.log; exit 1; }
-  done
+  resume "run ($scheme)" "7 12 20 -1" "$@"
   "$PY" "$H/restart_compare.py" A B || { echo "FAIL: the resumed run with scheme $scheme differs"; fail=1; }
 done
 exit $fail
