@@ -86,6 +86,24 @@ def si_factor(units, dim):
     return f
 
 
+def _open(path):
+    """The snapshot or initial-conditions file at path, open for reading
+    (an h5py.File), with its /PartType0 group; SnapshotError when the file
+    is missing, not HDF5, or has no such group."""
+    import h5py
+
+    if not os.path.exists(path):
+        raise SnapshotError("%s: no such file" % path)
+    try:
+        f = h5py.File(path, "r")
+    except OSError as exc:
+        raise SnapshotError("%s: not an HDF5 file (%s)" % (path, exc))
+    if "PartType0" not in f:
+        f.close()
+        raise SnapshotError("%s: no /PartType0 group" % path)
+    return f
+
+
 def load(path, fields=None, optional=(), si=False):
     """Load a snapshot.
 
@@ -105,17 +123,8 @@ def load(path, fields=None, optional=(), si=False):
     Raises SnapshotError when the file, a group or a requested field is
     missing or malformed.
     """
-    import h5py
-
-    if not os.path.exists(path):
-        raise SnapshotError("%s: no such file" % path)
-    try:
-        f = h5py.File(path, "r")
-    except OSError as exc:
-        raise SnapshotError("%s: not an HDF5 file (%s)" % (path, exc))
+    f = _open(path)
     with f:
-        if "PartType0" not in f:
-            raise SnapshotError("%s: no /PartType0 group" % path)
         group = f["PartType0"]
         available = {}
         for name in group.keys():
@@ -165,17 +174,8 @@ def iter_chunks(path, name, size=1 << 20):
     blocks of at most size rows, as float64 arrays in the file's units: for
     files too large to load at once (tools/bench/impact_counts.py).  Raises
     SnapshotError as load does."""
-    import h5py
-
-    if not os.path.exists(path):
-        raise SnapshotError("%s: no such file" % path)
-    try:
-        f = h5py.File(path, "r")
-    except OSError as exc:
-        raise SnapshotError("%s: not an HDF5 file (%s)" % (path, exc))
+    f = _open(path)
     with f:
-        if "PartType0" not in f:
-            raise SnapshotError("%s: no /PartType0 group" % path)
         group = f["PartType0"]
         found = [k for k in group.keys() if ALIASES.get(k, k) == name]
         if not found:
