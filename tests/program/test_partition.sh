@@ -19,24 +19,10 @@ set -u
 B=${BOLIDE_BUILDDIR:?}
 fail() { echo "FAIL: $*"; exit 1; }
 "$B/bolide" --help | grep -q -- "--partition N" || fail "bolide --help does not document --partition"
+. "$(cd "$(dirname "$0")/../helpers" && pwd)/small_impact.sh" # small_impact
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
-"$B/bolide-ic" impact --target sphere,material=granite,radius=1e6,n=20000,u=237000 \
-  --impactor sphere,material=granite,radius=4.642e5,n=2000,u=237000 --v-contact 2000 --angle 45 \
-  --separation 1.52e6 --time-end 4000 -o impact.hdf5 >ic.log 2>&1 || { tail -3 ic.log; fail "bolide-ic impact"; }
-cat >p.yml <<YML
-InitialConditions:
-  file_name: impact.hdf5
-TimeIntegration:
-  time_end: 4000
-Snapshots:
-  subdir: out
-  delta_time: 1e30
-Materials:
-  101: {}
-SPH:
-  resolution_eta: 1.2348
-YML
+small_impact
 if ! "$B/bolide" --partition 2 --partition-method metis -t 1 p.yml >metis.log 2>&1; then
   grep -q "no METIS" metis.log && { echo "no METIS in this build: skip"; exit 77; }
   cat metis.log; fail "bolide --partition 2"

@@ -27,24 +27,10 @@ PY=${PYTHON:-$B/.venv/bin/python}
 fail() { echo "FAIL: $*"; exit 1; }
 "$B/bolide" --help | grep -q -- "--partition-counts FILE" || fail "bolide --help does not document --partition-counts"
 "$PY" -c "import h5py, numpy" 2>/dev/null || { echo "no Python with h5py: skip"; exit 77; }
+. "$(cd "$(dirname "$0")/../helpers" && pwd)/small_impact.sh" # small_impact
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work" || exit 1
-"$B/bolide-ic" impact --target sphere,material=granite,radius=1e6,n=20000,u=237000 \
-  --impactor sphere,material=granite,radius=4.642e5,n=2000,u=237000 --v-contact 2000 --angle 45 \
-  --separation 1.52e6 --time-end 4000 -o impact.hdf5 >ic.log 2>&1 || { tail -3 ic.log; fail "bolide-ic impact"; }
-cat >p.yml <<YML
-InitialConditions:
-  file_name: impact.hdf5
-TimeIntegration:
-  time_end: 4000
-Snapshots:
-  subdir: out
-  delta_time: 1e30
-Materials:
-  101: {}
-SPH:
-  resolution_eta: 1.2348
-YML
+small_impact
 kernel=$("$B/bolide" --version | awk '$1 == "kernel:" {print $2}')
 "$PY" "$S/tools/bench/impact_counts.py" --cells 64 --kernel "$kernel" --from-ic impact.hdf5 \
   counts.txt >counts.log 2>&1 || { cat counts.log; fail "impact_counts.py --from-ic"; }
