@@ -798,7 +798,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
               e->hp.as_eps, e->hp.as_n, e->hp.continuity_cspm ? ", CSPM continuity" : "");
   error_log(0, "particle memory: %zu bytes per particle", parts_bytes_per_particle());
 
-  engine_integrate_init(e);
+  drift_integrate_init(e);
   if (opt->check_only) {
     printf("%s: parameters, materials and initial conditions are valid (%zu particles)\n",
            params_filename(params), e->parts.count);
@@ -1174,7 +1174,7 @@ void engine_run(struct engine *e) {
     const double w0 = error_walltime();
     if (e->scheme == ENGINE_SCHEME_KDK) {
       if (!engine_step_kdk(e)) break;
-    } else if (!engine_integrate_step(e)) {
+    } else if (!drift_integrate_step(e)) {
       break;
     }
     engine_bins_collect(e);
@@ -1260,7 +1260,7 @@ void engine_run(struct engine *e) {
               e->t_rebuild_part[1] / e->nr_rebuild, e->t_rebuild_part[2] / e->nr_rebuild);
   error_log(0, "watchdog: %.4f s per step on average (every field of every particle checked)",
             e->step > 0 ? e->t_watchdog / (double)e->step : 0.0);
-  engine_integrate_log(e);
+  drift_integrate_log(e);
   gravity_log_end(e);
   scheduler_print_timers(&e->sched, stdout);
 #ifdef HAVE_CUDA
@@ -1284,7 +1284,7 @@ void engine_clean(struct engine *e) {
   free(e->cell_bins);
   free(e->cell_kick);
   free(e->wd_x);
-  engine_integrate_free(e);
+  drift_integrate_free(e);
   free(e->flaw_eps);
   free(e->params_text);
   engine_family_hooks(e, task_family_at_clean); /* self-gravity's state */

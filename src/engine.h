@@ -49,11 +49,11 @@ struct engine_cell_tasks {
  *  before the next rebuild. */
 #define ENGINE_REACH_FACTOR 1.5
 
-/** TimeIntegration:scheme (src/engine_integrate.c, theory/integrators.md). */
+/** TimeIntegration:scheme (tasks/drift/drift_integrate.c, theory/integrators.md). */
 enum engine_scheme { ENGINE_SCHEME_KDK = 0, ENGINE_SCHEME_RK2 = 1, ENGINE_SCHEME_PC = 2 };
 
 struct drift_stage;
-struct engine_rk;
+struct drift_integrator;
 
 /** Phases of a step: which tasks a scheduler_run activates. */
 enum engine_phase { ENGINE_PHASE_DRIFT = 0, ENGINE_PHASE_FORCE = 1 };
@@ -115,11 +115,11 @@ struct engine {
   int need_rebuild;                /**< set by tasks (atomic): h outgrew the cells */
   int first_force;                 /**< 1 while computing the initial forces */
   int scheme;                      /**< TimeIntegration:scheme (enum engine_scheme) */
-  int stage_eval;    /**< 1 while evaluating a stage of an rk2/pc step that is not its end: the
-                          damage does not grow (it grows once, over the step, at its end) */
+  int stage_eval; /**< 1 while evaluating a stage of an rk2/pc step that is not its end: the
+                       damage does not grow (it grows once, over the step, at its end) */
   const struct drift_stage *stage; /**< the stage the drift tasks put (rk2/pc), NULL: kdk */
-  double *stage_err;        /**< per task cell, the largest error estimate of its drift (rk2) */
-  struct engine_rk *rk;     /**< the rk2/pc integrator's state (src/engine_integrate.c) */
+  double *stage_err;           /**< per task cell, the largest error estimate of its drift (rk2) */
+  struct drift_integrator *rk; /**< the rk2/pc integrator's state (tasks/drift/drift_integrate.c) */
   double t_eval;            /**< wall seconds of the steps' FORCE phases (derivative evaluations) */
   long nr_eval;             /**< their number */
   double t_rebuild;         /**< wall seconds of the rebuilds (cells, sort, task graph) */

@@ -19,18 +19,6 @@ void engine_run_phase(struct engine *e, int phase);
 void engine_watchdog_before_drift(struct engine *e);
 void engine_watchdog_after_drift(struct engine *e);
 
-/* engine_integrate.c: TimeIntegration:scheme rk2 and pc */
-/** Read the scheme and check what it runs with (stops with an error). */
-void engine_integrate_init(struct engine *e);
-/** One step of rk2 or pc from e->time: the stages, a rebuild where the
- *  particles would leave the cells' reach, the end's evaluation (the rates
- *  and time steps of the next step); e->time and e->dt those of the step
- *  taken; returns 0 when there is no step to take. */
-int engine_integrate_step(struct engine *e);
-/** The integrator's log lines at the end of the run. */
-void engine_integrate_log(const struct engine *e);
-void engine_integrate_free(struct engine *e);
-
 /* engine_runtask.c: the scheduler's callback */
 double engine_H_limit(const struct engine *e);
 void engine_run_task(void *ctx, struct task *t, int thread_id);

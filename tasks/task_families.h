@@ -162,6 +162,11 @@
  * (ret fn params, declared below from this list), so that src/ reaches them
  * through this header and none of the family's own:
  *
+ *  drift_integrate_*   TimeIntegration:scheme rk2 and pc, whose stages are
+ *                      drifts (tasks/drift/drift_integrate.c): _init reads
+ *                      the scheme and checks what it runs with, _step takes
+ *                      one step (0: none to take), _log the run's closing
+ *                      line, _free its arrays
  *  kick_dt_culprit     which particle and which criterion of the kick's time
  *                      step (tasks/kick/timestep.h) set the smallest step,
  *                      written into why: the message of a step below
@@ -216,6 +221,10 @@
  *    gravity_gpu_device   the device part: ga and pot complete on both sides
  *    gravity_gpu_print, gravity_gpu_free */
 #define TASK_FAMILY_ENTRIES(X)                                                              \
+  X(drift,   void, drift_integrate_init, (struct engine *e))                                 \
+  X(drift,   int,  drift_integrate_step, (struct engine *e))                                 \
+  X(drift,   void, drift_integrate_log, (const struct engine *e))                            \
+  X(drift,   void, drift_integrate_free, (struct engine *e))                                 \
   X(kick,    void, kick_dt_culprit, (const struct engine *e, char *why, size_t len))         \
   X(damage,  int,  flaws_check_values,                                                       \
     (size_t n, const int64_t *offset, const double *eps, char *msg, size_t len))             \

@@ -138,7 +138,7 @@ void gpu_download_all(struct gpu *g, struct parts *p);
  *  on a rebuild and to build the neighbour lists). */
 void gpu_drift(struct gpu *g, struct parts *p, double dt_kick, double dt,
                const struct hydro_props *hp, const struct material_table *mats);
-/** The rk2/pc integrator's device arrays (src/engine_integrate.c): for n
+/** The rk2/pc integrator's device arrays (tasks/drift/drift_integrate.c): for n
  *  particles ny doubles of state (*y0) and nrec records of nr doubles
  *  (r[0 .. nrec)); kept, and made again only for a larger n, until
  *  gpu_free. */

@@ -775,7 +775,7 @@ void gpu_engine_force(struct engine *e) {
   memset(&jb, 0, sizeof jb);
   jb.e = e;
   /* (rk2/pc: no kick, the drift's stages put the states; damage grows
-   * only at a step's end: src/engine_integrate.c) */
+   * only at a step's end: tasks/drift/drift_integrate.c) */
   jb.dt_kick = e->first_force || e->scheme != ENGINE_SCHEME_KDK ? 0.0 : 0.5 * e->dt;
   /* no damage before Damage:start_time (damage_task does the same) */
   jb.dmg = (struct gpu_damage){e->damage && !(e->time < e->damage_start),
@@ -863,7 +863,7 @@ void gpu_engine_drift(struct engine *e) {
     gpu_upload_all(ge->gpu, &e->parts);
     ge->dev_valid = 1;
   }
-  if (e->stage) /* a stage of rk2 or pc (src/engine_integrate.c) */
+  if (e->stage) /* a stage of rk2 or pc (tasks/drift/drift_integrate.c) */
     e->stage_err[0] = gpu_drift_stage(ge->gpu, &e->parts, e->stage, &e->hp);
   else
     gpu_drift(ge->gpu, &e->parts, 0.5 * e->dt, e->dt, &e->hp, e->mats);

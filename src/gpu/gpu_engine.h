@@ -93,7 +93,7 @@ void gpu_engine_force(struct engine *e);
 /** The DRIFT phase on the GPU: kick1 and drift of the resident particles;
  *  positions and h come back, the cells' bounds are updated. */
 void gpu_engine_drift(struct engine *e);
-/** TimeIntegration:scheme rk2 and pc on the GPU (src/engine_integrate.c):
+/** TimeIntegration:scheme rk2 and pc on the GPU (tasks/drift/drift_integrate.c):
  *  the device arrays of the step's start and records (gpu_rk_arrays: ny
  *  and nrec x nr doubles per particle) into *y0 and r[]; the step's start
  *  put back into the resident particles (drift_rk_restore). */

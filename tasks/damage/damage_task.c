@@ -22,7 +22,7 @@ int damage_active(const struct engine *e) {
 void damage_task(struct engine *e, struct task *tk) {
   struct parts *p = &e->parts;
   const struct cell *c = e->tcells[tk->cell_index];
-  /* (rk2/pc: once per step, at its end; src/engine_integrate.c) */
+  /* (rk2/pc: once per step, at its end; tasks/drift/drift_integrate.c) */
   const double dt = e->first_force || e->stage_eval ? 0.0 : e->dt;
   if (e->time < e->damage_start) return; /* Damage:start_time: not yet */
   if (ENGINE_CELL_IDLE(e, c)) return;

@@ -17,7 +17,7 @@ struct hydro_props {
                            0 with the global step */
   int stage_end;      /**< 1 during the evaluation at the end of a step of TimeIntegration:scheme
                            rk2 or pc: the kick, which kicks nothing there, returns porous
-                           particles to their crush curve (src/engine_integrate.c) */
+                           particles to their crush curve (tasks/drift/drift_integrate.c) */
   double cfl;         /**< Courant factor */
   double log_max_volume_change; /**< ln of the largest kernel-volume change per step */
   double alpha;                 /**< artificial viscosity alpha (Monaghan 1997) */

@@ -14,7 +14,7 @@
  *  individual time steps only the particles whose step ends now
  *  (kick2_cell_bins_cpu), the cell's earliest step end into e->cell_kick.
  *  With TimeIntegration:scheme rk2 or pc nothing is kicked (the drift's
- *  stages put the states; src/engine_integrate.c): the rates and the time
+ *  stages put the states; tasks/drift/drift_integrate.c): the rates and the time
  *  step only. */
 /** What decides the kick and the time step of a particle in this run
  *  (tasks/kick/timestep.h): hydrodynamics, porosity, damage, gravity. */

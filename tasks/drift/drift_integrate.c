@@ -33,7 +33,7 @@
 #endif
 
 /** What the integrator keeps between the stages of a step. */
-struct engine_rk {
+struct drift_integrator {
   double tol;      /**< TimeIntegration:rk2_tolerance */
   double *y0;      /**< the state at the step's start, DRIFT_RK_NY per particle */
   double *r1, *r2; /**< the evaluations at its start and (rk2) at its middle */
@@ -45,7 +45,7 @@ struct engine_rk {
   double err_last; /**< the error of the last rk2 step */
 };
 
-void engine_integrate_init(struct engine *e) {
+void drift_integrate_init(struct engine *e) {
   static const char *names[] = {"kdk", "rk2", "pc"};
   e->scheme = params_get_enum(e->params, "TimeIntegration:scheme");
   if (e->scheme == ENGINE_SCHEME_KDK) return;
@@ -55,7 +55,7 @@ void engine_integrate_init(struct engine *e) {
                  "scheme %s takes one step for every particle: set TimeIntegration:global_step: "
                  "true (time bins run with kdk only)",
                  name);
-  struct engine_rk *rk = error_calloc(1, sizeof *rk, "integrator state");
+  struct drift_integrator *rk = error_calloc(1, sizeof *rk, "integrator state");
   rk->tol = params_get_real(e->params, "TimeIntegration:rk2_tolerance");
   e->rk = rk;
   error_log(0, "time integration: %s (%s), %s", name,
@@ -65,7 +65,7 @@ void engine_integrate_init(struct engine *e) {
             e->scheme == ENGINE_SCHEME_RK2 ? "adaptive step" : "the Courant step");
 }
 
-void engine_integrate_free(struct engine *e) {
+void drift_integrate_free(struct engine *e) {
   if (!e->rk) return;
   if (!e->rk->on_gpu) {
     free(e->rk->y0);
@@ -80,8 +80,8 @@ void engine_integrate_free(struct engine *e) {
 
 /** The arrays for the particles of now (their number changes only at
  *  rebuilds, between steps or at a step taken again). */
-static void engine_integrate_alloc(struct engine *e) {
-  struct engine_rk *rk = e->rk;
+static void drift_integrate_alloc(struct engine *e) {
+  struct drift_integrator *rk = e->rk;
   const size_t n = e->parts.count ? e->parts.count : 1;
 #ifdef HAVE_CUDA
   if (e->gpu) {
@@ -108,7 +108,7 @@ static void engine_integrate_alloc(struct engine *e) {
 /** One stage: the drift tasks put st at time t (e->time during its
  *  evaluation, when eval); returns the largest error estimate.  *moved: 1
  *  when the particles now lie beyond the reach of the cells' tasks. */
-static double engine_integrate_stage(struct engine *e, const struct drift_stage *st, int *moved) {
+static double drift_integrate_stage(struct engine *e, const struct drift_stage *st, int *moved) {
   e->stage = st;
   for (int t = 0; t < e->nr_tcells; t++) e->stage_err[t] = 0.0;
   engine_run_phase(e, ENGINE_PHASE_DRIFT);
@@ -122,7 +122,7 @@ static double engine_integrate_stage(struct engine *e, const struct drift_stage 
 
 /** A derivative evaluation (the FORCE phase) of the state the last stage
  *  put; rebuilt: a rebuild came before it (no far field to reuse). */
-static void engine_integrate_eval(struct engine *e, int rebuilt, int final) {
+static void drift_integrate_eval(struct engine *e, int rebuilt, int final) {
   e->stage_eval = !final;
   e->hp.stage_end = final;
   gravity_active_decide(e, 1);
@@ -138,8 +138,8 @@ static void engine_integrate_eval(struct engine *e, int rebuilt, int final) {
 
 /** The step's start back into the particle arrays (state and the
  *  evaluation there), for a rebuild before the step is taken again. */
-static void engine_integrate_restore(struct engine *e) {
-  struct engine_rk *rk = e->rk;
+static void drift_integrate_restore(struct engine *e) {
+  struct drift_integrator *rk = e->rk;
 #ifdef HAVE_CUDA
   if (rk->on_gpu) {
     gpu_engine_rk_restore(e, rk->y0, rk->r1);
@@ -151,8 +151,8 @@ static void engine_integrate_restore(struct engine *e) {
                      rk->r1 + (size_t)DRIFT_RK_NR * i);
 }
 
-int engine_integrate_step(struct engine *e) {
-  struct engine_rk *rk = e->rk;
+int drift_integrate_step(struct engine *e) {
+  struct drift_integrator *rk = e->rk;
   const int rk2 = e->scheme == ENGINE_SCHEME_RK2;
   e->dt = engine_next_dt(e);
   if (!(e->dt > 0.0)) return 0;
@@ -163,7 +163,7 @@ int engine_integrate_step(struct engine *e) {
     engine_rebuild(e);
     rebuilt = 1;
   }
-  engine_integrate_alloc(e);
+  drift_integrate_alloc(e);
   engine_watchdog_before_drift(e);
   int save = 1, tries = 0, rebuilds_here = 0;
   for (;;) {
@@ -173,19 +173,19 @@ int engine_integrate_step(struct engine *e) {
     /* the first stage: y0 + dt/2 k1 (rk2), y0 + dt k1 (pc), k1 recorded */
     struct drift_stage a = {dt, 1, {rk2 ? 0.5 : 1.0}, rk->y0, {NULL}, rk->r1, save, 0, 0, {0.0}};
     if (!save) a.r[0] = rk->r1, a.store = NULL;
-    engine_integrate_stage(e, &a, &moved);
+    drift_integrate_stage(e, &a, &moved);
     save = 0;
     if (!moved) {
       e->time = t0 + (rk2 ? 0.5 : 1.0) * dt;
-      engine_integrate_eval(e, rebuilt, 0);
+      drift_integrate_eval(e, rebuilt, 0);
       rebuilt = 0;
       if (rk2) {
         /* y0 + dt (2 k2 - k1) for Kutta's third-order rule, k2 recorded */
         struct drift_stage b = {dt, 2, {-1.0, 2.0}, rk->y0, {rk->r1, NULL}, rk->r2, 0, 0, 0, {0.0}};
-        engine_integrate_stage(e, &b, &moved);
+        drift_integrate_stage(e, &b, &moved);
         if (!moved) {
           e->time = t0 + dt;
-          engine_integrate_eval(e, 0, 0);
+          drift_integrate_eval(e, 0, 0);
         }
       }
     }
@@ -204,17 +204,17 @@ int engine_integrate_step(struct engine *e) {
                                                         {1.0 / 6.0, -2.0 / 6.0, 1.0 / 6.0}}
                                  : (struct drift_stage){dt,   2, {0.5, 0.5}, rk->y0, {rk->r1, NULL},
                                                         NULL, 0, 1,          0,      {0.0}};
-      err = engine_integrate_stage(e, &c, &moved);
+      err = drift_integrate_stage(e, &c, &moved);
     }
     if (moved) {
       /* a stage would leave the cells' reach: from the start again, after
        * a rebuild (the step's length stays) */
-      engine_integrate_restore(e);
+      drift_integrate_restore(e);
       e->time = t0;
       atomic_store((_Atomic int *)&e->need_rebuild, 0);
       engine_rebuild(e);
       rebuilt = 1;
-      engine_integrate_alloc(e);
+      drift_integrate_alloc(e);
       engine_watchdog_before_drift(e); /* (the rebuild reordered the particles) */
       save = 1;
       rk->redone++;
@@ -252,7 +252,7 @@ int engine_integrate_step(struct engine *e) {
   e->time = t0 + e->dt;
   if (e->next_out < e->nr_out && fabs(e->time - e->out_times[e->next_out]) <= 1e-12 * fabs(e->time))
     e->time = e->out_times[e->next_out];
-  engine_integrate_eval(e, rebuilt, 1);
+  drift_integrate_eval(e, rebuilt, 1);
   if (rk2) {
     /* the next step: dt (tol / err)^(1/3) 0.9, at most twice this one (the
      * Courant step and the others bound it too: cell_dt_min) */
@@ -264,8 +264,8 @@ int engine_integrate_step(struct engine *e) {
   return 1;
 }
 
-void engine_integrate_log(const struct engine *e) {
-  const struct engine_rk *rk = e->rk;
+void drift_integrate_log(const struct engine *e) {
+  const struct drift_integrator *rk = e->rk;
   if (!rk) return;
   error_log(
       0,
