@@ -14,7 +14,9 @@
 #       cpu-bins, gpu-bins: the same with individual time steps
 #       (TimeIntegration:global_step: false); cpu-binsall: cpu-bins with
 #       self-gravity for every particle at every step (Gravity:active_only:
-#       false, as the GPU computes it)
+#       false, as the GPU computes it); cpu-rk2, gpu-rk2, cpu-pc, gpu-pc:
+#       the global step with the integrators TimeIntegration:scheme rk2
+#       (its default error bound) and pc (theory/integrators.md)
 set -euo pipefail
 # ENERGY_ETA: SPH:resolution_eta (default SWIFT's 1.2348 for the cubic spline;
 # empty: the build kernel's default eta, e.g. Wendland C2's 1.7)
@@ -42,9 +44,10 @@ for n in $sizes; do
   soft=$(awk '/suggested softening/ {print $NF * 1e6}' ic.log)
   N=$(awk '/N_target=/ {sub(/.*N=/, ""); print}' ic.log)
   for m in $modes; do
-    base=${m%-bins}; base=${base%-binsall}
+    base=${m%-bins}; base=${base%-binsall}; base=${base%-rk2}; base=${base%-pc}
     gpu="--no-gpu"; [ "$base" = gpu ] && gpu=""
-    glob=true; [ "$base" != "$m" ] && glob=false
+    glob=true; case $m in *-bins | *-binsall) glob=false ;; esac
+    scheme=kdk; case $m in *-rk2) scheme=rk2 ;; *-pc) scheme=pc ;; esac
     active=true; [ "${m%-binsall}" != "$m" ] && active=false
     cat >p.yml <<YML
 InitialConditions:
@@ -52,6 +55,7 @@ InitialConditions:
 TimeIntegration:
   time_end: $tend
   global_step: $glob
+  scheme: $scheme
 Snapshots:
   subdir: out_$m
   delta_time: 1e30
