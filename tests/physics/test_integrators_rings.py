@@ -35,7 +35,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from test_rubber_rings import DX, V0, pieces  # noqa: E402  (friends-of-friends pieces, linking 1.5 dx)
+from test_rubber_rings import DX, V0, pieces  # noqa: E402  (pieces: FoF groups, linking 1.5 dx, and the largest's fraction)
 
 src = os.environ.get("BOLIDE_SRCDIR", os.path.join(os.path.dirname(__file__), "..", ".."))
 build = os.environ.get("BOLIDE_BUILDDIR", ".")
@@ -63,7 +63,7 @@ def run(d, scheme):
     ekin0 = st[0, 10]
     budget = np.abs(st[:, 26]).max() / ekin0
     n1 = len(x) // 2
-    return {"x": x, "vx": v[:n1, 0].mean(), "pl": pieces(x[:n1]), "pr": pieces(x[n1:]), "budget": budget,
+    return {"x": x, "vx": v[:n1, 0].mean(), "pl": pieces(x[:n1])[0], "pr": pieces(x[n1:])[0], "budget": budget,
             "steps": len(steps)}
 
 
