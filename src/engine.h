@@ -124,7 +124,9 @@ struct engine {
   long nr_eval;             /**< their number */
   double t_rebuild;         /**< wall seconds of the rebuilds (cells, sort, task graph) */
   double t_rebuild_part[3]; /**< of which: particles back from the GPU, space_rebuild, task graph */
-  long nr_rebuild;          /**< rebuilds, the first one included */
+  double
+      t_rebuild_first[4]; /**< the first rebuild (the file's order sorted): its total and parts */
+  long nr_rebuild;        /**< rebuilds, the first one included */
 
   double time;           /**< current simulation time */
   double time_end;       /**< end of the run */

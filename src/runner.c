@@ -155,3 +155,7 @@ void runner_unpin_self(const struct runner_pool *s) {
   if (hwloc_set_cpubind(p->topo, p->saved, HWLOC_CPUBIND_THREAD) != 0)
     runner_warn_once("hwloc_set_cpubind");
 }
+
+void runner_repin_self(const struct runner_pool *s) {
+  if (s->pinning) runner_pin(s->pinning, 0);
+}

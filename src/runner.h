@@ -58,4 +58,8 @@ void runner_wait(struct runner_pool *pool);
  *  process's cores. */
 void runner_unpin_self(const struct runner_pool *pool);
 
+/** Bind the calling thread (thread 0) to its core again after
+ *  runner_unpin_self (no-op when the pool does not pin). */
+void runner_repin_self(const struct runner_pool *pool);
+
 #endif

@@ -5,9 +5,11 @@
 
 #include "src/space.h"
 
+#include <float.h>
 #include <limits.h>
 #include <math.h>
 #include <pthread.h>
+#include <stdatomic.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -91,11 +93,89 @@ static void space_count_removed(struct budget_removed *r, const struct parts *p,
   r->W_plastic += m * p->w_plastic[i];
 }
 
+/** fn(arg, lo, hi) over ranges of [0, n) on up to s->nr_threads threads
+ *  (ranges of at least 65,536 elements; thread k takes range k). */
+struct space_range_job {
+  void (*fn)(void *arg, int k, size_t lo, size_t hi);
+  void *arg;
+  int k;
+  size_t lo, hi;
+};
+
+static void *space_range_run(void *a) {
+  struct space_range_job *j = a;
+  j->fn(j->arg, j->k, j->lo, j->hi);
+  return NULL;
+}
+
+#define SPACE_MAX_RANGES 64
+
+/** The number of ranges space_ranges uses for n elements. */
+static int space_nr_ranges(const struct space *s, size_t n) {
+  int t = s->nr_threads < 1 ? 1 : s->nr_threads;
+  if ((size_t)t > n / 65536 + 1) t = (int)(n / 65536 + 1);
+  return t > SPACE_MAX_RANGES ? SPACE_MAX_RANGES : t;
+}
+
+static void space_ranges(const struct space *s, size_t n,
+                         void (*fn)(void *arg, int k, size_t lo, size_t hi), void *arg) {
+  const int t = space_nr_ranges(s, n);
+  struct space_range_job job[SPACE_MAX_RANGES];
+  pthread_t th[SPACE_MAX_RANGES];
+  for (int k = 0; k < t; k++)
+    job[k] = (struct space_range_job){fn, arg, k, n * (size_t)k / (size_t)t,
+                                      n * (size_t)(k + 1) / (size_t)t};
+  for (int k = 1; k < t; k++)
+    if (pthread_create(&th[k], NULL, space_range_run, &job[k]))
+      error_exit("space: cannot start the threads of the rebuild (pthread_create)");
+  space_range_run(&job[0]);
+  for (int k = 1; k < t; k++) pthread_join(th[k], NULL);
+}
+
+/** space_wrap_or_remove's first pass: whether any particle of a range needs
+ *  its attention (outside the box, or a position or h to report). */
+struct space_scan {
+  const struct space *s;
+  unsigned char any[SPACE_MAX_RANGES];
+  double h_max[SPACE_MAX_RANGES]; /**< largest h of the range */
+  size_t i_max[SPACE_MAX_RANGES]; /**< its first particle */
+};
+
+static void space_scan_range(void *arg, int k, size_t lo, size_t hi) {
+  struct space_scan *sc = arg;
+  const struct space *s = sc->s;
+  const struct parts *p = s->parts;
+  int any = 0;
+  double h_max = 0.0;
+  size_t i_max = lo;
+  for (size_t i = lo; i < hi; i++) {
+    const double x = p->x[i], y = p->y[i], z = p->z[i], h = p->h[i];
+    /* (NaN fails every comparison: caught as outside) */
+    any |= !(x >= 0.0 && x < s->dim[0] && y >= 0.0 && y < s->dim[1] && z >= 0.0 && z < s->dim[2] &&
+             h > 0.0 && h <= DBL_MAX);
+    if (h > h_max) {
+      h_max = h;
+      i_max = i;
+    }
+  }
+  sc->any[k] = (unsigned char)any;
+  sc->h_max[k] = h_max;
+  sc->i_max[k] = i_max;
+}
+
 /** Wrap positions into the periodic box, or remove the particles outside the
  *  open box (logged by id); check positions and smoothing lengths. Returns
  *  the number removed. */
 static size_t space_wrap_or_remove(struct space *s) {
   struct parts *p = s->parts;
+  {
+    struct space_scan sc;
+    sc.s = s;
+    space_ranges(s, p->count, space_scan_range, &sc);
+    int any = 0;
+    for (int k = 0; k < space_nr_ranges(s, p->count); k++) any |= sc.any[k];
+    if (!any) return 0; /* every particle inside, finite, with a valid h */
+  }
   double *xs[3] = {p->x, p->y, p->z};
   size_t removed = 0;
   size_t i = 0;
@@ -146,11 +226,17 @@ static void space_choose_grid(struct space *s) {
   const struct parts *p = s->parts;
   double h_max = 0.0;
   size_t i_max = 0;
-  for (size_t i = 0; i < p->count; i++)
-    if (p->h[i] > h_max) {
-      h_max = p->h[i];
-      i_max = i;
-    }
+  {
+    /* the first particle of the largest h, as one pass would find it */
+    struct space_scan sc;
+    sc.s = s;
+    space_ranges(s, p->count, space_scan_range, &sc);
+    for (int k = 0; k < space_nr_ranges(s, p->count); k++)
+      if (sc.h_max[k] > h_max) {
+        h_max = sc.h_max[k];
+        i_max = sc.i_max[k];
+      }
+  }
   if (s->restore_h_max > 0.0) h_max = s->restore_h_max;
   s->h_max = h_max;
   const double H = kernel_gamma * h_max;
@@ -180,18 +266,61 @@ static int space_top_coord(const struct space *s, int k, double x) {
   return i;
 }
 
-/** Split cell c (range idx[0 .. count) of the permutation) into octants,
- *  recursively, while it holds more than split_size particles. buf: work
- *  array of the same length. */
-static void space_split(struct space *s, int c, size_t *idx, size_t *buf) {
+/** The top-level cell of each particle (space_rebuild, on the threads). */
+struct space_topc {
+  const struct space *s;
+  int *topc;
+};
+
+static void space_topc_range(void *arg, int k, size_t lo, size_t hi) {
+  (void)k;
+  const struct space_topc *tc = arg;
+  const struct space *s = tc->s;
+  const struct parts *p = s->parts;
+  for (size_t i = lo; i < hi; i++)
+    tc->topc[i] = space_top_index(s, space_top_coord(s, 0, p->x[i]), space_top_coord(s, 1, p->y[i]),
+                                  space_top_coord(s, 2, p->z[i]));
+}
+
+/** The cells of one top-level cell's octree while it is built (one thread
+ *  each): local cell 0 is the top-level cell, the others are numbered in
+ *  the order space_split makes them, which is the order of the serial
+ *  build, so that merging the trees in the order of their top-level cells
+ *  numbers every cell as one thread would. */
+struct space_tree {
+  struct cell *cells; /**< the cells, 0: the top-level cell */
+  int *progeny;       /**< 8 per cell: the local index of each octant, -1 where empty */
+  int n, cap;         /**< cells in use, allocated */
+};
+
+/** Index of a new, zeroed cell of t. */
+static int space_tree_new(struct space_tree *t) {
+  if (t->n == t->cap) {
+    if (t->cap > INT_MAX / 2) error_exit("space: too many cells");
+    const int cap = t->cap < 16 ? 16 : 2 * t->cap;
+    t->cells = error_realloc(t->cells, (size_t)cap * sizeof *t->cells, "cells");
+    t->progeny = error_realloc(t->progeny, (size_t)cap * 8 * sizeof(int), "cell progeny");
+    t->cap = cap;
+  }
+  const int c = t->n++;
+  memset(&t->cells[c], 0, sizeof t->cells[c]);
+  for (int k = 0; k < 8; k++) t->progeny[8 * c + k] = -1;
+  return c;
+}
+
+/** Split cell c of t (range idx[0 .. count) of the permutation) into
+ *  octants, recursively, while it holds more than split_size particles.
+ *  buf: work array of the same length. */
+static void space_split(const struct space *s, struct space_tree *t, int c, size_t *idx,
+                        size_t *buf) {
   const struct parts *p = s->parts;
   const double *xs[3] = {p->x, p->y, p->z};
-  const size_t count = s->cells[c].count;
-  if (count <= (size_t)s->split_size || s->cells[c].depth >= s->max_depth) return;
+  const size_t count = t->cells[c].count;
+  if (count <= (size_t)s->split_size || t->cells[c].depth >= s->max_depth) return;
   double mid[3], half[3], loc[3];
   for (int k = 0; k < 3; k++) {
-    loc[k] = s->cells[c].loc[k];
-    half[k] = 0.5 * s->cells[c].width[k];
+    loc[k] = t->cells[c].loc[k];
+    half[k] = 0.5 * t->cells[c].width[k];
     mid[k] = loc[k] + half[k];
   }
   /* counting sort of the range by octant (bits x 4, y 2, z 1) */
@@ -212,12 +341,12 @@ static void space_split(struct space *s, int c, size_t *idx, size_t *buf) {
   memcpy(idx, buf, count * sizeof *idx);
   if (o != small) free(o);
 
-  s->cells[c].split = 1;
+  t->cells[c].split = 1;
   for (int q = 0; q < 8; q++) {
     if (n[q] == 0) continue;
-    const int d = space_new_cell(s); /* may move s->cells */
-    struct cell *child = &s->cells[d];
-    const struct cell *parent = &s->cells[c];
+    const int d = space_tree_new(t); /* may move t->cells */
+    struct cell *child = &t->cells[d];
+    const struct cell *parent = &t->cells[c];
     for (int k = 0; k < 3; k++) {
       const int bit = (q >> (2 - k)) & 1;
       child->loc[k] = bit ? mid[k] : loc[k];
@@ -227,9 +356,106 @@ static void space_split(struct space *s, int c, size_t *idx, size_t *buf) {
     child->count = n[q];
     child->depth = parent->depth + 1;
     child->top = parent->top;
-    s->progeny_index[8 * c + q] = d;
-    space_split(s, d, idx + start[q], buf + start[q]);
+    t->progeny[8 * c + q] = d;
+    space_split(s, t, d, idx + start[q], buf + start[q]);
   }
+}
+
+/** The octrees of the top-level cells top[0 .. n) on up to nr_threads
+ *  threads, each taking the largest cell left. */
+struct space_trees_job {
+  const struct space *s;
+  const int *top;           /**< the top-level cells to split */
+  const int *by_size;       /**< indices in top, the most particles first */
+  struct space_tree *trees; /**< one per entry of top */
+  size_t *idx, *buf;        /**< the permutation and its work array */
+  int n;                    /**< entries of top */
+  _Atomic int next;         /**< next entry of by_size to take */
+};
+
+static void *space_trees_run(void *arg) {
+  struct space_trees_job *j = arg;
+  for (;;) {
+    const int k = atomic_fetch_add(&j->next, 1);
+    if (k >= j->n) break;
+    const int e = j->by_size[k];
+    struct space_tree *t = &j->trees[e];
+    const struct cell *top = &j->s->cells[j->top[e]];
+    space_tree_new(t);
+    t->cells[0] = *top;
+    space_split(j->s, t, 0, j->idx + top->offset, j->buf + top->offset);
+  }
+  return NULL;
+}
+
+/** Order of space_build_trees's jobs: the most particles first, then by
+ *  entry (deterministic; the result does not depend on it). */
+struct space_tree_size {
+  size_t count;
+  int e;
+};
+
+static int space_cmp_size_desc(const void *a, const void *b) {
+  const struct space_tree_size *x = a, *y = b;
+  if (x->count != y->count) return x->count > y->count ? -1 : 1;
+  return x->e - y->e;
+}
+
+/** Build the octree of every top-level cell that holds more than
+ *  split_size particles, on s->nr_threads threads, and number their cells
+ *  after the top-level cells in the order of the serial build. */
+static void space_build_trees(struct space *s, size_t *idx, size_t *buf) {
+  int n = 0;
+  for (int c = 0; c < s->nr_top; c++)
+    if (s->cells[c].count > (size_t)s->split_size && s->max_depth > 0) n++;
+  if (n == 0) return;
+  int *top = error_malloc((size_t)n * sizeof(int), "octree jobs");
+  int *by_size = error_malloc((size_t)n * sizeof(int), "octree jobs");
+  struct space_tree *trees = error_calloc((size_t)n, sizeof *trees, "octrees");
+  n = 0;
+  for (int c = 0; c < s->nr_top; c++)
+    if (s->cells[c].count > (size_t)s->split_size && s->max_depth > 0) top[n++] = c;
+  struct space_tree_size *sz = error_malloc((size_t)n * sizeof *sz, "octree jobs");
+  for (int k = 0; k < n; k++) sz[k] = (struct space_tree_size){s->cells[top[k]].count, k};
+  qsort(sz, (size_t)n, sizeof *sz, space_cmp_size_desc);
+  for (int k = 0; k < n; k++) by_size[k] = sz[k].e;
+  free(sz);
+
+  struct space_trees_job job = {s, top, by_size, trees, idx, buf, n, 0};
+  int nt = s->nr_threads < 1 ? 1 : s->nr_threads;
+  if (nt > n) nt = n;
+  if (nt > 256) nt = 256;
+  if (s->parts->count < 50000) nt = 1;
+  pthread_t th[256];
+  for (int k = 1; k < nt; k++)
+    if (pthread_create(&th[k], NULL, space_trees_run, &job))
+      error_exit("space: cannot start the threads of the rebuild (pthread_create)");
+  space_trees_run(&job);
+  for (int k = 1; k < nt; k++) pthread_join(th[k], NULL);
+
+  /* merge, in the order of the top-level cells */
+  for (int e = 0; e < n; e++) {
+    struct space_tree *t = &trees[e];
+    const int c = top[e], base = s->nr_cells - 1; /* local l >= 1 -> base + l */
+    for (int l = 1; l < t->n; l++) {
+      const int d = space_new_cell(s);
+      s->cells[d] = t->cells[l];
+      s->cells[d].index = d;
+    }
+    for (int l = 0; l < t->n; l++) {
+      const int g = l == 0 ? c : base + l;
+      for (int q = 0; q < 8; q++) {
+        const int d = t->progeny[8 * l + q];
+        s->progeny_index[8 * g + q] = d < 0 ? -1 : base + d;
+      }
+    }
+    s->cells[c].split = t->cells[0].split;
+    free(t->cells);
+    free(t->progeny);
+  }
+  free(trees);
+  free(top);
+  free(by_size);
 }
 
 /** Reorder every particle field, new[i] = old[perm[i]], through the work
@@ -282,13 +508,15 @@ struct space_permute_job {
   size_t lo, hi;
   pthread_barrier_t *bar;
   unsigned char *nonzero; /**< [field][thread]: whether the thread's range of it is not all zero */
+  const unsigned char *reorder; /**< the fields to reorder (NULL: all) */
   int thread, nr_threads;
 };
 
 static void *space_permute_run(void *arg) {
   struct space_permute_job *j = arg;
   for (int k = 0; k < part_nr_fields; k++)
-    j->nonzero[k * j->nr_threads + j->thread] = !space_field_zero(j->p, k, j->lo, j->hi);
+    j->nonzero[k * j->nr_threads + j->thread] =
+        (!j->reorder || j->reorder[k]) && !space_field_zero(j->p, k, j->lo, j->hi);
   pthread_barrier_wait(j->bar); /* every range scanned */
   for (int k = 0; k < part_nr_fields; k++) {
     int any = 0;
@@ -309,7 +537,8 @@ static void *space_permute_run(void *arg) {
  *  (the result does not depend on the count); the random gathers of the
  *  first rebuild after reading a file dominate a rebuild (about 2 s for
  *  1e6 particles on one core before all-zero fields were skipped). */
-static void space_permute(struct parts *p, const size_t *perm, void *buf, int nr_threads) {
+static void space_permute(struct parts *p, const size_t *perm, void *buf, int nr_threads,
+                          const unsigned char *reorder) {
   const size_t n = p->count;
   int t = nr_threads;
   if ((size_t)t > n / 65536 + 1) t = (int)(n / 65536 + 1);
@@ -322,9 +551,16 @@ static void space_permute(struct parts *p, const size_t *perm, void *buf, int nr
   if (pthread_barrier_init(&bar, NULL, (unsigned)t) != 0)
     error_exit("space: cannot set up the threads of the rebuild (pthread_barrier_init)");
   for (int k = 0; k < t; k++)
-    job[k] = (struct space_permute_job){
-        p,       perm, buf, n * (size_t)k / (size_t)t, n * (size_t)(k + 1) / (size_t)t, &bar,
-        nonzero, k,    t};
+    job[k] = (struct space_permute_job){p,
+                                        perm,
+                                        buf,
+                                        n * (size_t)k / (size_t)t,
+                                        n * (size_t)(k + 1) / (size_t)t,
+                                        &bar,
+                                        nonzero,
+                                        reorder,
+                                        k,
+                                        t};
   for (int k = 1; k < t; k++)
     if (pthread_create(&th[k], NULL, space_permute_run, &job[k]))
       /* a thread could not start: the barrier would wait for ever */
@@ -388,6 +624,38 @@ static void space_finish_cell(struct space *s, int c) {
   }
 }
 
+/** space_finish_cell of every top-level cell (each tree apart), on up to
+ *  s->nr_threads threads taking chunks of top-level cells. */
+struct space_finish_job {
+  struct space *s;
+  _Atomic int next; /**< first top-level cell of the next chunk */
+};
+
+#define SPACE_FINISH_CHUNK 64
+
+static void *space_finish_run(void *arg) {
+  struct space_finish_job *j = arg;
+  for (;;) {
+    const int c0 = atomic_fetch_add(&j->next, SPACE_FINISH_CHUNK);
+    if (c0 >= j->s->nr_top) break;
+    const int c1 = c0 + SPACE_FINISH_CHUNK < j->s->nr_top ? c0 + SPACE_FINISH_CHUNK : j->s->nr_top;
+    for (int c = c0; c < c1; c++) space_finish_cell(j->s, c);
+  }
+  return NULL;
+}
+
+static void space_finish_cells(struct space *s) {
+  struct space_finish_job job = {s, 0};
+  int nt = s->nr_threads < 1 ? 1 : s->nr_threads > 256 ? 256 : s->nr_threads;
+  if (s->parts->count < 50000) nt = 1;
+  pthread_t th[256];
+  for (int k = 1; k < nt; k++)
+    if (pthread_create(&th[k], NULL, space_finish_run, &job))
+      error_exit("space: cannot start the threads of the rebuild (pthread_create)");
+  space_finish_run(&job);
+  for (int k = 1; k < nt; k++) pthread_join(th[k], NULL);
+}
+
 size_t space_rebuild(struct space *s) {
   struct parts *p = s->parts;
   const double w0 = error_walltime();
@@ -422,11 +690,9 @@ size_t space_rebuild(struct space *s) {
   }
   size_t *idx = s->sort_index, *buf = s->sort_index + n;
   int *topc = error_malloc(n * sizeof(int) + 1, "particle cell index");
-  for (size_t i = 0; i < n; i++) {
-    topc[i] = space_top_index(s, space_top_coord(s, 0, p->x[i]), space_top_coord(s, 1, p->y[i]),
-                              space_top_coord(s, 2, p->z[i]));
-    s->cells[topc[i]].count++;
-  }
+  struct space_topc tc = {s, topc};
+  space_ranges(s, n, space_topc_range, &tc);
+  for (size_t i = 0; i < n; i++) s->cells[topc[i]].count++;
   size_t off = 0;
   for (int c = 0; c < s->nr_top; c++) {
     s->cells[c].offset = off;
@@ -442,17 +708,15 @@ size_t space_rebuild(struct space *s) {
 
   /* the octrees, then one reordering of every particle field */
   const double w1 = error_walltime();
-  for (int c = 0; c < s->nr_top; c++) {
-    const size_t o = s->cells[c].offset;
-    space_split(s, c, idx + o, buf + o);
-  }
+  space_build_trees(s, idx, buf);
   const double w2 = error_walltime();
-  if (n) space_permute(p, idx, buf, s->nr_threads); /* buf (n words) is free after the split */
+  /* buf (n words) is free after the split */
+  if (n) space_permute(p, idx, buf, s->nr_threads, s->reorder);
   memcpy(p->x0, p->x, n * sizeof(double));
   memcpy(p->y0, p->y, n * sizeof(double));
   memcpy(p->z0, p->z, n * sizeof(double));
   const double w3 = error_walltime();
-  for (int c = 0; c < s->nr_top; c++) space_finish_cell(s, c);
+  space_finish_cells(s);
   const double w4 = error_walltime();
   error_log(1,
             "space: rebuild %d: %zu particles, %d x %d x %d top-level cells, %d cells; "
@@ -460,6 +724,23 @@ size_t space_rebuild(struct space *s) {
             s->nr_rebuilds, n, s->cdim[0], s->cdim[1], s->cdim[2], s->nr_cells, w1 - w0, w2 - w1,
             w3 - w2, w4 - w3);
   return removed;
+}
+
+int space_rebuild_removes(const struct space *s) {
+  const struct parts *p = s->parts;
+  for (size_t i = 0; i < p->count; i++) {
+    if (!isfinite(p->x[i]) || !isfinite(p->y[i]) || !isfinite(p->z[i]) || !(p->h[i] > 0.0) ||
+        !isfinite(p->h[i]))
+      return 1;
+    if (!s->periodic && (p->x[i] < 0.0 || p->x[i] >= s->dim[0] || p->y[i] < 0.0 ||
+                         p->y[i] >= s->dim[1] || p->z[i] < 0.0 || p->z[i] >= s->dim[2]))
+      return 1;
+  }
+  return 0;
+}
+
+const size_t *space_order(const struct space *s) {
+  return s->sort_index;
 }
 
 void space_restore(struct space *s, double h_max, const double *cell_h, const double *cell_dx,

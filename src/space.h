@@ -56,6 +56,9 @@ struct space {
   size_t *sort_index;            /**< work array of the rebuild (capacity sort_capacity) */
   size_t sort_capacity;          /**< allocated length of sort_index */
   int nr_threads;                /**< threads of the rebuild's reordering of the fields (1) */
+  const unsigned char *reorder;  /**< [part_nr_fields]: the fields the rebuild reorders (NULL:
+                                      every field; the others are left in the old order, e.g.
+                                      while the GPU holds them and reorders its own copies) */
   double restore_h_max;          /**< > 0: space_choose_grid takes this h_max (space_restore) */
 };
 
@@ -85,6 +88,16 @@ void space_free(struct space *s);
  *  support larger than half the box, stops with a one-line error naming the
  *  particle. */
 size_t space_rebuild(struct space *s);
+
+/** 1 if the next space_rebuild would remove a particle (outside the open
+ *  box) or stop on a non-finite position or smoothing length: it reads x,
+ *  y, z and h only. */
+int space_rebuild_removes(const struct space *s);
+
+/** The permutation of the last space_rebuild: element i of every field is
+ *  now the old element order[i] (parts.count entries; valid until the next
+ *  rebuild). */
+const size_t *space_order(const struct space *s);
 
 /** Rebuild the cells of the last rebuild of a run resumed from a restart
  *  file (issue 18): the particles are in the order of that rebuild and x0

@@ -113,6 +113,11 @@ struct gpu {
   double *rk_buf;               /**< the rk2/pc integrator's arrays (gpu_rk_arrays) */
   size_t rk_bytes;              /**< their size */
   unsigned long long *rk_err;   /**< the largest error estimate of a stage */
+  size_t *perm_dev;             /**< a rebuild's permutation on the device (gpu_permute) */
+  void *perm_buf;               /**< its work array: one field's new order (8 bytes each) */
+  size_t perm_cap;              /**< their allocated length */
+  long permutes;                /**< rebuilds that reordered the resident particles */
+  double t_permute;             /**< their milliseconds (permutation up, every field reordered) */
 };
 
 /** Slots of the watchdog's results (gpu_watchdog_check): one per double
@@ -559,6 +564,71 @@ extern "C" void gpu_download_all(struct gpu *g, struct parts *p) {
   gpu_check(cudaStreamSynchronize(g->stream[0]));
 }
 
+/** dst[i] = src[perm[i]] for i < n, elements of 8 or 4 bytes. */
+template <typename T>
+__global__ static void gpu_gather_kernel(T *dst, const T *src, const size_t *perm, size_t n) {
+  const size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n) dst[i] = src[perm[i]];
+}
+
+extern "C" void gpu_permute(struct gpu *g, const size_t *perm, size_t n) {
+  if (n != g->dev.count) error_bug("GPU and host particle counts differ");
+  if (n == 0) return;
+  if (n > g->perm_cap) {
+    if (g->perm_dev) gpu_check(cudaFree(g->perm_dev));
+    if (g->perm_buf) gpu_check(cudaFree(g->perm_buf));
+    const size_t cap = g->capacity > n ? g->capacity : n;
+    g->perm_dev = (size_t *)gpu_alloc(cap * sizeof(size_t), "the rebuild's permutation");
+    g->perm_buf = gpu_alloc(cap * 8, "the rebuild's reordering buffer");
+    g->perm_cap = cap;
+  }
+  cudaStream_t s = g->stream[0];
+  cudaEvent_t e0, e1;
+  gpu_check(cudaEventCreate(&e0));
+  gpu_check(cudaEventCreate(&e1));
+  gpu_check(cudaEventRecord(e0, s));
+  gpu_check(cudaMemcpyAsync(g->perm_dev, perm, n * sizeof(size_t), cudaMemcpyHostToDevice, s));
+  g->bytes_h2d += (double)(n * sizeof(size_t));
+  const int threads = 256;
+  const unsigned blocks = (unsigned)((n + threads - 1) / threads);
+  for (int f = 0; f < part_nr_fields; f++) {
+    void *a = *gpu_field_slot(&g->dev, f);
+    const size_t sz = part_fields[f].size;
+    if (sz == 8)
+      gpu_gather_kernel<<<blocks, threads, 0, s>>>((uint64_t *)g->perm_buf, (const uint64_t *)a,
+                                                   g->perm_dev, n);
+    else if (sz == 4)
+      gpu_gather_kernel<<<blocks, threads, 0, s>>>((uint32_t *)g->perm_buf, (const uint32_t *)a,
+                                                   g->perm_dev, n);
+    else
+      error_bug("particle field %s has an element size of %zu bytes", part_fields[f].name, sz);
+    gpu_check(cudaGetLastError());
+    gpu_check(cudaMemcpyAsync(a, g->perm_buf, n * sz, cudaMemcpyDeviceToDevice, s));
+  }
+  /* x0 = x, as space_rebuild sets it */
+  const char *const xn[3] = {"x", "y", "z"}, *const x0n[3] = {"x0", "y0", "z0"};
+  for (int k = 0; k < 3; k++)
+    gpu_check(cudaMemcpyAsync(*gpu_field_slot(&g->dev, gpu_field_index(x0n[k])),
+                              *gpu_field_slot(&g->dev, gpu_field_index(xn[k])), n * sizeof(double),
+                              cudaMemcpyDeviceToDevice, s));
+  gpu_check(cudaEventRecord(e1, s));
+  gpu_check(cudaStreamSynchronize(s));
+  float ms = 0.0f;
+  gpu_check(cudaEventElapsedTime(&ms, e0, e1));
+  gpu_check(cudaEventDestroy(e0));
+  gpu_check(cudaEventDestroy(e1));
+  g->t_permute += ms;
+  g->permutes++;
+}
+
+extern "C" void gpu_copy_some(struct gpu *g, struct parts *p, const char *const *names, int n,
+                              int to_device) {
+  if (p->count != g->dev.count) error_bug("GPU and host particle counts differ");
+  gpu_pin(g, p);
+  gpu_copy_named(g, p, names, n, to_device);
+  gpu_check(cudaStreamSynchronize(g->stream[0]));
+}
+
 /** After a drift's kernel on stream 0: the positions and smoothing lengths
  *  back to the host (what the rebuild test and the neighbour lists read),
  *  with err_bits the stage's error estimate (gpu_drift_stage; NULL: none),
@@ -601,6 +671,8 @@ extern "C" void gpu_rk_arrays(struct gpu *g, size_t n, int ny, int nr, int nrec,
   const size_t bytes = (n ? n : 1) * (size_t)(ny + nrec * nr) * sizeof(double);
   if (bytes > g->rk_bytes) {
     if (g->rk_buf) gpu_check(cudaFree(g->rk_buf));
+    if (g->perm_dev) gpu_check(cudaFree(g->perm_dev));
+    if (g->perm_buf) gpu_check(cudaFree(g->perm_buf));
     gpu_check(cudaMalloc((void **)&g->rk_buf, bytes));
     g->rk_bytes = bytes;
   }
@@ -771,6 +843,9 @@ extern "C" void gpu_print_timers(const struct gpu *g, FILE *f) {
   }
   if (g->drifts) fprintf(f, " drift(+x,h back) %.3f", g->t_drift / g->drifts);
   fprintf(f, "; %ld full uploads, %ld full downloads", g->full_up, g->full_down);
+  if (g->permutes)
+    fprintf(f, "; %ld rebuilds reordered on the device, %.3f ms each", g->permutes,
+            g->t_permute / g->permutes);
   fprintf(f, "; bus %.1f MB up, %.1f MB down per step", g->bytes_h2d / g->calls / 1e6,
           g->bytes_d2h / g->calls / 1e6);
   /* what a run moves between its outputs and rebuilds, which copy every

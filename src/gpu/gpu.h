@@ -130,6 +130,12 @@ int gpu_set_blocking_sync(struct gpu *g);
 void gpu_upload_all(struct gpu *g, const struct parts *p);
 /** Copy every particle field back to the host (outputs, rebuilds). */
 void gpu_download_all(struct gpu *g, struct parts *p);
+/** Copy the named fields (n of them) to the device (to_device 1) or back. */
+void gpu_copy_some(struct gpu *g, struct parts *p, const char *const *names, int n, int to_device);
+/** A rebuild of resident particles: element i of every device field
+ *  becomes the old element perm[i] (n = the resident count; space_order's
+ *  permutation), and x0 = x. */
+void gpu_permute(struct gpu *g, const size_t *perm, size_t n);
 /** First half kick by dt_kick and drift by dt of the resident particles
  *  with the SPH settings hp (with the time bins of gpu_set_bins: from
  *  bins.ti_old to bins.ti_new, drift_part_bins, which predicts the

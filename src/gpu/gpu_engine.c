@@ -48,7 +48,25 @@ struct gpu_engine {
   double t_gpu_side;        /**< hybrid: seconds of the hydro thread until the kick */
   double t_waited;          /**< hybrid: seconds the kick waited for the CPU */
   long hybrid_phases;       /**< FORCE phases run hybrid (with CPU work beside) */
+  int rebuild_on_device;    /**< Scheduler:gpu_rebuild: device */
+  long rebuilds_device;     /**< rebuilds that reordered the resident particles there */
+  long rebuilds_host;       /**< rebuilds with every field copied back and up again */
+  unsigned char *reorder;   /**< [part_nr_fields]: the fields the host reorders then */
 };
+
+/* Rebuilds of resident particles.  The host sorts the cells from x, y, z
+ * and h, and reorders only the fields it reads while the particles live on
+ * the device: those (gpu_rebuild_down) that the device changes, downloaded
+ * first, and those that no device kernel writes (mass, material, id).  The
+ * device reorders its copy of every field (gpu_permute).  The host's other
+ * fields stay in the old order, stale, until a full download replaces them
+ * (host_stale stays set). */
+static const char *const gpu_rebuild_down[] = {"x",   "y",   "z",   "h",     "gax",
+                                               "gay", "gaz", "pot", "flags", "time_bin"};
+#define GPU_REBUILD_NR_DOWN ((int)(sizeof gpu_rebuild_down / sizeof *gpu_rebuild_down))
+static const char *const gpu_rebuild_keep[] = {"x",   "y",     "z",        "h", "gax", "gay", "gaz",
+                                               "pot", "flags", "time_bin", "m", "mat", "id"};
+#define GPU_REBUILD_NR_KEEP ((int)(sizeof gpu_rebuild_keep / sizeof *gpu_rebuild_keep))
 
 /** Grow the per-leaf arrays to n. */
 static void gpu_cells_reserve(struct gpu_cells *gc, int n) {
@@ -571,6 +589,11 @@ void gpu_engine_init(struct engine *e) {
   ge->cells.leaf_size = (int)params_get_int(e->params, "Scheduler:gpu_leaf_size");
   ge->cells.host_lists = params_get_enum(e->params, "Scheduler:gpu_lists") == 1;
   ge->up_on_device = params_get_enum(e->params, "Scheduler:gpu_multipoles") == 1;
+  ge->rebuild_on_device = params_get_enum(e->params, "Scheduler:gpu_rebuild") == 0;
+  ge->reorder = error_calloc((size_t)part_nr_fields, 1, "GPU rebuild fields");
+  for (int k = 0; k < part_nr_fields; k++)
+    for (int q = 0; q < GPU_REBUILD_NR_KEEP; q++)
+      if (!strcmp(part_fields[k].name, gpu_rebuild_keep[q])) ge->reorder[k] = 1;
   ge->walk_on_device = params_get_enum(e->params, "Scheduler:gpu_walks") == 1;
   const int walks_given = params_given(e->params, "Scheduler:gpu_walks");
   const int up_given = params_given(e->params, "Scheduler:gpu_multipoles");
@@ -845,6 +868,8 @@ static void gpu_engine_bounds(struct engine *e) {
   struct gpu_bounds_job jobs[256];
   pthread_t tid[256];
   if (nt > 256) nt = 256;
+  /* (threads started by thread 0 inherit its core: spread them) */
+  if (nt > 1) runner_unpin_self(&e->sched.pool);
   for (int w = 0; w < nt; w++) {
     jobs[w].e = e;
     jobs[w].c0 = (int)((long)nc * w / nt);
@@ -854,6 +879,50 @@ static void gpu_engine_bounds(struct engine *e) {
   }
   gpu_bounds_run(&jobs[0]);
   for (int w = 1; w < nt; w++) pthread_join(tid[w], NULL);
+  if (nt > 1) runner_repin_self(&e->sched.pool);
+}
+
+int gpu_engine_rebuild_begin(struct engine *e) {
+  struct gpu_engine *ge = e->gpu;
+  if (!ge || !ge->dev_valid || !ge->rebuild_on_device || e->nr_planes > 0 ||
+      e->restart_h_max > 0.0 || e->individual) {
+    if (ge)
+      error_log(1, "GPU rebuild %d on the host: %s", e->space.nr_rebuilds + 1,
+                !ge->dev_valid           ? "the host holds the current particles"
+                : !ge->rebuild_on_device ? "Scheduler:gpu_rebuild: host"
+                : e->nr_planes > 0       ? "mirror planes"
+                : e->individual          ? "time bins (not yet reordered on the device)"
+                                         : "a resumed run's first rebuild");
+    gpu_engine_to_host(e);
+    gpu_engine_host_modified(e);
+    if (ge) ge->rebuilds_host++;
+    return 0;
+  }
+  if (ge->host_stale) gpu_copy_some(ge->gpu, &e->parts, gpu_rebuild_down, GPU_REBUILD_NR_DOWN, 0);
+  if (space_rebuild_removes(&e->space)) {
+    /* particles leave the open box: their budget reads every field */
+    error_log(1, "GPU rebuild %d on the host: particles leave the open box",
+              e->space.nr_rebuilds + 1);
+    gpu_engine_to_host(e);
+    gpu_engine_host_modified(e);
+    ge->rebuilds_host++;
+    return 0;
+  }
+  e->space.reorder = ge->reorder;
+  return 1;
+}
+
+void gpu_engine_rebuild_end(struct engine *e) {
+  struct gpu_engine *ge = e->gpu;
+  e->space.reorder = NULL;
+  gpu_permute(ge->gpu, space_order(&e->space), e->parts.count);
+  if (e->space.periodic) {
+    /* the positions the host wrapped into the box */
+    static const char *const xyz[3] = {"x", "y", "z"};
+    gpu_copy_some(ge->gpu, &e->parts, xyz, 3, 1);
+  }
+  ge->host_stale = 1; /* the host's other fields are in the old order */
+  ge->rebuilds_device++;
 }
 
 void gpu_engine_drift(struct engine *e) {
@@ -937,6 +1006,11 @@ void gpu_engine_print(const struct engine *e, FILE *f) {
             ge->cells.host_lists ? "host" : "device", ge->cells.widenings, ge->cells.n,
             ge->cells.nr_ngb, nb ? dev_ms / nb : 0.0, 1e3 * ge->t_bounds / ge->steps);
   }
+  if (ge->rebuilds_device + ge->rebuilds_host)
+    fprintf(f,
+            "GPU rebuilds: %ld with the particles reordered on the device, %ld with every field "
+            "copied back and up again (Scheduler:gpu_rebuild)\n",
+            ge->rebuilds_device, ge->rebuilds_host);
   if (ge->phases) {
     static const char *const mode_name[3] = {"serial", "hybrid", "gravity on the CPU"};
     fprintf(f, "GPU runner (%s), ms per FORCE phase: %.3f", mode_name[ge->mode],
@@ -970,6 +1044,7 @@ void gpu_engine_free(struct engine *e) {
   gpu_free(ge->gpu);
   gpu_cells_free(&ge->cells);
   free(ge->tc_h_cap);
+  free(ge->reorder);
   free(ge);
   e->gpu = NULL;
 }

@@ -110,6 +110,13 @@ int gpu_engine_watchdog_check(struct engine *e);
 /** Copy the particles back when the device has changed them (before
  *  statistics, snapshots, restart files and rebuilds). */
 void gpu_engine_to_host(struct engine *e);
+/** Before a rebuild: 1 if the particles stay on the device, which reorders
+ *  them after space_rebuild (gpu_engine_rebuild_end; the host then reorders
+ *  only the few fields it reads, Scheduler:gpu_rebuild); 0 if every field
+ *  came back to the host (which uploads them again before the next phase). */
+int gpu_engine_rebuild_begin(struct engine *e);
+/** After space_rebuild when gpu_engine_rebuild_begin said 1. */
+void gpu_engine_rebuild_end(struct engine *e);
 /** The host changed the particles (rebuild, restart): upload before the next phase. */
 void gpu_engine_host_modified(struct engine *e);
 /** Print the GPU's timers. */

@@ -18,7 +18,12 @@
 #   box, sedov  periodic hydro tests
 # Modes (-m): cpu (--no-gpu), gpu (Scheduler:gpu all: everything the GPU
 #   can do, the CPU only where the GPU has no implementation), hybrid
-#   (Scheduler:gpu auto: CPU workers run tasks while the GPU works).
+#   (Scheduler:gpu auto: CPU workers run tasks while the GPU works),
+#   gpu-rbhost (gpu with Scheduler:gpu_rebuild: host: every field copied
+#   back, reordered on the host and uploaded at each rebuild).
+# The steps are those of a run (the Courant step, SPH:CFL_condition 0.2):
+# s/step is the mean wall time of the steps, rebuilds included; the
+# rebuild column is the mean time of the run's rebuilds and their number.
 # Median over REPEAT runs of STEPS steps (each run's mean step, the first
 # force computation excluded); the evaluation time, the bus traffic and the
 # GPU memory are those of the last run.  Bus: everything the run moved
@@ -34,7 +39,8 @@
 #       reported as "timeout" and the script goes on
 # Env:   BOLIDE_BUILD (build folder), BOLIDE_BENCH_IC (make_impact_ic.py),
 #        PYTHON (with numpy and h5py, for the reference impact IC),
-#        BENCH_OUT (file the table lines are also appended to, as they come)
+#        BENCH_OUT (file the table lines are also appended to, as they come),
+#        BENCH_KEEP (folder: the log of each case's last run, PROBLEM-N-MODE.log)
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 build=${BOLIDE_BUILD:-$top/_build}
@@ -54,8 +60,8 @@ say "$(printf "# %s on %s (%s, %d cores); GPU: %s" "$("$build/bolide" --version 
   "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')" "$ncpu" \
   "$(nvidia-smi --query-gpu=name --format=csv,noheader 2>/dev/null | head -1)")"
 say "# median of $repeat runs of $steps steps, every particle active; cpu: --no-gpu -t $ncpu; gpu: --gpu -P Scheduler:gpu:all; hybrid: --gpu -P Scheduler:gpu:auto"
-say "| problem | N | mode | s/step | s/evaluation | vs cpu | bus MB/step | bus share at 25 GB/s | between full copies MB/step (share) | GPU bytes/particle |"
-say "|---|---|---|---|---|---|---|---|---|"
+say "| problem | N | mode | s/step (rebuilds included) | s/evaluation | rebuild s (count) | vs cpu | bus MB/step | bus share at 25 GB/s | between full copies MB/step (share) | GPU bytes/particle |"
+say "|---|---|---|---|---|---|---|---|---|---|---|"
 stages=""
 
 # one run of bolide with the arguments "$@"; prints "step eval" or "timeout"
@@ -67,7 +73,9 @@ one() {
     echo timeout; return
   fi
   awk '$1 ~ /^[0-9]+$/ && NF == 6 {s += $5; n++} END {printf "%.6f ", s / n}' run.log
-  awk '/derivative evaluations/ {for (k = 1; k <= NF; k++) if ($k == "s" && $(k + 1) == "each") print $(k - 1)}' run.log
+  awk '/derivative evaluations/ {for (k = 1; k <= NF; k++) if ($k == "s" && $(k + 1) == "each") printf "%s ", $(k - 1)}' run.log
+  awk '/rebuilds \(cells/ {for (k = 1; k <= NF; k++) if ($k == "s" && $(k + 1) == "each") {c = $(k - 2); sub(",", "", c); r = sprintf("%s(%s)", $(k - 1), c)}}
+       END {print (r == "" ? "-" : r)}' run.log
 }
 
 # median over the repeats of "$@"; sets med_step, last_eval
@@ -75,11 +83,12 @@ measure() {
   local res=() r
   for r in $(seq "$repeat"); do
     r=$(one "$@")
-    [ "$r" = timeout ] && { med_step=timeout; last_eval=-; return; }
+    [ "$r" = timeout ] && { med_step=timeout; last_eval=-; last_rebuild=-; return; }
     res+=("$r")
   done
   med_step=$(printf "%s\n" "${res[@]}" | awk '{print $1}' | sort -g | awk '{a[NR] = $1} END {print a[int((NR + 1) / 2)]}')
   last_eval=$(printf "%s\n" "${res[@]}" | tail -1 | awk '{print $2}')
+  last_rebuild=$(printf "%s\n" "${res[@]}" | tail -1 | awk '{print $3}')
 }
 
 for prob in $problems; do
@@ -135,9 +144,11 @@ YML
         cpu) measure --no-gpu ;;
         gpu) measure --gpu -P Scheduler:gpu:all $gpu_args ;;
         hybrid) measure --gpu -P Scheduler:gpu:auto $gpu_args ;;
+        gpu-rbhost) measure --gpu -P Scheduler:gpu:all -P Scheduler:gpu_rebuild:host $gpu_args ;;
         *) echo "gpu.sh: unknown mode $mode" >&2; exit 2 ;;
       esac
       [ $mode = cpu ] && cpu_step=$med_step
+      [ -n "${BENCH_KEEP:-}" ] && mkdir -p "$BENCH_KEEP" && cp run.log "$BENCH_KEEP/$prob-$n-$mode.log"
       ratio=-; bus=-; share=-; mem=-; rec=-
       if [ "$med_step" != timeout ] && [ -n "$cpu_step" ] && [ "$cpu_step" != timeout ]; then
         ratio=$(awk -v a=$cpu_step -v b=$med_step 'BEGIN {printf "%.2f", a / b}')
@@ -148,9 +159,9 @@ YML
         rec=$(awk -v t=$med_step '/^GPU \(/ {for (k = 1; k <= NF; k++) if ($k == "copies") r = $(k + 1)}
               END {if (r == "") print "-"; else printf "%.1f (%.1f%%)", r, 100 * r * 1e6 / 25e9 / t}' run.log)
         mem=$(awk '/^GPU memory:/ {gsub(/\(/, ""); for (k = 1; k <= NF; k++) if ($k == "bytes") print $(k - 1)}' run.log)
-        stages="$stages$prob $N $mode: $(grep '^GPU (' run.log | sed 's/^GPU ([^)]*), //' | tr '\n' ' '); $(grep '^GPU host\|^GPU gravity' run.log | tr '\n' ' ') $(grep -o 'rebuilds (cells.*' run.log | tr '\n' ' ')"$'\n'
+        stages="$stages$prob $N $mode: $(grep '^GPU (' run.log | sed 's/^GPU ([^)]*), //' | tr '\n' ' '); $(grep '^GPU host\|^GPU gravity' run.log | tr '\n' ' ') $(grep -o 'rebuilds (cells.*' run.log | tr '\n' ' ') $(grep '^GPU rebuilds' run.log | tr '\n' ' ')"$'\n'
       fi
-      say "| $prob | $N | $mode | $med_step | $last_eval | $ratio | $bus | $share | $rec | $mem |"
+      say "| $prob | $N | $mode | $med_step | $last_eval | $last_rebuild | $ratio | $bus | $share | $rec | $mem |"
     done
   done
 done
