@@ -93,6 +93,29 @@ static void space_count_removed(struct budget_removed *r, const struct parts *p,
   r->W_plastic += m * p->w_plastic[i];
 }
 
+/** Run fn on nt threads (at most SPACE_MAX_THREADS), the calling thread
+ *  as the first: thread k gets (char *)args + k * stride (stride 0: all the
+ *  same argument); returns when all are done. */
+#define SPACE_MAX_THREADS 256
+
+static void space_team(int nt, void *(*fn)(void *), void *args, size_t stride) {
+  if (nt > SPACE_MAX_THREADS) nt = SPACE_MAX_THREADS;
+  pthread_t th[SPACE_MAX_THREADS];
+  for (int k = 1; k < nt; k++)
+    if (pthread_create(&th[k], NULL, fn, (char *)args + (size_t)k * stride))
+      /* (a barrier in fn would wait for ever: stop) */
+      error_exit("space: cannot start the threads of the rebuild (pthread_create)");
+  fn(args);
+  for (int k = 1; k < nt; k++) pthread_join(th[k], NULL);
+}
+
+/** Threads of a rebuild pass over whole cells: s->nr_threads, one below
+ *  50,000 particles. */
+static int space_cell_threads(const struct space *s) {
+  const int nt = s->nr_threads < 1 ? 1 : s->nr_threads;
+  return s->parts->count < 50000 ? 1 : nt;
+}
+
 /** fn(arg, lo, hi) over ranges of [0, n) on up to s->nr_threads threads
  *  (ranges of at least 65,536 elements; thread k takes range k). */
 struct space_range_job {
@@ -121,19 +144,15 @@ static void space_ranges(const struct space *s, size_t n,
                          void (*fn)(void *arg, int k, size_t lo, size_t hi), void *arg) {
   const int t = space_nr_ranges(s, n);
   struct space_range_job job[SPACE_MAX_RANGES];
-  pthread_t th[SPACE_MAX_RANGES];
   for (int k = 0; k < t; k++)
     job[k] = (struct space_range_job){fn, arg, k, n * (size_t)k / (size_t)t,
                                       n * (size_t)(k + 1) / (size_t)t};
-  for (int k = 1; k < t; k++)
-    if (pthread_create(&th[k], NULL, space_range_run, &job[k]))
-      error_exit("space: cannot start the threads of the rebuild (pthread_create)");
-  space_range_run(&job[0]);
-  for (int k = 1; k < t; k++) pthread_join(th[k], NULL);
+  space_team(t, space_range_run, job, sizeof *job);
 }
 
-/** space_wrap_or_remove's first pass: whether any particle of a range needs
- *  its attention (outside the box, or a position or h to report). */
+/** space_scan's results per range: whether a particle needs
+ *  space_wrap_or_remove's attention (outside the box, or a position or h to
+ *  report), and the largest h. */
 struct space_scan {
   const struct space *s;
   unsigned char any[SPACE_MAX_RANGES];
@@ -163,19 +182,31 @@ static void space_scan_range(void *arg, int k, size_t lo, size_t hi) {
   sc->i_max[k] = i_max;
 }
 
+/** One pass over the particles on the threads: *any = 1 if a particle is
+ *  outside the box or has a non-finite position or h (space_wrap_or_remove
+ *  has work), and the largest h with its first particle. */
+static void space_scan(const struct space *s, int *any, double *h_max, size_t *i_max) {
+  struct space_scan sc;
+  sc.s = s;
+  const size_t n = s->parts->count;
+  space_ranges(s, n, space_scan_range, &sc);
+  *any = 0;
+  *h_max = 0.0;
+  *i_max = 0;
+  for (int k = 0; k < space_nr_ranges(s, n); k++) {
+    *any |= sc.any[k];
+    if (sc.h_max[k] > *h_max) {
+      *h_max = sc.h_max[k];
+      *i_max = sc.i_max[k];
+    }
+  }
+}
+
 /** Wrap positions into the periodic box, or remove the particles outside the
  *  open box (logged by id); check positions and smoothing lengths. Returns
  *  the number removed. */
 static size_t space_wrap_or_remove(struct space *s) {
   struct parts *p = s->parts;
-  {
-    struct space_scan sc;
-    sc.s = s;
-    space_ranges(s, p->count, space_scan_range, &sc);
-    int any = 0;
-    for (int k = 0; k < space_nr_ranges(s, p->count); k++) any |= sc.any[k];
-    if (!any) return 0; /* every particle inside, finite, with a valid h */
-  }
   double *xs[3] = {p->x, p->y, p->z};
   size_t removed = 0;
   size_t i = 0;
@@ -221,22 +252,10 @@ static size_t space_wrap_or_remove(struct space *s) {
   return removed;
 }
 
-/** Choose the top-level grid from the largest kernel support. */
-static void space_choose_grid(struct space *s) {
+/** Choose the top-level grid from the largest kernel support: h_max, the
+ *  largest smoothing length, first held by particle i_max. */
+static void space_choose_grid(struct space *s, double h_max, size_t i_max) {
   const struct parts *p = s->parts;
-  double h_max = 0.0;
-  size_t i_max = 0;
-  {
-    /* the first particle of the largest h, as one pass would find it */
-    struct space_scan sc;
-    sc.s = s;
-    space_ranges(s, p->count, space_scan_range, &sc);
-    for (int k = 0; k < space_nr_ranges(s, p->count); k++)
-      if (sc.h_max[k] > h_max) {
-        h_max = sc.h_max[k];
-        i_max = sc.i_max[k];
-      }
-  }
   if (s->restore_h_max > 0.0) h_max = s->restore_h_max;
   s->h_max = h_max;
   const double H = kernel_gamma * h_max;
@@ -422,16 +441,8 @@ static void space_build_trees(struct space *s, size_t *idx, size_t *buf) {
   free(sz);
 
   struct space_trees_job job = {s, top, by_size, trees, idx, buf, n, 0};
-  int nt = s->nr_threads < 1 ? 1 : s->nr_threads;
-  if (nt > n) nt = n;
-  if (nt > 256) nt = 256;
-  if (s->parts->count < 50000) nt = 1;
-  pthread_t th[256];
-  for (int k = 1; k < nt; k++)
-    if (pthread_create(&th[k], NULL, space_trees_run, &job))
-      error_exit("space: cannot start the threads of the rebuild (pthread_create)");
-  space_trees_run(&job);
-  for (int k = 1; k < nt; k++) pthread_join(th[k], NULL);
+  const int nt = space_cell_threads(s);
+  space_team(nt < n ? nt : n, space_trees_run, &job, 0);
 
   /* merge, in the order of the top-level cells */
   for (int e = 0; e < n; e++) {
@@ -542,10 +553,9 @@ static void space_permute(struct parts *p, const size_t *perm, void *buf, int nr
   const size_t n = p->count;
   int t = nr_threads;
   if ((size_t)t > n / 65536 + 1) t = (int)(n / 65536 + 1);
-  if (t > 256) t = 256;
+  if (t > SPACE_MAX_THREADS) t = SPACE_MAX_THREADS;
   if (t < 1) t = 1;
-  struct space_permute_job job[256];
-  pthread_t th[256];
+  struct space_permute_job job[SPACE_MAX_THREADS];
   pthread_barrier_t bar;
   unsigned char *nonzero = error_malloc((size_t)part_nr_fields * (size_t)t, "rebuild field flags");
   if (pthread_barrier_init(&bar, NULL, (unsigned)t) != 0)
@@ -561,12 +571,7 @@ static void space_permute(struct parts *p, const size_t *perm, void *buf, int nr
                                         reorder,
                                         k,
                                         t};
-  for (int k = 1; k < t; k++)
-    if (pthread_create(&th[k], NULL, space_permute_run, &job[k]))
-      /* a thread could not start: the barrier would wait for ever */
-      error_exit("space: cannot start the threads of the rebuild (pthread_create)");
-  space_permute_run(&job[0]);
-  for (int k = 1; k < t; k++) pthread_join(th[k], NULL);
+  space_team(t, space_permute_run, job, sizeof *job);
   pthread_barrier_destroy(&bar);
   free(nonzero);
 }
@@ -646,21 +651,23 @@ static void *space_finish_run(void *arg) {
 
 static void space_finish_cells(struct space *s) {
   struct space_finish_job job = {s, 0};
-  int nt = s->nr_threads < 1 ? 1 : s->nr_threads > 256 ? 256 : s->nr_threads;
-  if (s->parts->count < 50000) nt = 1;
-  pthread_t th[256];
-  for (int k = 1; k < nt; k++)
-    if (pthread_create(&th[k], NULL, space_finish_run, &job))
-      error_exit("space: cannot start the threads of the rebuild (pthread_create)");
-  space_finish_run(&job);
-  for (int k = 1; k < nt; k++) pthread_join(th[k], NULL);
+  space_team(space_cell_threads(s), space_finish_run, &job, 0);
 }
 
 size_t space_rebuild(struct space *s) {
   struct parts *p = s->parts;
   const double w0 = error_walltime();
-  const size_t removed = space_wrap_or_remove(s);
-  space_choose_grid(s);
+  int any;
+  double h_max;
+  size_t i_max;
+  space_scan(s, &any, &h_max, &i_max);
+  size_t removed = 0;
+  if (any) {
+    /* wrap, remove or report (rare): then the largest h again */
+    removed = space_wrap_or_remove(s);
+    space_scan(s, &any, &h_max, &i_max);
+  }
+  space_choose_grid(s, h_max, i_max);
   s->nr_rebuilds++;
 
   /* the top-level cells */
@@ -728,6 +735,11 @@ size_t space_rebuild(struct space *s) {
 
 int space_rebuild_removes(const struct space *s) {
   const struct parts *p = s->parts;
+  int any;
+  double h_max;
+  size_t i_max;
+  space_scan(s, &any, &h_max, &i_max);
+  if (!any) return 0;
   for (size_t i = 0; i < p->count; i++) {
     if (!isfinite(p->x[i]) || !isfinite(p->y[i]) || !isfinite(p->z[i]) || !(p->h[i] > 0.0) ||
         !isfinite(p->h[i]))
