@@ -1159,6 +1159,7 @@ static int engine_step_kdk(struct engine *e) {
 
 void engine_run(struct engine *e) {
   const double t_begin = e->time;
+  const long step_begin = e->step;
   if (e->opt.max_steps == 0) {
     /* the initial conditions as read, in their order, nothing computed */
     engine_snapshot(e);
@@ -1210,7 +1211,13 @@ void engine_run(struct engine *e) {
     }
     if (output) engine_sync_view(e);
     const double w1 = error_walltime();
-    const double frac = (e->time - t_begin) / fmax(e->time_end - t_begin, 1e-300);
+    /* the fraction done of the simulated time, or of the steps asked for
+     * (--steps) where that ends the run first */
+    double frac = (e->time - t_begin) / fmax(e->time_end - t_begin, 1e-300);
+    if (e->opt.max_steps > 0) {
+      const double fs = (double)(e->step - step_begin) / (double)(e->opt.max_steps - step_begin);
+      if (fs > frac) frac = fs;
+    }
     const double eta = frac > 0 ? (w1 - e->wall_start) * (1.0 - frac) / frac : 0.0;
     printf("%8ld %14.6e %14.6e %12lld %10.4f %10.1f\n", e->step, e->time, e->dt,
            (long long)e->nr_active, w1 - w0, eta);
@@ -1267,6 +1274,13 @@ void engine_run(struct engine *e) {
   if (e->nr_eval)
     error_log(0, "derivative evaluations (FORCE phases of the steps): %ld, %.4f s each on average",
               e->nr_eval, e->t_eval / e->nr_eval);
+  if (e->nr_eval && e->hp.enabled && !e->hp.h_continuity && e->parts.count > 0)
+    error_log(0,
+              "smoothing lengths: the density sums of %.3g particles redone per evaluation of "
+              "the steps on average (%.1f%% of the particles; SPH:h_tolerance %g)",
+              (double)e->h_resummed / (double)e->nr_eval,
+              100.0 * (double)e->h_resummed / ((double)e->nr_eval * (double)e->parts.count),
+              e->hp.h_tolerance);
   if (e->nr_rebuild > 1) {
     /* the first sorts the file's order and is not what a long run repeats */
     const double n = (double)(e->nr_rebuild - 1);

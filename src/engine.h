@@ -122,6 +122,9 @@ struct engine {
   struct drift_integrator *rk; /**< the rk2/pc integrator's state (tasks/drift/drift_integrate.c) */
   double t_eval;            /**< wall seconds of the steps' FORCE phases (derivative evaluations) */
   long nr_eval;             /**< their number */
+  long long h_resummed;     /**< particles whose density sums the h iteration redid in the
+                                 steps' evaluations (CPU ghosts, atomic; the GPU's phases add
+                                 their count), the initial forces not counted */
   double t_rebuild;         /**< wall seconds of the rebuilds (cells, sort, task graph) */
   double t_rebuild_part[3]; /**< of which: particles back from the GPU, space_rebuild, task graph */
   double

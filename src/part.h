@@ -144,7 +144,7 @@ enum part_flags {
   X(double,  dalpha_dt, NULL,         0, 1, 0,  0, -1, 0, "rate of change of the distention") \
   X(double,  rho_full, NULL,          0, 1, 1, -3,  0, 0, "density integrated by the continuity equation") \
   X(double,  rho_fp, NULL,            0, 1, 1, -3,  0, 0, "predicted continuity density")        \
-  X(double,  h_lo, NULL,              0, 1, 0,  1,  0, 0, "lower bracket of the h iteration")     \
+  X(double,  h_lo, NULL,              0, 1, 0,  1,  0, 0, "lower bracket of the h iteration; once converged, the ratio of the root estimated from the sums to h, applied by the drift at the start of the next step (ghost_part_step, drift_h_root; 0: none)") \
   X(double,  h_hi, NULL,              0, 1, 0,  1,  0, 0, "upper bracket of the h iteration")     \
   X(double,  x0,  NULL,               0, 3, 0,  1,  0, 0, "position at the last rebuild")         \
   X(double,  y0,  NULL,               1, 3, 0,  1,  0, 0, "position at the last rebuild")         \

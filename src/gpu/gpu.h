@@ -66,10 +66,11 @@ struct gpu_gravity {
 
 /** What a FORCE phase reports besides the particle fields. */
 struct gpu_force_out {
-  int capped;     /**< some h hit the top-level cells' cap: rebuild */
-  int overflow;   /**< some h outgrew h_list_cap: rebuild the lists and call again
-                       (h was copied back, everything else is unchanged) */
-  int iterations; /**< rounds of the h iteration */
+  int capped;         /**< some h hit the top-level cells' cap: rebuild */
+  int overflow;       /**< some h outgrew h_list_cap: rebuild the lists and call again
+                           (h was copied back, everything else is unchanged) */
+  int iterations;     /**< rounds of the h iteration */
+  long long resummed; /**< particles whose density sums were redone, summed over the rounds */
 };
 
 /** Find a CUDA device (cudaGetDeviceCount) and set it up; NULL when there

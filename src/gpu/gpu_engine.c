@@ -464,6 +464,7 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
         gc->n,         gc->offset,   gc->count,     gc->h_cap,  gc->h_list_cap,
         gc->ngb_start, gc->ngb_leaf, gc->ngb_shift, gc->nr_ngb, gc->host_lists ? NULL : gc->dev};
     gpu_force_phase(g, p, &lv, hp, mats, dmg, grav, dt_kick, leaf_dt, resident, &out);
+    gc->h_resummed += out.resummed;
     if (!out.overflow) break;
     if (attempt > 30)
       error_bug("GPU neighbour lists did not cover the smoothing lengths after %d widenings",
@@ -845,6 +846,8 @@ void gpu_engine_force(struct engine *e) {
   ge->t_phase += error_walltime() - w_phase;
   ge->phases++;
   if (jb.capped) e->need_rebuild = 1;
+  if (!e->first_force) e->h_resummed += ge->cells.h_resummed; /* (its thread is joined) */
+  ge->cells.h_resummed = 0;
 }
 
 /** A range of top-level cells whose bounds one thread updates. */

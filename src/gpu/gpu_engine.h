@@ -30,6 +30,7 @@ struct gpu_cells {
   struct gpu_cells_job *jobs;       /**< workers of the list build, kept between calls */
   int nr_jobs;                      /**< their number */
   long widenings;                   /**< times h outgrew the lists (phase run again) */
+  long long h_resummed;             /**< particles whose density sums the h iteration redid */
   long builds;                      /**< times the lists were built */
   const struct cell **leaf_cell;    /**< the cell of each leaf */
   double *dx_allow;                 /**< drift of each leaf up to which the lists hold */

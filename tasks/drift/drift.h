@@ -65,14 +65,30 @@ BOLIDE_INLINE void kick_sync_predicted(struct parts *BOLIDE_RESTRICT p, size_t i
 }
 
 /** The exponent w of the smoothing length's change over a drift by dt,
- *  h -> h exp(w): dh/dt = h div v / 3, or with h_continuity
- *  dh/dt = -h/(3 rho) drho/dt (drift_part_to), within +-0.2. */
+ *  h -> h exp(w): dh/dt = f h div v / 3 with f the grad-h factor, or with
+ *  h_continuity dh/dt = -h/(3 rho) drho/dt (drift_part_to), within +-0.2.
+ *  f: the h that keeps n h^3 fixed while the particles move changes at
+ *  -h (dn/dt at fixed h) / (3 n + h dn/dh) = f h div v / 3, and the
+ *  summed density at d ln rho / dt = -f div v (theory/sph.md section 2);
+ *  f = 1 where no ghost has set it. */
 BOLIDE_INLINE double drift_h_exponent(const struct parts *BOLIDE_RESTRICT p, size_t i, double dt,
                                       int h_continuity) {
-  double w = h_continuity ? -p->drho_dt[i] * dt / (3.0 * p->rho[i]) : p->div_v[i] * dt / 3.0;
+  const double f = p->f_gradh[i] > 0.0 ? p->f_gradh[i] : 1.0;
+  double w = h_continuity ? -p->drho_dt[i] * dt / (3.0 * p->rho[i]) : f * p->div_v[i] * dt / 3.0;
   if (w > 0.2) w = 0.2;
   if (w < -0.2) w = -0.2;
   return w;
+}
+
+/** At the start of particle i's step (its first half kick): its h becomes
+ *  the estimate of the root that its last ghost made from its sums
+ *  (ghost_part_step: the ratio in h_lo, 0 where there is none), so that
+ *  the drift predicts from the root and not from an h up to the
+ *  iteration's tolerance away from it; h_lo is cleared. */
+BOLIDE_INLINE void drift_h_root(struct parts *BOLIDE_RESTRICT p, size_t i) {
+  const double r = p->h_lo[i];
+  if (r > 0.5 && r < 2.0) p->h[i] *= r;
+  p->h_lo[i] = 0.0;
 }
 
 /** Drift of particle i by dt after its first half kick: positions move with
@@ -118,6 +134,7 @@ BOLIDE_INLINE void drift_part_to(struct parts *BOLIDE_RESTRICT p, size_t i, doub
  *  (the global step: the new time is the end of its step). */
 BOLIDE_INLINE void drift_part(struct parts *BOLIDE_RESTRICT p, size_t i, double dt, double xsph,
                               double h_max, int h_continuity) {
+  drift_h_root(p, i);
   drift_part_to(p, i, dt, 0.5 * dt, xsph, h_max, h_continuity);
 }
 
@@ -166,7 +183,10 @@ BOLIDE_INLINE int drift_part_bins(struct parts *BOLIDE_RESTRICT p, size_t i, dou
                                   const struct hydro_props *hp, const struct material_table *mats) {
   const integertime_t step = timeline_step_of_bin(p->time_bin[i] > 0 ? p->time_bin[i] : 1);
   const integertime_t since = ti_old % step; /* 0: its step begins at ti_old */
-  if (since == 0) kick_part(p, i, 0.5 * (double)step * time_base);
+  if (since == 0) {
+    kick_part(p, i, 0.5 * (double)step * time_base);
+    drift_h_root(p, i);
+  }
   const integertime_t ti_mid = ti_old - since + step / 2;
   const double dt = (double)(ti_new - ti_old) * time_base;
   const double w = drift_h_exponent(p, i, dt, hp->h_continuity);

@@ -13,12 +13,13 @@
 #include "tasks/hydro/kernel.h"
 
 int ghost_cell_cpu(struct parts *p, struct cell *c, const struct ghost_ngbs *ngbs,
-                   const struct hydro_props *hp, const struct material_table *mats,
-                   double H_limit) {
+                   const struct hydro_props *hp, const struct material_table *mats, double H_limit,
+                   long long *resummed) {
   const size_t beg = c->offset, end = c->offset + c->count;
   const double h_cap = H_limit / kernel_gamma;
   int capped = 0;
   size_t left = 0;
+  *resummed = 0;
   for (size_t i = beg; i < end; i++) {
     if (PART_IS_INACTIVE(p, i)) { /* (time bins: it keeps its h and sums) */
       p->flags[i] |= PART_H_CONVERGED;
@@ -35,6 +36,7 @@ int ghost_cell_cpu(struct parts *p, struct cell *c, const struct ghost_ngbs *ngb
     left += !(p->flags[i] & PART_H_CONVERGED);
   }
   for (int iter = 1; left > 0; iter++) {
+    *resummed += (long long)left;
     if (iter > hp->max_iterations) {
       for (size_t i = beg; i < end; i++)
         if (!(p->flags[i] & PART_H_CONVERGED))

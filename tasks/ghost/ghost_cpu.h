@@ -20,9 +20,11 @@ struct ghost_ngbs {
  *  gather density loop over ngbs for the particles that need it), then
  *  evaluate the equation of state.  H_limit: the largest kernel support the
  *  cells allow; a particle that needs more is capped there and the function
- *  returns 1 (rebuild the cells), else 0.  A particle that does not converge
+ *  returns 1 (rebuild the cells), else 0.  *resummed: the particles whose sums
+ *  were redone, summed over the rounds.  A particle that does not converge
  *  in hp->max_iterations stops the run with an error naming it. */
 int ghost_cell_cpu(struct parts *p, struct cell *c, const struct ghost_ngbs *ngbs,
-                   const struct hydro_props *hp, const struct material_table *mats, double H_limit);
+                   const struct hydro_props *hp, const struct material_table *mats, double H_limit,
+                   long long *resummed);
 
 #endif

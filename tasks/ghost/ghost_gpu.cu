@@ -88,6 +88,7 @@ int ghost_gpu_phase(struct gpu_phase *ph) {
   ghost_gpu_start_launch(ph->s, ph->dev, ph->lv, *hp, ph->counters);
   gpu_phase_read_counters(ph);
   int iter = 1;
+  ph->out->resummed = 0;
   while (ph->counters_host[GPU_LEFT] > 0 && !ph->counters_host[GPU_OVERFLOW]) {
     if (iter > hp->max_iterations)
       error_exit(
@@ -95,6 +96,7 @@ int ghost_gpu_phase(struct gpu_phase *ph) {
           "raise "
           "SPH:max_ghost_iterations or check the initial conditions",
           ph->counters_host[GPU_LEFT], hp->max_iterations);
+    ph->out->resummed += ph->counters_host[GPU_LEFT];
     gpu_check(cudaMemsetAsync(ph->counters + GPU_LEFT, 0, sizeof(int), ph->s));
     density_gpu_launch(ph->s, ph->dev, ph->lv, 1);
     ghost_gpu_step_launch(ph->s, ph->dev, ph->lv, *hp, ph->counters);

@@ -21,7 +21,12 @@ enum ghost_h_result {
 
 /** One step of the h iteration for a particle with smoothing length *h,
  *  number density n and dn/dh.  Updates *h, *h_lo, *h_hi; h_max caps h.
- *  Returns GHOST_H_CONVERGED or GHOST_H_AGAIN. */
+ *  Returns GHOST_H_CONVERGED or GHOST_H_AGAIN.  On GHOST_H_AGAIN *h is the
+ *  h to redo the sums with; on GHOST_H_CONVERGED the sums at the h passed
+ *  in are accepted, and *h is the best estimate of the root that they
+ *  give (one more Newton step, within the tolerance of the h passed in):
+ *  the caller keeps its h for this step's sums and may start the next
+ *  step's iteration from the estimate (ghost_part_step). */
 BOLIDE_INLINE int ghost_h_iterate(double *h, double *h_lo, double *h_hi, double n, double dn_dh,
                                   double eta, double tol, double h_max) {
   const double h0 = *h;
@@ -35,8 +40,13 @@ BOLIDE_INLINE int ghost_h_iterate(double *h, double *h_lo, double *h_hi, double 
   const double eta3 = eta * eta * eta;
   const double h03 = h0 * h0 * h0;
   const double f = n * h03 - eta3;
+  const double df = dn_dh * h03 + 3.0 * n * h0 * h0;
   /* |f| / (3 eta^3) is the relative error of h to first order */
-  if (fabs(f) <= 3.0 * eta3 * tol) return GHOST_H_CONVERGED;
+  if (fabs(f) <= 3.0 * eta3 * tol) {
+    const double hn = (df > 0.0) ? h0 - f / df : h0;
+    *h = (hn > 0.5 * h0 && hn < 2.0 * h0) ? (hn < h_max ? hn : h_max) : h0;
+    return GHOST_H_CONVERGED;
+  }
   if (f < 0.0) {
     if (h0 >= h_max) { /* too few neighbours but capped: accept */
       *h = h_max;
@@ -46,7 +56,6 @@ BOLIDE_INLINE int ghost_h_iterate(double *h, double *h_lo, double *h_hi, double 
   } else {
     if (h0 < *h_hi) *h_hi = h0;
   }
-  const double df = dn_dh * h03 + 3.0 * n * h0 * h0;
   double h1 = (df > 0.0) ? h0 - f / df : -1.0;
   /* keep the step within a factor 2 and inside the bracket; else bisect */
   if (!(h1 > 0.5 * h0 && h1 < 2.0 * h0 && h1 > *h_lo && h1 < *h_hi)) {

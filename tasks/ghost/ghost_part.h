@@ -35,6 +35,11 @@ BOLIDE_INLINE void ghost_part_start(struct parts *BOLIDE_RESTRICT p, size_t i) {
 
 /** One iteration step for particle i (its sums complete, self term
  *  included); sets PART_H_CONVERGED when done, else stores the new h.
+ *  A converged particle keeps the h of its sums; the ratio of the root's
+ *  estimate from those sums to it goes into h_lo (no longer a bracket):
+ *  the drift at the start of the particle's next step applies it
+ *  (drift_h_root), so that the next iteration starts from the root and
+ *  not from an h up to the tolerance away from it.
  *  h_cap: the largest h the cells allow.  Returns 1 if the particle was
  *  capped at h_cap below SPH:h_max (the cells must be rebuilt).  With
  *  SPH:h_evolution: continuity the h the drift integrated is kept (one
@@ -58,7 +63,9 @@ BOLIDE_INLINE int ghost_part_step(struct parts *BOLIDE_RESTRICT p, size_t i,
   if (r == GHOST_H_CONVERGED) {
     p->flags[i] |= PART_H_CONVERGED;
     if (h >= h_cap && h_cap < hp->h_max) capped = 1;
-    /* keep the h the sums were computed with */
+    /* keep the h the sums were computed with; h is the root's estimate
+     * (at most the cells' cap) */
+    p->h_lo[i] = h / p->h[i];
   } else {
     p->h[i] = h;
   }

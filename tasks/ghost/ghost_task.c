@@ -19,6 +19,8 @@ void ghost_task(struct engine *e, struct task *tk) {
   struct ghost_ngbs ngbs = {ct->nr_ngb, cells, (const double(*)[3])ct->ngb_shift};
   /* a pair (i, j) is found while H_i + |dx_i| + |dx_j| stays below the reach */
   const double H_limit = engine_H_limit(e) - 2.0 * dx_max;
-  if (ghost_cell_cpu(&e->parts, e->tcells[t], &ngbs, &e->hp, e->mats, H_limit))
+  long long resummed;
+  if (ghost_cell_cpu(&e->parts, e->tcells[t], &ngbs, &e->hp, e->mats, H_limit, &resummed))
     atomic_store((_Atomic int *)&e->need_rebuild, 1);
+  if (resummed && !e->first_force) atomic_fetch_add((_Atomic long long *)&e->h_resummed, resummed);
 }

@@ -426,7 +426,9 @@ static int case_cpu(struct parts *p, struct space *sp, const struct engine_cell_
     struct cell *cells[32];
     for (int k = 0; k < ct[c].nr_ngb; k++) cells[k] = &sp->cells[ct[c].ngb[k]];
     struct ghost_ngbs ng = {ct[c].nr_ngb, cells, (const double(*)[3])ct[c].ngb_shift};
-    capped_cpu |= ghost_cell_cpu(p, &sp->cells[c], &ng, hp, mats, top_h_cap[c] * kernel_gamma);
+    long long resummed;
+    capped_cpu |=
+        ghost_cell_cpu(p, &sp->cells[c], &ng, hp, mats, top_h_cap[c] * kernel_gamma, &resummed);
   }
   if (solid) {
     /* ghost -> gradient -> extra ghost -> force */
