@@ -1,8 +1,10 @@
 /* Force loops on the CPU: the loop skeleton around force_iact.h.  The
- * symmetric form evaluates the gather interaction for (i, j) and for (j, i):
- * the pair function combines i and j with commutative operations only, so
- * the two are exact opposites (force_iact.h) and the result equals the
- * gather form's (tests/unit/test_hydro_forms.c). */
+ * symmetric form evaluates the terms a pair shares once (force_pair_eval:
+ * the two kernels, the viscosity, the pressure term) and adds each side's
+ * contribution (force_pair_side): the pair function combines i and j with
+ * commutative operations only, so the two sides are what the gather
+ * interaction gives for (i, j) and for (j, i), bit for bit, and the result
+ * equals the gather form's (tests/unit/test_hydro_forms.c). */
 #include "tasks/force/force_cpu.h"
 
 #include "tasks/hydro_parts.h"
@@ -11,34 +13,45 @@
  *  has a fixed signature); thread-local so that tasks can run in parallel. */
 static _Thread_local const struct hydro_props *force_hp;
 
-/** Both sides of one interacting pair (a particle marked PART_INACTIVE,
- *  time bins, takes none). */
+/** Both sides of one interacting pair: i's (inputs in_i, velocity vi,
+ *  active_i: not PART_INACTIVE) into its local accumulator acc_i, j's into
+ *  the arrays (a particle marked PART_INACTIVE, time bins, takes none). */
 BOLIDE_ALWAYS_INLINE void force_sym(struct parts *p, size_t i, size_t j, double r2,
-                                    const double dx[3]) {
+                                    const double dx[3], const struct force_in *in_i,
+                                    const double vi[3], int active_i, struct force_acc *acc_i) {
   if (r2 <= 0.0) return; /* coincident particles exert no pairwise force */
-  struct force_in in_i, in_j;
-  hydro_force_load(p, i, &in_i, force_hp->solids);
+  struct force_in in_j;
   hydro_force_load(p, j, &in_j, force_hp->solids);
-  const double dv[3] = {p->vpx[i] - p->vpx[j], p->vpy[i] - p->vpy[j], p->vpz[i] - p->vpz[j]};
-  const double mdx[3] = {-dx[0], -dx[1], -dx[2]};
-  const double mdv[3] = {-dv[0], -dv[1], -dv[2]};
-  struct force_acc ai, aj;
-  if (!PART_IS_INACTIVE(p, i)) {
-    force_acc_zero(&ai);
-    force_iact(r2, dx, dv, &in_i, &in_j, force_hp, &ai);
-    hydro_force_add(p, i, &ai);
+  const double dv[3] = {vi[0] - p->vpx[j], vi[1] - p->vpy[j], vi[2] - p->vpz[j]};
+  struct force_pair pr;
+  force_pair_eval(r2, dx, dv, in_i, &in_j, force_hp, &pr);
+  if (active_i) {
+    force_pair_side(&pr, 0, dx, dv, in_i, &in_j, force_hp, acc_i);
     if (force_hp->bin_limit) hydro_limiter_pair(p, i, j, force_hp->bin_limit, 0);
   }
   if (!PART_IS_INACTIVE(p, j)) {
+    const double mdx[3] = {-dx[0], -dx[1], -dx[2]};
+    const double mdv[3] = {-dv[0], -dv[1], -dv[2]};
+    struct force_acc aj;
     force_acc_zero(&aj);
-    force_iact(r2, mdx, mdv, &in_j, &in_i, force_hp, &aj);
+    force_pair_side(&pr, 1, mdx, mdv, &in_j, in_i, force_hp, &aj);
     hydro_force_add(p, j, &aj);
     if (force_hp->bin_limit) hydro_limiter_pair(p, j, i, force_hp->bin_limit, 0);
   }
 }
 
 #define IACT_LOOP_NAME force
-#define IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj) force_sym(p, i, j, r2, dx)
+#define IACT_LOOP_ACC_BEGIN(p, i)                               \
+  struct force_in in_i;                                         \
+  hydro_force_load(p, i, &in_i, force_hp->solids);              \
+  const double vi[3] = {(p)->vpx[i], (p)->vpy[i], (p)->vpz[i]}; \
+  const int active_i = !PART_IS_INACTIVE(p, i);                 \
+  struct force_acc acc_i;                                       \
+  force_acc_zero(&acc_i)
+#define IACT_LOOP_ACC_END(p, i) \
+  if (active_i) hydro_force_add(p, i, &acc_i)
+#define IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj) \
+  force_sym(p, i, j, r2, dx, &in_i, vi, active_i, &acc_i)
 #include "tasks/iact_loop.h"
 
 void force_self_cpu(struct parts *p, const struct cell *c, const struct hydro_props *hp) {

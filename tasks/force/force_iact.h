@@ -82,26 +82,52 @@ BOLIDE_INLINE void force_sym_dot(const double T[6], const double x[3], double y[
   y[2] = T[2] * x[0] + T[4] * x[1] + T[5] * x[2];
 }
 
-/** Contribution of j to i.  dx = x_i - x_j, dv = v_i - v_j, r2 = |dx|^2 > 0,
- *  and r < max(H_i, H_j).  hp: viscosity and conduction constants. */
-BOLIDE_INLINE void force_iact(double r2, const double dx[3], const double dv[3],
-                              const struct force_in *pi, const struct force_in *pj,
-                              const struct hydro_props *hp, struct force_acc *acc) {
+/** What one interacting pair (i, j) shares between its two sides: the
+ *  kernels at h_i (index 0) and h_j (index 1) and every term that is the
+ *  same, bit for bit, whichever particle the pair is seen from (each is
+ *  combined from i's and j's values with commutative operations only). */
+struct force_pair {
+  double r, r_inv;      /**< separation and its inverse */
+  double dvdr;          /**< v_ij . x_ij */
+  double w[2], w_dr[2]; /**< W and dW/dr at h_i and at h_j */
+  double w_mean_dr;     /**< (dW/dr(h_i) + dW/dr(h_j)) / 2 */
+  double mu_ij;         /**< min(v_ij . x_ij, 0) / r */
+  double rho_ij;        /**< mean density */
+  double visc;          /**< the viscous term Pi_ij */
+  double P[2];     /**< the pressures the pair uses (no tension across a fluid-solid interface) */
+  double Prho2[2]; /**< f P / rho^2 of each side (the asymmetric form's pressure terms) */
+  double rr_inv;   /**< 1 / (rho_i rho_j) */
+  double acc_term; /**< the radial acceleration term: i gets -m_j acc_term x_ij, j its opposite */
+  double v_sig_dt; /**< the time step's signal velocity (longitudinal speeds) */
+  int sym;         /**< the symmetric momentum form applies to this pair */
+};
+
+/** The shared terms of the pair (i, j): dx = x_i - x_j, dv = v_i - v_j,
+ *  r2 = |dx|^2 > 0, and r < max(H_i, H_j).  hp: viscosity constants. */
+BOLIDE_INLINE void force_pair_eval(double r2, const double dx[3], const double dv[3],
+                                   const struct force_in *pi, const struct force_in *pj,
+                                   const struct hydro_props *hp, struct force_pair *pr) {
   const double r = sqrt(r2);
   const double r_inv = 1.0 / r;
+  pr->r = r;
+  pr->r_inv = r_inv;
 
-  double wi, wi_dr, wi_dh, wj, wj_dr, wj_dh;
-  kernel_eval_r(r, pi->h_inv, &wi, &wi_dr, &wi_dh);
-  kernel_eval_r(r, pj->h_inv, &wj, &wj_dr, &wj_dh);
+  double wi_dh, wj_dh;
+  kernel_eval_r(r, pi->h_inv, &pr->w[0], &pr->w_dr[0], &wi_dh);
+  kernel_eval_r(r, pj->h_inv, &pr->w[1], &pr->w_dr[1], &wj_dh);
+  (void)wi_dh;
+  (void)wj_dh;
 
   const double dvdr = dv[0] * dx[0] + dv[1] * dx[1] + dv[2] * dx[2];
+  pr->dvdr = dvdr;
 
   /* Monaghan (1997) viscosity with signal velocity; only approaching pairs */
   const double mu_ij = (dvdr < 0.0 ? dvdr : 0.0) * r_inv;
+  pr->mu_ij = mu_ij;
   const double v_sig = pi->cs + pj->cs - hp->beta * mu_ij;
-  const double rho_ij = 0.5 * (pi->rho + pj->rho);
-  const double visc = -0.25 * hp->alpha * v_sig * mu_ij * (pi->balsara + pj->balsara) / rho_ij;
-  const double w_mean_dr = 0.5 * (wi_dr + wj_dr);
+  pr->rho_ij = 0.5 * (pi->rho + pj->rho);
+  pr->visc = -0.25 * hp->alpha * v_sig * mu_ij * (pi->balsara + pj->balsara) / pr->rho_ij;
+  pr->w_mean_dr = 0.5 * (pr->w_dr[0] + pr->w_dr[1]);
 
   /* fluid-solid interface (SPH:fluid_solid_interface; theory/fluids.md
    * F6-F8): a pair of a fluid and a solid particle, met only by particles
@@ -111,72 +137,94 @@ BOLIDE_INLINE void force_iact(double r2, const double dx[3], const double dv[3],
    * leaves without force across the density jump, and carries no tension
    * across the unbonded interface (P at least 0 on both sides) */
   const int cross = hp->fluid_solid_interface && pi->solid != pj->solid;
-  const double P_i = cross && pi->P < 0.0 ? 0.0 : pi->P;
-  const double P_j = cross && pj->P < 0.0 ? 0.0 : pj->P;
-  const int sym = hp->momentum_form == HYDRO_MOMENTUM_SYMMETRIC || cross;
+  pr->P[0] = cross && pi->P < 0.0 ? 0.0 : pi->P;
+  pr->P[1] = cross && pj->P < 0.0 ? 0.0 : pj->P;
+  pr->sym = hp->momentum_form == HYDRO_MOMENTUM_SYMMETRIC || cross;
 
-  double acc_term, du;
-  if (sym) {
+  if (pr->sym) {
     /* (P_i + P_j) / (rho_i rho_j) with the mean kernel gradient */
-    const double rr_inv = 1.0 / (pi->rho * pj->rho);
-    acc_term = ((P_i + P_j) * rr_inv + visc) * w_mean_dr * r_inv;
-    du = (P_i * rr_inv + 0.5 * visc) * w_mean_dr * dvdr * r_inv;
+    pr->rr_inv = 1.0 / (pi->rho * pj->rho);
+    pr->acc_term = ((pr->P[0] + pr->P[1]) * pr->rr_inv + pr->visc) * pr->w_mean_dr * r_inv;
   } else {
     /* pressure terms with grad-h corrections (Springel & Hernquist 2002) */
-    const double Pi_rho2 = pi->f * pi->P / (pi->rho * pi->rho);
-    const double Pj_rho2 = pj->f * pj->P / (pj->rho * pj->rho);
-    acc_term = (Pi_rho2 * wi_dr + Pj_rho2 * wj_dr + visc * w_mean_dr) * r_inv;
-    /* energy: PdV work of i plus half the viscous heating */
-    du = (Pi_rho2 * wi_dr + 0.5 * visc * w_mean_dr) * dvdr * r_inv;
+    pr->Prho2[0] = pi->f * pi->P / (pi->rho * pi->rho);
+    pr->Prho2[1] = pj->f * pj->P / (pj->rho * pj->rho);
+    pr->acc_term =
+        (pr->Prho2[0] * pr->w_dr[0] + pr->Prho2[1] * pr->w_dr[1] + pr->visc * pr->w_mean_dr) *
+        r_inv;
   }
 
-  acc->a[0] -= pj->m * acc_term * dx[0];
-  acc->a[1] -= pj->m * acc_term * dx[1];
-  acc->a[2] -= pj->m * acc_term * dx[2];
-  acc->du_dt += pj->m * du;
+  /* the time step's signal velocity: with the longitudinal wave speeds of
+   * solids (equal to v_sig for fluids) */
+  pr->v_sig_dt = pi->cl + pj->cl - hp->beta * mu_ij;
+}
+
+/** The contribution of the pair to one of its particles, a (side 0: i,
+ *  side 1: j), from the other, b: dx = x_a - x_b, dv = v_a - v_b.  Side 1
+ *  with (j, i, -dx, -dv) gives bit for bit what side 0 of the pair (j, i)
+ *  would: force_iact for (i, j) and for (j, i) and the symmetric loop's
+ *  two sides of one force_pair_eval are the same sums. */
+BOLIDE_INLINE void force_pair_side(const struct force_pair *pr, int side, const double dx[3],
+                                   const double dv[3], const struct force_in *pa,
+                                   const struct force_in *pb, const struct hydro_props *hp,
+                                   struct force_acc *acc) {
+  const int a = side, b = 1 - side;
+  const double r_inv = pr->r_inv, dvdr = pr->dvdr, w_mean_dr = pr->w_mean_dr;
+  const double wa_dr = pr->w_dr[a], wb_dr = pr->w_dr[b];
+
+  double du;
+  if (pr->sym)
+    du = (pr->P[a] * pr->rr_inv + 0.5 * pr->visc) * w_mean_dr * dvdr * r_inv;
+  else /* energy: PdV work of a plus half the viscous heating */
+    du = (pr->Prho2[a] * wa_dr + 0.5 * pr->visc * w_mean_dr) * dvdr * r_inv;
+
+  acc->a[0] -= pb->m * pr->acc_term * dx[0];
+  acc->a[1] -= pb->m * pr->acc_term * dx[1];
+  acc->a[2] -= pb->m * pr->acc_term * dx[2];
+  acc->du_dt += pb->m * du;
 
   if (hp->solids) {
     /* deviatoric stress: S.dx of each side, combined commutatively */
-    double Si_dx[3], Sj_dx[3], t[3];
-    force_sym_dot(pi->S, dx, Si_dx);
-    force_sym_dot(pj->S, dx, Sj_dx);
-    double ci;
-    if (sym) {
-      ci = w_mean_dr * r_inv / (pi->rho * pj->rho);
-      for (int k = 0; k < 3; k++) t[k] = (Si_dx[k] + Sj_dx[k]) * ci;
+    double Sa_dx[3], Sb_dx[3], t[3];
+    force_sym_dot(pa->S, dx, Sa_dx);
+    force_sym_dot(pb->S, dx, Sb_dx);
+    double ca;
+    if (pr->sym) {
+      ca = w_mean_dr * r_inv / (pa->rho * pb->rho);
+      for (int k = 0; k < 3; k++) t[k] = (Sa_dx[k] + Sb_dx[k]) * ca;
     } else {
-      ci = wi_dr * r_inv / (pi->rho * pi->rho);
-      const double cj = wj_dr * r_inv / (pj->rho * pj->rho);
-      for (int k = 0; k < 3; k++) t[k] = Si_dx[k] * ci + Sj_dx[k] * cj;
+      ca = wa_dr * r_inv / (pa->rho * pa->rho);
+      const double cb = wb_dr * r_inv / (pb->rho * pb->rho);
+      for (int k = 0; k < 3; k++) t[k] = Sa_dx[k] * ca + Sb_dx[k] * cb;
     }
-    double du_s = -(dv[0] * Si_dx[0] + dv[1] * Si_dx[1] + dv[2] * Si_dx[2]) * ci;
+    double du_s = -(dv[0] * Sa_dx[0] + dv[1] * Sa_dx[1] + dv[2] * Sa_dx[2]) * ca;
     if (hp->as_eps > 0.0) {
       /* artificial stress (Monaghan 2000, Sec. 4) with f = W(r)/W(dp) */
-      const double h_ij = 0.5 * (pi->h + pj->h);
-      double w_ij, w_ij_dr, w_ij_dh;
-      kernel_eval_r(r, 1.0 / h_ij, &w_ij, &w_ij_dr, &w_ij_dh);
-      const double fr = w_ij * h_ij * h_ij * h_ij * hp->as_wdp_inv;
+      const double h_ab = 0.5 * (pa->h + pb->h);
+      double w_ab, w_ab_dr, w_ab_dh;
+      kernel_eval_r(pr->r, 1.0 / h_ab, &w_ab, &w_ab_dr, &w_ab_dh);
+      const double fr = w_ab * h_ab * h_ab * h_ab * hp->as_wdp_inv;
       const double cr = pow(fr, hp->as_n) * w_mean_dr * r_inv;
-      double Ri_dx[3], Rj_dx[3];
-      force_sym_dot(pi->R, dx, Ri_dx);
-      force_sym_dot(pj->R, dx, Rj_dx);
+      double Ra_dx[3], Rb_dx[3];
+      force_sym_dot(pa->R, dx, Ra_dx);
+      force_sym_dot(pb->R, dx, Rb_dx);
       double dvR = 0.0;
       for (int k = 0; k < 3; k++) {
-        const double rs = (Ri_dx[k] + Rj_dx[k]) * cr;
+        const double rs = (Ra_dx[k] + Rb_dx[k]) * cr;
         t[k] += rs;
         dvR += dv[k] * rs;
       }
       du_s -= 0.5 * dvR;
     }
-    acc->a[0] += pj->m * t[0];
-    acc->a[1] += pj->m * t[1];
-    acc->a[2] += pj->m * t[2];
-    acc->du_dt += pj->m * du_s;
+    acc->a[0] += pb->m * t[0];
+    acc->a[1] += pb->m * t[1];
+    acc->a[2] += pb->m * t[2];
+    acc->du_dt += pb->m * du_s;
   }
 
   if (hp->xsph > 0.0) {
     /* XSPH (Monaghan 1989): mean of the two kernels and densities */
-    const double c = pj->m * 0.5 * (wi + wj) / rho_ij;
+    const double c = pb->m * 0.5 * (pr->w[a] + pr->w[b]) / pr->rho_ij;
     acc->xsph[0] -= c * dv[0];
     acc->xsph[1] -= c * dv[1];
     acc->xsph[2] -= c * dv[2];
@@ -184,19 +232,27 @@ BOLIDE_INLINE void force_iact(double r2, const double dx[3], const double dv[3],
 
   /* artificial conduction (Price 2008, eq. 28) with v_sig^u = sqrt(|dP|/rho_ij) */
   if (hp->alpha_u > 0.0) {
-    const double vsig_u = sqrt(fabs(pi->P - pj->P) / rho_ij);
-    acc->du_dt += pj->m * hp->alpha_u * vsig_u * (pi->u - pj->u) / rho_ij * w_mean_dr;
+    const double vsig_u = sqrt(fabs(pa->P - pb->P) / pr->rho_ij);
+    acc->du_dt += pb->m * hp->alpha_u * vsig_u * (pa->u - pb->u) / pr->rho_ij * w_mean_dr;
   }
 
-  /* continuity equation, grad W at h_i (with SPH:continuity_correction the
+  /* continuity equation, grad W at h_a (with SPH:continuity_correction the
    * extra ghost sets drho/dt from the corrected gradient instead:
    * gradient_cspm_drho_dt in gradient_finish.h) */
-  if (!hp->continuity_cspm) acc->drho_dt += pj->m * dvdr * r_inv * wi_dr;
+  if (!hp->continuity_cspm) acc->drho_dt += pb->m * dvdr * r_inv * wa_dr;
 
-  /* the time step's signal velocity: with the longitudinal wave speeds of
-   * solids (equal to v_sig for fluids) */
-  const double v_sig_dt = pi->cl + pj->cl - hp->beta * mu_ij;
-  if (v_sig_dt > acc->v_sig) acc->v_sig = v_sig_dt;
+  if (pr->v_sig_dt > acc->v_sig) acc->v_sig = pr->v_sig_dt;
+}
+
+/** Contribution of j to i (the gather form: the GPU's kernels).  dx = x_i
+ *  - x_j, dv = v_i - v_j, r2 = |dx|^2 > 0, and r < max(H_i, H_j).  hp:
+ *  viscosity and conduction constants. */
+BOLIDE_INLINE void force_iact(double r2, const double dx[3], const double dv[3],
+                              const struct force_in *pi, const struct force_in *pj,
+                              const struct hydro_props *hp, struct force_acc *acc) {
+  struct force_pair pr;
+  force_pair_eval(r2, dx, dv, pi, pj, hp, &pr);
+  force_pair_side(&pr, 0, dx, dv, pi, pj, hp, acc);
 }
 
 #endif
