@@ -14,6 +14,7 @@
 # Usage: tools/bench/kernel_cost.sh -a BUILD_A -b BUILD_B [-n 2.2e4] [-t 2]
 #                                   [-r 3] [-s 3]
 #   e.g. tools/bench/kernel_cost.sh -a _build_cubic -b _build
+# (any two builds: also the cost of a change, A the build before it)
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 python=${PYTHON:-$top/_build/.venv/bin/python}
@@ -71,7 +72,7 @@ YML
             awk '{x[NR] = $1} END {print x[int((NR + 1) / 2)]}')
       all=$(awk -v bd="$build" -v c=$col '$1 == bd {printf "%s ", $c}' "times_$v")
       what=$([ $col = 2 ] && echo wall || echo CPU)
-      printf "%-14s %-13s eta %-7s %-4s %10.4f s/step   (runs: %s)\n" "$v" "$k" "$eta" "$what" "$med" "$all"
+      printf "%-14s %-12s %-13s eta %-7s %-4s %10.4f s/step   (runs: %s)\n" "$v" "$(basename "$build")" "$k" "$eta" "$what" "$med" "$all"
       echo "$med" >>"med_${v}_$col"
     done
   done
