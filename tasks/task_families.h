@@ -243,7 +243,7 @@
   X(gravity, double, gravity_potential_energy, (const struct parts *p))                      \
   X(gravity, void, gravity_log_end, (const struct engine *e))                                \
   X(gravity, struct gravity_gpu *, gravity_gpu_new,                                          \
-    (struct gpu *g, int up_on_device, int walk_on_device))                                   \
+    (struct gpu *g, int up_on_device, int walk_on_device, int reproducible))                 \
   X(gravity, int,  gravity_gpu_prepare, (struct engine *e, struct gravity_gpu *gg))          \
   X(gravity, void, gravity_gpu_task,                                                         \
     (struct engine *e, struct gravity_gpu *gg, struct task *t, int thread_id))               \

@@ -618,7 +618,8 @@ void gpu_engine_init(struct engine *e) {
         "yet (the reuse's tolerance is measured by the CPU's walks)",
         params_filename(e->params));
   if (e->gp.enabled && mode != GPU_MODE_CPU_GRAV) {
-    ge->grav = gravity_gpu_new(g, ge->up_on_device, ge->walk_on_device);
+    ge->grav = gravity_gpu_new(g, ge->up_on_device, ge->walk_on_device,
+                               params_get_bool(e->params, "Gravity:gpu_reproducible"));
   }
   /* the host thread driving the GPU then sleeps while it waits: the CPU
    * workers have every core */

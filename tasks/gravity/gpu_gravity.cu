@@ -10,6 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <cub/device/device_segmented_sort.cuh>
+
 extern "C" {
 #include "src/error.h"
 }
@@ -38,6 +40,9 @@ struct gpu_grav {
   struct gpu_grav_buf start[2];       /**< part and field: counts, then start of each cell */
   struct gpu_grav_buf src[2];         /**< part and field: the sources grouped by cell */
   struct gpu_grav_buf cursor;         /**< scatter positions of each cell */
+  struct gpu_grav_buf sorted[2];      /**< part and field: src with each cell's sources sorted */
+  struct gpu_grav_buf sort_tmp;       /**< the segmented sort's scratch */
+  int reproducible;                   /**< sort each cell's sources (gpu_grav_set_reproducible) */
   struct gpu_grav_buf centre;         /**< box centre of each cell (3 doubles) */
   struct gpu_grav_buf scale;          /**< a_min then h_support of each cell (upward pass) */
   struct gpu_grav_buf active;         /**< per cell: it receives (a step of active particles) */
@@ -106,13 +111,13 @@ extern "C" struct gpu_grav *gpu_grav_new(struct gpu *g) {
 
 extern "C" void gpu_grav_free(struct gpu_grav *gg) {
   if (!gg) return;
-  struct gpu_grav_buf *bufs[25] = {
-      &gg->mp,       &gg->field,    &gg->offset,   &gg->count,     &gg->l2l,
-      &gg->leaf,     &gg->raw[0],   &gg->raw[1],   &gg->start[0],  &gg->start[1],
-      &gg->src[0],   &gg->src[1],   &gg->cursor,   &gg->centre,    &gg->scale,
-      &gg->progeny,  &gg->split,    &gg->lo_hi,    &gg->wcount,    &gg->wlist[0],
-      &gg->wlist[1], &gg->wlist[2], &gg->wlist[3], &gg->wqueue[0], &gg->wqueue[1]};
-  for (int k = 0; k < 25; k++)
+  struct gpu_grav_buf *bufs[29] = {
+      &gg->mp,        &gg->field,     &gg->offset,    &gg->count,    &gg->l2l,      &gg->leaf,
+      &gg->raw[0],    &gg->raw[1],    &gg->start[0],  &gg->start[1], &gg->src[0],   &gg->src[1],
+      &gg->cursor,    &gg->centre,    &gg->scale,     &gg->progeny,  &gg->split,    &gg->lo_hi,
+      &gg->wcount,    &gg->wlist[0],  &gg->wlist[1],  &gg->wlist[2], &gg->wlist[3], &gg->wqueue[0],
+      &gg->wqueue[1], &gg->sorted[0], &gg->sorted[1], &gg->sort_tmp, &gg->active};
+  for (int k = 0; k < 29; k++)
     if (bufs[k]->ptr) gpu_check(cudaFree(bufs[k]->ptr));
   if (gg->mp_host) gpu_check(cudaFreeHost(gg->mp_host));
   if (gg->scale_host) gpu_check(cudaFreeHost(gg->scale_host));
@@ -394,6 +399,18 @@ static struct gravity_gpu_groups gg_group_dev(struct gpu_grav *gg, int k, const 
   v.start = start;
   v.source = out;
   gg->n_entries[k] = (double)ntot;
+  if (!gg->reproducible) return v;
+  /* a cell's sources come in the order of the atomics (the walks' appends,
+   * the scatter's cursors), which changes from run to run: sorted, the
+   * sums of every cell, and so the run, are the same each time */
+  int *sorted = (int *)gg_reserve(&gg->sorted[k], ntot * sizeof(int) + 16, "sorted gravity lists");
+  size_t tmp_bytes = 0;
+  gpu_check(cub::DeviceSegmentedSort::SortKeys(NULL, tmp_bytes, out, sorted, (int)ntot, nc, start,
+                                               start + 1, s));
+  void *tmp = gg_reserve(&gg->sort_tmp, tmp_bytes + 16, "gravity list sort");
+  gpu_check(cub::DeviceSegmentedSort::SortKeys(tmp, tmp_bytes, out, sorted, (int)ntot, nc, start,
+                                               start + 1, s));
+  v.source = sorted;
   return v;
 }
 
@@ -506,6 +523,10 @@ extern "C" void gpu_grav_run(struct gpu_grav *gg, struct parts *p,
   gg->have_eval = 1;
   gg->calls++;
   gg->replays += replay;
+}
+
+extern "C" void gpu_grav_set_reproducible(struct gpu_grav *gg, int on) {
+  gg->reproducible = on;
 }
 
 extern "C" void gpu_grav_set_active(struct gpu_grav *gg, int on) {

@@ -98,6 +98,11 @@ void gpu_grav_run(struct gpu_grav *gg, struct parts *p, const struct gravity_gpu
  *  pot of their leaves only.  Needs the walks on the device; on == 0 (the
  *  default): every cell. */
 void gpu_grav_set_active(struct gpu_grav *gg, int on);
+/** on = 1 (Gravity:gpu_reproducible): sort each cell's grouped
+ *  interactions, whose order the atomics of the walks and of the grouping
+ *  change from run to run, so that the sums, and a run, are the same bit
+ *  for bit each time (at a cost: BENCHMARKS.md); 0 (the default): not. */
+void gpu_grav_set_reproducible(struct gpu_grav *gg, int on);
 /** Print the accumulated times of the gravity kernels. */
 void gpu_grav_print(const struct gpu_grav *gg, FILE *f);
 

@@ -25,9 +25,11 @@ struct gravity_gpu {
   int walk_on_device;           /**< Scheduler:gpu_walks: device (the walks on the GPU too) */
 };
 
-struct gravity_gpu *gravity_gpu_new(struct gpu *g, int up_on_device, int walk_on_device) {
+struct gravity_gpu *gravity_gpu_new(struct gpu *g, int up_on_device, int walk_on_device,
+                                    int reproducible) {
   struct gravity_gpu *gg = error_calloc(1, sizeof *gg, "GPU gravity state");
   gg->dev = gpu_grav_new(g);
+  gpu_grav_set_reproducible(gg->dev, reproducible);
   gg->host.built_rebuild = -1;
   gg->up_on_device = up_on_device;
   gg->walk_on_device = walk_on_device;
