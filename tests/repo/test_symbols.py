@@ -10,7 +10,12 @@ owns in the registry (tasks/task_families.h: kick2_ for the kick family,
 extra_ghost_ for gradient).  C++ names (the CUDA files) are read demangled,
 without their argument lists; the compiler's own symbols (__device_stub_*,
 DW.ref.*, names starting with two underscores) are not the code's and are
-skipped.  Fails with one line per symbol without its prefix.
+skipped, and so are the template and inline entities that the CUDA
+toolkit's own headers (CCCL: cub, thrust, libcu++; the segmented sort of
+tasks/gravity/gpu_gravity.cu) instantiate in an object that uses them:
+weak or unique symbols (nm kinds W, V, u; their guard variables, vtables
+and typeinfo too) in the namespaces cub::,
+thrust:: and cuda::.  Fails with one line per symbol without its prefix.
 """
 import os
 import re
@@ -69,6 +74,9 @@ for line in out.stdout.splitlines():
     name = re.sub(r"<.*$", "", name)   # and template arguments
     if name.startswith(("__", "DW.", "_GLOBAL")) or "." in name:
         continue
+    lib_name = re.sub(r"^(guard variable for |typeinfo name for |typeinfo for |vtable for |\w+ )", "", name)
+    if kind in "WVu" and re.match(r"(cub|thrust|cuda)::", lib_name):
+        continue  # the CUDA toolkit's templates, instantiated here
     count += 1
     paths = sources.get(obj)
     if not paths:
