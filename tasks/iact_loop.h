@@ -80,23 +80,8 @@
 /** The zero shift of pairs inside one cell. */
 static const double iact_loop_no_shift[3] = {0.0, 0.0, 0.0};
 
-/** Square of the pruning radius R for cells ci and cj (shift applied to cj),
- *  widened by a relative 1e-10 and by 1e-13 of the coordinates' magnitude:
- *  the bounding-box distance and the particles' distances are rounded
- *  differently, and pruning must never drop a pair that the leaf test keeps. */
-__attribute__((unused)) static double iact_loop_prune_r2(double R, const struct cell *ci,
-                                                         const struct cell *cj,
-                                                         const double shift[3]) {
-  double scale = 0.0;
-  for (int k = 0; k < 3; k++)
-    scale += fabs(ci->loc[k]) + ci->width[k] + fabs(cj->loc[k]) + cj->width[k] + fabs(shift[k]);
-  const double Rs = R * (1.0 + 1e-10) + 1e-13 * scale;
-  return Rs * Rs;
-}
-
-/** The same widening with the cells' part computed once per pair of cells
- *  (pad = iact_loop_prune_pad(ci, cj, shift)): the leaf loops test every
- *  particle against it.  Bit for bit iact_loop_prune_r2. */
+/** The cells' part of the widening, computed once per pair of cells: the
+ *  leaf loops test every particle against iact_loop_prune_r2_pad(R, pad). */
 __attribute__((unused)) static double iact_loop_prune_pad(const struct cell *ci,
                                                           const struct cell *cj,
                                                           const double shift[3]) {
@@ -108,6 +93,15 @@ __attribute__((unused)) static double iact_loop_prune_pad(const struct cell *ci,
 BOLIDE_ALWAYS_INLINE double iact_loop_prune_r2_pad(double R, double pad) {
   const double Rs = R * (1.0 + 1e-10) + pad;
   return Rs * Rs;
+}
+/** Square of the pruning radius R for cells ci and cj (shift applied to cj),
+ *  widened by a relative 1e-10 and by 1e-13 of the coordinates' magnitude:
+ *  the bounding-box distance and the particles' distances are rounded
+ *  differently, and pruning must never drop a pair that the leaf test keeps. */
+__attribute__((unused)) static double iact_loop_prune_r2(double R, const struct cell *ci,
+                                                         const struct cell *cj,
+                                                         const double shift[3]) {
+  return iact_loop_prune_r2_pad(R, iact_loop_prune_pad(ci, cj, shift));
 }
 #endif
 
