@@ -25,6 +25,8 @@
 #include "src/io/params.h"
 #include "src/materials/porosity_eos.h"
 #include "src/io/restart.h"
+#include "src/mpi/halo.h"
+#include "src/mpi/ranks.h"
 #include "src/version.h"
 #include "tasks/task_families.h"
 #include "src/gpu/gpu_policy.h"
@@ -809,11 +811,13 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   }
 
   engine_mkdir(e->outdir);
-  engine_remove_stale_snapshots(e);
   if (e->restarts) engine_mkdir(e->restart_dir); /* where the stop file goes */
-  char path[2048];
-  snprintf(path, sizeof path, "%s/used_parameters.yml", e->outdir);
-  params_write_used(params, path);
+  if (ranks_rank() == 0) { /* (one writer of the run's files with several MPI ranks) */
+    engine_remove_stale_snapshots(e);
+    char path[2048];
+    snprintf(path, sizeof path, "%s/used_parameters.yml", e->outdir);
+    params_write_used(params, path);
+  }
   if (!e->params_text) e->params_text = params_to_string(params);
   engine_stats_open(e);
 
@@ -824,6 +828,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
 #else
   (void)gpu_policy_read(params); /* checked in every build; every task runs on the CPU */
 #endif
+  halo_init(e); /* (several MPI ranks: src/mpi/halo.c) */
 }
 
 /* ------------------------------------------------------------------------ */
@@ -849,13 +854,16 @@ void engine_rebuild(struct engine *e) {
     free(e->restart_cells.dx_max);
     memset(&e->restart_cells, 0, sizeof e->restart_cells);
   } else {
-    /* (mirror ghosts: removed before, made again after, tasks/drift/drift_mirror.c) */
+    /* (mirror ghosts: removed before, made again after, tasks/drift/drift_mirror.c;
+     * several MPI ranks: the foreign copies likewise, src/mpi/halo.c) */
+    halo_rebuild_start(e);
     engine_family_hooks(e, task_family_at_rebuild_start);
     removed = space_rebuild(&e->space);
 #ifdef HAVE_CUDA
     if (on_device) gpu_engine_rebuild_end(e);
 #endif
     engine_family_hooks(e, task_family_at_rebuild);
+    if (halo_rebuild(e) && ranks_rank() != 0) removed = 0; /* (rank 0 counts the first's) */
   }
   e->nr_removed += (long long)removed;
   const double w2 = error_walltime();
@@ -877,6 +885,13 @@ void engine_rebuild(struct engine *e) {
  *  space's own criterion, or a kernel support plus twice the largest drift
  *  beyond the reach of the pair tasks (engine_graph.c). */
 int engine_should_rebuild(const struct engine *e) {
+  if (e->halo) {
+    /* several MPI ranks: the owned particles of all (collective) */
+    double dmax, hmax;
+    halo_bounds(e, &dmax, &hmax);
+    return space_should_rebuild_at(&e->space, dmax, hmax) ||
+           kernel_gamma * hmax + 2.0 * dmax > e->reach;
+  }
   if (space_should_rebuild(&e->space)) return 1;
   double h_max = 0.0, dx_max = 0.0;
   for (int t = 0; t < e->nr_tcells; t++) {
@@ -935,7 +950,10 @@ static void engine_write_restart(struct engine *e) {
 
 /** Run the tasks of one phase on every worker. */
 void engine_run_phase(struct engine *e, int phase) {
-  if (phase == ENGINE_PHASE_FORCE) engine_family_hooks(e, task_family_at_force);
+  if (phase == ENGINE_PHASE_FORCE) {
+    engine_family_hooks(e, task_family_at_force);
+    halo_refresh(e);
+  }
 #ifdef HAVE_CUDA
   if (e->gpu) {
     if (phase == ENGINE_PHASE_FORCE)
@@ -964,7 +982,7 @@ static void engine_bins_collect(struct engine *e) {
 
 /** The particles kicked in the last step: all with the global step. */
 static void engine_count_active(struct engine *e) {
-  e->nr_active = (int64_t)e->parts.count;
+  e->nr_active = e->halo ? (int64_t)e->nr_owned_all : (int64_t)e->parts.count;
   if (!e->individual) return;
   e->nr_active = 0;
   for (int t = 0; t < e->nr_tcells; t++) e->nr_active += e->cell_kick[t].active;
@@ -976,6 +994,7 @@ double engine_next_dt(struct engine *e) {
   double dt = e->dt_max;
   for (int t = 0; t < e->nr_tcells; t++)
     if (e->cell_dt_min[t] < dt) dt = e->cell_dt_min[t];
+  if (e->halo) ranks_allreduce_doubles(&dt, 1, RANKS_MIN);
   if (dt < e->dt_min) {
     char why[512];
     kick_dt_culprit(e, why, sizeof why);
@@ -1140,7 +1159,10 @@ static int engine_step_kdk(struct engine *e) {
   if (e->next_out < e->nr_out && fabs(e->time - e->out_times[e->next_out]) <= 1e-12 * fabs(e->time))
     e->time = e->out_times[e->next_out];
   int rebuilt = 0;
-  if (atomic_load((_Atomic int *)&e->need_rebuild) || engine_should_rebuild(e)) {
+  int rebuild = atomic_load((_Atomic int *)&e->need_rebuild);
+  rebuild = e->halo ? ranks_any(engine_should_rebuild(e) || rebuild)
+                    : rebuild || engine_should_rebuild(e);
+  if (rebuild) {
     atomic_store((_Atomic int *)&e->need_rebuild, 0);
     engine_rebuild(e);
     rebuilt = 1;
@@ -1185,7 +1207,8 @@ void engine_run(struct engine *e) {
   e->wall_start = error_walltime();
   e->restart_last_wall = e->wall_start;
   char stop_why[1300] = "";
-  printf("#   step           time             dt      updates    wall[s]     ETA[s]\n");
+  const int rank0 = ranks_rank() == 0;
+  if (rank0) printf("#   step           time             dt      updates    wall[s]     ETA[s]\n");
   while (e->time < e->time_end && (e->opt.max_steps < 0 || e->step < e->opt.max_steps)) {
     const double w0 = error_walltime();
     if (e->scheme == ENGINE_SCHEME_KDK) {
@@ -1219,11 +1242,19 @@ void engine_run(struct engine *e) {
       if (fs > frac) frac = fs;
     }
     const double eta = frac > 0 ? (w1 - e->wall_start) * (1.0 - frac) / frac : 0.0;
-    printf("%8ld %14.6e %14.6e %12lld %10.4f %10.1f\n", e->step, e->time, e->dt,
-           (long long)e->nr_active, w1 - w0, eta);
+    if (rank0)
+      printf("%8ld %14.6e %14.6e %12lld %10.4f %10.1f\n", e->step, e->time, e->dt,
+             (long long)e->nr_active, w1 - w0, eta);
     engine_timesteps_write(e, w1 - w0);
     fflush(stdout);
-    if (e->time < e->time_end && engine_must_stop(e, stop_why, sizeof stop_why)) break;
+    if (e->time < e->time_end && e->halo) {
+      /* several MPI ranks stop together (and write no restart file yet) */
+      const int stop = engine_must_stop(e, stop_why, sizeof stop_why);
+      if (ranks_any(stop))
+        error_exit("%s: multi-rank runs write no restart files yet; stopping at step %ld",
+                   stop ? stop_why : "another rank was asked to stop", e->step);
+    }
+    if (e->time < e->time_end && !e->halo && engine_must_stop(e, stop_why, sizeof stop_why)) break;
     /* (not at the last step: the file written after the loop follows) */
     if (e->restarts &&
         (w1 - e->restart_last_wall >= e->restart_dt_wall ||
@@ -1302,13 +1333,14 @@ void engine_run(struct engine *e) {
             e->step > 0 ? e->t_watchdog / (double)e->step : 0.0);
   drift_integrate_log(e);
   gravity_log_end(e);
-  scheduler_print_timers(&e->sched, stdout);
+  if (rank0) scheduler_print_timers(&e->sched, stdout);
 #ifdef HAVE_CUDA
   gpu_engine_print(e, stdout);
 #endif
 }
 
 void engine_clean(struct engine *e) {
+  halo_free(e);
 #ifdef HAVE_CUDA
   gpu_engine_free(e);
 #endif

@@ -180,10 +180,14 @@ struct engine {
   long dump_tasks;             /**< dump a task timeline every this many steps */
   double wall_start;           /**< wall time at the first step */
   struct gpu_engine *gpu;      /**< the GPU runner (src/gpu/gpu_engine.h), NULL: CPU only */
-  int nr_planes;       /**< mirror planes of Boundaries:planes (tasks/drift/drift_mirror.c) */
-  double planes[8][6]; /**< each: a point and the unit normal into the domain */
-  int mirror_no_slip;  /**< Boundaries:slip: no_slip */
-  size_t nr_mirror;    /**< mirror ghosts among the particles (PART_MIRROR) */
+  int nr_planes;          /**< mirror planes of Boundaries:planes (tasks/drift/drift_mirror.c) */
+  double planes[8][6];    /**< each: a point and the unit normal into the domain */
+  int mirror_no_slip;     /**< Boundaries:slip: no_slip */
+  size_t nr_mirror;       /**< mirror ghosts among the particles (PART_MIRROR) */
+  struct halo *halo;      /**< MPI: the domain and the foreign copies (src/mpi/halo.c); NULL with
+                               one rank */
+  size_t nr_foreign;      /**< foreign copies among the particles (PART_FOREIGN) */
+  long long nr_owned_all; /**< particles owned by every rank together (the count the run reports) */
 };
 
 /** Read everything (units, materials, initial conditions), build the cells,

@@ -431,6 +431,16 @@ static int engine_pair_cmp(const void *x, const void *y) {
   return (a[1] > b[1]) - (a[1] < b[1]);
 }
 
+/* the reach of an interaction until the next rebuild (see the top comment) */
+double engine_reach(const struct space *s) {
+  double reach = s->width[0];
+  for (int k = 1; k < 3; k++)
+    if (s->width[k] < reach) reach = s->width[k];
+  if (ENGINE_REACH_FACTOR * kernel_gamma * s->h_max < reach)
+    reach = ENGINE_REACH_FACTOR * kernel_gamma * s->h_max;
+  return reach;
+}
+
 /** The tasks of the pairs in L, in the order of (a, b): the order of the
  *  loops over all pairs of task cells that the descent replaces, so that
  *  the graph does not change. */
@@ -518,12 +528,7 @@ void engine_make_graph(struct engine *e) {
     }
   }
 
-  /* the reach of an interaction until the next rebuild (see the top comment) */
-  double reach = s->width[0];
-  for (int k = 1; k < 3; k++)
-    if (s->width[k] < reach) reach = s->width[k];
-  if (ENGINE_REACH_FACTOR * kernel_gamma * s->h_max < reach)
-    reach = ENGINE_REACH_FACTOR * kernel_gamma * s->h_max;
+  const double reach = engine_reach(s);
   e->reach = reach;
   const double reach2 = reach * reach;
   const double zero[3] = {0, 0, 0};

@@ -11,6 +11,8 @@
 #include "src/io/units.h"
 #include "src/io/params.h"
 #include "src/io/snapshot.h"
+#include "src/mpi/halo.h"
+#include "src/mpi/ranks.h"
 #include "tasks/task_families.h"
 #include "src/version.h"
 #ifdef HAVE_CUDA
@@ -116,7 +118,28 @@ static void engine_stats_header(struct engine *e, FILE *f) {
   fprintf(f, "\n");
 }
 
+/** The particles of the run (of every rank), mirror ghosts and foreign
+ *  copies left out. */
+static size_t engine_nr_real(const struct engine *e) {
+  return e->halo ? (size_t)e->nr_owned_all : e->parts.count - e->nr_mirror;
+}
+
+/** SWIFT's Statistics:time_first: the first line then, the next every
+ *  delta_time after it. */
+static void engine_stats_first_time(struct engine *e) {
+  e->next_stats = e->time;
+  if (params_given(e->params, "Statistics:time_first"))
+    e->next_stats = fmax(e->time, params_get_real(e->params, "Statistics:time_first"));
+}
+
 void engine_stats_open(struct engine *e) {
+  if (ranks_rank() != 0) {
+    /* several MPI ranks: rank 0 writes the files, every rank computes */
+    e->stats = e->timesteps = NULL;
+    e->stats_last_step = -1;
+    engine_stats_first_time(e);
+    return;
+  }
   char path[2048];
   snprintf(path, sizeof path, "%s/%s.txt", e->outdir,
            params_get_string(e->params, "Statistics:energy_file_name"));
@@ -161,11 +184,7 @@ void engine_stats_open(struct engine *e) {
   fflush(e->timesteps);
   engine_stats_header(e, e->stats);
   fflush(e->stats);
-  /* SWIFT's Statistics:time_first: the first line then, the next every
-   * delta_time after it */
-  e->next_stats = e->time;
-  if (params_given(e->params, "Statistics:time_first"))
-    e->next_stats = fmax(e->time, params_get_real(e->params, "Statistics:time_first"));
+  engine_stats_first_time(e);
 }
 
 void engine_timesteps_write(struct engine *e, double wall_step) {
@@ -177,12 +196,21 @@ void engine_timesteps_write(struct engine *e, double wall_step) {
       b_max = b;
     }
   /* (with time bins the particles that ended their step: e->nr_active) */
-  const size_t updates =
-      e->individual ? (size_t)e->nr_active : (size_t)(e->parts.count - e->nr_mirror);
+  const size_t updates = e->individual ? (size_t)e->nr_active : engine_nr_real(e);
   fprintf(e->timesteps, "  %8ld %16.9e %16.9e %14zu %16.6f %7d %7d %15.6f\n", e->step, e->time,
           e->dt, updates, 1e3 * wall_step, b_min < 0 ? 0 : b_min, b_max < 0 ? 0 : b_max,
           b_min < 0 ? -1.0 : timeline_active_fraction(e->bins));
   if (fflush(e->timesteps)) error_exit("cannot write the timesteps file (disk full?)");
+}
+
+/** What the particles removed from the open box took with them, summed
+ *  over the ranks (collective with several), and their number. */
+static void engine_removed(const struct engine *e, struct budget_removed *r, long long *n) {
+  *r = e->space.removed;
+  *n = e->nr_removed;
+  if (!e->halo) return;
+  ranks_allreduce_doubles((double *)r, (int)(sizeof *r / sizeof(double)), RANKS_SUM);
+  ranks_allreduce_llongs(n, 1, RANKS_SUM);
 }
 
 /** The totals of the particles in the box, and what the counters hold. */
@@ -196,7 +224,7 @@ static void engine_totals(const struct engine *e, struct engine_totals *t) {
   const struct parts *p = &e->parts;
   memset(t, 0, sizeof *t);
   for (size_t i = 0; i < p->count; i++) {
-    if (p->flags[i] & PART_MIRROR) continue; /* (a mirror ghost is no part of the system) */
+    if (p->flags[i] & PART_NOT_OWNED) continue; /* (mirror ghosts, foreign copies) */
     const double m = p->m[i];
     const double vx = p->vx[i], vy = p->vy[i], vz = p->vz[i];
     const double x = p->x[i], y = p->y[i], z = p->z[i];
@@ -219,12 +247,14 @@ static void engine_totals(const struct engine *e, struct engine_totals *t) {
     /* the uniform field ConstantPotential:g_cgs: phi = -g.x (theory/boundaries.md) */
     const double *g = e->hp.g_ext;
     for (size_t i = 0; i < p->count; i++)
-      if (!(p->flags[i] & PART_MIRROR))
+      if (!(p->flags[i] & PART_NOT_OWNED))
         t->E_ext -= p->m[i] * (g[0] * p->x[i] + g[1] * p->y[i] + g[2] * p->z[i]);
     t->E_pot += t->E_ext;
   }
   t->E_clamp += e->space.removed.E_clamp;
   t->W_plastic += e->space.removed.W_plastic;
+  /* several MPI ranks: the sums of all (every member a double) */
+  if (e->halo) ranks_allreduce_doubles((double *)t, (int)(sizeof *t / sizeof(double)), RANKS_SUM);
 }
 
 /** Remember the totals of the start (the first statistics line of a run
@@ -250,11 +280,11 @@ static void engine_budget_start(struct engine *e, const struct engine_totals *t)
  *  writes a crash snapshot OUTDIR/crash_stepNNNNNN.hdf5 and stops with one
  *  line and exit status 3.  Called at every line of the statistics file
  *  (where the particles are on the host anyway). */
-static void engine_check_angular_momentum(struct engine *e, const struct engine_totals *t) {
+static void engine_check_angular_momentum(struct engine *e, const struct engine_totals *t,
+                                          const struct budget_removed *r) {
   const double bound = params_get_real(e->params, "Statistics:max_angular_momentum_change");
   if (!(bound > 0.0)) return;
   const struct budget_start *b = &e->budget0;
-  const struct budget_removed *r = &e->space.removed;
   double dL2 = 0.0, L02 = 0.0;
   for (int k = 0; k < 3; k++) {
     const double dL = t->L[k] + r->L[k] - b->L[k];
@@ -300,19 +330,26 @@ void engine_stats_write(struct engine *e) {
     engine_budget_start(e, &t);
     engine_check_angular_momentum_start(e);
   }
-  const struct budget_removed *r = &e->space.removed;
+  struct budget_removed rm;
+  long long nr_removed;
+  engine_removed(e, &rm, &nr_removed);
+  const struct budget_removed *r = &rm;
   const double etot = t.E_kin + t.E_int + t.E_pot;
   const double dE = etot + r->E - t.E_clamp - e->budget0.E_tot;
+  e->stats_last_step = e->step;
+  if (!e->stats) { /* (another MPI rank than 0) */
+    engine_check_angular_momentum(e, &t, r);
+    return;
+  }
   fprintf(
       e->stats,
       "%ld %.12e %.6e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %zu %lld"
       " %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.12e %.6e\n",
       e->step, e->time, e->dt, t.mass, t.p[0], t.p[1], t.p[2], t.L[0], t.L[1], t.L[2], t.E_kin,
-      t.E_int, t.E_pot, etot, e->parts.count - e->nr_mirror, e->nr_removed, r->m, r->E, r->p[0],
-      r->p[1], r->p[2], r->L[0], r->L[1], r->L[2], t.E_clamp, t.W_plastic, dE);
+      t.E_int, t.E_pot, etot, engine_nr_real(e), nr_removed, r->m, r->E, r->p[0], r->p[1], r->p[2],
+      r->L[0], r->L[1], r->L[2], t.E_clamp, t.W_plastic, dE);
   if (fflush(e->stats)) error_exit("cannot write the statistics file (disk full?)");
-  e->stats_last_step = e->step;
-  engine_check_angular_momentum(e, &t);
+  engine_check_angular_momentum(e, &t, r);
 }
 
 void engine_stats_close(struct engine *e) {
@@ -343,7 +380,10 @@ void engine_budget_summary(struct engine *e) {
   struct engine_totals t;
   engine_totals(e, &t);
   const struct budget_start *b = &e->budget0;
-  const struct budget_removed *r = &e->space.removed;
+  struct budget_removed rm;
+  long long nr_removed;
+  engine_removed(e, &rm, &nr_removed);
+  const struct budget_removed *r = &rm;
   if (!(b->set > 0.0)) return;
   const double etot = t.E_kin + t.E_int + t.E_pot;
   const double dE = etot + r->E - t.E_clamp - b->E_tot;
@@ -362,7 +402,7 @@ void engine_budget_summary(struct engine *e) {
       "conservation budget against the start: dE / |%s| = %.3e (E_tot %+.6e -> %+.6e; removed "
       "with %lld particles %+.3e; kick's floor on u %+.3e; plastic work %.3e, part of E_int)",
       fabs(b->E_pot) > 0.0 ? "E_pot(0)" : "E(0)", Escale > 0.0 ? dE / Escale : 0.0, b->E_tot, etot,
-      e->nr_removed, r->E, t.E_clamp, t.W_plastic);
+      nr_removed, r->E, t.E_clamp, t.W_plastic);
   error_log(
       0, "conservation budget against the start: |dL| / |L(0)| = %.3e, |dp| / sum m|v|(0) = %.3e",
       L02 > 0.0 ? sqrt(dL2 / L02) : 0.0, b->p_abs > 0.0 ? sqrt(dp2) / b->p_abs : 0.0);
@@ -391,7 +431,7 @@ void engine_snapshot(struct engine *e) {
   snprintf(path, sizeof path, "%s/%s_%04d.hdf5", e->outdir, e->snap_basename, e->snap_index);
   engine_snapshot_to(e, path);
   e->snap_index++;
-  snapshot_write_series(e->outdir, e->snap_basename, e->snap_index);
+  if (ranks_rank() == 0) snapshot_write_series(e->outdir, e->snap_basename, e->snap_index);
 }
 
 /** A copy of the particles without the mirror ghosts (PART_MIRROR; the
@@ -425,7 +465,13 @@ void engine_snapshot_to(struct engine *e, const char *path) {
   meta.hydro = e->hp.enabled;
   meta.self_gravity = e->gp.enabled;
   meta.compression = e->compression;
-  if (e->nr_mirror) {
+  if (e->halo) {
+    /* several MPI ranks: rank 0 gathers every rank's own and writes them */
+    struct parts all;
+    halo_gather(e, &all);
+    if (ranks_rank() == 0) snapshot_write(path, &meta, &all, &e->us, e->write_acc);
+    parts_free(&all);
+  } else if (e->nr_mirror) {
     /* the real particles only: a copy without the mirror ghosts */
     struct parts real;
     engine_real_parts(e, &real);

@@ -8,6 +8,8 @@
 void engine_make_graph(struct engine *e);
 void engine_activate_phase(struct engine *e, int phase);
 void engine_graph_clean(struct engine *e);
+/** The reach of an interaction until the next rebuild on the cells of s. */
+double engine_reach(const struct space *s);
 
 /* engine.c */
 void engine_rebuild(struct engine *e);

@@ -10,6 +10,7 @@
 
 const char *error_progname = "bolide";
 int error_verbosity = 0;
+int error_log_quiet = 0;
 void (*error_exit_hook)(void) = NULL;
 
 static struct timespec error_t0;
@@ -120,7 +121,7 @@ void error_report(const char *fmt, ...) {
 }
 
 void error_log(int level, const char *fmt, ...) {
-  if (level > error_verbosity) return;
+  if (level > error_verbosity || error_log_quiet) return;
   char msg[4096];
   va_list ap;
   va_start(ap, fmt);

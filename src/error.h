@@ -15,6 +15,8 @@ extern const char *error_progname;
 
 /** Verbosity: 0 normal, 1 with -v, 2 with -vv. */
 extern int error_verbosity;
+/** 1: error_log prints nothing (the MPI ranks other than 0). */
+extern int error_log_quiet;
 
 /** Set the program name (basename of argv[0]) and start the log clock. */
 void error_init(const char *argv0);

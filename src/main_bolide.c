@@ -559,16 +559,8 @@ int main(int argc, char **argv) {
     error_exit("no parameter file given (usage: bolide [OPTIONS] PARAMS.yml; see --help)");
   if (optind + 1 < argc)
     error_exit("unexpected argument '%s' after the parameter file", argv[optind + 1]);
-  if (partition < 0 && ranks_size() > 1) {
-    /* every rank stops, none waits for another: rank 0 says why */
-    if (ranks_rank() == 0)
-      fprintf(stderr,
-              "%s: error: multi-rank runs are not implemented yet (%d ranks): run with mpirun -n "
-              "1, or see the domain decomposition with --partition 0 (theory/mpi.md)\n",
-              error_progname, ranks_size());
-    ranks_finalize();
-    return 1;
-  }
+  /* several MPI ranks: rank 0 writes the run's log (errors come from any) */
+  if (ranks_rank() != 0) error_log_quiet = 1;
 
   /* the flags first, so that -P can still say otherwise */
   int n_overrides = 0;

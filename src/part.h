@@ -181,7 +181,17 @@ enum part_state {
   PART_MIRROR = 128,      /**< a mirror ghost of a plane of Boundaries:planes: its sums are
                                computed, its h is its source's, it is never kicked, written or
                                counted (tasks/drift/drift_mirror.c) */
+  PART_FOREIGN = 256,     /**< a copy of a particle another MPI rank owns (src/mpi/halo.c): its
+                               sums are computed, it is never kicked, written or counted, and
+                               before every FORCE phase it takes its owner's state */
+  PART_HALO_EDGE = 512,   /**< a foreign copy at the edge of the halo, whose neighbours are not all
+                               there: it keeps its owner's h (no iteration), and no particle of
+                               the rank reads what its sums give */
 };
+
+/** The flags of particles a rank holds but does not own (no kick, no output,
+ *  not in the budget): mirror ghosts and foreign copies. */
+#define PART_NOT_OWNED (PART_MIRROR | PART_FOREIGN)
 
 /** Whether particle i sits out the FORCE phase of this step (time bins). */
 #define PART_IS_INACTIVE(p, i) ((p)->flags[i] & PART_INACTIVE)

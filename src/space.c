@@ -257,6 +257,7 @@ static size_t space_wrap_or_remove(struct space *s) {
 static void space_choose_grid(struct space *s, double h_max, size_t i_max) {
   const struct parts *p = s->parts;
   if (s->restore_h_max > 0.0) h_max = s->restore_h_max;
+  if (h_max < s->h_max_floor) h_max = s->h_max_floor;
   s->h_max = h_max;
   const double H = kernel_gamma * h_max;
   for (int k = 0; k < 3; k++) {
@@ -804,7 +805,11 @@ int space_should_rebuild(const struct space *s) {
     if (d2 > d2_max) d2_max = d2;
     if (p->h[i] > h_max) h_max = p->h[i];
   }
-  const double dmax = sqrt(d2_max), H = kernel_gamma * h_max;
+  return space_should_rebuild_at(s, sqrt(d2_max), h_max);
+}
+
+int space_should_rebuild_at(const struct space *s, double dmax, double h_max) {
+  const double H = kernel_gamma * h_max;
   for (int k = 0; k < 3; k++) {
     if (dmax > s->max_drift_fraction * s->width[k]) return 1;
     if (s->periodic && 2.0 * (H + dmax) > s->dim[k]) return 1;

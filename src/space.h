@@ -60,6 +60,9 @@ struct space {
                                       every field; the others are left in the old order, e.g.
                                       while the GPU holds them and reorders its own copies) */
   double restore_h_max;          /**< > 0: space_choose_grid takes this h_max (space_restore) */
+  double h_max_floor;            /**< space_choose_grid takes at least this h_max: the largest h
+                                      of every rank's particles (src/mpi/halo.c), so that all ranks
+                                      choose the grid that one rank holding them all would */
 };
 
 /** One pair of top-level cells that can interact: the particles of cj are
@@ -116,6 +119,9 @@ void space_restore(struct space *s, double h_max, const double *cell_h, const do
  *  width since the rebuild, or kernel_gamma * h_max + 2 * (largest drift)
  *  exceeds a top-level cell width (or half a periodic box); else 0. */
 int space_should_rebuild(const struct space *s);
+/** The same criterion for the largest drift dmax since the rebuild and the
+ *  largest smoothing length h_max of the particles (of every rank). */
+int space_should_rebuild_at(const struct space *s, double dmax, double h_max);
 
 /** Index in s->cells of top-level cell (i, j, k). */
 static inline int space_top_index(const struct space *s, int i, int j, int k) {

@@ -68,6 +68,27 @@ void ranks_gather_int(int v, int *all) {
   MPI_Gather(&v, 1, MPI_INT, all, 1, MPI_INT, 0, MPI_COMM_WORLD);
 }
 
+static MPI_Op ranks_mpi_op(enum ranks_op op) {
+  return op == RANKS_SUM ? MPI_SUM : op == RANKS_MIN ? MPI_MIN : MPI_MAX;
+}
+
+void ranks_allreduce_doubles(double *v, int n, enum ranks_op op) {
+  if (ranks_n == 1) return;
+  MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_DOUBLE, ranks_mpi_op(op), MPI_COMM_WORLD);
+}
+
+void ranks_allreduce_llongs(long long *v, int n, enum ranks_op op) {
+  if (ranks_n == 1) return;
+  MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_LONG_LONG, ranks_mpi_op(op), MPI_COMM_WORLD);
+}
+
+int ranks_any(int v) {
+  if (ranks_n == 1) return v != 0;
+  int x = v != 0;
+  MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  return x;
+}
+
 void ranks_finalize(void) {
   if (!ranks_started || ranks_done) return;
   ranks_done = 1;
@@ -100,6 +121,22 @@ void ranks_bcast_ints(int *v, int n) {
 
 void ranks_gather_int(int v, int *all) {
   all[0] = v;
+}
+
+void ranks_allreduce_doubles(double *v, int n, enum ranks_op op) {
+  (void)v;
+  (void)n;
+  (void)op;
+}
+
+void ranks_allreduce_llongs(long long *v, int n, enum ranks_op op) {
+  (void)v;
+  (void)n;
+  (void)op;
+}
+
+int ranks_any(int v) {
+  return v != 0;
 }
 
 void ranks_finalize(void) {}

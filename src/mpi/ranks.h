@@ -25,6 +25,13 @@ void ranks_bcast_ints(int *v, int n);
 /** Gather one int from every rank on rank 0 (all: ranks_size() values). */
 void ranks_gather_int(int v, int *all);
 
+/** Reductions over the ranks, in place (nothing with one rank). */
+enum ranks_op { RANKS_SUM, RANKS_MIN, RANKS_MAX };
+void ranks_allreduce_doubles(double *v, int n, enum ranks_op op);
+void ranks_allreduce_llongs(long long *v, int n, enum ranks_op op);
+/** 1 on every rank if v is non-zero on any. */
+int ranks_any(int v);
+
 /** Finalize MPI (nothing without it); call once, before a normal exit. */
 void ranks_finalize(void);
 

@@ -1,0 +1,525 @@
+/* Multi-rank runs: ownership, migration and the foreign copies
+ * (src/mpi/halo.h; theory/mpi.md, "Multi-rank runs"). */
+#include "src/mpi/halo.h"
+
+#include <limits.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "config.h"
+#include "src/cell.h"
+#include "src/engine.h"
+#include "src/engine_tasks.h"
+#include "src/error.h"
+#include "src/mpi/partition.h"
+#include "src/mpi/ranks.h"
+#include "src/part.h"
+#include "src/space.h"
+#include "tasks/hydro/kernel.h"
+
+#ifdef HAVE_MPI
+#include <mpi.h>
+#endif
+
+/** A growable list of particle indices. */
+struct halo_list {
+  size_t *i;
+  size_t n, cap;
+};
+
+struct halo {
+  int nranks, me;
+  int depth; /**< interaction reaches the halo spans: 2 for fluids, 3 with solids */
+  /* the decomposition grid: the top-level grid of the first rebuild */
+  int cdim[3];
+  double width[3], dim[3];
+  int periodic;
+  int ncells;
+  int *assign; /**< [ncells] the rank of each cell; NULL before the first rebuild */
+  /* the exchange of the copies, fixed between two rebuilds */
+  int *scount, *sdispl, *rcount, *rdispl; /**< [nranks] particles sent, received per rank */
+  size_t *sidx;                           /**< [nsend] the particles sent, rank after rank */
+  size_t *ridx;                           /**< [nrecv] where each received copy lives */
+  unsigned char *redge;                   /**< [nrecv] 1: a copy at the halo's edge */
+  size_t nsend, nrecv;
+  size_t rec; /**< bytes of one particle's record: every field */
+  char *sbuf, *rbuf;
+  size_t sbuf_cap, rbuf_cap;
+};
+
+#ifdef HAVE_MPI
+
+/* ------------------------------------------------------------- records */
+
+static void halo_pack(const struct parts *p, size_t i, char *dst) {
+  for (int f = 0; f < part_nr_fields; f++) {
+    const struct part_field *pf = &part_fields[f];
+    memcpy(dst, (const char *)part_field_array(p, pf) + i * pf->size, pf->size);
+    dst += pf->size;
+  }
+}
+
+static void halo_unpack(struct parts *p, size_t i, const char *src) {
+  for (int f = 0; f < part_nr_fields; f++) {
+    const struct part_field *pf = &part_fields[f];
+    memcpy((char *)part_field_array(p, pf) + i * pf->size, src, pf->size);
+    src += pf->size;
+  }
+}
+
+static char *halo_grow(char **buf, size_t *cap, size_t need) {
+  if (need > *cap) {
+    free(*buf);
+    *cap = need + need / 4 + 1;
+    *buf = error_malloc(*cap, "MPI exchange buffer");
+  }
+  return *buf;
+}
+
+/** Alltoallv of records: scount[r] records to rank r from sbuf (rank
+ *  order), rcount[r] from rank r into rbuf; counts in records. */
+static void halo_alltoallv(struct halo *H, const int *scount, const int *rcount, const char *sbuf,
+                           char *rbuf) {
+  const int n = H->nranks;
+  int *sc = error_malloc(4 * (size_t)n * sizeof(int), "MPI exchange counts");
+  int *sd = sc + n, *rc = sc + 2 * n, *rd = sc + 3 * n;
+  long long so = 0, ro = 0;
+  for (int r = 0; r < n; r++) {
+    const long long sb = (long long)scount[r] * (long long)H->rec;
+    const long long rb = (long long)rcount[r] * (long long)H->rec;
+    if (so + sb > INT_MAX || ro + rb > INT_MAX)
+      error_exit("MPI exchange of more than %d bytes per rank and step: use more ranks", INT_MAX);
+    sc[r] = (int)sb;
+    sd[r] = (int)so;
+    rc[r] = (int)rb;
+    rd[r] = (int)ro;
+    so += sb;
+    ro += rb;
+  }
+  MPI_Alltoallv(sbuf, sc, sd, MPI_BYTE, rbuf, rc, rd, MPI_BYTE, MPI_COMM_WORLD);
+  free(sc);
+}
+
+/* ------------------------------------------------------------ geometry */
+
+/** The decomposition cell's coordinate of x along k (wrapped in a periodic
+ *  box, clamped in an open one). */
+static int halo_coord(const struct halo *H, int k, double x) {
+  if (H->periodic) x -= floor(x / H->dim[k]) * H->dim[k];
+  int i = (int)floor(x / H->width[k]);
+  if (i >= H->cdim[k]) i = H->cdim[k] - 1;
+  if (i < 0) i = 0;
+  return i;
+}
+
+static int halo_cell(const struct halo *H, int i, int j, int k) {
+  return (i * H->cdim[1] + j) * H->cdim[2] + k;
+}
+
+static int halo_owner(const struct halo *H, const struct parts *p, size_t i) {
+  return H->assign[halo_cell(H, halo_coord(H, 0, p->x[i]), halo_coord(H, 1, p->y[i]),
+                             halo_coord(H, 2, p->z[i]))];
+}
+
+/** Squared distance of the point x from the box of the cell at grid
+ *  coordinates c (not wrapped: c outside the grid is a periodic image). */
+static double halo_box_d2(const struct halo *H, const double x[3], const int c[3]) {
+  double d2 = 0.0;
+  for (int k = 0; k < 3; k++) {
+    const double lo = c[k] * H->width[k], hi = lo + H->width[k];
+    const double d = x[k] < lo ? lo - x[k] : (x[k] > hi ? x[k] - hi : 0.0);
+    d2 += d * d;
+  }
+  return d2;
+}
+
+/** For the point x (inside the box, or wrapped into it): the squared
+ *  distance of the nearest cell of each rank within reach cells around it,
+ *  into d2[r] (HUGE_VAL: none). */
+static void halo_rank_d2(const struct halo *H, const double xin[3], int reach, double *d2) {
+  for (int r = 0; r < H->nranks; r++) d2[r] = HUGE_VAL;
+  double x[3];
+  int c0[3];
+  for (int k = 0; k < 3; k++) {
+    x[k] = xin[k];
+    if (H->periodic) x[k] -= floor(x[k] / H->dim[k]) * H->dim[k];
+    c0[k] = halo_coord(H, k, x[k]);
+  }
+  int c[3], w[3];
+  for (c[0] = c0[0] - reach; c[0] <= c0[0] + reach; c[0]++)
+    for (c[1] = c0[1] - reach; c[1] <= c0[1] + reach; c[1]++)
+      for (c[2] = c0[2] - reach; c[2] <= c0[2] + reach; c[2]++) {
+        int ok = 1;
+        for (int k = 0; k < 3; k++) {
+          w[k] = c[k];
+          if (w[k] < 0 || w[k] >= H->cdim[k]) {
+            if (!H->periodic) ok = 0;
+            w[k] = ((w[k] % H->cdim[k]) + H->cdim[k]) % H->cdim[k];
+          }
+        }
+        if (!ok) continue;
+        const int r = H->assign[halo_cell(H, w[0], w[1], w[2])];
+        const double q = halo_box_d2(H, x, c);
+        if (q < d2[r]) d2[r] = q;
+      }
+}
+
+/* ------------------------------------------------------------ the lists */
+
+static void halo_list_push(struct halo_list *L, size_t i) {
+  if (L->n == L->cap) {
+    L->cap = L->cap ? 2 * L->cap : 1024;
+    L->i = error_realloc(L->i, L->cap * sizeof(size_t), "MPI halo list");
+  }
+  L->i[L->n++] = i;
+}
+
+/** Remove the particles marked in drop (compacting; the order changes). */
+static void halo_remove(struct parts *p, unsigned char *drop) {
+  size_t i = 0;
+  while (i < p->count) {
+    if (drop[i]) {
+      const size_t last = p->count - 1;
+      if (i != last) {
+        parts_copy_one(p, i, last);
+        drop[i] = drop[last];
+      }
+      p->count--;
+    } else {
+      i++;
+    }
+  }
+}
+
+/** The owned particles that left the rank's cells go to their owners. */
+static void halo_migrate(struct engine *e) {
+  struct halo *H = e->halo;
+  struct parts *p = &e->parts;
+  const int n = H->nranks;
+  int *sc = error_calloc(2 * (size_t)n, sizeof(int), "MPI migration counts");
+  int *rc = sc + n;
+  int *owner = error_malloc(p->count * sizeof(int) + 1, "MPI migration owners");
+  for (size_t i = 0; i < p->count; i++) {
+    owner[i] = halo_owner(H, p, i);
+    if (owner[i] != H->me) sc[owner[i]]++;
+  }
+  MPI_Alltoall(sc, 1, MPI_INT, rc, 1, MPI_INT, MPI_COMM_WORLD);
+  size_t ns = 0, nr = 0;
+  for (int r = 0; r < n; r++) {
+    ns += (size_t)sc[r];
+    nr += (size_t)rc[r];
+  }
+  char *sbuf = halo_grow(&H->sbuf, &H->sbuf_cap, ns * H->rec + 1);
+  char *rbuf = halo_grow(&H->rbuf, &H->rbuf_cap, nr * H->rec + 1);
+  size_t *pos = error_malloc((size_t)n * sizeof(size_t), "MPI migration offsets");
+  size_t off = 0;
+  for (int r = 0; r < n; r++) {
+    pos[r] = off;
+    off += (size_t)sc[r];
+  }
+  unsigned char *drop = error_calloc(p->count + 1, 1, "MPI migration marks");
+  for (size_t i = 0; i < p->count; i++)
+    if (owner[i] != H->me) {
+      halo_pack(p, i, sbuf + pos[owner[i]]++ * H->rec);
+      drop[i] = 1;
+    }
+  halo_alltoallv(H, sc, rc, sbuf, rbuf);
+  halo_remove(p, drop);
+  parts_reserve(p, p->count + nr);
+  for (size_t k = 0; k < nr; k++) halo_unpack(p, p->count + k, rbuf + k * H->rec);
+  p->count += nr;
+  free(drop);
+  free(pos);
+  free(owner);
+  free(sc);
+}
+
+/** The first rebuild: partition the top-level cells of the space (every
+ *  rank holds every particle), keep the rank's own. */
+static void halo_partition(struct engine *e) {
+  struct halo *H = e->halo;
+  struct space *s = &e->space;
+  int ncells = s->nr_top;
+  int *assign = NULL;
+  if (H->me == 0) {
+    struct partition_graph g;
+    partition_graph_make(&g, s, NULL, 0);
+    struct partition pt;
+    partition_make(&pt, &g, H->nranks,
+                   partition_have_metis() ? partition_method_metis : partition_method_morton);
+    error_log(0,
+              "domain decomposition: %d ranks over %d top-level cells (%s), imbalance %.3f of "
+              "the estimated costs",
+              H->nranks, ncells,
+              pt.method == partition_method_metis ? (pt.fallback ? "Morton ranges" : "METIS")
+                                                  : "Morton ranges",
+              pt.imbalance);
+    assign = pt.rank;
+    pt.rank = NULL;
+    partition_free(&pt);
+    partition_graph_free(&g);
+  }
+  ranks_bcast_ints(&ncells, 1);
+  if (H->me != 0) assign = error_malloc((size_t)ncells * sizeof(int), "MPI partition");
+  ranks_bcast_ints(assign, ncells);
+  H->assign = assign;
+  H->ncells = ncells;
+  for (int k = 0; k < 3; k++) {
+    H->cdim[k] = s->cdim[k];
+    H->width[k] = s->width[k];
+    H->dim[k] = s->dim[k];
+  }
+  H->periodic = s->periodic;
+  struct parts *p = &e->parts;
+  unsigned char *drop = error_calloc(p->count + 1, 1, "MPI partition marks");
+  for (size_t i = 0; i < p->count; i++) drop[i] = halo_owner(H, p, i) != H->me;
+  halo_remove(p, drop);
+  free(drop);
+  if (space_rebuild(s) != 0) error_bug("particles removed by the second rebuild of the partition");
+}
+
+#endif /* HAVE_MPI */
+
+void halo_init(struct engine *e) {
+  e->halo = NULL;
+  e->nr_foreign = 0;
+  e->nr_owned_all = (long long)e->parts.count;
+  if (ranks_size() < 2) return;
+  const char *why = NULL;
+  if (e->gpu)
+    why = "multi-rank runs run on the CPU only yet: run with --no-gpu (or Scheduler:gpu: off)";
+  else if (e->gp.enabled)
+    why = "multi-rank runs cannot be combined with self-gravity (Gravity:enabled) yet";
+  else if (e->individual)
+    why = "multi-rank runs need the global time step (TimeIntegration:global_step: true) yet";
+  else if (e->restarts)
+    why = "multi-rank runs cannot write restart files (Restarts:enable) yet";
+  else if (e->nr_planes)
+    why = "multi-rank runs cannot be combined with mirror planes (Boundaries:planes) yet";
+  else if (e->scheme != ENGINE_SCHEME_KDK)
+    why = "multi-rank runs integrate with TimeIntegration:scheme kdk only yet";
+  if (why) error_exit("%d MPI ranks: %s (theory/mpi.md)", ranks_size(), why);
+#ifdef HAVE_MPI
+  struct halo *H = error_calloc(1, sizeof *H, "MPI halo");
+  H->nranks = ranks_size();
+  H->me = ranks_rank();
+  H->depth = e->hp.solids ? 3 : 2;
+  H->rec = parts_bytes_per_particle();
+  H->scount = error_calloc(4 * (size_t)H->nranks, sizeof(int), "MPI halo counts");
+  H->sdispl = H->scount + H->nranks;
+  H->rcount = H->scount + 2 * H->nranks;
+  H->rdispl = H->scount + 3 * H->nranks;
+  e->halo = H;
+#endif
+}
+
+void halo_rebuild_start(struct engine *e) {
+  struct halo *H = e->halo;
+  if (!H) return;
+#ifdef HAVE_MPI
+  struct parts *p = &e->parts;
+  if (e->nr_foreign) {
+    unsigned char *drop = error_calloc(p->count + 1, 1, "MPI halo marks");
+    for (size_t i = 0; i < p->count; i++) drop[i] = (p->flags[i] & PART_FOREIGN) != 0;
+    halo_remove(p, drop);
+    free(drop);
+    e->nr_foreign = 0;
+  }
+  if (H->assign) halo_migrate(e);
+  double h_max = 0.0;
+  for (size_t i = 0; i < p->count; i++)
+    if (p->h[i] > h_max && isfinite(p->h[i])) h_max = p->h[i];
+  ranks_allreduce_doubles(&h_max, 1, RANKS_MAX);
+  e->space.h_max_floor = h_max;
+#endif
+}
+
+int halo_rebuild(struct engine *e) {
+  struct halo *H = e->halo;
+  if (!H) return 0;
+  int first = 0;
+#ifdef HAVE_MPI
+  struct space *s = &e->space;
+  struct parts *p = &e->parts;
+  if (!H->assign) {
+    halo_partition(e);
+    first = 1;
+    /* every rank removed the same particles from the open box: rank 0 counts them */
+    if (H->me != 0) memset(&s->removed, 0, sizeof s->removed);
+  }
+  long long owned = (long long)p->count;
+  ranks_allreduce_llongs(&owned, 1, RANKS_SUM);
+  e->nr_owned_all = owned;
+
+  /* which ranks need which particles: those within depth reaches of a cell
+   * of theirs (at this rebuild; a reach covers an interaction until the
+   * next one, drift included: engine_graph.c) */
+  const double reach = engine_reach(s);
+  const double D = H->depth * reach, Din = (H->depth - 1) * reach;
+  double wmin = H->width[0];
+  for (int k = 1; k < 3; k++) wmin = H->width[k] < wmin ? H->width[k] : wmin;
+  const int nc = (int)ceil(D / wmin);
+  const int n = H->nranks;
+  struct halo_list *L = error_calloc((size_t)n, sizeof *L, "MPI halo lists");
+  double *d2 = error_malloc((size_t)n * sizeof(double), "MPI halo distances");
+  for (size_t i = 0; i < p->count; i++) {
+    const double x[3] = {p->x[i], p->y[i], p->z[i]};
+    halo_rank_d2(H, x, nc, d2);
+    for (int r = 0; r < n; r++)
+      if (r != H->me && d2[r] <= D * D) halo_list_push(&L[r], i);
+  }
+  H->nsend = 0;
+  for (int r = 0; r < n; r++) {
+    H->scount[r] = (int)L[r].n;
+    H->nsend += L[r].n;
+  }
+  MPI_Alltoall(H->scount, 1, MPI_INT, H->rcount, 1, MPI_INT, MPI_COMM_WORLD);
+  H->nrecv = 0;
+  for (int r = 0; r < n; r++) H->nrecv += (size_t)H->rcount[r];
+  free(H->sidx);
+  H->sidx = error_malloc(H->nsend * sizeof(size_t) + 1, "MPI halo send list");
+  char *sbuf = halo_grow(&H->sbuf, &H->sbuf_cap, H->nsend * H->rec + 1);
+  char *rbuf = halo_grow(&H->rbuf, &H->rbuf_cap, H->nrecv * H->rec + 1);
+  size_t k = 0;
+  for (int r = 0; r < n; r++) {
+    for (size_t m = 0; m < L[r].n; m++, k++) {
+      H->sidx[k] = L[r].i[m];
+      halo_pack(p, L[r].i[m], sbuf + k * H->rec);
+    }
+    free(L[r].i);
+  }
+  free(L);
+  halo_alltoallv(H, H->scount, H->rcount, sbuf, rbuf);
+  /* the copies, after the owned particles; the ones at the edge of the
+   * halo (farther than depth - 1 reaches from every cell of this rank)
+   * keep their owner's h */
+  free(H->redge);
+  H->redge = error_malloc(H->nrecv + 1, "MPI halo edge marks");
+  const size_t n0 = p->count;
+  parts_reserve(p, n0 + H->nrecv);
+  for (size_t q = 0; q < H->nrecv; q++) {
+    const size_t g = n0 + q;
+    halo_unpack(p, g, rbuf + q * H->rec);
+    const double x[3] = {p->x[g], p->y[g], p->z[g]};
+    halo_rank_d2(H, x, nc, d2);
+    H->redge[q] = !(d2[H->me] <= Din * Din);
+    p->flags[g] |= PART_FOREIGN | (H->redge[q] ? PART_HALO_EDGE : 0);
+    p->msrc[g] = (int64_t)q;
+  }
+  p->count = n0 + H->nrecv;
+  e->nr_foreign = H->nrecv;
+  free(d2);
+  /* the cells of both, and where the sent and received particles are now
+   * (the sort's permutation: new index i holds old index sort_index[i]) */
+  if (space_rebuild(s) != 0) error_bug("particles removed by the rebuild with the halo");
+  size_t *inv = error_malloc(p->count * sizeof(size_t) + 1, "MPI halo index");
+  for (size_t i = 0; i < p->count; i++) inv[s->sort_index[i]] = i;
+  for (size_t q = 0; q < H->nsend; q++) H->sidx[q] = inv[H->sidx[q]];
+  free(inv);
+  free(H->ridx);
+  H->ridx = error_malloc(H->nrecv * sizeof(size_t) + 1, "MPI halo receive list");
+  for (size_t i = 0; i < p->count; i++)
+    if (p->flags[i] & PART_FOREIGN) H->ridx[p->msrc[i]] = i;
+  error_log(1, "halo: rank %d owns %zu particles, sends %zu copies, holds %zu", H->me,
+            p->count - H->nrecv, H->nsend, H->nrecv);
+#else
+  (void)first;
+#endif
+  return first;
+}
+
+void halo_refresh(struct engine *e) {
+  struct halo *H = e->halo;
+  if (!H) return;
+#ifdef HAVE_MPI
+  struct parts *p = &e->parts;
+  char *sbuf = halo_grow(&H->sbuf, &H->sbuf_cap, H->nsend * H->rec + 1);
+  char *rbuf = halo_grow(&H->rbuf, &H->rbuf_cap, H->nrecv * H->rec + 1);
+  for (size_t q = 0; q < H->nsend; q++) halo_pack(p, H->sidx[q], sbuf + q * H->rec);
+  halo_alltoallv(H, H->scount, H->rcount, sbuf, rbuf);
+  for (size_t q = 0; q < H->nrecv; q++) {
+    const size_t g = H->ridx[q];
+    halo_unpack(p, g, rbuf + q * H->rec);
+    p->flags[g] |= PART_FOREIGN | (H->redge[q] ? PART_HALO_EDGE : 0);
+    p->msrc[g] = (int64_t)q;
+  }
+  /* the copies moved (and took their owners' h): the loops' pruning needs
+   * the bounds again */
+  for (int c = 0; c < e->space.nr_top; c++)
+    if (e->space.cells[c].count) cell_update_bounds(p, &e->space.cells[c]);
+#endif
+}
+
+void halo_bounds(const struct engine *e, double *dmax, double *h_max) {
+  const struct parts *p = &e->parts;
+  double v[2] = {0.0, 0.0};
+  for (size_t i = 0; i < p->count; i++) {
+    if (p->flags[i] & PART_FOREIGN) continue;
+    const double dx = p->x[i] - p->x0[i], dy = p->y[i] - p->y0[i], dz = p->z[i] - p->z0[i];
+    const double d2 = dx * dx + dy * dy + dz * dz;
+    if (d2 > v[0]) v[0] = d2;
+    if (p->h[i] > v[1]) v[1] = p->h[i];
+  }
+  ranks_allreduce_doubles(v, 2, RANKS_MAX);
+  *dmax = sqrt(v[0]);
+  *h_max = v[1];
+}
+
+void halo_gather(const struct engine *e, struct parts *out) {
+  memset(out, 0, sizeof *out);
+#ifdef HAVE_MPI
+  const struct halo *H = e->halo;
+  const struct parts *p = &e->parts;
+  const size_t rec = H->rec;
+  const size_t mine = p->count - e->nr_foreign;
+  char *buf = error_malloc(mine * rec + 1, "snapshot gather");
+  size_t k = 0;
+  for (size_t i = 0; i < p->count; i++)
+    if (!(p->flags[i] & PART_NOT_OWNED)) halo_pack(p, i, buf + k++ * rec);
+  const long long bytes = (long long)(mine * rec);
+  if (bytes > INT_MAX)
+    error_exit("snapshot: more than %d bytes on one rank: use more ranks", INT_MAX);
+  int nb = (int)bytes;
+  int *counts = NULL, *displ = NULL;
+  char *all = NULL;
+  long long total = 0;
+  if (H->me == 0) counts = error_malloc(2 * (size_t)H->nranks * sizeof(int), "snapshot gather");
+  MPI_Gather(&nb, 1, MPI_INT, counts, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  if (H->me == 0) {
+    displ = counts + H->nranks;
+    for (int r = 0; r < H->nranks; r++) {
+      if (total > INT_MAX) error_exit("snapshot: more than %d bytes to gather", INT_MAX);
+      displ[r] = (int)total;
+      total += counts[r];
+    }
+    all = error_malloc((size_t)total + 1, "snapshot gather");
+  }
+  MPI_Gatherv(buf, nb, MPI_BYTE, all, counts, displ, MPI_BYTE, 0, MPI_COMM_WORLD);
+  free(buf);
+  if (H->me == 0) {
+    const size_t n = (size_t)total / rec;
+    parts_alloc(out, n);
+    out->count = n;
+    for (size_t q = 0; q < n; q++) halo_unpack(out, q, all + q * rec);
+    free(all);
+    free(counts);
+  }
+#else
+  (void)e;
+#endif
+}
+
+void halo_free(struct engine *e) {
+  struct halo *H = e->halo;
+  if (!H) return;
+  free(H->assign);
+  free(H->scount);
+  free(H->sidx);
+  free(H->ridx);
+  free(H->redge);
+  free(H->sbuf);
+  free(H->rbuf);
+  free(H);
+  e->halo = NULL;
+}

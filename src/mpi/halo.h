@@ -1,0 +1,56 @@
+/* Multi-rank runs: each MPI rank owns the particles of its share of the
+ * top-level cells and holds copies of the foreign particles that its own
+ * need, refreshed from their owners before every FORCE phase (issue 22;
+ * theory/mpi.md, "Multi-rank runs").
+ *
+ * The copies (PART_FOREIGN) reach as far as the chain of neighbour loops
+ * of one FORCE phase: an owned particle's force reads its neighbours' density
+ * sums (and, with solids, their velocity gradients), which read theirs, so
+ * the halo is two interaction reaches deep for fluids and three with
+ * solids.  The rank computes the sums of the copies itself from the copies
+ * around them, as their owners do, so that nothing is exchanged inside a
+ * FORCE phase; the outermost copies, whose neighbours are not all there,
+ * keep their owner's h (PART_HALO_EDGE) and what their sums give is read by
+ * no owned particle.  Every function here is collective (every rank calls
+ * it) and does nothing with one rank. */
+#ifndef BOLIDE_HALO_H
+#define BOLIDE_HALO_H
+
+struct engine;
+struct parts;
+
+/** With more than one rank: stop with one line on what multi-rank runs do
+ *  not support yet, else make e->halo.  Nothing with one rank. */
+void halo_init(struct engine *e);
+
+/** Before the space's rebuild: the foreign copies removed, then (after the
+ *  first rebuild) every owned particle that left the rank's cells sent to
+ *  its new owner; the space's h_max floor set to the largest h of all
+ *  ranks, so that every rank chooses the top-level grid of one rank. */
+void halo_rebuild_start(struct engine *e);
+
+/** After the space's rebuild.  The first time, when every rank holds every
+ *  particle of the initial conditions: the partition of the top-level cells
+ *  (src/mpi/partition.h, on rank 0, broadcast), and each rank keeps its own.
+ *  Then the copies of the particles the other ranks need, and the space
+ *  rebuilt with them.  Returns 1 on the first call (whose particles removed
+ *  from an open box every rank counted: rank 0 keeps the count). */
+int halo_rebuild(struct engine *e);
+
+/** Before every FORCE phase (after the drift and any rebuild): every
+ *  foreign copy takes its owner's state, and the cells' bounds follow. */
+void halo_refresh(struct engine *e);
+
+/** The largest drift since the rebuild (dmax) and the largest smoothing
+ *  length (h_max) of the particles of every rank, its copies left out. */
+void halo_bounds(const struct engine *e, double *dmax, double *h_max);
+
+/** Rank 0: a copy of the owned particles of every rank into out (allocated
+ *  here; rank 0's first, then rank 1's, ...); the other ranks send theirs
+ *  and get an empty out. */
+void halo_gather(const struct engine *e, struct parts *out);
+
+/** Free e->halo. */
+void halo_free(struct engine *e);
+
+#endif
