@@ -29,6 +29,8 @@ struct engine_options {
   int use_gpu;    /**< 0 never, 1 when present, 2 required */
   int check_only; /**< validate and exit */
   int restart;    /**< resume from a restart file */
+  int one_rank;   /**< 1: this process's engine alone, whatever the MPI ranks (bolide --partition
+                       on rank 0): no multi-rank run */
 };
 
 /** Tasks of one task cell (engine_graph.c: the graph is built on these). */

@@ -262,6 +262,7 @@ static int main_partition(int nr, const char *method, const struct params *param
     struct engine e;
     struct engine_options o = *opt;
     o.check_only = 0;
+    o.one_rank = 1;
     const int measured = o.max_steps > 0;
     engine_init(&e, params, &o);
     if (measured)

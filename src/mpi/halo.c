@@ -165,6 +165,31 @@ static void halo_rank_d2(const struct halo *H, const double xin[3], int reach, d
       }
 }
 
+/** 1 if a cell of another rank than this one lies within D of the box of
+ *  decomposition cell c (reach: the cells to look at around it). */
+static int halo_cell_near_other(const struct halo *H, int c, int reach, double D) {
+  const int c0[3] = {c / (H->cdim[1] * H->cdim[2]), (c / H->cdim[2]) % H->cdim[1], c % H->cdim[2]};
+  int q[3], w[3];
+  for (q[0] = c0[0] - reach; q[0] <= c0[0] + reach; q[0]++)
+    for (q[1] = c0[1] - reach; q[1] <= c0[1] + reach; q[1]++)
+      for (q[2] = c0[2] - reach; q[2] <= c0[2] + reach; q[2]++) {
+        int ok = 1;
+        double d2 = 0.0;
+        for (int k = 0; k < 3; k++) {
+          w[k] = q[k];
+          if (w[k] < 0 || w[k] >= H->cdim[k]) {
+            if (!H->periodic) ok = 0;
+            w[k] = ((w[k] % H->cdim[k]) + H->cdim[k]) % H->cdim[k];
+          }
+          /* the gap between the two boxes along k: (|q - c0| - 1) widths */
+          const int g = abs(q[k] - c0[k]) - 1;
+          if (g > 0) d2 += (g * H->width[k]) * (g * H->width[k]);
+        }
+        if (ok && H->assign[halo_cell(H, w[0], w[1], w[2])] != H->me && d2 <= D * D) return 1;
+      }
+  return 0;
+}
+
 /* ------------------------------------------------------------ the lists */
 
 static void halo_list_push(struct halo_list *L, size_t i) {
@@ -285,7 +310,7 @@ void halo_init(struct engine *e) {
   e->halo = NULL;
   e->nr_foreign = 0;
   e->nr_owned_all = (long long)e->parts.count;
-  if (ranks_size() < 2) return;
+  if (ranks_size() < 2 || e->opt.one_rank) return;
   const char *why = NULL;
   if (e->gpu)
     why = "multi-rank runs run on the CPU only yet: run with --no-gpu (or Scheduler:gpu: off)";
@@ -363,12 +388,22 @@ int halo_rebuild(struct engine *e) {
   const int n = H->nranks;
   struct halo_list *L = error_calloc((size_t)n, sizeof *L, "MPI halo lists");
   double *d2 = error_malloc((size_t)n * sizeof(double), "MPI halo distances");
+  /* per decomposition cell: whether a cell of another rank lies within D of
+   * its box at all (-1: not yet known); the particles of the cells inside a
+   * rank's domain are then skipped at once */
+  signed char *near = error_malloc((size_t)H->ncells, "MPI halo cell marks");
+  memset(near, -1, (size_t)H->ncells);
   for (size_t i = 0; i < p->count; i++) {
     const double x[3] = {p->x[i], p->y[i], p->z[i]};
+    const int c =
+        halo_cell(H, halo_coord(H, 0, x[0]), halo_coord(H, 1, x[1]), halo_coord(H, 2, x[2]));
+    if (near[c] < 0) near[c] = (signed char)halo_cell_near_other(H, c, nc, D);
+    if (!near[c]) continue;
     halo_rank_d2(H, x, nc, d2);
     for (int r = 0; r < n; r++)
       if (r != H->me && d2[r] <= D * D) halo_list_push(&L[r], i);
   }
+  free(near);
   H->nsend = 0;
   for (int r = 0; r < n; r++) {
     H->scount[r] = (int)L[r].n;
