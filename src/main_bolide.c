@@ -21,6 +21,7 @@
 #include "src/io/params.h"
 #include "src/mpi/partition.h"
 #include "src/mpi/ranks.h"
+#include "src/runner.h"
 #include "src/space.h"
 #include "src/version.h"
 
@@ -562,6 +563,12 @@ int main(int argc, char **argv) {
     error_exit("unexpected argument '%s' after the parameter file", argv[optind + 1]);
   /* several MPI ranks: rank 0 writes the run's log (errors come from any) */
   if (ranks_rank() != 0) error_log_quiet = 1;
+  {
+    /* the ranks of one node share its cores (src/runner.c) */
+    int lr, ln;
+    ranks_local(&lr, &ln);
+    runner_share_node(lr, ln);
+  }
 
   /* the flags first, so that -P can still say otherwise */
   int n_overrides = 0;

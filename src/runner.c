@@ -13,7 +13,16 @@ struct runner_pinning {
   hwloc_topology_t topo;   /**< restricted to the CPUs the process may use */
   hwloc_obj_type_t target; /**< HWLOC_OBJ_CORE or HWLOC_OBJ_PU */
   hwloc_bitmap_t saved;    /**< binding of thread 0 before it was pinned */
+  int first;               /**< the object of thread 0 (runner_share_node) */
 };
+
+/** This process's place among those of the run on this node. */
+static int runner_local_rank = 0, runner_local_ranks = 1;
+
+void runner_share_node(int local_rank, int local_ranks) {
+  runner_local_rank = local_rank;
+  runner_local_ranks = local_ranks > 0 ? local_ranks : 1;
+}
 
 /** Pinning problems are reported once per process, not once per thread. */
 static atomic_int runner_warned;
@@ -25,7 +34,7 @@ static void runner_warn_once(const char *what) {
 
 /** Bind the calling thread to target object number `id`. */
 static void runner_pin(struct runner_pinning *p, int id) {
-  hwloc_obj_t obj = hwloc_get_obj_by_type(p->topo, p->target, (unsigned)id);
+  hwloc_obj_t obj = hwloc_get_obj_by_type(p->topo, p->target, (unsigned)(p->first + id));
   if (!obj || hwloc_set_cpubind(p->topo, obj->cpuset, HWLOC_CPUBIND_THREAD) != 0)
     runner_warn_once("hwloc_set_cpubind");
 }
@@ -51,7 +60,12 @@ static struct runner_pinning *runner_pinning_new(int nr_threads) {
   }
   int nr_cores = hwloc_get_nbobjs_by_type(p->topo, HWLOC_OBJ_CORE);
   int nr_pus = hwloc_get_nbobjs_by_type(p->topo, HWLOC_OBJ_PU);
-  if (nr_threads <= nr_cores)
+  /* the processes of this node that see every CPU share them out */
+  const int all = runner_local_ranks * nr_threads;
+  if (runner_local_ranks > 1 && all <= nr_pus) {
+    p->target = all <= nr_cores ? HWLOC_OBJ_CORE : HWLOC_OBJ_PU;
+    p->first = runner_local_rank * nr_threads;
+  } else if (nr_threads <= nr_cores)
     p->target = HWLOC_OBJ_CORE;
   else if (nr_threads <= nr_pus)
     p->target = HWLOC_OBJ_PU;

@@ -40,6 +40,14 @@ struct runner_pool {
  *  the CPU set the process may use; with more threads than hardware
  *  threads, or if hwloc fails (a warning, once), they are left to the
  *  operating system. */
+/** Several processes of one run on this node (MPI ranks): this one is
+ *  local_rank of local_ranks.  When the CPUs each may use hold a core for
+ *  every thread of all of them (mpirun --bind-to none), the threads of
+ *  local rank r take the cores after those of ranks 0 .. r - 1; when they
+ *  do not (each rank bound to its own cores), every process pins within its
+ *  own set as a single one does.  Call before runner_start(). */
+void runner_share_node(int local_rank, int local_ranks);
+
 void runner_start(struct runner_pool *pool, int nr_threads, void (*work)(void *, int), void *ctx);
 
 /** Stop and join the workers; restore the calling thread's CPU binding. */

@@ -52,19 +52,38 @@ struct halo {
 
 /* ------------------------------------------------------------- records */
 
-static void halo_pack(const struct parts *p, size_t i, char *dst) {
+/** Pack particles idx[0 .. n) of p into dst, field after field (n values
+ *  of each): a block of n records. */
+static void halo_pack_block(const struct parts *p, const size_t *idx, size_t n, char *dst) {
   for (int f = 0; f < part_nr_fields; f++) {
     const struct part_field *pf = &part_fields[f];
-    memcpy(dst, (const char *)part_field_array(p, pf) + i * pf->size, pf->size);
-    dst += pf->size;
+    const char *a = part_field_array(p, pf);
+    if (pf->size == 8)
+      for (size_t k = 0; k < n; k++) memcpy(dst + 8 * k, a + 8 * idx[k], 8);
+    else if (pf->size == 4)
+      for (size_t k = 0; k < n; k++) memcpy(dst + 4 * k, a + 4 * idx[k], 4);
+    else
+      for (size_t k = 0; k < n; k++) memcpy(dst + pf->size * k, a + pf->size * idx[k], pf->size);
+    dst += n * pf->size;
   }
 }
 
-static void halo_unpack(struct parts *p, size_t i, const char *src) {
+/** Unpack a block of n records into particles slot[0 .. n) of p (slot
+ *  NULL: first, first + 1, ...). */
+static void halo_unpack_block(struct parts *p, size_t first, const size_t *slot, size_t n,
+                              const char *src) {
   for (int f = 0; f < part_nr_fields; f++) {
     const struct part_field *pf = &part_fields[f];
-    memcpy((char *)part_field_array(p, pf) + i * pf->size, src, pf->size);
-    src += pf->size;
+    char *a = part_field_array(p, pf);
+    if (!slot)
+      memcpy(a + pf->size * first, src, n * pf->size);
+    else if (pf->size == 8)
+      for (size_t k = 0; k < n; k++) memcpy(a + 8 * slot[k], src + 8 * k, 8);
+    else if (pf->size == 4)
+      for (size_t k = 0; k < n; k++) memcpy(a + 4 * slot[k], src + 4 * k, 4);
+    else
+      for (size_t k = 0; k < n; k++) memcpy(a + pf->size * slot[k], src + pf->size * k, pf->size);
+    src += n * pf->size;
   }
 }
 
@@ -134,42 +153,20 @@ static double halo_box_d2(const struct halo *H, const double x[3], const int c[3
   return d2;
 }
 
-/** For the point x (inside the box, or wrapped into it): the squared
- *  distance of the nearest cell of each rank within reach cells around it,
- *  into d2[r] (HUGE_VAL: none). */
-static void halo_rank_d2(const struct halo *H, const double xin[3], int reach, double *d2) {
-  for (int r = 0; r < H->nranks; r++) d2[r] = HUGE_VAL;
-  double x[3];
-  int c0[3];
-  for (int k = 0; k < 3; k++) {
-    x[k] = xin[k];
-    if (H->periodic) x[k] -= floor(x[k] / H->dim[k]) * H->dim[k];
-    c0[k] = halo_coord(H, k, x[k]);
-  }
-  int c[3], w[3];
-  for (c[0] = c0[0] - reach; c[0] <= c0[0] + reach; c[0]++)
-    for (c[1] = c0[1] - reach; c[1] <= c0[1] + reach; c[1]++)
-      for (c[2] = c0[2] - reach; c[2] <= c0[2] + reach; c[2]++) {
-        int ok = 1;
-        for (int k = 0; k < 3; k++) {
-          w[k] = c[k];
-          if (w[k] < 0 || w[k] >= H->cdim[k]) {
-            if (!H->periodic) ok = 0;
-            w[k] = ((w[k] % H->cdim[k]) + H->cdim[k]) % H->cdim[k];
-          }
-        }
-        if (!ok) continue;
-        const int r = H->assign[halo_cell(H, w[0], w[1], w[2])];
-        const double q = halo_box_d2(H, x, c);
-        if (q < d2[r]) d2[r] = q;
-      }
-}
+/** A cell near another: its grid coordinates, not wrapped (outside the
+ *  grid: a periodic image), and its rank. */
+struct halo_cand {
+  int c[3];
+  int r;
+};
 
-/** 1 if a cell of another rank than this one lies within D of the box of
- *  decomposition cell c (reach: the cells to look at around it). */
-static int halo_cell_near_other(const struct halo *H, int c, int reach, double D) {
+/** The cells within D of the box of decomposition cell c (reach: the
+ *  cells to look at around it) that belong to this rank (mine = 1) or to
+ *  another (mine = 0), into *cand (capacity *cap, grown); their number. */
+static int halo_cands(const struct halo *H, int c, int reach, double D, int mine,
+                      struct halo_cand **cand, int *cap) {
   const int c0[3] = {c / (H->cdim[1] * H->cdim[2]), (c / H->cdim[2]) % H->cdim[1], c % H->cdim[2]};
-  int q[3], w[3];
+  int q[3], w[3], n = 0;
   for (q[0] = c0[0] - reach; q[0] <= c0[0] + reach; q[0]++)
     for (q[1] = c0[1] - reach; q[1] <= c0[1] + reach; q[1]++)
       for (q[2] = c0[2] - reach; q[2] <= c0[2] + reach; q[2]++) {
@@ -185,9 +182,38 @@ static int halo_cell_near_other(const struct halo *H, int c, int reach, double D
           const int g = abs(q[k] - c0[k]) - 1;
           if (g > 0) d2 += (g * H->width[k]) * (g * H->width[k]);
         }
-        if (ok && H->assign[halo_cell(H, w[0], w[1], w[2])] != H->me && d2 <= D * D) return 1;
+        if (!ok || d2 > D * D) continue;
+        const int r = H->assign[halo_cell(H, w[0], w[1], w[2])];
+        if ((r == H->me) != mine) continue;
+        if (n == *cap) {
+          *cap = *cap ? 2 * *cap : 64;
+          *cand = error_realloc(*cand, (size_t)*cap * sizeof **cand, "MPI halo cells");
+        }
+        (*cand)[n++] = (struct halo_cand){{q[0], q[1], q[2]}, r};
       }
-  return 0;
+  return n;
+}
+
+/** The decomposition cell of the point x, and x wrapped into a periodic box. */
+static int halo_cell_of(const struct halo *H, const double xin[3], double x[3]) {
+  int c[3];
+  for (int k = 0; k < 3; k++) {
+    x[k] = xin[k];
+    if (H->periodic) x[k] -= floor(x[k] / H->dim[k]) * H->dim[k];
+    c[k] = halo_coord(H, k, x[k]);
+  }
+  return halo_cell(H, c[0], c[1], c[2]);
+}
+
+/** The squared distance of x (wrapped) from the nearest of the cells cand
+ *  of each rank into d2[r] (HUGE_VAL: none). */
+static void halo_cands_d2(const struct halo *H, const double x[3], const struct halo_cand *cand,
+                          int n, double *d2) {
+  for (int r = 0; r < H->nranks; r++) d2[r] = HUGE_VAL;
+  for (int k = 0; k < n; k++) {
+    const double q = halo_box_d2(H, x, cand[k].c);
+    if (q < d2[cand[k].r]) d2[cand[k].r] = q;
+  }
 }
 
 /* ------------------------------------------------------------ the lists */
@@ -244,15 +270,20 @@ static void halo_migrate(struct engine *e) {
     off += (size_t)sc[r];
   }
   unsigned char *drop = error_calloc(p->count + 1, 1, "MPI migration marks");
+  size_t *list = error_malloc(ns * sizeof(size_t) + 1, "MPI migration list");
   for (size_t i = 0; i < p->count; i++)
     if (owner[i] != H->me) {
-      halo_pack(p, i, sbuf + pos[owner[i]]++ * H->rec);
+      list[pos[owner[i]]++] = i;
       drop[i] = 1;
     }
+  for (int r = 0, o = 0; r < n; o += sc[r], r++)
+    halo_pack_block(p, list + o, (size_t)sc[r], sbuf + (size_t)o * H->rec);
+  free(list);
   halo_alltoallv(H, sc, rc, sbuf, rbuf);
   halo_remove(p, drop);
   parts_reserve(p, p->count + nr);
-  for (size_t k = 0; k < nr; k++) halo_unpack(p, p->count + k, rbuf + k * H->rec);
+  for (int r = 0, o = 0; r < n; o += rc[r], r++)
+    halo_unpack_block(p, p->count + (size_t)o, NULL, (size_t)rc[r], rbuf + (size_t)o * H->rec);
   p->count += nr;
   free(drop);
   free(pos);
@@ -388,22 +419,20 @@ int halo_rebuild(struct engine *e) {
   const int n = H->nranks;
   struct halo_list *L = error_calloc((size_t)n, sizeof *L, "MPI halo lists");
   double *d2 = error_malloc((size_t)n * sizeof(double), "MPI halo distances");
-  /* per decomposition cell: whether a cell of another rank lies within D of
-   * its box at all (-1: not yet known); the particles of the cells inside a
-   * rank's domain are then skipped at once */
-  signed char *near = error_malloc((size_t)H->ncells, "MPI halo cell marks");
-  memset(near, -1, (size_t)H->ncells);
+  /* the cells of other ranks near the particle's cell (the particles come
+   * sorted by cell: the list is made again only when the cell changes) */
+  struct halo_cand *cand = NULL;
+  int ncand = 0, cap = 0, last = -1;
   for (size_t i = 0; i < p->count; i++) {
-    const double x[3] = {p->x[i], p->y[i], p->z[i]};
-    const int c =
-        halo_cell(H, halo_coord(H, 0, x[0]), halo_coord(H, 1, x[1]), halo_coord(H, 2, x[2]));
-    if (near[c] < 0) near[c] = (signed char)halo_cell_near_other(H, c, nc, D);
-    if (!near[c]) continue;
-    halo_rank_d2(H, x, nc, d2);
+    const double xi[3] = {p->x[i], p->y[i], p->z[i]};
+    double x[3];
+    const int c = halo_cell_of(H, xi, x);
+    if (c != last) ncand = halo_cands(H, c, nc, D, 0, &cand, &cap), last = c;
+    if (!ncand) continue;
+    halo_cands_d2(H, x, cand, ncand, d2);
     for (int r = 0; r < n; r++)
       if (r != H->me && d2[r] <= D * D) halo_list_push(&L[r], i);
   }
-  free(near);
   H->nsend = 0;
   for (int r = 0; r < n; r++) {
     H->scount[r] = (int)L[r].n;
@@ -418,10 +447,9 @@ int halo_rebuild(struct engine *e) {
   char *rbuf = halo_grow(&H->rbuf, &H->rbuf_cap, H->nrecv * H->rec + 1);
   size_t k = 0;
   for (int r = 0; r < n; r++) {
-    for (size_t m = 0; m < L[r].n; m++, k++) {
-      H->sidx[k] = L[r].i[m];
-      halo_pack(p, L[r].i[m], sbuf + k * H->rec);
-    }
+    H->sdispl[r] = (int)k;
+    halo_pack_block(p, L[r].i, L[r].n, sbuf + k * H->rec);
+    for (size_t m = 0; m < L[r].n; m++, k++) H->sidx[k] = L[r].i[m];
     free(L[r].i);
   }
   free(L);
@@ -433,11 +461,18 @@ int halo_rebuild(struct engine *e) {
   H->redge = error_malloc(H->nrecv + 1, "MPI halo edge marks");
   const size_t n0 = p->count;
   parts_reserve(p, n0 + H->nrecv);
+  last = -1; /* (now the cells of this rank) */
+  for (int r = 0, o = 0; r < n; o += H->rcount[r], r++) {
+    H->rdispl[r] = o;
+    halo_unpack_block(p, n0 + (size_t)o, NULL, (size_t)H->rcount[r], rbuf + (size_t)o * H->rec);
+  }
   for (size_t q = 0; q < H->nrecv; q++) {
     const size_t g = n0 + q;
-    halo_unpack(p, g, rbuf + q * H->rec);
-    const double x[3] = {p->x[g], p->y[g], p->z[g]};
-    halo_rank_d2(H, x, nc, d2);
+    const double xg[3] = {p->x[g], p->y[g], p->z[g]};
+    double x[3];
+    const int c = halo_cell_of(H, xg, x);
+    if (c != last) ncand = halo_cands(H, c, nc, Din, 1, &cand, &cap), last = c;
+    halo_cands_d2(H, x, cand, ncand, d2);
     H->redge[q] = !(d2[H->me] <= Din * Din);
     p->flags[g] |= PART_FOREIGN | (H->redge[q] ? PART_HALO_EDGE : 0);
     p->msrc[g] = (int64_t)q;
@@ -445,6 +480,7 @@ int halo_rebuild(struct engine *e) {
   p->count = n0 + H->nrecv;
   e->nr_foreign = H->nrecv;
   free(d2);
+  free(cand);
   /* the cells of both, and where the sent and received particles are now
    * (the sort's permutation: new index i holds old index sort_index[i]) */
   if (space_rebuild(s) != 0) error_bug("particles removed by the rebuild with the halo");
@@ -456,6 +492,17 @@ int halo_rebuild(struct engine *e) {
   H->ridx = error_malloc(H->nrecv * sizeof(size_t) + 1, "MPI halo receive list");
   for (size_t i = 0; i < p->count; i++)
     if (p->flags[i] & PART_FOREIGN) H->ridx[p->msrc[i]] = i;
+  /* the cells of copies only, whose tasks have less to do (ENGINE_CELL_NO_SUMS,
+   * ENGINE_CELL_NO_FORCE) */
+  for (int c = 0; c < s->nr_cells; c++) {
+    struct cell *cl = &s->cells[c];
+    int all = cl->count > 0, edge = cl->count > 0;
+    for (size_t i = cl->offset; i < cl->offset + cl->count && all; i++) {
+      all = (p->flags[i] & PART_FOREIGN) != 0;
+      edge = edge && (p->flags[i] & PART_HALO_EDGE);
+    }
+    cl->foreign = all ? (edge ? 2 : 1) : 0;
+  }
   error_log(1, "halo: rank %d owns %zu particles, sends %zu copies, holds %zu", H->me,
             p->count - H->nrecv, H->nsend, H->nrecv);
 #else
@@ -471,11 +518,15 @@ void halo_refresh(struct engine *e) {
   struct parts *p = &e->parts;
   char *sbuf = halo_grow(&H->sbuf, &H->sbuf_cap, H->nsend * H->rec + 1);
   char *rbuf = halo_grow(&H->rbuf, &H->rbuf_cap, H->nrecv * H->rec + 1);
-  for (size_t q = 0; q < H->nsend; q++) halo_pack(p, H->sidx[q], sbuf + q * H->rec);
+  for (int r = 0; r < H->nranks; r++)
+    halo_pack_block(p, H->sidx + H->sdispl[r], (size_t)H->scount[r],
+                    sbuf + (size_t)H->sdispl[r] * H->rec);
   halo_alltoallv(H, H->scount, H->rcount, sbuf, rbuf);
+  for (int r = 0; r < H->nranks; r++)
+    halo_unpack_block(p, 0, H->ridx + H->rdispl[r], (size_t)H->rcount[r],
+                      rbuf + (size_t)H->rdispl[r] * H->rec);
   for (size_t q = 0; q < H->nrecv; q++) {
     const size_t g = H->ridx[q];
-    halo_unpack(p, g, rbuf + q * H->rec);
     p->flags[g] |= PART_FOREIGN | (H->redge[q] ? PART_HALO_EDGE : 0);
     p->msrc[g] = (int64_t)q;
   }
@@ -509,9 +560,12 @@ void halo_gather(const struct engine *e, struct parts *out) {
   const size_t rec = H->rec;
   const size_t mine = p->count - e->nr_foreign;
   char *buf = error_malloc(mine * rec + 1, "snapshot gather");
+  size_t *list = error_malloc(mine * sizeof(size_t) + 1, "snapshot gather");
   size_t k = 0;
   for (size_t i = 0; i < p->count; i++)
-    if (!(p->flags[i] & PART_NOT_OWNED)) halo_pack(p, i, buf + k++ * rec);
+    if (!(p->flags[i] & PART_NOT_OWNED)) list[k++] = i;
+  halo_pack_block(p, list, k, buf);
+  free(list);
   const long long bytes = (long long)(mine * rec);
   if (bytes > INT_MAX)
     error_exit("snapshot: more than %d bytes on one rank: use more ranks", INT_MAX);
@@ -536,7 +590,8 @@ void halo_gather(const struct engine *e, struct parts *out) {
     const size_t n = (size_t)total / rec;
     parts_alloc(out, n);
     out->count = n;
-    for (size_t q = 0; q < n; q++) halo_unpack(out, q, all + q * rec);
+    for (int r = 0; r < H->nranks; r++)
+      halo_unpack_block(out, (size_t)displ[r] / rec, NULL, (size_t)counts[r] / rec, all + displ[r]);
     free(all);
     free(counts);
   }

@@ -48,6 +48,17 @@ int ranks_have_mpi(void) {
   return 1;
 }
 
+void ranks_local(int *rank, int *size) {
+  *rank = 0;
+  *size = 1;
+  if (ranks_n == 1) return;
+  MPI_Comm node;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, ranks_me, MPI_INFO_NULL, &node);
+  MPI_Comm_rank(node, rank);
+  MPI_Comm_size(node, size);
+  MPI_Comm_free(&node);
+}
+
 void ranks_bcast_ints(int *v, int n) {
   if (ranks_n == 1) return;
   MPI_Request req;
@@ -112,6 +123,11 @@ int ranks_size(void) {
 
 int ranks_have_mpi(void) {
   return 0;
+}
+
+void ranks_local(int *rank, int *size) {
+  *rank = 0;
+  *size = 1;
 }
 
 void ranks_bcast_ints(int *v, int n) {

@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# Multi-rank runs against threads (issue 22, theory/mpi.md "Multi-rank
+# runs"): the planetary reference impact (make_impact_ic.py of the benchmark
+# set, hydrodynamics only: multi-rank runs have no self-gravity yet) for
+# STEPS steps, every particle active, in each layout RxT of -c (R MPI ranks
+# of T threads each: mpirun -n R bolide -t T), the layouts alternating
+# within each of REPEAT rounds so that the load of a shared machine falls on
+# all alike (mpirun --bind-to none: OpenMPI binds a rank to one core by
+# default, which would leave a rank of T threads one core).  Prints, per layout, the median wall seconds per step (the steps
+# after the first of rank 0's step lines) and the ratio to the first layout.
+# With -w the weak scaling: N particles per rank (R x N in all).
+#
+# Usage: BOLIDE_BENCH_IC=.../make_impact_ic.py BOLIDE_BUILD=_build_mpi \
+#          tools/bench/mpi.sh [-n 1.1e5] [-c "1x2 2x1"] [-s 5] [-r 3] [-m 16] [-w]
+#   -m: Scheduler:max_top_level_cells (the decomposition's grid)
+set -euo pipefail
+top="$(cd "$(dirname "$0")/../.." && pwd)"
+build=${BOLIDE_BUILD:-$top/_build_mpi}
+python=${PYTHON:-$top/_build/.venv/bin/python}
+gen=${BOLIDE_BENCH_IC:?"set BOLIDE_BENCH_IC to the reference impact IC generator of the benchmark set (make_impact_ic.py; theory/validation.md, Benchmarks)"}
+n=1.1e5; layouts="1x2 2x1"; steps=5; repeat=3; cells=16; weak=0
+while getopts "n:c:s:r:m:w" o; do
+  case $o in n) n=$OPTARG ;; c) layouts=$OPTARG ;; s) steps=$OPTARG ;; r) repeat=$OPTARG ;;
+             m) cells=$OPTARG ;; w) weak=1 ;; *) exit 2 ;; esac
+done
+build=$(cd "$build" && pwd)
+grep -q '^#define HAVE_MPI 1' "$build/config.h" ||
+  { echo "mpi.sh: $build is not built with --with-mpi" >&2; exit 1; }
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+export BOLIDE_SRCDIR=${BOLIDE_SRCDIR:-$top}
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+cd "$work"
+ic() { # ic N FILE
+  local nt ni
+  nt=$(awk -v n="$1" 'BEGIN {printf "%d", n * 10 / 11}'); ni=$(awk -v n="$1" 'BEGIN {printf "%d", n / 11}')
+  [ -f "$2" ] || "$python" "$gen" "$nt" "$ni" "$2" >/dev/null
+}
+printf "# %s on %s (%s, %s cores), %s, median of %d rounds of %d steps, every particle active\n" \
+  "$(git -C "$top" rev-parse --short HEAD)" "$(uname -n)" \
+  "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')" "$(nproc)" \
+  "$([ $weak = 1 ] && echo "weak scaling, $n particles per rank" || echo "$n particles")" "$repeat" "$steps"
+for r in $(seq "$repeat"); do
+  for l in $layouts; do
+    R=${l%x*}; T=${l#*x}
+    N=$n; [ $weak = 1 ] && N=$(awk -v n="$n" -v r="$R" 'BEGIN {printf "%g", n * r}')
+    ic "$N" "impact_$N.hdf5"
+    cat >p.yml <<YML
+InitialConditions:
+  file_name: impact_$N.hdf5
+TimeIntegration:
+  time_end: 1e30
+Snapshots:
+  subdir: out_$l
+  delta_time: 1e30
+Materials:
+  101: {}
+Gravity:
+  enabled: false
+SPH:
+  resolution_eta: 1.2348
+Scheduler:
+  max_top_level_cells: $cells
+YML
+    mpirun --bind-to none -n "$R" "$build/bolide" --no-gpu -n $((steps + 1)) -t "$T" p.yml >run.log 2>&1 ||
+      { tail -5 run.log >&2; exit 1; }
+    awk -v l="$l" '$1 ~ /^[0-9]+$/ && NF == 6 && $1 > 1 {s += $5; c++} END {printf "%s %.6f\n", l, s / c}' \
+      run.log >>times
+  done
+done
+first=""
+for l in $layouts; do
+  med=$(awk -v l="$l" '$1 == l {print $2}' times | sort -g | awk '{x[NR] = $1} END {print x[int((NR + 1) / 2)]}')
+  all=$(awk -v l="$l" '$1 == l {printf "%s ", $2}' times)
+  [ -n "$first" ] || first=$med
+  printf "%-6s ranks x threads  %10.4f s/step  ratio to %s %.3f   (runs: %s)\n" "$l" "$med" \
+    "${layouts%% *}" "$(awk -v a="$med" -v b="$first" 'BEGIN {print a / b}')" "$all"
+done
