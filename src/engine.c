@@ -823,6 +823,9 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
 
   scheduler_init(&e->sched, e->nr_threads);
   e->sched.fixed_costs = params_get_bool(params, "Scheduler:deterministic");
+  /* several MPI ranks run on the CPU only yet: a GPU used when present is
+   * not used (one asked for by name stops the run in halo_init) */
+  if (ranks_size() > 1 && !opt->one_rank && e->opt.use_gpu == 1) e->opt.use_gpu = 0;
 #ifdef HAVE_CUDA
   gpu_engine_init(e);
 #else
@@ -1333,6 +1336,7 @@ void engine_run(struct engine *e) {
             e->step > 0 ? e->t_watchdog / (double)e->step : 0.0);
   drift_integrate_log(e);
   gravity_log_end(e);
+  halo_log(e);
   if (rank0) scheduler_print_timers(&e->sched, stdout);
 #ifdef HAVE_CUDA
   gpu_engine_print(e, stdout);

@@ -46,6 +46,11 @@ struct halo {
   size_t rec; /**< bytes of one particle's record: every field */
   char *sbuf, *rbuf;
   size_t sbuf_cap, rbuf_cap;
+  /* for the closing line (halo_log) */
+  double t_refresh,
+      t_halo; /**< wall seconds in halo_refresh, in halo_rebuild_start + halo_rebuild */
+  long nr_refresh, nr_halo;
+  double copies; /**< sum over rebuilds of the copies over the owned particles, all ranks */
 };
 
 #ifdef HAVE_MPI
@@ -374,6 +379,7 @@ void halo_rebuild_start(struct engine *e) {
   struct halo *H = e->halo;
   if (!H) return;
 #ifdef HAVE_MPI
+  const double w0 = error_walltime();
   struct parts *p = &e->parts;
   if (e->nr_foreign) {
     unsigned char *drop = error_calloc(p->count + 1, 1, "MPI halo marks");
@@ -388,6 +394,7 @@ void halo_rebuild_start(struct engine *e) {
     if (p->h[i] > h_max && isfinite(p->h[i])) h_max = p->h[i];
   ranks_allreduce_doubles(&h_max, 1, RANKS_MAX);
   e->space.h_max_floor = h_max;
+  H->t_halo += error_walltime() - w0;
 #endif
 }
 
@@ -396,6 +403,7 @@ int halo_rebuild(struct engine *e) {
   if (!H) return 0;
   int first = 0;
 #ifdef HAVE_MPI
+  const double w0 = error_walltime();
   struct space *s = &e->space;
   struct parts *p = &e->parts;
   if (!H->assign) {
@@ -503,8 +511,14 @@ int halo_rebuild(struct engine *e) {
     }
     cl->foreign = all ? (edge ? 2 : 1) : 0;
   }
-  error_log(1, "halo: rank %d owns %zu particles, sends %zu copies, holds %zu", H->me,
-            p->count - H->nrecv, H->nsend, H->nrecv);
+  /* every rank's share, on rank 0's log (-v) */
+  double v[2] = {(double)(p->count - H->nrecv), (double)H->nrecv};
+  ranks_allreduce_doubles(v, 2, RANKS_SUM);
+  H->copies += v[1] / (v[0] > 0.0 ? v[0] : 1.0);
+  H->nr_halo++;
+  error_log(1, "halo: rank 0 owns %zu particles and holds %zu copies; all ranks: %.0f, %.0f",
+            p->count - H->nrecv, H->nrecv, v[0], v[1]);
+  H->t_halo += error_walltime() - w0;
 #else
   (void)first;
 #endif
@@ -515,6 +529,7 @@ void halo_refresh(struct engine *e) {
   struct halo *H = e->halo;
   if (!H) return;
 #ifdef HAVE_MPI
+  const double w0 = error_walltime();
   struct parts *p = &e->parts;
   char *sbuf = halo_grow(&H->sbuf, &H->sbuf_cap, H->nsend * H->rec + 1);
   char *rbuf = halo_grow(&H->rbuf, &H->rbuf_cap, H->nrecv * H->rec + 1);
@@ -534,7 +549,21 @@ void halo_refresh(struct engine *e) {
    * the bounds again */
   for (int c = 0; c < e->space.nr_top; c++)
     if (e->space.cells[c].count) cell_update_bounds(p, &e->space.cells[c]);
+  H->t_refresh += error_walltime() - w0;
+  H->nr_refresh++;
 #endif
+}
+
+void halo_log(const struct engine *e) {
+  const struct halo *H = e->halo;
+  if (!H) return;
+  error_log(0,
+            "MPI: %d ranks; foreign copies %.1f%% of the owned particles (average over %ld "
+            "rebuilds); rank 0: %.4f s per refresh of the copies, %.4f s per rebuild in the "
+            "exchanges and halo (cells and order include them)",
+            H->nranks, H->nr_halo ? 100.0 * H->copies / (double)H->nr_halo : 0.0, H->nr_halo,
+            H->nr_refresh ? H->t_refresh / (double)H->nr_refresh : 0.0,
+            H->nr_halo ? H->t_halo / (double)H->nr_halo : 0.0);
 }
 
 void halo_bounds(const struct engine *e, double *dmax, double *h_max) {

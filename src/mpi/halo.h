@@ -50,6 +50,10 @@ void halo_bounds(const struct engine *e, double *dmax, double *h_max);
  *  and get an empty out. */
 void halo_gather(const struct engine *e, struct parts *out);
 
+/** The closing line of the run's log: the copies and the time of the
+ *  exchanges. */
+void halo_log(const struct engine *e);
+
 /** Free e->halo. */
 void halo_free(struct engine *e);
 
