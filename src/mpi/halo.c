@@ -349,7 +349,8 @@ void halo_init(struct engine *e) {
   if (ranks_size() < 2 || e->opt.one_rank) return;
   const char *why = NULL;
   if (e->gpu)
-    why = "multi-rank runs run on the CPU only yet: run with --no-gpu (or Scheduler:gpu: off)";
+    why =
+        "multi-rank runs run on the CPU only yet, and a GPU was asked for (--gpu or Scheduler:gpu)";
   else if (e->gp.enabled)
     why = "multi-rank runs cannot be combined with self-gravity (Gravity:enabled) yet";
   else if (e->individual)
