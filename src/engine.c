@@ -424,9 +424,16 @@ static int engine_cell_of(const struct engine *e, size_t i) {
 static void engine_watchdog_fail(struct engine *e, size_t i, const char *what) {
   const int c = engine_cell_of(e, i);
   char path[2100];
-  snprintf(path, sizeof path, "%s/crash_step%06ld.hdf5", e->outdir, e->step);
   fflush(stdout);
-  engine_snapshot_to(e, path);
+  if (e->halo) {
+    /* several MPI ranks: the other ranks do not stop here to gather; this
+     * rank writes what it holds, its foreign copies included */
+    snprintf(path, sizeof path, "%s/crash_step%06ld_rank%d.hdf5", e->outdir, e->step, ranks_rank());
+    engine_snapshot_rank(e, path);
+  } else {
+    snprintf(path, sizeof path, "%s/crash_step%06ld.hdf5", e->outdir, e->step);
+    engine_snapshot_to(e, path);
+  }
   error_exit(
       "watchdog: step %ld (t = %g): particle id %lld (index %zu, top-level cell %d at (%g, %g, "
       "%g)): %s; "

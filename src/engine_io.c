@@ -451,20 +451,34 @@ static void engine_real_parts(const struct engine *e, struct parts *out) {
   }
 }
 
+/** The snapshot's header of the run now. */
+static void engine_snapshot_meta(const struct engine *e, struct snapshot_meta *meta) {
+  memset(meta, 0, sizeof *meta);
+  meta->time = e->time;
+  for (int k = 0; k < 3; k++) meta->box_size[k] = e->space.dim[k];
+  meta->periodic = e->space.periodic;
+  meta->run_name = params_get_string(e->params, "MetaData:run_name");
+  meta->params = e->params_text;
+  meta->hydro = e->hp.enabled;
+  meta->self_gravity = e->gp.enabled;
+  meta->compression = e->compression;
+}
+
+void engine_snapshot_rank(struct engine *e, const char *path) {
+#ifdef HAVE_CUDA
+  gpu_engine_to_host(e);
+#endif
+  struct snapshot_meta meta;
+  engine_snapshot_meta(e, &meta);
+  snapshot_write(path, &meta, &e->parts, &e->us, e->write_acc);
+}
+
 void engine_snapshot_to(struct engine *e, const char *path) {
 #ifdef HAVE_CUDA
   gpu_engine_to_host(e);
 #endif
   struct snapshot_meta meta;
-  memset(&meta, 0, sizeof meta);
-  meta.time = e->time;
-  for (int k = 0; k < 3; k++) meta.box_size[k] = e->space.dim[k];
-  meta.periodic = e->space.periodic;
-  meta.run_name = params_get_string(e->params, "MetaData:run_name");
-  meta.params = e->params_text;
-  meta.hydro = e->hp.enabled;
-  meta.self_gravity = e->gp.enabled;
-  meta.compression = e->compression;
+  engine_snapshot_meta(e, &meta);
   if (e->halo) {
     /* several MPI ranks: rank 0 gathers every rank's own and writes them */
     struct parts all;

@@ -40,6 +40,10 @@ void engine_budget_summary(struct engine *e);
 void engine_snapshot(struct engine *e);
 /** Write the particles to the snapshot file path (no index counted). */
 void engine_snapshot_to(struct engine *e, const char *path);
+/** Write this process's particles as they are (several MPI ranks: the
+ *  rank's own and its foreign copies, no gather; a crash snapshot of one
+ *  rank). */
+void engine_snapshot_rank(struct engine *e, const char *path);
 void engine_dump_tasks(struct engine *e);
 
 #endif
