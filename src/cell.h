@@ -45,8 +45,7 @@ struct cell {
   int top;                 /**< index of the top-level cell this cell descends from */
   int active;              /**< set by the engine: the cell has active particles this step */
   int foreign;             /**< several MPI ranks (src/mpi/halo.c): 1 if every particle of the cell
-                                is a foreign copy, 2 if every one is at the halo's edge
-                                (PART_HALO_EDGE); 0 otherwise */
+                                is a foreign copy, 0 otherwise */
   struct sched_lock lock;  /**< taken by the tasks that write the cell's particles */
   void *tasks[CELL_TASK_SLOTS]; /**< tasks of this cell, filled by the engine */
 };

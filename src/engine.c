@@ -958,6 +958,34 @@ static void engine_write_restart(struct engine *e) {
   error_log(0, "restart file %s.bin at step %ld, t = %g", e->restart_stem, e->step, e->time);
 }
 
+/** The stage of a task of the FORCE phase with several MPI ranks: 0 the
+ *  density sums and the ghost, 1 the gradient sums and the extra ghost
+ *  (solids), 2 the rest (forces, damage, kick). */
+static int engine_force_stage(const struct task *t) {
+  if (t->subtype == task_subtype_density || t->type == task_type_ghost) return 0;
+  if (t->subtype == task_subtype_gradient || t->type == task_type_extra_ghost) return 1;
+  return 2;
+}
+
+/** Several MPI ranks: the FORCE phase in stages (engine_force_stage), the
+ *  foreign copies taking their owners' results between them, so that the
+ *  force on an owned particle reads its neighbours' densities, pressures
+ *  and (solids) velocity gradients as their owners computed them, and no
+ *  copy's sums are computed (src/mpi/halo.c; theory/mpi.md, "Multi-rank
+ *  runs").  The tasks the graph orders after a task of an earlier stage
+ *  find it done. */
+static void engine_run_force_stages(struct engine *e) {
+  for (int stage = 0; stage < 3; stage++) {
+    if (stage == 1 && !e->hp.solids) continue;
+    for (int k = 0; k < e->phase_count[ENGINE_PHASE_FORCE]; k++) {
+      struct task *t = e->phase_tasks[ENGINE_PHASE_FORCE][k];
+      t->skip = engine_force_stage(t) != stage;
+    }
+    scheduler_run(&e->sched, engine_run_task, e);
+    if (stage < 2) halo_refresh(e);
+  }
+}
+
 /** Run the tasks of one phase on every worker. */
 void engine_run_phase(struct engine *e, int phase) {
   if (phase == ENGINE_PHASE_FORCE) {
@@ -974,6 +1002,10 @@ void engine_run_phase(struct engine *e, int phase) {
   }
 #endif
   engine_activate_phase(e, phase);
+  if (e->halo && phase == ENGINE_PHASE_FORCE) {
+    engine_run_force_stages(e);
+    return;
+  }
   scheduler_run(&e->sched, engine_run_task, e);
 }
 

@@ -208,15 +208,10 @@ void engine_clean(struct engine *e);
 #define ENGINE_CELL_IDLE(e, c) \
   ((e)->individual && !(e)->first_force && !((const struct cell *)(c))->active)
 
-/** Several MPI ranks (src/mpi/halo.c): whether the tasks of a cell of
- *  foreign copies only have nothing to do.  No copy needs its forces, its
- *  drift or its kick (it takes its owner's state before every FORCE phase);
- *  the copies at the halo's edge (cell.foreign 2) need no sums either.
- *  ENGINE_CELL_NO_SUMS: density, ghost, gradient; ENGINE_CELL_NO_FORCE:
- *  drift, force, damage. */
-#define ENGINE_CELL_NO_SUMS(e, c) \
-  (ENGINE_CELL_IDLE(e, c) || ((const struct cell *)(c))->foreign == 2)
-#define ENGINE_CELL_NO_FORCE(e, c) \
-  (ENGINE_CELL_IDLE(e, c) || ((const struct cell *)(c))->foreign != 0)
+/** ENGINE_CELL_IDLE, or (several MPI ranks, src/mpi/halo.c) a cell of
+ *  foreign copies only: no copy needs its own sums, forces, drift or kick,
+ *  it takes its owner's state before every FORCE phase and between its
+ *  stages.  A pair task runs unless both its cells are skipped. */
+#define ENGINE_CELL_SKIP(e, c) (ENGINE_CELL_IDLE(e, c) || ((const struct cell *)(c))->foreign)
 
 #endif

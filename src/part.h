@@ -181,12 +181,10 @@ enum part_state {
   PART_MIRROR = 128,      /**< a mirror ghost of a plane of Boundaries:planes: its sums are
                                computed, its h is its source's, it is never kicked, written or
                                counted (tasks/drift/drift_mirror.c) */
-  PART_FOREIGN = 256,     /**< a copy of a particle another MPI rank owns (src/mpi/halo.c): its
-                               sums are computed, it is never kicked, written or counted, and
-                               before every FORCE phase it takes its owner's state */
-  PART_HALO_EDGE = 512,   /**< a foreign copy at the edge of the halo, whose neighbours are not all
-                               there: it keeps its owner's h (no iteration), and no particle of
-                               the rank reads what its sums give */
+  PART_FOREIGN = 256,     /**< a copy of a particle another MPI rank owns (src/mpi/halo.c): before
+                               every FORCE phase and between its stages it takes its owner's
+                               state; its own sums are not computed (its h is not iterated), it
+                               is never kicked, written or counted */
 };
 
 /** The flags of particles a rank holds but does not own (no kick, no output,

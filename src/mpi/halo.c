@@ -30,7 +30,6 @@ struct halo_list {
 
 struct halo {
   int nranks, me;
-  int depth; /**< interaction reaches the halo spans: 2 for fluids, 3 with solids */
   /* the decomposition grid: the top-level grid of the first rebuild */
   int cdim[3];
   double width[3], dim[3];
@@ -41,7 +40,6 @@ struct halo {
   int *scount, *sdispl, *rcount, *rdispl; /**< [nranks] particles sent, received per rank */
   size_t *sidx;                           /**< [nsend] the particles sent, rank after rank */
   size_t *ridx;                           /**< [nrecv] where each received copy lives */
-  unsigned char *redge;                   /**< [nrecv] 1: a copy at the halo's edge */
   size_t nsend, nrecv;
   size_t rec; /**< bytes of one particle's record: every field */
   char *sbuf, *rbuf;
@@ -165,11 +163,11 @@ struct halo_cand {
   int r;
 };
 
-/** The cells within D of the box of decomposition cell c (reach: the
- *  cells to look at around it) that belong to this rank (mine = 1) or to
- *  another (mine = 0), into *cand (capacity *cap, grown); their number. */
-static int halo_cands(const struct halo *H, int c, int reach, double D, int mine,
-                      struct halo_cand **cand, int *cap) {
+/** The cells of other ranks within D of the box of decomposition cell c
+ *  (reach: the cells to look at around it), into *cand (capacity *cap,
+ *  grown); their number. */
+static int halo_cands(const struct halo *H, int c, int reach, double D, struct halo_cand **cand,
+                      int *cap) {
   const int c0[3] = {c / (H->cdim[1] * H->cdim[2]), (c / H->cdim[2]) % H->cdim[1], c % H->cdim[2]};
   int q[3], w[3], n = 0;
   for (q[0] = c0[0] - reach; q[0] <= c0[0] + reach; q[0]++)
@@ -189,7 +187,7 @@ static int halo_cands(const struct halo *H, int c, int reach, double D, int mine
         }
         if (!ok || d2 > D * D) continue;
         const int r = H->assign[halo_cell(H, w[0], w[1], w[2])];
-        if ((r == H->me) != mine) continue;
+        if (r == H->me) continue;
         if (n == *cap) {
           *cap = *cap ? 2 * *cap : 64;
           *cand = error_realloc(*cand, (size_t)*cap * sizeof **cand, "MPI halo cells");
@@ -366,7 +364,6 @@ void halo_init(struct engine *e) {
   struct halo *H = error_calloc(1, sizeof *H, "MPI halo");
   H->nranks = ranks_size();
   H->me = ranks_rank();
-  H->depth = e->hp.solids ? 3 : 2;
   H->rec = parts_bytes_per_particle();
   H->scount = error_calloc(4 * (size_t)H->nranks, sizeof(int), "MPI halo counts");
   H->sdispl = H->scount + H->nranks;
@@ -417,11 +414,10 @@ int halo_rebuild(struct engine *e) {
   ranks_allreduce_llongs(&owned, 1, RANKS_SUM);
   e->nr_owned_all = owned;
 
-  /* which ranks need which particles: those within depth reaches of a cell
-   * of theirs (at this rebuild; a reach covers an interaction until the
-   * next one, drift included: engine_graph.c) */
-  const double reach = engine_reach(s);
-  const double D = H->depth * reach, Din = (H->depth - 1) * reach;
+  /* which ranks need which particles: those within a reach of a cell of
+   * theirs (at this rebuild; a reach covers an interaction until the next
+   * one, drift included: engine_graph.c) */
+  const double D = engine_reach(s);
   double wmin = H->width[0];
   for (int k = 1; k < 3; k++) wmin = H->width[k] < wmin ? H->width[k] : wmin;
   const int nc = (int)ceil(D / wmin);
@@ -436,7 +432,7 @@ int halo_rebuild(struct engine *e) {
     const double xi[3] = {p->x[i], p->y[i], p->z[i]};
     double x[3];
     const int c = halo_cell_of(H, xi, x);
-    if (c != last) ncand = halo_cands(H, c, nc, D, 0, &cand, &cap), last = c;
+    if (c != last) ncand = halo_cands(H, c, nc, D, &cand, &cap), last = c;
     if (!ncand) continue;
     halo_cands_d2(H, x, cand, ncand, d2);
     for (int r = 0; r < n; r++)
@@ -463,28 +459,16 @@ int halo_rebuild(struct engine *e) {
   }
   free(L);
   halo_alltoallv(H, H->scount, H->rcount, sbuf, rbuf);
-  /* the copies, after the owned particles; the ones at the edge of the
-   * halo (farther than depth - 1 reaches from every cell of this rank)
-   * keep their owner's h */
-  free(H->redge);
-  H->redge = error_malloc(H->nrecv + 1, "MPI halo edge marks");
+  /* the copies, after the owned particles */
   const size_t n0 = p->count;
   parts_reserve(p, n0 + H->nrecv);
-  last = -1; /* (now the cells of this rank) */
   for (int r = 0, o = 0; r < n; o += H->rcount[r], r++) {
     H->rdispl[r] = o;
     halo_unpack_block(p, n0 + (size_t)o, NULL, (size_t)H->rcount[r], rbuf + (size_t)o * H->rec);
   }
   for (size_t q = 0; q < H->nrecv; q++) {
-    const size_t g = n0 + q;
-    const double xg[3] = {p->x[g], p->y[g], p->z[g]};
-    double x[3];
-    const int c = halo_cell_of(H, xg, x);
-    if (c != last) ncand = halo_cands(H, c, nc, Din, 1, &cand, &cap), last = c;
-    halo_cands_d2(H, x, cand, ncand, d2);
-    H->redge[q] = !(d2[H->me] <= Din * Din);
-    p->flags[g] |= PART_FOREIGN | (H->redge[q] ? PART_HALO_EDGE : 0);
-    p->msrc[g] = (int64_t)q;
+    p->flags[n0 + q] |= PART_FOREIGN;
+    p->msrc[n0 + q] = (int64_t)q;
   }
   p->count = n0 + H->nrecv;
   e->nr_foreign = H->nrecv;
@@ -501,16 +485,13 @@ int halo_rebuild(struct engine *e) {
   H->ridx = error_malloc(H->nrecv * sizeof(size_t) + 1, "MPI halo receive list");
   for (size_t i = 0; i < p->count; i++)
     if (p->flags[i] & PART_FOREIGN) H->ridx[p->msrc[i]] = i;
-  /* the cells of copies only, whose tasks have less to do (ENGINE_CELL_NO_SUMS,
-   * ENGINE_CELL_NO_FORCE) */
+  /* the cells of copies only, whose tasks have nothing to do (ENGINE_CELL_SKIP) */
   for (int c = 0; c < s->nr_cells; c++) {
     struct cell *cl = &s->cells[c];
-    int all = cl->count > 0, edge = cl->count > 0;
-    for (size_t i = cl->offset; i < cl->offset + cl->count && all; i++) {
+    int all = cl->count > 0;
+    for (size_t i = cl->offset; i < cl->offset + cl->count && all; i++)
       all = (p->flags[i] & PART_FOREIGN) != 0;
-      edge = edge && (p->flags[i] & PART_HALO_EDGE);
-    }
-    cl->foreign = all ? (edge ? 2 : 1) : 0;
+    cl->foreign = all;
   }
   /* every rank's share, on rank 0's log (-v) */
   double v[2] = {(double)(p->count - H->nrecv), (double)H->nrecv};
@@ -543,7 +524,7 @@ void halo_refresh(struct engine *e) {
                       rbuf + (size_t)H->rdispl[r] * H->rec);
   for (size_t q = 0; q < H->nrecv; q++) {
     const size_t g = H->ridx[q];
-    p->flags[g] |= PART_FOREIGN | (H->redge[q] ? PART_HALO_EDGE : 0);
+    p->flags[g] |= PART_FOREIGN;
     p->msrc[g] = (int64_t)q;
   }
   /* the copies moved (and took their owners' h): the loops' pruning needs
@@ -637,7 +618,6 @@ void halo_free(struct engine *e) {
   free(H->scount);
   free(H->sidx);
   free(H->ridx);
-  free(H->redge);
   free(H->sbuf);
   free(H->rbuf);
   free(H);

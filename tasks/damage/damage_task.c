@@ -25,7 +25,7 @@ void damage_task(struct engine *e, struct task *tk) {
   /* (rk2/pc: once per step, at its end; tasks/drift/drift_integrate.c) */
   const double dt = e->first_force || e->stage_eval ? 0.0 : e->dt;
   if (e->time < e->damage_start) return; /* Damage:start_time: not yet */
-  if (ENGINE_CELL_NO_FORCE(e, c)) return;
+  if (ENGINE_CELL_SKIP(e, c)) return;
   for (size_t i = c->offset; i < c->offset + c->count; i++) {
     if (PART_IS_INACTIVE(p, i)) continue;
     /* with time bins over the particle's own step (it ends now) */

@@ -7,13 +7,13 @@
 #include "tasks/hydro_parts.h"
 
 void density_self_task(struct engine *e, struct task *t) {
-  if (ENGINE_CELL_NO_SUMS(e, t->ci)) return;
+  if (ENGINE_CELL_SKIP(e, t->ci)) return;
   density_self_cpu(&e->parts, t->ci);
 }
 
 void density_pair_task(struct engine *e, struct task *t) {
   /* the pair list holds task cells; ci, cj are those cells */
-  if (ENGINE_CELL_NO_SUMS(e, t->ci) && ENGINE_CELL_NO_SUMS(e, t->cj)) return;
+  if (ENGINE_CELL_SKIP(e, t->ci) && ENGINE_CELL_SKIP(e, t->cj)) return;
   density_pair_cpu(&e->parts, t->ci, t->cj, e->pairs[e->task_pair[t->id]].shift);
 }
 

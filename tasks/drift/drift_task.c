@@ -6,7 +6,7 @@
 #include "tasks/drift/drift.h"
 
 void drift_task(struct engine *e, struct task *t) {
-  if (ENGINE_CELL_NO_FORCE(e, t->ci) && !e->individual) return; /* (MPI: foreign copies) */
+  if (((const struct cell *)t->ci)->foreign) return; /* (MPI: copies, src/mpi/halo.c) */
   if (e->stage)
     e->stage_err[t->cell_index] = drift_cell_stage_cpu(&e->parts, t->ci, e->stage, &e->hp);
   else if (e->individual)

@@ -5,11 +5,11 @@
 #include "tasks/force/force_cpu.h"
 
 void force_self_task(struct engine *e, struct task *t) {
-  if (ENGINE_CELL_NO_FORCE(e, t->ci)) return;
+  if (ENGINE_CELL_SKIP(e, t->ci)) return;
   force_self_cpu(&e->parts, t->ci, &e->hp);
 }
 
 void force_pair_task(struct engine *e, struct task *t) {
-  if (ENGINE_CELL_NO_FORCE(e, t->ci) && ENGINE_CELL_NO_FORCE(e, t->cj)) return;
+  if (ENGINE_CELL_SKIP(e, t->ci) && ENGINE_CELL_SKIP(e, t->cj)) return;
   force_pair_cpu(&e->parts, t->ci, t->cj, e->pairs[e->task_pair[t->id]].shift, &e->hp);
 }

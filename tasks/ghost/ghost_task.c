@@ -8,7 +8,7 @@
 
 void ghost_task(struct engine *e, struct task *tk) {
   const int t = tk->cell_index;
-  if (ENGINE_CELL_NO_SUMS(e, e->tcells[t])) return;
+  if (ENGINE_CELL_SKIP(e, e->tcells[t])) return;
   struct engine_cell_tasks *ct = &e->ct[t];
   struct cell *cells[ct->nr_ngb > 0 ? ct->nr_ngb : 1];
   double dx_max = 0.0;

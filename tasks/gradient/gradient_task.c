@@ -5,16 +5,16 @@
 #include "tasks/gradient/gradient_cpu.h"
 
 void gradient_self_task(struct engine *e, struct task *t) {
-  if (ENGINE_CELL_NO_SUMS(e, t->ci)) return;
+  if (ENGINE_CELL_SKIP(e, t->ci)) return;
   gradient_self_cpu(&e->parts, t->ci);
 }
 
 void gradient_pair_task(struct engine *e, struct task *t) {
-  if (ENGINE_CELL_NO_SUMS(e, t->ci) && ENGINE_CELL_NO_SUMS(e, t->cj)) return;
+  if (ENGINE_CELL_SKIP(e, t->ci) && ENGINE_CELL_SKIP(e, t->cj)) return;
   gradient_pair_cpu(&e->parts, t->ci, t->cj, e->pairs[e->task_pair[t->id]].shift);
 }
 
 void extra_ghost_task(struct engine *e, struct task *t) {
-  if (ENGINE_CELL_NO_SUMS(e, t->ci)) return;
+  if (ENGINE_CELL_SKIP(e, t->ci)) return;
   extra_ghost_cell_cpu(&e->parts, t->ci, &e->hp, e->mats);
 }
