@@ -499,7 +499,10 @@ void engine_snapshot_to(struct engine *e, const char *path) {
 
 void engine_dump_tasks(struct engine *e) {
   char path[2048];
-  snprintf(path, sizeof path, "%s/tasks_step%06ld.txt", e->outdir, e->step);
+  if (e->halo) /* (several MPI ranks: a file per rank) */
+    snprintf(path, sizeof path, "%s/tasks_step%06ld_rank%d.txt", e->outdir, e->step, ranks_rank());
+  else
+    snprintf(path, sizeof path, "%s/tasks_step%06ld.txt", e->outdir, e->step);
   FILE *f = fopen(path, "w");
   if (!f) error_exit("%s: cannot create the task dump", path);
   scheduler_dump_tasks(&e->sched, f);
