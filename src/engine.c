@@ -981,6 +981,7 @@ static void engine_run_force_stages(struct engine *e) {
       struct task *t = e->phase_tasks[ENGINE_PHASE_FORCE][k];
       t->skip = engine_force_stage(t) != stage;
     }
+    if (stage == 2) halo_refresh_gravity(e); /* (the gravity tasks run in the last stage) */
     scheduler_run(&e->sched, engine_run_task, e);
     if (stage < 2) halo_refresh(e);
   }

@@ -49,7 +49,23 @@ struct halo {
       t_halo; /**< wall seconds in halo_refresh, in halo_rebuild_start + halo_rebuild */
   long nr_refresh, nr_halo;
   double copies; /**< sum over rebuilds of the copies over the owned particles, all ranks */
+  /* self-gravity's copies: every particle of the other ranks that is not a
+   * copy above, refreshed in gravity's fields only (halo_refresh_gravity) */
+  int gravity;                                /**< 1: self-gravity is on */
+  int *gscount, *gsdispl, *grcount, *grdispl; /**< [nranks] particles sent, received per rank */
+  size_t *gsidx, *gridx;                      /**< [gnsend] sent, [gnrecv] where received */
+  size_t gnsend, gnrecv;
+  double *gsbuf, *grbuf;
+  size_t gsbuf_cap, grbuf_cap;
+  double t_grefresh, gcopies;
+  long nr_grefresh;
 };
+
+/** The fields of a particle that gravity's walks read of a source, and
+ *  whose values halo_refresh_gravity sends: position, mass, h (softening
+ *  tied to h) and the acceleration of the last pass (the adaptive
+ *  criterion's a_min). */
+#define HALO_GRAVITY_FIELDS 8
 
 #ifdef HAVE_MPI
 
@@ -349,8 +365,8 @@ void halo_init(struct engine *e) {
   if (e->gpu)
     why =
         "multi-rank runs run on the CPU only yet, and a GPU was asked for (--gpu or Scheduler:gpu)";
-  else if (e->gp.enabled)
-    why = "multi-rank runs cannot be combined with self-gravity (Gravity:enabled) yet";
+  else if (e->gp.enabled && e->gp.reuse_steps > 0)
+    why = "multi-rank runs cannot reuse gravity's far field (Gravity:reuse_steps > 0) yet";
   else if (e->individual)
     why = "multi-rank runs need the global time step (TimeIntegration:global_step: true) yet";
   else if (e->restarts)
@@ -369,6 +385,11 @@ void halo_init(struct engine *e) {
   H->sdispl = H->scount + H->nranks;
   H->rcount = H->scount + 2 * H->nranks;
   H->rdispl = H->scount + 3 * H->nranks;
+  H->gravity = e->gp.enabled;
+  H->gscount = error_calloc(4 * (size_t)H->nranks, sizeof(int), "MPI halo counts");
+  H->gsdispl = H->gscount + H->nranks;
+  H->grcount = H->gscount + 2 * H->nranks;
+  H->grdispl = H->gscount + 3 * H->nranks;
   e->halo = H;
 #endif
 }
@@ -422,7 +443,8 @@ int halo_rebuild(struct engine *e) {
   for (int k = 1; k < 3; k++) wmin = H->width[k] < wmin ? H->width[k] : wmin;
   const int nc = (int)ceil(D / wmin);
   const int n = H->nranks;
-  struct halo_list *L = error_calloc((size_t)n, sizeof *L, "MPI halo lists");
+  struct halo_list *L = error_calloc(2 * (size_t)n, sizeof *L, "MPI halo lists");
+  struct halo_list *G = L + n; /* gravity's copies: the rest */
   double *d2 = error_malloc((size_t)n * sizeof(double), "MPI halo distances");
   /* the cells of other ranks near the particle's cell (the particles come
    * sorted by cell: the list is made again only when the cell changes) */
@@ -433,45 +455,81 @@ int halo_rebuild(struct engine *e) {
     double x[3];
     const int c = halo_cell_of(H, xi, x);
     if (c != last) ncand = halo_cands(H, c, nc, D, &cand, &cap), last = c;
-    if (!ncand) continue;
-    halo_cands_d2(H, x, cand, ncand, d2);
-    for (int r = 0; r < n; r++)
-      if (r != H->me && d2[r] <= D * D) halo_list_push(&L[r], i);
+    if (ncand) halo_cands_d2(H, x, cand, ncand, d2);
+    for (int r = 0; r < n; r++) {
+      if (r == H->me) continue;
+      if (ncand && d2[r] <= D * D)
+        halo_list_push(&L[r], i);
+      else if (H->gravity)
+        halo_list_push(&G[r], i);
+    }
   }
-  H->nsend = 0;
+  /* counts: [copies, gravity's copies] for each rank */
+  int *sc2 = error_malloc(4 * (size_t)n * sizeof(int), "MPI halo counts");
+  int *rc2 = sc2 + 2 * n;
   for (int r = 0; r < n; r++) {
-    H->scount[r] = (int)L[r].n;
-    H->nsend += L[r].n;
+    sc2[2 * r] = (int)L[r].n;
+    sc2[2 * r + 1] = (int)G[r].n;
   }
-  MPI_Alltoall(H->scount, 1, MPI_INT, H->rcount, 1, MPI_INT, MPI_COMM_WORLD);
-  H->nrecv = 0;
-  for (int r = 0; r < n; r++) H->nrecv += (size_t)H->rcount[r];
+  MPI_Alltoall(sc2, 2, MPI_INT, rc2, 2, MPI_INT, MPI_COMM_WORLD);
+  int *sall = error_malloc(2 * (size_t)n * sizeof(int), "MPI halo counts"), *rall = sall + n;
+  H->nsend = H->nrecv = H->gnsend = H->gnrecv = 0;
+  for (int r = 0; r < n; r++) {
+    H->scount[r] = sc2[2 * r];
+    H->gscount[r] = sc2[2 * r + 1];
+    H->rcount[r] = rc2[2 * r];
+    H->grcount[r] = rc2[2 * r + 1];
+    H->nsend += (size_t)H->scount[r];
+    H->gnsend += (size_t)H->gscount[r];
+    H->nrecv += (size_t)H->rcount[r];
+    H->gnrecv += (size_t)H->grcount[r];
+    sall[r] = H->scount[r] + H->gscount[r];
+    rall[r] = H->rcount[r] + H->grcount[r];
+  }
+  free(sc2);
   free(H->sidx);
+  free(H->gsidx);
   H->sidx = error_malloc(H->nsend * sizeof(size_t) + 1, "MPI halo send list");
-  char *sbuf = halo_grow(&H->sbuf, &H->sbuf_cap, H->nsend * H->rec + 1);
-  char *rbuf = halo_grow(&H->rbuf, &H->rbuf_cap, H->nrecv * H->rec + 1);
-  size_t k = 0;
+  H->gsidx = error_malloc(H->gnsend * sizeof(size_t) + 1, "MPI halo send list");
+  const size_t ns = H->nsend + H->gnsend, nr = H->nrecv + H->gnrecv;
+  char *sbuf = halo_grow(&H->sbuf, &H->sbuf_cap, ns * H->rec + 1);
+  char *rbuf = halo_grow(&H->rbuf, &H->rbuf_cap, nr * H->rec + 1);
+  /* to rank r: its copies, then its gravity's copies (every field, once) */
+  size_t k = 0, gk = 0, o = 0;
   for (int r = 0; r < n; r++) {
     H->sdispl[r] = (int)k;
-    halo_pack_block(p, L[r].i, L[r].n, sbuf + k * H->rec);
-    for (size_t m = 0; m < L[r].n; m++, k++) H->sidx[k] = L[r].i[m];
+    H->gsdispl[r] = (int)gk;
+    halo_pack_block(p, L[r].i, L[r].n, sbuf + o * H->rec);
+    o += L[r].n;
+    halo_pack_block(p, G[r].i, G[r].n, sbuf + o * H->rec);
+    o += G[r].n;
+    for (size_t m = 0; m < L[r].n; m++) H->sidx[k++] = L[r].i[m];
+    for (size_t m = 0; m < G[r].n; m++) H->gsidx[gk++] = G[r].i[m];
     free(L[r].i);
+    free(G[r].i);
   }
   free(L);
-  halo_alltoallv(H, H->scount, H->rcount, sbuf, rbuf);
-  /* the copies, after the owned particles */
+  halo_alltoallv(H, sall, rall, sbuf, rbuf);
+  /* the copies, after the owned particles: msrc numbers them, the copies
+   * first, then gravity's */
   const size_t n0 = p->count;
-  parts_reserve(p, n0 + H->nrecv);
-  for (int r = 0, o = 0; r < n; o += H->rcount[r], r++) {
-    H->rdispl[r] = o;
-    halo_unpack_block(p, n0 + (size_t)o, NULL, (size_t)H->rcount[r], rbuf + (size_t)o * H->rec);
+  parts_reserve(p, n0 + nr);
+  size_t q = 0, gq = 0, at = n0;
+  o = 0;
+  for (int r = 0; r < n; r++) {
+    H->rdispl[r] = (int)q;
+    H->grdispl[r] = (int)gq;
+    halo_unpack_block(p, at, NULL, (size_t)H->rcount[r], rbuf + o * H->rec);
+    for (int m = 0; m < H->rcount[r]; m++, at++) p->msrc[at] = (int64_t)q++;
+    o += (size_t)H->rcount[r];
+    halo_unpack_block(p, at, NULL, (size_t)H->grcount[r], rbuf + o * H->rec);
+    for (int m = 0; m < H->grcount[r]; m++, at++) p->msrc[at] = (int64_t)(H->nrecv + gq++);
+    o += (size_t)H->grcount[r];
   }
-  for (size_t q = 0; q < H->nrecv; q++) {
-    p->flags[n0 + q] |= PART_FOREIGN;
-    p->msrc[n0 + q] = (int64_t)q;
-  }
-  p->count = n0 + H->nrecv;
-  e->nr_foreign = H->nrecv;
+  for (size_t m = n0; m < n0 + nr; m++) p->flags[m] |= PART_FOREIGN;
+  free(sall);
+  p->count = n0 + nr;
+  e->nr_foreign = nr;
   free(d2);
   free(cand);
   /* the cells of both, and where the sent and received particles are now
@@ -479,12 +537,21 @@ int halo_rebuild(struct engine *e) {
   if (space_rebuild(s) != 0) error_bug("particles removed by the rebuild with the halo");
   size_t *inv = error_malloc(p->count * sizeof(size_t) + 1, "MPI halo index");
   for (size_t i = 0; i < p->count; i++) inv[s->sort_index[i]] = i;
-  for (size_t q = 0; q < H->nsend; q++) H->sidx[q] = inv[H->sidx[q]];
+  for (size_t m = 0; m < H->nsend; m++) H->sidx[m] = inv[H->sidx[m]];
+  for (size_t m = 0; m < H->gnsend; m++) H->gsidx[m] = inv[H->gsidx[m]];
   free(inv);
   free(H->ridx);
+  free(H->gridx);
   H->ridx = error_malloc(H->nrecv * sizeof(size_t) + 1, "MPI halo receive list");
+  H->gridx = error_malloc(H->gnrecv * sizeof(size_t) + 1, "MPI halo receive list");
   for (size_t i = 0; i < p->count; i++)
-    if (p->flags[i] & PART_FOREIGN) H->ridx[p->msrc[i]] = i;
+    if (p->flags[i] & PART_FOREIGN) {
+      const size_t m = (size_t)p->msrc[i];
+      if (m < H->nrecv)
+        H->ridx[m] = i;
+      else
+        H->gridx[m - H->nrecv] = i;
+    }
   /* the cells of copies only, whose tasks have nothing to do (ENGINE_CELL_SKIP) */
   for (int c = 0; c < s->nr_cells; c++) {
     struct cell *cl = &s->cells[c];
@@ -494,12 +561,15 @@ int halo_rebuild(struct engine *e) {
     cl->foreign = all;
   }
   /* every rank's share, on rank 0's log (-v) */
-  double v[2] = {(double)(p->count - H->nrecv), (double)H->nrecv};
-  ranks_allreduce_doubles(v, 2, RANKS_SUM);
+  double v[3] = {(double)(p->count - nr), (double)H->nrecv, (double)H->gnrecv};
+  ranks_allreduce_doubles(v, 3, RANKS_SUM);
   H->copies += v[1] / (v[0] > 0.0 ? v[0] : 1.0);
+  H->gcopies += v[2] / (v[0] > 0.0 ? v[0] : 1.0);
   H->nr_halo++;
-  error_log(1, "halo: rank 0 owns %zu particles and holds %zu copies; all ranks: %.0f, %.0f",
-            p->count - H->nrecv, H->nrecv, v[0], v[1]);
+  error_log(1,
+            "halo: rank 0 owns %zu particles and holds %zu copies (and %zu for gravity); all "
+            "ranks: %.0f, %.0f, %.0f",
+            p->count - nr, H->nrecv, H->gnrecv, v[0], v[1], v[2]);
   H->t_halo += error_walltime() - w0;
 #else
   (void)first;
@@ -536,6 +606,53 @@ void halo_refresh(struct engine *e) {
 #endif
 }
 
+void halo_refresh_gravity(struct engine *e) {
+  struct halo *H = e->halo;
+  if (!H || !H->gravity) return;
+#ifdef HAVE_MPI
+  const double w0 = error_walltime();
+  struct parts *p = &e->parts;
+  const int F = HALO_GRAVITY_FIELDS;
+  if (H->gnsend * F > INT_MAX || H->gnrecv * F > INT_MAX)
+    error_exit("MPI exchange of more than %d values per rank and step: use more ranks", INT_MAX);
+  if (H->gnsend * F > H->gsbuf_cap) {
+    free(H->gsbuf);
+    H->gsbuf_cap = H->gnsend * F + 1;
+    H->gsbuf = error_malloc(H->gsbuf_cap * sizeof(double), "MPI exchange buffer");
+  }
+  if (H->gnrecv * F > H->grbuf_cap) {
+    free(H->grbuf);
+    H->grbuf_cap = H->gnrecv * F + 1;
+    H->grbuf = error_malloc(H->grbuf_cap * sizeof(double), "MPI exchange buffer");
+  }
+  double *b = H->gsbuf;
+  for (size_t k = 0; k < H->gnsend; k++, b += F) {
+    const size_t i = H->gsidx[k];
+    b[0] = p->x[i], b[1] = p->y[i], b[2] = p->z[i], b[3] = p->m[i], b[4] = p->h[i];
+    b[5] = p->gax[i], b[6] = p->gay[i], b[7] = p->gaz[i];
+  }
+  const int n = H->nranks;
+  int *c = error_malloc(4 * (size_t)n * sizeof(int), "MPI exchange counts");
+  for (int r = 0; r < n; r++) {
+    c[r] = F * H->gscount[r];
+    c[n + r] = F * H->gsdispl[r];
+    c[2 * n + r] = F * H->grcount[r];
+    c[3 * n + r] = F * H->grdispl[r];
+  }
+  MPI_Alltoallv(H->gsbuf, c, c + n, MPI_DOUBLE, H->grbuf, c + 2 * n, c + 3 * n, MPI_DOUBLE,
+                MPI_COMM_WORLD);
+  free(c);
+  b = H->grbuf;
+  for (size_t k = 0; k < H->gnrecv; k++, b += F) {
+    const size_t i = H->gridx[k];
+    p->x[i] = b[0], p->y[i] = b[1], p->z[i] = b[2], p->m[i] = b[3], p->h[i] = b[4];
+    p->gax[i] = b[5], p->gay[i] = b[6], p->gaz[i] = b[7];
+  }
+  H->t_grefresh += error_walltime() - w0;
+  H->nr_grefresh++;
+#endif
+}
+
 void halo_log(const struct engine *e) {
   const struct halo *H = e->halo;
   if (!H) return;
@@ -546,6 +663,12 @@ void halo_log(const struct engine *e) {
             H->nranks, H->nr_halo ? 100.0 * H->copies / (double)H->nr_halo : 0.0, H->nr_halo,
             H->nr_refresh ? H->t_refresh / (double)H->nr_refresh : 0.0,
             H->nr_halo ? H->t_halo / (double)H->nr_halo : 0.0);
+  if (H->gravity)
+    error_log(0,
+              "MPI: gravity's copies (every other particle, its position, mass, h and "
+              "acceleration) %.1f%% of the owned particles; rank 0: %.4f s per refresh",
+              H->nr_halo ? 100.0 * H->gcopies / (double)H->nr_halo : 0.0,
+              H->nr_grefresh ? H->t_grefresh / (double)H->nr_grefresh : 0.0);
 }
 
 void halo_bounds(const struct engine *e, double *dmax, double *h_max) {
@@ -620,6 +743,11 @@ void halo_free(struct engine *e) {
   free(H->ridx);
   free(H->sbuf);
   free(H->rbuf);
+  free(H->gscount);
+  free(H->gsidx);
+  free(H->gridx);
+  free(H->gsbuf);
+  free(H->grbuf);
   free(H);
   e->halo = NULL;
 }

@@ -1,18 +1,25 @@
 /* Multi-rank runs: each MPI rank owns the particles of its share of the
- * top-level cells and holds copies of the foreign particles that its own
- * need, refreshed from their owners before every FORCE phase (issue 22;
- * theory/mpi.md, "Multi-rank runs").
+ * top-level cells and holds copies of the foreign particles its own need
+ * (issue 22; theory/mpi.md, "Multi-rank runs").
  *
- * The copies (PART_FOREIGN) reach as far as the chain of neighbour loops
- * of one FORCE phase: an owned particle's force reads its neighbours' density
- * sums (and, with solids, their velocity gradients), which read theirs, so
- * the halo is two interaction reaches deep for fluids and three with
- * solids.  The rank computes the sums of the copies itself from the copies
- * around them, as their owners do, so that nothing is exchanged inside a
- * FORCE phase; the outermost copies, whose neighbours are not all there,
- * keep their owner's h (PART_HALO_EDGE) and what their sums give is read by
- * no owned particle.  Every function here is collective (every rank calls
- * it) and does nothing with one rank. */
+ * The copies (PART_FOREIGN) are the other ranks' particles within one
+ * interaction reach of the rank's cells.  The FORCE phase runs in stages
+ * (density and ghost; gradient and extra ghost with solids; the rest), and
+ * before it and between its stages every copy takes its owner's whole state
+ * again (halo_refresh): an owned particle's force reads its neighbours'
+ * densities, pressures and velocity gradients as their owners computed
+ * them, and no rank computes a copy's sums (the cells of copies only are
+ * skipped: ENGINE_CELL_SKIP).
+ *
+ * With self-gravity every other particle is a copy too, refreshed before
+ * the gravity tasks in the fields the walks read of a source
+ * (halo_refresh_gravity): every rank then holds the whole tree, builds the
+ * multipoles of every cell, and runs the walks of the cells that hold a
+ * particle of its own (the others are skipped).  Memory and exchange per
+ * rank grow with the whole run's particles: the first form, exact to
+ * round-off; remote multipoles in place of the far particles are the next.
+ * Every function here is collective (every rank calls it) and does nothing
+ * with one rank. */
 #ifndef BOLIDE_HALO_H
 #define BOLIDE_HALO_H
 
@@ -40,6 +47,11 @@ int halo_rebuild(struct engine *e);
 /** Before every FORCE phase (after the drift and any rebuild): every
  *  foreign copy takes its owner's state, and the cells' bounds follow. */
 void halo_refresh(struct engine *e);
+
+/** Before the gravity tasks of a FORCE phase (after the stages that set h):
+ *  gravity's copies take their owners' positions, masses, h and
+ *  accelerations of the last pass.  Nothing without self-gravity. */
+void halo_refresh_gravity(struct engine *e);
 
 /** The largest drift since the rebuild (dmax) and the largest smoothing
  *  length (h_max) of the particles of every rank, its copies left out. */

@@ -877,6 +877,7 @@ static void direct_threads(struct parts *p, double G, double eps, int softening,
 
 double gravity_potential_energy(const struct parts *p) {
   double e = 0.0;
-  for (size_t i = 0; i < p->count; i++) e += p->m[i] * p->pot[i];
+  for (size_t i = 0; i < p->count; i++)
+    if (!(p->flags[i] & PART_FOREIGN)) e += p->m[i] * p->pot[i]; /* (MPI: copies) */
   return 0.5 * e;
 }

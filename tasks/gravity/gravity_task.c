@@ -9,6 +9,8 @@
  *  be reused, or replays them on a step that reuses it. */
 static void gravity_walk_task(struct engine *e, const struct task *t, const struct cell *ci,
                               const struct cell *cj) {
+  /* several MPI ranks: no walk whose receiving cells hold only copies (src/mpi/halo.h) */
+  if (ci->foreign && (!cj || cj->foreign)) return;
   struct parts *p = &e->parts;
   struct gravity_ilist *il = t->id < e->grav->nr_lists ? &e->grav->lists[t->id] : NULL;
   if (e->gp.replay) {
@@ -45,5 +47,6 @@ void gravity_long_range_task(struct engine *e, struct task *t) {
 }
 
 void gravity_down_task(struct engine *e, struct task *t) {
+  if (((const struct cell *)t->ci)->foreign) return; /* (copies only: src/mpi/halo.h) */
   gravity_down(&e->parts, t->ci, e->grav->cells, &e->gp);
 }
