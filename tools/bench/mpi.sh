@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Multi-rank runs against threads (issue 22, theory/mpi.md "Multi-rank
 # runs"): the planetary reference impact (make_impact_ic.py of the benchmark
-# set, hydrodynamics only: multi-rank runs have no self-gravity yet) for
+# set; hydrodynamics only, with -g hydrodynamics and self-gravity) for
 # STEPS steps, every particle active, in each layout RxT of -c (R MPI ranks
 # of T threads each: mpirun -n R bolide -t T), the layouts alternating
 # within each of REPEAT rounds so that the load of a shared machine falls on
@@ -11,17 +11,17 @@
 # With -w the weak scaling: N particles per rank (R x N in all).
 #
 # Usage: BOLIDE_BENCH_IC=.../make_impact_ic.py BOLIDE_BUILD=_build_mpi \
-#          tools/bench/mpi.sh [-n 1.1e5] [-c "1x2 2x1"] [-s 5] [-r 3] [-m 16] [-w]
+#          tools/bench/mpi.sh [-n 1.1e5] [-c "1x2 2x1"] [-s 5] [-r 3] [-m 16] [-w] [-g]
 #   -m: Scheduler:max_top_level_cells (the decomposition's grid)
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 build=${BOLIDE_BUILD:-$top/_build_mpi}
 python=${PYTHON:-$top/_build/.venv/bin/python}
 gen=${BOLIDE_BENCH_IC:?"set BOLIDE_BENCH_IC to the reference impact IC generator of the benchmark set (make_impact_ic.py; theory/validation.md, Benchmarks)"}
-n=1.1e5; layouts="1x2 2x1"; steps=5; repeat=3; cells=16; weak=0
-while getopts "n:c:s:r:m:w" o; do
+n=1.1e5; layouts="1x2 2x1"; steps=5; repeat=3; cells=16; weak=0; gravity=false
+while getopts "n:c:s:r:m:wg" o; do
   case $o in n) n=$OPTARG ;; c) layouts=$OPTARG ;; s) steps=$OPTARG ;; r) repeat=$OPTARG ;;
-             m) cells=$OPTARG ;; w) weak=1 ;; *) exit 2 ;; esac
+             m) cells=$OPTARG ;; w) weak=1 ;; g) gravity=true ;; *) exit 2 ;; esac
 done
 build=$(cd "$build" && pwd)
 grep -q '^#define HAVE_MPI 1' "$build/config.h" ||
@@ -35,10 +35,12 @@ ic() { # ic N FILE
   nt=$(awk -v n="$1" 'BEGIN {printf "%d", n * 10 / 11}'); ni=$(awk -v n="$1" 'BEGIN {printf "%d", n / 11}')
   [ -f "$2" ] || "$python" "$gen" "$nt" "$ni" "$2" >/dev/null
 }
-printf "# %s on %s (%s, %s cores), %s, median of %d rounds of %d steps, every particle active\n" \
+printf "# %s on %s (%s, %s cores), %s, %s, median of %d rounds of %d steps, every particle active\n" \
   "$(git -C "$top" rev-parse --short HEAD)" "$(uname -n)" \
   "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')" "$(nproc)" \
-  "$([ $weak = 1 ] && echo "weak scaling, $n particles per rank" || echo "$n particles")" "$repeat" "$steps"
+  "$([ $weak = 1 ] && echo "weak scaling, $n particles per rank" || echo "$n particles")" \
+  "$([ $gravity = true ] && echo "hydrodynamics and self-gravity" || echo "hydrodynamics only")" \
+  "$repeat" "$steps"
 for r in $(seq "$repeat"); do
   for l in $layouts; do
     R=${l%x*}; T=${l#*x}
@@ -55,7 +57,7 @@ Snapshots:
 Materials:
   101: {}
 Gravity:
-  enabled: false
+  enabled: $gravity
 SPH:
   resolution_eta: 1.2348
 Scheduler:
