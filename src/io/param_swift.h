@@ -142,7 +142,15 @@
   X("ForceChecks", PARAM_SWIFT_NOTE, "gravity accuracy is checked by make check (test_gravity_accuracy)") \
   X("FOF", PARAM_SWIFT_NOTE, "run bolide-fof on the snapshots")                                        \
   X("CSDS", PARAM_SWIFT_NOTE, "Bolide has no continuous simulation data stream")                       \
-  X("DomainDecomposition", PARAM_SWIFT_NOTE, "Bolide has no MPI yet")                                  \
+  X("DomainDecomposition:initial_type", PARAM_SWIFT_NOTE, "the first partition is METIS on the estimated costs (Morton ranges without METIS)") \
+  X("DomainDecomposition:initial_grid", PARAM_SWIFT_NOTE, "the first partition is METIS on the estimated costs (Morton ranges without METIS)") \
+  X("DomainDecomposition:repartition_type", PARAM_SWIFT_NOTE, "a new partition weighs the cells by the measured task times (DomainDecomposition:trigger)") \
+  X("DomainDecomposition:minfrac", PARAM_SWIFT_NOTE, "every rank takes part in every partition") \
+  X("DomainDecomposition:usemetis", PARAM_SWIFT_NOTE, "METIS is used when configure found it") \
+  X("DomainDecomposition:adaptive", PARAM_SWIFT_NOTE, "a new partition is made from scratch, its parts numbered to keep most cells in place") \
+  X("DomainDecomposition:itr", PARAM_SWIFT_NOTE, "a new partition is made from scratch, its parts numbered to keep most cells in place") \
+  X("DomainDecomposition:use_fixed_costs", PARAM_SWIFT_NOTE, "a new partition weighs the cells by the measured task times") \
+  X("DomainDecomposition:synchronous", PARAM_SWIFT_NOTE, "the exchanges are collective") \
   X("StructureFinding", PARAM_SWIFT_NOTE, "Bolide runs no structure finder")                           \
   X("LineOfSight", PARAM_SWIFT_NOTE, "Bolide writes no lines of sight")                                \
   X("PowerSpectrum", PARAM_SWIFT_NOTE, "Bolide computes no power spectra")                             \

@@ -12,6 +12,7 @@
 #include "src/engine.h"
 #include "src/engine_tasks.h"
 #include "src/error.h"
+#include "src/io/params.h"
 #include "src/mpi/partition.h"
 #include "src/mpi/ranks.h"
 #include "src/part.h"
@@ -59,6 +60,10 @@ struct halo {
   size_t gsbuf_cap, grbuf_cap;
   double t_grefresh, gcopies;
   long nr_grefresh;
+  /* repartitioning (halo_repartition) */
+  double trigger;           /**< DomainDecomposition:trigger (0: never) */
+  long nr_repart, nr_tried; /**< partitions made again and kept; tried */
+  double imb_last;          /**< the measured imbalance at the last rebuild */
 };
 
 /** The fields of a particle that gravity's walks read of a source, and
@@ -310,6 +315,127 @@ static void halo_migrate(struct engine *e) {
   free(sc);
 }
 
+/** A new numbering of the parts of rank[] (over n ranks) that keeps as
+ *  much of the cost w[] on the rank of old[] as it can (greedy on the
+ *  overlap matrix: the largest overlap first). */
+static void halo_relabel(int *rank, const int *old, const double *w, int ncells, int n) {
+  double *ov = error_calloc((size_t)n * (size_t)n, sizeof(double), "MPI repartition");
+  int *to = error_malloc(2 * (size_t)n * sizeof(int), "MPI repartition"), *taken = to + n;
+  for (int c = 0; c < ncells; c++) ov[(size_t)rank[c] * n + old[c]] += w[c] + 1e-300;
+  for (int r = 0; r < n; r++) to[r] = taken[r] = -1;
+  for (int k = 0; k < n; k++) {
+    int bi = -1, bj = -1;
+    double best = -1.0;
+    for (int i = 0; i < n; i++)
+      for (int j = 0; j < n; j++)
+        if (to[i] < 0 && taken[j] < 0 && ov[(size_t)i * n + j] > best)
+          best = ov[(size_t)i * n + j], bi = i, bj = j;
+    to[bi] = bj;
+    taken[bj] = bi;
+  }
+  for (int c = 0; c < ncells; c++) rank[c] = to[rank[c]];
+  free(to);
+  free(ov);
+}
+
+/** max / mean of the cost of each rank's cells. */
+static double halo_imbalance(const int *rank, const double *w, int ncells, int n) {
+  double *rc = error_calloc((size_t)n, sizeof(double), "MPI repartition");
+  double sum = 0.0, mx = 0.0;
+  for (int c = 0; c < ncells; c++) rc[rank[c]] += w[c];
+  for (int r = 0; r < n; r++) {
+    sum += rc[r];
+    mx = rc[r] > mx ? rc[r] : mx;
+  }
+  free(rc);
+  return sum > 0.0 ? mx * n / sum : 1.0;
+}
+
+/** At a rebuild, before the particles move (DomainDecomposition:trigger):
+ *  the measured cost of each top-level cell in the last step (the times of
+ *  the tasks of the graph still in place, each cell's by its owner, summed
+ *  over the ranks), the imbalance of the ranks; past the trigger, rank 0
+ *  (its graph's edges, weighed with every rank's particle counts)
+ *  partitions the cells again with those costs, and the new partition
+ *  replaces H->assign if its imbalance is lower by half the trigger: the
+ *  migration that follows moves the particles.  Only while the space's
+ *  grid is the decomposition's (the costs are per cell of that grid). */
+static void halo_repartition(struct engine *e) {
+  struct halo *H = e->halo;
+  struct space *s = &e->space;
+  if (H->trigger <= 0.0 || !H->assign || e->sched.nr_tasks == 0 || s->nr_top != H->ncells) return;
+  for (int k = 0; k < 3; k++)
+    if (s->cdim[k] != H->cdim[k]) return;
+  const int nc = H->ncells, n = H->nranks;
+  struct partition_graph g;
+  partition_graph_make(&g, s, &e->sched, 1);
+  for (int c = 0; c < nc; c++)
+    if (H->assign[c] != H->me) g.cost[c] = 0.0;
+  double *cnt = error_calloc((size_t)nc, sizeof(double), "MPI repartition");
+  const struct parts *p = &e->parts;
+  for (size_t i = 0; i < p->count; i++)
+    if (!(p->flags[i] & PART_FOREIGN))
+      cnt[halo_cell(H, halo_coord(H, 0, p->x[i]), halo_coord(H, 1, p->y[i]),
+                    halo_coord(H, 2, p->z[i]))] += 1.0;
+  ranks_allreduce_doubles(g.cost, nc, RANKS_SUM);
+  ranks_allreduce_doubles(cnt, nc, RANKS_SUM);
+  /* the edges are rank 0's (each rank's graph has the pair tasks of its own
+   * cells and copies): every edge between two cells with particles weighs
+   * the particles of both, as a pair task's does in the one-rank graph */
+  g.total_cost = g.total_comm = 0.0;
+  for (int c = 0; c < nc; c++) {
+    g.count[c] = (size_t)cnt[c];
+    g.total_cost += g.cost[c];
+    for (int k = g.xadj[c]; k < g.xadj[c + 1]; k++) {
+      const int b = g.adj[k];
+      g.comm[k] = cnt[c] > 0.0 && cnt[b] > 0.0 ? cnt[c] + cnt[b] : 0.0;
+      g.total_comm += 0.5 * g.comm[k];
+    }
+  }
+  free(cnt);
+  const double imb = halo_imbalance(H->assign, g.cost, nc, n);
+  H->imb_last = imb;
+  if (imb <= 1.0 + H->trigger) {
+    partition_graph_free(&g);
+    return;
+  }
+  H->nr_tried++;
+  int keep = 0;
+  double imb_new = imb;
+  int *assign = error_malloc((size_t)nc * sizeof(int), "MPI repartition");
+  if (H->me == 0) {
+    struct partition pt;
+    partition_make(&pt, &g, n,
+                   partition_have_metis() ? partition_method_metis : partition_method_morton);
+    memcpy(assign, pt.rank, (size_t)nc * sizeof(int));
+    partition_free(&pt);
+    halo_relabel(assign, H->assign, g.cost, nc, n);
+    imb_new = halo_imbalance(assign, g.cost, nc, n);
+    keep = imb_new < imb - 0.5 * H->trigger;
+  }
+  ranks_bcast_ints(&keep, 1);
+  if (keep) {
+    ranks_bcast_ints(assign, nc);
+    double moved = 0.0, all = 0.0;
+    for (int c = 0; c < nc; c++) {
+      all += (double)g.count[c];
+      if (assign[c] != H->assign[c]) moved += (double)g.count[c];
+    }
+    error_log(0,
+              "domain decomposition again at step %ld: measured imbalance %.3f (trigger %g), "
+              "the new partition's %.3f; %.1f%% of the particles change rank",
+              e->step, imb, H->trigger, imb_new, all > 0.0 ? 100.0 * moved / all : 0.0);
+    free(H->assign);
+    H->assign = assign;
+    H->nr_repart++;
+  } else {
+    error_log(1, "domain decomposition kept at step %ld: measured imbalance %.3f, a new one %.3f",
+              e->step, imb, imb_new);
+    free(assign);
+  }
+  partition_graph_free(&g);
+}
+
 /** The first rebuild: partition the top-level cells of the space (every
  *  rank holds every particle), keep the rank's own. */
 static void halo_partition(struct engine *e) {
@@ -386,6 +512,7 @@ void halo_init(struct engine *e) {
   H->rcount = H->scount + 2 * H->nranks;
   H->rdispl = H->scount + 3 * H->nranks;
   H->gravity = e->gp.enabled;
+  H->trigger = params_get_real(e->params, "DomainDecomposition:trigger");
   H->gscount = error_calloc(4 * (size_t)H->nranks, sizeof(int), "MPI halo counts");
   H->gsdispl = H->gscount + H->nranks;
   H->grcount = H->gscount + 2 * H->nranks;
@@ -399,6 +526,7 @@ void halo_rebuild_start(struct engine *e) {
   if (!H) return;
 #ifdef HAVE_MPI
   const double w0 = error_walltime();
+  halo_repartition(e);
   struct parts *p = &e->parts;
   if (e->nr_foreign) {
     unsigned char *drop = error_calloc(p->count + 1, 1, "MPI halo marks");
@@ -663,6 +791,11 @@ void halo_log(const struct engine *e) {
             H->nranks, H->nr_halo ? 100.0 * H->copies / (double)H->nr_halo : 0.0, H->nr_halo,
             H->nr_refresh ? H->t_refresh / (double)H->nr_refresh : 0.0,
             H->nr_halo ? H->t_halo / (double)H->nr_halo : 0.0);
+  if (H->trigger > 0.0)
+    error_log(0,
+              "MPI: domain decomposed again %ld times (of %ld rebuilds past the trigger %g); "
+              "measured imbalance at the last rebuild %.3f",
+              H->nr_repart, H->nr_tried, H->trigger, H->imb_last);
   if (H->gravity)
     error_log(0,
               "MPI: gravity's copies (every other particle, its position, mass, h and "

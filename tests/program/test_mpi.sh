@@ -9,7 +9,7 @@
 #  - mpirun -n 2 and 3 agree with the serial run within round-off (below:
 #    an impact with particles moving between the ranks, a Sedov blast in a
 #    periodic box, a solid with fracture, a self-gravitating SEA planet, the
-#    impact with self-gravity);
+#    impact with self-gravity and the domain partitioned again at rebuilds);
 #  - what multi-rank runs do not support yet (the reuse of gravity's far
 #    field) stops with one line, a non-zero status, no hang (60 s limit);
 #  - mpirun -n 3 bolide --partition 0 partitions over the 3 ranks and every
@@ -256,15 +256,22 @@ snaps='snapshot_000[0-2].hdf5'
 stats=statistics.txt box=2e7
 runs 2 3
 # 5. the impact of 1. with self-gravity: particles move between the ranks
-#    and between the two kinds of copies at the rebuilds
+#    and between the two kinds of copies at the rebuilds; the domain
+#    partitioned again at the rebuilds (DomainDecomposition:trigger 1e-6,
+#    the measured task times rather than Scheduler:deterministic's fixed
+#    costs: any imbalance triggers it), which moves particles between ranks
+#    by the thousand
 case=impact-gravity
 mkdir -p "$work/impactg" && cd "$work/impactg"
 sed -e 's#\.\./impact.hdf5#../../impact.hdf5#' -e 's/time_end: 4000/time_end: 1000/' \
-  -e '/delta_time/s/1e30/500/' "$work/mpi/p.yml" >p.yml
-printf 'Gravity:\n  enabled: true\n  softening: 2e4\n' >>p.yml
+  -e '/delta_time/s/1e30/500/' -e '/^Scheduler:/,$d' "$work/mpi/p.yml" >p.yml
+printf 'Gravity:\n  enabled: true\n  softening: 2e4\nDomainDecomposition:\n  trigger: 1e-6\n' >>p.yml
+printf 'Scheduler:\n  max_top_level_cells: 8\n' >>p.yml
 snaps='out/snapshot_000[0-2].hdf5'
 stats=out/statistics.txt box=3.5e7
-runs 2
+runs 2 3
+grep "domain decomposition again" mpi3/run.log | head -3
+grep -q "domain decomposition again at step" mpi3/run.log || fail "$case: never partitioned again"
 # what multi-rank runs do not do yet: one line, non-zero, no hang
 cd "$work/mpi"
 timeout 60 "$MPIRUN" -n 2 "$B/bolide" -n 3 -t 1 -P Gravity:enabled:true -P Gravity:reuse_steps:2 \
