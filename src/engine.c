@@ -657,6 +657,11 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   e->restart_stop_steps = params_get_int(params, "Restarts:stop_steps");
   snprintf(e->restart_stem, sizeof e->restart_stem, "%s/%s", e->restart_dir,
            params_get_string(params, "Restarts:basename"));
+  if (ranks_size() > 1 && !e->opt.one_rank) {
+    /* several MPI ranks: one file per rank (src/mpi/halo.h) */
+    const size_t l = strlen(e->restart_stem);
+    snprintf(e->restart_stem + l, sizeof e->restart_stem - l, "_rank%04d", ranks_rank());
+  }
   engine_signals_install();
   restart_remove_stale(e->restart_stem);
   engine_watchdog_init(e);
@@ -863,6 +868,7 @@ void engine_rebuild(struct engine *e) {
     free(e->restart_cells.h_max);
     free(e->restart_cells.dx_max);
     memset(&e->restart_cells, 0, sizeof e->restart_cells);
+    halo_restored(e); /* (several MPI ranks: the copies found again) */
   } else {
     /* (mirror ghosts: removed before, made again after, tasks/drift/drift_mirror.c;
      * several MPI ranks: the foreign copies likewise, src/mpi/halo.c) */
@@ -951,6 +957,7 @@ static void engine_write_restart(struct engine *e) {
   engine_mkdir(e->restart_dir);
   struct restart_gravity grav;
   gravity_restart_save(e, &grav);
+  halo_write_restart(e); /* (several MPI ranks: the decomposition and exchange lists) */
   restart_write(e->restart_stem, &st, &e->parts, e->flaw_eps, &cells, e->params_text, &grav);
   restart_gravity_free(&grav);
   free(cells.h_max);
@@ -1291,17 +1298,20 @@ void engine_run(struct engine *e) {
     engine_timesteps_write(e, w1 - w0);
     fflush(stdout);
     if (e->time < e->time_end && e->halo) {
-      /* several MPI ranks stop together (and write no restart file yet) */
+      /* several MPI ranks stop together, each writing its restart file */
       const int stop = engine_must_stop(e, stop_why, sizeof stop_why);
-      if (ranks_any(stop))
-        error_exit("%s: multi-rank runs write no restart files yet; stopping at step %ld",
-                   stop ? stop_why : "another rank was asked to stop", e->step);
+      if (ranks_any(stop)) {
+        if (!stop) snprintf(stop_why, sizeof stop_why, "another MPI rank was asked to stop");
+        break;
+      }
     }
     if (e->time < e->time_end && !e->halo && engine_must_stop(e, stop_why, sizeof stop_why)) break;
-    /* (not at the last step: the file written after the loop follows) */
+    /* (not at the last step: the file written after the loop follows; several
+     * MPI ranks write theirs together: any rank's wall clock decides) */
+    int due_wall = w1 - e->restart_last_wall >= e->restart_dt_wall;
+    if (e->halo && e->restarts) due_wall = ranks_any(due_wall);
     if (e->restarts &&
-        (w1 - e->restart_last_wall >= e->restart_dt_wall ||
-         (e->restart_delta_steps > 0 && e->step % e->restart_delta_steps == 0)) &&
+        (due_wall || (e->restart_delta_steps > 0 && e->step % e->restart_delta_steps == 0)) &&
         e->time < e->time_end && (e->opt.max_steps < 0 || e->step < e->opt.max_steps)) {
       /* (the run goes on without a rebuild: a run resumed from the file
        * restores the cells of the last one, space_restore) */
@@ -1317,10 +1327,10 @@ void engine_run(struct engine *e) {
   /* the restart file first: a run resumed from it truncates the statistics
    * file to its length then, dropping the closing line written now */
   if (e->restarts || stopped) engine_write_restart(e);
-  if (stopped)
+  if (stopped && ranks_rank() == 0)
     fprintf(stderr,
-            "bolide: %s: wrote %s.bin at step %ld (t = %g) and stopped; resume with --restart\n",
-            stop_why, e->restart_stem, e->step, e->time);
+            "bolide: %s: wrote %s.bin%s at step %ld (t = %g) and stopped; resume with --restart\n",
+            stop_why, e->restart_stem, e->halo ? " (and one file per rank)" : "", e->step, e->time);
   engine_sync_view(e);
   engine_stats_close(e);
   engine_budget_summary(e);

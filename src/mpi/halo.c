@@ -2,10 +2,14 @@
  * (src/mpi/halo.h; theory/mpi.md, "Multi-rank runs"). */
 #include "src/mpi/halo.h"
 
+#include <errno.h>
 #include <limits.h>
 #include <math.h>
+#include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "config.h"
 #include "src/cell.h"
@@ -13,6 +17,7 @@
 #include "src/engine_tasks.h"
 #include "src/error.h"
 #include "src/io/params.h"
+#include "src/io/restart.h"
 #include "src/mpi/partition.h"
 #include "src/mpi/ranks.h"
 #include "src/part.h"
@@ -480,7 +485,258 @@ static void halo_partition(struct engine *e) {
   if (space_rebuild(s) != 0) error_bug("particles removed by the second rebuild of the partition");
 }
 
+/* ------------------------------------------------------- restart files */
+
+/* The rank's part of a restart: the decomposition and the exchange lists
+ * of the last rebuild (the particles, their copies included, are in the
+ * rank's restart file), in STEM.halo.bin beside STEM.bin, rotated the same
+ * way (STEM.halo.prev.bin), with the step, so that the one matching the
+ * restart file read is found. */
+#define HALO_MAGIC 0x314f4c4148444c42ULL /* "BLDHALO1" */
+
+static void halo_put(FILE *f, const char *path, const void *d, size_t n, uint64_t *h) {
+  if (n && fwrite(d, 1, n, f) != n)
+    error_exit("%s: cannot write (disk full?): %s", path, strerror(errno));
+  *h = restart_checksum(d, n, *h);
+}
+
+void halo_write_restart(const struct engine *e) {
+  const struct halo *H = e->halo;
+  if (!H) return;
+  char path[1400], prev[1400], tmp[1400];
+  snprintf(path, sizeof path, "%s.halo.bin", e->restart_stem);
+  snprintf(prev, sizeof prev, "%s.halo.prev.bin", e->restart_stem);
+  snprintf(tmp, sizeof tmp, "%s.halo.bin.tmp", e->restart_stem);
+  FILE *f = fopen(tmp, "wb");
+  if (!f) error_exit("%s: cannot create: %s", tmp, strerror(errno));
+  const int n = H->nranks;
+  int64_t head[14] = {(int64_t)HALO_MAGIC,
+                      e->step,
+                      n,
+                      H->me,
+                      H->ncells,
+                      H->cdim[0],
+                      H->cdim[1],
+                      H->cdim[2],
+                      H->periodic,
+                      (int64_t)H->nsend,
+                      (int64_t)H->gnsend,
+                      (int64_t)H->nrecv,
+                      (int64_t)H->gnrecv,
+                      H->nr_repart};
+  const double geo[6] = {H->width[0], H->width[1], H->width[2], H->dim[0], H->dim[1], H->dim[2]};
+  uint64_t h = RESTART_HASH_INIT;
+  halo_put(f, tmp, head, sizeof head, &h);
+  halo_put(f, tmp, geo, sizeof geo, &h);
+  halo_put(f, tmp, H->scount, 4 * (size_t)n * sizeof(int), &h);
+  halo_put(f, tmp, H->gscount, 4 * (size_t)n * sizeof(int), &h);
+  halo_put(f, tmp, H->assign, (size_t)H->ncells * sizeof(int), &h);
+  for (size_t k = 0; k < H->nsend; k++) {
+    const int64_t v = (int64_t)H->sidx[k];
+    halo_put(f, tmp, &v, 8, &h);
+  }
+  for (size_t k = 0; k < H->gnsend; k++) {
+    const int64_t v = (int64_t)H->gsidx[k];
+    halo_put(f, tmp, &v, 8, &h);
+  }
+  if (fwrite(&h, 8, 1, f) != 1 || fflush(f) || fsync(fileno(f)))
+    error_exit("%s: cannot write (disk full?): %s", tmp, strerror(errno));
+  if (fclose(f)) error_exit("%s: cannot write (disk full?): %s", tmp, strerror(errno));
+  if (access(path, F_OK) == 0) {
+    if (unlink(prev) && errno != ENOENT) error_exit("%s: cannot remove: %s", prev, strerror(errno));
+    if (link(path, prev) && rename(path, prev))
+      error_exit("%s: cannot rename to %s: %s", path, prev, strerror(errno));
+  }
+  if (rename(tmp, path)) error_exit("%s: cannot rename to %s: %s", tmp, path, strerror(errno));
+}
+
+/** Read the state of path into H if it is a valid file of this rank for
+ *  step; else 0 with why. */
+static int halo_read_file(struct halo *H, const char *path, long step, size_t np, char *why,
+                          size_t len) {
+  FILE *f = fopen(path, "rb");
+  if (!f) {
+    snprintf(why, len, "%s: cannot open: %s", path, strerror(errno));
+    return 0;
+  }
+  fseek(f, 0, SEEK_END);
+  const long sz = ftell(f);
+  fseek(f, 0, SEEK_SET);
+  char *buf = error_malloc(sz > 0 ? (size_t)sz : 1, "MPI restart");
+  const int ok_read = sz >= 8 && fread(buf, 1, (size_t)sz, f) == (size_t)sz;
+  fclose(f);
+  int ok = 0;
+  int64_t head[14];
+  const size_t n = (size_t)H->nranks;
+  if (!ok_read || (size_t)sz < sizeof head + 48 + 8) {
+    snprintf(why, len, "%s: too short", path);
+  } else {
+    uint64_t sum;
+    memcpy(&sum, buf + sz - 8, 8);
+    memcpy(head, buf, sizeof head);
+    const size_t want = sizeof head + 48 + 8 * n * sizeof(int) + (size_t)head[4] * sizeof(int) +
+                        8 * (size_t)(head[9] + head[10]) + 8;
+    if (restart_checksum(buf, (size_t)sz - 8, RESTART_HASH_INIT) != sum)
+      snprintf(why, len, "%s: checksum mismatch", path);
+    else if (head[0] != (int64_t)HALO_MAGIC)
+      snprintf(why, len, "%s: not a Bolide MPI restart file", path);
+    else if (head[2] != H->nranks || head[3] != H->me)
+      snprintf(why, len, "%s: written by rank %lld of %lld, read by rank %d of %d", path,
+               (long long)head[3], (long long)head[2], H->me, H->nranks);
+    else if (head[1] != step)
+      snprintf(why, len, "%s: of step %lld, the restart file of step %ld", path, (long long)head[1],
+               step);
+    else if (head[4] < 1 || head[9] < 0 || head[10] < 0 || head[11] < 0 || head[12] < 0 ||
+             (size_t)sz != want || (size_t)(head[11] + head[12]) > np)
+      snprintf(why, len, "%s: corrupt sizes", path);
+    else
+      ok = 1;
+  }
+  if (ok) {
+    const char *q = buf + sizeof head;
+    double geo[6];
+    memcpy(geo, q, 48), q += 48;
+    H->ncells = (int)head[4];
+    for (int k = 0; k < 3; k++) {
+      H->cdim[k] = (int)head[5 + k];
+      H->width[k] = geo[k];
+      H->dim[k] = geo[3 + k];
+    }
+    H->periodic = (int)head[8];
+    H->nsend = (size_t)head[9];
+    H->gnsend = (size_t)head[10];
+    H->nrecv = (size_t)head[11];
+    H->gnrecv = (size_t)head[12];
+    H->nr_repart = (long)head[13];
+    memcpy(H->scount, q, 4 * n * sizeof(int)), q += 4 * n * sizeof(int);
+    memcpy(H->gscount, q, 4 * n * sizeof(int)), q += 4 * n * sizeof(int);
+    H->assign = error_malloc((size_t)H->ncells * sizeof(int), "MPI partition");
+    memcpy(H->assign, q, (size_t)H->ncells * sizeof(int)), q += (size_t)H->ncells * sizeof(int);
+    H->sidx = error_malloc(H->nsend * sizeof(size_t) + 1, "MPI halo send list");
+    H->gsidx = error_malloc(H->gnsend * sizeof(size_t) + 1, "MPI halo send list");
+    for (size_t k = 0; k < H->nsend + H->gnsend; k++, q += 8) {
+      int64_t v;
+      memcpy(&v, q, 8);
+      if (v < 0 || (size_t)v >= np) {
+        snprintf(why, len, "%s: particle index %lld out of range", path, (long long)v);
+        ok = 0;
+        break;
+      }
+      if (k < H->nsend)
+        H->sidx[k] = (size_t)v;
+      else
+        H->gsidx[k - H->nsend] = (size_t)v;
+    }
+    for (int c = 0; ok && c < H->ncells; c++)
+      if (H->assign[c] < 0 || H->assign[c] >= H->nranks) {
+        snprintf(why, len, "%s: cell %d assigned to rank %d", path, c, H->assign[c]);
+        ok = 0;
+      }
+    if (!ok) {
+      free(H->assign);
+      H->assign = NULL;
+    }
+  }
+  free(buf);
+  return ok;
+}
+
+/** A resumed multi-rank run: every rank resumes the same step; the
+ *  decomposition and the exchange lists from the rank's STEM.halo.bin (or
+ *  .prev); the flaw thresholds of every rank's file gathered into one array
+ *  (the restart file holds the rank's particles' slices; the migration
+ *  sends a particle's offset into the array all ranks share). */
+static void halo_read_restart(struct engine *e) {
+  struct halo *H = e->halo;
+  long long st[2] = {e->step, -e->step};
+  ranks_allreduce_llongs(st, 2, RANKS_MIN);
+  if (st[0] != -st[1])
+    error_exit(
+        "%s: the ranks' restart files are of different steps (%lld to %lld): resume from "
+        "files written together",
+        e->restart_file, st[0], -st[1]);
+  char path[1400], why[2][1600];
+  snprintf(path, sizeof path, "%s.halo.bin", e->restart_stem);
+  if (!halo_read_file(H, path, e->step, e->parts.count, why[0], sizeof why[0])) {
+    snprintf(path, sizeof path, "%s.halo.prev.bin", e->restart_stem);
+    if (!halo_read_file(H, path, e->step, e->parts.count, why[1], sizeof why[1]))
+      error_exit("rank %d: no MPI restart file of step %ld: %s; %s", H->me, e->step, why[0],
+                 why[1]);
+  }
+  /* the flaws: every rank's array, one after the other */
+  const int n = H->nranks;
+  long long *cnt = error_calloc((size_t)n, sizeof(long long), "MPI flaws");
+  cnt[H->me] = e->nr_flaws;
+  ranks_allreduce_llongs(cnt, n, RANKS_SUM);
+  long long total = 0, mine = 0;
+  int *rc = error_malloc(2 * (size_t)n * sizeof(int), "MPI flaws"), *rd = rc + n;
+  for (int r = 0; r < n; r++) {
+    if (r == H->me) mine = total;
+    if (total + cnt[r] > INT_MAX) error_exit("more than %d Weibull flaws on the ranks", INT_MAX);
+    rc[r] = (int)cnt[r];
+    rd[r] = (int)total;
+    total += cnt[r];
+  }
+  if (total > 0) {
+    double *all = error_malloc((size_t)total * sizeof(double), "flaw thresholds");
+    MPI_Allgatherv(e->flaw_eps, rc[H->me], MPI_DOUBLE, all, rc, rd, MPI_DOUBLE, MPI_COMM_WORLD);
+    free(e->flaw_eps);
+    e->flaw_eps = all;
+    e->nr_flaws = total;
+    for (size_t i = 0; i < e->parts.count; i++)
+      if (e->parts.n_flaws[i] > 0) e->parts.flaw_first[i] += mine;
+  }
+  free(rc);
+  free(cnt);
+}
+
+void halo_restored(struct engine *e) {
+  struct halo *H = e->halo;
+  if (!H) return;
+  struct parts *p = &e->parts;
+  struct space *s = &e->space;
+  free(H->ridx);
+  free(H->gridx);
+  H->ridx = error_malloc(H->nrecv * sizeof(size_t) + 1, "MPI halo receive list");
+  H->gridx = error_malloc(H->gnrecv * sizeof(size_t) + 1, "MPI halo receive list");
+  size_t seen = 0;
+  for (size_t i = 0; i < p->count; i++)
+    if (p->flags[i] & PART_FOREIGN) {
+      const size_t m = (size_t)p->msrc[i];
+      if (m < H->nrecv)
+        H->ridx[m] = i;
+      else if (m - H->nrecv < H->gnrecv)
+        H->gridx[m - H->nrecv] = i;
+      else
+        error_exit("%s: a foreign copy with an invalid number", e->restart_file);
+      seen++;
+    }
+  if (seen != H->nrecv + H->gnrecv)
+    error_exit("%s: %zu foreign copies, the MPI restart file says %zu", e->restart_file, seen,
+               H->nrecv + H->gnrecv);
+  for (int c = 0; c < s->nr_cells; c++) {
+    struct cell *cl = &s->cells[c];
+    int all = cl->count > 0;
+    for (size_t i = cl->offset; i < cl->offset + cl->count && all; i++)
+      all = (p->flags[i] & PART_FOREIGN) != 0;
+    cl->foreign = all;
+  }
+  e->nr_foreign = seen;
+  long long owned = (long long)(p->count - seen);
+  ranks_allreduce_llongs(&owned, 1, RANKS_SUM);
+  e->nr_owned_all = owned;
+}
+
 #endif /* HAVE_MPI */
+
+#ifndef HAVE_MPI
+void halo_write_restart(const struct engine *e) {
+  (void)e;
+}
+void halo_restored(struct engine *e) {
+  (void)e;
+}
+#endif
 
 void halo_init(struct engine *e) {
   e->halo = NULL;
@@ -495,8 +751,6 @@ void halo_init(struct engine *e) {
     why = "multi-rank runs cannot reuse gravity's far field (Gravity:reuse_steps > 0) yet";
   else if (e->individual)
     why = "multi-rank runs need the global time step (TimeIntegration:global_step: true) yet";
-  else if (e->restarts)
-    why = "multi-rank runs cannot write restart files (Restarts:enable) yet";
   else if (e->nr_planes)
     why = "multi-rank runs cannot be combined with mirror planes (Boundaries:planes) yet";
   else if (e->scheme != ENGINE_SCHEME_KDK)
@@ -518,6 +772,7 @@ void halo_init(struct engine *e) {
   H->grcount = H->gscount + 2 * H->nranks;
   H->grdispl = H->gscount + 3 * H->nranks;
   e->halo = H;
+  if (e->restarted) halo_read_restart(e);
 #endif
 }
 

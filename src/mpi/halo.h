@@ -57,6 +57,18 @@ void halo_refresh_gravity(struct engine *e);
  *  length (h_max) of the particles of every rank, its copies left out. */
 void halo_bounds(const struct engine *e, double *dmax, double *h_max);
 
+/** Restart files (Restarts:enable): each rank writes its own restart file
+ *  (STEM_rankNNNN.bin: its particles, copies included) and, with this,
+ *  STEM_rankNNNN.halo.bin: the decomposition and the exchange lists of the
+ *  last rebuild and the step, rotated as the restart file is (.prev).  A
+ *  run resumed with the same number of ranks reads them back (halo_init,
+ *  which also checks that every rank resumes the same step) and, after the
+ *  cells of the last rebuild are restored (space_restore),
+ *  halo_restored finds the copies again: the resumed run takes the steps of
+ *  the uninterrupted one. */
+void halo_write_restart(const struct engine *e);
+void halo_restored(struct engine *e);
+
 /** Rank 0: a copy of the owned particles of every rank into out (allocated
  *  here; rank 0's first, then rank 1's, ...); the other ranks send theirs
  *  and get an empty out. */

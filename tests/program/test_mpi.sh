@@ -16,6 +16,7 @@
 #    rank reports its cells.
 set -u
 B=${BOLIDE_BUILDDIR:?}
+H=$(cd "$(dirname "$0")/../helpers" && pwd) # restart_compare.py
 PY=${PYTHON:-python3}
 fail() { echo "FAIL: $*"; exit 1; }
 grep -q '^#define HAVE_MPI 1' "$B/config.h" || { echo "not built with MPI: skip"; exit 77; }
@@ -272,6 +273,36 @@ stats=out/statistics.txt box=3.5e7
 runs 2 3
 grep "domain decomposition again" mpi3/run.log | head -3
 grep -q "domain decomposition again at step" mpi3/run.log || fail "$case: never partitioned again"
+# 6. restart files per rank (Restarts:enable; src/mpi/halo.h): a run stopped
+#    at step 30 (-n 30) and resumed with --restart takes the steps of the
+#    uninterrupted run, bit for bit (tests/helpers/restart_compare.py; one
+#    thread and Scheduler:deterministic, so that the uninterrupted run
+#    repeats bit for bit too): the
+#    basalt sphere of 3. on 2 ranks (the Weibull flaws of particles that
+#    change rank after the resumption) and the impact with self-gravity of 5.
+#    on 3 ranks; resuming with another number of ranks stops with one line
+restart_case() { # DIR RANKS
+  cd "$work/$1" || fail "restart: no $1"
+  sed -e '/^Snapshots:/,/^[A-Z]/{/subdir/d}' p.yml >rp.yml
+  printf 'Restarts:\n  enable: true\n  subdir: restart\n' >>rp.yml
+  for d in A B; do mkdir -p r$d && cp rp.yml r$d/p.yml; done
+  (cd rA && timeout 300 "$MPIRUN" -n "$2" "$B/bolide" -t 1 -P Scheduler:deterministic:true p.yml >a.log 2>&1) ||
+    { tail -5 rA/a.log; fail "restart $1: uninterrupted run on $2 ranks"; }
+  (cd rB && timeout 300 "$MPIRUN" -n "$2" "$B/bolide" -t 1 -P Scheduler:deterministic:true -n 30 p.yml >b0.log 2>&1) ||
+    { tail -5 rB/b0.log; fail "restart $1: first part on $2 ranks"; }
+  (cd rB && timeout 300 "$MPIRUN" -n "$2" "$B/bolide" -t 1 -P Scheduler:deterministic:true --restart p.yml >b1.log 2>&1) ||
+    { tail -5 rB/b1.log; fail "restart $1: resumed on $2 ranks"; }
+  "$PY" "$H/restart_compare.py" rA rB || fail "restart $1: the resumed run differs from the uninterrupted one"
+  echo "restart $1: stopped at step 30 and resumed on $2 ranks, the same as the uninterrupted run"
+}
+restart_case damage 2
+restart_case impactg 3
+cd "$work/damage/rB"
+timeout 60 "$MPIRUN" -n 3 "$B/bolide" -t 1 --restart p.yml >c.log 2>&1
+rc=$?
+[ $rc = 124 ] && fail "restart with 3 ranks from the files of 2 hung"
+[ $rc != 0 ] || fail "restart with 3 ranks from the files of 2 exited 0"
+grep -m1 "bolide: error:" c.log || fail "restart with 3 ranks from the files of 2: no error line"
 # what multi-rank runs do not do yet: one line, non-zero, no hang
 cd "$work/mpi"
 timeout 60 "$MPIRUN" -n 2 "$B/bolide" -n 3 -t 1 -P Gravity:enabled:true -P Gravity:reuse_steps:2 \
