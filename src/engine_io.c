@@ -132,11 +132,41 @@ static void engine_stats_first_time(struct engine *e) {
     e->next_stats = fmax(e->time, params_get_real(e->params, "Statistics:time_first"));
 }
 
+/** The step of the last data line of the statistics file path (-1: none):
+ *  a run resumed from the restart file written at the end of a finished run
+ *  (a kill before it exited) must not add the closing line again. */
+static long engine_stats_file_last_step(const char *path) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return -1;
+  char buf[8192];
+  long step = -1;
+  if (fseek(f, 0, SEEK_END) == 0) {
+    const long end = ftell(f);
+    const long from = end > (long)sizeof buf - 1 ? end - (long)sizeof buf + 1 : 0;
+    if (fseek(f, from, SEEK_SET) == 0) {
+      const size_t n = fread(buf, 1, sizeof buf - 1, f);
+      buf[n] = '\0';
+      /* the last complete line that is not a comment */
+      char *line = strtok(buf, "\n");
+      while (line) {
+        long v;
+        if (line[0] != '#' && sscanf(line, "%ld", &v) == 1) step = v;
+        line = strtok(NULL, "\n");
+      }
+    }
+  }
+  fclose(f);
+  return step;
+}
+
 void engine_stats_open(struct engine *e) {
   if (ranks_rank() != 0) {
-    /* several MPI ranks: rank 0 writes the files, every rank computes */
+    /* several MPI ranks: rank 0 writes the files, every rank computes (and
+     * learns from rank 0 whether the step resumed has its line already) */
     e->stats = e->timesteps = NULL;
-    e->stats_last_step = -1;
+    int last = -1;
+    if (e->restarted && !e->opt.one_rank) ranks_bcast_ints(&last, 1);
+    e->stats_last_step = last == 0 ? e->step : -1;
     engine_stats_first_time(e);
     return;
   }
@@ -160,7 +190,12 @@ void engine_stats_open(struct engine *e) {
   }
   e->stats = fopen(path, e->restarted ? "a" : "w");
   if (!e->stats) error_exit("%s: cannot create the statistics file", path);
-  e->stats_last_step = -1;
+  e->stats_last_step = e->restarted ? engine_stats_file_last_step(path) : -1;
+  if (e->restarted && ranks_size() > 1 && !e->opt.one_rank) {
+    int last = e->stats_last_step == e->step ? 0 : -1; /* (0: this step has its line) */
+    ranks_bcast_ints(&last, 1);
+  }
+  if (e->stats_last_step != e->step) e->stats_last_step = -1;
   /* the timesteps file (SWIFT's Statistics:timestep_file_name): one line
    * per step; a resumed run appends (the steps between the restart file
    * and the stop come twice) */

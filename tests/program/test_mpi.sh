@@ -293,6 +293,11 @@ restart_case() { # DIR RANKS
   (cd rB && timeout 300 "$MPIRUN" -n "$2" "$B/bolide" -t 1 -P Scheduler:deterministic:true --restart p.yml >b1.log 2>&1) ||
     { tail -5 rB/b1.log; fail "restart $1: resumed on $2 ranks"; }
   "$PY" "$H/restart_compare.py" rA rB || fail "restart $1: the resumed run differs from the uninterrupted one"
+  # resumed again from the file written at the end (a run killed before it
+  # exited): nothing more to do, no line added
+  (cd rB && timeout 300 "$MPIRUN" -n "$2" "$B/bolide" -t 1 -P Scheduler:deterministic:true --restart p.yml >b2.log 2>&1) ||
+    { tail -5 rB/b2.log; fail "restart $1: resumed at the end on $2 ranks"; }
+  "$PY" "$H/restart_compare.py" rA rB || fail "restart $1: resumed at the end, the outputs changed"
   echo "restart $1: stopped at step 30 and resumed on $2 ranks, the same as the uninterrupted run"
 }
 restart_case damage 2

@@ -61,6 +61,12 @@ set -- -P Snapshots:subdir:B -P Restarts:subdir:B/restart
 resume "run" "7 12 20 -1" "$@"
 grep -q "resumed from" b1.log || { echo "FAIL: no resume message"; fail=1; }
 "$PY" "$H/restart_compare.py" A B || fail=1
+# resumed from the file written at the end of the finished run (a run killed
+# after it, before it exited): nothing to do, and no statistics line added
+# (once, the closing line came twice: test_restart_kill.sh caught it at
+# random)
+"$B/bolide" -t 1 --restart "$@" p.yml >b9.log 2>&1 || { echo "FAIL: resumed at the end"; tail -3 b9.log; exit 1; }
+"$PY" "$H/restart_compare.py" A B || { echo "FAIL: resumed at the end: the outputs changed"; fail=1; }
 
 # self-gravity with the far field reused (Gravity:reuse_steps 4, a loose
 # reuse_tolerance so that most steps reuse it)
