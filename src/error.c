@@ -11,6 +11,7 @@
 const char *error_progname = "bolide";
 int error_verbosity = 0;
 int error_log_quiet = 0;
+int error_rank = 0, error_warn_quiet = 0;
 void (*error_exit_hook)(void) = NULL;
 
 static struct timespec error_t0;
@@ -94,16 +95,22 @@ static void error_line(const char *kind, const char *fmt, va_list ap) {
 }
 
 void error_warning(const char *fmt, ...) {
+  if (error_warn_quiet) return;
   va_list ap;
   va_start(ap, fmt);
-  error_line("warning", fmt, ap);
+  char kind[32];
+  snprintf(kind, sizeof kind, error_rank ? "warning (rank %d)" : "warning", error_rank);
+  error_line(kind, fmt, ap);
   va_end(ap);
 }
 
 void error_note(const char *fmt, ...) {
+  if (error_warn_quiet) return;
   va_list ap;
   va_start(ap, fmt);
-  error_line("note", fmt, ap);
+  char kind[32];
+  snprintf(kind, sizeof kind, error_rank ? "note (rank %d)" : "note", error_rank);
+  error_line(kind, fmt, ap);
   va_end(ap);
 }
 

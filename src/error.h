@@ -17,6 +17,12 @@ extern const char *error_progname;
 extern int error_verbosity;
 /** 1: error_log prints nothing (the MPI ranks other than 0). */
 extern int error_log_quiet;
+/** Several MPI ranks: this rank's number when it is not 0 (its warnings and
+ *  notes then say "(rank N)"), and 1 while such a rank repeats what rank 0
+ *  says anyway (reading the parameters and the initial conditions, which
+ *  every rank does alike): its warnings and notes are not printed then.
+ *  Errors are always printed. */
+extern int error_rank, error_warn_quiet;
 
 /** Set the program name (basename of argv[0]) and start the log clock. */
 void error_init(const char *argv0);

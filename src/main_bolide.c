@@ -562,7 +562,11 @@ int main(int argc, char **argv) {
   if (optind + 1 < argc)
     error_exit("unexpected argument '%s' after the parameter file", argv[optind + 1]);
   /* several MPI ranks: rank 0 writes the run's log (errors come from any) */
-  if (ranks_rank() != 0) error_log_quiet = 1;
+  if (ranks_rank() != 0) {
+    error_log_quiet = 1;
+    error_rank = ranks_rank();
+    error_warn_quiet = 1; /* (until the run starts: what rank 0 says too) */
+  }
   {
     /* the ranks of one node share its cores (src/runner.c) */
     int lr, ln;
@@ -611,6 +615,7 @@ int main(int argc, char **argv) {
   }
   struct engine e;
   engine_init(&e, params, &opt);
+  error_warn_quiet = 0;
   if (!opt.check_only) engine_run(&e);
   engine_clean(&e);
   params_free(params);
