@@ -11,31 +11,7 @@ set -uo pipefail
 B=${BOLIDE_BUILDDIR:?}
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
-"$PYTHON" - <<'PY'
-import h5py, numpy as np
-R, n = 0.03, 20
-dx = 2 * R / n
-g = (np.arange(n) + 0.5) * dx - R
-x, y, z = np.meshgrid(g, g, g, indexing="ij")
-keep = x**2 + y**2 + z**2 < R * R
-pos = np.stack([x[keep], y[keep], z[keep]], axis=1)
-N = len(pos)
-rho = 2700.0
-with h5py.File("sphere.hdf5", "w") as f:
-    h = f.create_group("Header")
-    h.attrs["BoxSize"] = [0.2, 0.2, 0.2]
-    h.attrs["NumPart_Total"] = [N, 0, 0, 0, 0, 0]
-    p = f.create_group("PartType0")
-    p["Coordinates"] = pos + 0.1
-    p["Velocities"] = pos / R * 50.0      # 50 m/s at the surface: tension
-    p["Masses"] = np.full(N, rho * dx**3)
-    p["SmoothingLengths"] = np.full(N, 1.2348 * dx)
-    p["InternalEnergies"] = np.full(N, 1.0)
-    p["Densities"] = np.full(N, rho)
-    p["ParticleIDs"] = np.arange(1, N + 1)
-    p["MaterialIDs"] = np.zeros(N, dtype=np.int32)
-print(N)
-PY
+"$PYTHON" "${BOLIDE_SRCDIR:?}/tests/helpers/tension_sphere.py" sphere.hdf5 20
 cat >p.yml <<'YML'
 InitialConditions:
   file_name: sphere.hdf5

@@ -187,28 +187,7 @@ runs 3
 #    (tests/physics/test_damage_run.sh, 1,400 particles), on 2 ranks
 case=damage
 mkdir -p "$work/damage" && cd "$work/damage"
-"$PY" - <<'PY' || fail "damage: initial conditions"
-import h5py, numpy as np
-R, n = 0.03, 14
-dx = 2 * R / n
-g = (np.arange(n) + 0.5) * dx - R
-x, y, z = np.meshgrid(g, g, g, indexing="ij")
-keep = x**2 + y**2 + z**2 < R * R
-pos = np.stack([x[keep], y[keep], z[keep]], axis=1)
-N = len(pos)
-with h5py.File("sphere.hdf5", "w") as f:
-    f.create_group("Header").attrs["BoxSize"] = [0.2, 0.2, 0.2]
-    f["Header"].attrs["NumPart_Total"] = [N, 0, 0, 0, 0, 0]
-    p = f.create_group("PartType0")
-    p["Coordinates"] = pos + 0.1
-    p["Velocities"] = pos / R * 50.0
-    p["Masses"] = np.full(N, 2700.0 * dx**3)
-    p["SmoothingLengths"] = np.full(N, 1.2348 * dx)
-    p["InternalEnergies"] = np.full(N, 1.0)
-    p["Densities"] = np.full(N, 2700.0)
-    p["ParticleIDs"] = np.arange(1, N + 1)
-    p["MaterialIDs"] = np.zeros(N, dtype=np.int32)
-PY
+"$PY" "$H/tension_sphere.py" sphere.hdf5 14 >/dev/null || fail "damage: initial conditions"
 cat >p.yml <<'YML'
 InitialConditions:
   file_name: ../sphere.hdf5
