@@ -469,14 +469,14 @@ void engine_snapshot(struct engine *e) {
   if (ranks_rank() == 0) snapshot_write_series(e->outdir, e->snap_basename, e->snap_index);
 }
 
-/** A copy of the particles without the mirror ghosts (PART_MIRROR; the
- *  snapshots' particles). */
+/** A copy of the particles without the mirror ghosts and the foreign
+ *  copies (PART_NOT_OWNED; the snapshots' particles). */
 static void engine_real_parts(const struct engine *e, struct parts *out) {
   const struct parts *p = &e->parts;
-  parts_alloc(out, p->count - e->nr_mirror);
+  parts_alloc(out, p->count - e->nr_mirror - e->nr_foreign);
   size_t n = 0;
   for (size_t i = 0; i < p->count; i++) {
-    if (p->flags[i] & PART_MIRROR) continue;
+    if (p->flags[i] & PART_NOT_OWNED) continue;
     for (int f = 0; f < part_nr_fields; f++) {
       const struct part_field *pf = &part_fields[f];
       memcpy((char *)part_field_array(out, pf) + n * pf->size,
@@ -514,8 +514,16 @@ void engine_snapshot_to(struct engine *e, const char *path) {
 #endif
   struct snapshot_meta meta;
   engine_snapshot_meta(e, &meta);
-  if (e->halo) {
-    /* several MPI ranks: rank 0 gathers every rank's own and writes them */
+  if (e->halo && snapshot_parallel()) {
+    /* several MPI ranks: one file, each rank writing its own particles'
+     * rows (parallel HDF5) */
+    struct parts own;
+    engine_real_parts(e, &own);
+    snapshot_write_ranks(path, &meta, &own, &e->us, e->write_acc);
+    parts_free(&own);
+  } else if (e->halo) {
+    /* several MPI ranks without parallel HDF5: rank 0 gathers every rank's
+     * own and writes them */
     struct parts all;
     halo_gather(e, &all);
     if (ranks_rank() == 0) snapshot_write(path, &meta, &all, &e->us, e->write_acc);
@@ -529,7 +537,10 @@ void engine_snapshot_to(struct engine *e, const char *path) {
   } else {
     snapshot_write(path, &meta, &e->parts, &e->us, e->write_acc);
   }
-  error_log(0, "snapshot %s at t = %g", path, e->time);
+  error_log(0, "snapshot %s at t = %g%s", path, e->time,
+            e->halo ? (snapshot_parallel() ? " (every rank its rows: parallel HDF5)"
+                                           : " (gathered on rank 0)")
+                    : "");
 }
 
 void engine_dump_tasks(struct engine *e) {

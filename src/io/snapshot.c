@@ -24,15 +24,37 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "config.h"
 #include "src/error.h"
 #include "src/version.h"
+
+#if defined(HAVE_MPI) && defined(H5_HAVE_PARALLEL)
+#include <mpi.h>
+#define SNAPSHOT_PARALLEL 1
+#endif
 
 /** State of one file being written. */
 struct snapshot_writer {
   const char *path; /**< final name */
   char tmp[4096];   /**< temporary name being written */
   hid_t file;       /**< HDF5 file (or H5I_INVALID_HID) */
+  /* several MPI ranks writing one file (snapshot_write_ranks): this rank's
+   * particles are rows [offset, offset + p->count) of total */
+  int parallel;
+  unsigned long long offset, total;
 };
+
+/** This process's MPI rank (0 without MPI). */
+static int snapshot_rank(void) {
+#ifdef SNAPSHOT_PARALLEL
+  int r = 0, init = 0;
+  MPI_Initialized(&init);
+  if (init) MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+#else
+  return 0;
+#endif
+}
 
 /** Set when a file could not be closed after a failed write (disk full):
  *  HDF5 1.10 then crashes in its own exit handler, so the handler below,
@@ -342,15 +364,17 @@ static void snapshot_dataset(struct snapshot_writer *w, hid_t grp, int k, const 
     for (size_t i = 0; i < n; i++) memcpy(buf + (i * nc + c) * s, a + i * s, s);
   }
 
-  hsize_t dims[2] = {n, nc};
+  /* the whole dataset: every rank's rows when several write it */
+  const size_t N = w->parallel ? (size_t)w->total : n;
+  hsize_t dims[2] = {N, nc};
   const int rank = nc > 1 ? 2 : 1;
   hid_t space = H5Screate_simple(rank, dims, NULL);
   SNAP_CHECK(w, space, what);
   hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
   SNAP_CHECK(w, dcpl, what);
-  const int compressed = level > 0 && n > 0;
+  const int compressed = level > 0 && N > 0;
   if (compressed) {
-    hsize_t chunk[2] = {n < 65536 ? n : 65536, nc};
+    hsize_t chunk[2] = {N < 65536 ? N : 65536, nc};
     SNAP_CHECK(w, H5Pset_chunk(dcpl, rank, chunk), what);
     SNAP_CHECK(w, H5Pset_shuffle(dcpl), what);
     SNAP_CHECK(w, H5Pset_deflate(dcpl, (unsigned)level), what);
@@ -358,8 +382,28 @@ static void snapshot_dataset(struct snapshot_writer *w, hid_t grp, int k, const 
   hid_t d =
       H5Dcreate2(grp, f->h5name, snapshot_file_type(f), space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
   SNAP_CHECK(w, d, what);
-  if (n > 0)
+  if (!w->parallel && n > 0)
     SNAP_CHECK(w, H5Dwrite(d, snapshot_mem_type(f), H5S_ALL, H5S_ALL, H5P_DEFAULT, buf), what);
+#ifdef SNAPSHOT_PARALLEL
+  if (w->parallel && N > 0) {
+    /* every rank its rows, collectively (compressed datasets need it) */
+    hsize_t start[2] = {(hsize_t)w->offset, 0}, count[2] = {n, nc}, one[2] = {1, nc};
+    hid_t mem = H5Screate_simple(rank, n > 0 ? count : one, NULL);
+    SNAP_CHECK(w, mem, what);
+    if (n > 0) {
+      SNAP_CHECK(w, H5Sselect_hyperslab(space, H5S_SELECT_SET, start, NULL, count, NULL), what);
+    } else {
+      SNAP_CHECK(w, H5Sselect_none(space), what);
+      SNAP_CHECK(w, H5Sselect_none(mem), what);
+    }
+    hid_t dxpl = H5Pcreate(H5P_DATASET_XFER);
+    SNAP_CHECK(w, dxpl, what);
+    SNAP_CHECK(w, H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE), what);
+    SNAP_CHECK(w, H5Dwrite(d, snapshot_mem_type(f), mem, space, dxpl, buf), what);
+    H5Pclose(dxpl);
+    H5Sclose(mem);
+  }
+#endif
   snapshot_dataset_attrs(w, d, f, us, compressed);
   free(buf);
   H5Dclose(d);
@@ -397,8 +441,8 @@ static void snapshot_fsync_dir(const char *path) {
 
 /** The XDMF description of the particle datasets (XDMF 2, read by
  *  ParaView's "XDMF Reader"): Polyvertex topology, XYZ geometry. */
-static void snapshot_write_xdmf(const char *h5path, const struct snapshot_meta *meta,
-                                const struct parts *p, int write_acc) {
+static void snapshot_write_xdmf(const char *h5path, const struct snapshot_meta *meta, size_t n,
+                                int write_acc) {
   char xmf[4096], tmp[4200];
   snapshot_xdmf_name(h5path, xmf, sizeof xmf);
   snprintf(tmp, sizeof tmp, "%s.tmp", xmf);
@@ -408,7 +452,6 @@ static void snapshot_write_xdmf(const char *h5path, const struct snapshot_meta *
   error_register_tmpfile(tmp);
   FILE *f = fopen(tmp, "w");
   if (!f) error_exit("%s: cannot write: %s", tmp, strerror(errno));
-  const size_t n = p->count;
   fprintf(f, "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n");
   fprintf(f, "<Xdmf Version=\"2.0\">\n <Domain>\n");
   fprintf(f, "  <Grid Name=\"PartType0\" GridType=\"Uniform\">\n");
@@ -488,10 +531,14 @@ void snapshot_write_series(const char *dir, const char *basename, int count) {
   error_unregister_tmpfile(tmp);
 }
 
-void snapshot_write(const char *path, const struct snapshot_meta *meta, const struct parts *p,
-                    const struct unit_system *us, int write_acc) {
-  struct snapshot_writer w = {.path = path, .file = H5I_INVALID_HID};
-  if (snprintf(w.tmp, sizeof w.tmp, "%s.tmp", path) >= (int)sizeof w.tmp)
+/** snapshot_write, or with w->parallel set this rank's share of one file
+ *  that every rank writes (snapshot_write_ranks). */
+static void snapshot_write_impl(struct snapshot_writer *w, const struct snapshot_meta *meta,
+                                const struct parts *p, const struct unit_system *us,
+                                int write_acc) {
+  const char *path = w->path;
+  const int lead = !w->parallel || snapshot_rank() == 0;
+  if (snprintf(w->tmp, sizeof w->tmp, "%s.tmp", path) >= (int)sizeof w->tmp)
     error_exit("%s: file name too long", path);
   if (meta->compression < 0 || meta->compression > 9)
     error_exit("%s: compression level %d out of range 0-9", path, meta->compression);
@@ -501,30 +548,39 @@ void snapshot_write(const char *path, const struct snapshot_meta *meta, const st
   snapshot_register_atexit();
 
   /* create the file with open() first: the error message then says why */
-  int fd = open(w.tmp, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (fd < 0) error_exit("%s: cannot create %s: %s", path, w.tmp, strerror(errno));
-  close(fd);
-  error_register_tmpfile(w.tmp);
+  if (lead) {
+    int fd = open(w->tmp, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd < 0) error_exit("%s: cannot create %s: %s", path, w->tmp, strerror(errno));
+    close(fd);
+    error_register_tmpfile(w->tmp);
+  }
   /* H5F_CLOSE_STRONG: on a failure, closing the file also closes the groups
    * and datasets still open in it (otherwise HDF5's exit handler trips on
    * them after a failed write) */
   hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-  SNAP_CHECK(&w, fapl, "the file");
-  SNAP_CHECK(&w, H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG), "the file");
-  w.file = H5Fcreate(w.tmp, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+  SNAP_CHECK(w, fapl, "the file");
+  SNAP_CHECK(w, H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG), "the file");
+#ifdef SNAPSHOT_PARALLEL
+  if (w->parallel) {
+    MPI_Barrier(MPI_COMM_WORLD); /* (the file exists) */
+    SNAP_CHECK(w, H5Pset_fapl_mpio(fapl, MPI_COMM_WORLD, MPI_INFO_NULL), "the file");
+  }
+#endif
+  w->file = H5Fcreate(w->tmp, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
   H5Pclose(fapl);
-  SNAP_CHECK(&w, w.file, "the file");
+  SNAP_CHECK(w, w->file, "the file");
 
-  snapshot_header(&w, meta, p->count);
-  snapshot_units(&w, "/Units", us);
-  snapshot_units(&w, "/InternalCodeUnits", us);
-  snapshot_parameters(&w, meta->params);
-  snapshot_metadata_groups(&w, meta);
+  const size_t total = w->parallel ? (size_t)w->total : p->count;
+  snapshot_header(w, meta, total);
+  snapshot_units(w, "/Units", us);
+  snapshot_units(w, "/InternalCodeUnits", us);
+  snapshot_parameters(w, meta->params);
+  snapshot_metadata_groups(w, meta);
 
-  hid_t grp = snapshot_group(&w, "/PartType0");
+  hid_t grp = snapshot_group(w, "/PartType0");
   for (int k = 0; k < part_nr_fields; k++)
     if (part_fields[k].comp == 0 && snapshot_field_written(&part_fields[k], meta->ic, write_acc))
-      snapshot_dataset(&w, grp, k, p, us, meta->compression);
+      snapshot_dataset(w, grp, k, p, us, meta->compression);
   if (meta->ic) {
     /* SWIFT reads initial conditions under GADGET's singular names: hard
      * links make one file loadable by both codes (as woma's files are) */
@@ -533,21 +589,54 @@ void snapshot_write(const char *path, const struct snapshot_meta *meta, const st
                                            {"Densities", "Density"}};
     for (size_t a = 0; a < sizeof alias / sizeof alias[0]; a++)
       if (H5Lexists(grp, alias[a][0], H5P_DEFAULT) > 0)
-        SNAP_CHECK(&w, H5Lcreate_hard(grp, alias[a][0], grp, alias[a][1], H5P_DEFAULT, H5P_DEFAULT),
+        SNAP_CHECK(w, H5Lcreate_hard(grp, alias[a][0], grp, alias[a][1], H5P_DEFAULT, H5P_DEFAULT),
                    alias[a][1]);
   }
-  SNAP_CHECK(&w, H5Gclose(grp), "group /PartType0");
+  SNAP_CHECK(w, H5Gclose(grp), "group /PartType0");
 
   errno = 0;
-  const herr_t rc = H5Fclose(w.file);
-  w.file = H5I_INVALID_HID;
+  const herr_t rc = H5Fclose(w->file);
+  w->file = H5I_INVALID_HID;
   /* a close that failed to flush (disk full) leaves the file in HDF5's
    * list, and its exit handler then crashes on it (issue 18) */
   if (rc < 0) snapshot_poisoned = 1;
-  if (rc < 0) snapshot_fail(&w, "the file (closing)");
-  if (snapshot_fsync(w.tmp) != 0) snapshot_fail(&w, "the file (fsync)");
-  if (rename(w.tmp, path) != 0) snapshot_fail(&w, "the file (rename)");
-  error_unregister_tmpfile(w.tmp);
-  snapshot_write_xdmf(path, meta, p, write_acc);
+  if (rc < 0) snapshot_fail(w, "the file (closing)");
+  if (!lead) return;
+  if (snapshot_fsync(w->tmp) != 0) snapshot_fail(w, "the file (fsync)");
+  if (rename(w->tmp, path) != 0) snapshot_fail(w, "the file (rename)");
+  error_unregister_tmpfile(w->tmp);
+  snapshot_write_xdmf(path, meta, total, write_acc);
   snapshot_fsync_dir(path);
+}
+
+void snapshot_write(const char *path, const struct snapshot_meta *meta, const struct parts *p,
+                    const struct unit_system *us, int write_acc) {
+  struct snapshot_writer w = {.path = path, .file = H5I_INVALID_HID};
+  snapshot_write_impl(&w, meta, p, us, write_acc);
+}
+
+int snapshot_parallel(void) {
+#ifdef SNAPSHOT_PARALLEL
+  return 1;
+#else
+  return 0;
+#endif
+}
+
+void snapshot_write_ranks(const char *path, const struct snapshot_meta *meta, const struct parts *p,
+                          const struct unit_system *us, int write_acc) {
+#ifdef SNAPSHOT_PARALLEL
+  struct snapshot_writer w = {.path = path, .file = H5I_INVALID_HID, .parallel = 1};
+  unsigned long long mine = p->count, before = 0, total = 0;
+  MPI_Exscan(&mine, &before, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
+  MPI_Allreduce(&mine, &total, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
+  if (snapshot_rank() == 0) before = 0; /* (MPI_Exscan leaves rank 0's undefined) */
+  w.offset = before;
+  w.total = total;
+  snapshot_write_impl(&w, meta, p, us, write_acc);
+  MPI_Barrier(MPI_COMM_WORLD); /* (the file is complete and renamed) */
+#else
+  (void)path, (void)meta, (void)p, (void)us, (void)write_acc;
+  error_bug("snapshot_write_ranks without parallel HDF5");
+#endif
 }

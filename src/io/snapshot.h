@@ -33,6 +33,17 @@ struct snapshot_meta {
 void snapshot_write(const char *path, const struct snapshot_meta *meta, const struct parts *p,
                     const struct unit_system *us, int write_acc);
 
+/** 1 if this build writes one file from several MPI ranks (parallel HDF5). */
+int snapshot_parallel(void);
+
+/** snapshot_write by every MPI rank at once (collective): p holds this
+ *  rank's particles, which take rows rank after rank (rank 0's first) in
+ *  one file, written with parallel HDF5 (MPI-IO, collective transfers);
+ *  rank 0 creates, renames and flushes the file and writes the XDMF file.
+ *  Only where snapshot_parallel(). */
+void snapshot_write_ranks(const char *path, const struct snapshot_meta *meta, const struct parts *p,
+                          const struct unit_system *us, int write_acc);
+
 /** Name of the XDMF file that goes with an HDF5 file (".hdf5"/".h5" replaced
  *  by ".xmf", otherwise ".xmf" appended); buf of length len. */
 void snapshot_xdmf_name(const char *path, char *buf, size_t len);
