@@ -44,6 +44,8 @@ struct cell {
   int index;               /**< position of this cell in struct space.cells */
   int top;                 /**< index of the top-level cell this cell descends from */
   int active;              /**< set by the engine: the cell has active particles this step */
+  int copies;              /**< several MPI ranks (src/mpi/halo.c): 1 if the cell holds a foreign
+                                copy (its tasks wait for the refresh of the copies) */
   int foreign;             /**< several MPI ranks (src/mpi/halo.c): 1 if every particle of the cell
                                 is a foreign copy, 0 otherwise */
   struct sched_lock lock;  /**< taken by the tasks that write the cell's particles */

@@ -974,32 +974,64 @@ static int engine_force_stage(const struct task *t) {
   return 2;
 }
 
+/** The FORCE-phase tasks that must wait for the refresh of the copies
+ *  before their stage (task.mark): those on a cell holding a copy
+ *  (cell.copies), the gravity tasks (every other particle is a copy for
+ *  them), and whatever follows one of them within its stage. */
+static void engine_mark_halo_tasks(struct engine *e) {
+  struct scheduler *s = &e->sched;
+  for (int i = 0; i < s->nr_tasks; i++) scheduler_task(s, i)->mark = 0;
+  for (int k = 0; k < e->phase_count[ENGINE_PHASE_FORCE]; k++) {
+    struct task *t = e->phase_tasks[ENGINE_PHASE_FORCE][k];
+    const struct cell *ci = t->ci, *cj = t->cj;
+    t->mark = t->subtype == task_subtype_grav || (ci && ci->copies) || (cj && cj->copies);
+  }
+  for (int i = 0; i < s->nr_tasks; i++) { /* (a topological order) */
+    const struct task *t = s->order[i];
+    if (!t->mark) continue;
+    const int st = engine_force_stage(t);
+    for (int k = 0; k < t->nr_unlocks; k++)
+      if (engine_force_stage(t->unlocks[k]) == st) t->unlocks[k]->mark = 1;
+  }
+}
+
 /** Several MPI ranks: the FORCE phase in stages (engine_force_stage), the
  *  foreign copies taking their owners' results between them, so that the
  *  force on an owned particle reads its neighbours' densities, pressures
  *  and (solids) velocity gradients as their owners computed them, and no
  *  copy's sums are computed (src/mpi/halo.c; theory/mpi.md, "Multi-rank
  *  runs").  The tasks the graph orders after a task of an earlier stage
- *  find it done. */
+ *  find it done.  Each stage runs in two parts: first the tasks that need
+ *  no copy while the copies' exchange is in flight (thread 0 lets MPI
+ *  progress it between its tasks), then, once it has arrived, the others
+ *  (engine_mark_halo_tasks). */
 static void engine_run_force_stages(struct engine *e) {
+  engine_mark_halo_tasks(e);
+  halo_refresh_start(e);
   for (int stage = 0; stage < 3; stage++) {
     if (stage == 1 && !e->hp.solids) continue;
-    for (int k = 0; k < e->phase_count[ENGINE_PHASE_FORCE]; k++) {
-      struct task *t = e->phase_tasks[ENGINE_PHASE_FORCE][k];
-      t->skip = engine_force_stage(t) != stage;
+    if (stage == 2) halo_refresh_gravity_start(e); /* (the gravity tasks run in the last stage) */
+    for (int part = 0; part < 2; part++) {
+      for (int k = 0; k < e->phase_count[ENGINE_PHASE_FORCE]; k++) {
+        struct task *t = e->phase_tasks[ENGINE_PHASE_FORCE][k];
+        t->skip = engine_force_stage(t) != stage || t->mark != part;
+      }
+      e->sched.poll = part == 0 ? halo_poll : NULL;
+      e->sched.poll_ctx = e;
+      scheduler_run(&e->sched, engine_run_task, e);
+      e->sched.poll = NULL;
+      if (part == 0) {
+        halo_refresh_finish(e);
+        halo_refresh_gravity_finish(e);
+      }
     }
-    if (stage == 2) halo_refresh_gravity(e); /* (the gravity tasks run in the last stage) */
-    scheduler_run(&e->sched, engine_run_task, e);
-    if (stage < 2) halo_refresh(e);
+    if (stage < 2) halo_refresh_start(e);
   }
 }
 
 /** Run the tasks of one phase on every worker. */
 void engine_run_phase(struct engine *e, int phase) {
-  if (phase == ENGINE_PHASE_FORCE) {
-    engine_family_hooks(e, task_family_at_force);
-    halo_refresh(e);
-  }
+  if (phase == ENGINE_PHASE_FORCE) engine_family_hooks(e, task_family_at_force);
 #ifdef HAVE_CUDA
   if (e->gpu) {
     if (phase == ENGINE_PHASE_FORCE)

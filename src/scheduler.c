@@ -298,6 +298,7 @@ void scheduler_work(struct scheduler *s, int tid) {
     timer->count++;
     busy += t->toc - t->tic;
     scheduler_done(s, t);
+    if (tid == 0 && s->poll) s->poll(s->poll_ctx);
   }
   s->busy_ns[tid] += busy;
 }

@@ -70,6 +70,10 @@ struct scheduler {
   int nr_active;            /**< tasks not skipped in the current run */
   atomic_int nr_remaining;  /**< active tasks not finished yet */
   int64_t run_tic, run_toc; /**< start and end of the last run (task_now_ns()) */
+  void (*poll)(void *);     /**< NULL, or called by thread 0 (the caller of scheduler_run) after
+                                 each task it ran: several MPI ranks progress their exchanges
+                                 there while the workers compute (src/mpi/halo.c) */
+  void *poll_ctx;           /**< its argument */
 
   /* -- idle workers sleep here until work appears (no long busy-waiting) */
   pthread_mutex_t sleep_mutex; /**< protects the wait on sleep_cond */

@@ -116,6 +116,8 @@ struct task {
   float weight;     /**< queue priority: cost + longest cost path to the end of the graph */
   int64_t tic, toc; /**< start and end of the last run (task_now_ns()) */
   int rid;          /**< thread that ran it last (-1: never ran) */
+  int mark;         /**< the engine's own (several MPI ranks: the task reads foreign copies, or
+                         follows one that does within its stage of a FORCE phase) */
 #ifdef BOLIDE_DEBUG_CHECKS
   atomic_int nr_runs; /**< times run in this scheduler_run(): must end 1 if active, 0 if not */
 #endif

@@ -69,6 +69,13 @@ struct halo {
   double trigger;           /**< DomainDecomposition:trigger (0: never) */
   long nr_repart, nr_tried; /**< partitions made again and kept; tried */
   double imb_last;          /**< the measured imbalance at the last rebuild */
+  /* the refreshes in flight (halo_refresh_start ... finish) */
+#ifdef HAVE_MPI
+  MPI_Request req, greq;
+#endif
+  int pending, gpending; /**< 1: in flight, 2: complete (MPI_Test), 0: none */
+  int *xc, *gxc;         /**< [4 nranks] their byte counts and offsets */
+  double t_wait;         /**< wall seconds waiting for them (not hidden by local work) */
 };
 
 /** The fields of a particle that gravity's walks read of a source, and
@@ -318,6 +325,22 @@ static void halo_migrate(struct engine *e) {
   free(pos);
   free(owner);
   free(sc);
+}
+
+/** The cells of copies only, whose tasks have nothing to do
+ *  (cell.foreign, ENGINE_CELL_SKIP), and the cells with a copy, whose tasks
+ *  wait for the refresh (cell.copies, engine_run_force_stages). */
+static void halo_mark_cells(struct engine *e) {
+  const struct parts *p = &e->parts;
+  struct space *s = &e->space;
+  for (int c = 0; c < s->nr_cells; c++) {
+    struct cell *cl = &s->cells[c];
+    size_t nf = 0;
+    for (size_t i = cl->offset; i < cl->offset + cl->count; i++)
+      nf += (p->flags[i] & PART_FOREIGN) != 0;
+    cl->foreign = cl->count > 0 && nf == cl->count;
+    cl->copies = nf > 0;
+  }
 }
 
 /** A new numbering of the parts of rank[] (over n ranks) that keeps as
@@ -694,7 +717,6 @@ void halo_restored(struct engine *e) {
   struct halo *H = e->halo;
   if (!H) return;
   struct parts *p = &e->parts;
-  struct space *s = &e->space;
   free(H->ridx);
   free(H->gridx);
   H->ridx = error_malloc(H->nrecv * sizeof(size_t) + 1, "MPI halo receive list");
@@ -714,13 +736,7 @@ void halo_restored(struct engine *e) {
   if (seen != H->nrecv + H->gnrecv)
     error_exit("%s: %zu foreign copies, the MPI restart file says %zu", e->restart_file, seen,
                H->nrecv + H->gnrecv);
-  for (int c = 0; c < s->nr_cells; c++) {
-    struct cell *cl = &s->cells[c];
-    int all = cl->count > 0;
-    for (size_t i = cl->offset; i < cl->offset + cl->count && all; i++)
-      all = (p->flags[i] & PART_FOREIGN) != 0;
-    cl->foreign = all;
-  }
+  halo_mark_cells(e);
   e->nr_foreign = seen;
   long long owned = (long long)(p->count - seen);
   ranks_allreduce_llongs(&owned, 1, RANKS_SUM);
@@ -771,6 +787,8 @@ void halo_init(struct engine *e) {
   H->gsdispl = H->gscount + H->nranks;
   H->grcount = H->gscount + 2 * H->nranks;
   H->grdispl = H->gscount + 3 * H->nranks;
+  H->xc = error_calloc(8 * (size_t)H->nranks, sizeof(int), "MPI exchange counts");
+  H->gxc = H->xc + 4 * H->nranks;
   e->halo = H;
   if (e->restarted) halo_read_restart(e);
 #endif
@@ -935,14 +953,7 @@ int halo_rebuild(struct engine *e) {
       else
         H->gridx[m - H->nrecv] = i;
     }
-  /* the cells of copies only, whose tasks have nothing to do (ENGINE_CELL_SKIP) */
-  for (int c = 0; c < s->nr_cells; c++) {
-    struct cell *cl = &s->cells[c];
-    int all = cl->count > 0;
-    for (size_t i = cl->offset; i < cl->offset + cl->count && all; i++)
-      all = (p->flags[i] & PART_FOREIGN) != 0;
-    cl->foreign = all;
-  }
+  halo_mark_cells(e);
   /* every rank's share, on rank 0's log (-v) */
   double v[3] = {(double)(p->count - nr), (double)H->nrecv, (double)H->gnrecv};
   ranks_allreduce_doubles(v, 3, RANKS_SUM);
@@ -960,9 +971,27 @@ int halo_rebuild(struct engine *e) {
   return first;
 }
 
-void halo_refresh(struct engine *e) {
+#ifdef HAVE_MPI
+/** Byte counts and offsets of an exchange of scount[r] records of rec bytes
+ *  to rank r (sdispl[r] records in), rcount[r] from it, into c[0 .. 4n). */
+static void halo_counts(int n, size_t rec, const int *scount, const int *sdispl, const int *rcount,
+                        const int *rdispl, int *c) {
+  for (int r = 0; r < n; r++) {
+    const long long v[4] = {
+        (long long)scount[r] * (long long)rec, (long long)sdispl[r] * (long long)rec,
+        (long long)rcount[r] * (long long)rec, (long long)rdispl[r] * (long long)rec};
+    for (int k = 0; k < 4; k++) {
+      if (v[k] > INT_MAX)
+        error_exit("MPI exchange of more than %d bytes per rank and step: use more ranks", INT_MAX);
+      c[k * n + r] = (int)v[k];
+    }
+  }
+}
+#endif
+
+void halo_refresh_start(struct engine *e) {
   struct halo *H = e->halo;
-  if (!H) return;
+  if (!H || H->pending) return;
 #ifdef HAVE_MPI
   const double w0 = error_walltime();
   struct parts *p = &e->parts;
@@ -971,10 +1000,28 @@ void halo_refresh(struct engine *e) {
   for (int r = 0; r < H->nranks; r++)
     halo_pack_block(p, H->sidx + H->sdispl[r], (size_t)H->scount[r],
                     sbuf + (size_t)H->sdispl[r] * H->rec);
-  halo_alltoallv(H, H->scount, H->rcount, sbuf, rbuf);
+  const int n = H->nranks;
+  halo_counts(n, H->rec, H->scount, H->sdispl, H->rcount, H->rdispl, H->xc);
+  MPI_Ialltoallv(sbuf, H->xc, H->xc + n, MPI_BYTE, rbuf, H->xc + 2 * n, H->xc + 3 * n, MPI_BYTE,
+                 MPI_COMM_WORLD, &H->req);
+  H->pending = 1;
+  H->t_refresh += error_walltime() - w0;
+#endif
+}
+
+void halo_refresh_finish(struct engine *e) {
+  struct halo *H = e->halo;
+  if (!H || !H->pending) return;
+#ifdef HAVE_MPI
+  const double w0 = error_walltime();
+  struct parts *p = &e->parts;
+  MPI_Wait(&H->req, MPI_STATUS_IGNORE);
+  H->pending = 0;
+  const double w1 = error_walltime();
+  H->t_wait += w1 - w0;
   for (int r = 0; r < H->nranks; r++)
     halo_unpack_block(p, 0, H->ridx + H->rdispl[r], (size_t)H->rcount[r],
-                      rbuf + (size_t)H->rdispl[r] * H->rec);
+                      H->rbuf + (size_t)H->rdispl[r] * H->rec);
   for (size_t q = 0; q < H->nrecv; q++) {
     const size_t g = H->ridx[q];
     p->flags[g] |= PART_FOREIGN;
@@ -989,9 +1036,32 @@ void halo_refresh(struct engine *e) {
 #endif
 }
 
-void halo_refresh_gravity(struct engine *e) {
+void halo_refresh(struct engine *e) {
+  halo_refresh_start(e);
+  halo_refresh_finish(e);
+}
+
+void halo_poll(void *ctx) {
+#ifdef HAVE_MPI
+  struct halo *H = ((struct engine *)ctx)->halo;
+  int done;
+  /* (MPI's non-blocking collectives progress inside MPI calls) */
+  if (H->pending == 1) {
+    MPI_Test(&H->req, &done, MPI_STATUS_IGNORE);
+    H->pending = done ? 2 : 1;
+  }
+  if (H->gpending == 1) {
+    MPI_Test(&H->greq, &done, MPI_STATUS_IGNORE);
+    H->gpending = done ? 2 : 1;
+  }
+#else
+  (void)ctx;
+#endif
+}
+
+void halo_refresh_gravity_start(struct engine *e) {
   struct halo *H = e->halo;
-  if (!H || !H->gravity) return;
+  if (!H || !H->gravity || H->gpending) return;
 #ifdef HAVE_MPI
   const double w0 = error_walltime();
   struct parts *p = &e->parts;
@@ -1014,18 +1084,27 @@ void halo_refresh_gravity(struct engine *e) {
     b[0] = p->x[i], b[1] = p->y[i], b[2] = p->z[i], b[3] = p->m[i], b[4] = p->h[i];
     b[5] = p->gax[i], b[6] = p->gay[i], b[7] = p->gaz[i];
   }
+  halo_counts(H->nranks, F * sizeof(double), H->gscount, H->gsdispl, H->grcount, H->grdispl,
+              H->gxc);
   const int n = H->nranks;
-  int *c = error_malloc(4 * (size_t)n * sizeof(int), "MPI exchange counts");
-  for (int r = 0; r < n; r++) {
-    c[r] = F * H->gscount[r];
-    c[n + r] = F * H->gsdispl[r];
-    c[2 * n + r] = F * H->grcount[r];
-    c[3 * n + r] = F * H->grdispl[r];
-  }
-  MPI_Alltoallv(H->gsbuf, c, c + n, MPI_DOUBLE, H->grbuf, c + 2 * n, c + 3 * n, MPI_DOUBLE,
-                MPI_COMM_WORLD);
-  free(c);
-  b = H->grbuf;
+  MPI_Ialltoallv(H->gsbuf, H->gxc, H->gxc + n, MPI_BYTE, H->grbuf, H->gxc + 2 * n, H->gxc + 3 * n,
+                 MPI_BYTE, MPI_COMM_WORLD, &H->greq);
+  H->gpending = 1;
+  H->t_grefresh += error_walltime() - w0;
+#endif
+}
+
+void halo_refresh_gravity_finish(struct engine *e) {
+  struct halo *H = e->halo;
+  if (!H || !H->gpending) return;
+#ifdef HAVE_MPI
+  const double w0 = error_walltime();
+  struct parts *p = &e->parts;
+  MPI_Wait(&H->greq, MPI_STATUS_IGNORE);
+  H->gpending = 0;
+  H->t_wait += error_walltime() - w0;
+  const int F = HALO_GRAVITY_FIELDS;
+  const double *b = H->grbuf;
   for (size_t k = 0; k < H->gnrecv; k++, b += F) {
     const size_t i = H->gridx[k];
     p->x[i] = b[0], p->y[i] = b[1], p->z[i] = b[2], p->m[i] = b[3], p->h[i] = b[4];
@@ -1036,15 +1115,22 @@ void halo_refresh_gravity(struct engine *e) {
 #endif
 }
 
+void halo_refresh_gravity(struct engine *e) {
+  halo_refresh_gravity_start(e);
+  halo_refresh_gravity_finish(e);
+}
+
 void halo_log(const struct engine *e) {
   const struct halo *H = e->halo;
   if (!H) return;
   error_log(0,
             "MPI: %d ranks; foreign copies %.1f%% of the owned particles (average over %ld "
-            "rebuilds); rank 0: %.4f s per refresh of the copies, %.4f s per rebuild in the "
-            "exchanges and halo (cells and order include them)",
+            "rebuilds); rank 0: %.4f s per refresh of the copies (packing, unpacking and the "
+            "wait), of which %.4f s waiting for the exchange beyond the local work that hid "
+            "it; %.4f s per rebuild in the exchanges and halo (cells and order include them)",
             H->nranks, H->nr_halo ? 100.0 * H->copies / (double)H->nr_halo : 0.0, H->nr_halo,
             H->nr_refresh ? H->t_refresh / (double)H->nr_refresh : 0.0,
+            H->nr_refresh ? H->t_wait / (double)H->nr_refresh : 0.0,
             H->nr_halo ? H->t_halo / (double)H->nr_halo : 0.0);
   if (H->trigger > 0.0)
     error_log(0,
@@ -1132,6 +1218,7 @@ void halo_free(struct engine *e) {
   free(H->sbuf);
   free(H->rbuf);
   free(H->gscount);
+  free(H->xc);
   free(H->gsidx);
   free(H->gridx);
   free(H->gsbuf);

@@ -48,6 +48,18 @@ int halo_rebuild(struct engine *e);
  *  foreign copy takes its owner's state, and the cells' bounds follow. */
 void halo_refresh(struct engine *e);
 
+/** halo_refresh in two halves, so that the tasks that need no copy run
+ *  while the exchange is in flight (engine_run_force_stages): _start packs
+ *  the records and posts the exchange (MPI_Ialltoallv), _finish waits for
+ *  it and unpacks; halo_poll(engine) lets MPI progress it (the scheduler's
+ *  poll hook: thread 0 calls it between its tasks). */
+void halo_refresh_start(struct engine *e);
+void halo_refresh_finish(struct engine *e);
+void halo_poll(void *engine);
+/** halo_refresh_gravity in the same two halves. */
+void halo_refresh_gravity_start(struct engine *e);
+void halo_refresh_gravity_finish(struct engine *e);
+
 /** Before the gravity tasks of a FORCE phase (after the stages that set h):
  *  gravity's copies take their owners' positions, masses, h and
  *  accelerations of the last pass.  Nothing without self-gravity. */
