@@ -874,7 +874,9 @@ void engine_rebuild(struct engine *e) {
      * several MPI ranks: the foreign copies likewise, src/mpi/halo.c) */
     halo_rebuild_start(e);
     engine_family_hooks(e, task_family_at_rebuild_start);
-    removed = space_rebuild(&e->space);
+    /* (several MPI ranks after the first rebuild: the cells are made once,
+     * with the copies, by halo_rebuild) */
+    removed = halo_partitioned(e) ? space_prepare(&e->space) : space_rebuild(&e->space);
 #ifdef HAVE_CUDA
     if (on_device) gpu_engine_rebuild_end(e);
 #endif

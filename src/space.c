@@ -655,6 +655,20 @@ static void space_finish_cells(struct space *s) {
   space_team(space_cell_threads(s), space_finish_run, &job, 0);
 }
 
+size_t space_prepare(struct space *s) {
+  int any;
+  double h_max;
+  size_t i_max;
+  space_scan(s, &any, &h_max, &i_max);
+  size_t removed = 0;
+  if (any) {
+    removed = space_wrap_or_remove(s);
+    space_scan(s, &any, &h_max, &i_max);
+  }
+  space_choose_grid(s, h_max, i_max);
+  return removed;
+}
+
 size_t space_rebuild(struct space *s) {
   struct parts *p = s->parts;
   const double w0 = error_walltime();

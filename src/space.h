@@ -92,6 +92,14 @@ void space_free(struct space *s);
  *  particle. */
 size_t space_rebuild(struct space *s);
 
+/** The first half of space_rebuild without cells: wrap or remove the
+ *  particles outside the box and choose the top-level grid (s->h_max,
+ *  cdim, width), so that the reach of the next rebuild is known; the
+ *  particles are not sorted and the cells are those of the last rebuild
+ *  (several MPI ranks: the rebuild that follows with the foreign copies
+ *  makes them).  Returns the number of particles removed. */
+size_t space_prepare(struct space *s);
+
 /** 1 if the next space_rebuild would remove a particle (outside the open
  *  box) or stop on a non-finite position or smoothing length: it reads x,
  *  y, z and h only. */

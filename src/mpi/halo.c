@@ -794,6 +794,8 @@ void halo_init(struct engine *e) {
 #endif
 }
 
+int halo_partitioned(const struct engine *e) { return e->halo && e->halo->assign; }
+
 void halo_rebuild_start(struct engine *e) {
   struct halo *H = e->halo;
   if (!H) return;
@@ -847,8 +849,9 @@ int halo_rebuild(struct engine *e) {
   struct halo_list *L = error_calloc(2 * (size_t)n, sizeof *L, "MPI halo lists");
   struct halo_list *G = L + n; /* gravity's copies: the rest */
   double *d2 = error_malloc((size_t)n * sizeof(double), "MPI halo distances");
-  /* the cells of other ranks near the particle's cell (the particles come
-   * sorted by cell: the list is made again only when the cell changes) */
+  /* the cells of other ranks near the particle's decomposition cell (made
+   * again only when the cell changes: the particles come mostly in the
+   * order of the cells of the last rebuild) */
   struct halo_cand *cand = NULL;
   int ncand = 0, cap = 0, last = -1;
   for (size_t i = 0; i < p->count; i++) {

@@ -36,6 +36,10 @@ void halo_init(struct engine *e);
  *  ranks, so that every rank chooses the top-level grid of one rank. */
 void halo_rebuild_start(struct engine *e);
 
+/** 1 with several ranks once the first rebuild has partitioned the cells:
+ *  the rebuild then needs no cells before halo_rebuild (space_prepare). */
+int halo_partitioned(const struct engine *e);
+
 /** After the space's rebuild.  The first time, when every rank holds every
  *  particle of the initial conditions: the partition of the top-level cells
  *  (src/mpi/partition.h, on rank 0, broadcast), and each rank keeps its own.
