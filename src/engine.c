@@ -1009,7 +1009,7 @@ static void engine_mark_halo_tasks(struct engine *e) {
  *  (engine_mark_halo_tasks). */
 static void engine_run_force_stages(struct engine *e) {
   engine_mark_halo_tasks(e);
-  halo_refresh_start(e);
+  halo_refresh_start(e, -1); /* (every field: the drift and the kick changed them) */
   for (int stage = 0; stage < 3; stage++) {
     if (stage == 1 && !e->hp.solids) continue;
     if (stage == 2) halo_refresh_gravity_start(e); /* (the gravity tasks run in the last stage) */
@@ -1027,7 +1027,7 @@ static void engine_run_force_stages(struct engine *e) {
         halo_refresh_gravity_finish(e);
       }
     }
-    if (stage < 2) halo_refresh_start(e);
+    if (stage < 2) halo_refresh_start(e, stage); /* (what this stage wrote) */
   }
 }
 

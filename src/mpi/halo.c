@@ -23,6 +23,7 @@
 #include "src/part.h"
 #include "src/space.h"
 #include "tasks/hydro/kernel.h"
+#include "tasks/task_families.h"
 
 #ifdef HAVE_MPI
 #include <mpi.h>
@@ -75,7 +76,12 @@ struct halo {
 #endif
   int pending, gpending; /**< 1: in flight, 2: complete (MPI_Test), 0: none */
   int *xc, *gxc;         /**< [4 nranks] their byte counts and offsets */
-  double t_wait;         /**< wall seconds waiting for them (not hidden by local work) */
+  /* the fields of a refresh between stages: those the stage before wrote
+   * (halo_fields): sel[k] of the refresh after stage k, its record bytes */
+  unsigned char *sel[2];
+  size_t rec_sel[2];
+  int cur;       /**< the refresh in flight: -1 every field, else k of sel[k] */
+  double t_wait; /**< wall seconds waiting for them (not hidden by local work) */
 };
 
 /** The fields of a particle that gravity's walks read of a source, and
@@ -90,8 +96,10 @@ struct halo {
 
 /** Pack particles idx[0 .. n) of p into dst, field after field (n values
  *  of each): a block of n records. */
-static void halo_pack_block(const struct parts *p, const size_t *idx, size_t n, char *dst) {
+static void halo_pack_sel(const struct parts *p, const size_t *idx, size_t n, char *dst,
+                          const unsigned char *sel) {
   for (int f = 0; f < part_nr_fields; f++) {
+    if (sel && !sel[f]) continue;
     const struct part_field *pf = &part_fields[f];
     const char *a = part_field_array(p, pf);
     if (pf->size == 8)
@@ -106,9 +114,10 @@ static void halo_pack_block(const struct parts *p, const size_t *idx, size_t n, 
 
 /** Unpack a block of n records into particles slot[0 .. n) of p (slot
  *  NULL: first, first + 1, ...). */
-static void halo_unpack_block(struct parts *p, size_t first, const size_t *slot, size_t n,
-                              const char *src) {
+static void halo_unpack_sel(struct parts *p, size_t first, const size_t *slot, size_t n,
+                            const char *src, const unsigned char *sel) {
   for (int f = 0; f < part_nr_fields; f++) {
+    if (sel && !sel[f]) continue;
     const struct part_field *pf = &part_fields[f];
     char *a = part_field_array(p, pf);
     if (!slot)
@@ -121,6 +130,33 @@ static void halo_unpack_block(struct parts *p, size_t first, const size_t *slot,
       for (size_t k = 0; k < n; k++) memcpy(a + pf->size * slot[k], src + pf->size * k, pf->size);
     src += n * pf->size;
   }
+}
+
+static void halo_pack_block(const struct parts *p, const size_t *idx, size_t n, char *dst) {
+  halo_pack_sel(p, idx, n, dst, NULL);
+}
+
+static void halo_unpack_block(struct parts *p, size_t first, const size_t *slot, size_t n,
+                              const char *src) {
+  halo_unpack_sel(p, first, slot, n, src, NULL);
+}
+
+/* The fields each family's step writes (the registry's column writes). */
+#define HALO_WRITES_(name, subtype, policy, place, gpu, when, stage, reads, writes) \
+  static const char *const halo_writes_##name[]                                     \
+      __attribute__((unused)) = {NULL, TASK_UNPAREN writes};
+TASK_FAMILIES(HALO_WRITES_)
+#undef HALO_WRITES_
+
+/** Mark in sel the fields of part_fields that family list l (n names)
+ *  writes; its record bytes added to *rec. */
+static void halo_fields(unsigned char *sel, size_t *rec, const char *const *l, int n) {
+  for (int k = 0; k < n; k++)
+    for (int f = 0; f < part_nr_fields; f++)
+      if (strcmp(part_fields[f].name, l[k]) == 0 && !sel[f]) {
+        sel[f] = 1;
+        *rec += part_fields[f].size;
+      }
 }
 
 static char *halo_grow(char **buf, size_t *cap, size_t need) {
@@ -788,13 +824,24 @@ void halo_init(struct engine *e) {
   H->grcount = H->gscount + 2 * H->nranks;
   H->grdispl = H->gscount + 3 * H->nranks;
   H->xc = error_calloc(8 * (size_t)H->nranks, sizeof(int), "MPI exchange counts");
+  /* the refreshes between stages: what the stage before wrote (density and
+   * ghost; gradient and extra ghost) */
+  for (int k = 0; k < 2; k++)
+    H->sel[k] = error_calloc((size_t)part_nr_fields, 1, "MPI refresh fields");
+#define HALO_N_(a) ((int)(sizeof a / sizeof a[0]) - 1)
+  halo_fields(H->sel[0], &H->rec_sel[0], halo_writes_density + 1, HALO_N_(halo_writes_density));
+  halo_fields(H->sel[0], &H->rec_sel[0], halo_writes_ghost + 1, HALO_N_(halo_writes_ghost));
+  halo_fields(H->sel[1], &H->rec_sel[1], halo_writes_gradient + 1, HALO_N_(halo_writes_gradient));
+#undef HALO_N_
   H->gxc = H->xc + 4 * H->nranks;
   e->halo = H;
   if (e->restarted) halo_read_restart(e);
 #endif
 }
 
-int halo_partitioned(const struct engine *e) { return e->halo && e->halo->assign; }
+int halo_partitioned(const struct engine *e) {
+  return e->halo && e->halo->assign;
+}
 
 void halo_rebuild_start(struct engine *e) {
   struct halo *H = e->halo;
@@ -992,23 +1039,28 @@ static void halo_counts(int n, size_t rec, const int *scount, const int *sdispl,
 }
 #endif
 
-void halo_refresh_start(struct engine *e) {
+void halo_refresh_start(struct engine *e, int after) {
   struct halo *H = e->halo;
   if (!H || H->pending) return;
 #ifdef HAVE_MPI
   const double w0 = error_walltime();
   struct parts *p = &e->parts;
-  char *sbuf = halo_grow(&H->sbuf, &H->sbuf_cap, H->nsend * H->rec + 1);
-  char *rbuf = halo_grow(&H->rbuf, &H->rbuf_cap, H->nrecv * H->rec + 1);
+  const unsigned char *sel = after < 0 ? NULL : H->sel[after];
+  const size_t rec = after < 0 ? H->rec : H->rec_sel[after];
+  H->cur = after;
+  char *sbuf = halo_grow(&H->sbuf, &H->sbuf_cap, H->nsend * rec + 1);
+  halo_grow(&H->rbuf, &H->rbuf_cap, H->nrecv * rec + 1);
   for (int r = 0; r < H->nranks; r++)
-    halo_pack_block(p, H->sidx + H->sdispl[r], (size_t)H->scount[r],
-                    sbuf + (size_t)H->sdispl[r] * H->rec);
+    halo_pack_sel(p, H->sidx + H->sdispl[r], (size_t)H->scount[r],
+                  sbuf + (size_t)H->sdispl[r] * rec, sel);
   const int n = H->nranks;
-  halo_counts(n, H->rec, H->scount, H->sdispl, H->rcount, H->rdispl, H->xc);
-  MPI_Ialltoallv(sbuf, H->xc, H->xc + n, MPI_BYTE, rbuf, H->xc + 2 * n, H->xc + 3 * n, MPI_BYTE,
+  halo_counts(n, rec, H->scount, H->sdispl, H->rcount, H->rdispl, H->xc);
+  MPI_Ialltoallv(sbuf, H->xc, H->xc + n, MPI_BYTE, H->rbuf, H->xc + 2 * n, H->xc + 3 * n, MPI_BYTE,
                  MPI_COMM_WORLD, &H->req);
   H->pending = 1;
   H->t_refresh += error_walltime() - w0;
+#else
+  (void)after;
 #endif
 }
 
@@ -1022,9 +1074,11 @@ void halo_refresh_finish(struct engine *e) {
   H->pending = 0;
   const double w1 = error_walltime();
   H->t_wait += w1 - w0;
+  const unsigned char *sel = H->cur < 0 ? NULL : H->sel[H->cur];
+  const size_t rec = H->cur < 0 ? H->rec : H->rec_sel[H->cur];
   for (int r = 0; r < H->nranks; r++)
-    halo_unpack_block(p, 0, H->ridx + H->rdispl[r], (size_t)H->rcount[r],
-                      H->rbuf + (size_t)H->rdispl[r] * H->rec);
+    halo_unpack_sel(p, 0, H->ridx + H->rdispl[r], (size_t)H->rcount[r],
+                    H->rbuf + (size_t)H->rdispl[r] * rec, sel);
   for (size_t q = 0; q < H->nrecv; q++) {
     const size_t g = H->ridx[q];
     p->flags[g] |= PART_FOREIGN;
@@ -1040,7 +1094,7 @@ void halo_refresh_finish(struct engine *e) {
 }
 
 void halo_refresh(struct engine *e) {
-  halo_refresh_start(e);
+  halo_refresh_start(e, -1);
   halo_refresh_finish(e);
 }
 
@@ -1222,6 +1276,8 @@ void halo_free(struct engine *e) {
   free(H->rbuf);
   free(H->gscount);
   free(H->xc);
+  free(H->sel[0]);
+  free(H->sel[1]);
   free(H->gsidx);
   free(H->gridx);
   free(H->gsbuf);

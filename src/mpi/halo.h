@@ -54,10 +54,12 @@ void halo_refresh(struct engine *e);
 
 /** halo_refresh in two halves, so that the tasks that need no copy run
  *  while the exchange is in flight (engine_run_force_stages): _start packs
- *  the records and posts the exchange (MPI_Ialltoallv), _finish waits for
+ *  the records (after -1: every field, before a FORCE phase; after k: the
+ *  fields that stage k of the phase writes, the registry's column writes of
+ *  its families) and posts the exchange (MPI_Ialltoallv), _finish waits for
  *  it and unpacks; halo_poll(engine) lets MPI progress it (the scheduler's
  *  poll hook: thread 0 calls it between its tasks). */
-void halo_refresh_start(struct engine *e);
+void halo_refresh_start(struct engine *e, int after);
 void halo_refresh_finish(struct engine *e);
 void halo_poll(void *engine);
 /** halo_refresh_gravity in the same two halves. */

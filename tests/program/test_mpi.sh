@@ -9,7 +9,8 @@
 #  - mpirun -n 2 and 3 agree with the serial run within round-off (below:
 #    an impact with particles moving between the ranks, a Sedov blast in a
 #    periodic box, a solid with fracture, a self-gravitating SEA planet, the
-#    impact with self-gravity and the domain partitioned again at rebuilds);
+#    impact with self-gravity and the domain partitioned again at rebuilds,
+#    a porous block crushed);
 #  - what multi-rank runs do not support yet (the reuse of gravity's far
 #    field) stops with one line, a non-zero status, no hang (60 s limit);
 #  - mpirun -n 3 bolide --partition 0 partitions over the 3 ranks and every
@@ -255,6 +256,27 @@ runs 2 3
 grep "domain decomposition again" mpi3/run.log | head -3
 grep -m1 "snapshot .*hdf5 at t" mpi3/run.log
 grep -q "domain decomposition again at step" mpi3/run.log || fail "$case: never partitioned again"
+# 5b. a porous basalt block crushed (P-alpha, continuity density; the
+#    distentions and the solid state through the refreshes between stages,
+#    which send only the fields the stage before wrote), on 2 ranks
+case=porous
+mkdir -p "$work/porous" && cd "$work/porous"
+"$PY" "$H/porous_cube.py" block.hdf5 1500 3000 || fail "porous: initial conditions"
+cat >p.yml <<'YML'
+InitialConditions:
+  file_name: ../block.hdf5
+TimeIntegration:
+  time_end: 3e-5
+Snapshots:
+  delta_time: 1.5e-5
+SPH:
+  density: continuity
+Materials:
+  0: {name: basalt, porosity: {model: palpha, alpha_0: 1.8, alpha_t: 1.3, p_e: 1e6, p_t: 5e7, p_s: 2e8, n1: 6, n2: 3}}
+YML
+snaps='snapshot_000[0-2].hdf5'
+stats=statistics.txt box=4
+runs 2
 # 6. restart files per rank (Restarts:enable; src/mpi/halo.h): a run stopped
 #    at step 30 (-n 30) and resumed with --restart takes the steps of the
 #    uninterrupted run, bit for bit (tests/helpers/restart_compare.py; one
