@@ -36,7 +36,8 @@ ic() { # ic N FILE
   [ -f "$2" ] || "$python" "$gen" "$nt" "$ni" "$2" >/dev/null
 }
 printf "# %s on %s (%s, %s cores), %s, %s, median of %d rounds of %d steps, every particle active\n" \
-  "$("$build/bolide" --version 2>/dev/null | sed -n 's/.*(git \([0-9a-f]*\)).*/build of \1/p;q')" "$(uname -n)" \
+  "checkout $(git -C "$top" rev-parse --short HEAD), build $("$build/bolide" --version 2>/dev/null |
+    sed -n 's/.*(git \([^)]*\)).*/\1/p;q') (the git version configure recorded)" "$(uname -n)" \
   "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')" "$(nproc)" \
   "$([ $weak = 1 ] && echo "weak scaling, $n particles per rank" || echo "$n particles")" \
   "$([ $gravity = true ] && echo "hydrodynamics and self-gravity" || echo "hydrodynamics only")" \
