@@ -662,6 +662,7 @@ size_t space_prepare(struct space *s) {
   space_scan(s, &any, &h_max, &i_max);
   size_t removed = 0;
   if (any) {
+    /* wrap, remove or report (rare): then the largest h again */
     removed = space_wrap_or_remove(s);
     space_scan(s, &any, &h_max, &i_max);
   }
@@ -672,17 +673,7 @@ size_t space_prepare(struct space *s) {
 size_t space_rebuild(struct space *s) {
   struct parts *p = s->parts;
   const double w0 = error_walltime();
-  int any;
-  double h_max;
-  size_t i_max;
-  space_scan(s, &any, &h_max, &i_max);
-  size_t removed = 0;
-  if (any) {
-    /* wrap, remove or report (rare): then the largest h again */
-    removed = space_wrap_or_remove(s);
-    space_scan(s, &any, &h_max, &i_max);
-  }
-  space_choose_grid(s, h_max, i_max);
+  const size_t removed = space_prepare(s);
   s->nr_rebuilds++;
 
   /* the top-level cells */
