@@ -639,6 +639,39 @@ static void engine_watchdog_after_step(struct engine *e) {
 
 /* ------------------------------------------------------------------------ */
 
+/** The ranks that run the particles: 1 with --partition's one rank, or
+ *  without MPI. */
+static int engine_ranks(const struct engine *e) {
+  return ranks_size() > 1 && !e->opt.one_rank ? ranks_size() : 1;
+}
+
+/** --restart: which files to read (rank 0 decides, every rank learns).  -1:
+ *  the run's own layout (STEM.bin with one rank, STEM_rankNNNN.bin of this
+ *  number of ranks), also when no file exists (restart_read then says so);
+ *  n > 1: the files of a run on n other ranks; 0: a one-rank run's STEM.bin
+ *  read by several ranks. */
+static int engine_restart_layout(const struct engine *e) {
+  const int m = engine_ranks(e);
+  int v = -1;
+  if (ranks_rank() == 0) {
+    int n = 0;
+    const int one = restart_layout(e->restart_base, &n);
+    if (n < 0 && !(m == 1 && one))
+      error_exit("%s_rank0000.bin: not a restart file this build can read: %s", e->restart_base,
+                 "resume it with the build that wrote it, or start the run again");
+    if (m > 1 && n == m)
+      v = -1;
+    else if (m == 1 && one)
+      v = -1;
+    else if (n > 1)
+      v = n;
+    else if (one)
+      v = 0;
+  }
+  if (m > 1) ranks_bcast_ints(&v, 1);
+  return v;
+}
+
 void engine_init(struct engine *e, const struct params *params, const struct engine_options *opt) {
   memset(e, 0, sizeof *e);
   e->params = params;
@@ -655,8 +688,9 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   e->restart_delta_steps = params_get_int(params, "Restarts:delta_steps");
   e->restart_max_wall = 3600.0 * params_get_real(params, "Restarts:max_run_time");
   e->restart_stop_steps = params_get_int(params, "Restarts:stop_steps");
-  snprintf(e->restart_stem, sizeof e->restart_stem, "%s/%s", e->restart_dir,
+  snprintf(e->restart_base, sizeof e->restart_base, "%s/%s", e->restart_dir,
            params_get_string(params, "Restarts:basename"));
+  snprintf(e->restart_stem, sizeof e->restart_stem, "%s", e->restart_base);
   if (ranks_size() > 1 && !e->opt.one_rank) {
     /* several MPI ranks: one file per rank (src/mpi/halo.h) */
     const size_t l = strlen(e->restart_stem);
@@ -725,7 +759,22 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
                                       e->nr_out,      e->time,      e->time_end,
                                       u_floor,        grav_doubles, flaws_check_values};
     struct restart_data rd;
-    restart_read(e->restart_stem, &ex, &rd, icname, sizeof icname);
+    const int from = engine_restart_layout(e);
+    if (from < 0) {
+      restart_read(e->restart_stem, &ex, &rd, icname, sizeof icname);
+    } else {
+      /* another number of ranks wrote the files: their particles together,
+       * every rank holding all of them as it would the initial conditions
+       * (the first rebuild partitions them) */
+      restart_read_ranks(e->restart_base, from, &ex, &rd, icname, sizeof icname);
+      error_log(0, "resuming the files of a run on %d rank%s (%s ...) on %d", from > 0 ? from : 1,
+                from > 1 ? "s" : "", icname, engine_ranks(e));
+      e->restart_regrouped = 1;
+      if (ranks_rank() != 0) { /* (rank 0 counts what left the box) */
+        memset(&rd.st.removed, 0, sizeof rd.st.removed);
+        rd.st.nr_removed = 0;
+      }
+    }
     snprintf(e->restart_file, sizeof e->restart_file, "%s", icname);
     free(ids);
     free(u_floor);
@@ -848,6 +897,58 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
 
 /* ------------------------------------------------------------------------ */
 
+/** (engine_rebuild_regrouped) Particle ids with their positions, by id. */
+struct engine_id_pos {
+  int64_t id;
+  double x[3];
+};
+static int engine_cmp_id_pos(const void *a, const void *b) {
+  const int64_t u = ((const struct engine_id_pos *)a)->id,
+                v = ((const struct engine_id_pos *)b)->id;
+  return (u > v) - (u < v);
+}
+
+/** The first rebuild of a run resumed from the files of another number of
+ *  ranks (restart_read_ranks: every rank holds every particle): the cells
+ *  of the uninterrupted run's last rebuild, as space_restore makes them,
+ *  but through the decomposition of this number of ranks.  The particles
+ *  are put at their positions of that rebuild (x0), the grid of its h_max
+ *  chosen, the space rebuilt, partitioned and given its copies
+ *  (halo_rebuild's first call), then every particle, copies included, put
+ *  back at its position.  The tree of self-gravity, whose multipoles
+ *  depend on the cells, is then the uninterrupted run's until its next
+ *  rebuild, and the resumed run agrees with it to round-off. */
+static void engine_rebuild_regrouped(struct engine *e) {
+  struct parts *p = &e->parts;
+  const size_t n = p->count;
+  struct engine_id_pos *keep = error_malloc(n * sizeof *keep + 1, "restart positions");
+  for (size_t i = 0; i < n; i++) {
+    keep[i].id = p->id[i];
+    keep[i].x[0] = p->x[i], keep[i].x[1] = p->y[i], keep[i].x[2] = p->z[i];
+    p->x[i] = p->x0[i], p->y[i] = p->y0[i], p->z[i] = p->z0[i];
+  }
+  qsort(keep, n, sizeof *keep, engine_cmp_id_pos);
+  halo_rebuild_start(e);
+  engine_family_hooks(e, task_family_at_rebuild_start);
+  e->space.restore_h_max = e->restart_h_max;
+  e->space.h_max_floor = 0.0; /* (every rank takes the file's h_max) */
+  size_t removed = space_rebuild(&e->space);
+  engine_family_hooks(e, task_family_at_rebuild);
+  halo_rebuild(e);
+  e->space.restore_h_max = 0.0;
+  if (removed)
+    error_exit("%s: %zu particles were outside the box at the last rebuild", e->restart_file,
+               removed);
+  for (size_t i = 0; i < p->count; i++) {
+    const struct engine_id_pos key = {p->id[i], {0.0, 0.0, 0.0}};
+    const struct engine_id_pos *k = bsearch(&key, keep, n, sizeof *keep, engine_cmp_id_pos);
+    if (!k) error_bug("particle %lld lost by the first rebuild", (long long)p->id[i]);
+    p->x[i] = k->x[0], p->y[i] = k->x[1], p->z[i] = k->x[2];
+  }
+  free(keep);
+  for (int c = 0; c < e->space.nr_top; c++) cell_update_bounds(p, &e->space.cells[c]);
+}
+
 void engine_rebuild(struct engine *e) {
   const double w0 = error_walltime();
   /* the rebuild's threads (space.c) would inherit thread 0's one core */
@@ -860,7 +961,10 @@ void engine_rebuild(struct engine *e) {
 #endif
   const double w1 = error_walltime();
   size_t removed = 0;
-  if (e->restart_h_max > 0.0) {
+  if (e->restart_h_max > 0.0 && e->restart_regrouped) {
+    engine_rebuild_regrouped(e);
+    e->restart_h_max = 0.0;
+  } else if (e->restart_h_max > 0.0) {
     /* resumed: the cells of the uninterrupted run's last rebuild */
     space_restore(&e->space, e->restart_h_max, e->restart_cells.h_max, e->restart_cells.dx_max,
                   (int)e->restart_cells.n, "restart file");
@@ -959,8 +1063,18 @@ static void engine_write_restart(struct engine *e) {
   engine_mkdir(e->restart_dir);
   struct restart_gravity grav;
   gravity_restart_save(e, &grav);
+  st.nr_ranks = engine_ranks(e);
+  st.rank = st.nr_ranks > 1 ? ranks_rank() : 0;
   halo_write_restart(e); /* (several MPI ranks: the decomposition and exchange lists) */
   restart_write(e->restart_stem, &st, &e->parts, e->flaw_eps, &cells, e->params_text, &grav);
+  if (!e->restart_layout_done) {
+    /* this run's files are complete on every rank: those of other rank
+     * counts (and, resumed from such, the .prev files they left) go */
+    if (st.nr_ranks > 1) ranks_any(0); /* (a barrier) */
+    if (ranks_rank() == 0)
+      restart_remove_layouts(e->restart_base, (int)st.nr_ranks, e->restart_regrouped);
+    e->restart_layout_done = 1;
+  }
   restart_gravity_free(&grav);
   free(cells.h_max);
   e->restart_last_wall = error_walltime();

@@ -158,6 +158,12 @@ struct engine {
                                  STEM.prev.bin (restart.h) */
   long restart_stop_steps;  /**< Restarts:stop_steps: steps between looks for the stop file */
   int restarted;            /**< 1 when this run resumed from a restart file */
+  char restart_base[1300];  /**< Restarts:subdir/Restarts:basename, without a rank's suffix */
+  int restart_regrouped;    /**< resumed from the files of a run on another number of ranks
+                                 (restart_read_ranks): the cells, the decomposition and the
+                                 exchange lists are made anew */
+  int restart_layout_done;  /**< the files of other layouts removed after the first restart
+                                 file this run wrote (restart_remove_layouts) */
   double restart_dt_next;   /**< smallest particle time step saved in the restart file */
   double
       restart_h_max; /**< > 0: the first rebuild restores the cells of the file (space_restore) */

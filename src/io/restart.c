@@ -1,4 +1,4 @@
-/* Restart files (see restart.h).  Layout of version 5:
+/* Restart files (see restart.h).  Layout of version 6:
  *
  *   header (RESTART_HEADER_BYTES = 128): magic "BOLIDE-RESTART\n\0" (16),
  *     uint32 version, uint32 byte-order mark 0x01020304, char build[48]
@@ -20,7 +20,8 @@
  * Version 3 (before the far field) is refused with one line: a run
  * resumed from it would not repeat the uninterrupted run's reuse; version
  * 4 (before the integer time and the particles' time bins of individual
- * time steps) likewise. */
+ * time steps) likewise, and version 5 (before the ranks of the run in the
+ * state, which a run resumed on another number of ranks reads). */
 #include "src/io/restart.h"
 
 #include <errno.h>
@@ -38,6 +39,9 @@
 #include "src/io/ragged_io.h"
 #include "src/timeline.h"
 #include "src/version.h"
+
+/** The most ranks a restart file may name (a check of the state). */
+#define RESTART_MAX_RANKS (1 << 24)
 
 static const char restart_magic[16] = "BOLIDE-RESTART\n";
 #define RESTART_BOM 0x01020304u
@@ -435,6 +439,9 @@ int restart_read_buffer(const void *buf, size_t len, const char *name,
   if (st->stats_offset < 0) FAIL("statistics file offset %lld", (long long)st->stats_offset);
   if (st->ti_current < 0 || st->ti_current > ((int64_t)1 << TIMELINE_NR_BINS))
     FAIL("integer time %lld (must be in [0, 2^%d])", (long long)st->ti_current, TIMELINE_NR_BINS);
+  if (st->nr_ranks < 1 || st->nr_ranks > RESTART_MAX_RANKS || st->rank < 0 ||
+      st->rank >= st->nr_ranks)
+    FAIL("written by rank %lld of %lld ranks", (long long)st->rank, (long long)st->nr_ranks);
 
   /* the parameters */
   uint64_t plen = 0;
@@ -730,4 +737,160 @@ void restart_remove_stale(const char *stem) {
   snprintf(tmp, sizeof tmp, "%s.bin.tmp", stem);
   if (unlink(tmp) == 0)
     error_log(0, "removed %s, left by a run that stopped while writing it", tmp);
+}
+
+/* ------------------------------------------- resuming on another number of ranks */
+
+/** The state of the restart file at path without reading its particles
+ *  (header, field table, state: no checksum); 0, or -1 if it cannot be
+ *  read or is not of this format. */
+static int restart_peek(const char *path, struct restart_state *st) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return -1;
+  unsigned char hdr[RESTART_HEADER_BYTES];
+  uint32_t version = 0;
+  int32_t nf = 0;
+  int ok = fread(hdr, 1, sizeof hdr, f) == sizeof hdr && !memcmp(hdr, restart_magic, 16);
+  if (ok) memcpy(&version, hdr + 16, 4);
+  ok = ok && version == RESTART_VERSION && fread(&nf, 4, 1, f) == 1 && nf == part_nr_fields &&
+       fseek(f, 36L * nf, SEEK_CUR) == 0 && fread(st, sizeof *st, 1, f) == 1;
+  fclose(f);
+  return ok ? 0 : -1;
+}
+
+int restart_layout(const char *base, int *ranks) {
+  char path[2100];
+  struct restart_state st;
+  *ranks = 0;
+  const char *ext[2] = {".bin", ".prev.bin"};
+  for (int k = 0; k < 2 && *ranks <= 0; k++) {
+    snprintf(path, sizeof path, "%s_rank0000%s", base, ext[k]);
+    if (access(path, F_OK)) continue;
+    *ranks = restart_peek(path, &st) == 0 && st.nr_ranks > 1 ? (int)st.nr_ranks : -1;
+  }
+  int one = 0;
+  for (int k = 0; k < 2; k++) {
+    snprintf(path, sizeof path, "%s%s", base, ext[k]);
+    one |= access(path, F_OK) == 0;
+  }
+  return one;
+}
+
+void restart_read_ranks(const char *base, int n, const struct restart_expect *ex,
+                        struct restart_data *out, char *used, size_t usedlen) {
+  memset(out, 0, sizeof *out);
+  const int nfiles = n > 0 ? n : 1;
+  char stem[2100], name[2200], first[2200] = "";
+  size_t nflaws = 0, capf = 0;
+  for (int r = 0; r < nfiles; r++) {
+    if (n > 0)
+      snprintf(stem, sizeof stem, "%s_rank%04d", base, r);
+    else
+      snprintf(stem, sizeof stem, "%s", base);
+    struct restart_data d;
+    restart_read(stem, ex, &d, name, sizeof name);
+    if (r == 0) {
+      snprintf(first, sizeof first, "%s", name);
+      out->st = d.st;
+      memset(&out->st.removed, 0, sizeof out->st.removed);
+      out->st.nr_removed = 0;
+    }
+    const int64_t want = n > 0 ? n : 1;
+    if (d.st.nr_ranks != want || d.st.rank != r)
+      error_exit(
+          "%s: written by rank %lld of a run on %lld ranks, read as rank %d of %lld: resume "
+          "from the files of one run, written together",
+          name, (long long)d.st.rank, (long long)d.st.nr_ranks, r, (long long)want);
+    if (d.st.step != out->st.step || d.st.time != out->st.time)
+      error_exit(
+          "%s: of step %lld (t = %g), %s of step %lld (t = %g): resume from the files of "
+          "one run, written together",
+          name, (long long)d.st.step, d.st.time, first, (long long)out->st.step, out->st.time);
+    double *a = (double *)&out->st.removed;
+    const double *b = (const double *)&d.st.removed;
+    for (size_t k = 0; k < sizeof d.st.removed / sizeof(double); k++) a[k] += b[k];
+    out->st.nr_removed += d.st.nr_removed;
+    /* the next step: the smallest of the ranks' (each file holds its own cells') */
+    if (d.st.dt_next < out->st.dt_next) out->st.dt_next = d.st.dt_next;
+    /* the particles the rank owned (its foreign copies are other ranks') */
+    struct parts *p = &out->p, *q = &d.p;
+    size_t keep = 0;
+    for (size_t i = 0; i < q->count; i++) keep += !(q->flags[i] & PART_FOREIGN);
+    parts_reserve(p, p->count + keep);
+    for (size_t i = 0; i < q->count; i++) {
+      if (q->flags[i] & PART_FOREIGN) continue;
+      const size_t j = p->count++;
+      for (int k = 0; k < part_nr_fields; k++) {
+        const struct part_field *f = &part_fields[k];
+        memcpy((char *)part_field_array(p, f) + j * f->size,
+               (const char *)part_field_array(q, f) + i * f->size, f->size);
+      }
+      const size_t nf = (size_t)(q->n_flaws[i] > 0 ? q->n_flaws[i] : 0);
+      if (nflaws + nf > capf) {
+        capf = 2 * (nflaws + nf) + 1024;
+        out->flaw_eps = error_realloc(out->flaw_eps, capf * sizeof(double), "flaw thresholds");
+      }
+      if (nf) memcpy(out->flaw_eps + nflaws, d.flaw_eps + q->flaw_first[i], nf * sizeof(double));
+      p->flaw_first[j] = (int64_t)nflaws;
+      nflaws += nf;
+    }
+    restart_data_free(&d);
+  }
+  /* one run's files: every particle once */
+  const size_t np = out->p.count;
+  int64_t *ids = error_malloc((np ? np : 1) * sizeof *ids, "restart ids");
+  for (size_t i = 0; i < np; i++) ids[i] = out->p.id[i];
+  qsort(ids, np, sizeof *ids, restart_cmp_i64);
+  for (size_t i = 1; i < np; i++)
+    if (ids[i] == ids[i - 1])
+      error_exit(
+          "%s: particle id %lld is owned by two ranks' files: resume from the files of "
+          "one run, written together",
+          first, (long long)ids[i]);
+  free(ids);
+  if (np == 0) error_exit("%s: the ranks' files hold no particle", first);
+  out->nr_flaws = (int64_t)nflaws;
+  if (!nflaws) {
+    free(out->flaw_eps);
+    out->flaw_eps = NULL;
+  }
+  out->st.nr_ranks = 1;
+  out->st.rank = 0;
+  snprintf(used, usedlen, "%s", first);
+}
+
+/** Remove path if it exists (logged); 1 if it existed. */
+static int restart_unlink(const char *path) {
+  if (access(path, F_OK)) return 0;
+  if (unlink(path))
+    error_warning("%s: cannot remove the restart file of another layout: %s", path,
+                  strerror(errno));
+  else
+    error_log(0, "removed %s (a restart file of the run on another number of ranks)", path);
+  return 1;
+}
+
+void restart_remove_layouts(const char *base, int n, int stale_prev) {
+  char path[2200];
+  static const char *const ext[4] = {".bin", ".prev.bin", ".halo.bin", ".halo.prev.bin"};
+  if (n > 1) {
+    for (int k = 0; k < 2; k++) {
+      snprintf(path, sizeof path, "%s%s", base, ext[k]);
+      restart_unlink(path);
+    }
+  } else if (stale_prev) {
+    snprintf(path, sizeof path, "%s.prev.bin", base);
+    restart_unlink(path);
+  }
+  for (int r = 0; r < RESTART_MAX_RANKS; r++) {
+    int found = 0;
+    for (int k = 0; k < 4; k++) {
+      snprintf(path, sizeof path, "%s_rank%04d%s", base, r, ext[k]);
+      if (r >= n || n == 1 || (stale_prev && (k & 1)))
+        found |= restart_unlink(path);
+      else
+        found |= access(path, F_OK) == 0;
+    }
+    if (!found) break;
+  }
 }

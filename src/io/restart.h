@@ -29,7 +29,7 @@
 #include "src/budget.h"
 #include "src/part.h"
 
-#define RESTART_VERSION 5
+#define RESTART_VERSION 6
 #define RESTART_HEADER_BYTES 128
 
 /** The engine's scalars saved with the particles (every member 8 bytes: no
@@ -53,6 +53,9 @@ struct restart_state {
   int64_t stats_offset;          /**< length of the statistics file when the file was written */
   int64_t ti_current;            /**< the time on the integer time line (individual time steps,
                                       since format 5; 0 with the global step) */
+  int64_t nr_ranks;              /**< MPI ranks of the run that wrote the file (since format 6;
+                                      1: STEM.bin, more: STEM_rankNNNN.bin, one per rank) */
+  int64_t rank;                  /**< the rank that wrote it, 0 .. nr_ranks - 1 */
 };
 
 /** The cells' h_max and dx_max at the end of the step (space.cells order). */
@@ -147,6 +150,35 @@ void restart_data_free(struct restart_data *d);
  *  the name of the file read. */
 void restart_read(const char *stem, const struct restart_expect *ex, struct restart_data *out,
                   char *used, size_t usedlen);
+
+/** The restart files of a run at BASE (Restarts:subdir/Restarts:basename,
+ *  no rank suffix) as they lie: the ranks of the run that wrote
+ *  BASE_rank0000.bin (or its .prev.bin) from its state, read without the
+ *  particles (0: no such file, -1: one that cannot be read), in *ranks;
+ *  whether BASE.bin or BASE.prev.bin exists (a one-rank run's), returned. */
+int restart_layout(const char *base, int *ranks);
+
+/** Read the files of a run on n ranks (BASE_rank0000.bin ..; n = 0: the one
+ *  file BASE.bin of a one-rank run), each as restart_read does (with its
+ *  .prev.bin as fallback), into one set: the particles each rank owned
+ *  (its foreign copies left out) in the order of the ranks, their flaws
+ *  in one array, the state of rank 0's file with the particles removed
+ *  from the box summed over the ranks and the smallest of their next time
+ *  steps (each rank's file holds its own cells'); no cells and no far field (the
+ *  resumed run builds both anew).  Stops with one line when a file is
+ *  missing or refused, or when the files are not one step of one run.
+ *  used: the name of the first file read. */
+void restart_read_ranks(const char *base, int n, const struct restart_expect *ex,
+                        struct restart_data *out, char *used, size_t usedlen);
+
+/** After the first restart written by a run on n ranks: remove the files
+ *  of any other layout at BASE (n > 1: BASE.bin and BASE.prev.bin, the
+ *  files BASE_rankNNNN.* of ranks n and up; n = 1: every BASE_rankNNNN.*),
+ *  and with stale_prev also BASE_rankNNNN.prev.bin and .halo.prev.bin of
+ *  ranks below n (n = 1: BASE.prev.bin), written by the run resumed in
+ *  another layout, so that a later --restart finds one run's files.
+ *  Logged. */
+void restart_remove_layouts(const char *base, int n, int stale_prev);
 
 /** Remove STEM.bin.tmp left by a killed run (logged). */
 void restart_remove_stale(const char *stem);

@@ -835,7 +835,7 @@ void halo_init(struct engine *e) {
 #undef HALO_N_
   H->gxc = H->xc + 4 * H->nranks;
   e->halo = H;
-  if (e->restarted) halo_read_restart(e);
+  if (e->restarted && !e->restart_regrouped) halo_read_restart(e);
 #endif
 }
 

@@ -83,7 +83,9 @@ void halo_bounds(const struct engine *e, double *dmax, double *h_max);
  *  which also checks that every rank resumes the same step) and, after the
  *  cells of the last rebuild are restored (space_restore),
  *  halo_restored finds the copies again: the resumed run takes the steps of
- *  the uninterrupted one. */
+ *  the uninterrupted one.  Another number of ranks reads every rank's
+ *  restart file instead (restart_read_ranks, engine_rebuild_regrouped) and
+ *  no halo file. */
 void halo_write_restart(const struct engine *e);
 void halo_restored(struct engine *e);
 

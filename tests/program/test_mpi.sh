@@ -11,6 +11,8 @@
 #    periodic box, a solid with fracture, a self-gravitating SEA planet, the
 #    impact with self-gravity and the domain partitioned again at rebuilds,
 #    a porous block crushed);
+#  - restart files per rank: resumed on the same number of ranks bit for
+#    bit, on another (2 to 3, 2 to 1, 1 to 2, 3 to 2) within the bound;
 #  - what multi-rank runs do not support yet (the reuse of gravity's far
 #    field) stops with one line, a non-zero status, no hang (60 s limit);
 #  - mpirun -n 3 bolide --partition 0 partitions over the 3 ranks and every
@@ -116,34 +118,8 @@ runs() {
     for f in serial/$snaps; do
       compare "$f" "mpi$r/${f#serial/}" || fail "$case: $r ranks"
     done
-    "$PY" - serial/$stats mpi$r/$stats "$BOUND" "$box" <<'PY' || fail "$case: $r ranks: the statistics"
-import sys
-import numpy as np
-a, b = np.loadtxt(sys.argv[1], ndmin=2), np.loadtxt(sys.argv[2], ndmin=2)
-bound = float(sys.argv[3])
-if a.shape != b.shape:
-    sys.exit("%s: %s lines x columns, the serial run %s" % (sys.argv[2], b.shape, a.shape))
-# every column within the bound of its scale: the energies of the largest
-# energy, the momenta of sqrt(2 M E_kin) (sum m|v|), the angular momenta of
-# that times the box size (its own largest value when larger)
-names = open(sys.argv[1]).read().split("names of the columns:")[1].split("\n")[1].split()[1:]
-col = lambda n: a[:, names.index(n)]
-E = max(np.max(np.abs(col(n))) for n in ("E_kin", "E_int", "E_tot"))
-P = np.sqrt(2.0 * np.max(col("mass")) * np.max(col("E_kin")))
-L = max(P * float(sys.argv[4]), max(np.max(np.abs(col(n))) for n in ("Lx", "Ly", "Lz")))
-for k, n in enumerate(names):
-    s = np.max(np.abs(a[:, k]))
-    if n.startswith("E") or n in ("dE", "W_plastic"):
-        s = max(s, E)
-    elif n.startswith("p"):
-        s = max(s, P)
-    elif n.startswith("L"):
-        s = max(s, L)
-    d = np.max(np.abs(a[:, k] - b[:, k]))
-    if not (d <= bound * s if s > 0 else d == 0):
-        sys.exit("%s: column %s differs by %.3e (scale %.3e)" % (sys.argv[2], n, d, s))
-print("%s: %d lines, every column within %g of the serial run's" % (sys.argv[2], len(a), bound))
-PY
+    "$PY" "$H/stats_compare.py" serial/$stats mpi$r/$stats "$BOUND" "$box" ||
+      fail "$case: $r ranks: the statistics"
   done
   echo "$case: $steps steps on 1 and $* ranks agree"
 }
@@ -284,7 +260,7 @@ runs 2
 #    repeats bit for bit too): the
 #    basalt sphere of 3. on 2 ranks (the Weibull flaws of particles that
 #    change rank after the resumption) and the impact with self-gravity of 5.
-#    on 3 ranks; resuming with another number of ranks stops with one line
+#    on 3 ranks
 restart_case() { # DIR RANKS
   cd "$work/$1" || fail "restart: no $1"
   sed -e '/^Snapshots:/,/^[A-Z]/{/subdir/d}' p.yml >rp.yml
@@ -306,13 +282,55 @@ restart_case() { # DIR RANKS
 }
 restart_case damage 2
 restart_case impactg 3
-cd "$work/damage/rB"
-timeout 60 "$MPIRUN" -n 3 "$B/bolide" -t 1 -P Scheduler:deterministic:true --restart p.yml >c.log 2>&1
+# 7. resumed on another number of ranks (restart_read_ranks): the files of
+#    the stop at step 30 read by every rank, each rank's own particles
+#    gathered, partitioned anew; the run then agrees with the uninterrupted
+#    one within BOUND, as runs on different numbers of ranks do (snapshots
+#    and statistics, restart_compare.py --tol): the basalt sphere's files
+#    of 2 ranks resumed on 3 and on 1 (the serial build), a one-rank run's
+#    file resumed on 2, the impact with self-gravity's files of 3 resumed
+#    on 2; the files of the other layout are removed once the resumed run
+#    has written its own
+regroup() { # DIR RANKS_BEFORE RANKS_AFTER (0: the serial build)
+  cd "$work/$1" || fail "regroup: no $1"
+  local d=g$2to$3 run0 run1
+  rm -rf "$d" && mkdir "$d" && cp rp.yml "$d/p.yml"
+  run0=("$MPIRUN" -n "$2" "$B/bolide")
+  [ "$2" = 0 ] && run0=("$serial")
+  run1=("$MPIRUN" -n "$3" "$B/bolide")
+  [ "$3" = 0 ] && run1=("$serial")
+  (cd "$d" && timeout 300 "${run0[@]}" -t 1 -P Scheduler:deterministic:true -n 30 p.yml >g0.log 2>&1) ||
+    { tail -5 "$d/g0.log"; fail "regroup $1: first part on $2 ranks"; }
+  (cd "$d" && timeout 300 "${run1[@]}" -t 1 -P Scheduler:deterministic:true --restart p.yml >g1.log 2>&1) ||
+    { tail -5 "$d/g1.log"; fail "regroup $1: resumed on $3 ranks"; }
+  grep -q "resuming the files of a run on" "$d/g1.log" || fail "regroup $1: $2 to $3 ranks: no line on the files"
+  "$PY" "$H/restart_compare.py" --tol "$BOUND" rA "$d" ||
+    fail "regroup $1: stopped on $2 ranks and resumed on $3, the run differs from the uninterrupted one"
+  local left
+  left=$(cd "$d/restart" && ls)
+  case "$3" in
+    0) [ "$left" = restart.bin ] || fail "regroup $1: files left after resuming on one rank: $left" ;;
+    *) [ "$(echo "$left" | grep -c '^restart_rank.*[0-9]\.bin$')" = "$3" ] && ! echo "$left" | grep -q '^restart\.\|prev' ||
+         fail "regroup $1: files left after resuming on $3 ranks: $left" ;;
+  esac
+  echo "regroup $1: stopped at step 30 on $2 ranks, resumed on $3, within $BOUND of the uninterrupted run"
+}
+regroup damage 2 3
+regroup damage 2 0
+regroup damage 0 2
+regroup impactg 3 2
+# files of two steps (rank 1's written at the end of the run, rank 0's at
+# step 30) are refused with one line, a non-zero status, no hang
+cd "$work/damage" && rm -rf mix && mkdir mix && cp rp.yml mix/p.yml
+(cd mix && timeout 300 "$MPIRUN" -n 2 "$B/bolide" -t 1 -P Scheduler:deterministic:true -n 30 p.yml >m0.log 2>&1) ||
+  { tail -5 mix/m0.log; fail "regroup: files of two steps: first part"; }
+cp rA/restart/restart_rank0001.bin mix/restart/
+(cd mix && timeout 60 "$MPIRUN" -n 3 "$B/bolide" -t 1 -P Scheduler:deterministic:true --restart p.yml >c.log 2>&1)
 rc=$?
-[ $rc = 124 ] && fail "restart with 3 ranks from the files of 2 hung"
-[ $rc != 0 ] || fail "restart with 3 ranks from the files of 2 exited 0"
-grep -m1 "bolide: error: .*restart_rank0002" c.log ||
-  { cat c.log; fail "restart with 3 ranks from the files of 2: no error line naming rank 2's file"; }
+[ $rc = 124 ] && fail "restart with 3 ranks from files of two steps hung"
+[ $rc != 0 ] || fail "restart with 3 ranks from files of two steps exited 0"
+grep -m1 "bolide: error: .*restart_rank0001.bin: of step .*resume from the files of one run" mix/c.log ||
+  { cat mix/c.log; fail "restart from files of two steps: no error line naming rank 1's file"; }
 # what multi-rank runs do not do yet: one line, non-zero, no hang
 cd "$work/mpi"
 timeout 60 "$MPIRUN" -n 2 "$B/bolide" -n 3 -t 1 -P Gravity:enabled:true -P Gravity:reuse_steps:2 \

@@ -34,7 +34,7 @@ def checksum(buf):
 
 
 def layout(buf):
-    """Offsets of the parts of a version-5 file (the far-field flag: the last
+    """Offsets of the parts of a version-6 file (the far-field flag: the last
     8 bytes before the checksum when the file holds no far field)."""
     count = struct.unpack_from("<Q", buf, 72)[0]
     nf = struct.unpack_from("<i", buf, 128)[0]
@@ -45,7 +45,7 @@ def layout(buf):
         fields.append((name, size))
         pos += 36
     state = pos
-    pos += 304
+    pos += 320
     plen = struct.unpack_from("<Q", buf, pos)[0]
     params = pos
     pos += 8 + plen
@@ -67,7 +67,8 @@ def reseal(buf):
 
 STATE = dict(time=0, dt=8, dt_next=16, step=24, updates=32, nr_removed=40, snap_index=48, next_out=56,
              next_stats=64, box=72, periodic=96, removed_m=104, start_E_tot=184, start_set=264,
-             rebuild_h_max=272, need_rebuild=280, stats_offset=288, ti_current=296)
+             rebuild_h_max=272, need_rebuild=280, stats_offset=288, ti_current=296, nr_ranks=304,
+             rank=312)
 
 
 def main():
@@ -150,6 +151,7 @@ def main():
     corpus.append(("not a restart file", b"hello world\n" * 100))
     corpus.append(("format version 2", setf(good, 16, "<I", 2)))
     corpus.append(("format version 3 (before the far field)", setf(good, 16, "<I", 3)))
+    corpus.append(("format version 5 (before the ranks)", setf(good, 16, "<I", 5)))
     corpus.append(("other byte order", setf(good, 20, "<I", 0x04030201)))
     corpus.append(("particle count 1e15", setf(good, 72, "<Q", 10 ** 15)))
     corpus.append(("parameter hash", setf(good, 80, "<Q", 12345)))
@@ -172,6 +174,8 @@ def main():
     corpus.append(("negative statistics offset", setf(good, st + STATE["stats_offset"], "<q", -3)))
     corpus.append(("integer time -1", setf(good, st + STATE["ti_current"], "<q", -1)))
     corpus.append(("integer time past the run", setf(good, st + STATE["ti_current"], "<q", 2 ** 57)))
+    corpus.append(("0 ranks", setf(good, st + STATE["nr_ranks"], "<q", 0)))
+    corpus.append(("rank 5 of 1", setf(good, st + STATE["rank"], "<q", 5)))
     corpus.append(("cell count 1e12", setf(good, L["cells"], "<q", 10 ** 12)))
     corpus.append(("NaN cell h_max", setf(good, L["cells"] + 8, "<d", nan)))
     corpus.append(("material id 999", setf(good, ar["mat"][0] + 4 * 10, "<i", 999)))
