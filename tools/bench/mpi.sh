@@ -10,19 +10,32 @@
 # after the first of rank 0's step lines) and the ratio to the first layout.
 # With -w the weak scaling: N particles per rank (R x N in all).
 #
+# With -S DIR, SWIFT too (DIR: a SWIFT build configured with --enable-mpi
+# --with-hydro=planetary --with-equation-of-state=planetary
+# --with-kernel=cubic-spline, holding swift_mpi): the same IC and layouts,
+# SWIFT's settings of the benchmark set (eta 1.2348, CFL 0.2, alpha 1.5;
+# with -g FMM gravity, adaptive MAC epsilon_fmm 1e-3, theta_cr 0.5, softening
+# the lattice spacing), dt_max 1 s so that every step updates every
+# particle, the mean of its step lines' wall-clock column over the same
+# steps; printed beside Bolide's as the ratio Bolide / SWIFT.
+#
 # Usage: BOLIDE_BENCH_IC=.../make_impact_ic.py BOLIDE_BUILD=_build_mpi \
-#          tools/bench/mpi.sh [-n 1.1e5] [-c "1x2 2x1"] [-s 5] [-r 3] [-m 16] [-w] [-g]
+#          tools/bench/mpi.sh [-n 1.1e5] [-c "1x2 2x1"] [-s 5] [-r 3] [-m 16] [-w] [-g] [-S DIR]
 #   -m: Scheduler:max_top_level_cells (the decomposition's grid)
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 build=${BOLIDE_BUILD:-$top/_build_mpi}
 python=${PYTHON:-$top/_build/.venv/bin/python}
 gen=${BOLIDE_BENCH_IC:?"set BOLIDE_BENCH_IC to the reference impact IC generator of the benchmark set (make_impact_ic.py; theory/validation.md, Benchmarks)"}
-n=1.1e5; layouts="1x2 2x1"; steps=5; repeat=3; cells=16; weak=0; gravity=false
-while getopts "n:c:s:r:m:wg" o; do
+n=1.1e5; layouts="1x2 2x1"; steps=5; repeat=3; cells=16; weak=0; gravity=false; swift=""
+while getopts "n:c:s:r:m:wgS:" o; do
   case $o in n) n=$OPTARG ;; c) layouts=$OPTARG ;; s) steps=$OPTARG ;; r) repeat=$OPTARG ;;
-             m) cells=$OPTARG ;; w) weak=1 ;; g) gravity=true ;; *) exit 2 ;; esac
+             m) cells=$OPTARG ;; w) weak=1 ;; g) gravity=true ;; S) swift=$OPTARG ;; *) exit 2 ;; esac
 done
+if [ -n "$swift" ]; then
+  swift=$(cd "$swift" && pwd)
+  [ -x "$swift/swift_mpi" ] || { echo "mpi.sh: no swift_mpi in $swift (-S)" >&2; exit 1; }
+fi
 build=$(cd "$build" && pwd)
 grep -q '^#define HAVE_MPI 1' "$build/config.h" ||
   { echo "mpi.sh: $build is not built with --with-mpi" >&2; exit 1; }
@@ -34,6 +47,56 @@ ic() { # ic N FILE
   local nt ni
   nt=$(awk -v n="$1" 'BEGIN {printf "%d", n * 10 / 11}'); ni=$(awk -v n="$1" 'BEGIN {printf "%d", n / 11}')
   [ -f "$2" ] || "$python" "$gen" "$nt" "$ni" "$2" >/dev/null
+}
+# SWIFT's parameters for IC (the units of make_impact_ic.py's file: 1e24 kg,
+# 1e6 m, 1 s; softening the lattice spacing of its target, 3.4729e4 m at
+# 1e5 target particles, scaled by N^(-1/3))
+swift_params() {
+  local eps
+  eps=$(awk -v n="$n" 'BEGIN {printf "%.6g", 0.034729 * (1e5 / (n * 10 / 11)) ^ (1 / 3)}')
+  cat <<YML
+InternalUnitSystem:
+  UnitMass_in_cgs: 1e27
+  UnitLength_in_cgs: 1e8
+  UnitVelocity_in_cgs: 1e8
+  UnitCurrent_in_cgs: 1
+  UnitTemp_in_cgs: 1
+InitialConditions:
+  file_name: $1
+  periodic: 0
+TimeIntegration:
+  time_begin: 0
+  time_end: 1e5
+  dt_min: 1e-6
+  dt_max: 1
+Snapshots:
+  basename: swift_out
+  time_first: 0
+  delta_time: 1e10
+Statistics:
+  time_first: 0
+  delta_time: 1e10
+Restarts:
+  enable: 0
+SPH:
+  resolution_eta: 1.2348
+  delta_neighbours: 0.1
+  CFL_condition: 0.2
+  viscosity_alpha: 1.5
+Gravity:
+  eta: 0.025
+  MAC: adaptive
+  epsilon_fmm: 0.001
+  theta_cr: 0.5
+  comoving_DM_softening: $eps
+  max_physical_DM_softening: $eps
+  comoving_baryon_softening: $eps
+  max_physical_baryon_softening: $eps
+Scheduler:
+  max_top_level_cells: $cells
+EoS:
+  planetary_use_Til_granite: 1
+YML
 }
 printf "# %s on %s (%s, %s cores), %s, %s, median of %d rounds of %d steps, every particle active\n" \
   "checkout $(git -C "$top" rev-parse --short HEAD), build $("$build/bolide" --version 2>/dev/null |
@@ -68,13 +131,33 @@ YML
       { tail -5 run.log >&2; exit 1; }
     awk -v l="$l" '$1 ~ /^[0-9]+$/ && NF == 6 && $1 > 1 {s += $5; c++} END {printf "%s %.6f\n", l, s / c}' \
       run.log >>times
+    [ -n "$swift" ] || continue
+    swift_params "impact_$N.hdf5" >swift.yml
+    # (SWIFT's step 0 is its initial force computation; -n S runs steps 1 .. S + 1)
+    mpirun --bind-to none -n "$R" "$swift/swift_mpi" --hydro $([ $gravity = true ] && echo --self-gravity) \
+      --threads="$T" -n "$steps" swift.yml >swift.log 2>&1 || { tail -5 swift.log >&2; exit 1; }
+    awk -v l="swift:$l" '$1 ~ /^[0-9]+$/ && NF >= 15 && $1 > 1 {s += $13 / 1000; c++}
+      END {printf "%s %.6f\n", l, s / c}' swift.log >>times
   done
 done
 first=""
+[ -z "$swift" ] || printf "# Bolide: %s; SWIFT: %s (%s)\n" "$build/bolide" "$swift/swift_mpi" \
+  "$("$swift/swift_mpi" --version 2>/dev/null | grep -m1 -i 'revision\|git' | sed 's/^ *//')"
 for l in $layouts; do
   med=$(awk -v l="$l" '$1 == l {print $2}' times | sort -g | awk '{x[NR] = $1} END {print x[int((NR + 1) / 2)]}')
   all=$(awk -v l="$l" '$1 == l {printf "%s ", $2}' times)
   [ -n "$first" ] || first=$med
   printf "%-6s ranks x threads  %10.4f s/step  ratio to %s %.3f   (runs: %s)\n" "$l" "$med" \
     "${layouts%% *}" "$(awk -v a="$med" -v b="$first" 'BEGIN {print a / b}')" "$all"
+done
+[ -n "$swift" ] || exit 0
+first=""
+for l in $layouts; do
+  med=$(awk -v l="swift:$l" '$1 == l {print $2}' times | sort -g | awk '{x[NR] = $1} END {print x[int((NR + 1) / 2)]}')
+  bol=$(awk -v l="$l" '$1 == l {print $2}' times | sort -g | awk '{x[NR] = $1} END {print x[int((NR + 1) / 2)]}')
+  all=$(awk -v l="swift:$l" '$1 == l {printf "%s ", $2}' times)
+  [ -n "$first" ] || first=$med
+  printf "SWIFT %-6s ranks x threads  %10.4f s/step  ratio to %s %.3f   Bolide / SWIFT %.3f   (runs: %s)\n" \
+    "$l" "$med" "${layouts%% *}" "$(awk -v a="$med" -v b="$first" 'BEGIN {print a / b}')" \
+    "$(awk -v a="$bol" -v b="$med" 'BEGIN {print a / b}')" "$all"
 done
