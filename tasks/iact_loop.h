@@ -121,7 +121,7 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair_leaf)(struct parts *p, co
   const double back[3] = {-shift[0], -shift[1], -shift[2]};
   const size_t iend = ci->offset + ci->count, jend = cj->offset + cj->count;
   const double pad = iact_loop_prune_pad(ci, cj, shift);
-  size_t list[IACT_LOOP_BLOCK];
+  size_t list[IACT_LOOP_BLOCK], hit[IACT_LOOP_BLOCK];
   for (size_t j0 = cj->offset; j0 < jend; j0 += IACT_LOOP_BLOCK) {
     const size_t j1 = jend - j0 > IACT_LOOP_BLOCK ? j0 + IACT_LOOP_BLOCK : jend;
     size_t nj = 0;
@@ -136,16 +136,25 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair_leaf)(struct parts *p, co
       const double Hi2 = Hi * Hi;
       const double R = (Hi > Hj_max ? Hi : Hj_max) + cj->dx_max;
       if (cell_point_dist2(cj, xi, shift) > iact_loop_prune_r2_pad(R, pad)) continue;
-      IACT_LOOP_ACC_BEGIN(p, i);
+      /* the neighbours first (a loop without branches), then the interactions */
+      size_t nh = 0;
       for (size_t k = 0; k < nj; k++) {
         const size_t j = list[k];
         const double dx[3] = {(xi[0] - x[j]) - shift[0], (xi[1] - y[j]) - shift[1],
                               (xi[2] - z[j]) - shift[2]};
         const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-        const double hj = h[j], Hj = kernel_gamma * hj;
-        if (r2 < Hi2 || r2 < Hj * Hj) {
-          IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj);
-        }
+        const double Hj = kernel_gamma * h[j];
+        hit[nh] = j;
+        nh += (r2 < Hi2) | (r2 < Hj * Hj);
+      }
+      if (nh == 0) continue;
+      IACT_LOOP_ACC_BEGIN(p, i);
+      for (size_t k = 0; k < nh; k++) {
+        const size_t j = hit[k];
+        const double dx[3] = {(xi[0] - x[j]) - shift[0], (xi[1] - y[j]) - shift[1],
+                              (xi[2] - z[j]) - shift[2]};
+        const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+        IACT_LOOP_SYM(p, i, j, r2, dx, hi, h[j]);
       }
       IACT_LOOP_ACC_END(p, i);
     }
@@ -158,16 +167,27 @@ __attribute__((unused)) static void IACT_LOOP_FN(_self_leaf)(struct parts *p,
   const double *BOLIDE_RESTRICT x = p->x, *BOLIDE_RESTRICT y = p->y, *BOLIDE_RESTRICT z = p->z;
   const double *BOLIDE_RESTRICT h = p->h;
   const size_t end = c->offset + c->count;
+  size_t hit[IACT_LOOP_BLOCK];
   for (size_t i = c->offset; i < end; i++) {
     const double xi[3] = {x[i], y[i], z[i]}, hi = h[i], Hi = kernel_gamma * hi;
     const double Hi2 = Hi * Hi;
     IACT_LOOP_ACC_BEGIN(p, i);
-    for (size_t j = i + 1; j < end; j++) {
-      const double dx[3] = {xi[0] - x[j], xi[1] - y[j], xi[2] - z[j]};
-      const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-      const double hj = h[j], Hj = kernel_gamma * hj;
-      if (r2 < Hi2 || r2 < Hj * Hj) {
-        IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj);
+    for (size_t j0 = i + 1; j0 < end; j0 += IACT_LOOP_BLOCK) {
+      const size_t j1 = end - j0 > IACT_LOOP_BLOCK ? j0 + IACT_LOOP_BLOCK : end;
+      /* the neighbours first (a loop without branches), then the interactions */
+      size_t nh = 0;
+      for (size_t j = j0; j < j1; j++) {
+        const double dx[3] = {xi[0] - x[j], xi[1] - y[j], xi[2] - z[j]};
+        const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+        const double Hj = kernel_gamma * h[j];
+        hit[nh] = j;
+        nh += (r2 < Hi2) | (r2 < Hj * Hj);
+      }
+      for (size_t k = 0; k < nh; k++) {
+        const size_t j = hit[k];
+        const double dx[3] = {xi[0] - x[j], xi[1] - y[j], xi[2] - z[j]};
+        const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+        IACT_LOOP_SYM(p, i, j, r2, dx, hi, h[j]);
       }
     }
     IACT_LOOP_ACC_END(p, i);
@@ -231,7 +251,7 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair_gather_leaf)(struct parts
   const double pad = iact_loop_prune_pad(ci, cj, shift);
   const double reach2 = iact_loop_prune_r2_pad(kernel_gamma * ci->h_max + ci->dx_max, pad);
   const size_t iend = ci->offset + ci->count, jend = cj->offset + cj->count;
-  size_t list[IACT_LOOP_BLOCK];
+  size_t list[IACT_LOOP_BLOCK], hit[IACT_LOOP_BLOCK];
   for (size_t j0 = cj->offset; j0 < jend; j0 += IACT_LOOP_BLOCK) {
     const size_t j1 = jend - j0 > IACT_LOOP_BLOCK ? j0 + IACT_LOOP_BLOCK : jend;
     size_t nj = 0;
@@ -245,15 +265,22 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair_gather_leaf)(struct parts
       const double xi[3] = {x[i], y[i], z[i]}, hi = h[i], Hi = kernel_gamma * hi;
       const double Hi2 = Hi * Hi;
       if (cell_point_dist2(cj, xi, shift) > iact_loop_prune_r2_pad(Hi + cj->dx_max, pad)) continue;
-      IACT_LOOP_ACC_BEGIN(p, i);
+      size_t nh = 0;
       for (size_t k = 0; k < nj; k++) {
         const size_t j = list[k];
         const double dx[3] = {(xi[0] - x[j]) - shift[0], (xi[1] - y[j]) - shift[1],
                               (xi[2] - z[j]) - shift[2]};
         const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-        if (r2 < Hi2) {
-          IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, h[j]);
-        }
+        hit[nh] = j;
+        nh += r2 < Hi2;
+      }
+      IACT_LOOP_ACC_BEGIN(p, i);
+      for (size_t k = 0; k < nh; k++) {
+        const size_t j = hit[k];
+        const double dx[3] = {(xi[0] - x[j]) - shift[0], (xi[1] - y[j]) - shift[1],
+                              (xi[2] - z[j]) - shift[2]};
+        const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+        IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, h[j]);
       }
       IACT_LOOP_ACC_END(p, i);
     }
@@ -266,15 +293,25 @@ __attribute__((unused)) static void IACT_LOOP_FN(_self_gather_leaf)(struct parts
   const double *BOLIDE_RESTRICT x = p->x, *BOLIDE_RESTRICT y = p->y, *BOLIDE_RESTRICT z = p->z;
   const double *BOLIDE_RESTRICT h = p->h;
   const size_t beg = c->offset, end = c->offset + c->count;
+  size_t hit[IACT_LOOP_BLOCK];
   for (size_t i = beg; i < end; i++) {
     if (!(IACT_LOOP_ACTIVE(p, i))) continue;
     const double xi[3] = {x[i], y[i], z[i]}, hi = h[i], Hi = kernel_gamma * hi;
     const double Hi2 = Hi * Hi;
     IACT_LOOP_ACC_BEGIN(p, i);
-    for (size_t j = beg; j < end; j++) {
-      const double dx[3] = {xi[0] - x[j], xi[1] - y[j], xi[2] - z[j]};
-      const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-      if (r2 < Hi2 && j != i) {
+    for (size_t j0 = beg; j0 < end; j0 += IACT_LOOP_BLOCK) {
+      const size_t j1 = end - j0 > IACT_LOOP_BLOCK ? j0 + IACT_LOOP_BLOCK : end;
+      size_t nh = 0;
+      for (size_t j = j0; j < j1; j++) {
+        const double dx[3] = {xi[0] - x[j], xi[1] - y[j], xi[2] - z[j]};
+        const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+        hit[nh] = j;
+        nh += (r2 < Hi2) & (j != i);
+      }
+      for (size_t k = 0; k < nh; k++) {
+        const size_t j = hit[k];
+        const double dx[3] = {xi[0] - x[j], xi[1] - y[j], xi[2] - z[j]};
+        const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
         IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, h[j]);
       }
     }
