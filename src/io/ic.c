@@ -202,10 +202,13 @@ static void ic_read_dataset(struct ic_reader *r, hid_t grp, const char *name, in
 
   void *buf = error_malloc((n ? n : 1) * nc * 8, name); /* 8 bytes per value in every case */
   const hid_t mtype = as_double ? H5T_NATIVE_DOUBLE : as_u64 ? H5T_NATIVE_UINT64 : H5T_NATIVE_INT64;
-  if (n > 0 && H5Dread(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0)
+  if (n > 0 && H5Dread(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0) {
+    free(buf);
     error_exit("%s: cannot read dataset /PartType0/%s", r->path, name);
+  }
   H5Dclose(d);
 
+  char why[1400];
   const double *dbuf = buf;
   const int64_t *ibuf = buf;
   const uint64_t *ubuf = buf;
@@ -227,19 +230,27 @@ static void ic_read_dataset(struct ic_reader *r, hid_t grp, const char *name, in
       const size_t j = i * nc + c;
       if (as_double) {
         const double x = dbuf[j];
-        if (!(x == floor(x)) || !(x >= (double)imin && x < -(double)imin))
-          error_exit("%s: particle %zu: %s is %g (must be an integer)", r->path, i, name, x);
+        if (!(x == floor(x)) || !(x >= (double)imin && x < -(double)imin)) {
+          snprintf(why, sizeof why, "%s: particle %zu: %s is %g (must be an integer)", r->path, i,
+                   name, x);
+          goto bad;
+        }
         v = (int64_t)x;
       } else if (as_u64) {
-        if (ubuf[j] > (uint64_t)imax)
-          error_exit("%s: particle %zu: %s is %llu (too large)", r->path, i, name,
-                     (unsigned long long)ubuf[j]);
+        if (ubuf[j] > (uint64_t)imax) {
+          snprintf(why, sizeof why, "%s: particle %zu: %s is %llu (too large)", r->path, i, name,
+                   (unsigned long long)ubuf[j]);
+          goto bad;
+        }
         v = (int64_t)ubuf[j];
       } else {
         v = ibuf[j];
       }
-      if (v < imin || v > imax)
-        error_exit("%s: particle %zu: %s is %lld (out of range)", r->path, i, name, (long long)v);
+      if (v < imin || v > imax) {
+        snprintf(why, sizeof why, "%s: particle %zu: %s is %lld (out of range)", r->path, i, name,
+                 (long long)v);
+        goto bad;
+      }
       if (f->type == PART_INT64)
         ((int64_t *)dst)[i] = v;
       else
@@ -247,6 +258,10 @@ static void ic_read_dataset(struct ic_reader *r, hid_t grp, const char *name, in
     }
   }
   free(buf);
+  return;
+bad: /* (the buffer freed before the exit: no leak for the sanitizers to report) */
+  free(buf);
+  error_exit("%s", why);
 }
 
 /** Shape check: N (rank 1, or N x 1) for scalars, N x ncomp for vectors. */
