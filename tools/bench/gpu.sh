@@ -20,7 +20,9 @@
 #   can do, the CPU only where the GPU has no implementation), hybrid
 #   (Scheduler:gpu auto: CPU workers run tasks while the GPU works),
 #   gpu-rbhost (gpu with Scheduler:gpu_rebuild: host: every field copied
-#   back, reordered on the host and uploaded at each rebuild).
+#   back, reordered on the host and uploaded at each rebuild), gpu@KEY:VALUE
+#   (gpu with -P KEY:VALUE; several joined by @, e.g.
+#   gpu@Scheduler:gpu_pair_buffer:off: variants compared in one call).
 # The steps are those of a run (the Courant step, SPH:CFL_condition 0.2):
 # s/step is the mean wall time of the steps, rebuilds included; the
 # rebuild column is the mean time of the run's rebuilds and their number.
@@ -40,7 +42,10 @@
 # Env:   BOLIDE_BUILD (build folder), BOLIDE_BENCH_IC (make_impact_ic.py),
 #        PYTHON (with numpy and h5py, for the reference impact IC),
 #        BENCH_OUT (file the table lines are also appended to, as they come),
-#        BENCH_KEEP (folder: the log of each case's last run, PROBLEM-N-MODE.log)
+#        BENCH_KEEP (folder: the log of each case's last run, PROBLEM-N-MODE.log),
+#        BENCH_WRAP (a command put before each bolide run, e.g. a profiler:
+#        "ncu --clock-control none -k regex:force -c 1"; its report lands in
+#        the run's log, and the times it prints are the profiled run's)
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 build=${BOLIDE_BUILD:-$top/_build}
@@ -68,7 +73,9 @@ stages=""
 one() {
   local lim=()
   [ "$tlimit" = 0 ] || lim=(timeout "$tlimit")
-  if ! "${lim[@]}" "$build/bolide" -n "$steps" -t "$ncpu" "$@" p.yml >run.log 2>&1; then
+  local wrap=()
+  [ -z "${BENCH_WRAP:-}" ] || read -ra wrap <<<"$BENCH_WRAP"
+  if ! "${lim[@]}" "${wrap[@]}" "$build/bolide" -n "$steps" -t "$ncpu" "$@" p.yml >run.log 2>&1; then
     if grep -q "error" run.log; then tail -3 run.log >&2; exit 1; fi
     echo timeout; return
   fi
@@ -145,6 +152,9 @@ YML
         gpu) measure --gpu -P Scheduler:gpu:all $gpu_args ;;
         hybrid) measure --gpu -P Scheduler:gpu:auto $gpu_args ;;
         gpu-rbhost) measure --gpu -P Scheduler:gpu:all -P Scheduler:gpu_rebuild:host $gpu_args ;;
+        gpu@*) pset=(); IFS=@ read -ra keys <<<"${mode#gpu@}"
+               for k in "${keys[@]}"; do pset+=(-P "$k"); done
+               measure --gpu -P Scheduler:gpu:all "${pset[@]}" $gpu_args ;;
         *) echo "gpu.sh: unknown mode $mode" >&2; exit 2 ;;
       esac
       [ $mode = cpu ] && cpu_step=$med_step
