@@ -46,6 +46,7 @@
  * ordered (i, j) is visited, which counts each interaction once.  The
  * macros are undefined at the end, so the header can be included again. */
 #include <math.h>
+#include <stdint.h>
 
 #include "src/cell.h"
 #include "tasks/hydro/kernel.h"
@@ -103,6 +104,32 @@ __attribute__((unused)) static double iact_loop_prune_r2(double R, const struct 
                                                          const double shift[3]) {
   return iact_loop_prune_r2_pad(R, iact_loop_prune_pad(ci, cj, shift));
 }
+
+/** The first pass of a leaf loop, without branches: of the candidates j
+ *  (list[0..n) when list is given, else j0 .. j0 + n - 1), the indices of
+ *  those that i at xi reaches into hit[], their number returned.  dx = (x_i
+ *  - x_j) - shift, the interaction's own expression; a candidate is kept
+ *  when r2 < Hi2, or with sym also when r2 < (kernel_gamma h_j)^2, and
+ *  never when j == skip. */
+BOLIDE_ALWAYS_INLINE size_t iact_loop_hits(const double *BOLIDE_RESTRICT x,
+                                           const double *BOLIDE_RESTRICT y,
+                                           const double *BOLIDE_RESTRICT z,
+                                           const double *BOLIDE_RESTRICT h, const size_t *list,
+                                           size_t j0, size_t n, const double xi[3],
+                                           const double shift[3], double Hi2, int sym, size_t skip,
+                                           size_t *BOLIDE_RESTRICT hit) {
+  size_t nh = 0;
+  for (size_t k = 0; k < n; k++) {
+    const size_t j = list ? list[k] : j0 + k;
+    const double dx[3] = {(xi[0] - x[j]) - shift[0], (xi[1] - y[j]) - shift[1],
+                          (xi[2] - z[j]) - shift[2]};
+    const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+    const double Hj = kernel_gamma * h[j];
+    hit[nh] = j;
+    nh += ((r2 < Hi2) | (sym && r2 < Hj * Hj)) & (j != skip);
+  }
+  return nh;
+}
 #endif
 
 /* ------------------------------------------------------------ symmetric form */
@@ -137,16 +164,7 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair_leaf)(struct parts *p, co
       const double R = (Hi > Hj_max ? Hi : Hj_max) + cj->dx_max;
       if (cell_point_dist2(cj, xi, shift) > iact_loop_prune_r2_pad(R, pad)) continue;
       /* the neighbours first (a loop without branches), then the interactions */
-      size_t nh = 0;
-      for (size_t k = 0; k < nj; k++) {
-        const size_t j = list[k];
-        const double dx[3] = {(xi[0] - x[j]) - shift[0], (xi[1] - y[j]) - shift[1],
-                              (xi[2] - z[j]) - shift[2]};
-        const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-        const double Hj = kernel_gamma * h[j];
-        hit[nh] = j;
-        nh += (r2 < Hi2) | (r2 < Hj * Hj);
-      }
+      const size_t nh = iact_loop_hits(x, y, z, h, list, 0, nj, xi, shift, Hi2, 1, SIZE_MAX, hit);
       if (nh == 0) continue;
       IACT_LOOP_ACC_BEGIN(p, i);
       for (size_t k = 0; k < nh; k++) {
@@ -175,14 +193,8 @@ __attribute__((unused)) static void IACT_LOOP_FN(_self_leaf)(struct parts *p,
     for (size_t j0 = i + 1; j0 < end; j0 += IACT_LOOP_BLOCK) {
       const size_t j1 = end - j0 > IACT_LOOP_BLOCK ? j0 + IACT_LOOP_BLOCK : end;
       /* the neighbours first (a loop without branches), then the interactions */
-      size_t nh = 0;
-      for (size_t j = j0; j < j1; j++) {
-        const double dx[3] = {xi[0] - x[j], xi[1] - y[j], xi[2] - z[j]};
-        const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-        const double Hj = kernel_gamma * h[j];
-        hit[nh] = j;
-        nh += (r2 < Hi2) | (r2 < Hj * Hj);
-      }
+      const size_t nh = iact_loop_hits(x, y, z, h, NULL, j0, j1 - j0, xi, iact_loop_no_shift, Hi2,
+                                       1, SIZE_MAX, hit);
       for (size_t k = 0; k < nh; k++) {
         const size_t j = hit[k];
         const double dx[3] = {xi[0] - x[j], xi[1] - y[j], xi[2] - z[j]};
@@ -265,15 +277,7 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair_gather_leaf)(struct parts
       const double xi[3] = {x[i], y[i], z[i]}, hi = h[i], Hi = kernel_gamma * hi;
       const double Hi2 = Hi * Hi;
       if (cell_point_dist2(cj, xi, shift) > iact_loop_prune_r2_pad(Hi + cj->dx_max, pad)) continue;
-      size_t nh = 0;
-      for (size_t k = 0; k < nj; k++) {
-        const size_t j = list[k];
-        const double dx[3] = {(xi[0] - x[j]) - shift[0], (xi[1] - y[j]) - shift[1],
-                              (xi[2] - z[j]) - shift[2]};
-        const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-        hit[nh] = j;
-        nh += r2 < Hi2;
-      }
+      const size_t nh = iact_loop_hits(x, y, z, h, list, 0, nj, xi, shift, Hi2, 0, SIZE_MAX, hit);
       IACT_LOOP_ACC_BEGIN(p, i);
       for (size_t k = 0; k < nh; k++) {
         const size_t j = hit[k];
@@ -301,13 +305,8 @@ __attribute__((unused)) static void IACT_LOOP_FN(_self_gather_leaf)(struct parts
     IACT_LOOP_ACC_BEGIN(p, i);
     for (size_t j0 = beg; j0 < end; j0 += IACT_LOOP_BLOCK) {
       const size_t j1 = end - j0 > IACT_LOOP_BLOCK ? j0 + IACT_LOOP_BLOCK : end;
-      size_t nh = 0;
-      for (size_t j = j0; j < j1; j++) {
-        const double dx[3] = {xi[0] - x[j], xi[1] - y[j], xi[2] - z[j]};
-        const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-        hit[nh] = j;
-        nh += (r2 < Hi2) & (j != i);
-      }
+      const size_t nh =
+          iact_loop_hits(x, y, z, h, NULL, j0, j1 - j0, xi, iact_loop_no_shift, Hi2, 0, i, hit);
       for (size_t k = 0; k < nh; k++) {
         const size_t j = hit[k];
         const double dx[3] = {xi[0] - x[j], xi[1] - y[j], xi[2] - z[j]};
