@@ -22,7 +22,7 @@
 #   gpu-rbhost (gpu with Scheduler:gpu_rebuild: host: every field copied
 #   back, reordered on the host and uploaded at each rebuild), gpu@KEY:VALUE
 #   (gpu with -P KEY:VALUE; several joined by @, e.g.
-#   gpu@Scheduler:gpu_pair_buffer:off: variants compared in one call).
+#   gpu@Gravity:gpu_reproducible:true: variants compared in one call).
 # The steps are those of a run (the Courant step, SPH:CFL_condition 0.2):
 # s/step is the mean wall time of the steps, rebuilds included; the
 # rebuild column is the mean time of the run's rebuilds and their number.
