@@ -30,6 +30,48 @@ BOLIDE_INLINE void hydro_density_add(struct parts *BOLIDE_RESTRICT p, size_t i,
   p->curl_vz[i] += a->curl_v[2];
 }
 
+/** Particle i's density sums as they stand in the arrays, into a (the CPU
+ *  loops' cache of a leaf's sums; hydro_density_sums_store writes them
+ *  back). */
+BOLIDE_INLINE void hydro_density_sums_load(const struct parts *BOLIDE_RESTRICT p, size_t i,
+                                           struct density_acc *a) {
+  a->rho = p->rho[i];
+  a->rho_dh = p->rho_dh[i];
+  a->wcount = p->wcount[i];
+  a->wcount_dh = p->wcount_dh[i];
+  a->div_v = p->div_v[i];
+  a->curl_v[0] = p->curl_vx[i];
+  a->curl_v[1] = p->curl_vy[i];
+  a->curl_v[2] = p->curl_vz[i];
+}
+
+/** Write particle i's density sums a back into the arrays. */
+BOLIDE_INLINE void hydro_density_sums_store(struct parts *BOLIDE_RESTRICT p, size_t i,
+                                            const struct density_acc *a) {
+  p->rho[i] = a->rho;
+  p->rho_dh[i] = a->rho_dh;
+  p->wcount[i] = a->wcount;
+  p->wcount_dh[i] = a->wcount_dh;
+  p->div_v[i] = a->div_v;
+  p->curl_vx[i] = a->curl_v[0];
+  p->curl_vy[i] = a->curl_v[1];
+  p->curl_vz[i] = a->curl_v[2];
+}
+
+/** Add the density accumulator a to the sums s, as hydro_density_add adds
+ *  it to the arrays. */
+BOLIDE_INLINE void density_acc_merge(struct density_acc *BOLIDE_RESTRICT s,
+                                     const struct density_acc *BOLIDE_RESTRICT a) {
+  s->rho += a->rho;
+  s->rho_dh += a->rho_dh;
+  s->wcount += a->wcount;
+  s->wcount_dh += a->wcount_dh;
+  s->div_v += a->div_v;
+  s->curl_v[0] += a->curl_v[0];
+  s->curl_v[1] += a->curl_v[1];
+  s->curl_v[2] += a->curl_v[2];
+}
+
 /** The contribution of j to i's density sums (gather form), dx = x_i - x_j. */
 BOLIDE_INLINE void hydro_density_gather(struct parts *BOLIDE_RESTRICT p, size_t i, size_t j,
                                         double r2, const double dx[3], double hi_inv) {
@@ -139,6 +181,50 @@ BOLIDE_INLINE void hydro_force_add(struct parts *BOLIDE_RESTRICT p, size_t i,
   p->xsphx[i] += a->xsph[0];
   p->xsphy[i] += a->xsph[1];
   p->xsphz[i] += a->xsph[2];
+}
+
+/** Particle i's force sums as they stand in the arrays, into a (the CPU
+ *  loops' cache of a leaf's sums; hydro_force_sums_store writes them back). */
+BOLIDE_INLINE void hydro_force_sums_load(const struct parts *BOLIDE_RESTRICT p, size_t i,
+                                         struct force_acc *a) {
+  a->a[0] = p->ax[i];
+  a->a[1] = p->ay[i];
+  a->a[2] = p->az[i];
+  a->du_dt = p->du_dt[i];
+  a->drho_dt = p->drho_dt[i];
+  a->v_sig = p->v_sig[i];
+  a->xsph[0] = p->xsphx[i];
+  a->xsph[1] = p->xsphy[i];
+  a->xsph[2] = p->xsphz[i];
+}
+
+/** Write particle i's force sums a back into the arrays. */
+BOLIDE_INLINE void hydro_force_sums_store(struct parts *BOLIDE_RESTRICT p, size_t i,
+                                          const struct force_acc *a) {
+  p->ax[i] = a->a[0];
+  p->ay[i] = a->a[1];
+  p->az[i] = a->a[2];
+  p->du_dt[i] = a->du_dt;
+  p->drho_dt[i] = a->drho_dt;
+  p->v_sig[i] = a->v_sig;
+  p->xsphx[i] = a->xsph[0];
+  p->xsphy[i] = a->xsph[1];
+  p->xsphz[i] = a->xsph[2];
+}
+
+/** Add the force accumulator a to the sums s, as hydro_force_add adds it to
+ *  the arrays. */
+BOLIDE_INLINE void force_acc_merge(struct force_acc *BOLIDE_RESTRICT s,
+                                   const struct force_acc *BOLIDE_RESTRICT a) {
+  s->a[0] += a->a[0];
+  s->a[1] += a->a[1];
+  s->a[2] += a->a[2];
+  s->du_dt += a->du_dt;
+  s->drho_dt += a->drho_dt;
+  if (a->v_sig > s->v_sig) s->v_sig = a->v_sig;
+  s->xsph[0] += a->xsph[0];
+  s->xsph[1] += a->xsph[1];
+  s->xsph[2] += a->xsph[2];
 }
 
 /** The time-step limiter of individual time steps (TimeIntegration:

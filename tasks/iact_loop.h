@@ -106,8 +106,9 @@ __attribute__((unused)) static double iact_loop_prune_r2(double R, const struct 
 }
 
 /** The first pass of a leaf loop, without branches: of the candidates j
- *  (list[0..n) when list is given, else j0 .. j0 + n - 1), the indices of
- *  those that i at xi reaches into hit[], their number returned.  dx = (x_i
+ *  (list[0..n) when list is given, else j0 .. j0 + n - 1), the positions k
+ *  in 0 .. n - 1 of those that i at xi reaches into hit[], their number
+ *  returned (the candidate is list[k], or j0 + k).  dx = (x_i
  *  - x_j) - shift, the interaction's own expression; a candidate is kept
  *  when r2 < Hi2, or with sym also when r2 < (kernel_gamma h_j)^2, and
  *  never when j == skip. */
@@ -125,7 +126,7 @@ BOLIDE_ALWAYS_INLINE size_t iact_loop_hits(const double *BOLIDE_RESTRICT x,
                           (xi[2] - z[j]) - shift[2]};
     const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
     const double Hj = kernel_gamma * h[j];
-    hit[nh] = j;
+    hit[nh] = k;
     nh += ((r2 < Hi2) | (sym && r2 < Hj * Hj)) & (j != skip);
   }
   return nh;
@@ -135,10 +136,26 @@ BOLIDE_ALWAYS_INLINE size_t iact_loop_hits(const double *BOLIDE_RESTRICT x,
 /* ------------------------------------------------------------ symmetric form */
 #ifdef IACT_LOOP_SYM
 
+/* The sums of the particles j of a leaf loop (the symmetric form's second
+ * side) are kept in a short contiguous array while the loop runs, loaded
+ * from the particle arrays before and stored after: a few cache lines per
+ * neighbour instead of one per summed field.  Every sum takes the same
+ * additions in the same order as it would in the arrays, so the results
+ * are the same bit for bit.  A family that names no cache updates the
+ * arrays directly (the macros below do nothing). */
+#ifndef IACT_LOOP_JACC_T
+#define IACT_LOOP_JACC_T char
+#define IACT_LOOP_JACC_LOAD(p, j, a) ((void)(a))
+#define IACT_LOOP_JACC_STORE(p, j, a) ((void)(a))
+#define IACT_LOOP_SYM_J(p, i, j, r2, dx, hi, hj, aj) IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj)
+#define IACT_LOOP_ACC_END_J(p, i, ai) IACT_LOOP_ACC_END(p, i)
+#endif
+
 /** Leaf pair, symmetric: every i of ci with every j of cj (at x_j + shift).
  *  cj is taken in blocks; each block is first reduced to the particles that
- *  can reach ci's bounding box (grown by ci's drift), then every i that can
- *  reach cj's box loops over that short list. */
+ *  can reach ci's bounding box (grown by ci's drift), whose sums are cached,
+ *  then every i that can reach cj's box loops over that short list.  A cell
+ *  paired with its own image (ci == cj) updates the arrays directly. */
 __attribute__((unused)) static void IACT_LOOP_FN(_pair_leaf)(struct parts *p, const struct cell *ci,
                                                              const struct cell *cj,
                                                              const double shift[3]) {
@@ -148,7 +165,9 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair_leaf)(struct parts *p, co
   const double back[3] = {-shift[0], -shift[1], -shift[2]};
   const size_t iend = ci->offset + ci->count, jend = cj->offset + cj->count;
   const double pad = iact_loop_prune_pad(ci, cj, shift);
+  const int direct = ci == cj;
   size_t list[IACT_LOOP_BLOCK], hit[IACT_LOOP_BLOCK];
+  IACT_LOOP_JACC_T cache[IACT_LOOP_BLOCK];
   for (size_t j0 = cj->offset; j0 < jend; j0 += IACT_LOOP_BLOCK) {
     const size_t j1 = jend - j0 > IACT_LOOP_BLOCK ? j0 + IACT_LOOP_BLOCK : jend;
     size_t nj = 0;
@@ -158,6 +177,8 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair_leaf)(struct parts *p, co
       if (cell_point_dist2(ci, xj, back) <= iact_loop_prune_r2_pad(R, pad)) list[nj++] = j;
     }
     if (nj == 0) continue;
+    if (!direct)
+      for (size_t k = 0; k < nj; k++) IACT_LOOP_JACC_LOAD(p, list[k], &cache[k]);
     for (size_t i = ci->offset; i < iend; i++) {
       const double xi[3] = {x[i], y[i], z[i]}, hi = h[i], Hi = kernel_gamma * hi;
       const double Hi2 = Hi * Hi;
@@ -168,25 +189,36 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair_leaf)(struct parts *p, co
       if (nh == 0) continue;
       IACT_LOOP_ACC_BEGIN(p, i);
       for (size_t k = 0; k < nh; k++) {
-        const size_t j = hit[k];
+        const size_t j = list[hit[k]];
+        IACT_LOOP_JACC_T *aj = &cache[hit[k]];
+        if (direct) IACT_LOOP_JACC_LOAD(p, j, aj);
         const double dx[3] = {(xi[0] - x[j]) - shift[0], (xi[1] - y[j]) - shift[1],
                               (xi[2] - z[j]) - shift[2]};
         const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-        IACT_LOOP_SYM(p, i, j, r2, dx, hi, h[j]);
+        IACT_LOOP_SYM_J(p, i, j, r2, dx, hi, h[j], aj);
+        if (direct) IACT_LOOP_JACC_STORE(p, j, aj);
       }
       IACT_LOOP_ACC_END(p, i);
     }
+    if (!direct)
+      for (size_t k = 0; k < nj; k++) IACT_LOOP_JACC_STORE(p, list[k], &cache[k]);
   }
 }
 
-/** Leaf self, symmetric: every pair i < j of c once. */
+/** Leaf self, symmetric: every pair i < j of c once; the sums of a leaf of
+ *  at most IACT_LOOP_BLOCK particles are cached (a larger one updates the
+ *  arrays directly). */
 __attribute__((unused)) static void IACT_LOOP_FN(_self_leaf)(struct parts *p,
                                                              const struct cell *c) {
   const double *BOLIDE_RESTRICT x = p->x, *BOLIDE_RESTRICT y = p->y, *BOLIDE_RESTRICT z = p->z;
   const double *BOLIDE_RESTRICT h = p->h;
-  const size_t end = c->offset + c->count;
+  const size_t beg = c->offset, end = c->offset + c->count;
+  const int direct = c->count > IACT_LOOP_BLOCK;
   size_t hit[IACT_LOOP_BLOCK];
-  for (size_t i = c->offset; i < end; i++) {
+  IACT_LOOP_JACC_T cache[IACT_LOOP_BLOCK], one;
+  if (!direct)
+    for (size_t k = beg; k < end; k++) IACT_LOOP_JACC_LOAD(p, k, &cache[k - beg]);
+  for (size_t i = beg; i < end; i++) {
     const double xi[3] = {x[i], y[i], z[i]}, hi = h[i], Hi = kernel_gamma * hi;
     const double Hi2 = Hi * Hi;
     IACT_LOOP_ACC_BEGIN(p, i);
@@ -196,16 +228,23 @@ __attribute__((unused)) static void IACT_LOOP_FN(_self_leaf)(struct parts *p,
       const size_t nh = iact_loop_hits(x, y, z, h, NULL, j0, j1 - j0, xi, iact_loop_no_shift, Hi2,
                                        1, SIZE_MAX, hit);
       for (size_t k = 0; k < nh; k++) {
-        const size_t j = hit[k];
+        const size_t j = j0 + hit[k];
+        IACT_LOOP_JACC_T *aj = direct ? &one : &cache[j - beg];
+        if (direct) IACT_LOOP_JACC_LOAD(p, j, aj);
         const double dx[3] = {xi[0] - x[j], xi[1] - y[j], xi[2] - z[j]};
         const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-        IACT_LOOP_SYM(p, i, j, r2, dx, hi, h[j]);
+        IACT_LOOP_SYM_J(p, i, j, r2, dx, hi, h[j], aj);
+        if (direct) IACT_LOOP_JACC_STORE(p, j, aj);
       }
     }
-    IACT_LOOP_ACC_END(p, i);
+    IACT_LOOP_JACC_T *ai = direct ? &one : &cache[i - beg];
+    if (direct) IACT_LOOP_JACC_LOAD(p, i, ai);
+    IACT_LOOP_ACC_END_J(p, i, ai);
+    if (direct) IACT_LOOP_JACC_STORE(p, i, ai);
   }
+  if (!direct)
+    for (size_t k = beg; k < end; k++) IACT_LOOP_JACC_STORE(p, k, &cache[k - beg]);
 }
-
 /** Pair of cells, symmetric: recurse into the octrees, prune by bounding box
  *  against max(H_max of ci, H_max of cj) + the drifts, loop at the leaves. */
 __attribute__((unused)) static void IACT_LOOP_FN(_pair)(struct parts *p, const struct cell *ci,
@@ -280,7 +319,7 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair_gather_leaf)(struct parts
       const size_t nh = iact_loop_hits(x, y, z, h, list, 0, nj, xi, shift, Hi2, 0, SIZE_MAX, hit);
       IACT_LOOP_ACC_BEGIN(p, i);
       for (size_t k = 0; k < nh; k++) {
-        const size_t j = hit[k];
+        const size_t j = list[hit[k]];
         const double dx[3] = {(xi[0] - x[j]) - shift[0], (xi[1] - y[j]) - shift[1],
                               (xi[2] - z[j]) - shift[2]};
         const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
@@ -308,7 +347,7 @@ __attribute__((unused)) static void IACT_LOOP_FN(_self_gather_leaf)(struct parts
       const size_t nh =
           iact_loop_hits(x, y, z, h, NULL, j0, j1 - j0, xi, iact_loop_no_shift, Hi2, 0, i, hit);
       for (size_t k = 0; k < nh; k++) {
-        const size_t j = hit[k];
+        const size_t j = j0 + hit[k];
         const double dx[3] = {xi[0] - x[j], xi[1] - y[j], xi[2] - z[j]};
         const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
         IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, h[j]);
@@ -371,3 +410,8 @@ __attribute__((unused)) static void IACT_LOOP_FN(_self_gather)(struct parts *p,
 #undef IACT_LOOP_ACTIVE
 #undef IACT_LOOP_ACC_BEGIN
 #undef IACT_LOOP_ACC_END
+#undef IACT_LOOP_JACC_T
+#undef IACT_LOOP_JACC_LOAD
+#undef IACT_LOOP_JACC_STORE
+#undef IACT_LOOP_SYM_J
+#undef IACT_LOOP_ACC_END_J

@@ -12,7 +12,8 @@
  *  no sums (IACT_LOOP_ACC_END drops i's). */
 BOLIDE_ALWAYS_INLINE void density_sym(struct parts *p, size_t i, size_t j, double r2,
                                       const double dx[3], double hi, double hi_inv, double hj,
-                                      const double vi[3], struct density_acc *acc_i) {
+                                      const double vi[3], struct density_acc *acc_i,
+                                      struct density_acc *sum_j) {
   const double Hi = kernel_gamma * hi, Hj = kernel_gamma * hj;
   const double dv[3] = {vi[0] - p->vpx[j], vi[1] - p->vpy[j], vi[2] - p->vpz[j]};
   if (r2 < Hi * Hi) density_iact(r2, dx, hi_inv, p->m[j], dv, acc_i);
@@ -21,7 +22,7 @@ BOLIDE_ALWAYS_INLINE void density_sym(struct parts *p, size_t i, size_t j, doubl
     const double mdx[3] = {-dx[0], -dx[1], -dx[2]};
     const double mdv[3] = {-dv[0], -dv[1], -dv[2]};
     density_iact(r2, mdx, 1.0 / hj, p->m[i], mdv, &a);
-    hydro_density_add(p, j, &a);
+    density_acc_merge(sum_j, &a);
   }
 }
 
@@ -40,8 +41,14 @@ BOLIDE_ALWAYS_INLINE void density_gather(const struct parts *p, size_t j, double
   const double hi_inv = 1.0 / (p)->h[i]
 #define IACT_LOOP_ACC_END(p, i) \
   if (!PART_IS_INACTIVE(p, i)) hydro_density_add(p, i, &acc_i)
-#define IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj) \
-  density_sym(p, i, j, r2, dx, hi, hi_inv, hj, vi, &acc_i)
+#define IACT_LOOP_JACC_T struct density_acc
+#define IACT_LOOP_JACC_LOAD(p, j, a) hydro_density_sums_load(p, j, a)
+#define IACT_LOOP_JACC_STORE(p, j, a) hydro_density_sums_store(p, j, a)
+#define IACT_LOOP_ACC_END_J(p, i, ai) \
+  if (!PART_IS_INACTIVE(p, i)) density_acc_merge(ai, &acc_i)
+#define IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj) /* only the cached form is used */
+#define IACT_LOOP_SYM_J(p, i, j, r2, dx, hi, hj, aj) \
+  density_sym(p, i, j, r2, dx, hi, hi_inv, hj, vi, &acc_i, aj)
 #define IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, hj) density_gather(p, j, r2, dx, hi_inv, vi, &acc_i)
 #define IACT_LOOP_ACTIVE(p, i) (!((p)->flags[i] & PART_H_CONVERGED))
 #include "tasks/iact_loop.h"

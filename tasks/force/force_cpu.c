@@ -15,10 +15,12 @@ static _Thread_local const struct hydro_props *force_hp;
 
 /** Both sides of one interacting pair: i's (inputs in_i, velocity vi,
  *  active_i: not PART_INACTIVE) into its local accumulator acc_i, j's into
- *  the arrays (a particle marked PART_INACTIVE, time bins, takes none). */
+ *  its sums sum_j, the loop's cached copy of the arrays' (a particle
+ *  marked PART_INACTIVE, time bins, takes none). */
 BOLIDE_ALWAYS_INLINE void force_sym(struct parts *p, size_t i, size_t j, double r2,
                                     const double dx[3], const struct force_in *in_i,
-                                    const double vi[3], int active_i, struct force_acc *acc_i) {
+                                    const double vi[3], int active_i, struct force_acc *acc_i,
+                                    struct force_acc *sum_j) {
   if (r2 <= 0.0) return; /* coincident particles exert no pairwise force */
   struct force_in in_j;
   hydro_force_load(p, j, &in_j, force_hp->solids);
@@ -35,7 +37,7 @@ BOLIDE_ALWAYS_INLINE void force_sym(struct parts *p, size_t i, size_t j, double 
     struct force_acc aj;
     force_acc_zero(&aj);
     force_pair_side(&pr, 1, mdx, mdv, &in_j, in_i, force_hp, &aj);
-    hydro_force_add(p, j, &aj);
+    force_acc_merge(sum_j, &aj);
     if (force_hp->bin_limit) hydro_limiter_pair(p, j, i, force_hp->bin_limit, 0);
   }
 }
@@ -50,8 +52,14 @@ BOLIDE_ALWAYS_INLINE void force_sym(struct parts *p, size_t i, size_t j, double 
   force_acc_zero(&acc_i)
 #define IACT_LOOP_ACC_END(p, i) \
   if (active_i) hydro_force_add(p, i, &acc_i)
-#define IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj) \
-  force_sym(p, i, j, r2, dx, &in_i, vi, active_i, &acc_i)
+#define IACT_LOOP_JACC_T struct force_acc
+#define IACT_LOOP_JACC_LOAD(p, j, a) hydro_force_sums_load(p, j, a)
+#define IACT_LOOP_JACC_STORE(p, j, a) hydro_force_sums_store(p, j, a)
+#define IACT_LOOP_ACC_END_J(p, i, ai) \
+  if (active_i) force_acc_merge(ai, &acc_i)
+#define IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj) /* only the cached form is used */
+#define IACT_LOOP_SYM_J(p, i, j, r2, dx, hi, hj, aj) \
+  force_sym(p, i, j, r2, dx, &in_i, vi, active_i, &acc_i, aj)
 #include "tasks/iact_loop.h"
 
 void force_self_cpu(struct parts *p, const struct cell *c, const struct hydro_props *hp) {
