@@ -6,23 +6,42 @@
 
 #include "tasks/hydro_parts.h"
 
+/** What the symmetric loops cache of a neighbour j: its velocity, mass,
+ *  inverse smoothing length, whether it is inactive, and its sums (the only
+ *  part written back). */
+struct density_jcache {
+  struct density_acc sum;
+  double v[3], m, h_inv;
+  int inactive;
+};
+
+BOLIDE_ALWAYS_INLINE void density_jcache_load(const struct parts *p, size_t j,
+                                              struct density_jcache *c) {
+  hydro_density_sums_load(p, j, &c->sum);
+  c->v[0] = p->vpx[j];
+  c->v[1] = p->vpy[j];
+  c->v[2] = p->vpz[j];
+  c->m = p->m[j];
+  c->h_inv = 1.0 / p->h[j];
+  c->inactive = PART_IS_INACTIVE(p, j);
+}
+
 /** Symmetric form: i (local accumulator acc_i, inverse smoothing length
- *  hi_inv, velocity vi) gets j's contribution if r < H_i; j gets i's, in the
- *  arrays, if r < H_j.  A particle marked PART_INACTIVE (time bins) takes
- *  no sums (IACT_LOOP_ACC_END drops i's). */
-BOLIDE_ALWAYS_INLINE void density_sym(struct parts *p, size_t i, size_t j, double r2,
-                                      const double dx[3], double hi, double hi_inv, double hj,
-                                      const double vi[3], struct density_acc *acc_i,
-                                      struct density_acc *sum_j) {
+ *  hi_inv, velocity vi, mass mi) gets j's contribution if r < H_i; j gets
+ *  i's, in the sums of its cache entry cj, if r < H_j.  A particle marked
+ *  PART_INACTIVE (time bins) takes no sums (IACT_LOOP_ACC_END drops i's). */
+BOLIDE_ALWAYS_INLINE void density_sym(double r2, const double dx[3], double hi, double hi_inv,
+                                      double hj, double mi, const double vi[3],
+                                      struct density_acc *acc_i, struct density_jcache *cj) {
   const double Hi = kernel_gamma * hi, Hj = kernel_gamma * hj;
-  const double dv[3] = {vi[0] - p->vpx[j], vi[1] - p->vpy[j], vi[2] - p->vpz[j]};
-  if (r2 < Hi * Hi) density_iact(r2, dx, hi_inv, p->m[j], dv, acc_i);
-  if (r2 < Hj * Hj && !PART_IS_INACTIVE(p, j)) {
+  const double dv[3] = {vi[0] - cj->v[0], vi[1] - cj->v[1], vi[2] - cj->v[2]};
+  if (r2 < Hi * Hi) density_iact(r2, dx, hi_inv, cj->m, dv, acc_i);
+  if (r2 < Hj * Hj && !cj->inactive) {
     struct density_acc a = {0, 0, 0, 0, 0, {0, 0, 0}};
     const double mdx[3] = {-dx[0], -dx[1], -dx[2]};
     const double mdv[3] = {-dv[0], -dv[1], -dv[2]};
-    density_iact(r2, mdx, 1.0 / hj, p->m[i], mdv, &a);
-    density_acc_merge(sum_j, &a);
+    density_iact(r2, mdx, cj->h_inv, mi, mdv, &a);
+    density_acc_merge(&cj->sum, &a);
   }
 }
 
@@ -38,17 +57,18 @@ BOLIDE_ALWAYS_INLINE void density_gather(const struct parts *p, size_t j, double
 #define IACT_LOOP_ACC_BEGIN(p, i)                               \
   struct density_acc acc_i = {0, 0, 0, 0, 0, {0, 0, 0}};        \
   const double vi[3] = {(p)->vpx[i], (p)->vpy[i], (p)->vpz[i]}; \
-  const double hi_inv = 1.0 / (p)->h[i]
+  const double hi_inv = 1.0 / (p)->h[i], mi = (p)->m[i];        \
+  (void)mi
 #define IACT_LOOP_ACC_END(p, i) \
   if (!PART_IS_INACTIVE(p, i)) hydro_density_add(p, i, &acc_i)
-#define IACT_LOOP_JACC_T struct density_acc
-#define IACT_LOOP_JACC_LOAD(p, j, a) hydro_density_sums_load(p, j, a)
-#define IACT_LOOP_JACC_STORE(p, j, a) hydro_density_sums_store(p, j, a)
+#define IACT_LOOP_JACC_T struct density_jcache
+#define IACT_LOOP_JACC_LOAD(p, j, a) density_jcache_load(p, j, a)
+#define IACT_LOOP_JACC_STORE(p, j, a) hydro_density_sums_store(p, j, &(a)->sum)
 #define IACT_LOOP_ACC_END_J(p, i, ai) \
-  if (!PART_IS_INACTIVE(p, i)) density_acc_merge(ai, &acc_i)
+  if (!PART_IS_INACTIVE(p, i)) density_acc_merge(&(ai)->sum, &acc_i)
 #define IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj) /* only the cached form is used */
 #define IACT_LOOP_SYM_J(p, i, j, r2, dx, hi, hj, aj) \
-  density_sym(p, i, j, r2, dx, hi, hi_inv, hj, vi, &acc_i, aj)
+  density_sym(r2, dx, hi, hi_inv, hj, mi, vi, &acc_i, aj)
 #define IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, hj) density_gather(p, j, r2, dx, hi_inv, vi, &acc_i)
 #define IACT_LOOP_ACTIVE(p, i) (!((p)->flags[i] & PART_H_CONVERGED))
 #include "tasks/iact_loop.h"
