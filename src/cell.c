@@ -5,6 +5,8 @@
 
 #include "src/part.h"
 
+int cell_loop_leaf_max = 0;
+
 void cell_update_bounds(const struct parts *p, struct cell *c) {
   if (c->split) {
     c->h_max = 0.0;

@@ -52,6 +52,11 @@ struct cell {
   void *tasks[CELL_TASK_SLOTS]; /**< tasks of this cell, filled by the engine */
 };
 
+/** The CPU hydro loops treat a cell of at most this many particles as a
+ *  leaf even where the octree splits it further (Scheduler:cpu_leaf_size,
+ *  set by the engine; 0: only the tree's leaves). */
+extern int cell_loop_leaf_max;
+
 /** Recompute h_max and dx_max of c and its progeny from the particles (leaves)
  *  and the progeny (split cells): call after a drift or a change of h.  The
  *  bounding boxes stay those of the rebuild, dx_max accounting for motion. */

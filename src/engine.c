@@ -835,6 +835,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
    * its cost; BENCHMARKS.md): 32 unless the user chose */
   int split_size = (int)params_get_int(params, "Scheduler:cell_split_size");
   if (e->gp.enabled && !params_given(params, "Scheduler:cell_split_size")) split_size = 32;
+  cell_loop_leaf_max = (int)params_get_int(params, "Scheduler:cpu_leaf_size");
   space_init(&e->space, &e->parts, box, periodic, split_size,
              (int)params_get_int(params, "Scheduler:max_top_level_cells"));
   e->space.max_drift_fraction = params_get_real(params, "Scheduler:rebuild_fraction");

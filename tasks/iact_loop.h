@@ -105,6 +105,13 @@ __attribute__((unused)) static double iact_loop_prune_r2(double R, const struct 
   return iact_loop_prune_r2_pad(R, iact_loop_prune_pad(ci, cj, shift));
 }
 
+/** Whether the loops take cell c as a leaf: not split, or small enough
+ *  (Scheduler:cpu_leaf_size) that looping over all its pairs costs less
+ *  than recursing into its octants (its particles are one range). */
+BOLIDE_ALWAYS_INLINE int iact_loop_leaf(const struct cell *c) {
+  return !c->split || c->count <= (size_t)cell_loop_leaf_max;
+}
+
 /** The first pass of a leaf loop, without branches: of the candidates j
  *  (list[0..n) when list is given, else j0 .. j0 + n - 1), the positions k
  *  in 0 .. n - 1 of those that i at xi reaches into hit[], their number
@@ -167,6 +174,7 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair_leaf)(struct parts *p, co
   const double pad = iact_loop_prune_pad(ci, cj, shift);
   const int direct = ci == cj;
   size_t list[IACT_LOOP_BLOCK], hit[IACT_LOOP_BLOCK];
+  double lx[IACT_LOOP_BLOCK], ly[IACT_LOOP_BLOCK], lz[IACT_LOOP_BLOCK], lh[IACT_LOOP_BLOCK];
   IACT_LOOP_JACC_T cache[IACT_LOOP_BLOCK];
   for (size_t j0 = cj->offset; j0 < jend; j0 += IACT_LOOP_BLOCK) {
     const size_t j1 = jend - j0 > IACT_LOOP_BLOCK ? j0 + IACT_LOOP_BLOCK : jend;
@@ -174,7 +182,14 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair_leaf)(struct parts *p, co
     for (size_t j = j0; j < j1; j++) {
       const double xj[3] = {x[j], y[j], z[j]}, Hj = kernel_gamma * h[j];
       const double R = (Hj > Hi_max ? Hj : Hi_max) + ci->dx_max;
-      if (cell_point_dist2(ci, xj, back) <= iact_loop_prune_r2_pad(R, pad)) list[nj++] = j;
+      if (cell_point_dist2(ci, xj, back) <= iact_loop_prune_r2_pad(R, pad)) {
+        /* the listed particles' positions and h side by side for the first pass */
+        lx[nj] = xj[0];
+        ly[nj] = xj[1];
+        lz[nj] = xj[2];
+        lh[nj] = h[j];
+        list[nj++] = j;
+      }
     }
     if (nj == 0) continue;
     if (!direct)
@@ -185,7 +200,8 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair_leaf)(struct parts *p, co
       const double R = (Hi > Hj_max ? Hi : Hj_max) + cj->dx_max;
       if (cell_point_dist2(cj, xi, shift) > iact_loop_prune_r2_pad(R, pad)) continue;
       /* the neighbours first (a loop without branches), then the interactions */
-      const size_t nh = iact_loop_hits(x, y, z, h, list, 0, nj, xi, shift, Hi2, 1, SIZE_MAX, hit);
+      const size_t nh =
+          iact_loop_hits(lx, ly, lz, lh, NULL, 0, nj, xi, shift, Hi2, 1, SIZE_MAX, hit);
       if (nh == 0) continue;
       IACT_LOOP_ACC_BEGIN(p, i);
       for (size_t k = 0; k < nh; k++) {
@@ -254,15 +270,15 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair)(struct parts *p, const s
   const double h_max = ci->h_max > cj->h_max ? ci->h_max : cj->h_max;
   const double R = kernel_gamma * h_max + ci->dx_max + cj->dx_max;
   if (cell_bbox_dist2(ci, cj, shift) > iact_loop_prune_r2(R, ci, cj, shift)) return;
-  if (ci->split && cj->split) {
+  if (!iact_loop_leaf(ci) && !iact_loop_leaf(cj)) {
     for (int a = 0; a < 8; a++)
       if (ci->progeny[a])
         for (int b = 0; b < 8; b++)
           if (cj->progeny[b]) IACT_LOOP_FN(_pair)(p, ci->progeny[a], cj->progeny[b], shift);
-  } else if (ci->split) {
+  } else if (!iact_loop_leaf(ci)) {
     for (int a = 0; a < 8; a++)
       if (ci->progeny[a]) IACT_LOOP_FN(_pair)(p, ci->progeny[a], cj, shift);
-  } else if (cj->split) {
+  } else if (!iact_loop_leaf(cj)) {
     for (int b = 0; b < 8; b++)
       if (cj->progeny[b]) IACT_LOOP_FN(_pair)(p, ci, cj->progeny[b], shift);
   } else {
@@ -273,7 +289,7 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair)(struct parts *p, const s
 /** One cell with itself, symmetric: each pair of its particles once. */
 __attribute__((unused)) static void IACT_LOOP_FN(_self)(struct parts *p, const struct cell *c) {
   if (c->count < 2) return;
-  if (!c->split) {
+  if (iact_loop_leaf(c)) {
     IACT_LOOP_FN(_self_leaf)(p, c);
     return;
   }
@@ -366,15 +382,15 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair_gather)(struct parts *p,
   if (ci->count == 0 || cj->count == 0) return;
   const double R = kernel_gamma * ci->h_max + ci->dx_max + cj->dx_max;
   if (cell_bbox_dist2(ci, cj, shift) > iact_loop_prune_r2(R, ci, cj, shift)) return;
-  if (ci->split && cj->split) {
+  if (!iact_loop_leaf(ci) && !iact_loop_leaf(cj)) {
     for (int a = 0; a < 8; a++)
       if (ci->progeny[a])
         for (int b = 0; b < 8; b++)
           if (cj->progeny[b]) IACT_LOOP_FN(_pair_gather)(p, ci->progeny[a], cj->progeny[b], shift);
-  } else if (ci->split) {
+  } else if (!iact_loop_leaf(ci)) {
     for (int a = 0; a < 8; a++)
       if (ci->progeny[a]) IACT_LOOP_FN(_pair_gather)(p, ci->progeny[a], cj, shift);
-  } else if (cj->split) {
+  } else if (!iact_loop_leaf(cj)) {
     for (int b = 0; b < 8; b++)
       if (cj->progeny[b]) IACT_LOOP_FN(_pair_gather)(p, ci, cj->progeny[b], shift);
   } else {
@@ -386,7 +402,7 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair_gather)(struct parts *p,
 __attribute__((unused)) static void IACT_LOOP_FN(_self_gather)(struct parts *p,
                                                                const struct cell *c) {
   if (c->count < 2) return;
-  if (!c->split) {
+  if (iact_loop_leaf(c)) {
     IACT_LOOP_FN(_self_gather_leaf)(p, c);
     return;
   }
