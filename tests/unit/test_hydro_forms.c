@@ -2,6 +2,8 @@
  * of the same pair interactions evaluated by brute force over all pairs:
  * density sums and forces must agree to round-off, and the symmetric forces
  * must conserve linear momentum to round-off (theory/architecture.md, rule 3).
+ * Also with one top-level cell (cells paired with their own periodic
+ * images) and with leaves of up to 3000 particles (Scheduler:cpu_leaf_size).
  * Random particles with h varying by a factor 4, periodic and open boxes;
  * one case mixes fluid and solid particles (some in tension) under
  * SPH:fluid_solid_interface.
@@ -49,7 +51,10 @@ struct forms_case {
   int fsi;          /**< SPH:fluid_solid_interface, random phases, a third in tension */
 };
 
-static int check(int periodic, size_t n, unsigned long long seed, const struct forms_case *fc) {
+/** check() with the top-level grid at most max_top cells a side and the
+ *  loops' leaves up to leaf_max particles (Scheduler:cpu_leaf_size). */
+static int check_at(int periodic, size_t n, unsigned long long seed, const struct forms_case *fc,
+                    int max_top, int leaf_max) {
   unsigned long long s = seed;
   struct parts p;
   parts_alloc(&p, n);
@@ -68,7 +73,8 @@ static int check(int periodic, size_t n, unsigned long long seed, const struct f
     p.flags[i] = (fc->fsi && urand(&s) < 0.5) ? PART_SOLID : 0;
   }
   struct space sp;
-  space_init(&sp, &p, box, periodic, 50, 8);
+  cell_loop_leaf_max = leaf_max;
+  space_init(&sp, &p, box, periodic, 50, max_top);
   space_rebuild(&sp);
   struct space_pair *pairs;
   const size_t np = space_top_pairs(&sp, &pairs);
@@ -102,8 +108,10 @@ static int check(int periodic, size_t n, unsigned long long seed, const struct f
       if (e > worst) worst = e;
     }
   }
-  printf("%s box, N = %zu: density, symmetric vs gather: worst relative difference %.3e\n",
-         periodic ? "periodic" : "open", n, worst);
+  printf(
+      "%s box, N = %zu, %d top-level cells a side at most, leaves up to %d: density, "
+      "symmetric vs gather: worst relative difference %.3e\n",
+      periodic ? "periodic" : "open", n, max_top, leaf_max > 50 ? leaf_max : 50, worst);
   if (worst > 1e-12) fail = 1;
 
   /* a pressure field and the force loops */
@@ -185,6 +193,11 @@ static int check(int periodic, size_t n, unsigned long long seed, const struct f
   space_free(&sp);
   parts_free(&p);
   return fail;
+}
+
+/** The default layout: at most 8 top-level cells a side, the tree's leaves. */
+static int check(int periodic, size_t n, unsigned long long seed, const struct forms_case *fc) {
+  return check_at(periodic, n, seed, fc, 8, 0);
 }
 
 /** The acceleration of particle i (gather form) on a lattice of spacing 1,
@@ -277,6 +290,15 @@ int main(int argc, char **argv) {
     fail |= check(1, 3000, 1 + 2 * k, &cases[k]);
     fail |= check(0, 3000, 2 + 2 * k, &cases[k]);
   }
+  /* the leaf loops' other paths (theory/neighbours.md, "The neighbours'
+   * sums in a cache"): a periodic box of one top-level cell, whose cells
+   * pair with their own images (the arrays updated directly), and leaves
+   * of up to 3000 particles (a self leaf beyond the cache, pair leaves in
+   * several blocks) */
+  fail |= check_at(1, 3000, 21, &cases[0], 1, 3000); /* one leaf, paired with its images */
+  fail |= check_at(1, 3000, 22, &cases[1], 1, 3000);
+  fail |= check_at(0, 6000, 23, &cases[0], 2, 6000); /* leaves of ~750: two blocks */
+  fail |= check_at(0, 3000, 24, &cases[1], 2, 3000); /* leaves of ~375, cached */
   fail |= check_interface_lattice();
   printf("%s\n", fail ? "FAIL" : "PASS");
   return fail;
