@@ -54,6 +54,10 @@ struct halo {
   /* for the closing line (halo_log) */
   double t_refresh,
       t_halo; /**< wall seconds in halo_refresh, in halo_rebuild_start + halo_rebuild */
+  /** the rebuild's parts (wall seconds): removing the copies and migrating,
+   *  choosing the copies, packing + exchanging + unpacking them, the cells
+   *  with the copies and the index maps */
+  double t_rebuild[4];
   long nr_refresh, nr_halo;
   double copies; /**< sum over rebuilds of the copies over the owned particles, all ranks */
   /* self-gravity's copies: every particle of the other ranks that is not a
@@ -864,6 +868,7 @@ void halo_rebuild_start(struct engine *e) {
   ranks_allreduce_doubles(&h_max, 1, RANKS_MAX);
   e->space.h_max_floor = h_max;
   H->t_halo += error_walltime() - w0;
+  H->t_rebuild[0] += error_walltime() - w0;
 #endif
 }
 
@@ -881,6 +886,7 @@ int halo_rebuild(struct engine *e) {
     /* every rank removed the same particles from the open box: rank 0 counts them */
     if (H->me != 0) memset(&s->removed, 0, sizeof s->removed);
   }
+  const double wsel = error_walltime(); /* (the first rebuild's partition not counted below) */
   long long owned = (long long)p->count;
   ranks_allreduce_llongs(&owned, 1, RANKS_SUM);
   e->nr_owned_all = owned;
@@ -915,6 +921,8 @@ int halo_rebuild(struct engine *e) {
         halo_list_push(&G[r], i);
     }
   }
+  const double w1 = error_walltime();
+  H->t_rebuild[1] += w1 - wsel;
   /* counts: [copies, gravity's copies] for each rank */
   int *sc2 = error_malloc(4 * (size_t)n * sizeof(int), "MPI halo counts");
   int *rc2 = sc2 + 2 * n;
@@ -983,6 +991,8 @@ int halo_rebuild(struct engine *e) {
   e->nr_foreign = nr;
   free(d2);
   free(cand);
+  const double w2 = error_walltime();
+  H->t_rebuild[2] += w2 - w1;
   /* the cells of both, and where the sent and received particles are now
    * (the sort's permutation: new index i holds old index sort_index[i]) */
   if (space_rebuild(s) != 0) error_bug("particles removed by the rebuild with the halo");
@@ -1004,6 +1014,7 @@ int halo_rebuild(struct engine *e) {
         H->gridx[m - H->nrecv] = i;
     }
   halo_mark_cells(e);
+  H->t_rebuild[3] += error_walltime() - w2;
   /* every rank's share, on rank 0's log (-v) */
   double v[3] = {(double)(p->count - nr), (double)H->nrecv, (double)H->gnrecv};
   ranks_allreduce_doubles(v, 3, RANKS_SUM);
@@ -1189,6 +1200,15 @@ void halo_log(const struct engine *e) {
             H->nr_refresh ? H->t_refresh / (double)H->nr_refresh : 0.0,
             H->nr_refresh ? H->t_wait / (double)H->nr_refresh : 0.0,
             H->nr_halo ? H->t_halo / (double)H->nr_halo : 0.0);
+  if (H->nr_halo) {
+    const double k = 1.0 / (double)H->nr_halo;
+    error_log(0,
+              "MPI: rank 0's rebuild, per rebuild: %.4f s removing the copies and migrating "
+              "particles, %.4f s choosing the copies (the first rebuild's partition left out), "
+              "%.4f s packing, exchanging and unpacking "
+              "them, %.4f s the cells with the copies and the index maps",
+              H->t_rebuild[0] * k, H->t_rebuild[1] * k, H->t_rebuild[2] * k, H->t_rebuild[3] * k);
+  }
   if (H->trigger > 0.0)
     error_log(0,
               "MPI: domain decomposed again %ld times (of %ld rebuilds past the trigger %g); "
