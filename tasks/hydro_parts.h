@@ -17,19 +17,6 @@ BOLIDE_INLINE void hydro_density_reset(struct parts *BOLIDE_RESTRICT p, size_t i
   p->div_v[i] = p->curl_vx[i] = p->curl_vy[i] = p->curl_vz[i] = 0.0;
 }
 
-/** Add a density accumulator to particle i. */
-BOLIDE_INLINE void hydro_density_add(struct parts *BOLIDE_RESTRICT p, size_t i,
-                                     const struct density_acc *a) {
-  p->rho[i] += a->rho;
-  p->rho_dh[i] += a->rho_dh;
-  p->wcount[i] += a->wcount;
-  p->wcount_dh[i] += a->wcount_dh;
-  p->div_v[i] += a->div_v;
-  p->curl_vx[i] += a->curl_v[0];
-  p->curl_vy[i] += a->curl_v[1];
-  p->curl_vz[i] += a->curl_v[2];
-}
-
 /** Particle i's density sums as they stand in the arrays, into a (the CPU
  *  loops' cache of a leaf's sums; hydro_density_sums_store writes them
  *  back). */
@@ -58,8 +45,7 @@ BOLIDE_INLINE void hydro_density_sums_store(struct parts *BOLIDE_RESTRICT p, siz
   p->curl_vz[i] = a->curl_v[2];
 }
 
-/** Add the density accumulator a to the sums s, as hydro_density_add adds
- *  it to the arrays. */
+/** Add the density accumulator a to the sums s. */
 BOLIDE_INLINE void density_acc_merge(struct density_acc *BOLIDE_RESTRICT s,
                                      const struct density_acc *BOLIDE_RESTRICT a) {
   s->rho += a->rho;
@@ -70,6 +56,16 @@ BOLIDE_INLINE void density_acc_merge(struct density_acc *BOLIDE_RESTRICT s,
   s->curl_v[0] += a->curl_v[0];
   s->curl_v[1] += a->curl_v[1];
   s->curl_v[2] += a->curl_v[2];
+}
+
+/** Add a density accumulator to particle i (the sums loaded, merged and
+ *  stored: one list of the fields). */
+BOLIDE_INLINE void hydro_density_add(struct parts *BOLIDE_RESTRICT p, size_t i,
+                                     const struct density_acc *a) {
+  struct density_acc s;
+  hydro_density_sums_load(p, i, &s);
+  density_acc_merge(&s, a);
+  hydro_density_sums_store(p, i, &s);
 }
 
 /** The contribution of j to i's density sums (gather form), dx = x_i - x_j. */
@@ -169,20 +165,6 @@ BOLIDE_INLINE void hydro_force_reset(struct parts *BOLIDE_RESTRICT p, size_t i) 
   p->xsphx[i] = p->xsphy[i] = p->xsphz[i] = 0.0;
 }
 
-/** Add a force accumulator to particle i. */
-BOLIDE_INLINE void hydro_force_add(struct parts *BOLIDE_RESTRICT p, size_t i,
-                                   const struct force_acc *a) {
-  p->ax[i] += a->a[0];
-  p->ay[i] += a->a[1];
-  p->az[i] += a->a[2];
-  p->du_dt[i] += a->du_dt;
-  p->drho_dt[i] += a->drho_dt;
-  if (a->v_sig > p->v_sig[i]) p->v_sig[i] = a->v_sig;
-  p->xsphx[i] += a->xsph[0];
-  p->xsphy[i] += a->xsph[1];
-  p->xsphz[i] += a->xsph[2];
-}
-
 /** Particle i's force sums as they stand in the arrays, into a (the CPU
  *  loops' cache of a leaf's sums; hydro_force_sums_store writes them back). */
 BOLIDE_INLINE void hydro_force_sums_load(const struct parts *BOLIDE_RESTRICT p, size_t i,
@@ -212,8 +194,7 @@ BOLIDE_INLINE void hydro_force_sums_store(struct parts *BOLIDE_RESTRICT p, size_
   p->xsphz[i] = a->xsph[2];
 }
 
-/** Add the force accumulator a to the sums s, as hydro_force_add adds it to
- *  the arrays. */
+/** Add the force accumulator a to the sums s. */
 BOLIDE_INLINE void force_acc_merge(struct force_acc *BOLIDE_RESTRICT s,
                                    const struct force_acc *BOLIDE_RESTRICT a) {
   s->a[0] += a->a[0];
@@ -225,6 +206,16 @@ BOLIDE_INLINE void force_acc_merge(struct force_acc *BOLIDE_RESTRICT s,
   s->xsph[0] += a->xsph[0];
   s->xsph[1] += a->xsph[1];
   s->xsph[2] += a->xsph[2];
+}
+
+/** Add a force accumulator to particle i (the sums loaded, merged and
+ *  stored: one list of the fields). */
+BOLIDE_INLINE void hydro_force_add(struct parts *BOLIDE_RESTRICT p, size_t i,
+                                   const struct force_acc *a) {
+  struct force_acc s;
+  hydro_force_sums_load(p, i, &s);
+  force_acc_merge(&s, a);
+  hydro_force_sums_store(p, i, &s);
 }
 
 /** The time-step limiter of individual time steps (TimeIntegration:

@@ -174,7 +174,6 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair_leaf)(struct parts *p, co
   const double pad = iact_loop_prune_pad(ci, cj, shift);
   const int direct = ci == cj;
   size_t list[IACT_LOOP_BLOCK], hit[IACT_LOOP_BLOCK];
-  double lx[IACT_LOOP_BLOCK], ly[IACT_LOOP_BLOCK], lz[IACT_LOOP_BLOCK], lh[IACT_LOOP_BLOCK];
   IACT_LOOP_JACC_T cache[IACT_LOOP_BLOCK];
   for (size_t j0 = cj->offset; j0 < jend; j0 += IACT_LOOP_BLOCK) {
     const size_t j1 = jend - j0 > IACT_LOOP_BLOCK ? j0 + IACT_LOOP_BLOCK : jend;
@@ -182,14 +181,7 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair_leaf)(struct parts *p, co
     for (size_t j = j0; j < j1; j++) {
       const double xj[3] = {x[j], y[j], z[j]}, Hj = kernel_gamma * h[j];
       const double R = (Hj > Hi_max ? Hj : Hi_max) + ci->dx_max;
-      if (cell_point_dist2(ci, xj, back) <= iact_loop_prune_r2_pad(R, pad)) {
-        /* the listed particles' positions and h side by side for the first pass */
-        lx[nj] = xj[0];
-        ly[nj] = xj[1];
-        lz[nj] = xj[2];
-        lh[nj] = h[j];
-        list[nj++] = j;
-      }
+      if (cell_point_dist2(ci, xj, back) <= iact_loop_prune_r2_pad(R, pad)) list[nj++] = j;
     }
     if (nj == 0) continue;
     if (!direct)
@@ -200,8 +192,7 @@ __attribute__((unused)) static void IACT_LOOP_FN(_pair_leaf)(struct parts *p, co
       const double R = (Hi > Hj_max ? Hi : Hj_max) + cj->dx_max;
       if (cell_point_dist2(cj, xi, shift) > iact_loop_prune_r2_pad(R, pad)) continue;
       /* the neighbours first (a loop without branches), then the interactions */
-      const size_t nh =
-          iact_loop_hits(lx, ly, lz, lh, NULL, 0, nj, xi, shift, Hi2, 1, SIZE_MAX, hit);
+      const size_t nh = iact_loop_hits(x, y, z, h, list, 0, nj, xi, shift, Hi2, 1, SIZE_MAX, hit);
       if (nh == 0) continue;
       IACT_LOOP_ACC_BEGIN(p, i);
       for (size_t k = 0; k < nh; k++) {
