@@ -8,6 +8,8 @@
 #
 # Usage: tools/bench/impact.sh [-n "1e5 1e6"] [-t "1 2"] [-r 3] [-s 3] [-g]
 #   -g  also hydro + gravity
+# BOLIDE_RUN_FLAGS adds options to each run (--no-gpu: the CPU path of a
+# build with CUDA).
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 build=${BOLIDE_BUILD:-$top/_build}
@@ -54,7 +56,7 @@ Scheduler:
 YML
     for t in $threads; do
       s=$(for r in $(seq "$repeat"); do
-            "$build/bolide" -n "$steps" -t "$t" p.yml >run.log 2>&1 || { tail -3 run.log >&2; exit 1; }
+            "$build/bolide" ${BOLIDE_RUN_FLAGS:-} -n "$steps" -t "$t" p.yml >run.log 2>&1 || { tail -3 run.log >&2; exit 1; }
             awk '$1 ~ /^[0-9]+$/ && NF == 6 {s += $5; n++} END {printf "%.6f\n", s / n}' run.log
           done | sort -g | awk '{a[NR] = $1} END {print a[int((NR + 1) / 2)]}')
       printf "%-10d %-16s %8d %12.4f %16.3e\n" "$N" "$v" "$t" "$s" "$(awk -v n=$N -v s=$s -v t=$t 'BEGIN {print n / s / t}')"
