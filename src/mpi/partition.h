@@ -36,7 +36,8 @@ enum partition_method {
 struct partition_graph {
   int nr_cells;       /**< vertices: the top-level cells, in space.cells order */
   int cdim[3];        /**< the top-level grid */
-  double *cost;       /**< [nr_cells] work of each cell (seconds if measured, else pair tests) */
+  double *cost;       /**< [nr_cells] work of each cell (seconds if measured, else pair tests;
+                           particles for the estimate without a task graph) */
   size_t *count;      /**< [nr_cells] particles of each cell */
   int *xadj;          /**< [nr_cells + 1] start of each vertex's edges in adj */
   int *adj;           /**< [xadj[nr_cells]] neighbouring cells */
@@ -82,8 +83,9 @@ struct partition {
  *  box) plus the product of the particles of each cell within a kernel
  *  support of the other's box, a gravity pair task n_i n_j, a task on one
  *  cell PARTITION_PER_PARTICLE per particle (calibrated on hydro only).
- *  sched NULL: the estimate from the top-level cells alone (a self task per
- *  cell, a pair task per pair of neighbouring non-empty cells). */
+ *  sched NULL: the estimate from the top-level cells alone, their
+ *  particles (each costs about the same; the edges are those of a pair
+ *  task per pair of neighbouring non-empty cells). */
 void partition_graph_make(struct partition_graph *g, const struct space *s,
                           const struct scheduler *sched, int measured);
 
