@@ -17,18 +17,24 @@
 enum ghost_h_result {
   GHOST_H_CONVERGED = 0, /**< h is the solution within the tolerance */
   GHOST_H_AGAIN = 1,     /**< h was updated: redo the density sums */
+  GHOST_H_TAYLOR = 2,    /**< h was updated by a Newton step small enough that the sums at the
+                              new h are those at the old one plus the step times their
+                              h-derivatives: correct them, do not redo them */
 };
 
 /** One step of the h iteration for a particle with smoothing length *h,
  *  number density n and dn/dh.  Updates *h, *h_lo, *h_hi; h_max caps h.
- *  Returns GHOST_H_CONVERGED or GHOST_H_AGAIN.  On GHOST_H_AGAIN *h is the
+ *  Returns GHOST_H_CONVERGED, GHOST_H_AGAIN, or GHOST_H_TAYLOR when the
+ *  Newton step is at most taylor relative (0: never): n changes as n h^-3
+ *  near the root, so the first-order sums at the new h are off by about
+ *  6 (step / h)^2 n, below tol for taylor = sqrt(tol / 6).  On GHOST_H_AGAIN *h is the
  *  h to redo the sums with; on GHOST_H_CONVERGED the sums at the h passed
  *  in are accepted, and *h is the best estimate of the root that they
  *  give (one more Newton step, within the tolerance of the h passed in):
  *  the caller keeps its h for this step's sums and may start the next
  *  step's iteration from the estimate (ghost_part_step). */
 BOLIDE_INLINE int ghost_h_iterate(double *h, double *h_lo, double *h_hi, double n, double dn_dh,
-                                  double eta, double tol, double h_max) {
+                                  double eta, double tol, double taylor, double h_max) {
   const double h0 = *h;
   /* a first guess above the cap (an h of the initial conditions, a cap
    * lowered by the cells) is never accepted, even where its sums happen to
@@ -57,6 +63,10 @@ BOLIDE_INLINE int ghost_h_iterate(double *h, double *h_lo, double *h_hi, double 
     if (h0 < *h_hi) *h_hi = h0;
   }
   double h1 = (df > 0.0) ? h0 - f / df : -1.0;
+  if (h1 > 0.0 && fabs(h1 - h0) <= taylor * h0 && h1 <= h_max) {
+    *h = h1;
+    return GHOST_H_TAYLOR;
+  }
   /* keep the step within a factor 2 and inside the bracket; else bisect */
   if (!(h1 > 0.5 * h0 && h1 < 2.0 * h0 && h1 > *h_lo && h1 < *h_hi)) {
     if (*h_hi < 1e300 && *h_lo > 0.0)

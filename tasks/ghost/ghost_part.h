@@ -58,9 +58,20 @@ BOLIDE_INLINE int ghost_part_step(struct parts *BOLIDE_RESTRICT p, size_t i,
     return (h >= h_cap && h_cap < hp->h_max) ? 1 : 0;
   }
   const int r = ghost_h_iterate(&h, &p->h_lo[i], &p->h_hi[i], p->wcount[i], p->wcount_dh[i],
-                                hp->eta, hp->h_tolerance, hmax);
+                                hp->eta, hp->h_tolerance, hp->h_taylor, hmax);
   int capped = 0;
-  if (r == GHOST_H_CONVERGED) {
+  if (r == GHOST_H_TAYLOR) {
+    /* the sums at the new h to first order in the step (SPH:h_taylor); the
+     * velocity sums (div v, curl v) keep the old h's, a relative
+     * difference of the step's order in the viscosity switch alone */
+    const double dh = h - p->h[i];
+    p->rho[i] += p->rho_dh[i] * dh;
+    p->wcount[i] += p->wcount_dh[i] * dh;
+    p->h[i] = h;
+    p->flags[i] |= PART_H_CONVERGED;
+    p->h_lo[i] = 1.0;
+    if (h >= h_cap && h_cap < hp->h_max) capped = 1;
+  } else if (r == GHOST_H_CONVERGED) {
     p->flags[i] |= PART_H_CONVERGED;
     if (h >= h_cap && h_cap < hp->h_max) capped = 1;
     /* keep the h the sums were computed with; h is the root's estimate

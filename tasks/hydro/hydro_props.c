@@ -10,6 +10,7 @@ void hydro_props_init(struct hydro_props *hp, const struct params *p) {
   hp->enabled = params_get_bool(p, "SPH:hydro");
   hp->eta = params_get_real(p, "SPH:resolution_eta");
   hp->h_tolerance = params_get_real(p, "SPH:h_tolerance");
+  hp->h_taylor = params_get_bool(p, "SPH:h_taylor") ? sqrt(hp->h_tolerance / 6.0) : 0.0;
   hp->h_max = params_get_real(p, "SPH:h_max");
   hp->max_iterations = (int)params_get_int(p, "SPH:max_ghost_iterations");
   hp->h_continuity = params_get_enum(p, "SPH:h_evolution") == 1;

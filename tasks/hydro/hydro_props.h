@@ -10,6 +10,8 @@ struct hydro_props {
   int enabled;        /**< SPH:hydro */
   double eta;         /**< SPH:resolution_eta, h = eta * (1/n)^(1/3) */
   double h_tolerance; /**< relative tolerance of the h iteration */
+  double h_taylor;    /**< largest relative Newton step of h taken with the sums corrected to first
+                           order (SPH:h_taylor: sqrt(h_tolerance / 6); 0: none) */
   double h_max;       /**< largest smoothing length */
   int max_iterations; /**< of the h iteration */
   int h_continuity;   /**< SPH:h_evolution: continuity (dh/dt = -h/(3 rho) drho/dt, no iteration) */
