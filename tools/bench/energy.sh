@@ -17,6 +17,7 @@
 #       false, as the GPU computes it); cpu-rk2, gpu-rk2, cpu-pc, gpu-pc:
 #       the global step with the integrators TimeIntegration:scheme rk2
 #       (its default error bound) and pc (theory/integrators.md)
+# BOLIDE_RUN_FLAGS adds options to each run (-P SECTION:KEY:VALUE).
 set -euo pipefail
 # ENERGY_ETA: SPH:resolution_eta (default SWIFT's 1.2348 for the cubic spline;
 # empty: the build kernel's default eta, e.g. Wendland C2's 1.7)
@@ -75,7 +76,7 @@ Scheduler:
   max_top_level_cells: 16
 YML
     w0=$(date +%s.%N)
-    "$build/bolide" $gpu -t "$threads" p.yml >run_$m.log 2>&1 || { tail -3 run_$m.log >&2; exit 1; }
+    "$build/bolide" $gpu ${BOLIDE_RUN_FLAGS:-} -t "$threads" p.yml >run_$m.log 2>&1 || { tail -3 run_$m.log >&2; exit 1; }
     w1=$(date +%s.%N)
     [ -n "$out" ] && { mkdir -p "$out"; cp out_$m/statistics.txt "$out/stats_${N}_$m.txt"; cp run_$m.log "$out/run_${N}_$m.log"; }
     steps=$(awk '/^\[.*done:/ {print $5}' run_$m.log)
