@@ -518,7 +518,6 @@ static int run_case(struct gpu *g, int periodic, int side, enum test_kind kind,
   struct hydro_props hp = {.enabled = 1,
                            .eta = 1.2348,
                            .h_tolerance = 1e-4,
-                           .h_taylor = 4.0824829046386306e-3, /* SPH:h_taylor's sqrt(1e-4 / 6) */
                            .h_max = 1.0,
                            .max_iterations = 60,
                            .cfl = 0.2,
