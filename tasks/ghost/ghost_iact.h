@@ -25,9 +25,11 @@ enum ghost_h_result {
 /** One step of the h iteration for a particle with smoothing length *h,
  *  number density n and dn/dh.  Updates *h, *h_lo, *h_hi; h_max caps h.
  *  Returns GHOST_H_CONVERGED, GHOST_H_AGAIN, or GHOST_H_TAYLOR when the
- *  Newton step is at most taylor relative (0: never): n changes as n h^-3
- *  near the root, so the first-order sums at the new h are off by about
- *  6 (step / h)^2 n, below tol for taylor = sqrt(tol / 6).  On GHOST_H_AGAIN *h is the
+ *  Newton step is at most taylor relative (0: never): the neighbours' part
+ *  of n hardly depends on h, and a single kernel term, as h^-3, has the
+ *  second derivative 12 n / h^2, so the first-order sums at the new h are
+ *  off by at most about 6 (step / h)^2 n, below tol for taylor =
+ *  sqrt(tol / 6) (theory/sph.md section 2).  On GHOST_H_AGAIN *h is the
  *  h to redo the sums with; on GHOST_H_CONVERGED the sums at the h passed
  *  in are accepted, and *h is the best estimate of the root that they
  *  give (one more Newton step, within the tolerance of the h passed in):
