@@ -118,6 +118,8 @@ struct gpu {
   size_t perm_cap;              /**< their allocated length */
   long permutes;                /**< rebuilds that reordered the resident particles */
   double t_permute;             /**< their milliseconds (permutation up, every field reordered) */
+  double *h_start;              /**< h at the start of the last FORCE phase (gpu_restore_h) */
+  size_t h_start_cap;           /**< its allocated length */
 };
 
 /** Slots of the watchdog's results (gpu_watchdog_check): one per double
@@ -402,6 +404,15 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
   gpu_stage_materials(g, mats);
   gpu_check(cudaMemcpyAsync(g->mats_dev, g->mats_host, sizeof *mats, cudaMemcpyHostToDevice, s));
   gpu_check(cudaMemsetAsync(g->counters_dev, 0, GPU_NR_COUNTERS * sizeof(int), s));
+  /* the h the phase starts from: a repeat after an overflow starts there
+   * again (gpu_restore_h), as the CPU's iteration does */
+  if (g->h_start_cap < p->count) {
+    if (g->h_start) gpu_check(cudaFree(g->h_start));
+    g->h_start_cap = g->capacity;
+    g->h_start = (double *)gpu_alloc(g->h_start_cap * sizeof(double), "the phase's starting h");
+  }
+  gpu_check(cudaMemcpyAsync(g->h_start, g->dev.h, p->count * sizeof(double),
+                            cudaMemcpyDeviceToDevice, s));
   gpu_check(cudaStreamWaitEvent(s, g->cells_ready, 0));
   gpu_check(cudaEventRecord(g->ev[1], s));
 
@@ -457,6 +468,18 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
     g->t[k] += ms;
   }
   g->calls++;
+}
+
+extern "C" void gpu_restore_h(struct gpu *g, struct parts *p, int resident) {
+  if (!g->h_start || p->count != g->dev.count) error_bug("no FORCE phase's h to restore");
+  const size_t bytes = p->count * sizeof(double);
+  if (resident)
+    gpu_check(cudaMemcpyAsync(g->dev.h, g->h_start, bytes, cudaMemcpyDeviceToDevice, g->stream[0]));
+  else {
+    gpu_check(cudaMemcpyAsync(p->h, g->h_start, bytes, cudaMemcpyDeviceToHost, g->stream[0]));
+    g->bytes_d2h += (double)bytes;
+  }
+  gpu_check(cudaStreamSynchronize(g->stream[0]));
 }
 
 extern "C" void gpu_set_bins(struct gpu *g, const struct gpu_bins *bins) {
@@ -671,8 +694,6 @@ extern "C" void gpu_rk_arrays(struct gpu *g, size_t n, int ny, int nr, int nrec,
   const size_t bytes = (n ? n : 1) * (size_t)(ny + nrec * nr) * sizeof(double);
   if (bytes > g->rk_bytes) {
     if (g->rk_buf) gpu_check(cudaFree(g->rk_buf));
-    if (g->perm_dev) gpu_check(cudaFree(g->perm_dev));
-    if (g->perm_buf) gpu_check(cudaFree(g->perm_buf));
     gpu_check(cudaMalloc((void **)&g->rk_buf, bytes));
     g->rk_bytes = bytes;
   }
@@ -871,6 +892,9 @@ extern "C" void gpu_free(struct gpu *g) {
   gpu_unpin(g);
   if (g->rk_buf) gpu_check(cudaFree(g->rk_buf));
   if (g->rk_err) gpu_check(cudaFree(g->rk_err));
+  if (g->perm_dev) gpu_check(cudaFree(g->perm_dev));
+  if (g->perm_buf) gpu_check(cudaFree(g->perm_buf));
+  if (g->h_start) gpu_check(cudaFree(g->h_start));
   for (int k = 0; k < part_nr_fields; k++) {
     void **slot = gpu_field_slot(&g->dev, k);
     if (*slot) gpu_check(cudaFree(*slot));

@@ -99,6 +99,11 @@ void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu_leaves *lv
                      const struct hydro_props *hp, const struct material_table *mats,
                      const struct gpu_damage *dmg, const struct gpu_gravity *grav, double dt_kick,
                      double *leaf_dt_min, int resident, struct gpu_force_out *out);
+/** After a FORCE phase that ended in out->overflow (its grown h handed
+ *  back to build wider lists): put back the h the phase started from, on
+ *  the device (resident) or in p (not resident), so that the repeat
+ *  iterates from there as the CPU's ghost does.  Synchronous. */
+void gpu_restore_h(struct gpu *g, struct parts *p, int resident);
 /** Have gpu_force_phase call fn(ctx) before its kick reads ga, and before
  *  it writes the host's h when the lists overflow (fn NULL: nothing).  The
  *  hybrid runner's hook: it waits there for the self-gravity computed

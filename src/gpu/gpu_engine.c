@@ -455,6 +455,10 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
       gc->built_rebuild = s->nr_rebuilds;
       gc->built_tcells = tcells;
       gc->built_nr = nr;
+      /* lists from the h the last attempt reached; the sums from the h the
+       * phase started with (with SPH:h_taylor the CPU's iteration may stop
+       * short of a new sum where the repeat from the reached h would not) */
+      if (attempt > 0) gpu_restore_h(g, p, resident);
     } else {
       /* same leaves and lists; only the cells' caps moved */
       for (int l = 0; l < gc->n; l++) gc->h_cap[l] = tc_h_cap[gc->top[l]];
