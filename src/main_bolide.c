@@ -586,7 +586,16 @@ int main(int argc, char **argv) {
   for (int k = 0; k < n_user; k++) overrides[n_overrides++] = user[k];
 
   const char *file = argv[optind];
+  /* every rank reads the same file: rank 0 first, so that a mistake in it is
+   * reported once (the other ranks wait, and mpirun stops them when rank 0
+   * exits); a rank that then cannot read it says so itself */
+  int params_ok = 0;
+  if (ranks_size() > 1 && ranks_rank() != 0) ranks_bcast_ints(&params_ok, 1);
   struct params *params = params_read(file, n_overrides, overrides);
+  if (ranks_size() > 1 && ranks_rank() == 0) {
+    params_ok = 1;
+    ranks_bcast_ints(&params_ok, 1);
+  }
   if ((with_hydro || with_gravity) && !(with_hydro && with_gravity)) {
     const char *off = with_hydro ? "Gravity:enabled" : "SPH:hydro";
     const char *t = params_file_text(params, off);

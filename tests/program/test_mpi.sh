@@ -340,6 +340,14 @@ rc=$?
 [ $rc != 0 ] || fail "mpirun -n 2 with Gravity:reuse_steps exited 0"
 grep -q "bolide: error: 2 MPI ranks: multi-rank runs cannot reuse gravity's far field" two.err ||
   { cat two.err; fail "mpirun -n 2 with Gravity:reuse_steps: no error line"; }
+# a mistake in the parameter file, read by every rank: one error line (rank
+# 0's; before, each of the 3 ranks printed it), non-zero, no hang
+timeout 60 "$MPIRUN" -n 3 "$B/bolide" -t 1 -P SPH:no_such_key:1 p.yml >bad.out 2>bad.err
+rc=$?
+[ $rc = 124 ] && fail "mpirun -n 3 with an unknown key hung"
+[ $rc != 0 ] || fail "mpirun -n 3 with an unknown key exited 0"
+nerr=$(grep -c "bolide: error: .*unknown key 'SPH:no_such_key'" bad.err)
+[ "$nerr" = 1 ] || { cat bad.err; fail "mpirun -n 3 with an unknown key: $nerr error lines, not 1"; }
 # the partition over the ranks of mpirun
 timeout 120 "$MPIRUN" -n 3 "$B/bolide" --partition 0 -t 1 p.yml >part.out 2>part.err ||
   { cat part.err; fail "mpirun -n 3 bolide --partition 0"; }
