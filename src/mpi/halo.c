@@ -71,9 +71,10 @@ struct halo {
   double t_grefresh, gcopies;
   long nr_grefresh;
   /* repartitioning (halo_repartition) */
-  double trigger;           /**< DomainDecomposition:trigger (0: never) */
-  long nr_repart, nr_tried; /**< partitions made again and kept; tried */
-  double imb_last;          /**< the measured imbalance at the last rebuild */
+  double trigger;               /**< DomainDecomposition:trigger (0: never) */
+  enum partition_method method; /**< DomainDecomposition:method (auto resolved) */
+  long nr_repart, nr_tried;     /**< partitions made again and kept; tried */
+  double imb_last;              /**< the measured imbalance at the last rebuild */
   /* the refreshes in flight (halo_refresh_start ... finish) */
 #ifdef HAVE_MPI
   MPI_Request req, greq;
@@ -473,8 +474,7 @@ static void halo_repartition(struct engine *e) {
   int *assign = error_malloc((size_t)nc * sizeof(int), "MPI repartition");
   if (H->me == 0) {
     struct partition pt;
-    partition_make(&pt, &g, n,
-                   partition_have_metis() ? partition_method_metis : partition_method_morton);
+    partition_make(&pt, &g, n, H->method);
     memcpy(assign, pt.rank, (size_t)nc * sizeof(int));
     partition_free(&pt);
     halo_relabel(assign, H->assign, g.cost, nc, n);
@@ -515,14 +515,14 @@ static void halo_partition(struct engine *e) {
     struct partition_graph g;
     partition_graph_make(&g, s, NULL, 0);
     struct partition pt;
-    partition_make(&pt, &g, H->nranks,
-                   partition_have_metis() ? partition_method_metis : partition_method_morton);
+    partition_make(&pt, &g, H->nranks, H->method);
     error_log(0,
               "domain decomposition: %d ranks over %d top-level cells (%s), imbalance %.3f of "
               "the estimated costs",
               H->nranks, ncells,
-              pt.method == partition_method_metis ? (pt.fallback ? "Morton ranges" : "METIS")
-                                                  : "Morton ranges",
+              pt.method == partition_method_metis && !pt.fallback ? "METIS"
+              : pt.method == partition_method_slabs               ? "slabs along x"
+                                                                  : "Morton ranges",
               pt.imbalance);
     assign = pt.rank;
     pt.rank = NULL;
@@ -823,6 +823,16 @@ void halo_init(struct engine *e) {
   H->rdispl = H->scount + 3 * H->nranks;
   H->gravity = e->gp.enabled;
   H->trigger = params_get_real(e->params, "DomainDecomposition:trigger");
+  /* auto|metis|morton|slabs: 0 picks METIS where the build has it */
+  const int method = params_get_enum(e->params, "DomainDecomposition:method");
+  if (method == 1 && !partition_have_metis())
+    error_exit(
+        "%s: DomainDecomposition:method: metis, but this build has no METIS (configure "
+        "--with-mpi found no libmetis-dev); use auto, morton or slabs",
+        params_filename(e->params));
+  H->method = method == 0
+                  ? (partition_have_metis() ? partition_method_metis : partition_method_morton)
+                  : (enum partition_method)(method - 1);
   H->gscount = error_calloc(4 * (size_t)H->nranks, sizeof(int), "MPI halo counts");
   H->gsdispl = H->gscount + H->nranks;
   H->grcount = H->gscount + 2 * H->nranks;

@@ -340,6 +340,20 @@ rc=$?
 [ $rc != 0 ] || fail "mpirun -n 2 with Gravity:reuse_steps exited 0"
 grep -q "bolide: error: 2 MPI ranks: multi-rank runs cannot reuse gravity's far field" two.err ||
   { cat two.err; fail "mpirun -n 2 with Gravity:reuse_steps: no error line"; }
+# DomainDecomposition:method: the split the first partition's log line names
+for m in "morton:Morton ranges" "slabs:slabs along x"; do
+  timeout 120 "$MPIRUN" -n 2 "$B/bolide" -n 2 -t 1 -P "DomainDecomposition:method:${m%%:*}" p.yml \
+    >dd.out 2>dd.err || { cat dd.err; fail "mpirun -n 2 with DomainDecomposition:method ${m%%:*}"; }
+  grep -q "domain decomposition: 2 ranks over .* (${m#*:})" dd.out ||
+    { grep "domain decomposition" dd.out; fail "DomainDecomposition:method ${m%%:*}: not ${m#*:}"; }
+done
+# metis in a build without METIS: one error line naming the key
+if ! "$B/bolide" --version | grep -q "^METIS: yes"; then
+  timeout 60 "$MPIRUN" -n 2 "$B/bolide" -n 2 -t 1 -P DomainDecomposition:method:metis p.yml \
+    >dd.out 2>dd.err && fail "DomainDecomposition:method metis without METIS exited 0"
+  grep -q "bolide: error: .*DomainDecomposition:method: metis, but this build has no METIS" dd.err ||
+    { cat dd.err; fail "DomainDecomposition:method metis without METIS: no error line"; }
+fi
 # a mistake in the parameter file, read by every rank: one error line (rank
 # 0's; before, each of the 3 ranks printed it), non-zero, no hang
 timeout 60 "$MPIRUN" -n 3 "$B/bolide" -t 1 -P SPH:no_such_key:1 p.yml >bad.out 2>bad.err
