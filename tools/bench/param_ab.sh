@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # One parameter's values against each other on the planetary reference
-# impact (hydro only, impact.sh's parameter file: SWIFT's settings),
+# impact (hydro only, impact.sh's IC and parameter file, `impact.sh -w`),
 # alternating value by value within each round so that a machine's drift
 # shows in every value alike.  Prints, per run, the mean seconds per step
 # over all steps (impact.sh's figure) and over steps 2..n.
@@ -12,36 +12,14 @@
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 build=${BOLIDE_BUILD:-$top/_build}
-python=${PYTHON:-$build/.venv/bin/python}
-gen=${BOLIDE_BENCH_IC:?"set BOLIDE_BENCH_IC to the reference impact IC generator (make_impact_ic.py)"}
 key=SPH:h_taylor; values="true false"; n=1e6; threads=$(nproc); modes=cpu; rounds=3; steps=3
 while getopts "k:v:n:t:m:r:s:" o; do
   case $o in k) key=$OPTARG ;; v) values=$OPTARG ;; n) n=$OPTARG ;; t) threads=$OPTARG ;;
              m) modes=$OPTARG ;; r) rounds=$OPTARG ;; s) steps=$OPTARG ;; *) exit 2 ;; esac
 done
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+"$top/tools/bench/impact.sh" -n "$n" -w "$work"   # the IC and impact.sh's hydro p.yml
 cd "$work"
-nt=$(awk -v n=$n 'BEGIN {printf "%d", n * 10 / 11}'); ni=$(awk -v n=$n 'BEGIN {printf "%d", n / 11}')
-"$python" "$gen" "$nt" "$ni" impact.hdf5 >/dev/null
-cat >p.yml <<YML
-InitialConditions:
-  file_name: impact.hdf5
-TimeIntegration:
-  time_end: 1e30
-Snapshots:
-  subdir: out
-  delta_time: 1e30
-Materials:
-  101: {}
-SPH:
-  resolution_eta: 1.2348
-  CFL_condition: 0.2
-  viscosity_alpha: 1.5
-Gravity:
-  enabled: false
-Scheduler:
-  max_top_level_cells: 16
-YML
 printf "# %s, %s threads, %s = %s, %d rounds\n" "$("$build/bolide" --version | head -1)" "$threads" "$key" "$values" "$rounds"
 for r in $(seq "$rounds"); do
   for v in $values; do
