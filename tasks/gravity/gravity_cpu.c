@@ -605,6 +605,11 @@ void gravity_interact_cells(struct parts *p, const struct cell *ci, const struct
     walk_pair(p, ci, cj, 1, gc, gp);
 }
 
+void gravity_interact_pair_one_way(struct parts *p, const struct cell *ci, const struct cell *cj,
+                                   struct gravity_cell *gc, const struct gravity_props *gp) {
+  walk_pair(p, ci, cj, 0, gc, gp);
+}
+
 int gravity_top_pair_is_near(const struct cell *ci, const struct cell *cj,
                              const struct gravity_props *gp) {
   return gravity_walk_top_near(ci->bmin, ci->bmax, cj->bmin, cj->bmax, gp->theta, gp->h_support);

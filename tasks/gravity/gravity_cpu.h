@@ -109,6 +109,14 @@ void gravity_up(struct parts *p, const struct cell *c, struct gravity_cell *gc,
 void gravity_interact_cells(struct parts *p, const struct cell *ci, const struct cell *cj,
                             struct gravity_cell *gc, const struct gravity_props *gp);
 
+/** The near pair of top-level cells ci and cj walked one way: the same
+ *  interactions as gravity_interact_cells (its decisions are symmetric in
+ *  the two cells), received by ci only; writes ci only.  Several MPI
+ *  ranks: the pair of an owned cell and a cell of copies, whose other
+ *  half the copies' owner walks (src/mpi/halo.h). */
+void gravity_interact_pair_one_way(struct parts *p, const struct cell *ci, const struct cell *cj,
+                                   struct gravity_cell *gc, const struct gravity_props *gp);
+
 /** Long-range interactions of top-level cell ci: every non-empty cell of
  *  tops[0..nr_top) other than ci that is not near ci acts on ci (one-way
  *  walk: M2L at the top when the criterion accepts).  Writes ci only. */

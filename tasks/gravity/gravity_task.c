@@ -20,7 +20,11 @@ static void gravity_walk_task(struct engine *e, const struct task *t, const stru
   /* (a step of active particles only records nothing: its walks are not
    * the whole far field that a later step could replay) */
   gravity_record_begin(e->gp.active ? NULL : il);
-  if (cj)
+  if (cj && cj != ci && (ci->foreign || cj->foreign))
+    /* a pair across ranks: each rank walks it for its own cell only */
+    gravity_interact_pair_one_way(p, ci->foreign ? cj : ci, ci->foreign ? ci : cj, e->grav->cells,
+                                  &e->gp);
+  else if (cj)
     gravity_interact_cells(p, ci, cj, e->grav->cells, &e->gp);
   else
     gravity_long_range(p, ci, e->space.cells, e->space.nr_top, e->grav->cells, &e->gp);
