@@ -12,6 +12,8 @@
  * first kernel.  The host waits only where it must
  * read something: the counter of particles still iterating h after each
  * round of the ghost, and the results at the end of the phase. */
+#include <pthread.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -133,6 +135,19 @@ void gpu_check_fail(cudaError_t err, const char *what, const char *file, int lin
 
 /** cudaMalloc that reports, when the device is full, what was needed and
  *  what is free. */
+/* The live device allocations, by use (what gpu_alloc was told up to its
+ * first " (", so that "particle field x (n particles)" counts as "particle
+ * field"): the run's memory report (gpu_memory_by_use).  Allocations come
+ * from the runner's thread and the gravity's; a mutex orders them. */
+struct gpu_mem_entry {
+  void *ptr;
+  size_t bytes;
+  char use[48];
+};
+static struct gpu_mem_entry *gpu_mem_tab;
+static int gpu_mem_n, gpu_mem_cap;
+static pthread_mutex_t gpu_mem_lock = PTHREAD_MUTEX_INITIALIZER;
+
 void *gpu_alloc(size_t bytes, const char *what) {
   void *ptr = NULL;
   if (bytes == 0) bytes = 8;
@@ -145,7 +160,62 @@ void *gpu_alloc(size_t bytes, const char *what) {
                bytes / 1048576.0, free_b / 1048576.0, total_b / 1048576.0);
   }
   gpu_check(err);
+  pthread_mutex_lock(&gpu_mem_lock);
+  if (gpu_mem_n == gpu_mem_cap) {
+    gpu_mem_cap = gpu_mem_cap ? 2 * gpu_mem_cap : 256;
+    gpu_mem_tab = (struct gpu_mem_entry *)error_realloc(
+        gpu_mem_tab, gpu_mem_cap * sizeof *gpu_mem_tab, "GPU allocation table");
+  }
+  struct gpu_mem_entry *m = gpu_mem_tab + gpu_mem_n++;
+  m->ptr = ptr;
+  m->bytes = bytes;
+  const char *end = strstr(what, " (");
+  const size_t len = end ? (size_t)(end - what) : strlen(what);
+  snprintf(m->use, sizeof m->use, "%.*s", (int)len, what);
+  pthread_mutex_unlock(&gpu_mem_lock);
   return ptr;
+}
+
+void gpu_dfree(void *ptr) {
+  if (!ptr) return;
+  pthread_mutex_lock(&gpu_mem_lock);
+  for (int k = 0; k < gpu_mem_n; k++)
+    if (gpu_mem_tab[k].ptr == ptr) {
+      gpu_mem_tab[k] = gpu_mem_tab[--gpu_mem_n];
+      break;
+    }
+  pthread_mutex_unlock(&gpu_mem_lock);
+  gpu_check(cudaFree(ptr));
+}
+
+extern "C" void gpu_memory_by_use(FILE *f, double nparts) {
+  pthread_mutex_lock(&gpu_mem_lock);
+  /* the uses in order of first appearance, their bytes summed */
+  struct gpu_mem_entry *u =
+      (struct gpu_mem_entry *)error_calloc(gpu_mem_n + 1, sizeof *u, "GPU memory report");
+  int nu = 0;
+  double total = 0.0;
+  for (int k = 0; k < gpu_mem_n; k++) {
+    int q = 0;
+    while (q < nu && strcmp(u[q].use, gpu_mem_tab[k].use)) q++;
+    if (q == nu) memcpy(u[nu++].use, gpu_mem_tab[k].use, sizeof u->use);
+    u[q].bytes += gpu_mem_tab[k].bytes;
+    total += (double)gpu_mem_tab[k].bytes;
+  }
+  pthread_mutex_unlock(&gpu_mem_lock);
+  /* largest first */
+  for (int a = 1; a < nu; a++)
+    for (int b = a; b > 0 && u[b].bytes > u[b - 1].bytes; b--) {
+      const struct gpu_mem_entry t = u[b];
+      u[b] = u[b - 1];
+      u[b - 1] = t;
+    }
+  fprintf(f, "GPU memory by use, bytes per particle (%.1f MiB allocated by the runner):",
+          total / 1048576.0);
+  for (int q = 0; q < nu; q++)
+    fprintf(f, "%s %s %.0f", q ? ";" : "", u[q].use, nparts > 0 ? u[q].bytes / nparts : 0.0);
+  fprintf(f, "\n");
+  free(u);
 }
 
 /** Index of the field called name in part_fields. */
@@ -216,7 +286,7 @@ static void gpu_reserve(struct gpu *g, size_t n) {
   const size_t cap = n + n / 4 + 1024;
   for (int k = 0; k < part_nr_fields; k++) {
     void **slot = gpu_field_slot(&g->dev, k);
-    if (*slot) gpu_check(cudaFree(*slot));
+    if (*slot) gpu_dfree(*slot);
     char what[128];
     snprintf(what, sizeof what, "particle field %s (%zu particles)", part_fields[k].name, cap);
     *slot = gpu_alloc(cap * part_fields[k].size, what);
@@ -249,7 +319,7 @@ static struct gpu_leaves_dev gpu_upload_cells(struct gpu *g, const struct gpu_le
     total += gpu_align(sz[k]);
   }
   if (total > g->cell_bytes) {
-    if (g->cell_dev) gpu_check(cudaFree(g->cell_dev));
+    if (g->cell_dev) gpu_dfree(g->cell_dev);
     if (g->cell_host) gpu_check(cudaFreeHost(g->cell_host));
     g->cell_bytes = total + total / 2;
     g->cell_dev = gpu_alloc(g->cell_bytes, "leaf cells and neighbour lists");
@@ -326,7 +396,7 @@ static int gpu_phase_fields(const struct gpu *g, int *idx, int solids, int damag
 
 extern "C" void gpu_set_flaws(struct gpu *g, const double *eps, size_t n) {
   if (n > g->flaws_cap) {
-    if (g->flaws_dev) gpu_check(cudaFree(g->flaws_dev));
+    if (g->flaws_dev) gpu_dfree(g->flaws_dev);
     char what[128];
     snprintf(what, sizeof what, "Weibull flaw thresholds (%zu)", n);
     g->flaws_dev = (double *)gpu_alloc(n * sizeof(double), what);
@@ -351,7 +421,7 @@ static void gpu_stage_materials(struct gpu *g, const struct material_table *mats
     const size_t nr = t->ln_rho ? (size_t)t->n_rho : 0, nu = t->ln_u ? (size_t)t->n_u : 0;
     const size_t total = nf * nn + nr + nu;
     if (!g->table_dev[k] || memcmp(&g->table_src[k], t, sizeof *t) != 0) {
-      if (g->table_dev[k]) gpu_check(cudaFree(g->table_dev[k]));
+      if (g->table_dev[k]) gpu_dfree(g->table_dev[k]);
       char what[160];
       snprintf(what, sizeof what, "tabulated EOS of material %s (%zu nodes)", mats->mats[k].name,
                nn);
@@ -407,7 +477,7 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
   /* the h the phase starts from: a repeat after an overflow starts there
    * again (gpu_restore_h), as the CPU's iteration does */
   if (g->h_start_cap < p->count) {
-    if (g->h_start) gpu_check(cudaFree(g->h_start));
+    if (g->h_start) gpu_dfree(g->h_start);
     g->h_start_cap = g->capacity;
     g->h_start = (double *)gpu_alloc(g->h_start_cap * sizeof(double), "the phase's starting h");
   }
@@ -598,8 +668,8 @@ extern "C" void gpu_permute(struct gpu *g, const size_t *perm, size_t n) {
   if (n != g->dev.count) error_bug("GPU and host particle counts differ");
   if (n == 0) return;
   if (n > g->perm_cap) {
-    if (g->perm_dev) gpu_check(cudaFree(g->perm_dev));
-    if (g->perm_buf) gpu_check(cudaFree(g->perm_buf));
+    if (g->perm_dev) gpu_dfree(g->perm_dev);
+    if (g->perm_buf) gpu_dfree(g->perm_buf);
     const size_t cap = g->capacity > n ? g->capacity : n;
     g->perm_dev = (size_t *)gpu_alloc(cap * sizeof(size_t), "the rebuild's permutation");
     g->perm_buf = gpu_alloc(cap * 8, "the rebuild's reordering buffer");
@@ -693,11 +763,12 @@ extern "C" void gpu_rk_arrays(struct gpu *g, size_t n, int ny, int nr, int nrec,
                               double **r) {
   const size_t bytes = (n ? n : 1) * (size_t)(ny + nrec * nr) * sizeof(double);
   if (bytes > g->rk_bytes) {
-    if (g->rk_buf) gpu_check(cudaFree(g->rk_buf));
-    gpu_check(cudaMalloc((void **)&g->rk_buf, bytes));
+    if (g->rk_buf) gpu_dfree(g->rk_buf);
+    g->rk_buf = (double *)gpu_alloc(bytes, "the rk2/pc schemes' stage states");
     g->rk_bytes = bytes;
   }
-  if (!g->rk_err) gpu_check(cudaMalloc((void **)&g->rk_err, sizeof *g->rk_err));
+  if (!g->rk_err)
+    g->rk_err = (unsigned long long *)gpu_alloc(sizeof *g->rk_err, "the rk2/pc schemes' error");
   *y0 = g->rk_buf;
   for (int k = 0; k < nrec; k++) r[k] = g->rk_buf + (n ? n : 1) * (size_t)(ny + k * nr);
 }
@@ -790,7 +861,7 @@ extern "C" void gpu_watchdog_save(struct gpu *g) {
   const size_t n = g->dev.count;
   if (n == 0) return;
   if (n > g->wd_cap) {
-    if (g->wd_x0) gpu_check(cudaFree(g->wd_x0));
+    if (g->wd_x0) gpu_dfree(g->wd_x0);
     g->wd_cap = g->capacity > n ? g->capacity : n;
     g->wd_x0 = (double *)gpu_alloc(3 * g->wd_cap * sizeof(double), "watchdog positions");
   }
@@ -890,26 +961,26 @@ extern "C" void gpu_bytes_moved(const struct gpu *g, double *h2d, double *d2h) {
 extern "C" void gpu_free(struct gpu *g) {
   if (!g) return;
   gpu_unpin(g);
-  if (g->rk_buf) gpu_check(cudaFree(g->rk_buf));
-  if (g->rk_err) gpu_check(cudaFree(g->rk_err));
-  if (g->perm_dev) gpu_check(cudaFree(g->perm_dev));
-  if (g->perm_buf) gpu_check(cudaFree(g->perm_buf));
-  if (g->h_start) gpu_check(cudaFree(g->h_start));
+  if (g->rk_buf) gpu_dfree(g->rk_buf);
+  if (g->rk_err) gpu_dfree(g->rk_err);
+  if (g->perm_dev) gpu_dfree(g->perm_dev);
+  if (g->perm_buf) gpu_dfree(g->perm_buf);
+  if (g->h_start) gpu_dfree(g->h_start);
   for (int k = 0; k < part_nr_fields; k++) {
     void **slot = gpu_field_slot(&g->dev, k);
-    if (*slot) gpu_check(cudaFree(*slot));
+    if (*slot) gpu_dfree(*slot);
   }
-  if (g->cell_dev) gpu_check(cudaFree(g->cell_dev));
+  if (g->cell_dev) gpu_dfree(g->cell_dev);
   if (g->cell_host) gpu_check(cudaFreeHost(g->cell_host));
-  gpu_check(cudaFree(g->counters_dev));
+  gpu_dfree(g->counters_dev);
   gpu_check(cudaFreeHost(g->counters_host));
-  gpu_check(cudaFree(g->mats_dev));
+  gpu_dfree(g->mats_dev);
   for (int k = 0; k < MATERIAL_MAX; k++)
-    if (g->table_dev[k]) gpu_check(cudaFree(g->table_dev[k]));
-  if (g->flaws_dev) gpu_check(cudaFree(g->flaws_dev));
+    if (g->table_dev[k]) gpu_dfree(g->table_dev[k]);
+  if (g->flaws_dev) gpu_dfree(g->flaws_dev);
   gpu_check(cudaFreeHost(g->mats_host));
-  if (g->wd_x0) gpu_check(cudaFree(g->wd_x0));
-  gpu_check(cudaFree(g->wd_dev));
+  if (g->wd_x0) gpu_dfree(g->wd_x0);
+  gpu_dfree(g->wd_dev);
   gpu_check(cudaFreeHost(g->wd_host));
   for (int k = 0; k <= GPU_T_N; k++) gpu_check(cudaEventDestroy(g->ev[k]));
   gpu_check(cudaEventDestroy(g->cells_ready));

@@ -188,6 +188,9 @@ void gpu_bytes_moved(const struct gpu *g, double *h2d, double *d2h);
 /** Device memory the run holds now (in use minus what the context took at
  *  gpu_init) and the device's total, in bytes. */
 void gpu_memory_used(const struct gpu *g, double *run, double *total);
+/** One line: the device memory the runner allocated, by use (its
+ *  allocations' names), in bytes per particle of nparts, largest first. */
+void gpu_memory_by_use(FILE *f, double nparts);
 /** Free everything. */
 void gpu_free(struct gpu *g);
 

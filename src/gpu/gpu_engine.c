@@ -1037,6 +1037,7 @@ void gpu_engine_print(const struct engine *e, FILE *f) {
   fprintf(f, "GPU memory: %.1f MiB held by the run (%.0f bytes per particle) of %.1f GiB\n",
           run / 1048576.0, e->parts.count ? run / (double)e->parts.count : 0.0,
           total / 1073741824.0);
+  gpu_memory_by_use(f, (double)e->parts.count);
   if (ge->grav_evals)
     fprintf(f,
             "GPU gravity host side, ms per evaluation: multipoles + walks on the CPU %.3f, "

@@ -106,6 +106,8 @@ cudaStream_t gpu_stream(struct gpu *g, int k);
 struct parts gpu_device_parts(struct gpu *g, size_t count);
 void gpu_copy_named(struct gpu *g, struct parts *p, const char *const *names, int n, int to_device);
 void *gpu_alloc(size_t bytes, const char *what);
+/** Free what gpu_alloc gave (NULL: nothing). */
+void gpu_dfree(void *ptr);
 void gpu_bytes_add(struct gpu *g, double h2d, double d2h);
 
 /** Forces, gather form with r < max(H_i, H_j) (tasks/force/force_gpu.cu). */

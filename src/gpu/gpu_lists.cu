@@ -98,12 +98,12 @@ extern "C" struct gpu_lists *gpu_lists_new(struct gpu *g) {
 extern "C" void gpu_lists_free(struct gpu_lists *l) {
   if (!l) return;
   if (l->node_host) gpu_check(cudaFreeHost(l->node_host));
-  if (l->node_dev) gpu_check(cudaFree(l->node_dev));
+  if (l->node_dev) gpu_dfree(l->node_dev);
   if (l->in_host) gpu_check(cudaFreeHost(l->in_host));
-  if (l->in_dev) gpu_check(cudaFree(l->in_dev));
-  if (l->start_dev) gpu_check(cudaFree(l->start_dev));
-  if (l->leaf_dev) gpu_check(cudaFree(l->leaf_dev));
-  if (l->shift_dev) gpu_check(cudaFree(l->shift_dev));
+  if (l->in_dev) gpu_dfree(l->in_dev);
+  if (l->start_dev) gpu_dfree(l->start_dev);
+  if (l->leaf_dev) gpu_dfree(l->leaf_dev);
+  if (l->shift_dev) gpu_dfree(l->shift_dev);
   gpu_check(cudaFreeHost(l->total_host));
   for (int k = 0; k < 2; k++) gpu_check(cudaEventDestroy(l->ev[k]));
   free(l);
@@ -112,7 +112,7 @@ extern "C" void gpu_lists_free(struct gpu_lists *l) {
 extern "C" struct gpu_list_node *gpu_lists_nodes(struct gpu_lists *l, int n) {
   if (n > l->node_cap) {
     if (l->node_host) gpu_check(cudaFreeHost(l->node_host));
-    if (l->node_dev) gpu_check(cudaFree(l->node_dev));
+    if (l->node_dev) gpu_dfree(l->node_dev);
     l->node_cap = n + n / 4 + 64;
     char what[128];
     snprintf(what, sizeof what, "cell nodes of the neighbour-list build (%d)", l->node_cap);
@@ -158,7 +158,7 @@ extern "C" long gpu_lists_build(struct gpu_lists *l, const struct gpu_list_input
   }
   if (total > l->in_cap) {
     if (l->in_host) gpu_check(cudaFreeHost(l->in_host));
-    if (l->in_dev) gpu_check(cudaFree(l->in_dev));
+    if (l->in_dev) gpu_dfree(l->in_dev);
     l->in_cap = total + total / 2;
     l->in_dev = (char *)gpu_alloc(l->in_cap, "task cells and leaves of the neighbour-list build");
     gpu_check(cudaMallocHost((void **)&l->in_host, l->in_cap));
@@ -166,7 +166,7 @@ extern "C" long gpu_lists_build(struct gpu_lists *l, const struct gpu_list_input
   for (int k = 0; k < 6; k++)
     if (sz[k]) memcpy(l->in_host + off[k], src[k], sz[k]);
   if (n + 1 > l->start_cap) {
-    if (l->start_dev) gpu_check(cudaFree(l->start_dev));
+    if (l->start_dev) gpu_dfree(l->start_dev);
     l->start_cap = n + n / 4 + 64;
     l->start_dev = (int *)gpu_alloc((size_t)l->start_cap * sizeof(int), "neighbour-list starts");
   }
@@ -203,8 +203,8 @@ extern "C" long gpu_lists_build(struct gpu_lists *l, const struct gpu_list_input
         "GPU neighbour lists: more than 2^31 entries (%d leaves); lower h or use coarser leaves",
         n);
   if (nr > l->ngb_cap) {
-    if (l->leaf_dev) gpu_check(cudaFree(l->leaf_dev));
-    if (l->shift_dev) gpu_check(cudaFree(l->shift_dev));
+    if (l->leaf_dev) gpu_dfree(l->leaf_dev);
+    if (l->shift_dev) gpu_dfree(l->shift_dev);
     l->ngb_cap = nr + nr / 4 + 1024;
     char what[128];
     snprintf(what, sizeof what, "neighbour lists (%ld entries)", l->ngb_cap);

@@ -88,7 +88,7 @@ struct gpu_grav {
 /** Make b hold at least bytes (grown by half again; contents lost). */
 static void *gg_reserve(struct gpu_grav_buf *b, size_t bytes, const char *what) {
   if (bytes > b->bytes || !b->ptr) {
-    if (b->ptr) gpu_check(cudaFree(b->ptr));
+    if (b->ptr) gpu_dfree(b->ptr);
     b->bytes = bytes + bytes / 2 + 64;
     b->ptr = gpu_alloc(b->bytes, what);
   }
@@ -121,7 +121,7 @@ extern "C" void gpu_grav_free(struct gpu_grav *gg) {
       &gg->wcount,    &gg->wlist[0],  &gg->wlist[1],  &gg->wlist[2], &gg->wlist[3], &gg->wqueue[0],
       &gg->wqueue[1], &gg->sorted[0], &gg->sorted[1], &gg->sort_tmp, &gg->active};
   for (int k = 0; k < 29; k++)
-    if (bufs[k]->ptr) gpu_check(cudaFree(bufs[k]->ptr));
+    if (bufs[k]->ptr) gpu_dfree(bufs[k]->ptr);
   if (gg->mp_host) gpu_check(cudaFreeHost(gg->mp_host));
   if (gg->scale_host) gpu_check(cudaFreeHost(gg->scale_host));
   for (int k = 0; k <= GG_N; k++) gpu_check(cudaEventDestroy(gg->ev[k]));
