@@ -288,7 +288,7 @@ static void gpu_reserve(struct gpu *g, size_t n) {
     void **slot = gpu_field_slot(&g->dev, k);
     if (*slot) gpu_dfree(*slot);
     char what[128];
-    snprintf(what, sizeof what, "particle field %s (%zu particles)", part_fields[k].name, cap);
+    snprintf(what, sizeof what, "particle fields (%s, %zu particles)", part_fields[k].name, cap);
     *slot = gpu_alloc(cap * part_fields[k].size, what);
   }
   g->capacity = cap;

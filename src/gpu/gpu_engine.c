@@ -420,11 +420,14 @@ void gpu_cells_free(struct gpu_cells *gc) {
 
 /** 1 if the lists built last still hold every pair: same cells, no leaf
  *  drifted past its allowance, no leaf's h beyond the lists' cap (h grown
- *  during the h iteration is caught on the device: overflow). */
+ *  during the h iteration is caught on the device: overflow); and they are
+ *  no wider than GPU_LIST_GROWTH: lists widened for an h iteration that
+ *  outgrew them are built again narrower at the next phase (a build costs
+ *  less than the candidates that wide lists add to every leaf kernel). */
 static int gpu_cells_valid(const struct gpu_cells *gc, const struct space *s,
                            struct cell *const *tcells, int nr) {
   if (gc->n == 0 || gc->built_rebuild != s->nr_rebuilds || gc->built_tcells != tcells ||
-      gc->built_nr != nr)
+      gc->built_nr != nr || gc->growth > GPU_LIST_GROWTH)
     return 0;
   for (int l = 0; l < gc->n; l++)
     if (gc->leaf_cell[l]->dx_max > gc->dx_allow[l] || gc->leaf_cell[l]->h_max > gc->h_list_cap[l])
@@ -438,9 +441,11 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
                     const struct material_table *mats, const struct gpu_damage *dmg,
                     const struct gpu_gravity *grav, double dt_kick, int resident, double *tc_dt_min,
                     struct timeline_sums *tc_sums) {
-  /* lists a quarter wider than the current h_max, widened when h outgrows them */
-  double growth = gc->growth > 1.25 ? 0.97 * gc->growth : 1.25;
-  if (growth < 1.25) growth = 1.25;
+  /* lists a quarter wider than the current h_max, widened when h outgrows
+   * them; after a widening the next builds come back to that margin in a
+   * few phases (a factor 0.85 each: 1.875 h_max, 1.59, 1.35, 1.25) */
+  double growth = gc->growth > GPU_LIST_GROWTH ? 0.85 * gc->growth : GPU_LIST_GROWTH;
+  if (growth < GPU_LIST_GROWTH) growth = GPU_LIST_GROWTH;
   struct gpu_force_out out;
   double *leaf_dt = NULL;
   for (int attempt = 0;; attempt++) {

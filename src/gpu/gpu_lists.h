@@ -36,6 +36,11 @@ extern "C" {
  *  most steps reuse them. */
 #define GPU_LIST_SLACK 0.1
 
+/** The lists' reach in units of each leaf's h_max when built: the room for
+ *  the h iteration to grow h in a phase (a phase whose h outgrows it widens
+ *  them by 1.5 and starts again; gpu_cells_force). */
+#define GPU_LIST_GROWTH 1.25
+
 /** What the acceptance test reads of a cell. */
 struct gpu_list_box {
   double bmin[3], bmax[3]; /**< bounding box of the particles at rebuild */
