@@ -27,6 +27,7 @@
  * IACT_GPU_SKIP is optional (default: no particle skipped).  The macros are
  * undefined at the end, so the header can be included again. */
 #include "src/gpu/gpu_kernels.h"
+#include "src/gpu/gpu_lists.h"
 
 #ifndef IACT_GPU_NAME
 #error "define IACT_GPU_NAME before including iact_loop_gpu.h"
@@ -52,7 +53,8 @@ __global__ void IACT_GPU_NAME(struct parts p, struct gpu_leaves_dev lv IACT_GPU_
     IACT_GPU_BEGIN(p, i);
     for (int k = k0; k < k1; k++) {
       const int J = lv.ngb_leaf[k];
-      const double s[3] = {lv.ngb_shift[3 * k], lv.ngb_shift[3 * k + 1], lv.ngb_shift[3 * k + 2]};
+      double s[3];
+      gpu_shift_of(lv.ngb_code[k], lv.dim, s);
       const int unshifted = (s[0] == 0.0 && s[1] == 0.0 && s[2] == 0.0);
       (void)unshifted; /* (a family may test r2 > 0 instead of self) */
       const size_t jb = lv.offset[J], je = jb + (size_t)lv.count[J];

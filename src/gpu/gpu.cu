@@ -311,7 +311,7 @@ static struct gpu_leaves_dev gpu_upload_cells(struct gpu *g, const struct gpu_le
                         n * sizeof(double),
                         (lv->lists ? 0 : n + 1) * sizeof(int),
                         nn * sizeof(int),
-                        3 * nn * sizeof(double),
+                        nn * sizeof(unsigned char),
                         3 * n * sizeof(double)};
   size_t off[8], total = 0;
   for (int k = 0; k < 8; k++) {
@@ -326,10 +326,18 @@ static struct gpu_leaves_dev gpu_upload_cells(struct gpu *g, const struct gpu_le
     gpu_check(cudaMallocHost(&g->cell_host, g->cell_bytes));
   }
   char *h = (char *)g->cell_host, *d = (char *)g->cell_dev;
-  const void *src[7] = {lv->offset,    lv->count,    lv->h_cap,    lv->h_list_cap,
-                        lv->ngb_start, lv->ngb_leaf, lv->ngb_shift};
-  for (int k = 0; k < 7; k++)
+  const void *src[6] = {lv->offset,     lv->count,     lv->h_cap,
+                        lv->h_list_cap, lv->ngb_start, lv->ngb_leaf};
+  for (int k = 0; k < 6; k++)
     if (sz[k]) memcpy(h + off[k], src[k], sz[k]);
+  /* the host's lists: their shifts as codes (gpu_shift_code) */
+  double dim[3] = {0.0, 0.0, 0.0};
+  if (nn) {
+    if (!gpu_shift_dims(lv->ngb_shift, (long)nn, dim))
+      error_bug("GPU lists: a periodic shift is not 0 or the box's side");
+    unsigned char *code = (unsigned char *)(h + off[6]);
+    for (size_t k = 0; k < nn; k++) code[k] = gpu_shift_code(lv->ngb_shift + 3 * k);
+  }
   gpu_check(cudaMemcpyAsync(d, h, off[7], cudaMemcpyHostToDevice, g->stream[1]));
   gpu_check(cudaEventRecord(g->cells_ready, g->stream[1]));
   g->bytes_h2d += (double)off[7];
@@ -345,8 +353,9 @@ static struct gpu_leaves_dev gpu_upload_cells(struct gpu *g, const struct gpu_le
   dv.h_list_cap = (const double *)(d + off[3]);
   dv.ngb_start = (const int *)(d + off[4]);
   dv.ngb_leaf = (const int *)(d + off[5]);
-  dv.ngb_shift = (const double *)(d + off[6]);
-  if (lv->lists) gpu_lists_view(lv->lists, &dv.ngb_start, &dv.ngb_leaf, &dv.ngb_shift);
+  dv.ngb_code = (const unsigned char *)(d + off[6]);
+  for (int k = 0; k < 3; k++) dv.dim[k] = dim[k];
+  if (lv->lists) gpu_lists_view(lv->lists, &dv.ngb_start, &dv.ngb_leaf, &dv.ngb_code, dv.dim);
   g->leaf_dt = (double *)(d + off[7]);
   return dv;
 }

@@ -21,15 +21,16 @@ struct material_table;
 
 /** The leaves and their neighbour lists in device memory (struct gpu_leaves). */
 struct gpu_leaves_dev {
-  int n;                    /**< number of leaves */
-  int block;                /**< threads per block of the leaf kernels (<= GPU_BLOCK) */
-  const size_t *offset;     /**< first particle of each leaf */
-  const int *count;         /**< particles of each leaf */
-  const double *h_cap;      /**< the top-level cells' cap on h */
-  const double *h_list_cap; /**< largest h the lists cover */
-  const int *ngb_start;     /**< n + 1 */
-  const int *ngb_leaf;      /**< neighbouring leaf of each entry */
-  const double *ngb_shift;  /**< 3 per entry */
+  int n;                         /**< number of leaves */
+  int block;                     /**< threads per block of the leaf kernels (<= GPU_BLOCK) */
+  const size_t *offset;          /**< first particle of each leaf */
+  const int *count;              /**< particles of each leaf */
+  const double *h_cap;           /**< the top-level cells' cap on h */
+  const double *h_list_cap;      /**< largest h the lists cover */
+  const int *ngb_start;          /**< n + 1 */
+  const int *ngb_leaf;           /**< neighbouring leaf of each entry */
+  const unsigned char *ngb_code; /**< its periodic shift, gpu_shift_code of a box of sides dim */
+  double dim[3];                 /**< the box's sides (gpu_shift_of) */
 };
 
 /** Counters of the h iteration in device memory. */

@@ -24,7 +24,8 @@ struct gpu_lists {
   int *start_dev;                  /**< counts, then ngb_start (nr_leaves + 1) */
   int start_cap;                   /**< allocated length */
   int *leaf_dev;                   /**< ngb_leaf */
-  double *shift_dev;               /**< ngb_shift, 3 per entry */
+  unsigned char *shift_dev;        /**< the shifts' codes (gpu_shift_code), 1 per entry */
+  double dim[3];                   /**< the box of the codes (gpu_shift_dims) */
   long ngb_cap;                    /**< allocated entries */
   int *total_host;                 /**< pinned: the number of entries */
   int n;                           /**< leaves of the last build */
@@ -50,7 +51,7 @@ struct gpu_lists_args {
  *  writes them from start[L] on. */
 template <int FILL>
 __global__ void gpu_lists_walk_kernel(struct gpu_lists_args a, int *start, int *ngb_leaf,
-                                      double *ngb_shift) {
+                                      unsigned char *ngb_code) {
   const int L = blockIdx.x * blockDim.x + threadIdx.x;
   if (L >= a.n) return;
   const struct gpu_list_box A = a.node[a.leaf_node[L]].box;
@@ -69,7 +70,7 @@ __global__ void gpu_lists_walk_kernel(struct gpu_lists_args a, int *start, int *
         if (leaf >= 0) {
           if (FILL) {
             ngb_leaf[c] = leaf;
-            for (int d = 0; d < 3; d++) ngb_shift[3 * (size_t)c + d] = s[d];
+            ngb_code[c] = gpu_shift_code(s);
           }
           c++;
         }
@@ -139,12 +140,25 @@ static size_t gpu_lists_align(size_t b) {
   return (b + 15) & ~(size_t)15;
 }
 
+extern "C" int gpu_shift_dims(const double *shift, long n, double dim[3]) {
+  dim[0] = dim[1] = dim[2] = 0.0;
+  for (long k = 0; k < n; k++)
+    for (int d = 0; d < 3; d++)
+      if (fabs(shift[3 * k + d]) > dim[d]) dim[d] = fabs(shift[3 * k + d]);
+  for (long k = 0; k < n; k++)
+    for (int d = 0; d < 3; d++)
+      if (shift[3 * k + d] != 0.0 && fabs(shift[3 * k + d]) != dim[d]) return 0;
+  return 1;
+}
+
 extern "C" long gpu_lists_build(struct gpu_lists *l, const struct gpu_list_input *in) {
   cudaStream_t s = gpu_stream(l->g, 1);
   gpu_lists_account(l);
   if (in->nr_nodes > l->node_cap) error_bug("GPU list build: more nodes than staged");
   const int n = in->nr_leaves, nt = in->nr_tc;
   const int nk = nt > 0 ? in->tc_ngb_start[nt] : 0;
+  if (!gpu_shift_dims(in->tc_ngb_shift, nk, l->dim))
+    error_bug("GPU list build: a periodic shift is not 0 or the box's side");
   /* the other inputs, packed */
   const size_t sz[6] = {(size_t)n * sizeof(int),        (size_t)n * sizeof(int),
                         (size_t)(nt + 1) * sizeof(int), (size_t)(nt + 1) * sizeof(int),
@@ -209,7 +223,7 @@ extern "C" long gpu_lists_build(struct gpu_lists *l, const struct gpu_list_input
     char what[128];
     snprintf(what, sizeof what, "neighbour lists (%ld entries)", l->ngb_cap);
     l->leaf_dev = (int *)gpu_alloc((size_t)l->ngb_cap * sizeof(int), what);
-    l->shift_dev = (double *)gpu_alloc(3 * (size_t)l->ngb_cap * sizeof(double), what);
+    l->shift_dev = (unsigned char *)gpu_alloc((size_t)l->ngb_cap, what);
   }
   if (n > 0) {
     gpu_lists_walk_kernel<1>
@@ -229,20 +243,24 @@ extern "C" void gpu_lists_download(const struct gpu_lists *l, int *ngb_start, in
   cudaStream_t s = gpu_stream(l->g, 1);
   gpu_check(cudaMemcpyAsync(ngb_start, l->start_dev, ((size_t)l->n + 1) * sizeof(int),
                             cudaMemcpyDeviceToHost, s));
+  unsigned char *code = (unsigned char *)error_malloc((size_t)l->nr_ngb + 1, "GPU list codes");
   if (l->nr_ngb) {
     gpu_check(cudaMemcpyAsync(ngb_leaf, l->leaf_dev, (size_t)l->nr_ngb * sizeof(int),
                               cudaMemcpyDeviceToHost, s));
-    gpu_check(cudaMemcpyAsync(ngb_shift, l->shift_dev, 3 * (size_t)l->nr_ngb * sizeof(double),
-                              cudaMemcpyDeviceToHost, s));
+    gpu_check(cudaMemcpyAsync(code, l->shift_dev, (size_t)l->nr_ngb, cudaMemcpyDeviceToHost, s));
   }
   gpu_check(cudaStreamSynchronize(s));
+  for (long k = 0; k < l->nr_ngb; k++) gpu_shift_of(code[k], l->dim, ngb_shift + 3 * k);
+  free(code);
 }
 
 extern "C" void gpu_lists_view(const struct gpu_lists *l, const int **ngb_start,
-                               const int **ngb_leaf, const double **ngb_shift) {
+                               const int **ngb_leaf, const unsigned char **ngb_code,
+                               double dim[3]) {
   *ngb_start = l->start_dev;
   *ngb_leaf = l->leaf_dev;
-  *ngb_shift = l->shift_dev;
+  *ngb_code = l->shift_dev;
+  for (int d = 0; d < 3; d++) dim[d] = l->dim[d];
 }
 
 extern "C" double gpu_lists_device_ms(struct gpu_lists *l, long *builds) {

@@ -7,8 +7,8 @@
  * their periodic shifts.  One device thread per leaf L then walks the
  * nodes of each neighbouring task cell, skipping every sub-tree that
  * gpu_list_accept rejects, and keeps the leaves it accepts: a counting
- * pass, a scan, a filling pass.  The lists (ngb_start, ngb_leaf,
- * ngb_shift of struct gpu_leaves) stay on the device.
+ * pass, a scan, a filling pass.  The lists (ngb_start, ngb_leaf and the
+ * shifts' codes, gpu_shift_code) stay on the device.
  *
  * The acceptance test is the one function below, shared by the device
  * walk and the host's dual walk (gpu_cells_build, kept for the tests and as
@@ -100,6 +100,29 @@ BOLIDE_INLINE int gpu_list_accept(const struct gpu_list_box *a, const struct gpu
   return !(d2 > GPU_LIST_MUL(Rs, Rs));
 }
 
+/** The periodic shift of a list entry, kept on the device as one byte
+ *  instead of three doubles (the lists' largest part): every shift is 0 or
+ *  plus or minus the box's side on each axis (src/space.c), so the code is
+ *  9 (s_x + 1) + 3 (s_y + 1) + (s_z + 1) with s_d its sign, and the shift
+ *  is s_d dim[d] again, bit for bit, with dim the box's sides (the largest
+ *  magnitude of the shifts on each axis: gpu_shift_dims). */
+BOLIDE_INLINE unsigned char gpu_shift_code(const double s[3]) {
+  return (unsigned char)(9 * ((s[0] > 0.0) - (s[0] < 0.0) + 1) +
+                         3 * ((s[1] > 0.0) - (s[1] < 0.0) + 1) + ((s[2] > 0.0) - (s[2] < 0.0) + 1));
+}
+
+/** The shift of code c (gpu_shift_code) in a box of sides dim. */
+BOLIDE_INLINE void gpu_shift_of(unsigned char c, const double dim[3], double s[3]) {
+  s[0] = (double)(c / 9 - 1) * dim[0];
+  s[1] = (double)((c / 3) % 3 - 1) * dim[1];
+  s[2] = (double)(c % 3 - 1) * dim[2];
+}
+
+/** The box sides of n shifts (3 doubles each; dim[d] 0 where no shift moves
+ *  along d); 1 if every shift is one gpu_shift_code can hold (each
+ *  component 0 or plus or minus dim[d]), else 0. */
+int gpu_shift_dims(const double *shift, long n, double dim[3]);
+
 struct gpu;
 /** The device lists and the buffers of their build (opaque), allocated
  *  once and grown. */
@@ -133,9 +156,10 @@ long gpu_lists_build(struct gpu_lists *l, const struct gpu_list_input *in);
  *  ngb_leaf and ngb_shift (3 per entry), sized as gpu_lists_build said. */
 void gpu_lists_download(const struct gpu_lists *l, int *ngb_start, int *ngb_leaf,
                         double *ngb_shift);
-/** Device pointers of the lists built last (for the runner's kernels). */
+/** Device pointers of the lists built last (for the runner's kernels): the
+ *  shifts as codes (gpu_shift_code) of a box of sides dim. */
 void gpu_lists_view(const struct gpu_lists *l, const int **ngb_start, const int **ngb_leaf,
-                    const double **ngb_shift);
+                    const unsigned char **ngb_code, double dim[3]);
 /** Milliseconds the device spent on builds (CUDA events, copies included) and
  *  builds run. */
 double gpu_lists_device_ms(struct gpu_lists *l, long *builds);
