@@ -32,7 +32,7 @@
 # per step, and the part between the full copies of every field (start,
 # rebuilds, snapshots, end), which a long run repeats every step; shares
 # at 25 GB/s (PCIe 5 x16) of the median step.  Prints a markdown table and
-# the GPU's stage times.
+# the GPU's stage times (with the device memory's largest uses).
 #
 # Usage: tools/bench/gpu.sh [-n "1e5 1e6"] [-p "basalt gravity"] [-m "cpu gpu hybrid"]
 #                           [-r 3] [-s 4] [-g "GPU ARGS"] [-T SECONDS]
@@ -169,7 +169,7 @@ YML
         rec=$(awk -v t=$med_step '/^GPU \(/ {for (k = 1; k <= NF; k++) if ($k == "copies") r = $(k + 1)}
               END {if (r == "") print "-"; else printf "%.1f (%.1f%%)", r, 100 * r * 1e6 / 25e9 / t}' run.log)
         mem=$(awk '/^GPU memory:/ {gsub(/\(/, ""); for (k = 1; k <= NF; k++) if ($k == "bytes") print $(k - 1)}' run.log)
-        stages="$stages$prob $N $mode: $(grep '^GPU (' run.log | sed 's/^GPU ([^)]*), //' | tr '\n' ' '); $(grep '^GPU host\|^GPU gravity' run.log | tr '\n' ' ') $(grep -o 'rebuilds (cells.*' run.log | tr '\n' ' ') $(grep '^GPU rebuilds' run.log | tr '\n' ' ')"$'\n'
+        stages="$stages$prob $N $mode: $(grep '^GPU (' run.log | sed 's/^GPU ([^)]*), //' | tr '\n' ' '); $(grep '^GPU host\|^GPU gravity' run.log | tr '\n' ' ') $(grep -o 'rebuilds (cells.*' run.log | tr '\n' ' ') $(grep '^GPU rebuilds' run.log | tr '\n' ' ') $(grep '^GPU memory by use' run.log | cut -c1-300)"$'\n'
       fi
       say "| $prob | $N | $mode | $med_step | $last_eval | $last_rebuild | $ratio | $bus | $share | $rec | $mem |"
     done
