@@ -280,10 +280,13 @@ extern "C" const char *gpu_name(const struct gpu *g) {
 }
 
 /** Grow the device particle arrays to at least n (contents are not kept:
- *  every phase uploads what it reads). */
+ *  every phase uploads what it reads).  The margin is small: the arrays are
+ *  the largest part of the device's memory (theory/scheduler.md, "The GPU's
+ *  memory"), and the particle count grows only where every field goes up
+ *  again anyway (mirror ghosts, foreign copies, a resumed run). */
 static void gpu_reserve(struct gpu *g, size_t n) {
   if (n <= g->capacity) return;
-  const size_t cap = n + n / 4 + 1024;
+  const size_t cap = n + n / 32 + 1024;
   for (int k = 0; k < part_nr_fields; k++) {
     void **slot = gpu_field_slot(&g->dev, k);
     if (*slot) gpu_dfree(*slot);
