@@ -133,12 +133,11 @@ void gpu_check_fail(cudaError_t err, const char *what, const char *file, int lin
   error_exit("CUDA call %s failed at %s:%d: %s", what, file, line, cudaGetErrorString(err));
 }
 
-/** cudaMalloc that reports, when the device is full, what was needed and
- *  what is free. */
 /* The live device allocations, by use (what gpu_alloc was told up to its
- * first " (", so that "particle field x (n particles)" counts as "particle
- * field"): the run's memory report (gpu_memory_by_use).  Allocations come
- * from the runner's thread and the gravity's; a mutex orders them. */
+ * first " (", so that "particle fields (x, n particles)" counts as
+ * "particle fields"): the run's memory report (gpu_memory_by_use).
+ * Allocations come from the runner's thread and the gravity's; a mutex
+ * orders them. */
 struct gpu_mem_entry {
   void *ptr;
   size_t bytes;
@@ -148,6 +147,8 @@ static struct gpu_mem_entry *gpu_mem_tab;
 static int gpu_mem_n, gpu_mem_cap;
 static pthread_mutex_t gpu_mem_lock = PTHREAD_MUTEX_INITIALIZER;
 
+/** cudaMalloc that reports, when the device is full, what was needed and
+ *  what is free; the allocation joins the table above. */
 void *gpu_alloc(size_t bytes, const char *what) {
   void *ptr = NULL;
   if (bytes == 0) bytes = 8;
