@@ -513,7 +513,7 @@ void engine_watchdog_after_drift(struct engine *e) {
     const double dx = p->x[i] - e->wd_x[i], dy = p->y[i] - e->wd_x[n + i],
                  dz = p->z[i] - e->wd_x[2 * n + i];
     const double d = sqrt(dx * dx + dy * dy + dz * dz);
-    if (!(d <= w)) {
+    if (!(d <= w) && !(p->flags[i] & PART_FOREIGN)) {
       char what[256];
       snprintf(what, sizeof what, "moved %g in one step (dt %g), more than its cell (width %g)", d,
                e->dt, w);
@@ -536,6 +536,7 @@ void engine_watchdog_after_drift(struct engine *e) {
 struct engine_wd_job {
   const struct parts *p;
   int t, nt;
+  int foreign; /**< 1: leave the foreign copies out (their owners check them) */
   uint64_t bad;
 };
 
@@ -547,11 +548,19 @@ static void *engine_watchdog_scan(void *arg) {
     const double *a = part_field_array(j->p, f);
     uint64_t bad = 0;
     /* exponent all ones: Inf or NaN (a loop the compiler vectorises) */
-    for (size_t i = 0; i < j->p->count; i++) {
-      uint64_t w;
-      memcpy(&w, &a[i], sizeof w);
-      bad |= (uint64_t)((w & 0x7ff0000000000000ULL) == 0x7ff0000000000000ULL);
-    }
+    if (j->foreign)
+      for (size_t i = 0; i < j->p->count; i++) {
+        uint64_t w;
+        memcpy(&w, &a[i], sizeof w);
+        bad |= (uint64_t)((w & 0x7ff0000000000000ULL) == 0x7ff0000000000000ULL &&
+                          !(j->p->flags[i] & PART_FOREIGN));
+      }
+    else
+      for (size_t i = 0; i < j->p->count; i++) {
+        uint64_t w;
+        memcpy(&w, &a[i], sizeof w);
+        bad |= (uint64_t)((w & 0x7ff0000000000000ULL) == 0x7ff0000000000000ULL);
+      }
     j->bad |= bad;
   }
   return NULL;
@@ -594,7 +603,7 @@ static void engine_watchdog_after_step(struct engine *e) {
   /* (threads started by thread 0 inherit its core: spread them) */
   if (nt > 1) runner_unpin_self(&e->sched.pool);
   for (int t = 0; t < nt; t++) {
-    job[t] = (struct engine_wd_job){p, t, nt, 0};
+    job[t] = (struct engine_wd_job){p, t, nt, e->nr_foreign > 0, 0};
     if (t > 0 && pthread_create(&th[t], NULL, engine_watchdog_scan, &job[t]))
       nt = t; /* fewer threads */
   }
@@ -611,7 +620,7 @@ static void engine_watchdog_after_step(struct engine *e) {
     if (f->type != PART_DOUBLE) continue;
     const double *a = part_field_array(p, f);
     for (size_t i = 0; i < p->count; i++)
-      if (!isfinite(a[i])) {
+      if (!isfinite(a[i]) && !(p->flags[i] & PART_FOREIGN)) {
         char what[256];
         snprintf(what, sizeof what, "field %s is %g", f->name, a[i]);
         engine_watchdog_fail(e, i, what);
@@ -619,6 +628,7 @@ static void engine_watchdog_after_step(struct engine *e) {
   }
   for (size_t i = 0; i < p->count; i++) {
     char what[256];
+    if (p->flags[i] & PART_FOREIGN) continue; /* (several MPI ranks: the owner checks it) */
     if (p->rho[i] < 0.0) {
       snprintf(what, sizeof what, "field rho is %g (negative density)", p->rho[i]);
       engine_watchdog_fail(e, i, what);
@@ -1084,8 +1094,12 @@ static void engine_write_restart(struct engine *e) {
 
 /** The stage of a task of the FORCE phase with several MPI ranks: 0 the
  *  density sums and the ghost, 1 the gradient sums and the extra ghost
- *  (solids), 2 the rest (forces, damage, kick). */
+ *  (solids), 2 the rest (forces, damage, kick), except, where gravity's far
+ *  field goes by the top-level cells' records (halo_gravity_records), 3
+ *  the long-range walks and what follows them (mark bit 2,
+ *  engine_mark_halo_tasks). */
 static int engine_force_stage(const struct task *t) {
+  if (t->mark & 2) return 3;
   if (t->subtype == task_subtype_density || t->type == task_type_ghost) return 0;
   if (t->subtype == task_subtype_gradient || t->type == task_type_extra_ghost) return 1;
   return 2;
@@ -1098,17 +1112,29 @@ static int engine_force_stage(const struct task *t) {
 static void engine_mark_halo_tasks(struct engine *e) {
   struct scheduler *s = &e->sched;
   for (int i = 0; i < s->nr_tasks; i++) scheduler_task(s, i)->mark = 0;
+  if (halo_gravity_by_records(e)) {
+    /* stage 3: the long-range walks, after the records' exchange */
+    for (int k = 0; k < e->phase_count[ENGINE_PHASE_FORCE]; k++) {
+      struct task *t = e->phase_tasks[ENGINE_PHASE_FORCE][k];
+      if (t->type == task_type_grav_long_range) t->mark = 2;
+    }
+    for (int i = 0; i < s->nr_tasks; i++) {
+      const struct task *t = s->order[i];
+      if (t->mark & 2)
+        for (int k = 0; k < t->nr_unlocks; k++) t->unlocks[k]->mark = 2;
+    }
+  }
   for (int k = 0; k < e->phase_count[ENGINE_PHASE_FORCE]; k++) {
     struct task *t = e->phase_tasks[ENGINE_PHASE_FORCE][k];
     const struct cell *ci = t->ci, *cj = t->cj;
-    t->mark = t->subtype == task_subtype_grav || (ci && ci->copies) || (cj && cj->copies);
+    if (t->subtype == task_subtype_grav || (ci && ci->copies) || (cj && cj->copies)) t->mark |= 1;
   }
   for (int i = 0; i < s->nr_tasks; i++) { /* (a topological order) */
     const struct task *t = s->order[i];
-    if (!t->mark) continue;
+    if (!(t->mark & 1)) continue;
     const int st = engine_force_stage(t);
     for (int k = 0; k < t->nr_unlocks; k++)
-      if (engine_force_stage(t->unlocks[k]) == st) t->unlocks[k]->mark = 1;
+      if (engine_force_stage(t->unlocks[k]) == st) t->unlocks[k]->mark |= 1;
   }
 }
 
@@ -1125,13 +1151,26 @@ static void engine_mark_halo_tasks(struct engine *e) {
 static void engine_run_force_stages(struct engine *e) {
   engine_mark_halo_tasks(e);
   halo_refresh_start(e, -1); /* (every field: the drift and the kick changed them) */
-  for (int stage = 0; stage < 3; stage++) {
+  const int records = halo_gravity_by_records(e);
+  for (int stage = 0; stage < 4; stage++) {
     if (stage == 1 && !e->hp.solids) continue;
+    if (stage == 3) {
+      if (!records) break;
+      /* the upward pass is done: the records, then the long-range walks */
+      halo_gravity_records(e);
+      for (int k = 0; k < e->phase_count[ENGINE_PHASE_FORCE]; k++) {
+        struct task *t = e->phase_tasks[ENGINE_PHASE_FORCE][k];
+        t->skip = engine_force_stage(t) != 3;
+      }
+      scheduler_run(&e->sched, engine_run_task, e);
+      halo_gravity_after(e);
+      break;
+    }
     if (stage == 2) halo_refresh_gravity_start(e); /* (the gravity tasks run in the last stage) */
     for (int part = 0; part < 2; part++) {
       for (int k = 0; k < e->phase_count[ENGINE_PHASE_FORCE]; k++) {
         struct task *t = e->phase_tasks[ENGINE_PHASE_FORCE][k];
-        t->skip = engine_force_stage(t) != stage || t->mark != part;
+        t->skip = engine_force_stage(t) != stage || (t->mark & 1) != part;
       }
       e->sched.poll = part == 0 ? halo_poll : NULL;
       e->sched.poll_ctx = e;

@@ -286,6 +286,11 @@ static int space_top_coord(const struct space *s, int k, double x) {
   return i;
 }
 
+int space_top_cell_of(const struct space *s, double x, double y, double z) {
+  return space_top_index(s, space_top_coord(s, 0, x), space_top_coord(s, 1, y),
+                         space_top_coord(s, 2, z));
+}
+
 /** The top-level cell of each particle (space_rebuild, on the threads). */
 struct space_topc {
   const struct space *s;
@@ -297,9 +302,7 @@ static void space_topc_range(void *arg, int k, size_t lo, size_t hi) {
   const struct space_topc *tc = arg;
   const struct space *s = tc->s;
   const struct parts *p = s->parts;
-  for (size_t i = lo; i < hi; i++)
-    tc->topc[i] = space_top_index(s, space_top_coord(s, 0, p->x[i]), space_top_coord(s, 1, p->y[i]),
-                                  space_top_coord(s, 2, p->z[i]));
+  for (size_t i = lo; i < hi; i++) tc->topc[i] = space_top_cell_of(s, p->x[i], p->y[i], p->z[i]);
 }
 
 /** The cells of one top-level cell's octree while it is built (one thread

@@ -127,6 +127,10 @@ void space_restore(struct space *s, double h_max, const double *cell_h, const do
  *  width since the rebuild, or kernel_gamma * h_max + 2 * (largest drift)
  *  exceeds a top-level cell width (or half a periodic box); else 0. */
 int space_should_rebuild(const struct space *s);
+
+/** The top-level cell (index in s->cells) of the position (x, y, z) inside
+ *  the box, as space_rebuild sorts it (wrapped already where periodic). */
+int space_top_cell_of(const struct space *s, double x, double y, double z);
 /** The same criterion for the largest drift dmax since the rebuild and the
  *  largest smoothing length h_max of the particles (of every rank). */
 int space_should_rebuild_at(const struct space *s, double dmax, double h_max);

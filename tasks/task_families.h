@@ -206,6 +206,17 @@
  *                              (tasks/gravity/gravity_cpu.c)
  *    gravity_potential_energy  1/2 sum_i m_i pot_i (the statistics)
  *    gravity_log_end           the run's closing line on the far-field reuse
+ *    gravity_top_record_*, gravity_top_records_use, gravity_top_needed,
+ *    gravity_remote_misses     several MPI ranks (src/mpi/halo.c): a
+ *                              top-level cell's record of this step (its
+ *                              multipole, a_min, support, box, count,
+ *                              split) packed for the other ranks; the other
+ *                              ranks' records put where the walks read them
+ *                              (gp.remote); the cells of other ranks whose
+ *                              particles this rank's walks may need until
+ *                              the next rebuild, from the records of the
+ *                              last step with a margin; the walks' misses
+ *                              (a needed cell without its particles)
  *  gravity_gpu_*       self-gravity's part of the GPU runner's FORCE phase,
  *                      on its device state (tasks/gravity/gpu_gravity_runner.c,
  *                      CUDA builds only; src/gpu/gpu_engine.c):
@@ -242,6 +253,16 @@
     (const struct cell *ci, const struct cell *cj, const struct gravity_props *gp))          \
   X(gravity, double, gravity_potential_energy, (const struct parts *p))                      \
   X(gravity, void, gravity_log_end, (const struct engine *e))                                \
+  X(gravity, int,  gravity_top_record_doubles, (void))                                       \
+  X(gravity, void, gravity_top_record_pack, (const struct engine *e, int c, double *out))    \
+  X(gravity, void, gravity_top_records_use,                                                  \
+    (struct engine *e, const double *recs, const unsigned char *use,                         \
+     const unsigned char *complete))                                                         \
+  X(gravity, void, gravity_top_needed,                                                       \
+    (const struct engine *e, const double *recs, const unsigned char *valid,                 \
+     const unsigned char *mine, const long long *count, const double *box, double drift,     \
+     unsigned char *need))                                                                   \
+  X(gravity, long, gravity_remote_misses, (int reset))                                       \
   X(gravity, struct gravity_gpu *, gravity_gpu_new,                                          \
     (struct gpu *g, int up_on_device, int walk_on_device, int reproducible))                 \
   X(gravity, int,  gravity_gpu_prepare, (struct engine *e, struct gravity_gpu *gg))          \

@@ -70,6 +70,28 @@ struct halo {
   size_t gsbuf_cap, grbuf_cap;
   double t_grefresh, gcopies;
   long nr_grefresh;
+  /* the far field by the top-level cells' records (halo_gravity_records;
+   * theory/mpi.md, "Self-gravity on several ranks"): per top-level cell of
+   * the last rebuild's grid (gtop cells) */
+  int grec_on;              /**< 1: gravity by records (an open box, the tree) */
+  int gtop;                 /**< top-level cells of the arrays below */
+  long long *gcount;        /**< [gtop] particles of every rank in the cell at the rebuild */
+  int *gprov;               /**< [gtop] the rank that sends its record: the lowest that owns a
+                                 particle of it (INT_MAX: empty) */
+  unsigned char *gmine;     /**< [gtop] 1: this rank owns a particle of it */
+  unsigned char *guse;      /**< [gtop] 1: the walks read it by its record (another rank's) */
+  unsigned char *gcomplete; /**< [gtop] 1: every particle of it is on this rank */
+  double *gbox;             /**< [6 gtop] the bounding box of its particles at the rebuild */
+  int *gnrec, *gdrec;       /**< [nranks] records each rank sends, their offsets */
+  double *grec;             /**< [gtop R] the records of the last exchange, every cell */
+  unsigned char *gvalid;    /**< [gtop] 1: grec holds this cell's record of the last step */
+  int rcdim[3];             /**< the grid of grec (the records' cells) */
+  double *gsrec;            /**< this rank's records, packed */
+  long gmisses;             /**< walks that needed a cell without its particles (this rank) */
+  long gneed_rebuilds;      /**< rebuilds that chose the cells from the records */
+  double gneed_frac;        /**< sum over them of the needed cells over the other ranks' ones */
+  double t_grec;            /**< wall seconds in the exchanges of the records */
+  long nr_grec;
   /* repartitioning (halo_repartition) */
   double trigger;               /**< DomainDecomposition:trigger (0: never) */
   enum partition_method method; /**< DomainDecomposition:method (auto resolved) */
@@ -753,6 +775,134 @@ static void halo_read_restart(struct engine *e) {
   free(cnt);
 }
 
+/* ------------------------------------------- gravity's top-level records */
+
+/** Per top-level cell of the space's grid (the rebuild's, or the restored
+ *  cells', restored 1): the particles of every rank in it, the rank that
+ *  sends its record (the lowest that owns one of them), whether this rank
+ *  owns one, and the bounding box of all of them, at the rebuild (x, or
+ *  x0 of the restored cells). */
+static void halo_gravity_cells(struct engine *e, int restored) {
+  struct halo *H = e->halo;
+  const struct space *s = &e->space;
+  const struct parts *p = &e->parts;
+  const int nt = s->nr_top;
+  if (H->gtop != nt) {
+    H->gcount = error_realloc(H->gcount, (size_t)nt * sizeof(long long), "MPI gravity cells");
+    H->gprov = error_realloc(H->gprov, (size_t)nt * sizeof(int), "MPI gravity cells");
+    H->gmine = error_realloc(H->gmine, 3 * (size_t)nt, "MPI gravity cells");
+    H->guse = H->gmine + nt;
+    H->gcomplete = H->gmine + 2 * (size_t)nt;
+    H->gbox = error_realloc(H->gbox, 6 * (size_t)nt * sizeof(double), "MPI gravity cells");
+    H->gtop = nt;
+  }
+  /* (the box as minima: lo, then -hi) */
+  double *box = H->gbox;
+  for (size_t k = 0; k < 6 * (size_t)nt; k++) box[k] = HUGE_VAL;
+  memset(H->gcount, 0, (size_t)nt * sizeof(long long));
+  for (int c = 0; c < nt; c++) {
+    const struct cell *cl = s->cells + c;
+    const size_t lo = restored ? cl->offset : 0, hi = restored ? cl->offset + cl->count : 0;
+    for (size_t i = lo; i < hi; i++) {
+      if (p->flags[i] & PART_FOREIGN) continue;
+      const double x[3] = {p->x0[i], p->y0[i], p->z0[i]};
+      H->gcount[c]++;
+      for (int k = 0; k < 3; k++) {
+        box[6 * c + k] = fmin(box[6 * c + k], x[k]);
+        box[6 * c + 3 + k] = fmin(box[6 * c + 3 + k], -x[k]);
+      }
+    }
+  }
+  if (!restored)
+    for (size_t i = 0; i < p->count; i++) {
+      if (p->flags[i] & PART_FOREIGN) continue;
+      const double x[3] = {p->x[i], p->y[i], p->z[i]};
+      const int c = space_top_cell_of(s, x[0], x[1], x[2]);
+      H->gcount[c]++;
+      for (int k = 0; k < 3; k++) {
+        box[6 * c + k] = fmin(box[6 * c + k], x[k]);
+        box[6 * c + 3 + k] = fmin(box[6 * c + 3 + k], -x[k]);
+      }
+    }
+  double *prov = error_malloc((size_t)nt * sizeof(double) + 1, "MPI gravity cells");
+  for (int c = 0; c < nt; c++) {
+    H->gmine[c] = H->gcount[c] > 0;
+    prov[c] = H->gcount[c] > 0 ? (double)H->me : (double)INT_MAX;
+  }
+  ranks_allreduce_llongs(H->gcount, nt, RANKS_SUM);
+  ranks_allreduce_doubles(box, 6 * nt, RANKS_MIN);
+  ranks_allreduce_doubles(prov, nt, RANKS_MIN);
+  H->gnrec = error_realloc(H->gnrec, 2 * (size_t)H->nranks * sizeof(int), "MPI gravity cells");
+  H->gdrec = H->gnrec + H->nranks;
+  memset(H->gnrec, 0, (size_t)H->nranks * sizeof(int));
+  for (int c = 0; c < nt; c++) {
+    H->gprov[c] = (int)prov[c];
+    if (H->gprov[c] < H->nranks) H->gnrec[H->gprov[c]]++;
+    for (int k = 0; k < 3; k++) box[6 * c + 3 + k] = -box[6 * c + 3 + k];
+  }
+  free(prov);
+}
+
+/** After the cells are built: which cells' particles are all here, which
+ *  the walks read by their records, and the records' arrays for this grid. */
+static void halo_gravity_complete(struct engine *e) {
+  struct halo *H = e->halo;
+  const struct space *s = &e->space;
+  const int nt = H->gtop, R = gravity_top_record_doubles();
+  for (int c = 0; c < nt; c++) {
+    H->gcomplete[c] = (long long)s->cells[c].count == H->gcount[c];
+    H->guse[c] = H->gcount[c] > 0 && !H->gmine[c];
+    if (H->gmine[c] && !H->gcomplete[c])
+      error_bug("MPI: top-level cell %d holds %zu of its %lld particles on a rank that owns some",
+                c, s->cells[c].count, H->gcount[c]);
+  }
+  if (!H->grec || H->rcdim[0] != s->cdim[0] || H->rcdim[1] != s->cdim[1] ||
+      H->rcdim[2] != s->cdim[2]) {
+    free(H->grec);
+    H->grec = error_malloc((size_t)nt * (size_t)R * sizeof(double) + 1, "MPI gravity records");
+    H->gvalid = error_realloc(H->gvalid, (size_t)nt + 1, "MPI gravity records");
+    memset(H->gvalid, 0, (size_t)nt);
+    for (int k = 0; k < 3; k++) H->rcdim[k] = s->cdim[k];
+  }
+}
+
+/** At a rebuild, before the copies are chosen: the top-level cells whose
+ *  particles each rank's walks may need until the next rebuild, [nranks]
+ *  rows of nr_top flags (gravity_top_needed, from the records of the last
+ *  step); NULL where gravity does not go by records, every flag set where
+ *  there are no records of this grid yet (the first rebuild). */
+static unsigned char *halo_gravity_need(struct engine *e) {
+  struct halo *H = e->halo;
+  const struct space *s = &e->space;
+  H->grec_on = H->gravity && !s->periodic && !e->gp.direct;
+  if (!H->grec_on) return NULL;
+  halo_gravity_cells(e, 0);
+  const int nt = s->nr_top, n = H->nranks;
+  unsigned char *need = error_malloc((size_t)n * (size_t)nt + 1, "MPI gravity cells");
+  unsigned char *row = need + (size_t)H->me * nt;
+  const int usable = H->grec && H->rcdim[0] == s->cdim[0] && H->rcdim[1] == s->cdim[1] &&
+                     H->rcdim[2] == s->cdim[2];
+  if (usable) {
+    double wmin = s->width[0];
+    for (int k = 1; k < 3; k++) wmin = s->width[k] < wmin ? s->width[k] : wmin;
+    gravity_top_needed(e, H->grec, H->gvalid, H->gmine, H->gcount, H->gbox,
+                       s->max_drift_fraction * wmin, row);
+    double v[2] = {0.0, 0.0};
+    for (int c = 0; c < nt; c++)
+      if (H->gcount[c] > 0 && !H->gmine[c]) {
+        v[0] += row[c];
+        v[1] += 1.0;
+      }
+    ranks_allreduce_doubles(v, 2, RANKS_SUM);
+    H->gneed_frac += v[1] > 0.0 ? v[0] / v[1] : 0.0;
+    H->gneed_rebuilds++;
+  } else {
+    memset(row, 1, (size_t)nt);
+  }
+  MPI_Allgather(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, need, nt, MPI_BYTE, MPI_COMM_WORLD);
+  return need;
+}
+
 void halo_restored(struct engine *e) {
   struct halo *H = e->halo;
   if (!H) return;
@@ -777,6 +927,11 @@ void halo_restored(struct engine *e) {
     error_exit("%s: %zu foreign copies, the MPI restart file says %zu", e->restart_file, seen,
                H->nrecv + H->gnrecv);
   halo_mark_cells(e);
+  H->grec_on = H->gravity && !e->space.periodic && !e->gp.direct;
+  if (H->grec_on) {
+    halo_gravity_cells(e, 1);
+    halo_gravity_complete(e);
+  }
   e->nr_foreign = seen;
   long long owned = (long long)(p->count - seen);
   ranks_allreduce_llongs(&owned, 1, RANKS_SUM);
@@ -882,6 +1037,60 @@ void halo_rebuild_start(struct engine *e) {
 #endif
 }
 
+void halo_gravity_records(struct engine *e) {
+  struct halo *H = e->halo;
+  if (!H || !H->grec_on) return;
+#ifdef HAVE_MPI
+  const double w0 = error_walltime();
+  const int nt = H->gtop, R = gravity_top_record_doubles(), n = H->nranks;
+  long long total = 0;
+  for (int r = 0; r < n; r++) {
+    if ((long long)H->gnrec[r] * R > INT_MAX) error_exit("MPI: too many top-level cells per rank");
+    H->gdrec[r] = (int)(total * R);
+    total += H->gnrec[r];
+  }
+  if (total * R > INT_MAX) error_exit("MPI: too many top-level cells for gravity's records");
+  H->gsrec =
+      error_realloc(H->gsrec, (size_t)H->gnrec[H->me] * R * sizeof(double) + 1, "MPI records");
+  double *all = error_malloc((size_t)total * R * sizeof(double) + 1, "MPI gravity records");
+  int *cnt = error_malloc((size_t)n * sizeof(int), "MPI gravity records");
+  int k = 0;
+  for (int c = 0; c < nt; c++)
+    if (H->gprov[c] == H->me) gravity_top_record_pack(e, c, H->gsrec + (size_t)k++ * R);
+  for (int r = 0; r < n; r++) cnt[r] = H->gnrec[r] * R;
+  MPI_Allgatherv(H->gsrec, k * R, MPI_DOUBLE, all, cnt, H->gdrec, MPI_DOUBLE, MPI_COMM_WORLD);
+  /* (each rank's records come in the order of its cells) */
+  for (int r = 0; r < n; r++) cnt[r] = H->gdrec[r];
+  for (int c = 0; c < nt; c++) {
+    const int r = H->gprov[c];
+    if (r >= n) continue;
+    memcpy(H->grec + (size_t)c * R, all + cnt[r], (size_t)R * sizeof(double));
+    cnt[r] += R;
+    H->gvalid[c] = 1;
+  }
+  free(cnt);
+  free(all);
+  gravity_top_records_use(e, H->grec, H->guse, H->gcomplete);
+  H->t_grec += error_walltime() - w0;
+  H->nr_grec++;
+#endif
+}
+
+void halo_gravity_after(struct engine *e) {
+  struct halo *H = e->halo;
+  if (!H || !H->grec_on) return;
+  const long m = gravity_remote_misses(1);
+  if (m > 0) {
+    /* the next step rebuilds, choosing the cells from this step's records */
+    H->gmisses += m;
+    e->need_rebuild = 1;
+  }
+}
+
+int halo_gravity_by_records(const struct engine *e) {
+  return e->halo && e->halo->grec_on;
+}
+
 int halo_rebuild(struct engine *e) {
   struct halo *H = e->halo;
   if (!H) return 0;
@@ -917,20 +1126,26 @@ int halo_rebuild(struct engine *e) {
    * order of the cells of the last rebuild) */
   struct halo_cand *cand = NULL;
   int ncand = 0, cap = 0, last = -1;
+  /* gravity's copies: the particles of the top-level cells whose particles
+   * the rank's walks may need (NULL: every particle) */
+  unsigned char *need = halo_gravity_need(e);
+  const size_t nt = (size_t)s->nr_top;
   for (size_t i = 0; i < p->count; i++) {
     const double xi[3] = {p->x[i], p->y[i], p->z[i]};
     double x[3];
     const int c = halo_cell_of(H, xi, x);
     if (c != last) ncand = halo_cands(H, c, nc, D, &cand, &cap), last = c;
     if (ncand) halo_cands_d2(H, x, cand, ncand, d2);
+    const size_t tc = need ? (size_t)space_top_cell_of(s, xi[0], xi[1], xi[2]) : 0;
     for (int r = 0; r < n; r++) {
       if (r == H->me) continue;
       if (ncand && d2[r] <= D * D)
         halo_list_push(&L[r], i);
-      else if (H->gravity)
+      else if (H->gravity && (!need || need[(size_t)r * nt + tc]))
         halo_list_push(&G[r], i);
     }
   }
+  free(need);
   const double w1 = error_walltime();
   H->t_rebuild[1] += w1 - wsel;
   /* counts: [copies, gravity's copies] for each rank */
@@ -1024,6 +1239,7 @@ int halo_rebuild(struct engine *e) {
         H->gridx[m - H->nrecv] = i;
     }
   halo_mark_cells(e);
+  if (H->grec_on) halo_gravity_complete(e);
   H->t_rebuild[3] += error_walltime() - w2;
   /* every rank's share, on rank 0's log (-v) */
   double v[3] = {(double)(p->count - nr), (double)H->nrecv, (double)H->gnrecv};
@@ -1226,10 +1442,24 @@ void halo_log(const struct engine *e) {
               H->nr_repart, H->nr_tried, H->trigger, H->imb_last);
   if (H->gravity)
     error_log(0,
-              "MPI: gravity's copies (every other particle, its position, mass, h and "
-              "acceleration) %.1f%% of the owned particles; rank 0: %.4f s per refresh",
+              "MPI: gravity's copies (the other ranks' particles that the walks may open, their "
+              "position, mass, h and acceleration) %.1f%% of the owned particles (average over "
+              "the rebuilds); rank 0: %.4f s per refresh",
               H->nr_halo ? 100.0 * H->gcopies / (double)H->nr_halo : 0.0,
               H->nr_grefresh ? H->t_grefresh / (double)H->nr_grefresh : 0.0);
+  if (H->grec_on) {
+    long long m = H->gmisses;
+    ranks_allreduce_llongs(&m, 1, RANKS_SUM);
+    error_log(0,
+              "MPI: gravity's far field by the top-level cells' records: %ld of %ld rebuilds "
+              "chose the cells to copy from them, %.1f%% of the other ranks' non-empty cells "
+              "on average; %lld misses (a walk that needed a cell's particles that were not "
+              "here: its multipole taken instead, and a rebuild); rank 0: %.4f s per exchange "
+              "of the records",
+              H->gneed_rebuilds, H->nr_halo,
+              H->gneed_rebuilds ? 100.0 * H->gneed_frac / (double)H->gneed_rebuilds : 100.0, m,
+              H->nr_grec ? H->t_grec / (double)H->nr_grec : 0.0);
+  }
 }
 
 void halo_bounds(const struct engine *e, double *dmax, double *h_max) {
@@ -1312,6 +1542,14 @@ void halo_free(struct engine *e) {
   free(H->gridx);
   free(H->gsbuf);
   free(H->grbuf);
+  free(H->gcount);
+  free(H->gprov);
+  free(H->gmine);
+  free(H->gbox);
+  free(H->gnrec);
+  free(H->grec);
+  free(H->gvalid);
+  free(H->gsrec);
   free(H);
   e->halo = NULL;
 }

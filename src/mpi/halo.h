@@ -71,6 +71,18 @@ void halo_refresh_gravity_finish(struct engine *e);
  *  accelerations of the last pass.  Nothing without self-gravity. */
 void halo_refresh_gravity(struct engine *e);
 
+/** Self-gravity on several ranks in an open box: between the upward pass
+ *  and the long-range walks of a FORCE phase, every rank sends the records
+ *  of the top-level cells it provides (multipole, a_min, support, box) to
+ *  all (MPI_Allgatherv), and the walks read the other ranks' cells from
+ *  them (gravity_top_records_use).  halo_gravity_after, after the phase:
+ *  a walk that needed particles it did not have asks for a rebuild.
+ *  halo_gravity_by_records: whether the run goes by records (the FORCE
+ *  phase then has a stage for the long-range walks). */
+void halo_gravity_records(struct engine *e);
+void halo_gravity_after(struct engine *e);
+int halo_gravity_by_records(const struct engine *e);
+
 /** The largest drift since the rebuild (dmax) and the largest smoothing
  *  length (h_max) of the particles of every rank, its copies left out. */
 void halo_bounds(const struct engine *e, double *dmax, double *h_max);

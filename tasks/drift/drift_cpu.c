@@ -10,8 +10,13 @@ void drift_cell_cpu(struct parts *p, struct cell *c, double dt_kick, double dt, 
                     double h_max, int h_continuity) {
   const size_t end = c->offset + c->count;
   for (size_t i = c->offset; i < end; i++) {
-    kick_part(p, i, dt_kick);
-    drift_part(p, i, dt, xsph, h_max, h_continuity);
+    /* (several MPI ranks: a foreign copy in a cell of owned particles, where
+     * the top-level grid is no longer the decomposition's, takes its state
+     * from its owner's refreshes, not from forces of its own: src/mpi/halo.c) */
+    if (!(p->flags[i] & PART_FOREIGN)) {
+      kick_part(p, i, dt_kick);
+      drift_part(p, i, dt, xsph, h_max, h_continuity);
+    }
     hydro_density_reset(p, i);
   }
   cell_update_bounds(p, c);

@@ -5,8 +5,10 @@
 #include "tasks/gravity/gravity_cpu.h"
 #include "tasks/gravity/gravity_walk.h"
 
+#include <limits.h>
 #include <math.h>
 #include <pthread.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #if defined(__SSE2__)
@@ -627,12 +629,87 @@ void gravity_walk_tree_arrays(const struct cell *cells, int nr_cells, int *proge
   }
 }
 
+/** Misses of the walks with other ranks' cells (gravity_remote_misses). */
+static _Atomic long remote_misses;
+
+long gravity_remote_misses(int reset) {
+  return reset ? atomic_exchange(&remote_misses, 0) : atomic_load(&remote_misses);
+}
+
+/** The one-way walk of a (receiving) with the top-level cell b of another
+ *  rank known by its record: walk_pair's decisions, with b never opened.
+ *  apply 0: only whether the walk would have to open b (or read its
+ *  particles: P2P, or M2P/P2L with b the big leaf); returns 1 if so.
+ *  apply 1: the interactions, and where b would have to be opened, the M2L
+ *  of b's multipole all the same; returns the number of such places. */
+static long walk_remote(struct parts *p, const struct cell *a, const struct gravity_remote *b,
+                        struct gravity_cell *gc, const struct gravity_props *gp, int apply) {
+  if (a->count == 0) return 0;
+  struct gravity_cell *ga = gc + a->index;
+  const struct gravity_walk_params wp = walk_params(gp);
+  int a_big = 0;
+  double r2 = 0.0;
+  const int nb = b->count > INT_MAX ? INT_MAX : (int)b->count;
+  if (apply) counters.mac++;
+  const int d =
+      gravity_walk_choose((int)a->count, nb, a->split, b->split, &ga->mp, &b->mp, ga->a_min,
+                          b->a_min, ga->h_support, b->h_support, &wp, &a_big, &r2);
+  if (d == GRAVITY_WALK_NONE) return 0;
+  if (d == GRAVITY_WALK_OPEN_A) {
+    long miss = 0;
+    for (int q = 0; q < 8; q++)
+      if (a->progeny[q]) {
+        miss += walk_remote(p, a->progeny[q], b, gc, gp, apply);
+        if (miss && !apply) return 1;
+      }
+    return miss;
+  }
+  const int ok = d == GRAVITY_WALK_M2L || (d == GRAVITY_WALK_M2P && a_big);
+  if (!apply) return !ok;
+  struct gravity_cell gb;
+  memset(&gb.field, 0, sizeof gb.field);
+  gb.mp = b->mp;
+  gb.a_min = b->a_min;
+  gb.h_support = b->h_support;
+  if (d == GRAVITY_WALK_M2P && a_big) {
+    counters.m2p += a->count;
+    record_distance(r2);
+    m2p_leaf(p, a, &gb, 1, 0, gp->eps2_expansion, gp->G, gp->order);
+    return 0;
+  }
+  counters.m2l++;
+  record_distance(r2);
+  const double R[3] = {gb.mp.com[0] - ga->mp.com[0], gb.mp.com[1] - ga->mp.com[1],
+                       gb.mp.com[2] - ga->mp.com[2]};
+  m2l_cells(ga, &gb, R, gp->eps2_expansion, gp->order, 0);
+  return !ok;
+}
+
 void gravity_long_range(struct parts *p, const struct cell *ci, const struct cell *tops, int nr_top,
                         struct gravity_cell *gc, const struct gravity_props *gp) {
   if (ci->count == 0 || (gp->active && !gp->active[ci->index])) return;
   for (int j = 0; j < nr_top; j++) {
     const struct cell *cj = tops + j;
-    if (cj == ci || cj->count == 0 || gravity_top_pair_is_near(ci, cj, gp)) continue;
+    if (cj == ci) continue;
+    if (gp->remote_idx && gp->remote_idx[j] >= 0) {
+      /* several MPI ranks: a cell of another rank, by its record unless the
+       * walk must open it */
+      const struct gravity_remote *rj = gp->remote + gp->remote_idx[j];
+      if (gravity_walk_top_near(ci->bmin, ci->bmax, rj->bmin, rj->bmax, gp->theta, gp->h_support)) {
+        if (!rj->complete)
+          error_bug("top-level cell %d of another rank is near cell %d without its particles", j,
+                    ci->index);
+        continue; /* (a pair task) */
+      }
+      if (!walk_remote(p, ci, rj, gc, gp, 0))
+        walk_remote(p, ci, rj, gc, gp, 1);
+      else if (rj->complete)
+        walk_pair(p, ci, cj, 0, gc, gp);
+      else
+        atomic_fetch_add(&remote_misses, walk_remote(p, ci, rj, gc, gp, 1));
+      continue;
+    }
+    if (cj->count == 0 || gravity_top_pair_is_near(ci, cj, gp)) continue;
     walk_pair(p, ci, cj, 0, gc, gp);
   }
 }

@@ -117,9 +117,30 @@ void gravity_interact_cells(struct parts *p, const struct cell *ci, const struct
 void gravity_interact_pair_one_way(struct parts *p, const struct cell *ci, const struct cell *cj,
                                    struct gravity_cell *gc, const struct gravity_props *gp);
 
+/** A top-level cell of another MPI rank as the walks of this rank read
+ *  it (gp->remote): its owner's multipole, a_min, h_support, bounding box,
+ *  particle count and split flag of this step (src/mpi/halo.c sends them
+ *  each step, gravity_top_record_pack).  Its particles are here only where
+ *  this rank may have to open it (complete); the far field of the others
+ *  comes from the record alone (theory/mpi.md, "Self-gravity on several
+ *  ranks"). */
+struct gravity_remote {
+  struct gravity_multipole mp;
+  double a_min, h_support;
+  double bmin[3], bmax[3];
+  long long count;
+  int split;
+  int complete; /**< 1: every particle of the cell is on this rank (a copy) */
+};
+
 /** Long-range interactions of top-level cell ci: every non-empty cell of
  *  tops[0..nr_top) other than ci that is not near ci acts on ci (one-way
- *  walk: M2L at the top when the criterion accepts).  Writes ci only. */
+ *  walk: M2L at the top when the criterion accepts).  Writes ci only.
+ *  Several MPI ranks (gp->remote_idx): a cell of another rank acts through
+ *  its record (struct gravity_remote) wherever the walk does not open it;
+ *  where it must be opened, through its particles if they are here, else
+ *  through its multipole all the same, counted as a miss
+ *  (gravity_remote_misses). */
 void gravity_long_range(struct parts *p, const struct cell *ci, const struct cell *tops, int nr_top,
                         struct gravity_cell *gc, const struct gravity_props *gp);
 

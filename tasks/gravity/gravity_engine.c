@@ -12,6 +12,7 @@
 #include "src/engine.h"
 #include "src/error.h"
 #include "tasks/gravity/gravity_state.h"
+#include "tasks/gravity/gravity_walk.h"
 
 void gravity_engine_init(struct engine *e) {
   gravity_props_init(&e->gp, e->params, &e->us);
@@ -24,6 +25,8 @@ void gravity_engine_clean(struct engine *e) {
   free(g->cells);
   free(g->active);
   free(g->x0);
+  free(g->remote);
+  free(g->remote_idx);
   restart_gravity_free(&g->restart);
   free(g);
   e->grav = NULL;
@@ -246,6 +249,136 @@ void gravity_restart_restore(struct engine *e) {
     }
   }
   restart_gravity_free(r);
+}
+
+/* ---------------------------------------- top-level cells of other ranks */
+
+/** Doubles of a record ahead of the multipole's: a_min, h_support, bmin,
+ *  bmax, count, split. */
+#define GRAVITY_REC_EXTRA 10
+#define GRAVITY_REC_MP ((int)(sizeof(struct gravity_multipole) / sizeof(double)))
+
+int gravity_top_record_doubles(void) {
+  return GRAVITY_REC_MP + GRAVITY_REC_EXTRA;
+}
+
+void gravity_top_record_pack(const struct engine *e, int c, double *out) {
+  const struct gravity_cell *g = e->grav->cells + c;
+  const struct cell *cl = e->space.cells + c;
+  memcpy(out, &g->mp, sizeof g->mp);
+  double *x = out + GRAVITY_REC_MP;
+  x[0] = g->a_min;
+  x[1] = g->h_support;
+  for (int k = 0; k < 3; k++) {
+    x[2 + k] = cl->bmin[k];
+    x[5 + k] = cl->bmax[k];
+  }
+  x[8] = (double)cl->count;
+  x[9] = cl->split ? 1.0 : 0.0;
+}
+
+/** Record rec (gravity_top_record_pack) into r (complete left 0). */
+static void gravity_top_record_unpack(const double *rec, struct gravity_remote *r) {
+  memcpy(&r->mp, rec, sizeof r->mp);
+  const double *x = rec + GRAVITY_REC_MP;
+  r->a_min = x[0];
+  r->h_support = x[1];
+  for (int k = 0; k < 3; k++) {
+    r->bmin[k] = x[2 + k];
+    r->bmax[k] = x[5 + k];
+  }
+  r->count = (long long)x[8];
+  r->split = x[9] != 0.0;
+  r->complete = 0;
+}
+
+void gravity_top_records_use(struct engine *e, const double *recs, const unsigned char *use,
+                             const unsigned char *complete) {
+  struct gravity_state *g = e->grav;
+  const int nt = e->space.nr_top, R = gravity_top_record_doubles();
+  if (g->remote_idx_cap < nt) {
+    g->remote_idx = error_realloc(g->remote_idx, (size_t)nt * sizeof(int), "gravity remote cells");
+    g->remote_idx_cap = nt;
+  }
+  int n = 0;
+  for (int c = 0; c < nt; c++) n += use[c] != 0;
+  if (g->remote_cap < n) {
+    g->remote = error_realloc(g->remote, (size_t)n * sizeof *g->remote, "gravity remote cells");
+    g->remote_cap = n;
+  }
+  n = 0;
+  for (int c = 0; c < nt; c++) {
+    g->remote_idx[c] = use[c] ? n : -1;
+    if (!use[c]) continue;
+    gravity_top_record_unpack(recs + (size_t)c * R, g->remote + n);
+    g->remote[n].complete = complete[c] != 0;
+    n++;
+  }
+  e->gp.remote_idx = g->remote_idx;
+  e->gp.remote = g->remote;
+}
+
+/** Whether the walk between top-level cells a (receiving) and b, known
+ *  by their records of an earlier step, still ends at the top (M2L, or M2P
+ *  to a's particles) after every particle has moved up to drift and h has
+ *  grown: each radius taken drift*2 larger, the distance 2 drift shorter,
+ *  the powers scaled with the radius, a_min halved, the supports a quarter
+ *  larger.  A margin for the steps until the next rebuild, not a bound:
+ *  the walks check the records of each step (gravity_long_range). */
+static int gravity_top_far_with_margin(const struct gravity_remote *a,
+                                       const struct gravity_remote *b, double drift,
+                                       const struct gravity_props *gp) {
+  struct gravity_multipole ma = a->mp, mb = b->mp;
+  const double ra = ma.r_max + 2.0 * drift, rb = mb.r_max + 2.0 * drift;
+  for (int n = 0; n <= gp->order; n++) {
+    ma.power[n] *= ma.r_max > 0.0 ? pow(ra / ma.r_max, n) : 1.0;
+    mb.power[n] *= mb.r_max > 0.0 ? pow(rb / mb.r_max, n) : 1.0;
+  }
+  if (ma.r_max <= 0.0)
+    for (int n = 2; n <= gp->order; n++) ma.power[n] = ma.M[0] * pow(ra, n);
+  if (mb.r_max <= 0.0)
+    for (int n = 2; n <= gp->order; n++) mb.power[n] = mb.M[0] * pow(rb, n);
+  ma.r_max = ra;
+  mb.r_max = rb;
+  double r = 0.0;
+  for (int k = 0; k < 3; k++) r += (mb.com[k] - ma.com[k]) * (mb.com[k] - ma.com[k]);
+  r = sqrt(r) - 2.0 * drift;
+  if (r <= 0.0) return 0;
+  const struct gravity_walk_params wp = {gp->G,         gp->theta,    gp->epsilon_fmm,
+                                         gp->h_support, gp->h_factor, gp->order};
+  if (!gravity_walk_accept(&ma, &mb, 0.5 * a->a_min, 0.5 * b->a_min, 1.25 * a->h_support,
+                           1.25 * b->h_support, r * r, &wp))
+    return 0;
+  /* (a leaf b larger than twice a: M2P/P2L from b's particles) */
+  return b->split || rb <= GRAVITY_LOPSIDED * ra;
+}
+
+void gravity_top_needed(const struct engine *e, const double *recs, const unsigned char *valid,
+                        const unsigned char *mine, const long long *count, const double *box,
+                        double drift, unsigned char *need) {
+  const int nt = e->space.nr_top, R = gravity_top_record_doubles();
+  const struct gravity_props *gp = &e->gp;
+  int na = 0;
+  int *own = error_malloc((size_t)nt * sizeof(int) + 1, "gravity needed cells");
+  for (int c = 0; c < nt; c++)
+    if (mine[c] && count[c] > 0) own[na++] = c;
+  struct gravity_remote *ra = error_malloc((size_t)na * sizeof *ra + 1, "gravity needed cells");
+  for (int k = 0; k < na; k++)
+    if (valid[own[k]]) gravity_top_record_unpack(recs + (size_t)own[k] * R, ra + k);
+  struct gravity_remote rb;
+  for (int b = 0; b < nt; b++) {
+    need[b] = 0;
+    if (mine[b] || count[b] == 0) continue;
+    if (valid[b]) gravity_top_record_unpack(recs + (size_t)b * R, &rb);
+    for (int k = 0; k < na && !need[b]; k++) {
+      const int a = own[k];
+      need[b] = gravity_walk_top_near(box + 6 * a, box + 6 * a + 3, box + 6 * b, box + 6 * b + 3,
+                                      gp->theta, gp->h_support) ||
+                !valid[a] || !valid[b] || !gravity_top_far_with_margin(ra + k, &rb, drift, gp);
+    }
+  }
+  free(ra);
+  free(own);
 }
 
 void gravity_log_end(const struct engine *e) {

@@ -45,12 +45,17 @@ struct gravity_props {
                               bins, per cell index, whether the cell holds a particle that ends
                               its step (the upward pass fills it); only those cells receive
                               (walks, local expansions, L2P); NULL: every cell receives */
+  const int *remote_idx; /**< several MPI ranks (gravity_top_records_use): per top-level cell,
+                              its entry of remote, -1 for a cell of this rank's own particles
+                              and an empty one; NULL: one rank */
+  const struct gravity_remote *remote; /**< the other ranks' top-level cells (gravity_cpu.h) */
 };
 
 /** The family's state in a run (tasks/gravity/gravity_state.h), opaque to
  *  the engine: made by the hook gravity_engine_init, freed by
  *  gravity_engine_clean. */
 struct gravity_state;
+struct gravity_remote;
 
 /** Fill gp from the Gravity section of params; G from the unit system. */
 void gravity_props_init(struct gravity_props *gp, const struct params *params,

@@ -26,6 +26,10 @@ struct gravity_state {
   long replays;                   /**< steps of the run that reused the far field */
   struct restart_gravity restart; /**< the far field read from the restart file, restored
                                        after the first rebuild (restart.present 0: none) */
+  struct gravity_remote *remote;  /**< several MPI ranks: the other ranks' top-level cells
+                                       (gravity_top_records_use; gp.remote) */
+  int *remote_idx;                /**< per top-level cell, its entry of remote or -1 */
+  int remote_cap, remote_idx_cap; /**< their allocated lengths */
 };
 
 #endif

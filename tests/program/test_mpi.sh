@@ -232,6 +232,58 @@ runs 2 3
 grep "domain decomposition again" mpi3/run.log | head -3
 grep -m1 "snapshot .*hdf5 at t" mpi3/run.log
 grep -q "domain decomposition again at step" mpi3/run.log || fail "$case: never partitioned again"
+# 5a. two bodies far apart with self-gravity (the impact of 1. at a
+#    separation of 12 target radii, rebuilds every few steps): gravity's far
+#    field between the ranks goes by the top-level cells' records, so each
+#    rank holds only the particles its walks may open (theory/mpi.md,
+#    "Self-gravity on several ranks"); and the SEA planet of 4. with
+#    rebuilds, whose top-level grid changes from the decomposition's (8^3 to
+#    7^3: cells holding particles of two ranks, whose copies the drift must
+#    leave to their owners)
+case=far
+mkdir -p "$work/far" && cd "$work/far"
+"$B/bolide-ic" impact --target sphere,material=granite,radius=1e6,n=2000,u=237000 \
+  --impactor sphere,material=granite,radius=4.642e5,n=200,u=237000 --v-contact 2000 --angle 45 \
+  --separation 1.2e7 --time-end 4000 -o far.hdf5 >ic.log 2>&1 || { tail -3 ic.log; fail "far: bolide-ic impact"; }
+cat >p.yml <<'YML'
+InitialConditions:
+  file_name: ../far.hdf5
+TimeIntegration:
+  time_end: 300
+Snapshots:
+  delta_time: 150
+Materials:
+  101: {}
+Gravity:
+  enabled: true
+  softening: 2e4
+Scheduler:
+  rebuild_fraction: 0.02
+YML
+snaps='snapshot_000[0-2].hdf5'
+stats=statistics.txt box=5.5e7
+runs 2 3
+for r in 2 3; do
+  line=$(grep "far field by the top-level cells' records" mpi$r/run.log) ||
+    fail "far: $r ranks: no line on gravity's records"
+  echo "far, $r ranks: ${line#*records: }" | cut -c1-200
+  "$PY" - "$line" <<'PY' || fail "far: $r ranks: the records did not replace copies, or a walk missed"
+import re, sys
+m = re.search(r"(\d+) of (\d+) rebuilds chose the cells to copy from them, ([\d.]+)% of the other "
+              r"ranks' non-empty cells on average; (\d+) misses", sys.argv[1])
+used, rebuilds, frac, misses = int(m[1]), int(m[2]), float(m[3]), int(m[4])
+sys.exit(0 if used >= 1 and frac < 100.0 and misses == 0 else 1)
+PY
+done
+case=planet-rebuilds
+cd "$work/planet" && mkdir -p rb && cd rb
+sed -e 's#\.\./planet.hdf5#../../planet.hdf5#' ../p.yml >p.yml
+printf 'Scheduler:\n  rebuild_fraction: 0.01\n' >>p.yml
+snaps='snapshot_000[0-2].hdf5'
+stats=statistics.txt box=2e7
+runs 2 3
+(cd serial && "$serial" -v -t 1 -n 25 p.yml 2>&1) | grep -q "7 x 7 x 7 top-level cells" ||
+  fail "planet-rebuilds: the top-level grid did not change (the case tests no mixed cells)"
 # 5b. a porous basalt block crushed (P-alpha, continuity density; the
 #    distentions and the solid state through the refreshes between stages,
 #    which send only the fields the stage before wrote), on 2 ranks
