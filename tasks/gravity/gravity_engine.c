@@ -367,7 +367,9 @@ void gravity_top_needed(const struct engine *e, const double *recs, const unsign
     if (valid[own[k]]) gravity_top_record_unpack(recs + (size_t)own[k] * R, ra + k);
   struct gravity_remote rb;
   for (int b = 0; b < nt; b++) {
-    need[b] = 0;
+    /* (a cell of this rank's own particles: all of them, the other ranks'
+     * in it too) */
+    need[b] = mine[b];
     if (mine[b] || count[b] == 0) continue;
     if (valid[b]) gravity_top_record_unpack(recs + (size_t)b * R, &rb);
     for (int k = 0; k < na && !need[b]; k++) {

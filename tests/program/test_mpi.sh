@@ -284,6 +284,38 @@ stats=statistics.txt box=2e7
 runs 2 3
 (cd serial && "$serial" -v -t 1 -n 25 p.yml 2>&1) | grep -q "7 x 7 x 7 top-level cells" ||
   fail "planet-rebuilds: the top-level grid did not change (the case tests no mixed cells)"
+# 5c. a solid impact with self-gravity: basalt with strength and Weibull
+#    flaws (a 10 km target, 2,000 + 200 particles, 3 km/s at 45 degrees,
+#    to 4 s, 400 steps, a rebuild every few steps) on 3 ranks: the stage
+#    of the gradient, gravity's records and the cells that hold particles
+#    of two ranks (a rank that owns some particles of a cell holds all of
+#    them; without that, a rank held 315 of a cell's 316 particles)
+case=solid-gravity
+mkdir -p "$work/solidg" && cd "$work/solidg"
+"$B/bolide-ic" impact --target sphere,material=basalt,radius=1e4,n=2000 \
+  --impactor sphere,material=basalt,radius=2e3,n=200 --v-contact 3000 --angle 45 \
+  --separation 1.3e4 --time-end 10 -o solid.hdf5 >ic.log 2>&1 || { tail -3 ic.log; fail "solid-gravity: bolide-ic impact"; }
+cat >p.yml <<'YML'
+InitialConditions:
+  file_name: ../solid.hdf5
+TimeIntegration:
+  time_end: 4
+Snapshots:
+  delta_time: 2
+Materials:
+  103: {name: basalt, weibull_k: 5e34, weibull_m: 8}
+Gravity:
+  enabled: true
+  softening: 100
+Damage:
+  seed: 3
+Scheduler:
+  rebuild_fraction: 0.02
+  max_top_level_cells: 32
+YML
+snaps='snapshot_000[0-2].hdf5'
+stats=statistics.txt box=1.43e5
+runs 3
 # 5b. a porous basalt block crushed (P-alpha, continuity density; the
 #    distentions and the solid state through the refreshes between stages,
 #    which send only the fields the stage before wrote), on 2 ranks
