@@ -92,6 +92,7 @@ struct halo {
   double gneed_frac;        /**< sum over them of the needed cells over the other ranks' ones */
   double t_grec;            /**< wall seconds in the exchanges of the records */
   long nr_grec;
+  unsigned char *gpartial; /**< [gtop] gp.top_partial */
   /* repartitioning (halo_repartition) */
   double trigger;               /**< DomainDecomposition:trigger (0: never) */
   enum partition_method method; /**< DomainDecomposition:method (auto resolved) */
@@ -849,13 +850,16 @@ static void halo_gravity_complete(struct engine *e) {
   struct halo *H = e->halo;
   const struct space *s = &e->space;
   const int nt = H->gtop, R = gravity_top_record_doubles();
+  H->gpartial = error_realloc(H->gpartial, (size_t)nt + 1, "MPI gravity cells");
   for (int c = 0; c < nt; c++) {
     H->gcomplete[c] = (long long)s->cells[c].count == H->gcount[c];
     H->guse[c] = H->gcount[c] > 0 && !H->gmine[c];
+    H->gpartial[c] = H->guse[c] && !H->gcomplete[c];
     if (H->gmine[c] && !H->gcomplete[c])
       error_bug("MPI: top-level cell %d holds %zu of its %lld particles on a rank that owns some",
                 c, s->cells[c].count, H->gcount[c]);
   }
+  e->gp.top_partial = H->gpartial;
   if (!H->grec || H->rcdim[0] != s->cdim[0] || H->rcdim[1] != s->cdim[1] ||
       H->rcdim[2] != s->cdim[2]) {
     free(H->grec);
@@ -875,6 +879,7 @@ static unsigned char *halo_gravity_need(struct engine *e) {
   struct halo *H = e->halo;
   const struct space *s = &e->space;
   H->grec_on = H->gravity && !s->periodic && !e->gp.direct;
+  e->gp.top_partial = NULL;
   if (!H->grec_on) return NULL;
   halo_gravity_cells(e, 0);
   const int nt = s->nr_top, n = H->nranks;
@@ -928,6 +933,7 @@ void halo_restored(struct engine *e) {
                H->nrecv + H->gnrecv);
   halo_mark_cells(e);
   H->grec_on = H->gravity && !e->space.periodic && !e->gp.direct;
+  e->gp.top_partial = NULL;
   if (H->grec_on) {
     halo_gravity_cells(e, 1);
     halo_gravity_complete(e);
@@ -1550,6 +1556,7 @@ void halo_free(struct engine *e) {
   free(H->grec);
   free(H->gvalid);
   free(H->gsrec);
+  free(H->gpartial);
   free(H);
   e->halo = NULL;
 }

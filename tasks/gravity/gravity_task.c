@@ -2,7 +2,6 @@
  * walks (self, near pair, long range) and the downward pass of the
  * top-level cells and their split (engine_graph.c). */
 #include "src/engine.h"
-#include "tasks/gravity/gravity_cpu.h"
 #include "tasks/gravity/gravity_state.h"
 
 /** A gravity walk task: self (cj == ci), near pair, or long range (cj
@@ -12,14 +11,15 @@ static void gravity_walk_task(struct engine *e, const struct task *t, const stru
                               const struct cell *cj) {
   /* several MPI ranks: no walk whose receiving cells hold only copies (src/mpi/halo.h) */
   if (ci->foreign && (!cj || cj->foreign)) return;
-  if (cj && cj != ci && e->gp.remote_idx) {
+  if (cj && cj != ci && e->gp.top_partial &&
+      (e->gp.top_partial[ci->top] || e->gp.top_partial[cj->top]))
     /* several MPI ranks: a cell of another rank holding only some of its
      * particles here (copies for the hydrodynamics) is far from every cell
      * of this rank's, by the boxes of all its particles: the long-range walk
-     * reads it from its record */
-    const int ri = e->gp.remote_idx[ci->top], rj = e->gp.remote_idx[cj->top];
-    if ((ri >= 0 && !e->gp.remote[ri].complete) || (rj >= 0 && !e->gp.remote[rj].complete)) return;
-  }
+     * reads it from its record (the flags of the last rebuild, not the
+     * records of the last step: a pair walk after a rebuild comes before
+     * this step's records) */
+    return;
   struct parts *p = &e->parts;
   struct gravity_ilist *il = t->id < e->grav->nr_lists ? &e->grav->lists[t->id] : NULL;
   if (e->gp.replay) {
