@@ -256,10 +256,10 @@
   X(gravity, int,  gravity_top_record_doubles, (void))                                       \
   X(gravity, void, gravity_top_record_pack, (const struct engine *e, int c, double *out))    \
   X(gravity, void, gravity_top_records_use,                                                  \
-    (struct engine *e, const double *recs, const unsigned char *use,                         \
+    (struct engine *e, const double *recs, const int *row, const unsigned char *use,         \
      const unsigned char *complete))                                                         \
   X(gravity, void, gravity_top_needed,                                                       \
-    (const struct engine *e, const double *recs, const unsigned char *valid,                 \
+    (const struct engine *e, const double *recs, const int *row,                             \
      const unsigned char *mine, const long long *count, const double *box, double drift,     \
      unsigned char *need))                                                                   \
   X(gravity, long, gravity_remote_misses, (int reset))                                       \

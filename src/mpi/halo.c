@@ -84,7 +84,8 @@ struct halo {
   double *gbox;             /**< [6 gtop] the bounding box of its particles at the rebuild */
   int *gnrec, *gdrec;       /**< [nranks] records each rank sends, their offsets */
   double *grec;             /**< [gtop R] the records of the last exchange, every cell */
-  unsigned char *gvalid;    /**< [gtop] 1: grec holds this cell's record of the last step */
+  int *grow;                /**< [gtop] the row of a cell's record of the last step in grec
+                                 (-1: none); grec holds the non-empty cells' only */
   int rcdim[3];             /**< the grid of grec (the records' cells) */
   double *gsrec;            /**< this rank's records, packed */
   long gmisses;             /**< walks that needed a cell without its particles (this rank) */
@@ -849,7 +850,7 @@ static void halo_gravity_cells(struct engine *e, int restored) {
 static void halo_gravity_complete(struct engine *e) {
   struct halo *H = e->halo;
   const struct space *s = &e->space;
-  const int nt = H->gtop, R = gravity_top_record_doubles();
+  const int nt = H->gtop;
   H->gpartial = error_realloc(H->gpartial, (size_t)nt + 1, "MPI gravity cells");
   for (int c = 0; c < nt; c++) {
     H->gcomplete[c] = (long long)s->cells[c].count == H->gcount[c];
@@ -863,9 +864,9 @@ static void halo_gravity_complete(struct engine *e) {
   if (!H->grec || H->rcdim[0] != s->cdim[0] || H->rcdim[1] != s->cdim[1] ||
       H->rcdim[2] != s->cdim[2]) {
     free(H->grec);
-    H->grec = error_malloc((size_t)nt * (size_t)R * sizeof(double) + 1, "MPI gravity records");
-    H->gvalid = error_realloc(H->gvalid, (size_t)nt + 1, "MPI gravity records");
-    memset(H->gvalid, 0, (size_t)nt);
+    H->grec = error_malloc(1, "MPI gravity records");
+    H->grow = error_realloc(H->grow, (size_t)nt * sizeof(int) + 1, "MPI gravity records");
+    for (int c = 0; c < nt; c++) H->grow[c] = -1;
     for (int k = 0; k < 3; k++) H->rcdim[k] = s->cdim[k];
   }
 }
@@ -890,8 +891,11 @@ static unsigned char *halo_gravity_need(struct engine *e) {
   if (usable) {
     double wmin = s->width[0];
     for (int k = 1; k < 3; k++) wmin = s->width[k] < wmin ? s->width[k] : wmin;
-    gravity_top_needed(e, H->grec, H->gvalid, H->gmine, H->gcount, H->gbox,
-                       s->max_drift_fraction * wmin, row);
+    /* (the margin's drift at least a quarter of a cell width, also where
+     * Scheduler:rebuild_fraction is smaller: with 0 and 0.05 of a width the
+     * walks of the reference impact missed, theory/mpi.md) */
+    gravity_top_needed(e, H->grec, H->grow, H->gmine, H->gcount, H->gbox,
+                       fmax(s->max_drift_fraction, 0.25) * wmin, row);
     double v[2] = {0.0, 0.0};
     for (int c = 0; c < nt; c++)
       if (H->gcount[c] > 0 && !H->gmine[c]) {
@@ -1065,18 +1069,14 @@ void halo_gravity_records(struct engine *e) {
     if (H->gprov[c] == H->me) gravity_top_record_pack(e, c, H->gsrec + (size_t)k++ * R);
   for (int r = 0; r < n; r++) cnt[r] = H->gnrec[r] * R;
   MPI_Allgatherv(H->gsrec, k * R, MPI_DOUBLE, all, cnt, H->gdrec, MPI_DOUBLE, MPI_COMM_WORLD);
-  /* (each rank's records come in the order of its cells) */
-  for (int r = 0; r < n; r++) cnt[r] = H->gdrec[r];
-  for (int c = 0; c < nt; c++) {
-    const int r = H->gprov[c];
-    if (r >= n) continue;
-    memcpy(H->grec + (size_t)c * R, all + cnt[r], (size_t)R * sizeof(double));
-    cnt[r] += R;
-    H->gvalid[c] = 1;
-  }
+  /* (each rank's records come in the order of its cells; they are kept as
+   * they came, each cell's row noted) */
+  for (int r = 0; r < n; r++) cnt[r] = H->gdrec[r] / R;
+  for (int c = 0; c < nt; c++) H->grow[c] = H->gprov[c] < n ? cnt[H->gprov[c]]++ : -1;
   free(cnt);
-  free(all);
-  gravity_top_records_use(e, H->grec, H->guse, H->gcomplete);
+  free(H->grec);
+  H->grec = all;
+  gravity_top_records_use(e, H->grec, H->grow, H->guse, H->gcomplete);
   H->t_grec += error_walltime() - w0;
   H->nr_grec++;
 #endif
@@ -1554,7 +1554,7 @@ void halo_free(struct engine *e) {
   free(H->gbox);
   free(H->gnrec);
   free(H->grec);
-  free(H->gvalid);
+  free(H->grow);
   free(H->gsrec);
   free(H->gpartial);
   free(H);

@@ -292,8 +292,8 @@ static void gravity_top_record_unpack(const double *rec, struct gravity_remote *
   r->complete = 0;
 }
 
-void gravity_top_records_use(struct engine *e, const double *recs, const unsigned char *use,
-                             const unsigned char *complete) {
+void gravity_top_records_use(struct engine *e, const double *recs, const int *row,
+                             const unsigned char *use, const unsigned char *complete) {
   struct gravity_state *g = e->grav;
   const int nt = e->space.nr_top, R = gravity_top_record_doubles();
   if (g->remote_idx_cap < nt) {
@@ -301,16 +301,16 @@ void gravity_top_records_use(struct engine *e, const double *recs, const unsigne
     g->remote_idx_cap = nt;
   }
   int n = 0;
-  for (int c = 0; c < nt; c++) n += use[c] != 0;
+  for (int c = 0; c < nt; c++) n += use[c] && row[c] >= 0;
   if (g->remote_cap < n) {
     g->remote = error_realloc(g->remote, (size_t)n * sizeof *g->remote, "gravity remote cells");
     g->remote_cap = n;
   }
   n = 0;
   for (int c = 0; c < nt; c++) {
-    g->remote_idx[c] = use[c] ? n : -1;
-    if (!use[c]) continue;
-    gravity_top_record_unpack(recs + (size_t)c * R, g->remote + n);
+    g->remote_idx[c] = use[c] && row[c] >= 0 ? n : -1;
+    if (g->remote_idx[c] < 0) continue;
+    gravity_top_record_unpack(recs + (size_t)row[c] * R, g->remote + n);
     g->remote[n].complete = complete[c] != 0;
     n++;
   }
@@ -353,7 +353,7 @@ static int gravity_top_far_with_margin(const struct gravity_remote *a,
   return b->split || rb <= GRAVITY_LOPSIDED * ra;
 }
 
-void gravity_top_needed(const struct engine *e, const double *recs, const unsigned char *valid,
+void gravity_top_needed(const struct engine *e, const double *recs, const int *row,
                         const unsigned char *mine, const long long *count, const double *box,
                         double drift, unsigned char *need) {
   const int nt = e->space.nr_top, R = gravity_top_record_doubles();
@@ -364,19 +364,19 @@ void gravity_top_needed(const struct engine *e, const double *recs, const unsign
     if (mine[c] && count[c] > 0) own[na++] = c;
   struct gravity_remote *ra = error_malloc((size_t)na * sizeof *ra + 1, "gravity needed cells");
   for (int k = 0; k < na; k++)
-    if (valid[own[k]]) gravity_top_record_unpack(recs + (size_t)own[k] * R, ra + k);
+    if (row[own[k]] >= 0) gravity_top_record_unpack(recs + (size_t)row[own[k]] * R, ra + k);
   struct gravity_remote rb;
   for (int b = 0; b < nt; b++) {
     /* (a cell of this rank's own particles: all of them, the other ranks'
      * in it too) */
     need[b] = mine[b];
     if (mine[b] || count[b] == 0) continue;
-    if (valid[b]) gravity_top_record_unpack(recs + (size_t)b * R, &rb);
+    if (row[b] >= 0) gravity_top_record_unpack(recs + (size_t)row[b] * R, &rb);
     for (int k = 0; k < na && !need[b]; k++) {
       const int a = own[k];
       need[b] = gravity_walk_top_near(box + 6 * a, box + 6 * a + 3, box + 6 * b, box + 6 * b + 3,
                                       gp->theta, gp->h_support) ||
-                !valid[a] || !valid[b] || !gravity_top_far_with_margin(ra + k, &rb, drift, gp);
+                row[a] < 0 || row[b] < 0 || !gravity_top_far_with_margin(ra + k, &rb, drift, gp);
     }
   }
   free(ra);

@@ -233,7 +233,7 @@ grep "domain decomposition again" mpi3/run.log | head -3
 grep -m1 "snapshot .*hdf5 at t" mpi3/run.log
 grep -q "domain decomposition again at step" mpi3/run.log || fail "$case: never partitioned again"
 # 5a. two bodies far apart with self-gravity (the impact of 1. at a
-#    separation of 12 target radii, rebuilds every few steps): gravity's far
+#    separation of 25 target radii, rebuilds every few steps): gravity's far
 #    field between the ranks goes by the top-level cells' records, so each
 #    rank holds only the particles its walks may open (theory/mpi.md,
 #    "Self-gravity on several ranks"); and the SEA planet of 4. with
@@ -244,7 +244,7 @@ case=far
 mkdir -p "$work/far" && cd "$work/far"
 "$B/bolide-ic" impact --target sphere,material=granite,radius=1e6,n=2000,u=237000 \
   --impactor sphere,material=granite,radius=4.642e5,n=200,u=237000 --v-contact 2000 --angle 45 \
-  --separation 1.2e7 --time-end 4000 -o far.hdf5 >ic.log 2>&1 || { tail -3 ic.log; fail "far: bolide-ic impact"; }
+  --separation 2.5e7 --time-end 4000 -o far.hdf5 >ic.log 2>&1 || { tail -3 ic.log; fail "far: bolide-ic impact"; }
 cat >p.yml <<'YML'
 InitialConditions:
   file_name: ../far.hdf5
@@ -261,7 +261,7 @@ Scheduler:
   rebuild_fraction: 0.02
 YML
 snaps='snapshot_000[0-2].hdf5'
-stats=statistics.txt box=5.5e7
+stats=statistics.txt box=9.2e7
 runs 2 3
 for r in 2 3; do
   line=$(grep "far field by the top-level cells' records" mpi$r/run.log) ||
