@@ -8,6 +8,8 @@
 #include <stddef.h>
 #include <stdlib.h>
 
+#include "src/part.h"
+
 /** A random direction times r, added to c (draws z, then the azimuth). */
 static inline void gset_place(double r, const double c[3], double out[3]) {
   const double z = 2.0 * drand48() - 1.0, ph = 2.0 * M_PI * drand48(), s = sqrt(1.0 - z * z);
@@ -33,6 +35,24 @@ static inline void gset_two_bodies(size_t i, size_t n, const double c[3], double
   const int big = i < 2 * n / 3;
   const double cc[3] = {c[0] + (big ? -0.4 : 0.8), c[1] + (big ? 0.0 : 0.3), c[2]};
   gset_place(gset_plummer_radius(big ? 0.15 : 0.08, 0.9), cc, out);
+}
+
+/** Fill p (allocated, count n) for the walks' tests (test_gravity_walk,
+ *  test_gravity_remote): two bodies (gset_two_bodies) or a uniform sphere
+ *  of radius 1 about c; mass 1/n, h uniform in [0.01, 0.02), ids 0 .. n-1.
+ *  The caller seeds drand48. */
+static inline void gset_fill_walk(struct parts *p, size_t n, const double c[3], int two_bodies) {
+  for (size_t i = 0; i < n; i++) {
+    double x[3];
+    if (two_bodies)
+      gset_two_bodies(i, n, c, x);
+    else
+      gset_place(cbrt(drand48()), c, x);
+    p->x[i] = x[0], p->y[i] = x[1], p->z[i] = x[2];
+    p->m[i] = 1.0 / n;
+    p->h[i] = 0.01 * (1.0 + drand48());
+    p->id[i] = (int64_t)i;
+  }
 }
 
 /** qsort comparison of doubles. */

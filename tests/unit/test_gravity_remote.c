@@ -86,14 +86,7 @@ int main(void) {
   p.count = n;
   srand48(11);
   const double c[3] = {0.5 * BOX, 0.5 * BOX, 0.5 * BOX};
-  for (size_t i = 0; i < n; i++) {
-    double x[3];
-    gset_two_bodies(i, n, c, x);
-    p.x[i] = x[0], p.y[i] = x[1], p.z[i] = x[2];
-    p.m[i] = 1.0 / n;
-    p.h[i] = 0.01 * (1.0 + drand48());
-    p.id[i] = (int64_t)i;
-  }
+  gset_fill_walk(&p, n, c, 1);
   const double box[3] = {BOX, BOX, BOX};
   struct space sp;
   space_init(&sp, &p, box, 0, 16, 16);

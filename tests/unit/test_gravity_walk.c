@@ -76,17 +76,7 @@ static void run(const char *name, int two_bodies, double h_factor) {
   p.count = n;
   srand48(7);
   const double c[3] = {0.5 * BOX, 0.5 * BOX, 0.5 * BOX};
-  for (size_t i = 0; i < n; i++) {
-    double x[3];
-    if (two_bodies)
-      gset_two_bodies(i, n, c, x);
-    else
-      gset_place(cbrt(drand48()), c, x);
-    p.x[i] = x[0], p.y[i] = x[1], p.z[i] = x[2];
-    p.m[i] = 1.0 / n;
-    p.h[i] = 0.01 * (1.0 + drand48());
-    p.id[i] = (int64_t)i;
-  }
+  gset_fill_walk(&p, n, c, two_bodies);
   const double box[3] = {BOX, BOX, BOX};
   struct space sp;
   space_init(&sp, &p, box, 0, 16, 8);
