@@ -783,7 +783,7 @@ static void halo_read_restart(struct engine *e) {
  *  cells', restored 1): the particles of every rank in it, the rank that
  *  sends its record (the lowest that owns one of them), whether this rank
  *  owns one, and the bounding box of all of them, at the rebuild (x, or
- *  x0 of the restored cells). */
+ *  x0 of the restored cells: the positions they were sorted by). */
 static void halo_gravity_cells(struct engine *e, int restored) {
   struct halo *H = e->halo;
   const struct space *s = &e->space;
@@ -802,30 +802,19 @@ static void halo_gravity_cells(struct engine *e, int restored) {
   double *box = H->gbox;
   for (size_t k = 0; k < 6 * (size_t)nt; k++) box[k] = HUGE_VAL;
   memset(H->gcount, 0, (size_t)nt * sizeof(long long));
-  for (int c = 0; c < nt; c++) {
-    const struct cell *cl = s->cells + c;
-    const size_t lo = restored ? cl->offset : 0, hi = restored ? cl->offset + cl->count : 0;
-    for (size_t i = lo; i < hi; i++) {
-      if (p->flags[i] & PART_FOREIGN) continue;
-      const double x[3] = {p->x0[i], p->y0[i], p->z0[i]};
-      H->gcount[c]++;
-      for (int k = 0; k < 3; k++) {
-        box[6 * c + k] = fmin(box[6 * c + k], x[k]);
-        box[6 * c + 3 + k] = fmin(box[6 * c + 3 + k], -x[k]);
-      }
+  /* (the positions the cells were sorted by: x at a rebuild, x0 restored) */
+  const double *px = restored ? p->x0 : p->x, *py = restored ? p->y0 : p->y,
+               *pz = restored ? p->z0 : p->z;
+  for (size_t i = 0; i < p->count; i++) {
+    if (p->flags[i] & PART_FOREIGN) continue;
+    const double x[3] = {px[i], py[i], pz[i]};
+    const int c = space_top_cell_of(s, x[0], x[1], x[2]);
+    H->gcount[c]++;
+    for (int k = 0; k < 3; k++) {
+      box[6 * c + k] = fmin(box[6 * c + k], x[k]);
+      box[6 * c + 3 + k] = fmin(box[6 * c + 3 + k], -x[k]);
     }
   }
-  if (!restored)
-    for (size_t i = 0; i < p->count; i++) {
-      if (p->flags[i] & PART_FOREIGN) continue;
-      const double x[3] = {p->x[i], p->y[i], p->z[i]};
-      const int c = space_top_cell_of(s, x[0], x[1], x[2]);
-      H->gcount[c]++;
-      for (int k = 0; k < 3; k++) {
-        box[6 * c + k] = fmin(box[6 * c + k], x[k]);
-        box[6 * c + 3 + k] = fmin(box[6 * c + 3 + k], -x[k]);
-      }
-    }
   double *prov = error_malloc((size_t)nt * sizeof(double) + 1, "MPI gravity cells");
   for (int c = 0; c < nt; c++) {
     H->gmine[c] = H->gcount[c] > 0;
