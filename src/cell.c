@@ -7,19 +7,7 @@
 
 int cell_loop_leaf_max = 0;
 
-void cell_update_bounds(const struct parts *p, struct cell *c) {
-  if (c->split) {
-    c->h_max = 0.0;
-    c->dx_max = 0.0;
-    for (int q = 0; q < 8; q++) {
-      struct cell *child = c->progeny[q];
-      if (!child) continue;
-      cell_update_bounds(p, child);
-      if (child->h_max > c->h_max) c->h_max = child->h_max;
-      if (child->dx_max > c->dx_max) c->dx_max = child->dx_max;
-    }
-    return;
-  }
+void cell_leaf_bounds(const struct parts *p, struct cell *c) {
   double h_max = 0.0, d2_max = 0.0;
   for (size_t i = c->offset; i < c->offset + c->count; i++) {
     const double dx = p->x[i] - p->x0[i], dy = p->y[i] - p->y0[i], dz = p->z[i] - p->z0[i];
@@ -29,6 +17,35 @@ void cell_update_bounds(const struct parts *p, struct cell *c) {
   }
   c->h_max = h_max;
   c->dx_max = sqrt(d2_max);
+}
+
+void cell_gather_bounds(struct cell *c) {
+  if (!c->split) return;
+  c->h_max = 0.0;
+  c->dx_max = 0.0;
+  for (int q = 0; q < 8; q++) {
+    struct cell *child = c->progeny[q];
+    if (!child) continue;
+    cell_gather_bounds(child);
+    if (child->h_max > c->h_max) c->h_max = child->h_max;
+    if (child->dx_max > c->dx_max) c->dx_max = child->dx_max;
+  }
+}
+
+void cell_update_bounds(const struct parts *p, struct cell *c) {
+  if (!c->split) {
+    cell_leaf_bounds(p, c);
+    return;
+  }
+  c->h_max = 0.0;
+  c->dx_max = 0.0;
+  for (int q = 0; q < 8; q++) {
+    struct cell *child = c->progeny[q];
+    if (!child) continue;
+    cell_update_bounds(p, child);
+    if (child->h_max > c->h_max) c->h_max = child->h_max;
+    if (child->dx_max > c->dx_max) c->dx_max = child->dx_max;
+  }
 }
 
 void cell_update_h_max(const struct parts *p, struct cell *c) {

@@ -62,6 +62,14 @@ extern int cell_loop_leaf_max;
  *  bounding boxes stay those of the rebuild, dx_max accounting for motion. */
 void cell_update_bounds(const struct parts *p, struct cell *c);
 
+/** h_max and dx_max of the leaf c from its particles. */
+void cell_leaf_bounds(const struct parts *p, struct cell *c);
+
+/** h_max and dx_max of c and its split progeny from their leaves', which
+ *  are left as they are (cell_leaf_bounds: space_update_bounds does the
+ *  leaves of every tree on several threads first). */
+void cell_gather_bounds(struct cell *c);
+
 /** Recompute only h_max of c and its progeny (the ghost, after changing h:
  *  positions, and so dx_max, do not change while other tasks read them). */
 void cell_update_h_max(const struct parts *p, struct cell *c);

@@ -42,6 +42,7 @@ struct engine_cell_tasks {
   struct task
       *force_done; /**< what the force tasks unlock: the first chain task (damage), else kick2 */
   int nr_ngb;      /**< number of neighbouring task cells (itself included) */
+  int ngb_cap;     /**< allocated length of ngb and ngb_shift */
   int *ngb;        /**< their numbers in engine.tcells */
   double (*ngb_shift)[3]; /**< periodic shift to add to the neighbour's positions */
 };

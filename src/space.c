@@ -291,28 +291,74 @@ int space_top_cell_of(const struct space *s, double x, double y, double z) {
                          space_top_coord(s, 2, z));
 }
 
-/** The top-level cell of each particle (space_rebuild, on the threads). */
+/** The counting sort by top-level cell on the threads: each range of the
+ *  particles counts its cells, and scatters its particles after those of
+ *  the ranges before it, which gives the serial sort's order (stable). */
 struct space_topc {
   const struct space *s;
-  int *topc;
+  int *topc;    /**< the top-level cell of each particle */
+  size_t *hist; /**< [range][cell]: the range's count, then its first position */
+  size_t *idx;  /**< the permutation */
+  int pass;     /**< 0: cells and counts, 1: scatter */
 };
 
 static void space_topc_range(void *arg, int k, size_t lo, size_t hi) {
-  (void)k;
   const struct space_topc *tc = arg;
   const struct space *s = tc->s;
   const struct parts *p = s->parts;
-  for (size_t i = lo; i < hi; i++) tc->topc[i] = space_top_cell_of(s, p->x[i], p->y[i], p->z[i]);
+  size_t *h = tc->hist + (size_t)k * (size_t)s->nr_top;
+  if (tc->pass == 0) {
+    for (size_t i = lo; i < hi; i++) {
+      const int c = space_top_cell_of(s, p->x[i], p->y[i], p->z[i]);
+      tc->topc[i] = c;
+      h[c]++;
+    }
+  } else {
+    for (size_t i = lo; i < hi; i++) tc->idx[h[tc->topc[i]]++] = i;
+  }
 }
 
-/** The cells of one top-level cell's octree while it is built (one thread
- *  each): local cell 0 is the top-level cell, the others are numbered in
- *  the order space_split makes them, which is the order of the serial
- *  build, so that merging the trees in the order of their top-level cells
- *  numbers every cell as one thread would. */
+/** Sort the particles by top-level cell into idx (n entries): the counts
+ *  and offsets of the top-level cells, and the permutation. */
+static void space_sort_top(struct space *s, size_t *idx) {
+  const size_t n = s->parts->count;
+  int t = space_nr_ranges(s, n);
+  /* (one range where the ranges' counts would outweigh the particles) */
+  if ((size_t)t * (size_t)s->nr_top > n) t = 1;
+  struct space_topc tc = {
+      s, error_malloc(n * sizeof(int) + 1, "particle cell index"),
+      error_calloc((size_t)t * (size_t)s->nr_top, sizeof(size_t), "cell counts per range"), idx, 0};
+  struct space_range_job job[SPACE_MAX_RANGES];
+  for (int k = 0; k < t; k++)
+    job[k] = (struct space_range_job){space_topc_range, &tc, k, n * (size_t)k / (size_t)t,
+                                      n * (size_t)(k + 1) / (size_t)t};
+  space_team(t, space_range_run, job, sizeof *job);
+  size_t off = 0;
+  for (int c = 0; c < s->nr_top; c++) {
+    s->cells[c].offset = off;
+    for (int k = 0; k < t; k++) {
+      size_t *h = &tc.hist[(size_t)k * (size_t)s->nr_top + (size_t)c];
+      const size_t m = *h;
+      *h = off;
+      off += m;
+    }
+    s->cells[c].count = off - s->cells[c].offset;
+  }
+  tc.pass = 1;
+  space_team(t, space_range_run, job, sizeof *job);
+  free(tc.topc);
+  free(tc.hist);
+}
+
+/** The cells of one subtree while it is built (one thread each): local cell
+ *  0 is the subtree's root (a top-level cell, or an octant handed to another
+ *  job), the others are numbered in the order space_split makes them, which
+ *  is the order of the serial build (pre-order, octants in order), so that
+ *  merging the trees depth first numbers every cell as one thread would. */
 struct space_tree {
-  struct cell *cells; /**< the cells, 0: the top-level cell */
+  struct cell *cells; /**< the cells, 0: the root */
   int *progeny;       /**< 8 per cell: the local index of each octant, -1 where empty */
+  int *graft;         /**< per cell: the job that builds its subtree, -1: none (built here) */
   int n, cap;         /**< cells in use, allocated */
 };
 
@@ -323,19 +369,65 @@ static int space_tree_new(struct space_tree *t) {
     const int cap = t->cap < 16 ? 16 : 2 * t->cap;
     t->cells = error_realloc(t->cells, (size_t)cap * sizeof *t->cells, "cells");
     t->progeny = error_realloc(t->progeny, (size_t)cap * 8 * sizeof(int), "cell progeny");
+    t->graft = error_realloc(t->graft, (size_t)cap * sizeof(int), "cell subtrees");
     t->cap = cap;
   }
   const int c = t->n++;
   memset(&t->cells[c], 0, sizeof t->cells[c]);
   for (int k = 0; k < 8; k++) t->progeny[8 * c + k] = -1;
+  t->graft[c] = -1;
   return c;
 }
 
+/** The subtrees of a rebuild, one job each, on the rebuild's threads: the
+ *  top-level cells to split, and the octants so large that another thread
+ *  builds them (space_split hands an octant of more than spawn particles to
+ *  a new job), so that one dense top-level cell does not keep the other
+ *  threads waiting. */
+struct space_tree_job {
+  struct cell root; /**< the subtree's root cell */
+  size_t *idx;      /**< its range of the permutation */
+  size_t *buf;      /**< and of the work array */
+  struct space_tree tree;
+};
+
+struct space_trees {
+  const struct space *s;
+  struct space_tree_job **job; /**< the jobs, in the order they were made */
+  int n, cap;                  /**< jobs made, allocated */
+  int next;                    /**< the next job to take */
+  int busy;                    /**< jobs taken and not finished */
+  size_t spawn;                /**< an octant of more particles is a new job (0: never) */
+  pthread_mutex_t lock;
+  pthread_cond_t more; /**< a job was added, or the last one finished */
+};
+
+/** Add a job for root (range idx, buf of root->count); returns its number. */
+static int space_trees_add(struct space_trees *j, const struct cell *root, size_t *idx,
+                           size_t *buf) {
+  struct space_tree_job *b = error_calloc(1, sizeof *b, "octree job");
+  b->root = *root;
+  b->idx = idx;
+  b->buf = buf;
+  pthread_mutex_lock(&j->lock);
+  if (j->n == j->cap) {
+    j->cap = j->cap < 64 ? 64 : 2 * j->cap;
+    j->job = error_realloc(j->job, (size_t)j->cap * sizeof *j->job, "octree jobs");
+  }
+  const int k = j->n++;
+  j->job[k] = b;
+  pthread_cond_signal(&j->more);
+  pthread_mutex_unlock(&j->lock);
+  return k;
+}
+
 /** Split cell c of t (range idx[0 .. count) of the permutation) into
- *  octants, recursively, while it holds more than split_size particles.
+ *  octants, recursively, while it holds more than split_size particles;
+ *  an octant of more than j->spawn particles is handed to a new job.
  *  buf: work array of the same length. */
-static void space_split(const struct space *s, struct space_tree *t, int c, size_t *idx,
+static void space_split(struct space_trees *j, struct space_tree *t, int c, size_t *idx,
                         size_t *buf) {
+  const struct space *s = j->s;
   const struct parts *p = s->parts;
   const double *xs[3] = {p->x, p->y, p->z};
   const size_t count = t->cells[c].count;
@@ -380,97 +472,125 @@ static void space_split(const struct space *s, struct space_tree *t, int c, size
     child->depth = parent->depth + 1;
     child->top = parent->top;
     t->progeny[8 * c + q] = d;
-    space_split(s, t, d, idx + start[q], buf + start[q]);
+    if (j->spawn && n[q] > j->spawn)
+      t->graft[d] = space_trees_add(j, child, idx + start[q], buf + start[q]);
+    else
+      space_split(j, t, d, idx + start[q], buf + start[q]);
   }
 }
 
-/** The octrees of the top-level cells top[0 .. n) on up to nr_threads
- *  threads, each taking the largest cell left. */
-struct space_trees_job {
-  const struct space *s;
-  const int *top;           /**< the top-level cells to split */
-  const int *by_size;       /**< indices in top, the most particles first */
-  struct space_tree *trees; /**< one per entry of top */
-  size_t *idx, *buf;        /**< the permutation and its work array */
-  int n;                    /**< entries of top */
-  _Atomic int next;         /**< next entry of by_size to take */
-};
-
+/** A thread of space_build_trees: take jobs until none is left and none
+ *  running can add more. */
 static void *space_trees_run(void *arg) {
-  struct space_trees_job *j = arg;
+  struct space_trees *j = arg;
   for (;;) {
-    const int k = atomic_fetch_add(&j->next, 1);
-    if (k >= j->n) break;
-    const int e = j->by_size[k];
-    struct space_tree *t = &j->trees[e];
-    const struct cell *top = &j->s->cells[j->top[e]];
-    space_tree_new(t);
-    t->cells[0] = *top;
-    space_split(j->s, t, 0, j->idx + top->offset, j->buf + top->offset);
+    pthread_mutex_lock(&j->lock);
+    while (j->next == j->n && j->busy > 0) pthread_cond_wait(&j->more, &j->lock);
+    if (j->next == j->n) {
+      pthread_mutex_unlock(&j->lock);
+      break;
+    }
+    struct space_tree_job *b = j->job[j->next++];
+    j->busy++;
+    pthread_mutex_unlock(&j->lock);
+    space_tree_new(&b->tree);
+    b->tree.cells[0] = b->root;
+    space_split(j, &b->tree, 0, b->idx, b->buf);
+    pthread_mutex_lock(&j->lock);
+    if (--j->busy == 0 && j->next == j->n) pthread_cond_broadcast(&j->more);
+    pthread_mutex_unlock(&j->lock);
   }
   return NULL;
 }
 
-/** Order of space_build_trees's jobs: the most particles first, then by
- *  entry (deterministic; the result does not depend on it). */
+/** Number, depth first, the cells below local cell l of job b's tree,
+ *  which is cell g of the space: each octant gets the next cell, then its
+ *  subtree (the serial build's order). */
+static void space_merge_tree(struct space *s, struct space_trees *j, struct space_tree_job *b,
+                             int l, int g) {
+  const struct space_tree *t = &b->tree;
+  for (int q = 0; q < 8; q++) {
+    const int d = t->progeny[8 * l + q];
+    if (d < 0) continue;
+    const int e = space_new_cell(s); /* may move s->cells */
+    s->progeny_index[8 * g + q] = e;
+    if (t->graft[d] >= 0) {
+      struct space_tree_job *sub = j->job[t->graft[d]];
+      s->cells[e] = sub->tree.cells[0];
+      s->cells[e].index = e;
+      space_merge_tree(s, j, sub, 0, e);
+    } else {
+      s->cells[e] = t->cells[d];
+      s->cells[e].index = e;
+      space_merge_tree(s, j, b, d, e);
+    }
+  }
+}
+
+/** Order of space_build_trees's first jobs: the most particles first, then
+ *  by top-level cell (deterministic; the result does not depend on it). */
 struct space_tree_size {
   size_t count;
-  int e;
+  int c;
 };
 
 static int space_cmp_size_desc(const void *a, const void *b) {
   const struct space_tree_size *x = a, *y = b;
   if (x->count != y->count) return x->count > y->count ? -1 : 1;
-  return x->e - y->e;
+  return x->c - y->c;
 }
 
 /** Build the octree of every top-level cell that holds more than
- *  split_size particles, on s->nr_threads threads, and number their cells
- *  after the top-level cells in the order of the serial build. */
+ *  split_size particles on s->nr_threads threads (a dense top-level cell's
+ *  large octants as jobs of their own), and number their cells after the
+ *  top-level cells in the order of the serial build. */
 static void space_build_trees(struct space *s, size_t *idx, size_t *buf) {
   int n = 0;
   for (int c = 0; c < s->nr_top; c++)
     if (s->cells[c].count > (size_t)s->split_size && s->max_depth > 0) n++;
   if (n == 0) return;
-  int *top = error_malloc((size_t)n * sizeof(int), "octree jobs");
-  int *by_size = error_malloc((size_t)n * sizeof(int), "octree jobs");
-  struct space_tree *trees = error_calloc((size_t)n, sizeof *trees, "octrees");
-  n = 0;
-  for (int c = 0; c < s->nr_top; c++)
-    if (s->cells[c].count > (size_t)s->split_size && s->max_depth > 0) top[n++] = c;
   struct space_tree_size *sz = error_malloc((size_t)n * sizeof *sz, "octree jobs");
-  for (int k = 0; k < n; k++) sz[k] = (struct space_tree_size){s->cells[top[k]].count, k};
+  int *job_of = error_malloc((size_t)s->nr_top * sizeof(int), "octree jobs");
+  n = 0;
+  for (int c = 0; c < s->nr_top; c++) {
+    job_of[c] = -1;
+    if (s->cells[c].count > (size_t)s->split_size && s->max_depth > 0)
+      sz[n++] = (struct space_tree_size){s->cells[c].count, c};
+  }
   qsort(sz, (size_t)n, sizeof *sz, space_cmp_size_desc);
-  for (int k = 0; k < n; k++) by_size[k] = sz[k].e;
-  free(sz);
 
-  struct space_trees_job job = {s, top, by_size, trees, idx, buf, n, 0};
   const int nt = space_cell_threads(s);
-  space_team(nt < n ? nt : n, space_trees_run, &job, 0);
+  /* octants of more than an eighth of a thread's share are jobs of their own */
+  const size_t share = s->parts->count / (8 * (size_t)nt);
+  struct space_trees j = {
+      .s = s,
+      .spawn = nt > 1 ? (share > (size_t)s->split_size ? share : (size_t)s->split_size) : 0};
+  if (pthread_mutex_init(&j.lock, NULL) || pthread_cond_init(&j.more, NULL))
+    error_exit("space: cannot set up the threads of the rebuild (pthread_mutex_init)");
+  for (int k = 0; k < n; k++) {
+    const struct cell *top = &s->cells[sz[k].c];
+    job_of[sz[k].c] = space_trees_add(&j, top, idx + top->offset, buf + top->offset);
+  }
+  free(sz);
+  space_team(nt, space_trees_run, &j, 0);
+  pthread_mutex_destroy(&j.lock);
+  pthread_cond_destroy(&j.more);
 
   /* merge, in the order of the top-level cells */
-  for (int e = 0; e < n; e++) {
-    struct space_tree *t = &trees[e];
-    const int c = top[e], base = s->nr_cells - 1; /* local l >= 1 -> base + l */
-    for (int l = 1; l < t->n; l++) {
-      const int d = space_new_cell(s);
-      s->cells[d] = t->cells[l];
-      s->cells[d].index = d;
-    }
-    for (int l = 0; l < t->n; l++) {
-      const int g = l == 0 ? c : base + l;
-      for (int q = 0; q < 8; q++) {
-        const int d = t->progeny[8 * l + q];
-        s->progeny_index[8 * g + q] = d < 0 ? -1 : base + d;
-      }
-    }
-    s->cells[c].split = t->cells[0].split;
-    free(t->cells);
-    free(t->progeny);
+  for (int c = 0; c < s->nr_top; c++) {
+    if (job_of[c] < 0) continue;
+    struct space_tree_job *b = j.job[job_of[c]];
+    s->cells[c].split = b->tree.cells[0].split;
+    space_merge_tree(s, &j, b, 0, c);
   }
-  free(trees);
-  free(top);
-  free(by_size);
+  for (int k = 0; k < j.n; k++) {
+    free(j.job[k]->tree.cells);
+    free(j.job[k]->tree.progeny);
+    free(j.job[k]->tree.graft);
+    free(j.job[k]);
+  }
+  free(j.job);
+  free(job_of);
 }
 
 /** Reorder every particle field, new[i] = old[perm[i]], through the work
@@ -495,20 +615,29 @@ static void space_gather(struct parts *p, int k, const size_t *perm, void *buf, 
   }
 }
 
-/** 1 if the elements [lo, hi) of field k are all bits zero. */
+/** 1 if the elements [lo, hi) of field k are all bits zero (read in blocks
+ *  up to the first that is not: most fields are not zero after the first
+ *  rebuild, and reading them whole cost as much as reordering them). */
+#define SPACE_ZERO_BLOCK 512
+
 static int space_field_zero(struct parts *p, int k, size_t lo, size_t hi) {
   const struct part_field *f = &part_fields[k];
   const void *a = part_field_array(p, f);
-  if (f->size == 8) {
-    const uint64_t *v = a;
-    uint64_t any = 0;
-    for (size_t i = lo; i < hi; i++) any |= v[i];
-    return any == 0;
+  for (size_t b = lo; b < hi; b += SPACE_ZERO_BLOCK) {
+    const size_t e = hi - b < SPACE_ZERO_BLOCK ? hi : b + SPACE_ZERO_BLOCK;
+    if (f->size == 8) {
+      const uint64_t *v = a;
+      uint64_t any = 0;
+      for (size_t i = b; i < e; i++) any |= v[i];
+      if (any) return 0;
+    } else {
+      const uint32_t *v = a;
+      uint32_t any = 0;
+      for (size_t i = b; i < e; i++) any |= v[i];
+      if (any) return 0;
+    }
   }
-  const uint32_t *v = a;
-  uint32_t any = 0;
-  for (size_t i = lo; i < hi; i++) any |= v[i];
-  return any == 0;
+  return 1;
 }
 
 /** One thread's share of space_permute: elements [lo, hi) of every field.
@@ -544,11 +673,17 @@ static void *space_permute_run(void *arg) {
            (char *)j->buf + j->lo * sz, (j->hi - j->lo) * sz);
     pthread_barrier_wait(j->bar); /* buf is free for the next field */
   }
+  /* x0 = x: the positions of the rebuild (each thread its range) */
+  struct parts *p = j->p;
+  const size_t m = (j->hi - j->lo) * sizeof(double);
+  memcpy(p->x0 + j->lo, p->x + j->lo, m);
+  memcpy(p->y0 + j->lo, p->y + j->lo, m);
+  memcpy(p->z0 + j->lo, p->z + j->lo, m);
   return NULL;
 }
 
-/** Reorder every particle field: new element i = old element perm[i];
- *  buf: n words.  On up to nr_threads threads, each a range of elements
+/** Reorder every particle field: new element i = old element perm[i], then
+ *  x0 = x (y0, z0 likewise); buf: n words.  On up to nr_threads threads, each a range of elements
  *  (the result does not depend on the count); the random gathers of the
  *  first rebuild after reading a file dominate a rebuild (about 2 s for
  *  1e6 particles on one core before all-zero fields were skipped). */
@@ -580,36 +715,11 @@ static void space_permute(struct parts *p, const size_t *perm, void *buf, int nr
   free(nonzero);
 }
 
-/** Progeny and parent pointers from progeny_index; h_max, bounding boxes
- *  (of x0 = x) and dx_max = 0, bottom-up from cell c. */
-static void space_finish_cell(struct space *s, int c) {
-  struct cell *cell = &s->cells[c];
+/** h_max and the bounding box (of x0 = x) of a leaf from its particles;
+ *  an empty (top-level) cell gets a degenerate box at its corner. */
+static void space_finish_leaf(struct space *s, struct cell *cell) {
   const struct parts *p = s->parts;
-  cell->dx_max = 0.0;
-  if (cell->split) {
-    cell->h_max = 0.0;
-    for (int k = 0; k < 3; k++) {
-      cell->bmin[k] = INFINITY;
-      cell->bmax[k] = -INFINITY;
-    }
-    for (int q = 0; q < 8; q++) {
-      const int d = s->progeny_index[8 * c + q];
-      cell->progeny[q] = d < 0 ? NULL : &s->cells[d];
-      if (d < 0) continue;
-      struct cell *child = &s->cells[d];
-      child->parent = cell;
-      space_finish_cell(s, d);
-      if (child->h_max > cell->h_max) cell->h_max = child->h_max;
-      for (int k = 0; k < 3; k++) {
-        cell->bmin[k] = fmin(cell->bmin[k], child->bmin[k]);
-        cell->bmax[k] = fmax(cell->bmax[k], child->bmax[k]);
-      }
-    }
-    return;
-  }
-  for (int q = 0; q < 8; q++) cell->progeny[q] = NULL;
   if (cell->count == 0) {
-    /* an empty (top-level) cell: a degenerate box at its corner */
     cell->h_max = 0.0;
     for (int k = 0; k < 3; k++) cell->bmin[k] = cell->bmax[k] = cell->loc[k];
     return;
@@ -617,14 +727,15 @@ static void space_finish_cell(struct space *s, int c) {
   double h_max = 0.0, lo[3] = {INFINITY, INFINITY, INFINITY},
          hi[3] = {-INFINITY, -INFINITY, -INFINITY};
   const size_t end = cell->offset + cell->count;
+  /* (comparisons, not fmin/fmax: those are library calls without
+   * -ffinite-math-only, and the positions are finite here: space_scan) */
   for (size_t i = cell->offset; i < end; i++) {
+    const double x[3] = {p->x[i], p->y[i], p->z[i]};
     if (p->h[i] > h_max) h_max = p->h[i];
-    lo[0] = fmin(lo[0], p->x[i]);
-    hi[0] = fmax(hi[0], p->x[i]);
-    lo[1] = fmin(lo[1], p->y[i]);
-    hi[1] = fmax(hi[1], p->y[i]);
-    lo[2] = fmin(lo[2], p->z[i]);
-    hi[2] = fmax(hi[2], p->z[i]);
+    for (int k = 0; k < 3; k++) {
+      lo[k] = x[k] < lo[k] ? x[k] : lo[k];
+      hi[k] = x[k] > hi[k] ? x[k] : hi[k];
+    }
   }
   cell->h_max = h_max;
   for (int k = 0; k < 3; k++) {
@@ -633,29 +744,90 @@ static void space_finish_cell(struct space *s, int c) {
   }
 }
 
-/** space_finish_cell of every top-level cell (each tree apart), on up to
- *  s->nr_threads threads taking chunks of top-level cells. */
+/** Progeny and parent pointers from progeny_index, dx_max = 0, and a split
+ *  cell's h_max and bounding box from its progeny's, bottom-up from cell c
+ *  (the leaves' are done: space_finish_leaf). */
+static void space_finish_cell(struct space *s, int c) {
+  struct cell *cell = &s->cells[c];
+  cell->dx_max = 0.0;
+  if (!cell->split) {
+    for (int q = 0; q < 8; q++) cell->progeny[q] = NULL;
+    return;
+  }
+  cell->h_max = 0.0;
+  for (int k = 0; k < 3; k++) {
+    cell->bmin[k] = INFINITY;
+    cell->bmax[k] = -INFINITY;
+  }
+  for (int q = 0; q < 8; q++) {
+    const int d = s->progeny_index[8 * c + q];
+    cell->progeny[q] = d < 0 ? NULL : &s->cells[d];
+    if (d < 0) continue;
+    struct cell *child = &s->cells[d];
+    child->parent = cell;
+    space_finish_cell(s, d);
+    if (child->h_max > cell->h_max) cell->h_max = child->h_max;
+    for (int k = 0; k < 3; k++) {
+      cell->bmin[k] = fmin(cell->bmin[k], child->bmin[k]);
+      cell->bmax[k] = fmax(cell->bmax[k], child->bmax[k]);
+    }
+  }
+}
+
+/** A pass over the cells on up to s->nr_threads threads taking chunks of
+ *  cells: first every leaf from its particles (pass 0), then the split
+ *  cells from their progeny, one top-level cell's tree at a time (pass 1:
+ *  the particles of a dense top-level cell are spread over many leaves, so
+ *  the threads share them in the first pass).  bounds 0: the rebuild's
+ *  boxes and links (space_finish_leaf, space_finish_cell); 1: h_max and
+ *  dx_max (cell_leaf_bounds, cell_gather_bounds). */
 struct space_finish_job {
   struct space *s;
-  _Atomic int next; /**< first top-level cell of the next chunk */
+  int pass, bounds;
+  _Atomic int next; /**< first cell of the next chunk */
 };
 
 #define SPACE_FINISH_CHUNK 64
 
 static void *space_finish_run(void *arg) {
   struct space_finish_job *j = arg;
+  struct space *s = j->s;
+  const int n = j->pass == 0 ? s->nr_cells : s->nr_top;
   for (;;) {
-    const int c0 = atomic_fetch_add(&j->next, SPACE_FINISH_CHUNK);
-    if (c0 >= j->s->nr_top) break;
-    const int c1 = c0 + SPACE_FINISH_CHUNK < j->s->nr_top ? c0 + SPACE_FINISH_CHUNK : j->s->nr_top;
-    for (int c = c0; c < c1; c++) space_finish_cell(j->s, c);
+    /* (pass 1: a few top-level cells may hold most of the cells) */
+    const int chunk = j->pass == 0 ? SPACE_FINISH_CHUNK : 4;
+    const int c0 = atomic_fetch_add(&j->next, chunk);
+    if (c0 >= n) break;
+    const int c1 = c0 + chunk < n ? c0 + chunk : n;
+    for (int c = c0; c < c1; c++) {
+      struct cell *cell = &s->cells[c];
+      if (j->pass == 1 && j->bounds)
+        cell_gather_bounds(cell);
+      else if (j->pass == 1)
+        space_finish_cell(s, c);
+      else if (!cell->split && j->bounds)
+        cell_leaf_bounds(s->parts, cell);
+      else if (!cell->split)
+        space_finish_leaf(s, cell);
+    }
   }
   return NULL;
 }
 
+static void space_finish_passes(struct space *s, int bounds, int nr_threads) {
+  for (int pass = 0; pass < 2; pass++) {
+    struct space_finish_job job = {s, pass, bounds, 0};
+    space_team(nr_threads, space_finish_run, &job, 0);
+  }
+}
+
 static void space_finish_cells(struct space *s) {
-  struct space_finish_job job = {s, 0};
-  space_team(space_cell_threads(s), space_finish_run, &job, 0);
+  space_finish_passes(s, 0, space_cell_threads(s));
+}
+
+void space_update_bounds(struct space *s, int nr_threads) {
+  if (s->parts->count < 50000 || nr_threads < 1) nr_threads = 1;
+  space_finish_passes(s, 1, nr_threads);
 }
 
 size_t space_prepare(struct space *s) {
@@ -705,32 +877,15 @@ size_t space_rebuild(struct space *s) {
     s->sort_index = error_malloc(s->sort_capacity * sizeof(size_t) + 1, "particle sort index");
   }
   size_t *idx = s->sort_index, *buf = s->sort_index + n;
-  int *topc = error_malloc(n * sizeof(int) + 1, "particle cell index");
-  struct space_topc tc = {s, topc};
-  space_ranges(s, n, space_topc_range, &tc);
-  for (size_t i = 0; i < n; i++) s->cells[topc[i]].count++;
-  size_t off = 0;
-  for (int c = 0; c < s->nr_top; c++) {
-    s->cells[c].offset = off;
-    off += s->cells[c].count;
-  }
-  {
-    size_t *pos = error_malloc((size_t)s->nr_top * sizeof(size_t), "cell positions");
-    for (int c = 0; c < s->nr_top; c++) pos[c] = s->cells[c].offset;
-    for (size_t i = 0; i < n; i++) idx[pos[topc[i]]++] = i;
-    free(pos);
-  }
-  free(topc);
+  space_sort_top(s, idx);
 
   /* the octrees, then one reordering of every particle field */
   const double w1 = error_walltime();
   space_build_trees(s, idx, buf);
   const double w2 = error_walltime();
   /* buf (n words) is free after the split */
+  /* (and x0 = x) */
   if (n) space_permute(p, idx, buf, s->nr_threads, s->reorder);
-  memcpy(p->x0, p->x, n * sizeof(double));
-  memcpy(p->y0, p->y, n * sizeof(double));
-  memcpy(p->z0, p->z, n * sizeof(double));
   const double w3 = error_walltime();
   space_finish_cells(s);
   const double w4 = error_walltime();

@@ -105,6 +105,11 @@ size_t space_prepare(struct space *s);
  *  y, z and h only. */
 int space_rebuild_removes(const struct space *s);
 
+/** cell_update_bounds of every top-level cell (h_max and dx_max of every
+ *  cell from the particles), on up to nr_threads threads sharing the
+ *  leaves; the same values as one thread. */
+void space_update_bounds(struct space *s, int nr_threads);
+
 /** The permutation of the last space_rebuild: element i of every field is
  *  now the old element order[i] (parts.count entries; valid until the next
  *  rebuild). */

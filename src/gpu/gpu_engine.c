@@ -31,6 +31,8 @@ struct gpu_engine {
   struct gpu_cells cells;   /**< leaves and lists */
   int dev_valid;            /**< the device holds the current particles */
   int host_stale;           /**< the device has changed them since the last copy back */
+  int xh_fresh;             /**< the host's x, y, z and h are the device's (a drift copied them
+                                 back, and no force phase has changed h since) */
   double t_bounds;          /**< host seconds updating cell bounds after drifts */
   long steps;               /**< FORCE phases run */
   double *tc_h_cap;         /**< cap on h per task cell */
@@ -55,18 +57,19 @@ struct gpu_engine {
 };
 
 /* Rebuilds of resident particles.  The host sorts the cells from x, y, z
- * and h, and reorders only the fields it reads while the particles live on
- * the device: those (gpu_rebuild_down) that the device changes, downloaded
- * first, and those that no device kernel writes (mass, material, id).  The
- * device reorders its copy of every field (gpu_permute).  The host's other
- * fields stay in the old order, stale, until a full download replaces them
- * (host_stale stays set). */
-static const char *const gpu_rebuild_down[] = {"x",   "y",   "z",   "h",     "gax",
-                                               "gay", "gaz", "pot", "flags", "time_bin"};
+ * and h (downloaded first unless the drift just copied them back) and
+ * reorders them and the fields that no device kernel writes (mass,
+ * material, id: gpu_rebuild_keep).  The device reorders its copy of every
+ * field (gpu_permute), and the other fields the host reads while the
+ * particles live on the device (gpu_rebuild_after) come back in the new
+ * order.  The host's other fields stay in the old order, stale, until a
+ * full download replaces them (host_stale stays set). */
+static const char *const gpu_rebuild_down[] = {"x", "y", "z", "h"};
 #define GPU_REBUILD_NR_DOWN ((int)(sizeof gpu_rebuild_down / sizeof *gpu_rebuild_down))
-static const char *const gpu_rebuild_keep[] = {"x",   "y",     "z",        "h", "gax", "gay", "gaz",
-                                               "pot", "flags", "time_bin", "m", "mat", "id"};
+static const char *const gpu_rebuild_keep[] = {"x", "y", "z", "h", "m", "mat", "id"};
 #define GPU_REBUILD_NR_KEEP ((int)(sizeof gpu_rebuild_keep / sizeof *gpu_rebuild_keep))
+static const char *const gpu_rebuild_after[] = {"gax", "gay", "gaz", "pot", "flags", "time_bin"};
+#define GPU_REBUILD_NR_AFTER ((int)(sizeof gpu_rebuild_after / sizeof *gpu_rebuild_after))
 
 /** Grow the per-leaf arrays to n. */
 static void gpu_cells_reserve(struct gpu_cells *gc, int n) {
@@ -805,6 +808,7 @@ void gpu_engine_force(struct engine *e) {
     ge->dev_valid = 1;
   }
   ge->host_stale = 1;
+  ge->xh_fresh = 0; /* (the phase's h iteration) */
   struct gpu_hydro_job jb;
   memset(&jb, 0, sizeof jb);
   jb.e = e;
@@ -860,39 +864,13 @@ void gpu_engine_force(struct engine *e) {
   ge->cells.h_resummed = 0;
 }
 
-/** A range of top-level cells whose bounds one thread updates. */
-struct gpu_bounds_job {
-  struct engine *e; /**< the engine */
-  int c0, c1;       /**< top-level cells [c0, c1) */
-};
-
-/** Thread body of gpu_engine_bounds. */
-static void *gpu_bounds_run(void *arg) {
-  struct gpu_bounds_job *jb = arg;
-  for (int c = jb->c0; c < jb->c1; c++) cell_update_bounds(&jb->e->parts, &jb->e->space.cells[c]);
-  return NULL;
-}
-
-/** cell_update_bounds of every top-level cell, on the engine's threads. */
+/** cell_update_bounds of every top-level cell, on the engine's threads
+ *  (space_update_bounds: the leaves shared among them). */
 static void gpu_engine_bounds(struct engine *e) {
-  const int nc = e->space.nr_top;
-  int nt = e->nr_threads < 1 ? 1 : e->nr_threads;
-  if (nt > nc) nt = nc > 0 ? nc : 1;
-  struct gpu_bounds_job jobs[256];
-  pthread_t tid[256];
-  if (nt > 256) nt = 256;
   /* (threads started by thread 0 inherit its core: spread them) */
-  if (nt > 1) runner_unpin_self(&e->sched.pool);
-  for (int w = 0; w < nt; w++) {
-    jobs[w].e = e;
-    jobs[w].c0 = (int)((long)nc * w / nt);
-    jobs[w].c1 = (int)((long)nc * (w + 1) / nt);
-    if (w > 0 && pthread_create(&tid[w], NULL, gpu_bounds_run, &jobs[w]))
-      error_exit("cannot start a thread to update the cell bounds");
-  }
-  gpu_bounds_run(&jobs[0]);
-  for (int w = 1; w < nt; w++) pthread_join(tid[w], NULL);
-  if (nt > 1) runner_repin_self(&e->sched.pool);
+  if (e->nr_threads > 1) runner_unpin_self(&e->sched.pool);
+  space_update_bounds(&e->space, e->nr_threads);
+  if (e->nr_threads > 1) runner_repin_self(&e->sched.pool);
 }
 
 int gpu_engine_rebuild_begin(struct engine *e) {
@@ -911,7 +889,10 @@ int gpu_engine_rebuild_begin(struct engine *e) {
     if (ge) ge->rebuilds_host++;
     return 0;
   }
-  if (ge->host_stale) gpu_copy_some(ge->gpu, &e->parts, gpu_rebuild_down, GPU_REBUILD_NR_DOWN, 0);
+  if (ge->host_stale && !ge->xh_fresh) {
+    gpu_copy_some(ge->gpu, &e->parts, gpu_rebuild_down, GPU_REBUILD_NR_DOWN, 0);
+    ge->xh_fresh = 1;
+  }
   if (space_rebuild_removes(&e->space)) {
     /* particles leave the open box: their budget reads every field */
     error_log(1, "GPU rebuild %d on the host: particles leave the open box",
@@ -934,6 +915,7 @@ void gpu_engine_rebuild_end(struct engine *e) {
     static const char *const xyz[3] = {"x", "y", "z"};
     gpu_copy_some(ge->gpu, &e->parts, xyz, 3, 1);
   }
+  gpu_copy_some(ge->gpu, &e->parts, gpu_rebuild_after, GPU_REBUILD_NR_AFTER, 0);
   ge->host_stale = 1; /* the host's other fields are in the old order */
   ge->rebuilds_device++;
 }
@@ -950,6 +932,7 @@ void gpu_engine_drift(struct engine *e) {
   else
     gpu_drift(ge->gpu, &e->parts, 0.5 * e->dt, e->dt, &e->hp, e->mats);
   ge->host_stale = 1;
+  ge->xh_fresh = 1; /* (gpu_drift copies x, y, z and h back) */
   /* positions and h are back: the bounds the rebuild test and the lists read */
   const double w0 = error_walltime();
   gpu_engine_bounds(e);
@@ -974,6 +957,7 @@ void gpu_engine_rk_restore(struct engine *e, const double *y0, const double *r1)
   gpu_engine_resident(e);
   gpu_rk_restore(e->gpu->gpu, y0, r1);
   e->gpu->host_stale = 1;
+  e->gpu->xh_fresh = 0;
 }
 
 void gpu_engine_watchdog_save(struct engine *e) {
@@ -999,6 +983,7 @@ void gpu_engine_to_host(struct engine *e) {
   if (!ge || !ge->host_stale) return;
   gpu_download_all(ge->gpu, &e->parts);
   ge->host_stale = 0;
+  ge->xh_fresh = 1;
 }
 
 void gpu_engine_host_modified(struct engine *e) {

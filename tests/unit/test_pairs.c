@@ -449,7 +449,7 @@ static void run(const struct config *cf, unsigned seed) {
  *  top-level cells built at the same time, the fields reordered in
  *  ranges) gives the particles of the one-thread rebuild, bit for bit, in
  *  every field, and the same cells with the same numbers. */
-static void check_threaded_rebuild(void) {
+static void check_threaded_rebuild(int clustered) {
   const size_t n = 300000;
   const double L[3] = {1.0, 1.0, 1.0};
   struct parts a, b;
@@ -458,6 +458,13 @@ static void check_threaded_rebuild(void) {
   srand(77);
   for (size_t i = 0; i < n; i++) {
     a.x[i] = urand(), a.y[i] = urand(), a.z[i] = urand();
+    if (clustered && i % 4) {
+      /* three quarters in one top-level cell (of 16^3): its large octants
+       * are octree jobs of their own (space_split) */
+      a.x[i] = 0.53 + 0.02 * (a.x[i] - 0.5);
+      a.y[i] = 0.53 + 0.02 * (a.y[i] - 0.5);
+      a.z[i] = 0.53 + 0.02 * (a.z[i] - 0.5);
+    }
     a.m[i] = 1.0 + urand();
     a.h[i] = 0.01 * (1.0 + urand());
     a.u[i] = urand();
@@ -497,8 +504,27 @@ static void check_threaded_rebuild(void) {
   CHECK(a.count == b.count && differ == 0 && !cells_differ && sa.nr_cells > sa.nr_top,
         "the rebuild on 5 threads reordered %d of %d fields differently from 1 thread, cells %s",
         differ, part_nr_fields, cells_differ ? "differ" : "equal");
-  printf("threaded rebuild: %zu particles, %d fields, %d cells, 1 and 5 threads identical: %s\n", n,
-         part_nr_fields, sa.nr_cells, differ || cells_differ ? "no" : "yes");
+  /* the bounds after a drift: space_update_bounds on 5 threads against
+   * cell_update_bounds top-level cell by top-level cell */
+  for (size_t i = 0; i < n && !differ; i++) {
+    const double dx = 1e-3 * (urand() - 0.5), dh = 1.0 + 0.2 * urand();
+    a.x[i] += dx, b.x[i] += dx;
+    a.h[i] *= dh, b.h[i] *= dh;
+  }
+  for (int c = 0; c < sa.nr_top; c++) cell_update_bounds(&a, &sa.cells[c]);
+  space_update_bounds(&sb, 5);
+  int bounds_differ = 0;
+  for (int c = 0; c < sa.nr_cells && !cells_differ; c++)
+    bounds_differ += sa.cells[c].h_max != sb.cells[c].h_max ||
+                     sa.cells[c].dx_max != sb.cells[c].dx_max ||
+                     !(sa.cells[c].h_max > 0.0) != (sa.cells[c].count == 0);
+  CHECK(bounds_differ == 0, "space_update_bounds on 5 threads: %d cells differ from one thread",
+        bounds_differ);
+  printf(
+      "threaded rebuild (%s): %zu particles, %d fields, %d cells, 1 and 5 threads identical: "
+      "%s\n",
+      clustered ? "clustered" : "uniform", n, part_nr_fields, sa.nr_cells,
+      differ || cells_differ ? "no" : "yes");
   space_free(&sa);
   space_free(&sb);
   parts_free(&a);
@@ -529,7 +555,8 @@ int main(int argc, char **argv) {
   };
   const int nconf = sizeof configs / sizeof configs[0];
   for (int c = 0; c < nconf; c++) run(&configs[c], 1234u + (unsigned)c);
-  check_threaded_rebuild();
+  check_threaded_rebuild(0);
+  check_threaded_rebuild(1);
   free(rec);
   printf("%s\n", failures ? "FAIL" : "PASS");
   return failures ? 1 : 0;
