@@ -95,8 +95,8 @@ void scheduler_addunlock(struct scheduler *s, struct task *before, struct task *
     s->size_edges = s->size_edges ? 2 * s->size_edges : 1024;
     s->edges = error_realloc(s->edges, s->size_edges * sizeof(struct scheduler_edge), "unlocks");
   }
-  s->edges[s->nr_edges].before = before;
-  s->edges[s->nr_edges].after = after;
+  s->edges[s->nr_edges].before = before->id;
+  s->edges[s->nr_edges].after = after->id;
   s->nr_edges++;
   s->finalized = 0;
 }
@@ -105,23 +105,24 @@ void scheduler_finalize(struct scheduler *s) {
   const int n = s->nr_tasks;
   /* CSR: count the dependants of each task, prefix sum, fill */
   int *offset = error_calloc(n + 1, sizeof(int), "unlock offsets");
-  for (int e = 0; e < s->nr_edges; e++) offset[s->edges[e].before->id + 1]++;
+  int *indeg = error_calloc(n + 1, sizeof(int), "in-degrees");
+  for (int e = 0; e < s->nr_edges; e++) {
+    offset[s->edges[e].before + 1]++;
+    indeg[s->edges[e].after]++;
+  }
   for (int i = 0; i < n; i++) offset[i + 1] += offset[i];
   free(s->unlocks);
   s->unlocks = error_malloc((s->nr_edges + 1) * sizeof(struct task *), "unlocks");
   for (int i = 0; i < n; i++) {
     struct task *t = scheduler_task(s, i);
     t->unlocks = s->unlocks + offset[i];
-    t->nr_unlocks = 0;
+    t->nr_unlocks = offset[i + 1] - offset[i];
   }
-  for (int e = 0; e < s->nr_edges; e++) {
-    struct task *t = s->edges[e].before;
-    t->unlocks[t->nr_unlocks++] = s->edges[e].after;
-  }
+  /* (offset[i] moves along task i's slice as it is filled) */
+  for (int e = 0; e < s->nr_edges; e++)
+    s->unlocks[offset[s->edges[e].before]++] = scheduler_task(s, s->edges[e].after);
 
   /* topological order (Kahn): needed for the priorities, and finds cycles */
-  int *indeg = error_calloc(n + 1, sizeof(int), "in-degrees");
-  for (int e = 0; e < s->nr_edges; e++) indeg[s->edges[e].after->id]++;
   free(s->order);
   s->order = error_malloc((n + 1) * sizeof(struct task *), "task order");
   int head = 0, tail = 0;

@@ -43,8 +43,9 @@ struct scheduler_timer {
 
 /** An edge before -> after, kept until scheduler_finalize(). */
 struct scheduler_edge {
-  struct task *before; /**< must finish first */
-  struct task *after;  /**< waits for it */
+  int before; /**< id of the task that must finish first */
+  int after;  /**< id of the task that waits for it (ids, not pointers: scheduler_finalize's
+                   passes over the edges then read no task) */
 };
 
 /** The task graph, its queues and its worker threads. */
