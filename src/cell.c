@@ -19,17 +19,23 @@ void cell_leaf_bounds(const struct parts *p, struct cell *c) {
   c->dx_max = sqrt(d2_max);
 }
 
-void cell_gather_bounds(struct cell *c) {
-  if (!c->split) return;
+/** h_max and dx_max of the split cell c from its progeny's. */
+static void cell_bounds_from_progeny(struct cell *c) {
   c->h_max = 0.0;
   c->dx_max = 0.0;
   for (int q = 0; q < 8; q++) {
-    struct cell *child = c->progeny[q];
+    const struct cell *child = c->progeny[q];
     if (!child) continue;
-    cell_gather_bounds(child);
     if (child->h_max > c->h_max) c->h_max = child->h_max;
     if (child->dx_max > c->dx_max) c->dx_max = child->dx_max;
   }
+}
+
+void cell_gather_bounds(struct cell *c) {
+  if (!c->split) return;
+  for (int q = 0; q < 8; q++)
+    if (c->progeny[q]) cell_gather_bounds(c->progeny[q]);
+  cell_bounds_from_progeny(c);
 }
 
 void cell_update_bounds(const struct parts *p, struct cell *c) {
@@ -37,15 +43,9 @@ void cell_update_bounds(const struct parts *p, struct cell *c) {
     cell_leaf_bounds(p, c);
     return;
   }
-  c->h_max = 0.0;
-  c->dx_max = 0.0;
-  for (int q = 0; q < 8; q++) {
-    struct cell *child = c->progeny[q];
-    if (!child) continue;
-    cell_update_bounds(p, child);
-    if (child->h_max > c->h_max) c->h_max = child->h_max;
-    if (child->dx_max > c->dx_max) c->dx_max = child->dx_max;
-  }
+  for (int q = 0; q < 8; q++)
+    if (c->progeny[q]) cell_update_bounds(p, c->progeny[q]);
+  cell_bounds_from_progeny(c);
 }
 
 void cell_update_h_max(const struct parts *p, struct cell *c) {
