@@ -225,11 +225,17 @@ BOLIDE_INLINE void hydro_force_add(struct parts *BOLIDE_RESTRICT p, size_t i,
  *  more than limit bins longer than i's is asked to wake (wake; the
  *  kick ends its step, kick2_part_bins).  One function for the CPU loop
  *  and the CUDA kernel (which passes atomic = 1: several threads may ask
- *  the same j). */
+ *  the same j, and several lanes take the neighbours of one i). */
 BOLIDE_INLINE void hydro_limiter_pair(struct parts *BOLIDE_RESTRICT p, size_t i, size_t j,
                                       int limit, int atomic) {
   const int bj = p->time_bin[j], bi = p->time_bin[i];
-  if (bj < p->ngb_bin_min[i]) p->ngb_bin_min[i] = bj;
+  if (bj < p->ngb_bin_min[i]) {
+#if defined(__CUDA_ARCH__)
+    /* (several lanes may take i's neighbours: tasks/iact_loop_gpu.h) */
+    if (atomic) atomicMin(&p->ngb_bin_min[i], bj);
+#endif
+    if (!atomic) p->ngb_bin_min[i] = bj;
+  }
   if ((p->flags[j] & PART_INACTIVE) && bj > bi + limit) {
     const int w = TIMELINE_NR_BINS + 1 - (bi + limit); /* > 0; larger: a shorter bin */
 #if defined(__CUDA_ARCH__)

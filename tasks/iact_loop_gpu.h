@@ -1,17 +1,26 @@
 /* The GPU twin of tasks/iact_loop.h: the neighbour loop of the hydro
  * kernels, written once for the density, gradient and force families.
  *
- * One block per leaf, one thread per particle i of the leaf; i visits every
- * particle j of the leaves in its neighbour list (struct gpu_leaves_dev),
- * each at its periodic image, in the gather form (i's sums only, kept in
- * registers).  A family names its kernel and its interaction, then
- * includes this header in its .cu file:
+ * One block per leaf; i visits every particle j of the leaves in its
+ * neighbour list (struct gpu_leaves_dev), each at its periodic image, in
+ * the gather form (i's sums only, kept in registers).  A leaf of cnt
+ * particles takes g lanes per particle, g the largest power of two with
+ * g cnt <= the block's threads (1 for a leaf as large as the block): lane
+ * s of i's group takes the particles s, s + g, ... of each neighbour leaf,
+ * and the group's g partial sums are then added by a butterfly of
+ * shuffles (IACT_GPU_REDUCE), in a fixed order, so the result is
+ * reproducible.  Without it a leaf of the mean size, 10 to 20 particles at
+ * the gravity tree's leaves, left half of each warp idle.  A family names
+ * its kernel and its interaction, then includes this header in its .cu
+ * file:
  *
  *   #define IACT_GPU_NAME density_gpu_kernel
  *   #define IACT_GPU_PARAMS , int only_unconverged     (extra kernel parameters)
  *   #define IACT_GPU_SKIP(p, i) (only_unconverged && ((p).flags[i] & PART_H_CONVERGED))
  *   #define IACT_GPU_BEGIN(p, i) ...                   (declares i's accumulator)
  *   #define IACT_GPU_PAIR(p, i, j, r2, dx, self) ...  (one j; self: j is i itself)
+ *   #define IACT_GPU_REDUCE(mask, o) ...              (adds lane ^ o's accumulator
+ *                                                       to this lane's, __shfl_xor_sync)
  *   #define IACT_GPU_END(p, i) ...                     (stores the accumulator)
  *   #include "tasks/iact_loop_gpu.h"
  *
@@ -46,9 +55,18 @@ __global__ void IACT_GPU_NAME(struct parts p, struct gpu_leaves_dev lv IACT_GPU_
   const int k0 = lv.ngb_start[L], k1 = lv.ngb_start[L + 1];
   const double *__restrict__ x = p.x, *__restrict__ y = p.y, *__restrict__ z = p.z;
   const double *__restrict__ vx = p.vpx, *__restrict__ vy = p.vpy, *__restrict__ vz = p.vpz;
-  for (int t = threadIdx.x; t < cnt; t += blockDim.x) {
+  /* g lanes per particle (a power of two up to a warp, so a group never
+   * spans two warps); lane sub of the group, mask the group's lanes */
+  const int B = (int)blockDim.x;
+  int g = 1;
+  while (g < 32 && 2 * g * cnt <= B) g *= 2;
+  const int sub = (int)threadIdx.x & (g - 1);
+  const unsigned lane = threadIdx.x & 31u;
+  const unsigned mask = g == 32 ? 0xffffffffu : ((1u << g) - 1u) << (lane & ~(unsigned)(g - 1));
+  (void)mask;
+  for (int t = (int)threadIdx.x / g; t < cnt; t += B / g) {
     const size_t i = beg + (size_t)t;
-    if (IACT_GPU_SKIP(p, i)) continue;
+    if (IACT_GPU_SKIP(p, i)) continue; /* (the whole group: the same i) */
     const double xi[3] = {x[i], y[i], z[i]}, vi[3] = {vx[i], vy[i], vz[i]};
     IACT_GPU_BEGIN(p, i);
     for (int k = k0; k < k1; k++) {
@@ -58,13 +76,18 @@ __global__ void IACT_GPU_NAME(struct parts p, struct gpu_leaves_dev lv IACT_GPU_
       const int unshifted = (s[0] == 0.0 && s[1] == 0.0 && s[2] == 0.0);
       (void)unshifted; /* (a family may test r2 > 0 instead of self) */
       const size_t jb = lv.offset[J], je = jb + (size_t)lv.count[J];
-      for (size_t j = jb; j < je; j++) {
+      for (size_t j = jb + (size_t)sub; j < je; j += (size_t)g) {
         const double dx[3] = {(xi[0] - x[j]) - s[0], (xi[1] - y[j]) - s[1], (xi[2] - z[j]) - s[2]};
         const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
         IACT_GPU_PAIR(p, i, j, r2, dx, (unshifted && j == i));
       }
     }
-    IACT_GPU_END(p, i);
+    for (int o = g / 2; o > 0; o /= 2) {
+      IACT_GPU_REDUCE(mask, o);
+    }
+    if (sub == 0) {
+      IACT_GPU_END(p, i);
+    }
   }
 }
 
@@ -73,4 +96,5 @@ __global__ void IACT_GPU_NAME(struct parts p, struct gpu_leaves_dev lv IACT_GPU_
 #undef IACT_GPU_SKIP
 #undef IACT_GPU_BEGIN
 #undef IACT_GPU_PAIR
+#undef IACT_GPU_REDUCE
 #undef IACT_GPU_END

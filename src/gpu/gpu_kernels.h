@@ -15,9 +15,22 @@ struct material_table;
 
 /** Most threads per block.  The leaf kernels run one block per leaf cell,
  *  its threads over the leaf's particles (32, 64 or 128 of them, from the
- *  mean leaf size, struct gpu_leaves_dev.block); every thread of a warp
- *  reads the same neighbour j at a time (a broadcast load). */
+ *  mean leaf size, struct gpu_leaves_dev.block), a small leaf's with
+ *  several threads per particle (tasks/iact_loop_gpu.h). */
 #define GPU_BLOCK 128
+
+/** v[0..n) += the same values of lane ^ o (mask: the lanes taking part,
+ *  o below their number).  Both lanes end with the same sums: IEEE
+ *  addition commutes. */
+__device__ static inline void gpu_lanes_add(double *v, int n, unsigned mask, int o) {
+  for (int k = 0; k < n; k++) v[k] += __shfl_xor_sync(mask, v[k], o);
+}
+
+/** *v = max(*v, lane ^ o's *v), as gpu_lanes_add. */
+__device__ static inline void gpu_lanes_max(double *v, unsigned mask, int o) {
+  const double w = __shfl_xor_sync(mask, *v, o);
+  if (w > *v) *v = w;
+}
 
 /** The leaves and their neighbour lists in device memory (struct gpu_leaves). */
 struct gpu_leaves_dev {

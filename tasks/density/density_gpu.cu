@@ -21,6 +21,13 @@
     const double dv[3] = {vi[0] - vx[j], vi[1] - vy[j], vi[2] - vz[j]}; \
     density_iact(r2, dx, hi_inv, m[j], dv, &a);                         \
   }
+#define IACT_GPU_REDUCE(mask, o)           \
+  gpu_lanes_add(&a.rho, 1, mask, o);       \
+  gpu_lanes_add(&a.rho_dh, 1, mask, o);    \
+  gpu_lanes_add(&a.wcount, 1, mask, o);    \
+  gpu_lanes_add(&a.wcount_dh, 1, mask, o); \
+  gpu_lanes_add(&a.div_v, 1, mask, o);     \
+  gpu_lanes_add(a.curl_v, 3, mask, o)
 #define IACT_GPU_END(p, i)      \
   hydro_density_reset(&(p), i); \
   hydro_density_add(&(p), i, &a)

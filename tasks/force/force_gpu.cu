@@ -30,6 +30,12 @@
       if (hp.bin_limit) hydro_limiter_pair(&(p), i, j, hp.bin_limit, 1);  \
     }                                                                     \
   }
+#define IACT_GPU_REDUCE(mask, o)         \
+  gpu_lanes_add(a.a, 3, mask, o);        \
+  gpu_lanes_add(&a.du_dt, 1, mask, o);   \
+  gpu_lanes_add(&a.drho_dt, 1, mask, o); \
+  gpu_lanes_max(&a.v_sig, mask, o);      \
+  gpu_lanes_add(a.xsph, 3, mask, o)
 #define IACT_GPU_END(p, i) hydro_force_add(&(p), i, &a)
 #include "tasks/iact_loop_gpu.h"
 

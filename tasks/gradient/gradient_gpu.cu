@@ -24,6 +24,10 @@
     const double dv[3] = {vi[0] - vx[j], vi[1] - vy[j], vi[2] - vz[j]}; \
     gradient_iact(r2, dx, hi_inv, m[j] / rho[j], dv, &a);               \
   }
+#define IACT_GPU_REDUCE(mask, o)  \
+  gpu_lanes_add(a.M, 6, mask, o); \
+  gpu_lanes_add(a.G, 9, mask, o); \
+  gpu_lanes_add(&a.Z, 1, mask, o)
 #define IACT_GPU_END(p, i) hydro_gradient_add(&(p), i, &a)
 #include "tasks/iact_loop_gpu.h"
 

@@ -12,8 +12,8 @@
  *                 stored (the cells' expansions start at 0)
  *   L2L kernel:   one thread per parent-child pair of one tree level, the
  *                 levels one launch after the other (parents first)
- *   P2P, M2P:     one block per leaf, one thread per particle (P2P: a
- *                 small leaf's idle threads take slices of its sources),
+ *   P2P, M2P:     one block per leaf, one thread per particle (a small
+ *                 leaf's idle threads take slices of its sources),
  *                 its P2P (gather form: a leaf with itself skips i == j),
  *                 then (second kernel) its M2P summed in registers, added
  *                 to pot and ga
@@ -164,7 +164,11 @@ __global__ void gravity_p2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
 
 /** Every leaf (one block): its particles' M2P from the source
  *  cells (sources < 0).  A kernel of its own: the derivative tensors need
- *  registers that would slow the P2P loop down. */
+ *  registers that would slow the P2P loop down.  As the hydro loops
+ *  (tasks/iact_loop_gpu.h), a small leaf takes g lanes per particle, g the
+ *  largest power of two with g cnt <= B: lane s of i's group takes the
+ *  sources k0 + s, k0 + s + g, ..., and the group's sums are added by a
+ *  butterfly of shuffles in a fixed order. */
 template <int P>
 __global__ void gravity_m2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
                                        struct gravity_gpu_groups l, const int *__restrict__ leaf) {
@@ -175,23 +179,32 @@ __global__ void gravity_m2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
   int any = 0;
   for (int k = k0; k < k1 && !any; k++) any = l.source[k] < 0;
   if (!any) return;
-  for (int t = threadIdx.x; t < cnt; t += blockDim.x) {
+  const int B = (int)blockDim.x;
+  int g = 1;
+  while (g < 32 && 2 * g * cnt <= B) g *= 2;
+  const int sub = (int)threadIdx.x & (g - 1);
+  const unsigned lane = threadIdx.x & 31u;
+  const unsigned mask = g == 32 ? 0xffffffffu : ((1u << g) - 1u) << (lane & ~(unsigned)(g - 1));
+  for (int t = (int)threadIdx.x / g; t < cnt; t += B / g) {
     const size_t i = beg + (size_t)t;
     const double xi[3] = {p.x[i], p.y[i], p.z[i]};
-    double pot = 0.0, a[3] = {0.0, 0.0, 0.0};
-    for (int k = k0; k < k1; k++) {
+    double v[4] = {0.0, 0.0, 0.0, 0.0}; /* pot, a */
+    for (int k = k0 + sub; k < k1; k += g) {
       const int s = l.source[k];
       if (s >= 0) continue;
       const struct gravity_multipole *ms = d.mp + (-1 - s);
       const double R[3] = {ms->com[0] - xi[0], ms->com[1] - xi[1], ms->com[2] - xi[2]};
       double D[GRAVITY_NCOMP(P)];
       gravity_derivatives(R, d.eps2, P, D);
-      gravity_m2p_p2l(p.m[i], ms, NULL, D, P, d.G, &pot, a);
+      gravity_m2p_p2l(p.m[i], ms, NULL, D, P, d.G, v, v + 1);
     }
-    p.pot[i] += pot;
-    p.gax[i] += a[0];
-    p.gay[i] += a[1];
-    p.gaz[i] += a[2];
+    for (int o = g / 2; o > 0; o /= 2) gpu_lanes_add(v, 4, mask, o);
+    if (sub == 0) {
+      p.pot[i] += v[0];
+      p.gax[i] += v[1];
+      p.gay[i] += v[2];
+      p.gaz[i] += v[3];
+    }
   }
 }
 

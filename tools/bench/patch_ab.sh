@@ -14,7 +14,8 @@
 #   -c        configure options of the old build (default --with-cuda where nvcc is
 #             on PATH, else --without-cuda)
 # Env: BOLIDE_BUILD (the new build; default _dbuild if present, else _build),
-#      PATCH_AB_DIR (scratch folder of the old tree; default /tmp/patch_ab).
+#      PATCH_AB_DIR (scratch folder of the old tree; default /tmp/patch_ab; a
+#      later call with the same patch and options reuses the old build there).
 # Example (in a tools/bench/device.sh cmd: step, after the build step):
 #   tools/bench/patch_ab.sh .bund/old.patch -- tools/bench/gpu.sh -p gravity -n 1.1e6 -m gpu -r 3 -s 30
 set -euo pipefail
@@ -34,15 +35,21 @@ if [ -z "$new" ]; then new=$top/_build; [ -x "$top/_dbuild/bolide" ] && new=$top
 [ -x "$new/bolide" ] || { echo "patch_ab.sh: error: $new/bolide: no such build (set BOLIDE_BUILD)" >&2; exit 1; }
 if [ -z "$conf" ]; then conf=--without-cuda; command -v nvcc >/dev/null && conf=--with-cuda; fi
 old=${PATCH_AB_DIR:-/tmp/patch_ab}
-rm -rf "$old" && mkdir -p "$old"
-# the tracked and untracked files of the tree, without build folders or carried kits
-(cd "$top" && tar --exclude='./_*build*' --exclude=./.devkit --exclude=./.bund --exclude=./.git -cf - .) |
-  tar -xf - -C "$old"
-(cd "$old" && patch -R -p1 -s <"$patch") || { echo "patch_ab.sh: error: $patch does not reverse on this tree" >&2; exit 1; }
-echo "# old tree: $old ($patch reversed), configure $conf; new build: $new"
-(cd "$old" && { [ -x configure ] || ./autogen.sh >autogen.out 2>&1; } && mkdir -p _b && cd _b &&
-  ../configure $conf ${PYTHON:+--with-python="$PYTHON"} >configure.out 2>&1 &&
-  make -j"$(nproc)" bolide >make.out 2>&1) || { tail -20 "$old/_b/make.out" "$old/_b/configure.out" 2>/dev/null; exit 1; }
+if [ -x "$old/_b/bolide" ] && cmp -s "$patch" "$old/.ab.patch" && [ "$(cat "$old/.ab.conf")" = "$conf" ]; then
+  # the same change built there by an earlier call (a warm host): kept
+  echo "# old tree: $old ($patch reversed, built by an earlier call), configure $conf; new build: $new"
+else
+  rm -rf "$old" && mkdir -p "$old"
+  # the tracked and untracked files of the tree, without build folders or carried kits
+  (cd "$top" && tar --exclude='./_*build*' --exclude=./.devkit --exclude=./.bund --exclude=./.git -cf - .) |
+    tar -xf - -C "$old"
+  (cd "$old" && patch -R -p1 -s <"$patch") || { echo "patch_ab.sh: error: $patch does not reverse on this tree" >&2; exit 1; }
+  echo "# old tree: $old ($patch reversed), configure $conf; new build: $new"
+  (cd "$old" && { [ -x configure ] || ./autogen.sh >autogen.out 2>&1; } && mkdir -p _b && cd _b &&
+    ../configure $conf ${PYTHON:+--with-python="$PYTHON"} >configure.out 2>&1 &&
+    make -j"$(nproc)" bolide >make.out 2>&1) || { tail -20 "$old/_b/make.out" "$old/_b/configure.out" 2>/dev/null; exit 1; }
+  cp "$patch" "$old/.ab.patch" && printf '%s' "$conf" >"$old/.ab.conf"
+fi
 run() { # label build srcdir
   local label=$1 build=$2 src=$3
   echo "### $label ($(date -u +%T))"
