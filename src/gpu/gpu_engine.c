@@ -312,17 +312,32 @@ void gpu_cells_build(struct gpu_cells *gc, const struct space *s, struct cell *c
   free(first_leaf);
 }
 
-/** Number the list leaves below c (task cell top) as gpu_cells_collect,
- *  set their caps as gpu_cells_caps, and write the non-empty cells down to
- *  the list leaves to node[] depth first. */
-static void gpu_cells_flatten(struct gpu_cells *gc, struct gpu_list_node *node,
-                              const struct cell *c, int top, double growth) {
+/** The non-empty cells below c down to the list leaves (*nodes) and the
+ *  list leaves among them (*leaves): what gpu_cells_flatten writes. */
+static void gpu_cells_count(const struct gpu_cells *gc, const struct cell *c, int *nodes,
+                            int *leaves) {
   if (c->count == 0) return;
-  const int q = gc->nr_nodes++;
+  ++*nodes;
+  if (gpu_cells_is_leaf(gc, c)) {
+    ++*leaves;
+    return;
+  }
+  for (int k = 0; k < 8; k++)
+    if (c->progeny[k]) gpu_cells_count(gc, c->progeny[k], nodes, leaves);
+}
+
+/** Number the list leaves below c (task cell top) from *l as
+ *  gpu_cells_collect, set their caps as gpu_cells_caps, and write the
+ *  non-empty cells down to the list leaves to node[] depth first from *q.
+ *  The leaf arrays must hold the leaves already (gpu_cells_reserve). */
+static void gpu_cells_flatten(struct gpu_cells *gc, struct gpu_list_node *node,
+                              const struct cell *c, int top, double growth, int *q_next,
+                              int *l_next) {
+  if (c->count == 0) return;
+  const int q = (*q_next)++;
   gpu_cells_box(&node[q].box, c);
   if (gpu_cells_is_leaf(gc, c)) {
-    gpu_cells_reserve(gc, gc->n + 1);
-    const int l = gc->n++;
+    const int l = (*l_next)++;
     gc->leaf_of_cell[c->index] = l;
     gc->offset[l] = c->offset;
     gc->count[l] = (int)c->count;
@@ -335,9 +350,86 @@ static void gpu_cells_flatten(struct gpu_cells *gc, struct gpu_list_node *node,
   } else {
     node[q].leaf = -1;
     for (int k = 0; k < 8; k++)
-      if (c->progeny[k]) gpu_cells_flatten(gc, node, c->progeny[k], top, growth);
+      if (c->progeny[k]) gpu_cells_flatten(gc, node, c->progeny[k], top, growth, q_next, l_next);
   }
-  node[q].skip = gc->nr_nodes;
+  node[q].skip = *q_next;
+}
+
+/** One thread of the flattening: the task cells [t0, t1), counted (pass 0:
+ *  nodes and leaves of each, in tc_nodes and tc_leaves) or written (pass
+ *  1: from the first node and leaf of each, the prefix sums in gc->tc_node
+ *  and tc_leaves). */
+struct gpu_flatten_job {
+  struct gpu_cells *gc;
+  struct gpu_list_node *node;
+  struct cell *const *tcells;
+  int *tc_nodes, *tc_leaves;
+  double growth;
+  int t0, t1, pass;
+};
+
+static void *gpu_flatten_run(void *arg) {
+  struct gpu_flatten_job *jb = arg;
+  struct gpu_cells *gc = jb->gc;
+  for (int t = jb->t0; t < jb->t1; t++) {
+    if (jb->pass == 0) {
+      jb->tc_nodes[t] = jb->tc_leaves[t] = 0;
+      gpu_cells_count(gc, jb->tcells[t], &jb->tc_nodes[t], &jb->tc_leaves[t]);
+    } else {
+      int q = gc->tc_node[t], l = jb->tc_leaves[t];
+      gpu_cells_flatten(gc, jb->node, jb->tcells[t], t, jb->growth, &q, &l);
+    }
+  }
+  return NULL;
+}
+
+/** Write the cells below the task cells to node[] (gpu_cells_flatten), in
+ *  the order of one thread, on up to nt threads: the nodes and leaves of
+ *  each task cell are counted first, so each thread knows where its task
+ *  cells' start; the threads take ranges of task cells of about equal
+ *  particles (an impact puts most of them in a few). */
+static void gpu_cells_flatten_all(struct gpu_cells *gc, struct gpu_list_node *node,
+                                  struct cell *const *tcells, int nr, double growth, int nt) {
+  size_t np = 0;
+  for (int t = 0; t < nr; t++) np += tcells[t]->count;
+  if (nt < 1 || np < (size_t)(gc->min_parallel > 0 ? gc->min_parallel : 50000)) nt = 1;
+  if (nt > nr) nt = nr > 0 ? nr : 1;
+  if (nt > 64) nt = 64;
+  int *tc_nodes = error_malloc(2 * ((size_t)nr + 1) * sizeof(int), "GPU task cells");
+  int *tc_leaves = tc_nodes + nr + 1;
+  struct gpu_flatten_job jobs[64];
+  pthread_t tid[64];
+  size_t acc = 0;
+  int t = 0;
+  for (int w = 0; w < nt; w++) {
+    jobs[w] = (struct gpu_flatten_job){gc, node, tcells, tc_nodes, tc_leaves, growth, t, t, 0};
+    const size_t target = np * (size_t)(w + 1) / (size_t)nt;
+    while (t < nr && (w == nt - 1 || acc < target)) acc += tcells[t++]->count;
+    jobs[w].t1 = t;
+  }
+  for (int pass = 0; pass < 2; pass++) {
+    for (int w = 0; w < nt; w++) jobs[w].pass = pass;
+    for (int w = 1; w < nt; w++)
+      if (pthread_create(&tid[w], NULL, gpu_flatten_run, &jobs[w]))
+        error_exit("cannot start a thread to build the GPU neighbour lists");
+    gpu_flatten_run(&jobs[0]);
+    for (int w = 1; w < nt; w++) pthread_join(tid[w], NULL);
+    if (pass == 0) {
+      /* the first node and leaf of each task cell */
+      int q = 0, l = 0;
+      for (int k = 0; k < nr; k++) {
+        const int dq = tc_nodes[k], dl = tc_leaves[k];
+        gc->tc_node[k] = q;
+        tc_leaves[k] = l;
+        q += dq;
+        l += dl;
+      }
+      gc->tc_node[nr] = gc->nr_nodes = q;
+      gc->n = l;
+      gpu_cells_reserve(gc, gc->n + 1);
+    }
+  }
+  free(tc_nodes);
 }
 
 void gpu_cells_build_dev(struct gpu *g, struct gpu_cells *gc, const struct space *s,
@@ -374,14 +466,7 @@ void gpu_cells_build_dev(struct gpu *g, struct gpu_cells *gc, const struct space
   gc->tc_ngb_start[nr] = nk;
   /* the cells below the task cells, written straight to the pinned staging */
   struct gpu_list_node *node = gpu_lists_nodes(gc->dev, s->nr_cells);
-  gc->n = 0;
-  gc->nr_nodes = 0;
-  for (int t = 0; t < nr; t++) {
-    gc->tc_node[t] = gc->nr_nodes;
-    gpu_cells_flatten(gc, node, tcells[t], t, growth);
-  }
-  gc->tc_node[nr] = gc->nr_nodes;
-  gpu_cells_reserve(gc, gc->n + 1);
+  gpu_cells_flatten_all(gc, node, tcells, nr, growth, gc->nr_threads);
   const struct gpu_list_input in = {.nr_leaves = gc->n,
                                     .leaf_node = gc->leaf_node,
                                     .leaf_tc = gc->top,

@@ -12,29 +12,30 @@ struct gpu_list_box;
 
 /** Host-side leaf cells and neighbour lists, grown and reused between steps. */
 struct gpu_cells {
-  int n, cap;                       /**< leaves and allocated length */
-  size_t *offset;                   /**< first particle of each leaf */
-  int *count;                       /**< particles of each leaf */
-  int *top;                         /**< task cell of each leaf */
-  double *h_cap;                    /**< the cells' cap on h of each leaf (its task cell's) */
-  double *h_list_cap;               /**< largest h the lists cover */
-  int *ngb_start;                   /**< n + 1 */
-  int nr_ngb, ngb_cap;              /**< list entries and allocated length */
-  int *ngb_leaf;                    /**< neighbouring leaf of each entry */
-  double *ngb_shift;                /**< 3 per entry */
-  int *leaf_of_cell;                /**< leaf number of each cell of the space (-1: not a leaf) */
-  int cells_cap;                    /**< allocated length of leaf_of_cell */
-  double growth;                    /**< lists cover h up to growth * the leaf's h_max */
-  double t_build;                   /**< host seconds spent in gpu_cells_build */
-  int nr_threads;                   /**< host threads building the lists (0: 1) */
-  struct gpu_cells_job *jobs;       /**< workers of the list build, kept between calls */
-  int nr_jobs;                      /**< their number */
-  long widenings;                   /**< times h outgrew the lists (phase run again) */
-  long long h_resummed;             /**< particles whose density sums the h iteration redid */
-  long builds;                      /**< times the lists were built */
-  const struct cell **leaf_cell;    /**< the cell of each leaf */
-  double *dx_allow;                 /**< drift of each leaf up to which the lists hold */
-  int built_rebuild;                /**< space.nr_rebuilds when the lists were built */
+  int n, cap;                    /**< leaves and allocated length */
+  size_t *offset;                /**< first particle of each leaf */
+  int *count;                    /**< particles of each leaf */
+  int *top;                      /**< task cell of each leaf */
+  double *h_cap;                 /**< the cells' cap on h of each leaf (its task cell's) */
+  double *h_list_cap;            /**< largest h the lists cover */
+  int *ngb_start;                /**< n + 1 */
+  int nr_ngb, ngb_cap;           /**< list entries and allocated length */
+  int *ngb_leaf;                 /**< neighbouring leaf of each entry */
+  double *ngb_shift;             /**< 3 per entry */
+  int *leaf_of_cell;             /**< leaf number of each cell of the space (-1: not a leaf) */
+  int cells_cap;                 /**< allocated length of leaf_of_cell */
+  double growth;                 /**< lists cover h up to growth * the leaf's h_max */
+  double t_build;                /**< host seconds spent in gpu_cells_build */
+  int nr_threads;                /**< host threads building the lists (0: 1) */
+  int min_parallel;              /**< fewer particles: the host's part on one thread (0: 50,000) */
+  struct gpu_cells_job *jobs;    /**< workers of the list build, kept between calls */
+  int nr_jobs;                   /**< their number */
+  long widenings;                /**< times h outgrew the lists (phase run again) */
+  long long h_resummed;          /**< particles whose density sums the h iteration redid */
+  long builds;                   /**< times the lists were built */
+  const struct cell **leaf_cell; /**< the cell of each leaf */
+  double *dx_allow;              /**< drift of each leaf up to which the lists hold */
+  int built_rebuild;             /**< space.nr_rebuilds when the lists were built */
   struct cell *const *built_tcells; /**< the task cells they were built on */
   int built_nr;                     /**< their number */
   int leaf_size;                    /**< lists on cells of at most this many particles

@@ -131,6 +131,8 @@ static int compare_lists(struct gpu *g, const struct space *sp, struct cell *con
   memset(&gh, 0, sizeof gh);
   memset(&gd, 0, sizeof gd);
   gh.nr_threads = 3;
+  gd.nr_threads = 3; /* the device build's host part on 3 threads, whatever the size */
+  gd.min_parallel = 1;
   gh.leaf_size = gd.leaf_size = leaf_size;
   gpu_cells_build(&gh, sp, tcells, nr, ct, tc_h_cap, growth, gh.nr_threads);
   gpu_cells_build_dev(g, &gd, sp, tcells, nr, ct, tc_h_cap, growth);
