@@ -504,27 +504,100 @@ static void *space_trees_run(void *arg) {
 }
 
 /** Number, depth first, the cells below local cell l of job b's tree,
- *  which is cell g of the space: each octant gets the next cell, then its
- *  subtree (the serial build's order). */
+ *  which is cell g of the space, from *next: each octant gets the next
+ *  cell, then its subtree (the serial build's order).  The space's cell
+ *  arrays hold every cell already (space_merge_trees). */
 static void space_merge_tree(struct space *s, struct space_trees *j, struct space_tree_job *b,
-                             int l, int g) {
+                             int l, int g, int *next) {
   const struct space_tree *t = &b->tree;
   for (int q = 0; q < 8; q++) {
     const int d = t->progeny[8 * l + q];
     if (d < 0) continue;
-    const int e = space_new_cell(s); /* may move s->cells */
+    const int e = (*next)++;
     s->progeny_index[8 * g + q] = e;
+    for (int k = 0; k < 8; k++) s->progeny_index[8 * e + k] = -1;
     if (t->graft[d] >= 0) {
       struct space_tree_job *sub = j->job[t->graft[d]];
       s->cells[e] = sub->tree.cells[0];
       s->cells[e].index = e;
-      space_merge_tree(s, j, sub, 0, e);
+      space_merge_tree(s, j, sub, 0, e, next);
     } else {
       s->cells[e] = t->cells[d];
       s->cells[e].index = e;
-      space_merge_tree(s, j, b, d, e);
+      space_merge_tree(s, j, b, d, e, next);
     }
   }
+}
+
+/** The cells below the root of job b, its subtrees' jobs' included: every
+ *  cell of a tree but its root is an octant that the merge numbers. */
+static long space_tree_cells(const struct space_trees *j, const struct space_tree_job *b) {
+  long n = b->tree.n - 1;
+  for (int d = 1; d < b->tree.n; d++)
+    if (b->tree.graft[d] >= 0) n += space_tree_cells(j, j->job[b->tree.graft[d]]);
+  return n;
+}
+
+/** Free job b's tree and those of its subtrees' jobs. */
+static void space_tree_free(struct space_trees *j, struct space_tree_job *b) {
+  for (int d = 1; d < b->tree.n; d++)
+    if (b->tree.graft[d] >= 0) space_tree_free(j, j->job[b->tree.graft[d]]);
+  free(b->tree.cells);
+  free(b->tree.progeny);
+  free(b->tree.graft);
+  free(b);
+}
+
+/** The merge of the trees on the threads: top-level cell order[k] (the
+ *  largest first) is numbered from first[order[k]]; a thread takes the
+ *  next cell in that order until none is left. */
+struct space_merge {
+  struct space *s;
+  struct space_trees *j;
+  const int *job_of, *order, *first;
+  int n;
+  atomic_int next;
+};
+
+static void *space_merge_run(void *arg) {
+  struct space_merge *m = arg;
+  for (;;) {
+    const int k = atomic_fetch_add(&m->next, 1);
+    if (k >= m->n) break;
+    const int c = m->order[k];
+    struct space_tree_job *b = m->j->job[m->job_of[c]];
+    m->s->cells[c].split = b->tree.cells[0].split;
+    int next = m->first[c];
+    space_merge_tree(m->s, m->j, b, 0, c, &next);
+    space_tree_free(m->j, b);
+  }
+  return NULL;
+}
+
+/** Number the cells of every tree after the top-level cells, in the order
+ *  of one thread (top-level cell by top-level cell, each depth first), on
+ *  nt threads: each top-level cell's cells are counted first, so that its
+ *  first number is known, and the space's cell arrays are grown once. */
+static void space_merge_trees(struct space *s, struct space_trees *j, const int *job_of,
+                              const int *order, int n, int nt) {
+  int *first = error_malloc((size_t)s->nr_top * sizeof(int), "octree merge");
+  long total = s->nr_cells;
+  for (int c = 0; c < s->nr_top; c++) {
+    first[c] = (int)total;
+    if (job_of[c] >= 0) total += space_tree_cells(j, j->job[job_of[c]]);
+    if (total > INT_MAX / 16) error_exit("space: too many cells");
+  }
+  if (total > s->cells_capacity) {
+    const int cap = (int)(total + total / 4);
+    s->cells = error_realloc(s->cells, (size_t)cap * sizeof *s->cells, "cells");
+    s->progeny_index =
+        error_realloc(s->progeny_index, (size_t)cap * 8 * sizeof(int), "cell progeny");
+    s->cells_capacity = cap;
+  }
+  struct space_merge m = {s, j, job_of, order, first, n, 0};
+  space_team(nt < n ? nt : (n > 0 ? n : 1), space_merge_run, &m, 0);
+  s->nr_cells = (int)total;
+  free(first);
 }
 
 /** Order of space_build_trees's first jobs: the most particles first, then
@@ -571,24 +644,16 @@ static void space_build_trees(struct space *s, size_t *idx, size_t *buf) {
     const struct cell *top = &s->cells[sz[k].c];
     job_of[sz[k].c] = space_trees_add(&j, top, idx + top->offset, buf + top->offset);
   }
-  free(sz);
   space_team(nt, space_trees_run, &j, 0);
   pthread_mutex_destroy(&j.lock);
   pthread_cond_destroy(&j.more);
 
-  /* merge, in the order of the top-level cells */
-  for (int c = 0; c < s->nr_top; c++) {
-    if (job_of[c] < 0) continue;
-    struct space_tree_job *b = j.job[job_of[c]];
-    s->cells[c].split = b->tree.cells[0].split;
-    space_merge_tree(s, &j, b, 0, c);
-  }
-  for (int k = 0; k < j.n; k++) {
-    free(j.job[k]->tree.cells);
-    free(j.job[k]->tree.progeny);
-    free(j.job[k]->tree.graft);
-    free(j.job[k]);
-  }
+  /* merge, in the order of the top-level cells (the largest taken first) */
+  int *order = error_malloc((size_t)n * sizeof(int), "octree merge");
+  for (int k = 0; k < n; k++) order[k] = sz[k].c;
+  free(sz);
+  space_merge_trees(s, &j, job_of, order, n, nt);
+  free(order);
   free(j.job);
   free(job_of);
 }
