@@ -1564,6 +1564,13 @@ void engine_run(struct engine *e) {
               (e->t_rebuild_part[0] - e->t_rebuild_first[1]) / n,
               (e->t_rebuild_part[1] - e->t_rebuild_first[2]) / n,
               (e->t_rebuild_part[2] - e->t_rebuild_first[3]) / n, e->t_rebuild_first[0]);
+    const struct space *s = &e->space;
+    if (s->nr_timed > 0)
+      error_log(0,
+                "rebuilds' cells and order, seconds each on average after the first: sort by "
+                "top-level cell %.4f, octrees %.4f, reorder %.4f, boxes %.4f (rebuilds timed: %d)",
+                s->t_parts[0] / s->nr_timed, s->t_parts[1] / s->nr_timed,
+                s->t_parts[2] / s->nr_timed, s->t_parts[3] / s->nr_timed, s->nr_timed);
   } else if (e->nr_rebuild == 1) {
     error_log(0,
               "rebuilds (cells, particle order, task graph): 1, the first %.4f s (cells and order "

@@ -53,6 +53,9 @@ struct space {
   size_t nr_removed;         /**< particles removed from an open box since space_init */
   struct budget_removed removed; /**< what they took with them (the engine sets it on restart) */
   int nr_rebuilds;               /**< number of calls of space_rebuild */
+  int nr_timed;                  /**< calls of space_rebuild after the first (t_parts) */
+  double t_parts[4];             /**< their wall seconds: sort by top-level cell, octrees, reorder,
+                                      boxes (the first, which sorts a file's order, left out) */
   size_t *sort_index;            /**< work array of the rebuild (capacity sort_capacity) */
   size_t sort_capacity;          /**< allocated length of sort_index */
   int nr_threads;                /**< threads of the rebuild's reordering of the fields (1) */

@@ -169,7 +169,7 @@ YML
         rec=$(awk -v t=$med_step '/^GPU \(/ {for (k = 1; k <= NF; k++) if ($k == "copies") r = $(k + 1)}
               END {if (r == "") print "-"; else printf "%.1f (%.1f%%)", r, 100 * r * 1e6 / 25e9 / t}' run.log)
         mem=$(awk '/^GPU memory:/ {gsub(/\(/, ""); for (k = 1; k <= NF; k++) if ($k == "bytes") print $(k - 1)}' run.log)
-        stages="$stages$prob $N $mode: $(grep '^GPU (' run.log | sed 's/^GPU ([^)]*), //' | tr '\n' ' '); $(grep '^GPU host\|^GPU gravity' run.log | tr '\n' ' ') $(grep -o 'rebuilds (cells.*' run.log | tr '\n' ' ') $(grep '^GPU rebuilds' run.log | tr '\n' ' ') $(grep '^GPU memory by use' run.log | cut -c1-300)"$'\n'
+        stages="$stages$prob $N $mode: $(grep '^GPU (' run.log | sed 's/^GPU ([^)]*), //' | tr '\n' ' '); $(grep '^GPU host\|^GPU gravity' run.log | tr '\n' ' ') $(grep -o 'rebuilds (cells.*' run.log | tr '\n' ' ') $(grep -o "rebuilds' cells and order.*" run.log | tr '\n' ' ') $(grep '^GPU rebuilds' run.log | tr '\n' ' ') $(grep '^GPU memory by use' run.log | cut -c1-300)"$'\n'
       fi
       say "| $prob | $N | $mode | $med_step | $last_eval | $last_rebuild | $ratio | $bus | $share | $rec | $mem |"
     done
