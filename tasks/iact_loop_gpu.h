@@ -55,14 +55,11 @@ __global__ void IACT_GPU_NAME(struct parts p, struct gpu_leaves_dev lv IACT_GPU_
   const int k0 = lv.ngb_start[L], k1 = lv.ngb_start[L + 1];
   const double *__restrict__ x = p.x, *__restrict__ y = p.y, *__restrict__ z = p.z;
   const double *__restrict__ vx = p.vpx, *__restrict__ vy = p.vpy, *__restrict__ vz = p.vpz;
-  /* g lanes per particle (a power of two up to a warp, so a group never
-   * spans two warps); lane sub of the group, mask the group's lanes */
+  /* g lanes per particle, lane sub of the group (gpu_lanes_of) */
   const int B = (int)blockDim.x;
-  int g = 1;
-  while (g < 32 && 2 * g * cnt <= B) g *= 2;
-  const int sub = (int)threadIdx.x & (g - 1);
-  const unsigned lane = threadIdx.x & 31u;
-  const unsigned mask = g == 32 ? 0xffffffffu : ((1u << g) - 1u) << (lane & ~(unsigned)(g - 1));
+  const struct gpu_lanes ln = gpu_lanes_of(cnt);
+  const int g = ln.g, sub = ln.sub;
+  const unsigned mask = ln.mask;
   (void)mask;
   for (int t = (int)threadIdx.x / g; t < cnt; t += B / g) {
     const size_t i = beg + (size_t)t;

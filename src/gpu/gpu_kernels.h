@@ -19,6 +19,26 @@ struct material_table;
  *  several threads per particle (tasks/iact_loop_gpu.h). */
 #define GPU_BLOCK 128
 
+/** The lanes of a leaf of cnt particles in a block (tasks/iact_loop_gpu.h):
+ *  g per particle, the largest power of two up to a warp with g cnt <= the
+ *  block's threads (so a group never spans two warps); this thread's lane
+ *  sub of its group, which takes the group's particle threadIdx.x / g (then
+ *  every blockDim.x / g); mask, the group's lanes (for __shfl_xor_sync). */
+struct gpu_lanes {
+  int g, sub;
+  unsigned mask;
+};
+
+__device__ static inline struct gpu_lanes gpu_lanes_of(int cnt) {
+  struct gpu_lanes r;
+  r.g = 1;
+  while (r.g < 32 && 2 * r.g * cnt <= (int)blockDim.x) r.g *= 2;
+  r.sub = (int)threadIdx.x & (r.g - 1);
+  const unsigned lane = threadIdx.x & 31u;
+  r.mask = r.g == 32 ? 0xffffffffu : ((1u << r.g) - 1u) << (lane & ~(unsigned)(r.g - 1));
+  return r;
+}
+
 /** v[0..n) += the same values of lane ^ o (mask: the lanes taking part,
  *  o below their number).  Both lanes end with the same sums: IEEE
  *  addition commutes. */

@@ -180,11 +180,9 @@ __global__ void gravity_m2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
   for (int k = k0; k < k1 && !any; k++) any = l.source[k] < 0;
   if (!any) return;
   const int B = (int)blockDim.x;
-  int g = 1;
-  while (g < 32 && 2 * g * cnt <= B) g *= 2;
-  const int sub = (int)threadIdx.x & (g - 1);
-  const unsigned lane = threadIdx.x & 31u;
-  const unsigned mask = g == 32 ? 0xffffffffu : ((1u << g) - 1u) << (lane & ~(unsigned)(g - 1));
+  const struct gpu_lanes ln = gpu_lanes_of(cnt);
+  const int g = ln.g, sub = ln.sub;
+  const unsigned mask = ln.mask;
   for (int t = (int)threadIdx.x / g; t < cnt; t += B / g) {
     const size_t i = beg + (size_t)t;
     const double xi[3] = {p.x[i], p.y[i], p.z[i]};
