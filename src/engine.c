@@ -809,7 +809,18 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     e->ti_current = rs.ti_current;
     e->restarted = 1;
   } else {
+    /* several ranks read the same file: rank 0 first, so that a problem
+     * with it (missing, a dataset absent, a NaN, a negative mass) is
+     * reported in one line, not once per rank (the others wait, and
+     * mpirun stops them when rank 0 exits), as for the parameter file */
+    const int first = ranks_size() > 1 && !opt->one_rank;
+    int ics_ok = 0;
+    if (first && ranks_rank() != 0) ranks_bcast_ints(&ics_ok, 1);
     engine_read_ics(e, icname, sizeof icname, box);
+    if (first && ranks_rank() == 0) {
+      ics_ok = 1;
+      ranks_bcast_ints(&ics_ok, 1);
+    }
   }
   if (opt->restart)
     for (int k = 0; k < e->mats->n; k++)

@@ -446,6 +446,16 @@ rc=$?
 [ $rc != 0 ] || fail "mpirun -n 3 with an unknown key exited 0"
 nerr=$(grep -c "bolide: error: .*unknown key 'SPH:no_such_key'" bad.err)
 [ "$nerr" = 1 ] || { cat bad.err; fail "mpirun -n 3 with an unknown key: $nerr error lines, not 1"; }
+# a problem with the initial conditions, read by every rank: one error line
+# (rank 0 reads them first), non-zero, no hang: a missing file
+sed 's/^  file_name: .*/  file_name: no_such_ic.hdf5/' p.yml >noic.yml
+grep -q "no_such_ic.hdf5" noic.yml || fail "test set-up: no file_name in p.yml"
+timeout 60 "$MPIRUN" -n 3 "$B/bolide" -t 1 noic.yml >noic.out 2>noic.err
+rc=$?
+[ $rc = 124 ] && fail "mpirun -n 3 with a missing IC file hung"
+[ $rc != 0 ] || fail "mpirun -n 3 with a missing IC file exited 0"
+nerr=$(grep -c "bolide: error: .*no_such_ic.hdf5" noic.err)
+[ "$nerr" = 1 ] || { cat noic.err; fail "mpirun -n 3 with a missing IC file: $nerr error lines, not 1"; }
 # the partition over the ranks of mpirun
 timeout 120 "$MPIRUN" -n 3 "$B/bolide" --partition 0 -t 1 p.yml >part.out 2>part.err ||
   { cat part.err; fail "mpirun -n 3 bolide --partition 0"; }
