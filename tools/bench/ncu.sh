@@ -35,10 +35,11 @@ build=$(cd "$build" && pwd)
 [ -x "$build/bolide" ] || { echo "ncu.sh: error: $build/bolide: no such build (set BOLIDE_BUILD)" >&2; exit 1; }
 wrap=$(mktemp -d)
 trap 'rm -rf "$wrap"' EXIT
-for f in "$build"/*; do
-  [ -x "$f" ] && [ -f "$f" ] && ln -s "$f" "$wrap/$(basename "$f")"
+# everything of the build but bolide itself (its other programs, the .venv
+# that tools/bench/impact.sh takes Python from)
+for f in "$build"/* "$build"/.venv; do
+  [ -e "$f" ] && [ "$(basename "$f")" != bolide ] && ln -s "$f" "$wrap/$(basename "$f")"
 done
-rm -f "$wrap/bolide"
 cat >"$wrap/bolide" <<WRAP
 #!/usr/bin/env bash
 exec ncu --clock-control none -k "regex:$regex" -s $skip -c $count \\
