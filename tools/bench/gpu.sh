@@ -38,7 +38,9 @@
 #                           [-r 3] [-s 4] [-g "GPU ARGS"] [-T SECONDS]
 #   -g  extra bolide arguments for the GPU runs only
 #   -T  time limit of each bolide run (default 0: none); a run over it is
-#       reported as "timeout" and the script goes on
+#       killed (SIGKILL: a SIGTERM would let it finish its step and write a
+#       restart file first, which at 1e7 particles takes minutes), reported
+#       as "timeout", and the script goes on
 # Env:   BOLIDE_BUILD (build folder), BOLIDE_BENCH_IC (make_impact_ic.py),
 #        PYTHON (with numpy and h5py, for the reference impact IC),
 #        BENCH_OUT (file the table lines are also appended to, as they come),
@@ -72,7 +74,7 @@ stages=""
 # one run of bolide with the arguments "$@"; prints "step eval" or "timeout"
 one() {
   local lim=()
-  [ "$tlimit" = 0 ] || lim=(timeout "$tlimit")
+  [ "$tlimit" = 0 ] || lim=(timeout -s KILL "$tlimit")
   local wrap=()
   [ -z "${BENCH_WRAP:-}" ] || read -ra wrap <<<"$BENCH_WRAP"
   if ! "${lim[@]}" "${wrap[@]}" "$build/bolide" -n "$steps" -t "$ncpu" "$@" p.yml >run.log 2>&1; then
