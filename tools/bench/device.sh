@@ -21,7 +21,11 @@
 #   cmd:'COMMAND'    any command, run in the repository root with the build's
 #                    environment (BOLIDE_BUILD, PYTHON, BOLIDE_BENCH_IC set)
 # DEVICE_NOBUILD=1 skips the CUDA build (for commands that build their own,
-# such as the sanitizer builds).  /tmp/kit/python runs the host's python3
+# such as the sanitizer builds).  DEVICE_DEADLINE (seconds from the start,
+# default 570, for the run tool's 600-s calls; lower it with a shorter
+# timeout_s): a step still running then is killed with everything it
+# started, the later steps are skipped, and the logs still come back (a
+# call that runs out of time returns nothing else).  /tmp/kit/python runs the host's python3
 # with the carried h5py on its path whatever PYTHONPATH a Makefile sets
 # (SAN_PYTHON=/tmp/kit/python for tools/test_sanitizers.sh).
 set -uo pipefail
@@ -56,12 +60,11 @@ build() { # dir, extra configure options
   cd "$top"
 }
 
-nvidia-smi --query-gpu=name,memory.total,driver_version --format=csv,noheader | tee "$out/gpu.txt"
-if [ -z "${DEVICE_NOBUILD:-}" ]; then build _dbuild 2>&1 | tee "$out/build.log" || exit 1; fi
 export BOLIDE_BUILD=$top/_dbuild
-rc=0
-for step in "$@"; do
-  echo "=== $step ($(date -u +%H:%M:%S))"
+
+# one step (the loop below runs each so, under the call's deadline)
+one_step() {
+  local step=$1 rc=0
   case $step in
     build) ;;
     native) build _dbuild_native --enable-native 2>&1 | tee "$out/native.log" || rc=1 ;;
@@ -73,6 +76,31 @@ for step in "$@"; do
     cmd:*) bash -c "${step#cmd:}" 2>&1 | tee -a "$out/cmd.log" || rc=1 ;;
     *) echo "device.sh: error: unknown step '$step'"; rc=1 ;;
   esac
+  return $rc
+}
+if [ "${1:-}" = "--one-step" ]; then one_step "$2"; exit $?; fi
+
+t0=$SECONDS
+deadline=${DEVICE_DEADLINE:-570}
+nvidia-smi --query-gpu=name,memory.total,driver_version --format=csv,noheader | tee "$out/gpu.txt"
+if [ -z "${DEVICE_NOBUILD:-}" ]; then
+  build _dbuild 2>&1 | tee "$out/build.log"
+  [ ${PIPESTATUS[0]} -eq 0 ] || { [ -n "${OUT:-}" ] && tar czf "$OUT/device-logs.tgz" -C "$out" .; exit 1; }
+fi
+rc=0
+for step in "$@"; do
+  left=$((deadline - (SECONDS - t0)))
+  echo "=== $step ($(date -u +%H:%M:%S), ${left} s left of DEVICE_DEADLINE=$deadline)"
+  if [ "$left" -le 5 ]; then
+    echo "device.sh: error: step '$step' not run: the call's deadline has passed"; rc=1; continue
+  fi
+  # GNU timeout kills the step's whole process group (bolide runs, builds)
+  timeout -s KILL "$left" "$top/tools/bench/$(basename "$0")" --one-step "$step"
+  src=$?
+  if [ $src -eq 137 ]; then
+    echo "device.sh: error: step '$step' killed at the call's deadline (DEVICE_DEADLINE=$deadline s)" | tee -a "$out/deadline.log"
+  fi
+  [ $src -eq 0 ] || rc=1
 done
 [ -n "${OUT:-}" ] && tar czf "$OUT/device-logs.tgz" -C "$out" .
 exit $rc

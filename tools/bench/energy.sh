@@ -17,6 +17,17 @@
 #       false, as the GPU computes it); cpu-rk2, gpu-rk2, cpu-pc, gpu-pc:
 #       the global step with the integrators TimeIntegration:scheme rk2
 #       (its default error bound) and pc (theory/integrators.md)
+#   -S DIR: SWIFT too, after Bolide's modes (DIR: a SWIFT build configured
+#       with --with-hydro=planetary --with-equation-of-state=planetary
+#       --with-kernel=cubic-spline, holding swift): the same IC, SWIFT's
+#       settings of the benchmark set (eta 1.2348, CFL 0.2, alpha 1.5,
+#       adaptive MAC epsilon_fmm 1e-3, theta 0.5, the same softening, 16^3
+#       top-level cells) and its own time bins (dt_max 1000 s, or the run's
+#       length if shorter), with as many
+#       threads; its statistics every 100 s give the same columns (E_kin +
+#       E_int + E_pot against abs(E_pot(0)); L of its "comoving angular
+#       momentum", here the box frame's).  Build Bolide with
+#       --with-kernel=cubic-spline for the same kernel.
 # BOLIDE_RUN_FLAGS adds options to each run (-P SECTION:KEY:VALUE).
 set -euo pipefail
 # ENERGY_ETA: SPH:resolution_eta (default SWIFT's 1.2348 for the cubic spline;
@@ -28,11 +39,15 @@ top="$(cd "$(dirname "$0")/../.." && pwd)"
 build=${BOLIDE_BUILD:-$top/_build}
 python=${PYTHON:-$build/.venv/bin/python}
 gen=${BOLIDE_BENCH_IC:?"set BOLIDE_BENCH_IC to the reference impact IC generator of the benchmark set (make_impact_ic.py; theory/validation.md, Benchmarks)"}
-sizes="2.2e4"; modes="cpu"; threads=$(nproc); tend=4000; out=""
-while getopts "n:m:t:T:o:" o; do
+sizes="2.2e4"; modes="cpu"; threads=$(nproc); tend=4000; out=""; swift=""
+while getopts "n:m:t:T:o:S:" o; do
   case $o in n) sizes=$OPTARG ;; m) modes=$OPTARG ;; t) threads=$OPTARG ;; T) tend=$OPTARG ;;
-             o) out=$OPTARG ;; *) exit 2 ;; esac
+             o) out=$OPTARG ;; S) swift=$OPTARG ;; *) exit 2 ;; esac
 done
+if [ -n "$swift" ]; then
+  swift=$(cd "$swift" && pwd)
+  [ -x "$swift/swift" ] || { echo "energy.sh: error: no swift in $swift (-S)" >&2; exit 1; }
+fi
 [ -f "$gen" ] || { echo "energy.sh: error: $gen not found (set BOLIDE_BENCH_IC)" >&2; exit 1; }
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
@@ -94,7 +109,7 @@ Ep = abs(c["E_pot"][0])
 dE = np.abs(c["E_tot"] + c["E_removed"] - c["E_tot"][0]) / Ep
 L = np.stack([c[k] + c[k + "_removed"] for k in ("Lx", "Ly", "Lz")], 1)
 dL = np.linalg.norm(L - L[0], axis=1) / np.linalg.norm(L[0])
-for t in sorted({1000.0, 2000.0, 3000.0, 4000.0, float(c["time"][-1])}):
+for t in sorted({1000.0, 2000.0, 3000.0, 4000.0, float(c["time"][-1])} | {5000.0 * q for q in range(1, int(c["time"][-1] // 5000) + 1)}):
     k = np.argmin(np.abs(c["time"] - t))
     if abs(c["time"][k] - t) > 60:
         continue
@@ -102,4 +117,71 @@ for t in sorted({1000.0, 2000.0, 3000.0, 4000.0, float(c["time"][-1])}):
           f"{steps:>8s} {float(wall):10.1f}")
 PY
   done
+  [ -n "$swift" ] || continue
+  # SWIFT with its own time bins on the same IC (units of make_impact_ic.py: 1e24 kg, 1e6 m, 1 s)
+  seps=$(awk -v e="$soft" 'BEGIN {printf "%.6g", e / 1e6}')
+  cat >swift.yml <<YML
+InternalUnitSystem:
+  UnitMass_in_cgs: 1e27
+  UnitLength_in_cgs: 1e8
+  UnitVelocity_in_cgs: 1e8
+  UnitCurrent_in_cgs: 1
+  UnitTemp_in_cgs: 1
+InitialConditions:
+  file_name: impact.hdf5
+  periodic: 0
+TimeIntegration:
+  time_begin: 0
+  time_end: $tend
+  dt_min: 1e-10
+  dt_max: $(awk -v t="$tend" 'BEGIN {print (t < 1000 ? t : 1000)}')
+Snapshots:
+  basename: swift_snap
+  time_first: 0
+  delta_time: 1e10
+Statistics:
+  time_first: 0
+  delta_time: 100
+Restarts:
+  enable: 0
+SPH:
+  resolution_eta: 1.2348
+  delta_neighbours: 0.1
+  CFL_condition: 0.2
+  h_max: 1.0
+  viscosity_alpha: 1.5
+Gravity:
+  eta: 0.025
+  MAC: adaptive
+  epsilon_fmm: 0.001
+  theta_cr: 0.5
+  max_physical_baryon_softening: $seps
+Scheduler:
+  max_top_level_cells: 16
+EoS:
+  planetary_use_Til_granite: 1
+YML
+  rm -f statistics.txt
+  w0=$(date +%s.%N)
+  "$swift/swift" --hydro --self-gravity --threads="$threads" swift.yml >run_swift.log 2>&1 ||
+    { tail -5 run_swift.log >&2; echo "energy.sh: SWIFT failed (log above)" >&2; exit 1; }
+  w1=$(date +%s.%N)
+  [ -n "$out" ] && { mkdir -p "$out"; cp statistics.txt "$out/stats_${N}_swift.txt"; cp run_swift.log "$out/run_${N}_swift.log"; }
+  steps=$(awk '$1 ~ /^[0-9]+$/ && NF >= 15 {s = $1} END {print s}' run_swift.log)
+  "$python" - "$N" "$steps" "$(awk -v a=$w0 -v b=$w1 'BEGIN {print b - a}')" statistics.txt <<'PY'
+import sys
+import numpy as np
+N, steps, wall, path = sys.argv[1:5]
+d = np.loadtxt(path, comments="#", ndmin=2)
+# SWIFT's columns: (1) time, (13) E_kin, (14) E_int, (15) E_pot, (24-26) angular momentum
+t, E = d[:, 1], d[:, 13] + d[:, 14] + d[:, 15]
+dE = np.abs(E - E[0]) / abs(d[0, 15])
+L = d[:, 24:27]
+dL = np.linalg.norm(L - L[0], axis=1) / np.linalg.norm(L[0])
+for tt in sorted({1000.0, 2000.0, 3000.0, 4000.0, float(t[-1])} | {5000.0 * q for q in range(1, int(t[-1] // 5000) + 1)}):
+    k = np.argmin(np.abs(t - tt))
+    if abs(t[k] - tt) > 60:
+        continue
+    print(f"{N:8s} {'swift':8s} {t[k]:8.0f} {dE[k]:14.3e} {dL[k]:12.3e} {'-':>10s} {steps:>8s} {float(wall):10.1f}")
+PY
 done
