@@ -19,13 +19,17 @@ struct budget_removed {
 
 /** Totals of the run's first statistics line. */
 struct budget_start {
-  double E_tot; /**< E_kin + E_int + E_pot */
-  double E_pot; /**< potential energy (0 without self-gravity) */
-  double E_abs; /**< |E_kin| + |E_int| + |E_pot| */
-  double p[3];  /**< momentum */
-  double L[3];  /**< angular momentum */
-  double p_abs; /**< sum of m |v|, the scale of momentum errors */
-  double set;   /**< 1 once measured */
+  double E_tot;  /**< E_kin + E_int + E_pot */
+  double E_pot;  /**< potential energy (0 without self-gravity) */
+  double E_abs;  /**< |E_kin| + |E_int| + |E_pot| */
+  double p[3];   /**< momentum */
+  double L[3];   /**< angular momentum */
+  double p_abs;  /**< sum of m |v|, the scale of momentum errors */
+  double set;    /**< 1 once measured */
+  double com[3]; /**< centre of mass: the fixed point of the angular-momentum budget, so that
+                      a momentum error does not show as one of angular momentum at the lever
+                      arm of the origin (theory/sph.md, "Conservation budget"; since restart
+                      format 7) */
 };
 
 #endif

@@ -1,4 +1,4 @@
-/* Restart files (see restart.h).  Layout of version 6:
+/* Restart files (see restart.h).  Layout of version 7:
  *
  *   header (RESTART_HEADER_BYTES = 128): magic "BOLIDE-RESTART\n\0" (16),
  *     uint32 version, uint32 byte-order mark 0x01020304, char build[48]

@@ -29,7 +29,7 @@
 #include "src/budget.h"
 #include "src/part.h"
 
-#define RESTART_VERSION 6
+#define RESTART_VERSION 7
 #define RESTART_HEADER_BYTES 128
 
 /** The engine's scalars saved with the particles (every member 8 bytes: no

@@ -34,7 +34,7 @@ def checksum(buf):
 
 
 def layout(buf):
-    """Offsets of the parts of a version-6 file (the far-field flag: the last
+    """Offsets of the parts of a version-7 file (the far-field flag: the last
     8 bytes before the checksum when the file holds no far field)."""
     count = struct.unpack_from("<Q", buf, 72)[0]
     nf = struct.unpack_from("<i", buf, 128)[0]
@@ -45,7 +45,7 @@ def layout(buf):
         fields.append((name, size))
         pos += 36
     state = pos
-    pos += 320
+    pos += 344
     plen = struct.unpack_from("<Q", buf, pos)[0]
     params = pos
     pos += 8 + plen
@@ -67,8 +67,8 @@ def reseal(buf):
 
 STATE = dict(time=0, dt=8, dt_next=16, step=24, updates=32, nr_removed=40, snap_index=48, next_out=56,
              next_stats=64, box=72, periodic=96, removed_m=104, start_E_tot=184, start_set=264,
-             rebuild_h_max=272, need_rebuild=280, stats_offset=288, ti_current=296, nr_ranks=304,
-             rank=312)
+             start_com=272, rebuild_h_max=296, need_rebuild=304, stats_offset=312, ti_current=320,
+             nr_ranks=328, rank=336)
 
 
 def main():
@@ -152,6 +152,7 @@ def main():
     corpus.append(("format version 2", setf(good, 16, "<I", 2)))
     corpus.append(("format version 3 (before the far field)", setf(good, 16, "<I", 3)))
     corpus.append(("format version 5 (before the ranks)", setf(good, 16, "<I", 5)))
+    corpus.append(("format version 6 (before the centre of mass)", setf(good, 16, "<I", 6)))
     corpus.append(("other byte order", setf(good, 20, "<I", 0x04030201)))
     corpus.append(("particle count 1e15", setf(good, 72, "<Q", 10 ** 15)))
     corpus.append(("parameter hash", setf(good, 80, "<Q", 12345)))
@@ -169,6 +170,7 @@ def main():
     corpus.append(("negative box", setf(good, st + STATE["box"], "<d", -2.0)))
     corpus.append(("periodic flag 7", setf(good, st + STATE["periodic"], "<q", 7)))
     corpus.append(("NaN budget", setf(good, st + STATE["removed_m"], "<d", nan)))
+    corpus.append(("NaN centre of mass", setf(good, st + STATE["start_com"], "<d", nan)))
     corpus.append(("rebuild h_max 0", setf(good, st + STATE["rebuild_h_max"], "<d", 0.0)))
     corpus.append(("rebuild flag 2", setf(good, st + STATE["need_rebuild"], "<q", 2)))
     corpus.append(("negative statistics offset", setf(good, st + STATE["stats_offset"], "<q", -3)))

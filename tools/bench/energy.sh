@@ -26,8 +26,15 @@
 #       length if shorter), with as many
 #       threads; its statistics every 100 s give the same columns (E_kin +
 #       E_int + E_pot against abs(E_pot(0)); L of its "comoving angular
-#       momentum", here the box frame's).  Build Bolide with
-#       --with-kernel=cubic-spline for the same kernel.
+#       momentum", here the box frame's).  SWIFT removes particles that
+#       leave the box without counting what they carried: its columns are
+#       the budget only until the first ones leave (about 4500 s at 2.2e4
+#       particles).  Build Bolide with --with-kernel=cubic-spline for the
+#       same kernel.
+# Columns: abs_dL/L about the box's origin (its corner), as the statistics
+# file has it; dL/L_com about the start's centre of mass (L - c x p, c
+# fixed), where a momentum error does not count again at the lever arm of
+# the corner (the end-of-run budget line prints both).
 # BOLIDE_RUN_FLAGS adds options to each run (-P SECTION:KEY:VALUE).
 set -euo pipefail
 # ENERGY_ETA: SPH:resolution_eta (default SWIFT's 1.2348 for the cubic spline;
@@ -53,12 +60,24 @@ work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
 printf "# %s on %s (%s), %s threads\n" "$("$build/bolide" --version | head -1)" "$(uname -n)" \
   "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')" "$threads"
-printf "%-8s %-8s %8s %14s %12s %10s %8s %10s\n" N mode t dE/abs_Epot0 abs_dL/L removed steps wall_s
+printf "%-8s %-8s %8s %14s %12s %12s %10s %8s %10s\n" N mode t dE/abs_Epot0 abs_dL/L dL/L_com removed steps wall_s
 for n in $sizes; do
   nt=$(awk -v n=$n 'BEGIN {printf "%d", n * 10 / 11}'); ni=$(awk -v n=$n 'BEGIN {printf "%d", n / 11}')
   "$python" "$gen" "$nt" "$ni" impact.hdf5 >ic.log
   soft=$(awk '/suggested softening/ {print $NF * 1e6}' ic.log)
   N=$(awk '/N_target=/ {sub(/.*N=/, ""); print}' ic.log)
+  # the IC's centre of mass [m]: the fixed point of the second angular-momentum column
+  com=$("$python" - impact.hdf5 <<'PY'
+import sys
+import h5py
+import numpy as np
+with h5py.File(sys.argv[1], "r") as f:
+    ul = float(f["Units"].attrs["Unit length in cgs (U_L)"]) / 100.0
+    x = f["PartType0/Coordinates"][...] * ul
+    m = f["PartType0/Masses"][...].astype(float)
+print(*(m @ x / m.sum()))
+PY
+)
   for m in $modes; do
     base=${m%-bins}; base=${base%-binsall}; base=${base%-rk2}; base=${base%-pc}
     gpu="--no-gpu"; [ "$base" = gpu ] && gpu=""
@@ -95,10 +114,11 @@ YML
     w1=$(date +%s.%N)
     [ -n "$out" ] && { mkdir -p "$out"; cp out_$m/statistics.txt "$out/stats_${N}_$m.txt"; cp run_$m.log "$out/run_${N}_$m.log"; }
     steps=$(awk '/^\[.*done:/ {print $5}' run_$m.log)
-    "$python" - "$N" "$m" "$steps" "$(awk -v a=$w0 -v b=$w1 'BEGIN {print b - a}')" out_$m/statistics.txt <<'PY'
+    "$python" - "$N" "$m" "$steps" "$(awk -v a=$w0 -v b=$w1 'BEGIN {print b - a}')" out_$m/statistics.txt $com <<'PY'
 import sys
 import numpy as np
 N, mode, steps, wall, path = sys.argv[1:6]
+com = np.array([float(v) for v in sys.argv[6:9]])
 names = None
 for line in open(path):
     if line.startswith("# step"):
@@ -109,11 +129,16 @@ Ep = abs(c["E_pot"][0])
 dE = np.abs(c["E_tot"] + c["E_removed"] - c["E_tot"][0]) / Ep
 L = np.stack([c[k] + c[k + "_removed"] for k in ("Lx", "Ly", "Lz")], 1)
 dL = np.linalg.norm(L - L[0], axis=1) / np.linalg.norm(L[0])
+# about the start's centre of mass (fixed): L - com x p, so that a momentum
+# error does not count again at the lever arm of the box's corner
+P = np.stack([c[k] + c[k + "_removed"] for k in ("px", "py", "pz")], 1)
+Lc = L - np.cross(com, P)
+dLc = np.linalg.norm(Lc - Lc[0], axis=1) / np.linalg.norm(Lc[0])
 for t in sorted({1000.0, 2000.0, 3000.0, 4000.0, float(c["time"][-1])} | {5000.0 * q for q in range(1, int(c["time"][-1] // 5000) + 1)}):
     k = np.argmin(np.abs(c["time"] - t))
     if abs(c["time"][k] - t) > 60:
         continue
-    print(f"{N:8s} {mode:8s} {c['time'][k]:8.0f} {dE[k]:14.3e} {dL[k]:12.3e} {int(c['n_removed'][k]):10d} "
+    print(f"{N:8s} {mode:8s} {c['time'][k]:8.0f} {dE[k]:14.3e} {dL[k]:12.3e} {dLc[k]:12.3e} {int(c['n_removed'][k]):10d} "
           f"{steps:>8s} {float(wall):10.1f}")
 PY
   done
@@ -178,10 +203,15 @@ t, E = d[:, 1], d[:, 13] + d[:, 14] + d[:, 15]
 dE = np.abs(E - E[0]) / abs(d[0, 15])
 L = d[:, 24:27]
 dL = np.linalg.norm(L - L[0], axis=1) / np.linalg.norm(L[0])
+# about the start's centre of mass, (18-20), with the momentum (21-23); SWIFT
+# counts no removed particles, so after the first ones leave the box its
+# columns lose what they carried
+Lc = L - np.cross(d[0, 18:21], d[:, 21:24])
+dLc = np.linalg.norm(Lc - Lc[0], axis=1) / np.linalg.norm(Lc[0])
 for tt in sorted({1000.0, 2000.0, 3000.0, 4000.0, float(t[-1])} | {5000.0 * q for q in range(1, int(t[-1] // 5000) + 1)}):
     k = np.argmin(np.abs(t - tt))
     if abs(t[k] - tt) > 60:
         continue
-    print(f"{N:8s} {'swift':8s} {t[k]:8.0f} {dE[k]:14.3e} {dL[k]:12.3e} {'-':>10s} {steps:>8s} {float(wall):10.1f}")
+    print(f"{N:8s} {'swift':8s} {t[k]:8.0f} {dE[k]:14.3e} {dL[k]:12.3e} {dLc[k]:12.3e} {'-':>10s} {steps:>8s} {float(wall):10.1f}")
 PY
 done
