@@ -325,11 +325,16 @@ static void engine_check_angular_momentum(struct engine *e, const struct engine_
   const double bound = params_get_real(e->params, "Statistics:max_angular_momentum_change");
   if (!(bound > 0.0)) return;
   const struct budget_start *b = &e->budget0;
+  /* about the start's centre of mass c, as the budget line: L - c x p */
+  const double *c = b->com;
   double dL2 = 0.0, L02 = 0.0;
   for (int k = 0; k < 3; k++) {
-    const double dL = t->L[k] + r->L[k] - b->L[k];
+    const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+    const double p1 = t->p[k1] + r->p[k1], p2 = t->p[k2] + r->p[k2];
+    const double L0 = b->L[k] - (c[k1] * b->p[k2] - c[k2] * b->p[k1]);
+    const double dL = t->L[k] + r->L[k] - (c[k1] * p2 - c[k2] * p1) - L0;
     dL2 += dL * dL;
-    L02 += b->L[k] * b->L[k];
+    L02 += L0 * L0;
   }
   if (!(L02 > 0.0)) return; /* nothing to compare with (a warning at the start) */
   const double rel = sqrt(dL2 / L02);
@@ -339,8 +344,8 @@ static void engine_check_angular_momentum(struct engine *e, const struct engine_
   engine_snapshot_to(e, path);
   error_exit_status(
       3,
-      "angular momentum check: |L - L(0)| / |L(0)| = %.3e at step %ld (t = %g) exceeds "
-      "Statistics:max_angular_momentum_change = %g; crash snapshot %s",
+      "angular momentum check: |L - L(0)| / |L(0)| = %.3e (about the start's centre of mass) at "
+      "step %ld (t = %g) exceeds Statistics:max_angular_momentum_change = %g; crash snapshot %s",
       rel, e->step, e->time, bound, path);
 }
 
@@ -353,8 +358,14 @@ static void engine_check_angular_momentum_start(struct engine *e) {
     params_error(e->params, "Statistics:max_angular_momentum_change",
                  "the angular-momentum check needs an open box (a periodic box does not conserve "
                  "angular momentum)");
-  const double *L = e->budget0.L;
-  if (!(L[0] * L[0] + L[1] * L[1] + L[2] * L[2] > 0.0))
+  const struct budget_start *b = &e->budget0;
+  double L02 = 0.0; /* about the start's centre of mass, as the check */
+  for (int k = 0; k < 3; k++) {
+    const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+    const double L0 = b->L[k] - (b->com[k1] * b->p[k2] - b->com[k2] * b->p[k1]);
+    L02 += L0 * L0;
+  }
+  if (!(L02 > 0.0))
     error_warning(
         "Statistics:max_angular_momentum_change: the angular momentum is 0 at the start; "
         "the check is off");
