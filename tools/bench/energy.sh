@@ -52,6 +52,8 @@ while getopts "n:m:t:T:o:S:" o; do
              o) out=$OPTARG ;; S) swift=$OPTARG ;; *) exit 2 ;; esac
 done
 if [ -n "$swift" ]; then
+  # shellcheck source=tools/bench/swift_params.sh
+  . "$top/tools/bench/swift_params.sh"
   swift=$(cd "$swift" && pwd)
   [ -x "$swift/swift" ] || { echo "energy.sh: error: no swift in $swift (-S)" >&2; exit 1; }
 fi
@@ -145,47 +147,7 @@ PY
   [ -n "$swift" ] || continue
   # SWIFT with its own time bins on the same IC (units of make_impact_ic.py: 1e24 kg, 1e6 m, 1 s)
   seps=$(awk -v e="$soft" 'BEGIN {printf "%.6g", e / 1e6}')
-  cat >swift.yml <<YML
-InternalUnitSystem:
-  UnitMass_in_cgs: 1e27
-  UnitLength_in_cgs: 1e8
-  UnitVelocity_in_cgs: 1e8
-  UnitCurrent_in_cgs: 1
-  UnitTemp_in_cgs: 1
-InitialConditions:
-  file_name: impact.hdf5
-  periodic: 0
-TimeIntegration:
-  time_begin: 0
-  time_end: $tend
-  dt_min: 1e-10
-  dt_max: $(awk -v t="$tend" 'BEGIN {print (t < 1000 ? t : 1000)}')
-Snapshots:
-  basename: swift_snap
-  time_first: 0
-  delta_time: 1e10
-Statistics:
-  time_first: 0
-  delta_time: 100
-Restarts:
-  enable: 0
-SPH:
-  resolution_eta: 1.2348
-  delta_neighbours: 0.1
-  CFL_condition: 0.2
-  h_max: 1.0
-  viscosity_alpha: 1.5
-Gravity:
-  eta: 0.025
-  MAC: adaptive
-  epsilon_fmm: 0.001
-  theta_cr: 0.5
-  max_physical_baryon_softening: $seps
-Scheduler:
-  max_top_level_cells: 16
-EoS:
-  planetary_use_Til_granite: 1
-YML
+  swift_params impact.hdf5 "$tend" "$(awk -v t="$tend" 'BEGIN {print (t < 1000 ? t : 1000)}')" 100 "$seps" 16 1.0 >swift.yml
   rm -f statistics.txt
   w0=$(date +%s.%N)
   "$swift/swift" --hydro --self-gravity --threads="$threads" swift.yml >run_swift.log 2>&1 ||

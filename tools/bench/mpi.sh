@@ -58,53 +58,8 @@ ic() { # ic N FILE
 swift_eps() { # [m]
   awk -v n="$n" 'BEGIN {printf "%.6g", 3.4729e4 * (1e5 / (n * 10 / 11)) ^ (1 / 3)}'
 }
-swift_params() {
-  local eps
-  eps=$(awk -v e="$(swift_eps)" 'BEGIN {printf "%.6g", e / 1e6}')
-  cat <<YML
-InternalUnitSystem:
-  UnitMass_in_cgs: 1e27
-  UnitLength_in_cgs: 1e8
-  UnitVelocity_in_cgs: 1e8
-  UnitCurrent_in_cgs: 1
-  UnitTemp_in_cgs: 1
-InitialConditions:
-  file_name: $1
-  periodic: 0
-TimeIntegration:
-  time_begin: 0
-  time_end: 1e5
-  dt_min: 1e-6
-  dt_max: 1
-Snapshots:
-  basename: swift_out
-  time_first: 0
-  delta_time: 1e10
-Statistics:
-  time_first: 0
-  delta_time: 1e10
-Restarts:
-  enable: 0
-SPH:
-  resolution_eta: 1.2348
-  delta_neighbours: 0.1
-  CFL_condition: 0.2
-  viscosity_alpha: 1.5
-Gravity:
-  eta: 0.025
-  MAC: adaptive
-  epsilon_fmm: 0.001
-  theta_cr: 0.5
-  comoving_DM_softening: $eps
-  max_physical_DM_softening: $eps
-  comoving_baryon_softening: $eps
-  max_physical_baryon_softening: $eps
-Scheduler:
-  max_top_level_cells: $cells
-EoS:
-  planetary_use_Til_granite: 1
-YML
-}
+# shellcheck source=tools/bench/swift_params.sh
+. "$top/tools/bench/swift_params.sh"
 printf "# %s on %s (%s, %s cores), %s, %s, median of %d rounds of %d steps, every particle active\n" \
   "checkout $(git -C "$top" rev-parse --short HEAD), build $("$build/bolide" --version 2>/dev/null |
     sed -n 's/.*(git \([^)]*\)).*/\1/p;q') (the git version configure recorded)" "$(uname -n)" \
@@ -139,7 +94,7 @@ YML
     awk -v l="$l" '$1 ~ /^[0-9]+$/ && NF == 6 && $1 > 1 {s += $5; c++} END {printf "%s %.6f\n", l, s / c}' \
       run.log >>times
     [ -n "$swift" ] || continue
-    swift_params "impact_$N.hdf5" >swift.yml
+    swift_params "impact_$N.hdf5" 1e5 1 1e10 "$(awk -v e="$(swift_eps)" 'BEGIN {printf "%.6g", e / 1e6}')" "$cells" >swift.yml
     # (SWIFT's step 0 is its initial force computation; -n S runs steps 1 .. S + 1)
     mpirun --bind-to none -n "$R" "$swift/swift_mpi" --hydro $([ $gravity = true ] && echo --self-gravity) \
       --threads="$T" -n "$steps" swift.yml >swift.log 2>&1 ||
