@@ -313,6 +313,27 @@ static void engine_budget_start(struct engine *e, const struct engine_totals *t)
   b->set = 1.0;
 }
 
+/** The change of the angular momentum since the start about the start's
+ *  centre of mass c (a fixed point), relative to its value then: L_c =
+ *  L - c x p with L and p the totals now (the removed particles' added),
+ *  so that a momentum error does not count again as one of angular
+ *  momentum at the origin's lever arm (the bodies of an impact sit at the
+ *  box's centre, ten and more of their radii from its corner).  Returns
+ *  |L_c - L_c(0)| / |L_c(0)|, or -1 where L_c(0) is 0. */
+static double engine_dL_about_com(const struct budget_start *b, const double L[3],
+                                  const double p[3]) {
+  const double *c = b->com;
+  double dL2 = 0.0, L02 = 0.0;
+  for (int k = 0; k < 3; k++) {
+    const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+    const double L0 = b->L[k] - (c[k1] * b->p[k2] - c[k2] * b->p[k1]);
+    const double dL = L[k] - (c[k1] * p[k2] - c[k2] * p[k1]) - L0;
+    dL2 += dL * dL;
+    L02 += L0 * L0;
+  }
+  return L02 > 0.0 ? sqrt(dL2 / L02) : -1.0;
+}
+
 /** The angular-momentum check (Statistics:max_angular_momentum_change,
  *  issue 24 item 5, for runs moved over from miluphcuda): with the budget's
  *  L(0) and the angular momentum the particles that left an open box took
@@ -324,20 +345,10 @@ static void engine_check_angular_momentum(struct engine *e, const struct engine_
                                           const struct budget_removed *r) {
   const double bound = params_get_real(e->params, "Statistics:max_angular_momentum_change");
   if (!(bound > 0.0)) return;
-  const struct budget_start *b = &e->budget0;
-  /* about the start's centre of mass c, as the budget line: L - c x p */
-  const double *c = b->com;
-  double dL2 = 0.0, L02 = 0.0;
-  for (int k = 0; k < 3; k++) {
-    const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
-    const double p1 = t->p[k1] + r->p[k1], p2 = t->p[k2] + r->p[k2];
-    const double L0 = b->L[k] - (c[k1] * b->p[k2] - c[k2] * b->p[k1]);
-    const double dL = t->L[k] + r->L[k] - (c[k1] * p2 - c[k2] * p1) - L0;
-    dL2 += dL * dL;
-    L02 += L0 * L0;
-  }
-  if (!(L02 > 0.0)) return; /* nothing to compare with (a warning at the start) */
-  const double rel = sqrt(dL2 / L02);
+  const double L[3] = {t->L[0] + r->L[0], t->L[1] + r->L[1], t->L[2] + r->L[2]};
+  const double p[3] = {t->p[0] + r->p[0], t->p[1] + r->p[1], t->p[2] + r->p[2]};
+  /* (as the budget line; < 0: nothing to compare with, a warning at the start) */
+  const double rel = engine_dL_about_com(&e->budget0, L, p);
   if (!(rel > bound)) return;
   char path[2100];
   snprintf(path, sizeof path, "%s/crash_step%06ld.hdf5", e->outdir, e->step);
@@ -359,13 +370,7 @@ static void engine_check_angular_momentum_start(struct engine *e) {
                  "the angular-momentum check needs an open box (a periodic box does not conserve "
                  "angular momentum)");
   const struct budget_start *b = &e->budget0;
-  double L02 = 0.0; /* about the start's centre of mass, as the check */
-  for (int k = 0; k < 3; k++) {
-    const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
-    const double L0 = b->L[k] - (b->com[k1] * b->p[k2] - b->com[k2] * b->p[k1]);
-    L02 += L0 * L0;
-  }
-  if (!(L02 > 0.0))
+  if (engine_dL_about_com(b, b->L, b->p) < 0.0) /* (about the start's centre of mass) */
     error_warning(
         "Statistics:max_angular_momentum_change: the angular momentum is 0 at the start; "
         "the check is off");
@@ -441,30 +446,15 @@ void engine_budget_summary(struct engine *e) {
   /* the scale of energy errors: |E_pot(0)| with self-gravity (as SWIFT's
    * planetary runs report it), else the sum of the magnitudes of the parts */
   const double Escale = fabs(b->E_pot) > 0.0 ? fabs(b->E_pot) : b->E_abs;
-  double dp2 = 0.0, dL2 = 0.0, L02 = 0.0, dp[3], dL[3];
+  double dp2 = 0.0, dL2 = 0.0, L02 = 0.0, L[3], p[3];
   for (int k = 0; k < 3; k++) {
-    dp[k] = t.p[k] + r->p[k] - b->p[k];
-    dL[k] = t.L[k] + r->L[k] - b->L[k];
-    dp2 += dp[k] * dp[k];
-    dL2 += dL[k] * dL[k];
+    L[k] = t.L[k] + r->L[k];
+    p[k] = t.p[k] + r->p[k];
+    dp2 += (p[k] - b->p[k]) * (p[k] - b->p[k]);
+    dL2 += (L[k] - b->L[k]) * (L[k] - b->L[k]);
     L02 += b->L[k] * b->L[k];
   }
-  /* about the centre of mass of the start, c (a fixed point): L_c = L - c x p,
-   * so dL_c = dL - c x dp; a momentum error then does not count again as one of
-   * angular momentum at the origin's lever arm (the bodies of an impact sit at
-   * the box's centre, ten and more of their radii from its corner) */
-  const double *c = b->com;
-  const double Lc0[3] = {b->L[0] - (c[1] * b->p[2] - c[2] * b->p[1]),
-                         b->L[1] - (c[2] * b->p[0] - c[0] * b->p[2]),
-                         b->L[2] - (c[0] * b->p[1] - c[1] * b->p[0])};
-  const double dLc[3] = {dL[0] - (c[1] * dp[2] - c[2] * dp[1]),
-                         dL[1] - (c[2] * dp[0] - c[0] * dp[2]),
-                         dL[2] - (c[0] * dp[1] - c[1] * dp[0])};
-  double dLc2 = 0.0, Lc02 = 0.0;
-  for (int k = 0; k < 3; k++) {
-    dLc2 += dLc[k] * dLc[k];
-    Lc02 += Lc0[k] * Lc0[k];
-  }
+  const double dLc = engine_dL_about_com(b, L, p);
   error_log(
       0,
       "conservation budget against the start: dE / |%s| = %.3e (E_tot %+.6e -> %+.6e; removed "
@@ -474,7 +464,7 @@ void engine_budget_summary(struct engine *e) {
   error_log(0,
             "conservation budget against the start: |dL| / |L(0)| = %.3e about the centre of mass "
             "of the start (%.3e about the origin), |dp| / sum m|v|(0) = %.3e",
-            Lc02 > 0.0 ? sqrt(dLc2 / Lc02) : 0.0, L02 > 0.0 ? sqrt(dL2 / L02) : 0.0,
+            dLc > 0.0 ? dLc : 0.0, L02 > 0.0 ? sqrt(dL2 / L02) : 0.0,
             b->p_abs > 0.0 ? sqrt(dp2) / b->p_abs : 0.0);
 }
 
