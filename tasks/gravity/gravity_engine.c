@@ -66,9 +66,13 @@ int gravity_estimate_first(struct engine *e) {
    * (pinned, the 16 threads of a GPU host's run shared one core, and the
    * estimate took 15 s at 1.1e6 particles and more than 290 s at 1.1e7) */
   if (e->nr_threads > 1) runner_unpin_self(&e->sched.pool);
+  const double w0 = error_walltime();
   const int done = gravity_estimate(&e->parts, e->space.cells, e->space.nr_top, e->grav->cells,
                                     &e->gp, e->nr_threads);
   if (e->nr_threads > 1) runner_repin_self(&e->sched.pool);
+  if (done)
+    error_log(1, "gravity: the first evaluation's scale of |a| estimated on the host in %.3f s",
+              error_walltime() - w0);
   return done;
 }
 
