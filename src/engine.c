@@ -1413,7 +1413,11 @@ static int engine_step_kdk(struct engine *e) {
                     : rebuild || engine_should_rebuild(e);
   if (rebuild) {
     atomic_store((_Atomic int *)&e->need_rebuild, 0);
+    /* a particle that leaves the box takes its state of now (space.c) */
+    e->space.clock =
+        (struct space_clock){1, e->dt, e->individual ? &e->timeline : NULL, e->ti_current};
     engine_rebuild(e);
+    e->space.clock.set = 0;
     rebuilt = 1;
     if (e->individual) engine_count_active_cells(e);
   }

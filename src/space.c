@@ -76,13 +76,39 @@ static int space_new_cell(struct space *s) {
 /** Add what particle i takes with it out of the box to the budget r: its
  *  kinetic and internal energy, its potential energy m phi (both halves of
  *  its pair terms leave with it), momentum, angular momentum, and what the
- *  kick's floor and the plastic returns had counted on it. */
-static void space_count_removed(struct budget_removed *r, const struct parts *p, size_t i) {
+ *  kick's floor and the plastic returns had counted on it.
+ *
+ *  A rebuild of the kick-drift-kick step (c->set) comes after the drift:
+ *  the particle's velocity is that of its step's middle, its potential
+ *  that of its last evaluation, c->since_eval ago (the global step's dt;
+ *  with time bins the time since its step began).  The energy it takes is
+ *  that of now, as the statistics count it (engine_sync_view): the
+ *  predicted velocity and energy of the drift (vp = v + a (t - t_mid),
+ *  up), and the potential moved with it, phi - g . v since_eval (first
+ *  order; the others' motion adds m sum_j g_j . v_j, nothing in the centre
+ *  of mass's frame).  Its momentum and angular momentum stay those of the
+ *  middle: the half kick it missed is the one its pairs would have given
+ *  the others, so that the momentum of the particles left and the one it
+ *  took add up as before (theory/sph.md, "Conservation budget"). */
+static void space_count_removed(struct budget_removed *r, const struct parts *p, size_t i,
+                                const struct space_clock *c) {
   const double m = p->m[i];
   const double x = p->x[i], y = p->y[i], z = p->z[i];
   const double vx = p->vx[i], vy = p->vy[i], vz = p->vz[i];
+  double e = 0.5 * (vx * vx + vy * vy + vz * vz) + p->u[i] + p->pot[i];
+  if (c->set) {
+    double since = c->since_eval;
+    if (c->tl) {
+      const integertime_t step = timeline_step_of_bin(p->time_bin[i]);
+      const integertime_t ti0 = c->ti > 0 ? (c->ti - 1) / step * step : 0;
+      since = timeline_time(c->tl, c->ti) - timeline_time(c->tl, ti0);
+    }
+    const double wx = p->vpx[i], wy = p->vpy[i], wz = p->vpz[i];
+    e = 0.5 * (wx * wx + wy * wy + wz * wz) + p->up[i] + p->pot[i] -
+        since * (p->gax[i] * vx + p->gay[i] * vy + p->gaz[i] * vz);
+  }
   r->m += m;
-  r->E += m * (0.5 * (vx * vx + vy * vy + vz * vz) + p->u[i] + p->pot[i]);
+  r->E += m * e;
   r->p[0] += m * vx;
   r->p[1] += m * vy;
   r->p[2] += m * vz;
@@ -236,7 +262,7 @@ static size_t space_wrap_or_remove(struct space *s) {
       continue;
     }
     removed++;
-    space_count_removed(&s->removed, p, i);
+    space_count_removed(&s->removed, p, i, &s->clock);
     error_log(removed <= SPACE_LOG_REMOVED ? 0 : 1,
               "space: removed particle id %lld at (%g, %g, %g), outside the open box",
               (long long)p->id[i], p->x[i], p->y[i], p->z[i]);

@@ -22,12 +22,23 @@
 
 #include "src/budget.h"
 #include "src/cell.h"
+#include "src/timeline.h"
 
 struct parts;
 
 /** Default deepest octree level below a top-level cell (a leaf may hold more
  *  than split_size particles only if they are this close together). */
 #define SPACE_MAX_DEPTH 30
+
+/** When a rebuild of the kick-drift-kick step removes particles: how long
+ *  ago each was last evaluated, so that what it takes with it is its state
+ *  of now (space.c, space_count_removed). */
+struct space_clock {
+  int set;           /**< 0: count the particles' fields as they are */
+  double since_eval; /**< the global step: its dt (every particle was evaluated at its start) */
+  const struct timeline *tl; /**< time bins: the run's time line (NULL: the global step) */
+  integertime_t ti;          /**< time bins: now on it */
+};
 
 /** The box, its cells and the particles they index. */
 struct space {
@@ -52,6 +63,7 @@ struct space {
   double h_max;              /**< largest smoothing length at the last rebuild */
   size_t nr_removed;         /**< particles removed from an open box since space_init */
   struct budget_removed removed; /**< what they took with them (the engine sets it on restart) */
+  struct space_clock clock;      /**< for them, set by the step around its rebuilds */
   int nr_rebuilds;               /**< number of calls of space_rebuild */
   int nr_timed;                  /**< calls of space_rebuild after the first (t_parts) */
   double t_parts[4];             /**< their wall seconds: sort by top-level cell, octrees, reorder,

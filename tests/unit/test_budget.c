@@ -8,7 +8,11 @@
  *    and counts the energy it adds in e_clamp; other particles keep an
  *    undershoot below 0;
  *  - the kick's radial return brings a stress outside the yield surface
- *    back onto it and counts the plastic work Y d eps_p / rho. */
+ *    back onto it and counts the plastic work Y d eps_p / rho;
+ *  - a particle leaving the open box at a rebuild of the kick-drift-kick
+ *    step takes the energy of its state of now (the drift's predicted
+ *    velocity and energy, the potential moved with it since its last
+ *    evaluation) and the momentum of its step's middle (space.c). */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -16,6 +20,8 @@
 #include "tasks/kick/kick.h"
 #include "src/materials/material.h"
 #include "src/part.h"
+#include "src/space.h"
+#include "src/timeline.h"
 
 #include "tests/helpers/check.h"
 
@@ -117,8 +123,71 @@ static void test_kick_return(void) {
   parts_free(&p);
 }
 
+/** One particle inside a unit box, one outside it (m 2, v (100, 0, 0)
+ *  at its step's middle, vp (110, 0, 0) and up 6 predicted, u 5, pot -50,
+ *  g (-1, 0.5, 0)): what the rebuild removes, with the clock c. */
+static struct budget_removed removed_with(const struct space_clock *c, int bin) {
+  const double L[3] = {1.0, 1.0, 1.0};
+  struct parts p;
+  parts_alloc(&p, 2);
+  for (size_t i = 0; i < 2; i++) {
+    p.x[i] = i ? 1.5 : 0.5;
+    p.y[i] = p.z[i] = 0.5;
+    p.h[i] = 0.1;
+    p.m[i] = 2.0;
+    p.id[i] = (int64_t)i + 1;
+    p.vx[i] = 100.0;
+    p.vpx[i] = 110.0;
+    p.u[i] = 5.0;
+    p.up[i] = 6.0;
+    p.pot[i] = -50.0;
+    p.gax[i] = -1.0;
+    p.gay[i] = 0.5;
+    p.time_bin[i] = bin;
+  }
+  struct space s;
+  space_init(&s, &p, L, 0, 8, 4);
+  s.clock = *c;
+  CHECK(space_rebuild(&s) == 1, "one particle outside the box removed");
+  const struct budget_removed r = s.removed;
+  space_free(&s);
+  parts_free(&p);
+  return r;
+}
+
+static void test_removed_now(void) {
+  /* not in a step (the first rebuild, rk2, pc): the fields as they are */
+  const struct space_clock none = {0, 0.0, NULL, 0};
+  struct budget_removed r = removed_with(&none, 0);
+  double E = 2.0 * (0.5 * 100.0 * 100.0 + 5.0 - 50.0);
+  CHECK(fabs(r.E - E) <= 1e-12 * fabs(E), "E removed outside a step %.17g (%.17g)", r.E, E);
+  /* the global step, dt 4 ago: 1/2 vp^2 + up + pot - dt g . v */
+  const struct space_clock glob = {1, 4.0, NULL, 0};
+  r = removed_with(&glob, 0);
+  E = 2.0 * (0.5 * 110.0 * 110.0 + 6.0 - 50.0 + 4.0 * 100.0);
+  CHECK(fabs(r.E - E) <= 1e-12 * fabs(E), "E removed in the global step %.17g (%.17g)", r.E, E);
+  CHECK(r.p[0] == 200.0 && r.p[1] == 0.0 && r.p[2] == 0.0,
+        "momentum removed (%g, %g, %g): that of the step's middle (200, 0, 0)", r.p[0], r.p[1],
+        r.p[2]);
+  /* time bins: bin 3 (8 ticks), now tick 13: its step began at tick 8 */
+  const struct timeline tl = timeline_make(0.0, 1.0, 1.0);
+  const struct space_clock bins = {1, 99.0, &tl, 13};
+  r = removed_with(&bins, 3);
+  const double since = timeline_time(&tl, 13) - timeline_time(&tl, 8);
+  E = 2.0 * (0.5 * 110.0 * 110.0 + 6.0 - 50.0 + since * 100.0);
+  CHECK(since > 0.0 && fabs(r.E - E) <= 1e-12 * fabs(E),
+        "E removed in bins %.17g (%.17g, %g since its step began)", r.E, E, since);
+  /* at the end of its step (tick 16): the whole step, 8 ticks */
+  const struct space_clock end = {1, 99.0, &tl, 16};
+  r = removed_with(&end, 3);
+  const double step = timeline_time(&tl, 16) - timeline_time(&tl, 8);
+  E = 2.0 * (0.5 * 110.0 * 110.0 + 6.0 - 50.0 + step * 100.0);
+  CHECK(fabs(r.E - E) <= 1e-12 * fabs(E), "E removed at the end of its step %.17g (%.17g)", r.E, E);
+}
+
 int main(void) {
   test_pressure_floor();
+  test_removed_now();
   test_u_floor();
   test_kick_return();
   printf("test_budget: %d checks, %d failed\n", checks, failures);
