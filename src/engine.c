@@ -1010,6 +1010,11 @@ void engine_rebuild(struct engine *e) {
     if (halo_rebuild(e) && ranks_rank() != 0) removed = 0; /* (rank 0 counts the first's) */
   }
   e->nr_removed += (long long)removed;
+  if (e->gp.enabled && e->space.nr_gone > 1)
+    /* the m pot of the particles removed together counted each of their
+     * pairs twice, the potential energy lost once (theory/sph.md section 9) */
+    e->space.removed.E -= gravity_pairs_energy(e->space.gone, e->space.nr_gone, &e->gp);
+  e->space.nr_gone = 0;
   const double w2 = error_walltime();
   engine_make_graph(e);
   runner_repin_self(&e->sched.pool);

@@ -48,6 +48,9 @@ void space_free(struct space *s) {
   free(s->cells);
   free(s->progeny_index);
   free(s->sort_index);
+  free(s->gone);
+  s->gone = NULL;
+  s->nr_gone = s->gone_cap = 0;
   s->cells = NULL;
   s->progeny_index = NULL;
   s->sort_index = NULL;
@@ -236,6 +239,7 @@ static size_t space_wrap_or_remove(struct space *s) {
   double *xs[3] = {p->x, p->y, p->z};
   size_t removed = 0;
   size_t i = 0;
+  s->nr_gone = 0;
   while (i < p->count) {
     if (!isfinite(p->x[i]) || !isfinite(p->y[i]) || !isfinite(p->z[i]))
       error_exit("space: particle id %lld has a non-finite position (%g, %g, %g)",
@@ -263,6 +267,16 @@ static size_t space_wrap_or_remove(struct space *s) {
     }
     removed++;
     space_count_removed(&s->removed, p, i, &s->clock);
+    if (s->nr_gone == s->gone_cap) {
+      s->gone_cap = 2 * s->gone_cap + 16;
+      s->gone = error_realloc(s->gone, 5 * s->gone_cap * sizeof(double), "removed particles");
+    }
+    double *g = s->gone + 5 * s->nr_gone++;
+    g[0] = p->x[i];
+    g[1] = p->y[i];
+    g[2] = p->z[i];
+    g[3] = p->m[i];
+    g[4] = p->h[i];
     error_log(removed <= SPACE_LOG_REMOVED ? 0 : 1,
               "space: removed particle id %lld at (%g, %g, %g), outside the open box",
               (long long)p->id[i], p->x[i], p->y[i], p->z[i]);

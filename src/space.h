@@ -64,6 +64,10 @@ struct space {
   size_t nr_removed;         /**< particles removed from an open box since space_init */
   struct budget_removed removed; /**< what they took with them (the engine sets it on restart) */
   struct space_clock clock;      /**< for them, set by the step around its rebuilds */
+  double *gone;                  /**< the particles the last rebuild removed: x, y, z, m, h each
+                                      (for the potential energy of their pairs, which their
+                                      m pot counts twice; engine.c) */
+  size_t nr_gone, gone_cap;      /**< their number and the room for them */
   int nr_rebuilds;               /**< number of calls of space_rebuild */
   int nr_timed;                  /**< calls of space_rebuild after the first (t_parts) */
   double t_parts[4];             /**< their wall seconds: sort by top-level cell, octrees, reorder,

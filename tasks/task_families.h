@@ -205,6 +205,10 @@
  *    gravity_top_pair_is_near  whether two top-level cells get a pair task
  *                              (tasks/gravity/gravity_cpu.c)
  *    gravity_potential_energy  1/2 sum_i m_i pot_i (the statistics)
+ *    gravity_pairs_energy      the potential energy of the pairs among n
+ *                              particles (x, y, z, m, h each), directly:
+ *                              particles removed at one rebuild, whose
+ *                              m pot counts each of their pairs twice
  *    gravity_log_end           the run's closing line on the far-field reuse
  *    gravity_top_record_*, gravity_top_records_use, gravity_top_needed,
  *    gravity_remote_misses     several MPI ranks (src/mpi/halo.c): a
@@ -252,6 +256,8 @@
   X(gravity, int,  gravity_top_pair_is_near,                                                 \
     (const struct cell *ci, const struct cell *cj, const struct gravity_props *gp))          \
   X(gravity, double, gravity_potential_energy, (const struct parts *p))                      \
+  X(gravity, double, gravity_pairs_energy,                                                   \
+    (const double *xmh, size_t n, const struct gravity_props *gp))                           \
   X(gravity, void, gravity_log_end, (const struct engine *e))                                \
   X(gravity, int,  gravity_top_record_doubles, (void))                                       \
   X(gravity, void, gravity_top_record_pack, (const struct engine *e, int c, double *out))    \

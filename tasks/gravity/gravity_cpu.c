@@ -957,6 +957,25 @@ static void direct_threads(struct parts *p, double G, double eps, int softening,
   for (int t = 0; t < nthreads; t++) pthread_join(tid[t], NULL);
 }
 
+double gravity_pairs_energy(const double *xmh, size_t n, const struct gravity_props *gp) {
+  double e = 0.0;
+  for (size_t i = 0; i < n; i++) {
+    const double *a = xmh + 5 * i;
+    double s = 0.0;
+    for (size_t k = i + 1; k < n; k++) {
+      const double *b = xmh + 5 * k;
+      const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+      double wpot, wacc;
+      gravity_softened_kernel(dx * dx + dy * dy + dz * dz,
+                              gravity_pair_softening(gp->eps, gp->h_factor, a[4], b[4]),
+                              gp->softening, &wpot, &wacc);
+      s += b[3] * wpot;
+    }
+    e -= gp->G * a[3] * s;
+  }
+  return e;
+}
+
 double gravity_potential_energy(const struct parts *p) {
   double e = 0.0;
   for (size_t i = 0; i < p->count; i++)

@@ -22,6 +22,8 @@
 #include "src/part.h"
 #include "src/space.h"
 #include "src/timeline.h"
+#include "tasks/gravity/gravity_cpu.h"
+#include "tasks/task_families.h"
 
 #include "tests/helpers/check.h"
 
@@ -185,8 +187,44 @@ static void test_removed_now(void) {
   CHECK(fabs(r.E - E) <= 1e-12 * fabs(E), "E removed at the end of its step %.17g (%.17g)", r.E, E);
 }
 
+/** Particles removed together: the space keeps them (x, y, z, m, h) for
+ *  the potential energy of their pairs, which their m pot counts twice
+ *  (engine.c subtracts it once): two outside a unit box, 3 apart, m 2 and
+ *  5, one inside. */
+static void test_removed_pairs(void) {
+  const double L[3] = {1.0, 1.0, 1.0};
+  struct parts p;
+  parts_alloc(&p, 3);
+  const double x[3] = {0.5, 2.0, 5.0}, m[3] = {1.0, 2.0, 5.0};
+  for (size_t i = 0; i < 3; i++) {
+    p.x[i] = x[i];
+    p.y[i] = p.z[i] = 0.5;
+    p.h[i] = 0.1;
+    p.m[i] = m[i];
+    p.id[i] = (int64_t)i + 1;
+  }
+  struct space s;
+  space_init(&s, &p, L, 0, 8, 4);
+  CHECK(space_rebuild(&s) == 2, "two particles removed");
+  CHECK(s.nr_gone == 2, "the space kept %zu removed particles (2)", s.nr_gone);
+  double xs = 0.0, ms = 0.0;
+  for (size_t k = 0; k < s.nr_gone; k++) {
+    xs += s.gone[5 * k];
+    ms += s.gone[5 * k + 3];
+  }
+  CHECK(xs == 7.0 && ms == 7.0, "kept x %g (7), m %g (7)", xs, ms);
+  struct gravity_props gp;
+  gravity_props_set(&gp, 1.0, 0.5, 0.1, GRAVITY_SOFTENING_SPLINE, 3);
+  const double U = gravity_pairs_energy(s.gone, s.nr_gone, &gp);
+  CHECK(fabs(U + 2.0 * 5.0 / 3.0) <= 1e-14, "their pair's energy %.17g (-G m1 m2 / r = %.17g)", U,
+        -10.0 / 3.0);
+  space_free(&s);
+  parts_free(&p);
+}
+
 int main(void) {
   test_pressure_floor();
+  test_removed_pairs();
   test_removed_now();
   test_u_floor();
   test_kick_return();
