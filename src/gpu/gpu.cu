@@ -78,25 +78,26 @@ struct gpu {
   char name[512];         /**< description for the log */
   size_t mem_base;        /**< device memory in use when the context was made (not the run's) */
   cudaStream_t stream[2]; /**< 0: fields and kernels; 1: cell data */
-  cudaEvent_t ev[GPU_T_N + 1];       /**< stage boundaries of the last phase */
-  cudaEvent_t cells_ready;           /**< stream 1 finished its upload */
-  cudaEvent_t ev_drift[2];           /**< around the last drift */
-  double t_drift;                    /**< accumulated milliseconds of drifts (with the copy back) */
-  long drifts;                       /**< drifts run */
-  struct parts dev;                  /**< device arrays of every particle field */
-  size_t capacity;                   /**< their length */
-  int in[PART_NR_FIELDS];            /**< indices in part_fields of the fields a phase reads */
-  int out[PART_NR_FIELDS];           /**< of those it writes */
-  int order[GPU_NR_STEPS];           /**< the families with a step, by place (gpu_init) */
-  double *flaws_dev;                 /**< Weibull flaw thresholds (gpu_set_flaws) */
-  size_t flaws_n, flaws_cap;         /**< their number and allocated length */
-  void *cell_dev, *cell_host;        /**< device buffer and pinned staging of the leaf data */
-  double *leaf_dt;                   /**< smallest time step of each leaf (in cell_dev) */
-  size_t cell_bytes;                 /**< their size */
-  int *counters_dev, *counters_host; /**< h-iteration counters (host side pinned) */
-  struct material_table *mats_dev;   /**< the material table on the device */
-  struct material_table *mats_host;  /**< pinned staging of it */
-  double *table_dev[MATERIAL_MAX];   /**< device copies of tabulated EOS nodes (P, c2, T) */
+  cudaEvent_t ev[GPU_T_N + 1]; /**< stage boundaries of the last phase */
+  cudaEvent_t cells_ready;     /**< stream 1 finished its upload */
+  cudaEvent_t ev_drift[2];     /**< around the last drift */
+  double t_drift;              /**< accumulated milliseconds of drifts (with the copy back) */
+  long drifts;                 /**< drifts run */
+  struct parts dev;            /**< device arrays of the particle fields (NULL: absent) */
+  unsigned char absent[PART_NR_FIELDS]; /**< fields the run never uses: not on the device */
+  size_t capacity;                      /**< their length */
+  int in[PART_NR_FIELDS];               /**< indices in part_fields of the fields a phase reads */
+  int out[PART_NR_FIELDS];              /**< of those it writes */
+  int order[GPU_NR_STEPS];              /**< the families with a step, by place (gpu_init) */
+  double *flaws_dev;                    /**< Weibull flaw thresholds (gpu_set_flaws) */
+  size_t flaws_n, flaws_cap;            /**< their number and allocated length */
+  void *cell_dev, *cell_host;           /**< device buffer and pinned staging of the leaf data */
+  double *leaf_dt;                      /**< smallest time step of each leaf (in cell_dev) */
+  size_t cell_bytes;                    /**< their size */
+  int *counters_dev, *counters_host;    /**< h-iteration counters (host side pinned) */
+  struct material_table *mats_dev;      /**< the material table on the device */
+  struct material_table *mats_host;     /**< pinned staging of it */
+  double *table_dev[MATERIAL_MAX];      /**< device copies of tabulated EOS nodes (P, c2, T) */
   struct eos_table table_src[MATERIAL_MAX]; /**< the host tables they mirror */
   double t[GPU_T_N];                        /**< accumulated milliseconds per stage */
   long calls;                               /**< FORCE phases run */
@@ -276,6 +277,17 @@ extern "C" struct gpu *gpu_init(char *why, size_t len) {
   return g;
 }
 
+extern "C" int gpu_set_absent(struct gpu *g, const char *const *names, int n) {
+  if (g->capacity > 0) error_bug("gpu_set_absent after the particle arrays were made");
+  int bytes = 0;
+  for (int k = 0; k < n; k++) {
+    const int f = gpu_field_index(names[k]);
+    if (!g->absent[f]) bytes += (int)part_fields[f].size;
+    g->absent[f] = 1;
+  }
+  return bytes;
+}
+
 extern "C" const char *gpu_name(const struct gpu *g) {
   return g->name;
 }
@@ -291,6 +303,8 @@ static void gpu_reserve(struct gpu *g, size_t n) {
   for (int k = 0; k < part_nr_fields; k++) {
     void **slot = gpu_field_slot(&g->dev, k);
     if (*slot) gpu_dfree(*slot);
+    *slot = NULL;
+    if (g->absent[k]) continue;
     char what[128];
     snprintf(what, sizeof what, "particle fields (%s, %zu particles)", part_fields[k].name, cap);
     *slot = gpu_alloc(cap * part_fields[k].size, what);
@@ -369,6 +383,7 @@ static void gpu_copy_fields(struct gpu *g, struct parts *p, const int *idx, int 
   for (int k = 0; k < n; k++) {
     const int f = idx[k];
     void *hp = *gpu_field_slot(p, f), *dp = *gpu_field_slot(&g->dev, f);
+    if (!dp) continue; /* (absent: the host's copy is the only one) */
     const size_t bytes = p->count * part_fields[f].size;
     if (to_device)
       gpu_check(cudaMemcpyAsync(dp, hp, bytes, cudaMemcpyHostToDevice, g->stream[0]));
@@ -647,6 +662,7 @@ extern "C" void gpu_upload_all(struct gpu *g, const struct parts *p) {
   gpu_reserve(g, p->count);
   g->dev.count = p->count;
   for (int f = 0; f < part_nr_fields; f++) {
+    if (g->absent[f]) continue;
     const size_t bytes = p->count * part_fields[f].size;
     gpu_check(cudaMemcpyAsync(*gpu_field_slot(&g->dev, f), *gpu_field_slot((struct parts *)p, f),
                               bytes, cudaMemcpyHostToDevice, g->stream[0]));
@@ -661,6 +677,7 @@ extern "C" void gpu_download_all(struct gpu *g, struct parts *p) {
   gpu_pin(g, p);
   g->full_down++;
   for (int f = 0; f < part_nr_fields; f++) {
+    if (g->absent[f]) continue;
     const size_t bytes = p->count * part_fields[f].size;
     gpu_check(cudaMemcpyAsync(*gpu_field_slot(p, f), *gpu_field_slot(&g->dev, f), bytes,
                               cudaMemcpyDeviceToHost, g->stream[0]));
@@ -699,6 +716,7 @@ extern "C" void gpu_permute(struct gpu *g, const size_t *perm, size_t n) {
   const unsigned blocks = (unsigned)((n + threads - 1) / threads);
   for (int f = 0; f < part_nr_fields; f++) {
     void *a = *gpu_field_slot(&g->dev, f);
+    if (!a) continue;
     const size_t sz = part_fields[f].size;
     if (sz == 8)
       gpu_gather_kernel<<<blocks, threads, 0, s>>>((uint64_t *)g->perm_buf, (const uint64_t *)a,
@@ -919,7 +937,7 @@ extern "C" int gpu_watchdog_check(struct gpu *g, const int32_t *u_floor_ids, int
   struct gpu_wd_fields f;
   f.n = 0;
   for (int k = 0; k < part_nr_fields; k++)
-    if (part_fields[k].type == PART_DOUBLE)
+    if (part_fields[k].type == PART_DOUBLE && *gpu_field_slot(&g->dev, k))
       f.a[f.n++] = (const double *)*gpu_field_slot(&g->dev, k);
   struct gpu_wd_mats m;
   m.n = n_ids < MATERIAL_MAX ? n_ids : MATERIAL_MAX;

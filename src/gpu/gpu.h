@@ -132,6 +132,12 @@ void gpu_upload_gravity(struct gpu *g, struct parts *p);
  *  hybrid runner: the CPU workers need the cores).  Returns 0 when the
  *  driver refuses (the waits then keep spinning). */
 int gpu_set_blocking_sync(struct gpu *g);
+/** Mark the named particle fields (n of them) as absent from the device:
+ *  never allocated, copied or reordered there (the run never uses them; the
+ *  shared functions test the array pointer, e.g. p->Sxx, before they touch
+ *  a group that may be absent).  Before the first upload only.  Returns the
+ *  bytes per particle saved. */
+int gpu_set_absent(struct gpu *g, const char *const *names, int n);
 /** Copy every particle field to the device (after a rebuild or a restart). */
 void gpu_upload_all(struct gpu *g, const struct parts *p);
 /** Copy every particle field back to the host (outputs, rebuilds). */

@@ -630,6 +630,54 @@ static const char *gpu_engine_cpu_only(const struct engine *e) {
   return NULL;
 }
 
+/** The solid state (stress and its rate, artificial stress, the velocity
+ *  gradient and correction tensor, plastic strain and work, shear damage)
+ *  and the damage fields, which a run without stress (no material with
+ *  strength or viscosity, no CSPM continuity, no free-surface detection:
+ *  hp.solids), without damage and with the kick-drift-kick scheme never
+ *  uses: not held on the device (43 doubles and 5 damage fields, 384 of
+ *  the 824 bytes of a particle's fields).  The rk2 and pc integrators'
+ *  states (drift_rk.h) hold the stress: they keep every field. */
+static const char *const gpu_solid_fields[] = {
+    "Sxx",  "Sxy",  "Sxz",  "Syy",  "Syz",   "Szz",       "Spxx",     "Spxy", "Spxz",
+    "Spyy", "Spyz", "Spzz", "dSxx", "dSxy",  "dSxz",      "dSyy",     "dSyz", "dSzz",
+    "Rxx",  "Rxy",  "Rxz",  "Ryy",  "Ryz",   "Rzz",       "gmxx",     "gmxy", "gmxz",
+    "gmyy", "gmyz", "gmzz", "gvxx", "gvxy",  "gvxz",      "gvyx",     "gvyy", "gvyz",
+    "gvzx", "gvzy", "gvzz", "wvol", "eps_p", "w_plastic", "dmg_shear"};
+static const char *const gpu_damage_fields[] = {"dmg",   "dcbrt",   "dmg_rate",
+                                                "n_act", "n_flaws", "flaw_first"};
+
+/** 1 if every particle's value of each named field is zero (bits). */
+static int gpu_engine_all_zero(const struct parts *p, const char *const *names, int n) {
+  for (int q = 0; q < n; q++)
+    for (int k = 0; k < part_nr_fields; k++) {
+      if (strcmp(part_fields[k].name, names[q])) continue;
+      const unsigned char *a = *(unsigned char *const *)((const char *)p + part_fields[k].offset);
+      const size_t bytes = p->count * part_fields[k].size;
+      for (size_t b = 0; b < bytes; b++)
+        if (a[b]) return 0;
+    }
+  return 1;
+}
+
+static void gpu_engine_absent(struct engine *e) {
+  if (e->hp.solids || e->damage || e->scheme != ENGINE_SCHEME_KDK) return;
+  const int ns = (int)(sizeof gpu_solid_fields / sizeof(char *)),
+            nd = (int)(sizeof gpu_damage_fields / sizeof(char *));
+  /* (the host reorders only some fields at a rebuild on the device: values
+   * that the initial conditions or a restart file gave stay, on the device) */
+  if (!gpu_engine_all_zero(&e->parts, gpu_solid_fields, ns) ||
+      !gpu_engine_all_zero(&e->parts, gpu_damage_fields, nd))
+    return;
+  struct gpu *g = e->gpu->gpu;
+  const int saved =
+      gpu_set_absent(g, gpu_solid_fields, ns) + gpu_set_absent(g, gpu_damage_fields, nd);
+  error_log(1,
+            "GPU: the solid and damage fields are not held on the device (no stress, no "
+            "damage, kick-drift-kick): %d bytes per particle less",
+            saved);
+}
+
 void gpu_engine_init(struct engine *e) {
   const struct gpu_policy pol = gpu_policy_read(e->params);
   char asked[300];
@@ -689,6 +737,7 @@ void gpu_engine_init(struct engine *e) {
   ge->cells.host_lists = params_get_enum(e->params, "Scheduler:gpu_lists") == 1;
   ge->up_on_device = params_get_enum(e->params, "Scheduler:gpu_multipoles") == 1;
   ge->rebuild_on_device = params_get_enum(e->params, "Scheduler:gpu_rebuild") == 0;
+  gpu_engine_absent(e);
   ge->reorder = error_calloc((size_t)part_nr_fields, 1, "GPU rebuild fields");
   for (int k = 0; k < part_nr_fields; k++)
     for (int q = 0; q < GPU_REBUILD_NR_KEEP; q++)
@@ -722,6 +771,20 @@ void gpu_engine_init(struct engine *e) {
   if (pol.kind == GPU_POLICY_AUTO && mode == GPU_MODE_HYBRID && ge->walk_on_device) {
     mode = GPU_MODE_SERIAL;
     ge->mode = mode;
+  }
+  /* the GPU runs the whole FORCE phase and no CPU worker takes a task of
+   * it: the task cells only index the device's neighbour lists, and cells
+   * of 1,000 particles made the graph of 1.1e7 particles 1.9M tasks, 0.48 s
+   * of a 0.70-s rebuild (BENCHMARKS.md, "The reference impact at 1.1e7 on
+   * one GPU"): larger ones unless the user chose (with time bins the task
+   * cells are also the unit of activity: they stay) */
+  if (mode == GPU_MODE_SERIAL && (!e->gp.enabled || ge->walk_on_device) && !e->individual &&
+      !params_given(e->params, "Scheduler:cell_task_size")) {
+    e->cell_task_size = GPU_CELL_TASK_SIZE;
+    error_log(1,
+              "GPU: task cells of at most %d particles (the GPU runs the whole phase; "
+              "Scheduler:cell_task_size sets it)",
+              e->cell_task_size);
   }
   if (e->gp.enabled && mode != GPU_MODE_CPU_GRAV) {
     ge->grav = gravity_gpu_new(g, ge->up_on_device, ge->walk_on_device,

@@ -4,6 +4,11 @@
 #ifndef BOLIDE_GPU_ENGINE_H
 #define BOLIDE_GPU_ENGINE_H
 
+/** Scheduler:cell_task_size when the GPU runs the whole FORCE phase (the
+ *  serial runner with gravity's walks on the device, or no gravity) and
+ *  the parameter file does not set it. */
+#define GPU_CELL_TASK_SIZE 8000
+
 #include "src/engine.h"
 #include "src/gpu/gpu.h"
 

@@ -107,7 +107,7 @@
   X("Gravity:reuse_tolerance", PARAM_REAL, "0.01", 0, 1, NULL, "-", "a step reuses the far field only while every particle has moved less than this fraction of the shortest far-field interaction distance since the full evaluation") \
                                                                                                          \
   X("Scheduler:cell_split_size", PARAM_INT, "400", 8, 1000000, NULL, "-", "largest number of particles in a leaf cell (default 400; 32 when self-gravity is on and the key is not given)") \
-  X("Scheduler:cell_task_size", PARAM_INT, "1000", 8, 100000000, NULL, "-", "tasks work on octree cells of at most this many particles (smaller: more, finer tasks)") \
+  X("Scheduler:cell_task_size", PARAM_INT, "1000", 8, 100000000, NULL, "-", "tasks work on octree cells of at most this many particles (smaller: more, finer tasks); 8000 when the GPU runs the whole phase and this is not set") \
   X("Scheduler:gravity_task_size", PARAM_INT, "2000", 8, 1000000000, NULL, "-", "the self-gravity task of a top-level cell with more particles is split into tasks on its octants (and theirs, up to 3 levels down) so that a concentrated body keeps every worker busy") \
   X("Scheduler:max_top_level_cells", PARAM_INT, "16", 1, 1024, NULL, "-", "largest number of top-level cells along one side") \
   X("Scheduler:dump_tasks", PARAM_INT, "0", 0, PARAM_INF, NULL, "-", "write a task timeline (thread, start, end, type, cell) every this many steps (0: never)") \

@@ -34,12 +34,15 @@ BOLIDE_INLINE void kick_part(struct parts *BOLIDE_RESTRICT p, size_t i, double d
     p->e_clamp[i] += uh - u1;
     p->u[i] = uh;
   }
-  p->Sxx[i] += p->dSxx[i] * dt_kick;
-  p->Sxy[i] += p->dSxy[i] * dt_kick;
-  p->Sxz[i] += p->dSxz[i] * dt_kick;
-  p->Syy[i] += p->dSyy[i] * dt_kick;
-  p->Syz[i] += p->dSyz[i] * dt_kick;
-  p->Szz[i] += p->dSzz[i] * dt_kick;
+  /* (a GPU run without stress does not hold the stress arrays: gpu_set_absent) */
+  if (p->Sxx) {
+    p->Sxx[i] += p->dSxx[i] * dt_kick;
+    p->Sxy[i] += p->dSxy[i] * dt_kick;
+    p->Sxz[i] += p->dSxz[i] * dt_kick;
+    p->Syy[i] += p->dSyy[i] * dt_kick;
+    p->Syz[i] += p->dSyz[i] * dt_kick;
+    p->Szz[i] += p->dSzz[i] * dt_kick;
+  }
   const double r1 = p->rho_full[i] + p->drho_dt[i] * dt_kick;
   p->rho_full[i] = (r1 > 0.0) ? r1 : 0.5 * p->rho_full[i];
   /* distention of porous materials: dalpha/dt <= 0 (compaction is
@@ -54,12 +57,14 @@ BOLIDE_INLINE void kick_sync_predicted(struct parts *BOLIDE_RESTRICT p, size_t i
   p->vpy[i] = p->vy[i];
   p->vpz[i] = p->vz[i];
   p->up[i] = p->u[i];
-  p->Spxx[i] = p->Sxx[i];
-  p->Spxy[i] = p->Sxy[i];
-  p->Spxz[i] = p->Sxz[i];
-  p->Spyy[i] = p->Syy[i];
-  p->Spyz[i] = p->Syz[i];
-  p->Spzz[i] = p->Szz[i];
+  if (p->Sxx) {
+    p->Spxx[i] = p->Sxx[i];
+    p->Spxy[i] = p->Sxy[i];
+    p->Spxz[i] = p->Sxz[i];
+    p->Spyy[i] = p->Syy[i];
+    p->Spyz[i] = p->Syz[i];
+    p->Spzz[i] = p->Szz[i];
+  }
   p->rho_fp[i] = p->rho_full[i];
   p->alpha_p[i] = p->alpha[i];
 }
@@ -111,12 +116,14 @@ BOLIDE_INLINE void drift_part_to(struct parts *BOLIDE_RESTRICT p, size_t i, doub
   p->x[i] += (p->vx[i] + xsph * p->xsphx[i]) * dt;
   p->y[i] += (p->vy[i] + xsph * p->xsphy[i]) * dt;
   p->z[i] += (p->vz[i] + xsph * p->xsphz[i]) * dt;
-  p->Spxx[i] = p->Sxx[i] + p->dSxx[i] * half;
-  p->Spxy[i] = p->Sxy[i] + p->dSxy[i] * half;
-  p->Spxz[i] = p->Sxz[i] + p->dSxz[i] * half;
-  p->Spyy[i] = p->Syy[i] + p->dSyy[i] * half;
-  p->Spyz[i] = p->Syz[i] + p->dSyz[i] * half;
-  p->Spzz[i] = p->Szz[i] + p->dSzz[i] * half;
+  if (p->Sxx) {
+    p->Spxx[i] = p->Sxx[i] + p->dSxx[i] * half;
+    p->Spxy[i] = p->Sxy[i] + p->dSxy[i] * half;
+    p->Spxz[i] = p->Sxz[i] + p->dSxz[i] * half;
+    p->Spyy[i] = p->Syy[i] + p->dSyy[i] * half;
+    p->Spyz[i] = p->Syz[i] + p->dSyz[i] * half;
+    p->Spzz[i] = p->Szz[i] + p->dSzz[i] * half;
+  }
   const double rp = p->rho_full[i] + p->drho_dt[i] * half;
   p->rho_fp[i] = (rp > 0.0) ? rp : 0.5 * p->rho_full[i];
   const double ap = p->alpha[i] + p->dalpha_dt[i] * half;

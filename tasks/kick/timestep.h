@@ -142,8 +142,14 @@ BOLIDE_INLINE double timestep_part_criteria(const struct parts *BOLIDE_RESTRICT 
         d[TIMESTEP_VISCOUS] = viscosity_timestep(H, p->rho[i], mat->viscosity);
     }
     if (hp->max_rel_change > 0.0) {
-      const double S[6] = {p->Sxx[i], p->Sxy[i], p->Sxz[i], p->Syy[i], p->Syz[i], p->Szz[i]};
-      const double dS[6] = {p->dSxx[i], p->dSxy[i], p->dSxz[i], p->dSyy[i], p->dSyz[i], p->dSzz[i]};
+      /* (no stress arrays: a GPU run without stress, gpu_set_absent) */
+      double S[6] = {0, 0, 0, 0, 0, 0}, dS[6] = {0, 0, 0, 0, 0, 0};
+      if (p->Sxx) {
+        S[0] = p->Sxx[i], S[1] = p->Sxy[i], S[2] = p->Sxz[i];
+        S[3] = p->Syy[i], S[4] = p->Syz[i], S[5] = p->Szz[i];
+        dS[0] = p->dSxx[i], dS[1] = p->dSxy[i], dS[2] = p->dSxz[i];
+        dS[3] = p->dSyy[i], dS[4] = p->dSyz[i], dS[5] = p->dSzz[i];
+      }
       d[TIMESTEP_RELATIVE] = timestep_relative_change(hp, p->rho[i], p->drho_dt[i], p->u[i],
                                                       p->du_dt[i], p->cs[i], S, dS);
     }

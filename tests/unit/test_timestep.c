@@ -11,11 +11,15 @@
  *  - with CSPM continuity the Courant step times sqrt(lambda_min(M)) of a
  *    truncated kernel (M = diag(1, 1, 0.25), rotated: 0.5), none for a
  *    full one (M = I), none without the option or where M is singular;
+ *  - without the stress arrays (a GPU run without stress does not hold
+ *    them): the kick, the drift and the relative-change criterion as with
+ *    zero stress;
  *  - the criteria's names. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
+#include "tasks/drift/drift.h"
 #include "tasks/hydro/kernel.h"
 #include "tasks/kick/kick.h"
 #include "tasks/kick/timestep.h"
@@ -111,6 +115,40 @@ int main(void) {
   CHECK(close_to(d[TIMESTEP_CSPM], courant), "CSPM, singular M: no limit (%g)", d[TIMESTEP_CSPM]);
   hp.continuity_cspm = 0;
   parts_free(&p);
+
+  /* a GPU run without stress holds no stress arrays (gpu_set_absent): the
+   * kick, the drift and the relative-change criterion skip them and give
+   * what zero stress gives, field for field */
+  {
+    struct parts a, b;
+    one_particle(&a);
+    one_particle(&b);
+    hp.max_rel_change = 0.1;
+    double *keep[24];
+    double **slot[24] = {&b.Sxx,  &b.Sxy,  &b.Sxz,  &b.Syy,  &b.Syz,  &b.Szz,  &b.Spxx, &b.Spxy,
+                         &b.Spxz, &b.Spyy, &b.Spyz, &b.Spzz, &b.dSxx, &b.dSxy, &b.dSxz, &b.dSyy,
+                         &b.dSyz, &b.dSzz, &b.Rxx,  &b.Rxy,  &b.Rxz,  &b.Ryy,  &b.Ryz,  &b.Rzz};
+    for (int k = 0; k < 24; k++) keep[k] = *slot[k], *slot[k] = NULL;
+    for (int q = 0; q < 2; q++) {
+      struct parts *r = q ? &b : &a;
+      r->ax[0] = 3.0, r->du_dt[0] = -2.0, r->u[0] = r->up[0] = 10.0, r->cs[0] = 5.0;
+      r->drho_dt[0] = 0.01, r->div_v[0] = 1e-3;
+    }
+    const double dta = kick2_part(&a, 0, 0.5, &hp, &t, &tp),
+                 dtb = kick2_part(&b, 0, 0.5, &hp, &t, &tp);
+    drift_part(&a, 0, 0.5, 0.0, 1e30, 0);
+    drift_part(&b, 0, 0.5, 0.0, 1e30, 0);
+    CHECK(dta == dtb && a.vx[0] == b.vx[0] && a.u[0] == b.u[0] && a.x[0] == b.x[0] &&
+              a.h[0] == b.h[0] && a.vpx[0] == b.vpx[0] && a.up[0] == b.up[0],
+          "no stress arrays: kick, drift and time step as with zero stress (dt %g, %g)", dta, dtb);
+    timestep_part_criteria(&b, 0, &hp, &t, &tp, d);
+    CHECK(d[TIMESTEP_RELATIVE] < 1e300, "no stress arrays: the relative-change criterion %g",
+          d[TIMESTEP_RELATIVE]);
+    for (int k = 0; k < 24; k++) *slot[k] = keep[k];
+    hp.max_rel_change = 0.0;
+    parts_free(&a);
+    parts_free(&b);
+  }
 
   CHECK(strstr(timestep_criterion_name(TIMESTEP_COURANT), "Courant") != NULL, "Courant's name");
   CHECK(strstr(timestep_criterion_name(TIMESTEP_GRAVITY), "gravitational") != NULL, "gravity's");
