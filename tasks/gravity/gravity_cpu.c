@@ -789,12 +789,60 @@ void gravity_replay(struct parts *p, const struct gravity_ilist *il, struct grav
   }
 }
 
-/** Work of the threads of gravity_estimate: one phase over the top-level
- *  cells, each taken by one thread (next: the first not yet taken). */
+/** 1 if the box of cell t lies inside the box of cell c (octree boxes
+ *  nest exactly: the centre of t decides). */
+static int estimate_inside(const struct cell *t, const struct cell *c) {
+  for (int d = 0; d < 3; d++) {
+    const double m = t->loc[d] + 0.5 * t->width[d];
+    if (!(m >= c->loc[d] && m < c->loc[d] + c->width[d])) return 0;
+  }
+  return 1;
+}
+
+/** Every interaction that the target t receives from the particles of src
+ *  (a cell disjoint from t, t itself, or one holding it), one way: writes
+ *  t's cells only. */
+static void estimate_walk(struct parts *p, const struct cell *t, const struct cell *src,
+                          struct gravity_cell *gc, const struct gravity_props *gp) {
+  if (src->count == 0) return;
+  if (src == t) {
+    walk_self(p, t, gc, gp);
+  } else if (estimate_inside(t, src)) {
+    for (int q = 0; q < 8; q++)
+      if (src->progeny[q]) estimate_walk(p, t, src->progeny[q], gc, gp);
+  } else {
+    walk_pair(p, t, src, 0, gc, gp);
+  }
+}
+
+/** The targets of the estimate's walks below c (appended to *u): c, or
+ *  where c holds more than GRAVITY_ESTIMATE_UNIT particles its octants,
+ *  and theirs, so that one dense top-level cell (an impact puts its bodies
+ *  in a few) is shared among the threads.  They depend on the particles
+ *  only, not on the threads: the sums are the same with any number. */
+static void estimate_units(const struct cell *c, const struct cell ***u, int *n, int *cap) {
+  if (c->count == 0) return;
+  if (c->split && c->count > GRAVITY_ESTIMATE_UNIT) {
+    for (int q = 0; q < 8; q++)
+      if (c->progeny[q]) estimate_units(c->progeny[q], u, n, cap);
+    return;
+  }
+  if (*n == *cap) {
+    *cap = *cap ? 2 * *cap : 256;
+    *u = error_realloc(*u, (size_t)*cap * sizeof **u, "gravity estimate targets");
+  }
+  (*u)[(*n)++] = c;
+}
+
+/** Work of the threads of gravity_estimate: one phase, each item taken by
+ *  one thread (next: the first not yet taken); phases 0 and 2 over the
+ *  top-level cells, phase 1 over the targets (estimate_units). */
 struct estimate_job {
   struct parts *p;
   const struct cell *tops;
   int nr_top, phase; /**< phase 0: up, 1: walks (gather form), 2: down */
+  const struct cell **unit;
+  int nr_units;
   int next;
   struct gravity_cell *gc;
   const struct gravity_props *gp;
@@ -802,23 +850,30 @@ struct estimate_job {
 
 static void *estimate_worker(void *arg) {
   struct estimate_job *job = arg;
+  const int n = job->phase == 1 ? job->nr_units : job->nr_top;
   for (;;) {
     const int i = __atomic_fetch_add(&job->next, 1, __ATOMIC_RELAXED);
-    if (i >= job->nr_top) break;
-    const struct cell *ci = job->tops + i;
+    if (i >= n) break;
     if (job->phase == 0) {
-      gravity_up(job->p, ci, job->gc, job->gp);
+      gravity_up(job->p, job->tops + i, job->gc, job->gp);
     } else if (job->phase == 1) {
-      /* every interaction ci receives, one way: writes ci's cells only */
-      if (ci->count == 0) continue;
-      walk_self(job->p, ci, job->gc, job->gp);
+      /* every interaction the target receives, one way: writes its cells only */
+      const struct cell *t = job->unit[i];
       for (int j = 0; j < job->nr_top; j++)
-        if (j != i) walk_pair(job->p, ci, job->tops + j, 0, job->gc, job->gp);
+        estimate_walk(job->p, t, job->tops + j, job->gc, job->gp);
     } else {
-      gravity_down(job->p, ci, job->gc, job->gp);
+      gravity_down(job->p, job->tops + i, job->gc, job->gp);
     }
   }
   return NULL;
+}
+
+/** Order of the targets: the most particles first (the threads' loads even
+ *  out at the end); ties by position in the particle order. */
+static int estimate_cmp_units(const void *a, const void *b) {
+  const struct cell *ca = *(const struct cell *const *)a, *cb = *(const struct cell *const *)b;
+  if (ca->count != cb->count) return ca->count < cb->count ? 1 : -1;
+  return (ca->offset > cb->offset) - (ca->offset < cb->offset);
 }
 
 int gravity_estimate_needed(const struct parts *p, const struct gravity_props *gp) {
@@ -834,6 +889,7 @@ int gravity_estimate(struct parts *p, const struct cell *tops, int nr_top, struc
   struct gravity_props ge = *gp;
   ge.epsilon_fmm = 0.0; /* the geometric criterion alone */
   ge.theta = GRAVITY_ESTIMATE_THETA;
+  ge.active = NULL; /* (every particle: the walks write their targets only) */
   if (ge.order > GRAVITY_ESTIMATE_ORDER) ge.order = GRAVITY_ESTIMATE_ORDER;
   if (nthreads < 1) nthreads = 1;
   if (nthreads > 64) nthreads = 64;
@@ -842,7 +898,11 @@ int gravity_estimate(struct parts *p, const struct cell *tops, int nr_top, struc
   struct gravity_ilist *rec = recording;
   gpu_sink = NULL;
   recording = NULL;
-  struct estimate_job job = {p, tops, nr_top, 0, 0, gc, &ge};
+  const struct cell **unit = NULL;
+  int nr_units = 0, cap = 0;
+  for (int i = 0; i < nr_top; i++) estimate_units(tops + i, &unit, &nr_units, &cap);
+  if (nr_units > 1) qsort(unit, (size_t)nr_units, sizeof *unit, estimate_cmp_units);
+  struct estimate_job job = {p, tops, nr_top, 0, unit, nr_units, 0, gc, &ge};
   for (job.phase = 0; job.phase < 3; job.phase++) {
     job.next = 0;
     if (nthreads == 1) {
@@ -855,6 +915,7 @@ int gravity_estimate(struct parts *p, const struct cell *tops, int nr_top, struc
         error_exit("gravity_estimate: cannot start thread %d", t);
     for (int t = 0; t < nthreads; t++) pthread_join(tid[t], NULL);
   }
+  free(unit);
   gpu_sink = sink;
   recording = rec;
   return 1;

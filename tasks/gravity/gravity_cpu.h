@@ -172,6 +172,9 @@ void gravity_tree_all(struct parts *p, const struct cell *tops, int nr_top, stru
 /** Opening angle and highest expansion order of gravity_estimate's pass. */
 #define GRAVITY_ESTIMATE_THETA 0.8
 #define GRAVITY_ESTIMATE_ORDER 2
+/** Particles above which a cell of gravity_estimate's walks is shared among
+ *  the threads as its octants (targets of at most this many). */
+#define GRAVITY_ESTIMATE_UNIT 20000
 
 /** 1 if the adaptive criterion (epsilon_fmm > 0, tree, full evaluation)
  *  lacks its scale: some particle has ga = 0 (a run's first step). */
@@ -181,7 +184,8 @@ int gravity_estimate_needed(const struct parts *p, const struct gravity_props *g
  *  lacks (theory/gravity.md, "The first evaluation"): when
  *  gravity_estimate_needed, one cheaper pass (the geometric criterion at
  *  GRAVITY_ESTIMATE_THETA, order at most GRAVITY_ESTIMATE_ORDER, every top-level
- *  cell gathering its interactions one way, over nthreads POSIX threads)
+ *  cell, or its octants down to GRAVITY_ESTIMATE_UNIT particles, gathering
+ *  its interactions one way, over nthreads POSIX threads)
  *  sets every particle's ga and pot, whose |ga| the following full
  *  evaluation's gravity_up reads as a_min.  Returns 1 if it ran.
  *  gravity_tree_all calls it first (one thread); the engine before its

@@ -51,6 +51,8 @@
 #        PYTHON (with numpy and h5py, for the reference impact IC),
 #        BENCH_OUT (file the table lines are also appended to, as they come),
 #        BENCH_KEEP (folder: the log of each case's last run, PROBLEM-N-MODE.log),
+#        BENCH_IC_KEEP (folder: a copy of each generated IC, ic-PROBLEM-N.hdf5,
+#        for runs beside the benchmark on the same particles),
 #        BENCH_WRAP (a command put before each bolide run, e.g. a profiler:
 #        "ncu --clock-control none -k regex:force -c 1"; its report lands in
 #        the run's log, and the times it prints are the profiled run's)
@@ -129,6 +131,7 @@ for prob in $problems; do
         mats=$'Materials:\n  103: {name: basalt, strength: collins, yield_stress: 1e7, yield_stress_max: 3.5e9, friction_intact: 1.2, cohesion_damaged: 1e5, friction_damaged: 0.6, weibull_k: 5e34, weibull_m: 8}\nDamage:\n  seed: 1\nGravity:\n  enabled: true\n  theta_cr: 0.5\n  softening: '"$soft" ;;
       *) echo "gpu.sh: unknown problem $prob" >&2; exit 2 ;;
     esac
+    [ -n "${BENCH_IC_KEEP:-}" ] && mkdir -p "$BENCH_IC_KEEP" && cp ic.hdf5 "$BENCH_IC_KEEP/ic-$prob-$n.hdf5"
     [ $prob = impact ] && mats=$'Materials:\n  101: {}'
     [ $prob = gravity ] && mats=$'Materials:\n  101: {}\nGravity:\n  enabled: true\n  softening: '"$soft"
     [ $prob = solid ] && mats=$'Materials:\n  101: {name: basalt, strength: collins, yield_stress: 1e7, yield_stress_max: 3.5e9, friction_intact: 1.2, cohesion_damaged: 1e5, friction_damaged: 0.6, weibull_k: 1e61, weibull_m: 16}\nDamage:\n  seed: 1'
