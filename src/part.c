@@ -1,6 +1,7 @@
 /* Particles: allocation and reordering of the structure of arrays. */
 #include "src/part.h"
 
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -28,6 +29,31 @@ const int part_nr_fields = sizeof(part_fields) / sizeof(part_fields[0]);
 
 void *part_field_array(const struct parts *p, const struct part_field *f) {
   return *(void *const *)((const char *)p + f->offset);
+}
+
+/* (read in blocks up to the first that is not zero: most fields are not
+ * zero after the first rebuild, and reading them whole cost as much as
+ * reordering them) */
+#define PART_ZERO_BLOCK 512
+
+int part_field_zero(const struct parts *p, int k, size_t lo, size_t hi) {
+  const struct part_field *f = &part_fields[k];
+  const void *a = part_field_array(p, f);
+  for (size_t b = lo; b < hi; b += PART_ZERO_BLOCK) {
+    const size_t e = hi - b < PART_ZERO_BLOCK ? hi : b + PART_ZERO_BLOCK;
+    if (f->size == 8) {
+      const uint64_t *v = a;
+      uint64_t any = 0;
+      for (size_t i = b; i < e; i++) any |= v[i];
+      if (any) return 0;
+    } else {
+      const uint32_t *v = a;
+      uint32_t any = 0;
+      for (size_t i = b; i < e; i++) any |= v[i];
+      if (any) return 0;
+    }
+  }
+  return 1;
 }
 
 static void **part_field_slot(struct parts *p, const struct part_field *f) {

@@ -224,6 +224,9 @@ extern const int part_nr_fields;
 
 /** Pointer to the array of field f in p. */
 void *part_field_array(const struct parts *p, const struct part_field *f);
+/** 1 if the elements [lo, hi) of field k (index in part_fields) are all
+ *  bits zero. */
+int part_field_zero(const struct parts *p, int k, size_t lo, size_t hi);
 
 /** Allocate every array for n particles (zero-filled). */
 void parts_alloc(struct parts *p, size_t n);

@@ -720,31 +720,6 @@ static void space_gather(struct parts *p, int k, const size_t *perm, void *buf, 
   }
 }
 
-/** 1 if the elements [lo, hi) of field k are all bits zero (read in blocks
- *  up to the first that is not: most fields are not zero after the first
- *  rebuild, and reading them whole cost as much as reordering them). */
-#define SPACE_ZERO_BLOCK 512
-
-static int space_field_zero(struct parts *p, int k, size_t lo, size_t hi) {
-  const struct part_field *f = &part_fields[k];
-  const void *a = part_field_array(p, f);
-  for (size_t b = lo; b < hi; b += SPACE_ZERO_BLOCK) {
-    const size_t e = hi - b < SPACE_ZERO_BLOCK ? hi : b + SPACE_ZERO_BLOCK;
-    if (f->size == 8) {
-      const uint64_t *v = a;
-      uint64_t any = 0;
-      for (size_t i = b; i < e; i++) any |= v[i];
-      if (any) return 0;
-    } else {
-      const uint32_t *v = a;
-      uint32_t any = 0;
-      for (size_t i = b; i < e; i++) any |= v[i];
-      if (any) return 0;
-    }
-  }
-  return 1;
-}
-
 /** One thread's share of space_permute: elements [lo, hi) of every field.
  *  A field whose elements are all zero (many at the first rebuild after
  *  reading a file: stresses, damage, derivatives not yet computed) stays
@@ -765,7 +740,7 @@ static void *space_permute_run(void *arg) {
   struct space_permute_job *j = arg;
   for (int k = 0; k < part_nr_fields; k++)
     j->nonzero[k * j->nr_threads + j->thread] =
-        (!j->reorder || j->reorder[k]) && !space_field_zero(j->p, k, j->lo, j->hi);
+        (!j->reorder || j->reorder[k]) && !part_field_zero(j->p, k, j->lo, j->hi);
   pthread_barrier_wait(j->bar); /* every range scanned */
   for (int k = 0; k < part_nr_fields; k++) {
     int any = 0;

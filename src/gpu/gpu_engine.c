@@ -650,13 +650,8 @@ static const char *const gpu_damage_fields[] = {"dmg",   "dcbrt",   "dmg_rate",
 /** 1 if every particle's value of each named field is zero (bits). */
 static int gpu_engine_all_zero(const struct parts *p, const char *const *names, int n) {
   for (int q = 0; q < n; q++)
-    for (int k = 0; k < part_nr_fields; k++) {
-      if (strcmp(part_fields[k].name, names[q])) continue;
-      const unsigned char *a = *(unsigned char *const *)((const char *)p + part_fields[k].offset);
-      const size_t bytes = p->count * part_fields[k].size;
-      for (size_t b = 0; b < bytes; b++)
-        if (a[b]) return 0;
-    }
+    for (int k = 0; k < part_nr_fields; k++)
+      if (!strcmp(part_fields[k].name, names[q]) && !part_field_zero(p, k, 0, p->count)) return 0;
   return 1;
 }
 
