@@ -635,7 +635,7 @@ static const char *gpu_engine_cpu_only(const struct engine *e) {
  *  and the damage fields, which a run without stress (no material with
  *  strength or viscosity, no CSPM continuity, no free-surface detection:
  *  hp.solids), without damage and with the kick-drift-kick scheme never
- *  uses: not held on the device (43 doubles and 5 damage fields, 384 of
+ *  uses: not held on the device (43 doubles and 6 damage fields, 384 of
  *  the 824 bytes of a particle's fields).  The rk2 and pc integrators'
  *  states (drift_rk.h) hold the stress: they keep every field. */
 static const char *const gpu_solid_fields[] = {
