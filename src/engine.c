@@ -906,9 +906,11 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
 
   scheduler_init(&e->sched, e->nr_threads);
   e->sched.fixed_costs = params_get_bool(params, "Scheduler:deterministic");
-  /* several MPI ranks run on the CPU only yet: a GPU used when present is
-   * not used (one asked for by name stops the run in halo_init) */
-  if (ranks_size() > 1 && !opt->one_rank && e->opt.use_gpu == 1) e->opt.use_gpu = 0;
+  /* several MPI ranks: each its GPU, but self-gravity on several ranks
+   * runs on the CPU only yet: there a GPU used when present is not used
+   * (one asked for by name stops the run in halo_init) */
+  if (ranks_size() > 1 && !opt->one_rank && e->opt.use_gpu == 1 && e->gp.enabled)
+    e->opt.use_gpu = 0;
 #ifdef HAVE_CUDA
   gpu_engine_init(e);
 #else
@@ -1618,7 +1620,7 @@ void engine_run(struct engine *e) {
   halo_log(e);
   if (rank0) scheduler_print_timers(&e->sched, stdout);
 #ifdef HAVE_CUDA
-  gpu_engine_print(e, stdout);
+  if (rank0) gpu_engine_print(e, stdout); /* (several MPI ranks: rank 0's GPU) */
 #endif
 }
 

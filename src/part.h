@@ -190,6 +190,9 @@ enum part_state {
 /** The flags of particles a rank holds but does not own (no kick, no output,
  *  not in the budget): mirror ghosts and foreign copies. */
 #define PART_NOT_OWNED (PART_MIRROR | PART_FOREIGN)
+/** Whether particle i is held but not owned (PART_NOT_OWNED): the ghost
+ *  keeps its h, the kick and the time step leave it out. */
+#define PART_IS_NOT_OWNED(p, i) ((p)->flags[i] & PART_NOT_OWNED)
 
 /** Whether particle i sits out the FORCE phase of this step (time bins). */
 #define PART_IS_INACTIVE(p, i) ((p)->flags[i] & PART_INACTIVE)

@@ -123,6 +123,12 @@ struct gpu {
   double t_permute;             /**< their milliseconds (permutation up, every field reordered) */
   double *h_start;              /**< h at the start of the last FORCE phase (gpu_restore_h) */
   size_t h_start_cap;           /**< its allocated length */
+  void (*stage_hook)(void *, int);   /**< between the stages of a phase (gpu_set_stage_hook) */
+  void *stage_ctx;                   /**< its argument */
+  size_t *halo_idx;                  /**< particle indices of a block of records (gpu_halo_pack) */
+  char *halo_buf;                    /**< the block's records on the device */
+  size_t halo_idx_cap, halo_buf_cap; /**< their allocated lengths (elements, bytes) */
+  double t_halo;                     /**< milliseconds packing and unpacking records */
 };
 
 /** Slots of the watchdog's results (gpu_watchdog_check): one per double
@@ -232,7 +238,7 @@ static void **gpu_field_slot(struct parts *s, int k) {
   return (void **)((char *)s + part_fields[k].offset);
 }
 
-extern "C" struct gpu *gpu_init(char *why, size_t len) {
+extern "C" struct gpu *gpu_init(int device, char *why, size_t len) {
   int nd = 0;
   const cudaError_t err = cudaGetDeviceCount(&nd);
   if (err != cudaSuccess || nd == 0) {
@@ -241,7 +247,7 @@ extern "C" struct gpu *gpu_init(char *why, size_t len) {
     return NULL;
   }
   struct gpu *g = (struct gpu *)error_calloc(1, sizeof(struct gpu), "GPU state");
-  g->device = 0;
+  g->device = (device < 0 ? 0 : device) % nd;
   gpu_check(cudaSetDevice(g->device));
   cudaDeviceProp prop;
   gpu_check(cudaGetDeviceProperties(&prop, g->device));
@@ -551,6 +557,14 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
       gpu_check(cudaStreamSynchronize(s));
       return;
     }
+    /* several MPI ranks: the copies take their owners' results of the
+     * stage that ends here (the density sums and the ghost; the gradient
+     * and the extra ghost), as between the CPU's stages (engine.c,
+     * engine_run_force_stages) */
+    if (g->stage_hook && (f == task_family_ghost || f == task_family_gradient)) {
+      gpu_check(cudaStreamSynchronize(s));
+      g->stage_hook(g->stage_ctx, f == task_family_ghost ? 0 : 1);
+    }
     gpu_check(cudaEventRecord(g->ev[2 + k], s));
   }
   double *leaf_dt = g->leaf_dt;
@@ -590,6 +604,139 @@ extern "C" void gpu_set_bins(struct gpu *g, const struct gpu_bins *bins) {
 extern "C" void gpu_set_kick_wait(struct gpu *g, void (*fn)(void *), void *ctx) {
   g->kick_wait = fn;
   g->kick_wait_ctx = ctx;
+}
+
+extern "C" void gpu_set_stage_hook(struct gpu *g, void (*fn)(void *, int), void *ctx) {
+  g->stage_hook = fn;
+  g->stage_ctx = ctx;
+}
+
+/* ------------------------------------------- records of several MPI ranks */
+
+/** dst[k] = a[idx[k]] for k < n, elements of size bytes. */
+__global__ static void gpu_halo_gather_kernel(const char *a, size_t size, const size_t *idx,
+                                              size_t n, char *dst) {
+  const size_t k = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  if (size == 8)
+    ((unsigned long long *)dst)[k] = ((const unsigned long long *)a)[idx[k]];
+  else if (size == 4)
+    ((unsigned int *)dst)[k] = ((const unsigned int *)a)[idx[k]];
+  else
+    for (size_t b = 0; b < size; b++) dst[size * k + b] = a[size * idx[k] + b];
+}
+
+/** a[slot[k]] = src[k] for k < n. */
+__global__ static void gpu_halo_scatter_kernel(char *a, size_t size, const size_t *slot, size_t n,
+                                               const char *src) {
+  const size_t k = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  if (size == 8)
+    ((unsigned long long *)a)[slot[k]] = ((const unsigned long long *)src)[k];
+  else if (size == 4)
+    ((unsigned int *)a)[slot[k]] = ((const unsigned int *)src)[k];
+  else
+    for (size_t b = 0; b < size; b++) a[size * slot[k] + b] = src[size * k + b];
+}
+
+/** The copies' marks, as halo_refresh_finish sets them on the host. */
+__global__ static void gpu_halo_mark_kernel(int *flags, int64_t *msrc, const size_t *slot, size_t n,
+                                            int64_t q0) {
+  const size_t k = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  flags[slot[k]] |= PART_FOREIGN;
+  if (msrc) msrc[slot[k]] = q0 + (int64_t)k;
+}
+
+/** The staging of a block of n records of rec bytes, and its indices up. */
+static void gpu_halo_stage(struct gpu *g, const size_t *idx, size_t n, size_t rec) {
+  if (n > g->halo_idx_cap) {
+    if (g->halo_idx) gpu_dfree(g->halo_idx);
+    g->halo_idx_cap = n + n / 4 + 1024;
+    g->halo_idx = (size_t *)gpu_alloc(g->halo_idx_cap * sizeof(size_t), "MPI records");
+  }
+  if (n * rec > g->halo_buf_cap) {
+    if (g->halo_buf) gpu_dfree(g->halo_buf);
+    g->halo_buf_cap = n * rec + n * rec / 4 + 4096;
+    g->halo_buf = (char *)gpu_alloc(g->halo_buf_cap, "MPI records");
+  }
+  gpu_check(
+      cudaMemcpyAsync(g->halo_idx, idx, n * sizeof(size_t), cudaMemcpyHostToDevice, g->stream[0]));
+  g->bytes_h2d += (double)(n * sizeof(size_t));
+}
+
+/** The record bytes of the fields of sel (NULL: every field). */
+static size_t gpu_halo_rec(const unsigned char *sel) {
+  size_t rec = 0;
+  for (int f = 0; f < part_nr_fields; f++)
+    if (!sel || sel[f]) rec += part_fields[f].size;
+  return rec;
+}
+
+extern "C" void gpu_halo_pack(struct gpu *g, const struct parts *p, const size_t *idx, size_t n,
+                              char *dst, const unsigned char *sel) {
+  if (n == 0) return;
+  cudaStream_t s = g->stream[0];
+  const double w0 = error_walltime();
+  gpu_halo_stage(g, idx, n, gpu_halo_rec(sel));
+  const unsigned nb = (unsigned)((n + GPU_BLOCK - 1) / GPU_BLOCK);
+  size_t off = 0;
+  for (int f = 0; f < part_nr_fields; f++) {
+    if (sel && !sel[f]) continue;
+    const size_t size = part_fields[f].size;
+    const char *dp = (const char *)*gpu_field_slot(&g->dev, f);
+    if (dp) {
+      gpu_halo_gather_kernel<<<nb, GPU_BLOCK, 0, s>>>(dp, size, g->halo_idx, n, g->halo_buf + off);
+      gpu_check_launch(gpu_halo_gather_kernel);
+    }
+    off += n * size;
+  }
+  gpu_check(cudaMemcpyAsync(dst, g->halo_buf, off, cudaMemcpyDeviceToHost, s));
+  gpu_check(cudaStreamSynchronize(s));
+  g->bytes_d2h += (double)off;
+  /* a field the device does not hold (absent): the host's copy is the only one */
+  off = 0;
+  for (int f = 0; f < part_nr_fields; f++) {
+    if (sel && !sel[f]) continue;
+    const size_t size = part_fields[f].size;
+    if (!*gpu_field_slot(&g->dev, f)) {
+      const char *a = (const char *)*gpu_field_slot((struct parts *)p, f);
+      for (size_t k = 0; k < n; k++) memcpy(dst + off + size * k, a + size * idx[k], size);
+    }
+    off += n * size;
+  }
+  g->t_halo += 1e3 * (error_walltime() - w0);
+}
+
+extern "C" void gpu_halo_unpack(struct gpu *g, const size_t *slot, size_t n, const char *src,
+                                const unsigned char *sel, int64_t q0) {
+  if (n == 0) return;
+  cudaStream_t s = g->stream[0];
+  const double w0 = error_walltime();
+  const size_t rec = gpu_halo_rec(sel);
+  gpu_halo_stage(g, slot, n, rec);
+  gpu_check(cudaMemcpyAsync(g->halo_buf, src, n * rec, cudaMemcpyHostToDevice, s));
+  g->bytes_h2d += (double)(n * rec);
+  const unsigned nb = (unsigned)((n + GPU_BLOCK - 1) / GPU_BLOCK);
+  size_t off = 0;
+  for (int f = 0; f < part_nr_fields; f++) {
+    if (sel && !sel[f]) continue;
+    const size_t size = part_fields[f].size;
+    char *dp = (char *)*gpu_field_slot(&g->dev, f);
+    if (dp) {
+      gpu_halo_scatter_kernel<<<nb, GPU_BLOCK, 0, s>>>(dp, size, g->halo_idx, n, g->halo_buf + off);
+      gpu_check_launch(gpu_halo_scatter_kernel);
+    }
+    off += n * size;
+  }
+  gpu_halo_mark_kernel<<<nb, GPU_BLOCK, 0, s>>>(g->dev.flags, g->dev.msrc, g->halo_idx, n, q0);
+  gpu_check_launch(gpu_halo_mark_kernel);
+  gpu_check(cudaStreamSynchronize(s));
+  g->t_halo += 1e3 * (error_walltime() - w0);
+}
+
+extern "C" double gpu_halo_ms(const struct gpu *g) {
+  return g->t_halo;
 }
 
 extern "C" void gpu_upload_gravity(struct gpu *g, struct parts *p) {
@@ -997,6 +1144,8 @@ extern "C" void gpu_free(struct gpu *g) {
   if (g->perm_dev) gpu_dfree(g->perm_dev);
   if (g->perm_buf) gpu_dfree(g->perm_buf);
   if (g->h_start) gpu_dfree(g->h_start);
+  if (g->halo_idx) gpu_dfree(g->halo_idx);
+  if (g->halo_buf) gpu_dfree(g->halo_buf);
   for (int k = 0; k < part_nr_fields; k++) {
     void **slot = gpu_field_slot(&g->dev, k);
     if (*slot) gpu_dfree(*slot);

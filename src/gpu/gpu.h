@@ -73,9 +73,10 @@ struct gpu_force_out {
   long long resummed; /**< particles whose density sums were redone, summed over the rounds */
 };
 
-/** Find a CUDA device (cudaGetDeviceCount) and set it up; NULL when there
- *  is none, with the reason in why. */
-struct gpu *gpu_init(char *why, size_t len);
+/** Find the CUDA devices (cudaGetDeviceCount) and set up number device
+ *  modulo their number (several MPI ranks of a node: each its own, from
+ *  the node-local rank); NULL when there is none, with the reason in why. */
+struct gpu *gpu_init(int device, char *why, size_t len);
 /** "NVIDIA H100 80GB HBM3 (132 SMs, 79.1 GiB)" */
 const char *gpu_name(const struct gpu *g);
 /** Copy the flat array of Weibull flaw thresholds (n of them, indexed by the
@@ -110,6 +111,25 @@ void gpu_restore_h(struct gpu *g, struct parts *p, int resident);
  *  beside the phase (CPU tasks), then completes ga on the device (the
  *  device part of gravity on stream 0, or gpu_upload_gravity). */
 void gpu_set_kick_wait(struct gpu *g, void (*fn)(void *), void *ctx);
+/** Several MPI ranks: fn(ctx, k) is called within gpu_force_phase after
+ *  stage k of the phase (0: density and ghost; 1: gradient and extra
+ *  ghost), the device idle, so that the foreign copies take their owners'
+ *  results before the next stage reads them (src/mpi/halo.c; fn NULL:
+ *  nothing). */
+void gpu_set_stage_hook(struct gpu *g, void (*fn)(void *, int), void *ctx);
+/** The records of several MPI ranks (src/mpi/halo.c) from and to the
+ *  resident particles.  gpu_halo_pack: the fields of sel (NULL: every
+ *  field) of particles idx[0 .. n), field after field as halo.c packs
+ *  them, into the host buffer dst (a field the device does not hold from
+ *  the host's p).  gpu_halo_unpack: a block of such records into particles
+ *  slot[0 .. n) of the device, each marked a foreign copy (PART_FOREIGN,
+ *  msrc = q0 + k) as the host marks them.  gpu_halo_ms: the milliseconds
+ *  both took so far. */
+void gpu_halo_pack(struct gpu *g, const struct parts *p, const size_t *idx, size_t n, char *dst,
+                   const unsigned char *sel);
+void gpu_halo_unpack(struct gpu *g, const size_t *slot, size_t n, const char *src,
+                     const unsigned char *sel, int64_t q0);
+double gpu_halo_ms(const struct gpu *g);
 
 /** Individual time steps (TimeIntegration:global_step: false) in the GPU's
  *  drift and kick (drift_part_bins, kick2_part_bins: the CPU's functions). */

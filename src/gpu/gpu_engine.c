@@ -13,6 +13,8 @@
 #include "tasks/hydro/kernel.h"
 #include "src/materials/material.h"
 #include "src/io/params.h"
+#include "src/mpi/halo.h"
+#include "src/mpi/ranks.h"
 #include "src/runner.h"
 #include "tasks/task_families.h"
 
@@ -54,6 +56,7 @@ struct gpu_engine {
   long rebuilds_device;     /**< rebuilds that reordered the resident particles there */
   long rebuilds_host;       /**< rebuilds with every field copied back and up again */
   unsigned char *reorder;   /**< [part_nr_fields]: the fields the host reorders then */
+  struct halo_device halo;  /**< several MPI ranks: the copies' records from and to the device */
 };
 
 /* Rebuilds of resident particles.  The host sorts the cells from x, y, z
@@ -708,7 +711,10 @@ void gpu_engine_init(struct engine *e) {
   }
   /* every EOS (tables included), strength, damage and porosity model has
    * a GPU path: the shared inline functions */
-  struct gpu *g = gpu_init(why, sizeof why);
+  /* several MPI ranks on a node: each its own device, by the node-local rank */
+  int local_rank, local_ranks;
+  ranks_local(&local_rank, &local_ranks);
+  struct gpu *g = gpu_init(local_rank, why, sizeof why);
   if (!g) {
     if (required) error_exit("a GPU was required (%s) but cannot be used: %s", asked, why);
     error_log(0, "no GPU (%s): every task runs on the CPU", why);
@@ -937,10 +943,43 @@ static void *gpu_engine_hydro_run(void *arg) {
   return NULL;
 }
 
+/** halo_device's functions: the records of several MPI ranks from and to
+ *  the resident particles. */
+static void gpu_engine_halo_pack(void *ctx, const size_t *idx, size_t n, char *dst,
+                                 const unsigned char *sel) {
+  struct engine *e = ctx;
+  gpu_halo_pack(e->gpu->gpu, &e->parts, idx, n, dst, sel);
+}
+static void gpu_engine_halo_unpack(void *ctx, const size_t *slot, size_t n, const char *src,
+                                   const unsigned char *sel, int64_t q0) {
+  struct engine *e = ctx;
+  gpu_halo_unpack(e->gpu->gpu, slot, n, src, sel, q0);
+}
+
+/** gpu_set_stage_hook's function: the refresh of the copies after stage k
+ *  of the phase (the fields it wrote), on thread 0 (MPI_THREAD_FUNNELED). */
+static void gpu_engine_stage(void *ctx, int k) {
+  struct engine *e = ctx;
+  halo_refresh_start(e, k);
+  halo_refresh_finish(e);
+}
+
 void gpu_engine_force(struct engine *e) {
   struct gpu_engine *ge = e->gpu;
   gpu_engine_set_bins(e);
   const double w_phase = error_walltime();
+  if (e->halo) {
+    /* several MPI ranks: every copy takes its owner's state (the drift and
+     * the kick changed it), from device to device through the exchange;
+     * then the phase's stages refresh what each wrote (gpu_engine_stage) */
+    if (!ge->dev_valid) {
+      gpu_upload_all(ge->gpu, &e->parts);
+      ge->dev_valid = 1;
+    }
+    ge->halo = (struct halo_device){e, gpu_engine_halo_pack, gpu_engine_halo_unpack};
+    halo_set_device(e, &ge->halo);
+    halo_refresh(e);
+  }
   if (e->nr_tcells > ge->nr_tc) {
     ge->tc_h_cap = error_realloc(ge->tc_h_cap, e->nr_tcells * sizeof(double), "GPU caps");
     ge->nr_tc = e->nr_tcells;
@@ -985,9 +1024,17 @@ void gpu_engine_force(struct engine *e) {
     jb.cpu_done = !cpu_work;
     gpu_set_kick_wait(ge->gpu, gpu_engine_kick_wait, &jb);
   }
-  /* the hydrodynamics on the GPU, driven by a thread off thread 0's core */
+  /* the hydrodynamics on the GPU, driven by a thread off thread 0's core;
+   * with several MPI ranks (no self-gravity: nothing runs beside) by
+   * thread 0 itself, the only one that calls MPI */
   pthread_t tid;
-  if (pthread_create(&tid, NULL, gpu_engine_hydro_run, &jb))
+  if (e->halo) {
+    gpu_set_stage_hook(ge->gpu, gpu_engine_stage, e);
+    gpu_engine_hydro_run(&jb);
+    runner_repin_self(&e->sched.pool);
+    gpu_set_stage_hook(ge->gpu, NULL, NULL);
+    halo_set_device(e, NULL);
+  } else if (pthread_create(&tid, NULL, gpu_engine_hydro_run, &jb))
     error_exit("cannot start the thread that drives the GPU");
   if (cpu_work) {
     /* the CPU workers, this thread as thread 0, while the GPU works */
@@ -999,7 +1046,7 @@ void gpu_engine_force(struct engine *e) {
     pthread_cond_signal(&jb.cond);
     pthread_mutex_unlock(&jb.mutex);
   }
-  pthread_join(tid, NULL);
+  if (!e->halo) pthread_join(tid, NULL);
   if (hybrid) {
     gpu_set_kick_wait(ge->gpu, NULL, NULL);
     if (!jb.ga_ready) error_bug("the GPU's kick did not wait for self-gravity");
@@ -1028,11 +1075,12 @@ static void gpu_engine_bounds(struct engine *e) {
 int gpu_engine_rebuild_begin(struct engine *e) {
   struct gpu_engine *ge = e->gpu;
   if (!ge || !ge->dev_valid || !ge->rebuild_on_device || e->nr_planes > 0 ||
-      e->restart_h_max > 0.0 || e->individual) {
+      e->restart_h_max > 0.0 || e->individual || e->halo) {
     if (ge)
       error_log(1, "GPU rebuild %d on the host: %s", e->space.nr_rebuilds + 1,
                 !ge->dev_valid           ? "the host holds the current particles"
                 : !ge->rebuild_on_device ? "Scheduler:gpu_rebuild: host"
+                : e->halo                ? "several MPI ranks (particles move between them)"
                 : e->nr_planes > 0       ? "mirror planes"
                 : e->individual          ? "time bins (not yet reordered on the device)"
                                          : "a resumed run's first rebuild");
@@ -1171,6 +1219,9 @@ void gpu_engine_print(const struct engine *e, FILE *f) {
               "the kick %.3f, the kick waited %.3f for the CPU",
               ge->hybrid_phases, 1e3 * ge->t_cpu_side / ge->hybrid_phases,
               1e3 * ge->t_gpu_side / ge->hybrid_phases, 1e3 * ge->t_waited / ge->hybrid_phases);
+    if (e->halo)
+      fprintf(f, "; the foreign copies' records gathered and scattered on the device %.3f",
+              gpu_halo_ms(ge->gpu) / ge->phases);
     fprintf(f, "\n");
   }
   gravity_gpu_print(ge->grav, f);

@@ -109,8 +109,9 @@ struct halo {
    * (halo_fields): sel[k] of the refresh after stage k, its record bytes */
   unsigned char *sel[2];
   size_t rec_sel[2];
-  int cur;       /**< the refresh in flight: -1 every field, else k of sel[k] */
-  double t_wait; /**< wall seconds waiting for them (not hidden by local work) */
+  int cur;                       /**< the refresh in flight: -1 every field, else k of sel[k] */
+  const struct halo_device *dev; /**< the particles live on a GPU (halo_set_device) */
+  double t_wait;                 /**< wall seconds waiting for them (not hidden by local work) */
 };
 
 /** The fields of a particle that gravity's walks read of a source, and
@@ -954,9 +955,10 @@ void halo_init(struct engine *e) {
   e->nr_owned_all = (long long)e->parts.count;
   if (ranks_size() < 2 || e->opt.one_rank) return;
   const char *why = NULL;
-  if (e->gpu)
+  if (e->gpu && e->gp.enabled)
     why =
-        "multi-rank runs run on the CPU only yet, and a GPU was asked for (--gpu or Scheduler:gpu)";
+        "self-gravity on several ranks runs on the CPU only yet, and a GPU was asked for (--gpu or "
+        "Scheduler:gpu)";
   else if (e->gp.enabled && e->gp.reuse_steps > 0)
     why = "multi-rank runs cannot reuse gravity's far field (Gravity:reuse_steps > 0) yet";
   else if (e->individual)
@@ -1283,8 +1285,12 @@ void halo_refresh_start(struct engine *e, int after) {
   char *sbuf = halo_grow(&H->sbuf, &H->sbuf_cap, H->nsend * rec + 1);
   halo_grow(&H->rbuf, &H->rbuf_cap, H->nrecv * rec + 1);
   for (int r = 0; r < H->nranks; r++)
-    halo_pack_sel(p, H->sidx + H->sdispl[r], (size_t)H->scount[r],
-                  sbuf + (size_t)H->sdispl[r] * rec, sel);
+    if (H->dev)
+      H->dev->pack(H->dev->ctx, H->sidx + H->sdispl[r], (size_t)H->scount[r],
+                   sbuf + (size_t)H->sdispl[r] * rec, sel);
+    else
+      halo_pack_sel(p, H->sidx + H->sdispl[r], (size_t)H->scount[r],
+                    sbuf + (size_t)H->sdispl[r] * rec, sel);
   const int n = H->nranks;
   halo_counts(n, rec, H->scount, H->sdispl, H->rcount, H->rdispl, H->xc);
   MPI_Ialltoallv(sbuf, H->xc, H->xc + n, MPI_BYTE, H->rbuf, H->xc + 2 * n, H->xc + 3 * n, MPI_BYTE,
@@ -1308,9 +1314,13 @@ void halo_refresh_finish(struct engine *e) {
   H->t_wait += w1 - w0;
   const unsigned char *sel = H->cur < 0 ? NULL : H->sel[H->cur];
   const size_t rec = H->cur < 0 ? H->rec : H->rec_sel[H->cur];
-  for (int r = 0; r < H->nranks; r++)
+  for (int r = 0; r < H->nranks; r++) {
     halo_unpack_sel(p, 0, H->ridx + H->rdispl[r], (size_t)H->rcount[r],
                     H->rbuf + (size_t)H->rdispl[r] * rec, sel);
+    if (H->dev)
+      H->dev->unpack(H->dev->ctx, H->ridx + H->rdispl[r], (size_t)H->rcount[r],
+                     H->rbuf + (size_t)H->rdispl[r] * rec, sel, (int64_t)H->rdispl[r]);
+  }
   for (size_t q = 0; q < H->nrecv; q++) {
     const size_t g = H->ridx[q];
     p->flags[g] |= PART_FOREIGN;
@@ -1323,6 +1333,10 @@ void halo_refresh_finish(struct engine *e) {
   H->t_refresh += error_walltime() - w0;
   H->nr_refresh++;
 #endif
+}
+
+void halo_set_device(struct engine *e, const struct halo_device *dev) {
+  if (e->halo) e->halo->dev = dev;
 }
 
 void halo_refresh(struct engine *e) {

@@ -23,6 +23,9 @@
 #ifndef BOLIDE_HALO_H
 #define BOLIDE_HALO_H
 
+#include <stddef.h>
+#include <stdint.h>
+
 struct engine;
 struct parts;
 
@@ -51,6 +54,21 @@ int halo_rebuild(struct engine *e);
 /** Before every FORCE phase (after the drift and any rebuild): every
  *  foreign copy takes its owner's state, and the cells' bounds follow. */
 void halo_refresh(struct engine *e);
+
+/** The particles live on a GPU (src/gpu/gpu_engine.c): a refresh packs the
+ *  owned particles' records from the device (pack: n records of the
+ *  particles idx, the fields of sel or every field with NULL, in the
+ *  layout of halo.c's blocks) and writes the copies' records into the
+ *  device too (unpack: into slot[0 .. n), marked as copies whose msrc
+ *  counts from q0), besides the host's arrays.  NULL: the host's arrays
+ *  only.  Nothing with one rank. */
+struct halo_device {
+  void *ctx;
+  void (*pack)(void *ctx, const size_t *idx, size_t n, char *dst, const unsigned char *sel);
+  void (*unpack)(void *ctx, const size_t *slot, size_t n, const char *src, const unsigned char *sel,
+                 int64_t q0);
+};
+void halo_set_device(struct engine *e, const struct halo_device *dev);
 
 /** halo_refresh in two halves, so that the tasks that need no copy run
  *  while the exchange is in flight (engine_run_force_stages): _start packs

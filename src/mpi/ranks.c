@@ -12,6 +12,7 @@
 #include <mpi.h>
 
 static int ranks_me = 0, ranks_n = 1, ranks_started = 0, ranks_done = 0;
+static int ranks_local_me = 0, ranks_local_n = 1; /**< (ranks_init, collective) */
 
 /** At exit without ranks_finalize (an error): one rank finalizes, as the
  *  serial program would simply exit; several abort the job. */
@@ -34,6 +35,15 @@ void ranks_init(int *argc, char ***argv) {
   atexit(ranks_atexit);
   if (provided < MPI_THREAD_FUNNELED)
     error_exit("the MPI library gives no MPI_THREAD_FUNNELED (threads %d)", provided);
+  /* the node-local rank, once here where every rank passes (a collective:
+   * ranks_local is called where only some ranks may be) */
+  if (ranks_n > 1) {
+    MPI_Comm node;
+    MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, ranks_me, MPI_INFO_NULL, &node);
+    MPI_Comm_rank(node, &ranks_local_me);
+    MPI_Comm_size(node, &ranks_local_n);
+    MPI_Comm_free(&node);
+  }
 }
 
 int ranks_rank(void) {
@@ -49,14 +59,8 @@ int ranks_have_mpi(void) {
 }
 
 void ranks_local(int *rank, int *size) {
-  *rank = 0;
-  *size = 1;
-  if (ranks_n == 1) return;
-  MPI_Comm node;
-  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, ranks_me, MPI_INFO_NULL, &node);
-  MPI_Comm_rank(node, rank);
-  MPI_Comm_size(node, size);
-  MPI_Comm_free(&node);
+  *rank = ranks_local_me;
+  *size = ranks_local_n;
 }
 
 void ranks_bcast_ints(int *v, int n) {

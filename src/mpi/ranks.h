@@ -15,8 +15,8 @@ void ranks_init(int *argc, char ***argv);
 int ranks_rank(void);
 int ranks_size(void);
 
-/** This rank among the ranks of its node (MPI_COMM_TYPE_SHARED), and their
- *  number (0 and 1 without MPI). */
+/** This rank among the ranks of its node (MPI_COMM_TYPE_SHARED, found by
+ *  ranks_init), and their number (0 and 1 without MPI); not a collective. */
 void ranks_local(int *rank, int *size);
 
 /** 1 if this build has MPI. */

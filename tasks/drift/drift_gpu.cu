@@ -11,6 +11,9 @@ __global__ void drift_gpu_kernel(struct parts p, double dt_kick, double dt, doub
                                  double h_max, int h_continuity) {
   const size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= p.count) return;
+  /* (several MPI ranks: a foreign copy takes its state from its owner's
+   * refreshes, as in drift_cell_cpu) */
+  if (p.flags[i] & PART_FOREIGN) return;
   kick_part(&p, i, dt_kick);
   /* XSPH sums of the last force kernel (force_iact.h) */
   drift_part(&p, i, dt, xsph, h_max, h_continuity);

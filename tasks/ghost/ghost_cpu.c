@@ -27,7 +27,7 @@ int ghost_cell_cpu(struct parts *p, struct cell *c, const struct ghost_ngbs *ngb
     }
     ghost_part_start(p, i);
     ghost_part_add_self(p, i);
-    if (p->flags[i] & (PART_MIRROR | PART_FOREIGN)) {
+    if (PART_IS_NOT_OWNED(p, i)) {
       /* a mirror ghost keeps its source's h (tasks/drift/drift_mirror.c), a
        * foreign copy its owner's (src/mpi/halo.c) */
       p->flags[i] |= PART_H_CONVERGED;

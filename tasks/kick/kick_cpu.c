@@ -12,7 +12,7 @@ double kick2_cell_cpu(struct parts *p, const struct cell *c, double dt_kick,
   if (bins)
     for (int b = 0; b <= TIMELINE_NR_BINS; b++) bins[b] = 0;
   for (size_t i = c->offset; i < end; i++) {
-    if (p->flags[i] & PART_NOT_OWNED) continue; /* (no kick: drift_mirror.c, src/mpi/halo.c) */
+    if (PART_IS_NOT_OWNED(p, i)) continue; /* (no kick: drift_mirror.c, src/mpi/halo.c) */
     const double dt = kick2_part(p, i, dt_kick, hp, mats, tp);
     if (dt < dt_min) dt_min = dt;
     if (bins) bins[timeline_bin(tl, dt)]++;

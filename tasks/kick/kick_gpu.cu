@@ -33,6 +33,8 @@ __global__ void kick2_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, struc
   double dt = 1e300;
   long long ti = LLONG_MAX, n = 0;
   for (int t = threadIdx.x; t < lv.count[L]; t += blockDim.x) {
+    /* (no kick: a foreign copy of several MPI ranks, as kick2_cell_cpu) */
+    if (PART_IS_NOT_OWNED(&p, beg + (size_t)t)) continue;
     double d;
     if (bins.on) {
       integertime_t ti_end;

@@ -859,7 +859,7 @@ int main(int argc, char **argv) {
   (void)argc;
   error_init(argv[0]);
   char why[256];
-  struct gpu *g = gpu_init(why, sizeof why);
+  struct gpu *g = gpu_init(0, why, sizeof why);
   if (!g) {
     printf("SKIP: no GPU (%s)\n", why);
     return 77;

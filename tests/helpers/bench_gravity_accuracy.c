@@ -298,7 +298,7 @@ int main(int argc, char **argv) {
   h.built_rebuild = -1;
   if (gpu) {
     char why[256];
-    g = gpu_init(why, sizeof why);
+    g = gpu_init(0, why, sizeof why);
     if (!g) error_exit("bench_gravity_accuracy: no GPU (%s)", why);
     gg = gpu_grav_new(g);
   }
