@@ -23,19 +23,28 @@
 # epsilon_fmm 2.5e-5 gives SWIFT's median and 99th-percentile force errors
 # at its 1e-3), theta_cr 0.5 and the same softening.
 #
+# With -G every rank runs its FORCE phases on a GPU (--gpu; a build with
+# --with-mpi --with-cuda): rank k of a node on its device k modulo the
+# node's GPUs (theory/mpi.md, "GPUs on several ranks"); hydrodynamics only
+# (self-gravity with a GPU on several ranks is not there yet).
+#
 # Usage: BOLIDE_BENCH_IC=.../make_impact_ic.py BOLIDE_BUILD=_build_mpi \
-#          tools/bench/mpi.sh [-n 1.1e5] [-c "1x2 2x1"] [-s 5] [-r 3] [-m 16] [-w] [-g] [-S DIR]
+#          tools/bench/mpi.sh [-n 1.1e5] [-c "1x2 2x1"] [-s 5] [-r 3] [-m 16] [-w] [-g] [-G] [-S DIR]
 #   -m: Scheduler:max_top_level_cells (the decomposition's grid)
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 build=${BOLIDE_BUILD:-$top/_build_mpi}
 python=${PYTHON:-$top/_build/.venv/bin/python}
 gen=${BOLIDE_BENCH_IC:?"set BOLIDE_BENCH_IC to the reference impact IC generator of the benchmark set (make_impact_ic.py; theory/validation.md, Benchmarks)"}
-n=1.1e5; layouts="1x2 2x1"; steps=5; repeat=3; cells=16; weak=0; gravity=false; swift=""
-while getopts "n:c:s:r:m:wgS:" o; do
+n=1.1e5; layouts="1x2 2x1"; steps=5; repeat=3; cells=16; weak=0; gravity=false; swift=""; gpu=--no-gpu
+while getopts "n:c:s:r:m:wgGS:" o; do
   case $o in n) n=$OPTARG ;; c) layouts=$OPTARG ;; s) steps=$OPTARG ;; r) repeat=$OPTARG ;;
-             m) cells=$OPTARG ;; w) weak=1 ;; g) gravity=true ;; S) swift=$OPTARG ;; *) exit 2 ;; esac
+             m) cells=$OPTARG ;; w) weak=1 ;; g) gravity=true ;; G) gpu=--gpu ;; S) swift=$OPTARG ;;
+             *) exit 2 ;; esac
 done
+if [ "$gpu" = --gpu ] && [ $gravity = true ]; then
+  echo "mpi.sh: -G with -g: self-gravity on several ranks runs on the CPU only yet" >&2; exit 2
+fi
 if [ -n "$swift" ]; then
   swift=$(cd "$swift" && pwd)
   [ -x "$swift/swift_mpi" ] || { echo "mpi.sh: no swift_mpi in $swift (-S)" >&2; exit 1; }
@@ -65,7 +74,9 @@ printf "# %s on %s (%s, %s cores), %s, %s, median of %d rounds of %d steps, ever
     sed -n 's/.*(git \([^)]*\)).*/\1/p;q') (the git version configure recorded)" "$(uname -n)" \
   "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')" "$(nproc)" \
   "$([ $weak = 1 ] && echo "weak scaling, $n particles per rank" || echo "$n particles")" \
-  "$([ $gravity = true ] && echo "hydrodynamics and self-gravity" || echo "hydrodynamics only")" \
+  "$([ $gravity = true ] && echo "hydrodynamics and self-gravity" || echo "hydrodynamics only")$([ $gpu = --gpu ] &&
+    echo ", a GPU per rank ($(nvidia-smi --query-gpu=name --format=csv,noheader 2>/dev/null | sort | uniq -c |
+      sed 's/^ *//' | paste -sd, -))")" \
   "$repeat" "$steps"
 for r in $(seq "$repeat"); do
   for l in $layouts; do
@@ -89,7 +100,7 @@ SPH:
 Scheduler:
   max_top_level_cells: $cells
 YML
-    mpirun --bind-to none -n "$R" "$build/bolide" --no-gpu -n $((steps + 1)) -t "$T" p.yml >run.log 2>&1 ||
+    mpirun --bind-to none -n "$R" "$build/bolide" "$gpu" -n $((steps + 1)) -t "$T" p.yml >run.log 2>&1 ||
       { tail -5 run.log >&2; echo "mpi.sh: bolide failed in layout $l (log above)" >&2; exit 1; }
     awk -v l="$l" '$1 ~ /^[0-9]+$/ && NF == 6 && $1 > 1 {s += $5; c++} END {printf "%s %.6f\n", l, s / c}' \
       run.log >>times
