@@ -648,16 +648,16 @@ __global__ static void gpu_halo_mark_kernel(int *flags, int64_t *msrc, const siz
   if (msrc) msrc[slot[k]] = q0 + (int64_t)k;
 }
 
-/** The staging of a block of n records of rec bytes, and its indices up. */
-static void gpu_halo_stage(struct gpu *g, const size_t *idx, size_t n, size_t rec) {
+/** The staging of a block of n records (bytes on the device), and its indices up. */
+static void gpu_halo_stage(struct gpu *g, const size_t *idx, size_t n, size_t bytes) {
   if (n > g->halo_idx_cap) {
     if (g->halo_idx) gpu_dfree(g->halo_idx);
     g->halo_idx_cap = n + n / 4 + 1024;
     g->halo_idx = (size_t *)gpu_alloc(g->halo_idx_cap * sizeof(size_t), "MPI records");
   }
-  if (n * rec > g->halo_buf_cap) {
+  if (bytes > g->halo_buf_cap) {
     if (g->halo_buf) gpu_dfree(g->halo_buf);
-    g->halo_buf_cap = n * rec + n * rec / 4 + 4096;
+    g->halo_buf_cap = bytes + bytes / 4 + 4096;
     g->halo_buf = (char *)gpu_alloc(g->halo_buf_cap, "MPI records");
   }
   gpu_check(
@@ -673,38 +673,39 @@ static size_t gpu_halo_rec(const unsigned char *sel) {
   return rec;
 }
 
+/** The device buffer's offset of a field's block of n values (16-byte
+ *  aligned: the blocks of the host's records follow one another unaligned). */
+static size_t gpu_halo_align(size_t b) {
+  return (b + 15) & ~(size_t)15;
+}
+
 extern "C" void gpu_halo_pack(struct gpu *g, const struct parts *p, const size_t *idx, size_t n,
                               char *dst, const unsigned char *sel) {
   if (n == 0) return;
   cudaStream_t s = g->stream[0];
   const double w0 = error_walltime();
-  gpu_halo_stage(g, idx, n, gpu_halo_rec(sel));
+  gpu_halo_stage(g, idx, n, n * gpu_halo_rec(sel) + 16 * PART_NR_FIELDS);
   const unsigned nb = (unsigned)((n + GPU_BLOCK - 1) / GPU_BLOCK);
-  size_t off = 0;
+  size_t off = 0, doff = 0;
   for (int f = 0; f < part_nr_fields; f++) {
     if (sel && !sel[f]) continue;
     const size_t size = part_fields[f].size;
     const char *dp = (const char *)*gpu_field_slot(&g->dev, f);
     if (dp) {
-      gpu_halo_gather_kernel<<<nb, GPU_BLOCK, 0, s>>>(dp, size, g->halo_idx, n, g->halo_buf + off);
+      gpu_halo_gather_kernel<<<nb, GPU_BLOCK, 0, s>>>(dp, size, g->halo_idx, n, g->halo_buf + doff);
       gpu_check_launch(gpu_halo_gather_kernel);
-    }
-    off += n * size;
-  }
-  gpu_check(cudaMemcpyAsync(dst, g->halo_buf, off, cudaMemcpyDeviceToHost, s));
-  gpu_check(cudaStreamSynchronize(s));
-  g->bytes_d2h += (double)off;
-  /* a field the device does not hold (absent): the host's copy is the only one */
-  off = 0;
-  for (int f = 0; f < part_nr_fields; f++) {
-    if (sel && !sel[f]) continue;
-    const size_t size = part_fields[f].size;
-    if (!*gpu_field_slot(&g->dev, f)) {
+      gpu_check(
+          cudaMemcpyAsync(dst + off, g->halo_buf + doff, n * size, cudaMemcpyDeviceToHost, s));
+      g->bytes_d2h += (double)(n * size);
+      doff += gpu_halo_align(n * size);
+    } else {
+      /* a field the device does not hold (absent): the host's copy is the only one */
       const char *a = (const char *)*gpu_field_slot((struct parts *)p, f);
       for (size_t k = 0; k < n; k++) memcpy(dst + off + size * k, a + size * idx[k], size);
     }
     off += n * size;
   }
+  gpu_check(cudaStreamSynchronize(s));
   g->t_halo += 1e3 * (error_walltime() - w0);
 }
 
@@ -713,19 +714,21 @@ extern "C" void gpu_halo_unpack(struct gpu *g, const size_t *slot, size_t n, con
   if (n == 0) return;
   cudaStream_t s = g->stream[0];
   const double w0 = error_walltime();
-  const size_t rec = gpu_halo_rec(sel);
-  gpu_halo_stage(g, slot, n, rec);
-  gpu_check(cudaMemcpyAsync(g->halo_buf, src, n * rec, cudaMemcpyHostToDevice, s));
-  g->bytes_h2d += (double)(n * rec);
+  gpu_halo_stage(g, slot, n, n * gpu_halo_rec(sel) + 16 * PART_NR_FIELDS);
   const unsigned nb = (unsigned)((n + GPU_BLOCK - 1) / GPU_BLOCK);
-  size_t off = 0;
+  size_t off = 0, doff = 0;
   for (int f = 0; f < part_nr_fields; f++) {
     if (sel && !sel[f]) continue;
     const size_t size = part_fields[f].size;
     char *dp = (char *)*gpu_field_slot(&g->dev, f);
     if (dp) {
-      gpu_halo_scatter_kernel<<<nb, GPU_BLOCK, 0, s>>>(dp, size, g->halo_idx, n, g->halo_buf + off);
+      gpu_check(
+          cudaMemcpyAsync(g->halo_buf + doff, src + off, n * size, cudaMemcpyHostToDevice, s));
+      g->bytes_h2d += (double)(n * size);
+      gpu_halo_scatter_kernel<<<nb, GPU_BLOCK, 0, s>>>(dp, size, g->halo_idx, n,
+                                                       g->halo_buf + doff);
       gpu_check_launch(gpu_halo_scatter_kernel);
+      doff += gpu_halo_align(n * size);
     }
     off += n * size;
   }

@@ -122,7 +122,7 @@ runs() {
   for r in "$@"; do
     mkdir -p mpi$r && cp p.yml mpi$r/
     (cd mpi$r && timeout 300 "$MPIRUN" -n "$r" "$B/bolide" $gpu -t 1 p.yml >run.log 2>run.err) ||
-      { tail -5 mpi$r/run.err mpi$r/run.log; fail "$case: mpirun -n $r"; }
+      { tail -n 5 mpi$r/run.err mpi$r/run.log; fail "$case: mpirun -n $r"; }
     grep -q "domain decomposition: $r ranks" mpi$r/run.log || fail "$case: no decomposition over $r ranks"
     [ -z "$gpu" ] || grep -q "the foreign copies' records gathered and scattered on the device" \
       mpi$r/run.log || fail "$case: $r ranks did not run their FORCE phases on the GPU"
