@@ -127,6 +127,7 @@ struct gpu {
   void *stage_ctx;                   /**< its argument */
   size_t *halo_idx;                  /**< particle indices of a block of records (gpu_halo_pack) */
   char *halo_buf;                    /**< the block's records on the device */
+  char *halo_host;                   /**< and in pinned host memory */
   size_t halo_idx_cap, halo_buf_cap; /**< their allocated lengths (elements, bytes) */
   double t_halo;                     /**< milliseconds packing and unpacking records */
 };
@@ -613,30 +614,43 @@ extern "C" void gpu_set_stage_hook(struct gpu *g, void (*fn)(void *, int), void 
 
 /* ------------------------------------------- records of several MPI ranks */
 
-/** dst[k] = a[idx[k]] for k < n, elements of size bytes. */
-__global__ static void gpu_halo_gather_kernel(const char *a, size_t size, const size_t *idx,
-                                              size_t n, char *dst) {
-  const size_t k = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
-  if (k >= n) return;
-  if (size == 8)
-    ((unsigned long long *)dst)[k] = ((const unsigned long long *)a)[idx[k]];
-  else if (size == 4)
-    ((unsigned int *)dst)[k] = ((const unsigned int *)a)[idx[k]];
-  else
-    for (size_t b = 0; b < size; b++) dst[size * k + b] = a[size * idx[k] + b];
-}
+/** The fields of a block of records on the device: field k's array a[k]
+ *  (elements of size[k] bytes) and its values' place off[k] in the device
+ *  buffer. */
+struct gpu_halo_table {
+  char *a[PART_NR_FIELDS];
+  size_t off[PART_NR_FIELDS];
+  int size[PART_NR_FIELDS];
+};
 
-/** a[slot[k]] = src[k] for k < n. */
-__global__ static void gpu_halo_scatter_kernel(char *a, size_t size, const size_t *slot, size_t n,
-                                               const char *src) {
+/** One element of one field (blockIdx.y) between array and buffer: gather
+ *  (buf[k] = a[idx[k]]) or scatter (a[idx[k]] = buf[k]). */
+__global__ static void gpu_halo_move_kernel(struct gpu_halo_table t, const size_t *idx, size_t n,
+                                            char *buf, int gather) {
   const size_t k = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
   if (k >= n) return;
-  if (size == 8)
-    ((unsigned long long *)a)[slot[k]] = ((const unsigned long long *)src)[k];
-  else if (size == 4)
-    ((unsigned int *)a)[slot[k]] = ((const unsigned int *)src)[k];
-  else
-    for (size_t b = 0; b < size; b++) a[size * slot[k] + b] = src[size * k + b];
+  const int f = blockIdx.y;
+  const size_t size = (size_t)t.size[f], i = idx[k];
+  char *a = t.a[f], *b = buf + t.off[f];
+  if (size == 8) {
+    unsigned long long *x = (unsigned long long *)a, *y = (unsigned long long *)b;
+    if (gather)
+      y[k] = x[i];
+    else
+      x[i] = y[k];
+  } else if (size == 4) {
+    unsigned int *x = (unsigned int *)a, *y = (unsigned int *)b;
+    if (gather)
+      y[k] = x[i];
+    else
+      x[i] = y[k];
+  } else {
+    for (size_t q = 0; q < size; q++)
+      if (gather)
+        b[size * k + q] = a[size * i + q];
+      else
+        a[size * i + q] = b[size * k + q];
+  }
 }
 
 /** The copies' marks, as halo_refresh_finish sets them on the host. */
@@ -648,7 +662,8 @@ __global__ static void gpu_halo_mark_kernel(int *flags, int64_t *msrc, const siz
   if (msrc) msrc[slot[k]] = q0 + (int64_t)k;
 }
 
-/** The staging of a block of n records (bytes on the device), and its indices up. */
+/** The staging of a block of n records (bytes on the device and in the
+ *  pinned host buffer), and its indices up. */
 static void gpu_halo_stage(struct gpu *g, const size_t *idx, size_t n, size_t bytes) {
   if (n > g->halo_idx_cap) {
     if (g->halo_idx) gpu_dfree(g->halo_idx);
@@ -657,26 +672,39 @@ static void gpu_halo_stage(struct gpu *g, const size_t *idx, size_t n, size_t by
   }
   if (bytes > g->halo_buf_cap) {
     if (g->halo_buf) gpu_dfree(g->halo_buf);
+    if (g->halo_host) gpu_check(cudaFreeHost(g->halo_host));
     g->halo_buf_cap = bytes + bytes / 4 + 4096;
     g->halo_buf = (char *)gpu_alloc(g->halo_buf_cap, "MPI records");
+    gpu_check(cudaMallocHost((void **)&g->halo_host, g->halo_buf_cap));
   }
   gpu_check(
       cudaMemcpyAsync(g->halo_idx, idx, n * sizeof(size_t), cudaMemcpyHostToDevice, g->stream[0]));
   g->bytes_h2d += (double)(n * sizeof(size_t));
 }
 
-/** The record bytes of the fields of sel (NULL: every field). */
-static size_t gpu_halo_rec(const unsigned char *sel) {
-  size_t rec = 0;
-  for (int f = 0; f < part_nr_fields; f++)
-    if (!sel || sel[f]) rec += part_fields[f].size;
-  return rec;
-}
-
-/** The device buffer's offset of a field's block of n values (16-byte
- *  aligned: the blocks of the host's records follow one another unaligned). */
-static size_t gpu_halo_align(size_t b) {
-  return (b + 15) & ~(size_t)15;
+/** The table of the fields of sel (NULL: every field) that the device
+ *  holds, for n records: their blocks' places in the device buffer (16-byte
+ *  aligned) and in the host's records (hoff, one after the other); returns
+ *  their number and in *bytes the device buffer's length. */
+static int gpu_halo_fields(const struct gpu *g, const unsigned char *sel, size_t n,
+                           struct gpu_halo_table *t, size_t *hoff, size_t *bytes) {
+  int nf = 0;
+  size_t off = 0, doff = 0;
+  for (int f = 0; f < part_nr_fields; f++) {
+    if (sel && !sel[f]) continue;
+    const size_t size = part_fields[f].size;
+    char *dp = (char *)*gpu_field_slot((struct parts *)&g->dev, f);
+    if (dp) {
+      t->a[nf] = dp;
+      t->size[nf] = (int)size;
+      t->off[nf] = doff;
+      hoff[nf++] = off;
+      doff += (n * size + 15) & ~(size_t)15;
+    }
+    off += n * size;
+  }
+  *bytes = doff;
+  return nf;
 }
 
 extern "C" void gpu_halo_pack(struct gpu *g, const struct parts *p, const size_t *idx, size_t n,
@@ -684,28 +712,34 @@ extern "C" void gpu_halo_pack(struct gpu *g, const struct parts *p, const size_t
   if (n == 0) return;
   cudaStream_t s = g->stream[0];
   const double w0 = error_walltime();
-  gpu_halo_stage(g, idx, n, n * gpu_halo_rec(sel) + 16 * PART_NR_FIELDS);
-  const unsigned nb = (unsigned)((n + GPU_BLOCK - 1) / GPU_BLOCK);
-  size_t off = 0, doff = 0;
+  struct gpu_halo_table t;
+  size_t hoff[PART_NR_FIELDS], bytes;
+  const int nf = gpu_halo_fields(g, sel, n, &t, hoff, &bytes);
+  gpu_halo_stage(g, idx, n, bytes);
+  if (nf > 0) {
+    const dim3 grid((unsigned)((n + GPU_BLOCK - 1) / GPU_BLOCK), (unsigned)nf);
+    gpu_halo_move_kernel<<<grid, GPU_BLOCK, 0, s>>>(t, g->halo_idx, n, g->halo_buf, 1);
+    gpu_check_launch(gpu_halo_move_kernel);
+    gpu_check(cudaMemcpyAsync(g->halo_host, g->halo_buf, bytes, cudaMemcpyDeviceToHost, s));
+    g->bytes_d2h += (double)bytes;
+  }
+  gpu_check(cudaStreamSynchronize(s));
+  /* the blocks into the host's records; a field the device does not hold
+   * (absent) from the host's copy, the only one */
+  size_t off = 0;
+  int q = 0;
   for (int f = 0; f < part_nr_fields; f++) {
     if (sel && !sel[f]) continue;
     const size_t size = part_fields[f].size;
-    const char *dp = (const char *)*gpu_field_slot(&g->dev, f);
-    if (dp) {
-      gpu_halo_gather_kernel<<<nb, GPU_BLOCK, 0, s>>>(dp, size, g->halo_idx, n, g->halo_buf + doff);
-      gpu_check_launch(gpu_halo_gather_kernel);
-      gpu_check(
-          cudaMemcpyAsync(dst + off, g->halo_buf + doff, n * size, cudaMemcpyDeviceToHost, s));
-      g->bytes_d2h += (double)(n * size);
-      doff += gpu_halo_align(n * size);
+    if (q < nf && hoff[q] == off) {
+      memcpy(dst + off, g->halo_host + t.off[q], n * size);
+      q++;
     } else {
-      /* a field the device does not hold (absent): the host's copy is the only one */
       const char *a = (const char *)*gpu_field_slot((struct parts *)p, f);
       for (size_t k = 0; k < n; k++) memcpy(dst + off + size * k, a + size * idx[k], size);
     }
     off += n * size;
   }
-  gpu_check(cudaStreamSynchronize(s));
   g->t_halo += 1e3 * (error_walltime() - w0);
 }
 
@@ -714,23 +748,19 @@ extern "C" void gpu_halo_unpack(struct gpu *g, const size_t *slot, size_t n, con
   if (n == 0) return;
   cudaStream_t s = g->stream[0];
   const double w0 = error_walltime();
-  gpu_halo_stage(g, slot, n, n * gpu_halo_rec(sel) + 16 * PART_NR_FIELDS);
+  struct gpu_halo_table t;
+  size_t hoff[PART_NR_FIELDS], bytes;
+  const int nf = gpu_halo_fields(g, sel, n, &t, hoff, &bytes);
+  gpu_halo_stage(g, slot, n, bytes);
+  for (int q = 0; q < nf; q++)
+    memcpy(g->halo_host + t.off[q], src + hoff[q], n * (size_t)t.size[q]);
   const unsigned nb = (unsigned)((n + GPU_BLOCK - 1) / GPU_BLOCK);
-  size_t off = 0, doff = 0;
-  for (int f = 0; f < part_nr_fields; f++) {
-    if (sel && !sel[f]) continue;
-    const size_t size = part_fields[f].size;
-    char *dp = (char *)*gpu_field_slot(&g->dev, f);
-    if (dp) {
-      gpu_check(
-          cudaMemcpyAsync(g->halo_buf + doff, src + off, n * size, cudaMemcpyHostToDevice, s));
-      g->bytes_h2d += (double)(n * size);
-      gpu_halo_scatter_kernel<<<nb, GPU_BLOCK, 0, s>>>(dp, size, g->halo_idx, n,
-                                                       g->halo_buf + doff);
-      gpu_check_launch(gpu_halo_scatter_kernel);
-      doff += gpu_halo_align(n * size);
-    }
-    off += n * size;
+  if (nf > 0) {
+    gpu_check(cudaMemcpyAsync(g->halo_buf, g->halo_host, bytes, cudaMemcpyHostToDevice, s));
+    g->bytes_h2d += (double)bytes;
+    const dim3 grid(nb, (unsigned)nf);
+    gpu_halo_move_kernel<<<grid, GPU_BLOCK, 0, s>>>(t, g->halo_idx, n, g->halo_buf, 0);
+    gpu_check_launch(gpu_halo_move_kernel);
   }
   gpu_halo_mark_kernel<<<nb, GPU_BLOCK, 0, s>>>(g->dev.flags, g->dev.msrc, g->halo_idx, n, q0);
   gpu_check_launch(gpu_halo_mark_kernel);
@@ -1149,6 +1179,7 @@ extern "C" void gpu_free(struct gpu *g) {
   if (g->h_start) gpu_dfree(g->h_start);
   if (g->halo_idx) gpu_dfree(g->halo_idx);
   if (g->halo_buf) gpu_dfree(g->halo_buf);
+  if (g->halo_host) gpu_check(cudaFreeHost(g->halo_host));
   for (int k = 0; k < part_nr_fields; k++) {
     void **slot = gpu_field_slot(&g->dev, k);
     if (*slot) gpu_dfree(*slot);
