@@ -562,7 +562,8 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
      * stage that ends here (the density sums and the ghost; the gradient
      * and the extra ghost), as between the CPU's stages (engine.c,
      * engine_run_force_stages) */
-    if (g->stage_hook && (f == task_family_ghost || f == task_family_gradient)) {
+    if (g->stage_hook && (f == task_family_ghost || f == task_family_gradient) &&
+        gpu_step_runs(f, hp->solids, damage)) {
       gpu_check(cudaStreamSynchronize(s));
       g->stage_hook(g->stage_ctx, f == task_family_ghost ? 0 : 1);
     }
