@@ -330,19 +330,39 @@ static void halo_list_push(struct halo_list *L, size_t i) {
 
 /** Remove the particles marked in drop (compacting; the order changes). */
 static void halo_remove(struct parts *p, unsigned char *drop) {
-  size_t i = 0;
-  while (i < p->count) {
+  /* the moves first (each dropped slot takes the last particle; a source is
+   * never an earlier move's destination), then applied field by field: one
+   * array at a time stays in the caches, where a particle's copy across
+   * every field touched a hundred arrays (0.2 s at 1.1e6 on 2 ranks) */
+  struct halo_list moves = {0};
+  size_t i = 0, count = p->count;
+  while (i < count) {
     if (drop[i]) {
-      const size_t last = p->count - 1;
+      const size_t last = count - 1;
       if (i != last) {
-        parts_copy_one(p, i, last);
+        halo_list_push(&moves, i);
+        halo_list_push(&moves, last);
         drop[i] = drop[last];
       }
-      p->count--;
+      count--;
     } else {
       i++;
     }
   }
+  const size_t nm = moves.n / 2, *mv = moves.i;
+  for (int k = 0; k < part_nr_fields; k++) {
+    const struct part_field *f = &part_fields[k];
+    char *a = part_field_array(p, f);
+    if (f->size == 8)
+      for (size_t m = 0; m < nm; m++) ((uint64_t *)a)[mv[2 * m]] = ((uint64_t *)a)[mv[2 * m + 1]];
+    else if (f->size == 4)
+      for (size_t m = 0; m < nm; m++) ((uint32_t *)a)[mv[2 * m]] = ((uint32_t *)a)[mv[2 * m + 1]];
+    else
+      for (size_t m = 0; m < nm; m++)
+        memcpy(a + f->size * mv[2 * m], a + f->size * mv[2 * m + 1], f->size);
+  }
+  free(moves.i);
+  p->count = count;
 }
 
 /** The owned particles that left the rank's cells go to their owners. */
