@@ -685,9 +685,10 @@ static void gpu_halo_stage(struct gpu *g, const size_t *idx, size_t n, size_t by
 
 /** The table of the fields of sel (NULL: every field) that the device
  *  holds, for n records: their blocks' places in the device buffer (16-byte
- *  aligned) and in the host's records (hoff, one after the other); returns
- *  their number and in *bytes the device buffer's length. */
-static int gpu_halo_fields(const struct gpu *g, const unsigned char *sel, size_t n,
+ *  aligned) and in the host's records (hoff, one after the other), and
+ *  the staging of that length with the particles idx up (gpu_halo_stage);
+ *  returns their number and in *bytes the device buffer's length. */
+static int gpu_halo_fields(struct gpu *g, const unsigned char *sel, const size_t *idx, size_t n,
                            struct gpu_halo_table *t, size_t *hoff, size_t *bytes) {
   int nf = 0;
   size_t off = 0, doff = 0;
@@ -705,6 +706,7 @@ static int gpu_halo_fields(const struct gpu *g, const unsigned char *sel, size_t
     off += n * size;
   }
   *bytes = doff;
+  gpu_halo_stage(g, idx, n, doff);
   return nf;
 }
 
@@ -715,8 +717,7 @@ extern "C" void gpu_halo_pack(struct gpu *g, const struct parts *p, const size_t
   const double w0 = error_walltime();
   struct gpu_halo_table t;
   size_t hoff[PART_NR_FIELDS], bytes;
-  const int nf = gpu_halo_fields(g, sel, n, &t, hoff, &bytes);
-  gpu_halo_stage(g, idx, n, bytes);
+  const int nf = gpu_halo_fields(g, sel, idx, n, &t, hoff, &bytes);
   if (nf > 0) {
     const dim3 grid((unsigned)((n + GPU_BLOCK - 1) / GPU_BLOCK), (unsigned)nf);
     gpu_halo_move_kernel<<<grid, GPU_BLOCK, 0, s>>>(t, g->halo_idx, n, g->halo_buf, 1);
@@ -751,8 +752,7 @@ extern "C" void gpu_halo_unpack(struct gpu *g, const size_t *slot, size_t n, con
   const double w0 = error_walltime();
   struct gpu_halo_table t;
   size_t hoff[PART_NR_FIELDS], bytes;
-  const int nf = gpu_halo_fields(g, sel, n, &t, hoff, &bytes);
-  gpu_halo_stage(g, slot, n, bytes);
+  const int nf = gpu_halo_fields(g, sel, slot, n, &t, hoff, &bytes);
   for (int q = 0; q < nf; q++)
     memcpy(g->halo_host + t.off[q], src + hoff[q], n * (size_t)t.size[q]);
   const unsigned nb = (unsigned)((n + GPU_BLOCK - 1) / GPU_BLOCK);

@@ -27,12 +27,9 @@ int ghost_cell_cpu(struct parts *p, struct cell *c, const struct ghost_ngbs *ngb
     }
     ghost_part_start(p, i);
     ghost_part_add_self(p, i);
-    if (PART_IS_NOT_OWNED(p, i)) {
-      /* a mirror ghost keeps its source's h (tasks/drift/drift_mirror.c), a
-       * foreign copy its owner's (src/mpi/halo.c) */
-      p->flags[i] |= PART_H_CONVERGED;
-      continue;
-    }
+    /* (a mirror ghost keeps its source's h, tasks/drift/drift_mirror.c; a
+     * foreign copy its owner's, src/mpi/halo.c) */
+    if (ghost_part_keeps_h(p, i)) continue;
     capped |= ghost_part_step(p, i, hp, h_cap);
     left += !(p->flags[i] & PART_H_CONVERGED);
   }

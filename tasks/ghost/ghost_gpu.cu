@@ -33,10 +33,8 @@ __global__ void ghost_gpu_start_kernel(struct parts p, struct gpu_leaves_dev lv,
       continue;
     }
     ghost_part_start(&p, i);
-    if (PART_IS_NOT_OWNED(&p, i)) {
-      /* a foreign copy keeps its owner's h (src/mpi/halo.c), as on the CPU */
+    if (ghost_part_keeps_h(&p, i)) { /* (a foreign copy: its owner's h, src/mpi/halo.c) */
       ghost_part_add_self(&p, i);
-      p.flags[i] |= PART_H_CONVERGED;
       continue;
     }
     ghost_gpu_one(&p, i, L, &lv, &hp, counters);

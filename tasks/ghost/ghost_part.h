@@ -26,6 +26,15 @@ BOLIDE_INLINE void ghost_part_add_self(struct parts *BOLIDE_RESTRICT p, size_t i
   hydro_density_add(p, i, &a);
 }
 
+/** A particle held but not owned (PART_IS_NOT_OWNED: a mirror ghost, a
+ *  foreign copy of several MPI ranks) keeps its source's or owner's h: its
+ *  iteration ends at once (returns 1, converged); 0 for the others. */
+BOLIDE_INLINE int ghost_part_keeps_h(struct parts *BOLIDE_RESTRICT p, size_t i) {
+  if (!PART_IS_NOT_OWNED(p, i)) return 0;
+  p->flags[i] |= PART_H_CONVERGED;
+  return 1;
+}
+
 /** Start the iteration of particle i: clear its converged bit and bracket. */
 BOLIDE_INLINE void ghost_part_start(struct parts *BOLIDE_RESTRICT p, size_t i) {
   p->flags[i] &= ~PART_H_CONVERGED;
