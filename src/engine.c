@@ -906,11 +906,8 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
 
   scheduler_init(&e->sched, e->nr_threads);
   e->sched.fixed_costs = params_get_bool(params, "Scheduler:deterministic");
-  /* several MPI ranks: each its GPU, but self-gravity on several ranks
-   * runs on the CPU only yet: there a GPU used when present is not used
-   * (one asked for by name stops the run in halo_init) */
-  if (ranks_size() > 1 && !opt->one_rank && e->opt.use_gpu == 1 && e->gp.enabled)
-    e->opt.use_gpu = 0;
+  /* several MPI ranks: each its GPU (self-gravity then on the CPU workers:
+   * gpu_engine_init) */
 #ifdef HAVE_CUDA
   gpu_engine_init(e);
 #else
@@ -1215,6 +1212,28 @@ static void engine_run_force_stages(struct engine *e) {
     }
     if (stage < 2) halo_refresh_start(e, stage); /* (what this stage wrote) */
   }
+}
+
+void engine_run_gravity_stages(struct engine *e) {
+  struct scheduler *s = &e->sched;
+  engine_mark_halo_tasks(e); /* (stage 3: mark bit 2) */
+  const int records = halo_gravity_by_records(e);
+  unsigned char *run = error_malloc((size_t)s->nr_tasks + 1, "gravity stages");
+  for (int i = 0; i < s->nr_tasks; i++) run[i] = !scheduler_task(s, i)->skip;
+  halo_refresh_gravity(e);
+  for (int stage = 2; stage <= 3; stage++) {
+    if (stage == 3) {
+      if (!records) break;
+      halo_gravity_records(e);
+    }
+    for (int i = 0; i < s->nr_tasks; i++) {
+      struct task *t = scheduler_task(s, i);
+      t->skip = !run[i] || (records && (t->mark & 2 ? 3 : 2) != stage);
+    }
+    scheduler_run(s, engine_run_task, e);
+  }
+  if (records) halo_gravity_after(e);
+  free(run);
 }
 
 /** Run the tasks of one phase on every worker. */

@@ -729,6 +729,25 @@ void gpu_engine_init(struct engine *e) {
     mode = GPU_MODE_CPU_GRAV;
   /* exact summation has no GPU part: it runs on the CPU beside the hydrodynamics */
   if (e->gp.enabled && e->gp.direct) mode = GPU_MODE_CPU_GRAV;
+  /* several MPI ranks: the GPU's gravity reads no other rank's records or
+   * copies; the CPU's multi-rank gravity runs before the GPU's phase
+   * (gpu_engine_force), its exchanges on thread 0 */
+  const int ranks = ranks_size() > 1 && !e->opt.one_rank;
+  if (e->gp.enabled && ranks) {
+    const char *dev = params_given(e->params, "Scheduler:gpu_walks") &&
+                              params_get_enum(e->params, "Scheduler:gpu_walks") == 1
+                          ? "Scheduler:gpu_walks: device"
+                      : params_given(e->params, "Scheduler:gpu_multipoles") &&
+                              params_get_enum(e->params, "Scheduler:gpu_multipoles") == 1
+                          ? "Scheduler:gpu_multipoles: device"
+                          : NULL;
+    if (dev)
+      error_exit(
+          "%s: %s: on %d MPI ranks self-gravity runs on the CPU workers (theory/mpi.md, "
+          "\"GPUs on several ranks\")",
+          params_filename(e->params), dev, ranks_size());
+    mode = GPU_MODE_CPU_GRAV;
+  }
   if (!e->gp.enabled) mode = GPU_MODE_SERIAL; /* nothing to run beside the hydrodynamics */
   struct gpu_engine *ge = error_calloc(1, sizeof *ge, "GPU state");
   ge->gpu = g;
@@ -808,7 +827,10 @@ void gpu_engine_init(struct engine *e) {
         "(hybrid: the CPU workers walk while the GPU computes the hydrodynamics; then gravity's "
         "GPU part and the kick)";
   else if (mode == GPU_MODE_CPU_GRAV)
-    grav = e->gp.direct
+    grav = ranks ? "; self-gravity entirely on the CPU workers (several MPI ranks: before the "
+                   "GPU's hydrodynamics, the ranks' exchanges on thread 0); ga goes up for the "
+                   "kick"
+           : e->gp.direct
                ? "; self-gravity (Gravity:direct, no GPU implementation) on the CPU "
                  "workers while the GPU computes the hydrodynamics; ga goes up for the kick"
                : "; self-gravity entirely on the CPU workers (multipoles, walks, M2L, "
@@ -1019,6 +1041,17 @@ void gpu_engine_force(struct engine *e) {
   int cpu_work = 0;
   if (hybrid) {
     cpu_work = gpu_engine_grav_prepare(e, on_gpu);
+    if (cpu_work && e->halo) {
+      /* several MPI ranks: thread 0 makes gravity's exchanges and then
+       * drives the GPU, so the CPU's gravity runs whole first (ga and pot
+       * complete on the host; the kick's hook uploads them) */
+      const double w0 = error_walltime();
+      engine_run_gravity_stages(e);
+      const double w = error_walltime() - w0;
+      ge->t_grav_walk += w;
+      ge->t_cpu_side += w;
+      cpu_work = 0;
+    }
     pthread_mutex_init(&jb.mutex, NULL);
     pthread_cond_init(&jb.cond, NULL);
     jb.cpu_done = !cpu_work;

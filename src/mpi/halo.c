@@ -975,11 +975,7 @@ void halo_init(struct engine *e) {
   e->nr_owned_all = (long long)e->parts.count;
   if (ranks_size() < 2 || e->opt.one_rank) return;
   const char *why = NULL;
-  if (e->gpu && e->gp.enabled)
-    why =
-        "self-gravity on several ranks runs on the CPU only yet, and a GPU was asked for (--gpu or "
-        "Scheduler:gpu)";
-  else if (e->gp.enabled && e->gp.reuse_steps > 0)
+  if (e->gp.enabled && e->gp.reuse_steps > 0)
     why = "multi-rank runs cannot reuse gravity's far field (Gravity:reuse_steps > 0) yet";
   else if (e->individual)
     why = "multi-rank runs need the global time step (TimeIntegration:global_step: true) yet";

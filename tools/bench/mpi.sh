@@ -25,8 +25,10 @@
 #
 # With -G every rank runs its FORCE phases on a GPU (--gpu; a build with
 # --with-mpi --with-cuda): rank k of a node on its device k modulo the
-# node's GPUs (theory/mpi.md, "GPUs on several ranks"); hydrodynamics only
-# (self-gravity with a GPU on several ranks is not there yet).
+# node's GPUs (theory/mpi.md, "GPUs on several ranks"). With -g too, a
+# run of several ranks computes self-gravity on its CPU workers before the
+# GPU's phase, one rank (each layout as a user gets it) the GPU's gravity
+# beside the CPU's walks.
 #
 # Usage: BOLIDE_BENCH_IC=.../make_impact_ic.py BOLIDE_BUILD=_build_mpi \
 #          tools/bench/mpi.sh [-n 1.1e5] [-c "1x2 2x1"] [-s 5] [-r 3] [-m 16] [-w] [-g] [-G] [-S DIR]
@@ -42,9 +44,6 @@ while getopts "n:c:s:r:m:wgGS:" o; do
              m) cells=$OPTARG ;; w) weak=1 ;; g) gravity=true ;; G) gpu=--gpu ;; S) swift=$OPTARG ;;
              *) exit 2 ;; esac
 done
-if [ "$gpu" = --gpu ] && [ $gravity = true ]; then
-  echo "mpi.sh: -G with -g: self-gravity on several ranks runs on the CPU only yet" >&2; exit 2
-fi
 if [ -n "$swift" ]; then
   swift=$(cd "$swift" && pwd)
   [ -x "$swift/swift_mpi" ] || { echo "mpi.sh: no swift_mpi in $swift (-S)" >&2; exit 1; }
