@@ -48,12 +48,15 @@ void space_free(struct space *s) {
   free(s->cells);
   free(s->progeny_index);
   free(s->sort_index);
+  free(s->sort_oct);
   free(s->gone);
   s->gone = NULL;
   s->nr_gone = s->gone_cap = 0;
   s->cells = NULL;
   s->progeny_index = NULL;
   s->sort_index = NULL;
+  s->sort_oct = NULL;
+  s->oct_capacity = 0;
   s->nr_cells = s->nr_top = s->cells_capacity = 0;
   s->sort_capacity = 0;
 }
@@ -419,15 +422,27 @@ static int space_tree_new(struct space_tree *t) {
   return c;
 }
 
+/** A cell's range of the rebuild's work arrays while its subtree is split:
+ *  the permutation and, in its order, each particle's octant of the cell's
+ *  level (space_split).  A level's counting sort goes from one array of
+ *  each pair to the other (no copy back: a leaf whose range ended in buf
+ *  copies it to idx). */
+struct space_range {
+  size_t *idx, *buf;         /**< the permutation, its work array */
+  unsigned char *oct, *obuf; /**< the octants (x 4, y 2, z 1), their work array */
+  int in_buf;                /**< 1: the range's order is in buf and obuf */
+  int have;                  /**< 1: oct holds the octants (0: a top-level cell) */
+  size_t n[8];               /**< with have: the count of each octant */
+};
+
 /** The subtrees of a rebuild, one job each, on the rebuild's threads: the
  *  top-level cells to split, and the octants so large that another thread
  *  builds them (space_split hands an octant of more than spawn particles to
  *  a new job), so that one dense top-level cell does not keep the other
  *  threads waiting. */
 struct space_tree_job {
-  struct cell root; /**< the subtree's root cell */
-  size_t *idx;      /**< its range of the permutation */
-  size_t *buf;      /**< and of the work array */
+  struct cell root;     /**< the subtree's root cell */
+  struct space_range r; /**< its range of the work arrays */
   struct space_tree tree;
 };
 
@@ -442,13 +457,12 @@ struct space_trees {
   pthread_cond_t more; /**< a job was added, or the last one finished */
 };
 
-/** Add a job for root (range idx, buf of root->count); returns its number. */
-static int space_trees_add(struct space_trees *j, const struct cell *root, size_t *idx,
-                           size_t *buf) {
+/** Add a job for root (range r of root->count); returns its number. */
+static int space_trees_add(struct space_trees *j, const struct cell *root,
+                           const struct space_range *r) {
   struct space_tree_job *b = error_calloc(1, sizeof *b, "octree job");
   b->root = *root;
-  b->idx = idx;
-  b->buf = buf;
+  b->r = *r;
   pthread_mutex_lock(&j->lock);
   if (j->n == j->cap) {
     j->cap = j->cap < 64 ? 64 : 2 * j->cap;
@@ -461,40 +475,79 @@ static int space_trees_add(struct space_trees *j, const struct cell *root, size_
   return k;
 }
 
-/** Split cell c of t (range idx[0 .. count) of the permutation) into
- *  octants, recursively, while it holds more than split_size particles;
- *  an octant of more than j->spawn particles is handed to a new job.
- *  buf: work array of the same length. */
-static void space_split(struct space_trees *j, struct space_tree *t, int c, size_t *idx,
-                        size_t *buf) {
+/** Split cell c of t (range r of the work arrays) into octants,
+ *  recursively, while it holds more than split_size particles; an octant
+ *  of more than j->spawn particles is handed to a new job.  A particle's
+ *  octant is x >= mid per direction (mid = loc + half, half = 0.5 width,
+ *  an octant's loc mid or loc).  A top-level cell finds them from the
+ *  positions in a pass of its own; below, the level above found them in
+ *  its counting sort, by the same arithmetic with the octant's mid, for
+ *  the octants that it will split (one pass over the range per level, not
+ *  two and a copy back: the positions, read in increasing order within a
+ *  range, cost less than the pass; keys of several levels' octants cost
+ *  more in arithmetic than they saved at 1.1e6). */
+static void space_split(struct space_trees *j, struct space_tree *t, int c, struct space_range r) {
   const struct space *s = j->s;
   const struct parts *p = s->parts;
   const double *xs[3] = {p->x, p->y, p->z};
   const size_t count = t->cells[c].count;
-  if (count <= (size_t)s->split_size || t->cells[c].depth >= s->max_depth) return;
+  const int depth = t->cells[c].depth;
+  if (count <= (size_t)s->split_size || depth >= s->max_depth) {
+    if (r.in_buf) memcpy(r.idx, r.buf, count * sizeof *r.idx);
+    return;
+  }
+  size_t *idx = r.in_buf ? r.buf : r.idx, *buf = r.in_buf ? r.idx : r.buf;
+  unsigned char *o = r.in_buf ? r.obuf : r.oct, *ob = r.in_buf ? r.oct : r.obuf;
   double mid[3], half[3], loc[3];
   for (int k = 0; k < 3; k++) {
     loc[k] = t->cells[c].loc[k];
     half[k] = 0.5 * t->cells[c].width[k];
     mid[k] = loc[k] + half[k];
   }
-  /* counting sort of the range by octant (bits x 4, y 2, z 1) */
   size_t n[8] = {0}, start[8];
-  unsigned char small[256];
-  unsigned char *o = count <= sizeof small ? small : error_malloc(count, "octants");
-  for (size_t a = 0; a < count; a++) {
-    const size_t i = idx[a];
-    o[a] = (unsigned char)((xs[0][i] >= mid[0]) << 2 | (xs[1][i] >= mid[1]) << 1 |
-                           (xs[2][i] >= mid[2]));
-    n[o[a]]++;
+  if (r.have)
+    memcpy(n, r.n, sizeof n);
+  else
+    /* counted in 8 bytes of a register, 255 at a time (no chain of
+       increments of one counter in memory: neighbours share an octant) */
+    for (size_t a0 = 0; a0 < count; a0 += 255) {
+      const size_t a1 = count - a0 < 255 ? count : a0 + 255;
+      uint64_t w = 0;
+      for (size_t a = a0; a < a1; a++) {
+        const size_t i = idx[a];
+        const unsigned q = (unsigned)((xs[0][i] >= mid[0]) << 2 | (xs[1][i] >= mid[1]) << 1 |
+                                      (xs[2][i] >= mid[2]));
+        o[a] = (unsigned char)q;
+        w += (uint64_t)1 << 8 * q;
+      }
+      for (int q = 0; q < 8; q++) n[q] += w >> 8 * q & 255;
+    }
+  /* each octant's mids, where it will be split */
+  double cm[8][3];
+  int next[8];
+  for (int q = 0; q < 8; q++) {
+    next[q] = n[q] > (size_t)s->split_size && depth + 1 < s->max_depth;
+    for (int k = 0; k < 3; k++) {
+      const double cl = (q >> (2 - k)) & 1 ? mid[k] : loc[k], ch = 0.5 * half[k];
+      cm[q][k] = cl + ch;
+    }
   }
+  /* counting sort of the range by octant (bits x 4, y 2, z 1) */
   start[0] = 0;
   for (int q = 1; q < 8; q++) start[q] = start[q - 1] + n[q - 1];
-  size_t pos[8];
+  size_t pos[8], n2[8][8] = {{0}};
   memcpy(pos, start, sizeof pos);
-  for (size_t a = 0; a < count; a++) buf[pos[o[a]]++] = idx[a];
-  memcpy(idx, buf, count * sizeof *idx);
-  if (o != small) free(o);
+  for (size_t a = 0; a < count; a++) {
+    const int q = o[a];
+    const size_t b = pos[q]++, i = idx[a];
+    buf[b] = i;
+    if (next[q]) {
+      const unsigned char d = (unsigned char)((xs[0][i] >= cm[q][0]) << 2 |
+                                              (xs[1][i] >= cm[q][1]) << 1 | (xs[2][i] >= cm[q][2]));
+      ob[b] = d;
+      n2[q][d]++;
+    }
+  }
 
   t->cells[c].split = 1;
   for (int q = 0; q < 8; q++) {
@@ -512,10 +565,17 @@ static void space_split(struct space_trees *j, struct space_tree *t, int c, size
     child->depth = parent->depth + 1;
     child->top = parent->top;
     t->progeny[8 * c + q] = d;
+    struct space_range rq = {.idx = r.idx + start[q],
+                             .buf = r.buf + start[q],
+                             .oct = r.oct + start[q],
+                             .obuf = r.obuf + start[q],
+                             .in_buf = !r.in_buf,
+                             .have = next[q]};
+    memcpy(rq.n, n2[q], sizeof rq.n);
     if (j->spawn && n[q] > j->spawn)
-      t->graft[d] = space_trees_add(j, child, idx + start[q], buf + start[q]);
+      t->graft[d] = space_trees_add(j, child, &rq);
     else
-      space_split(j, t, d, idx + start[q], buf + start[q]);
+      space_split(j, t, d, rq);
   }
 }
 
@@ -535,7 +595,7 @@ static void *space_trees_run(void *arg) {
     pthread_mutex_unlock(&j->lock);
     space_tree_new(&b->tree);
     b->tree.cells[0] = b->root;
-    space_split(j, &b->tree, 0, b->idx, b->buf);
+    space_split(j, &b->tree, 0, b->r);
     pthread_mutex_lock(&j->lock);
     if (--j->busy == 0 && j->next == j->n) pthread_cond_broadcast(&j->more);
     pthread_mutex_unlock(&j->lock);
@@ -657,18 +717,25 @@ static int space_cmp_size_desc(const void *a, const void *b) {
  *  split_size particles on s->nr_threads threads (a dense top-level cell's
  *  large octants as jobs of their own), and number their cells after the
  *  top-level cells in the order of the serial build. */
-static void space_build_trees(struct space *s, size_t *idx, size_t *buf) {
-  int n = 0;
-  for (int c = 0; c < s->nr_top; c++)
-    if (s->cells[c].count > (size_t)s->split_size && s->max_depth > 0) n++;
-  if (n == 0) return;
-  struct space_tree_size *sz = error_malloc((size_t)n * sizeof *sz, "octree jobs");
+static void space_build_trees(struct space *s, size_t *idx, size_t *buf, unsigned char *oct,
+                              unsigned char *obuf) {
+  if (s->max_depth < 1 || s->parts->count <= (size_t)s->split_size) return;
+  /* one pass over the top-level cells (a cache miss each), into room for
+     as many as can hold more than split_size particles */
+  const size_t most = s->parts->count / ((size_t)s->split_size + 1);
+  struct space_tree_size *sz = error_malloc(
+      (most < (size_t)s->nr_top ? most : (size_t)s->nr_top) * sizeof *sz, "octree jobs");
   int *job_of = error_malloc((size_t)s->nr_top * sizeof(int), "octree jobs");
-  n = 0;
+  int n = 0;
   for (int c = 0; c < s->nr_top; c++) {
     job_of[c] = -1;
-    if (s->cells[c].count > (size_t)s->split_size && s->max_depth > 0)
+    if (s->cells[c].count > (size_t)s->split_size)
       sz[n++] = (struct space_tree_size){s->cells[c].count, c};
+  }
+  if (n == 0) {
+    free(sz);
+    free(job_of);
+    return;
   }
   qsort(sz, (size_t)n, sizeof *sz, space_cmp_size_desc);
 
@@ -682,7 +749,11 @@ static void space_build_trees(struct space *s, size_t *idx, size_t *buf) {
     error_exit("space: cannot set up the threads of the rebuild (pthread_mutex_init)");
   for (int k = 0; k < n; k++) {
     const struct cell *top = &s->cells[sz[k].c];
-    job_of[sz[k].c] = space_trees_add(&j, top, idx + top->offset, buf + top->offset);
+    const struct space_range r = {.idx = idx + top->offset,
+                                  .buf = buf + top->offset,
+                                  .oct = oct + top->offset,
+                                  .obuf = obuf + top->offset};
+    job_of[sz[k].c] = space_trees_add(&j, top, &r);
   }
   space_team(nt, space_trees_run, &j, 0);
   pthread_mutex_destroy(&j.lock);
@@ -956,12 +1027,17 @@ size_t space_rebuild(struct space *s) {
     s->sort_capacity = 2 * n;
     s->sort_index = error_malloc(s->sort_capacity * sizeof(size_t) + 1, "particle sort index");
   }
+  if (s->oct_capacity < 2 * n) {
+    free(s->sort_oct);
+    s->oct_capacity = 2 * n;
+    s->sort_oct = error_malloc(s->oct_capacity * sizeof *s->sort_oct + 1, "octree octants");
+  }
   size_t *idx = s->sort_index, *buf = s->sort_index + n;
   space_sort_top(s, idx);
 
   /* the octrees, then one reordering of every particle field */
   const double w1 = error_walltime();
-  space_build_trees(s, idx, buf);
+  space_build_trees(s, idx, buf, s->sort_oct, s->sort_oct + n);
   const double w2 = error_walltime();
   /* buf (n words) is free after the split */
   /* (and x0 = x) */

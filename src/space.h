@@ -74,6 +74,8 @@ struct space {
                                       boxes (the first, which sorts a file's order, left out) */
   size_t *sort_index;            /**< work array of the rebuild (capacity sort_capacity) */
   size_t sort_capacity;          /**< allocated length of sort_index */
+  unsigned char *sort_oct;       /**< the octrees' work array of octants (space.c) */
+  size_t oct_capacity;           /**< allocated length of sort_oct */
   int nr_threads;                /**< threads of the rebuild's reordering of the fields (1) */
   const unsigned char *reorder;  /**< [part_nr_fields]: the fields the rebuild reorders (NULL:
                                       every field; the others are left in the old order, e.g.
