@@ -25,7 +25,8 @@
 # far bodies, the planet with rebuilds and the solid impact), whose FORCE
 # phase the GPU runs in the stages of several ranks (src/gpu/gpu_engine.c),
 # their self-gravity on the CPU before it (the one-rank reference with
-# gravity on the CPU too: Scheduler:gpu lists the hydrodynamic families).
+# gravity on the CPU too: Scheduler:gpu lists the hydrodynamic families);
+# and Scheduler:gpu_walks: device on 2 ranks stops with one line.
 set -u
 B=${BOLIDE_BUILDDIR:?}
 H=$(cd "$(dirname "$0")/../helpers" && pwd) # restart_compare.py
@@ -342,6 +343,16 @@ stats=statistics.txt box=1.43e5
 runs 3
 if [ -n "$gpu" ]; then
   grep -m1 "self-gravity entirely on the CPU workers" mpi3/run.log | cut -c1-240
+  # gravity's walks asked for on the device: one line, non-zero, no hang
+  cd "$work/impactg/mpi2"
+  timeout 60 "$MPIRUN" -n 2 "$B/bolide" --gpu -n 3 -t 1 -P Scheduler:gpu_walks:device p.yml \
+    >walks.out 2>walks.err
+  rc=$?
+  [ $rc = 124 ] && fail "mpirun -n 2 --gpu with Scheduler:gpu_walks: device hung"
+  [ $rc != 0 ] || fail "mpirun -n 2 --gpu with Scheduler:gpu_walks: device exited 0"
+  grep -q "bolide: error: p.yml: Scheduler:gpu_walks: device: on 2 MPI ranks self-gravity runs" \
+    walks.err || { cat walks.err; fail "mpirun -n 2 --gpu with Scheduler:gpu_walks: device: no error line"; }
+  cd "$work/solidg"
   echo "several ranks on the GPU: the cases with self-gravity agree with one rank"
   exit 0
 fi
