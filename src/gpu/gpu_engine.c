@@ -733,21 +733,7 @@ void gpu_engine_init(struct engine *e) {
    * copies; the CPU's multi-rank gravity runs before the GPU's phase
    * (gpu_engine_force), its exchanges on thread 0 */
   const int ranks = ranks_size() > 1 && !e->opt.one_rank;
-  if (e->gp.enabled && ranks) {
-    const char *dev = params_given(e->params, "Scheduler:gpu_walks") &&
-                              params_get_enum(e->params, "Scheduler:gpu_walks") == 1
-                          ? "Scheduler:gpu_walks: device"
-                      : params_given(e->params, "Scheduler:gpu_multipoles") &&
-                              params_get_enum(e->params, "Scheduler:gpu_multipoles") == 1
-                          ? "Scheduler:gpu_multipoles: device"
-                          : NULL;
-    if (dev)
-      error_exit(
-          "%s: %s: on %d MPI ranks self-gravity runs on the CPU workers (theory/mpi.md, "
-          "\"GPUs on several ranks\")",
-          params_filename(e->params), dev, ranks_size());
-    mode = GPU_MODE_CPU_GRAV;
-  }
+  if (e->gp.enabled && ranks) mode = GPU_MODE_CPU_GRAV;
   if (!e->gp.enabled) mode = GPU_MODE_SERIAL; /* nothing to run beside the hydrodynamics */
   struct gpu_engine *ge = error_calloc(1, sizeof *ge, "GPU state");
   ge->gpu = g;
@@ -765,6 +751,13 @@ void gpu_engine_init(struct engine *e) {
   ge->walk_on_device = params_get_enum(e->params, "Scheduler:gpu_walks") == 1;
   const int walks_given = params_given(e->params, "Scheduler:gpu_walks");
   const int up_given = params_given(e->params, "Scheduler:gpu_multipoles");
+  if (mode == GPU_MODE_CPU_GRAV && ranks &&
+      ((walks_given && ge->walk_on_device) || (up_given && ge->up_on_device)))
+    error_exit(
+        "%s: Scheduler:%s: device: on %d MPI ranks self-gravity runs on the CPU workers "
+        "(theory/mpi.md, \"GPUs on several ranks\")",
+        params_filename(e->params),
+        walks_given && ge->walk_on_device ? "gpu_walks" : "gpu_multipoles", ranks_size());
   /* the far-field reuse decides on the shortest M2L/M2P distance, which
    * the CPU's walks measure: there the walks stay on the CPU unless asked
    * for on the device (an error); so do they where the multipoles were
