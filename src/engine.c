@@ -1214,7 +1214,7 @@ static void engine_run_force_stages(struct engine *e) {
   }
 }
 
-void engine_run_gravity_stages(struct engine *e) {
+void engine_run_gravity_stages(struct engine *e, scheduler_run_fn fn) {
   struct scheduler *s = &e->sched;
   engine_mark_halo_tasks(e); /* (stage 3: mark bit 2) */
   const int records = halo_gravity_by_records(e);
@@ -1230,7 +1230,7 @@ void engine_run_gravity_stages(struct engine *e) {
       struct task *t = scheduler_task(s, i);
       t->skip = !run[i] || (records && (t->mark & 2 ? 3 : 2) != stage);
     }
-    scheduler_run(s, engine_run_task, e);
+    scheduler_run(s, fn, e);
   }
   if (records) halo_gravity_after(e);
   free(run);

@@ -16,11 +16,12 @@ void engine_rebuild(struct engine *e);
 int engine_should_rebuild(const struct engine *e);
 double engine_next_dt(struct engine *e);
 void engine_run_phase(struct engine *e, int phase);
-/** Several MPI ranks, self-gravity on the CPU beside a GPU: the gravity
- *  tasks that are active (the others skipped) run on the workers in the
- *  CPU's stages 2 and 3, thread 0 (the caller) making the exchanges: the
- *  copies' gravity fields first, the top-level records between the two. */
-void engine_run_gravity_stages(struct engine *e);
+/** Several MPI ranks with a GPU: the gravity tasks that are active (the
+ *  others skipped) run on the workers through fn (engine_run_task, or the
+ *  GPU runner's that records the walks' interactions) in the CPU's stages
+ *  2 and 3, thread 0 (the caller) making the exchanges: the copies'
+ *  gravity fields first, the top-level records between the two. */
+void engine_run_gravity_stages(struct engine *e, scheduler_run_fn fn);
 /** The watchdog around a drift (the positions before it; every moved
  *  particle checked after it). */
 void engine_watchdog_before_drift(struct engine *e);

@@ -57,6 +57,9 @@ struct gpu_engine {
   long rebuilds_host;       /**< rebuilds with every field copied back and up again */
   unsigned char *reorder;   /**< [part_nr_fields]: the fields the host reorders then */
   struct halo_device halo;  /**< several MPI ranks: the copies' records from and to the device */
+  double *remote;           /**< several MPI ranks: ga and pot of the walks with other ranks'
+                                 records, computed on the host (gpu_engine_grav_ranks) */
+  size_t nr_remote;         /**< particles it holds room for */
 };
 
 /* Rebuilds of resident particles.  The host sorts the cells from x, y, z
@@ -729,11 +732,12 @@ void gpu_engine_init(struct engine *e) {
     mode = GPU_MODE_CPU_GRAV;
   /* exact summation has no GPU part: it runs on the CPU beside the hydrodynamics */
   if (e->gp.enabled && e->gp.direct) mode = GPU_MODE_CPU_GRAV;
-  /* several MPI ranks: the GPU's gravity reads no other rank's records or
-   * copies; the CPU's multi-rank gravity runs before the GPU's phase
-   * (gpu_engine_force), its exchanges on thread 0 */
+  /* several MPI ranks: gravity's multipoles and walks on the CPU workers
+   * (the walks read the other ranks' top-level records there), its
+   * interactions on the GPU, before the GPU's hydrodynamics
+   * (gpu_engine_grav_ranks), the exchanges on thread 0: the serial order */
   const int ranks = ranks_size() > 1 && !e->opt.one_rank;
-  if (e->gp.enabled && ranks) mode = GPU_MODE_CPU_GRAV;
+  if (e->gp.enabled && ranks && mode == GPU_MODE_HYBRID) mode = GPU_MODE_SERIAL;
   if (!e->gp.enabled) mode = GPU_MODE_SERIAL; /* nothing to run beside the hydrodynamics */
   struct gpu_engine *ge = error_calloc(1, sizeof *ge, "GPU state");
   ge->gpu = g;
@@ -751,13 +755,14 @@ void gpu_engine_init(struct engine *e) {
   ge->walk_on_device = params_get_enum(e->params, "Scheduler:gpu_walks") == 1;
   const int walks_given = params_given(e->params, "Scheduler:gpu_walks");
   const int up_given = params_given(e->params, "Scheduler:gpu_multipoles");
-  if (mode == GPU_MODE_CPU_GRAV && ranks &&
+  if (e->gp.enabled && ranks &&
       ((walks_given && ge->walk_on_device) || (up_given && ge->up_on_device)))
     error_exit(
-        "%s: Scheduler:%s: device: on %d MPI ranks self-gravity runs on the CPU workers "
-        "(theory/mpi.md, \"GPUs on several ranks\")",
+        "%s: Scheduler:%s: device: on %d MPI ranks gravity's multipoles and walks run on the "
+        "CPU workers (theory/mpi.md, \"GPUs on several ranks\")",
         params_filename(e->params),
         walks_given && ge->walk_on_device ? "gpu_walks" : "gpu_multipoles", ranks_size());
+  if (ranks) ge->up_on_device = ge->walk_on_device = 0;
   /* the far-field reuse decides on the shortest M2L/M2P distance, which
    * the CPU's walks measure: there the walks stay on the CPU unless asked
    * for on the device (an error); so do they where the multipoles were
@@ -811,9 +816,13 @@ void gpu_engine_init(struct engine *e) {
   if (e->damage) gpu_set_flaws(g, e->flaw_eps, (size_t)e->nr_flaws);
   const char *grav = "";
   if (e->gp.enabled && mode == GPU_MODE_SERIAL)
-    grav =
-        "; self-gravity: multipoles and walks on the CPU, M2L, L2L, L2P, M2P and P2P on the GPU "
-        "(one after the other: the CPU part, the GPU part, then the hydrodynamics)";
+    grav = ranks ? "; self-gravity: multipoles and walks on the CPU workers, M2L, L2L, L2P, M2P "
+                   "and P2P on the GPU (several MPI ranks: before the GPU's hydrodynamics, the "
+                   "ranks' exchanges on thread 0; the far field of the other ranks' records on "
+                   "the CPU, added to ga)"
+                 : "; self-gravity: multipoles and walks on the CPU, M2L, L2L, L2P, M2P and P2P "
+                   "on the GPU (one after the other: the CPU part, the GPU part, then the "
+                   "hydrodynamics)";
   else if (mode == GPU_MODE_HYBRID)
     grav =
         "; self-gravity: multipoles and walks on the CPU, M2L, L2L, L2P, M2P and P2P on the GPU "
@@ -872,13 +881,59 @@ static int gpu_engine_grav_prepare(struct engine *e, int on_gpu) {
     if (!gravity_gpu_prepare(e, ge->grav)) return 0;
   }
   engine_activate_phase(e, ENGINE_PHASE_FORCE);
+  /* several MPI ranks: the host's L2L and L2P push what the walks with the
+   * other ranks' records computed there (gpu_engine_grav_ranks) */
+  const int down_on_host = !on_gpu || (e->halo && halo_gravity_by_records(e));
   for (int k = 0; k < e->sched.nr_tasks; k++) {
     struct task *t = scheduler_task(&e->sched, k);
-    if (t->subtype != task_subtype_grav || (on_gpu && t->type == task_type_grav_down) ||
+    if (t->subtype != task_subtype_grav || (!down_on_host && t->type == task_type_grav_down) ||
         (on_gpu && ge->up_on_device && t->type == task_type_grav_up))
       t->skip = 1;
   }
   return 1;
+}
+
+/** Several MPI ranks: self-gravity with its interactions on the GPU.  The
+ *  gravity tasks run on the CPU workers in the stages of several ranks
+ *  (engine_run_gravity_stages; the copies for gravity go to the device as
+ *  well, halo_device.gravity), their walks recording the interactions for
+ *  the device, except those with the other ranks' top-level cells read by
+ *  their records (walk_remote), which the host computes, and whose L2L and
+ *  L2P the host's grav_down tasks push to ga and pot.  The device part
+ *  then computes the rest and copies ga and pot back; the host's part is
+ *  added and ga and pot go up for the kick. */
+static void gpu_engine_grav_device(struct engine *e);
+static void gpu_engine_grav_ranks(struct engine *e) {
+  struct gpu_engine *ge = e->gpu;
+  if (!gpu_engine_grav_prepare(e, 1))
+    error_bug("several MPI ranks: gravity's walks not on the CPU");
+  const double w0 = error_walltime();
+  engine_run_gravity_stages(e, gpu_engine_grav_task);
+  ge->t_grav_walk += error_walltime() - w0;
+  struct parts *p = &e->parts;
+  const size_t n = p->count;
+  const int records = halo_gravity_by_records(e);
+  if (records) {
+    if (n > ge->nr_remote) {
+      free(ge->remote);
+      ge->nr_remote = n + n / 4 + 1;
+      ge->remote = error_malloc(4 * ge->nr_remote * sizeof(double), "GPU gravity, far field");
+    }
+    memcpy(ge->remote, p->gax, n * sizeof(double));
+    memcpy(ge->remote + n, p->gay, n * sizeof(double));
+    memcpy(ge->remote + 2 * n, p->gaz, n * sizeof(double));
+    memcpy(ge->remote + 3 * n, p->pot, n * sizeof(double));
+  }
+  gpu_engine_grav_device(e);
+  if (records) {
+    for (size_t i = 0; i < n; i++) {
+      p->gax[i] += ge->remote[i];
+      p->gay[i] += ge->remote[n + i];
+      p->gaz[i] += ge->remote[2 * n + i];
+      p->pot[i] += ge->remote[3 * n + i];
+    }
+    gpu_upload_gravity(ge->gpu, p);
+  }
 }
 
 /** The CPU part: the gravity tasks on the CPU workers, the calling thread
@@ -991,7 +1046,7 @@ void gpu_engine_force(struct engine *e) {
       gpu_upload_all(ge->gpu, &e->parts);
       ge->dev_valid = 1;
     }
-    ge->halo = (struct halo_device){e, gpu_engine_halo_pack, gpu_engine_halo_unpack};
+    ge->halo = (struct halo_device){e, gpu_engine_halo_pack, gpu_engine_halo_unpack, 0};
     halo_set_device(e, &ge->halo);
     halo_refresh(e);
   }
@@ -1028,8 +1083,14 @@ void gpu_engine_force(struct engine *e) {
   const int hybrid = e->gp.enabled && ge->mode != GPU_MODE_SERIAL;
   const int on_gpu = ge->mode != GPU_MODE_CPU_GRAV;
   /* serial: gravity's CPU part and device part first */
-  if (e->gp.enabled && !hybrid && gpu_engine_grav_prepare(e, 1)) gpu_engine_grav_cpu(e, 1);
-  if (e->gp.enabled && !hybrid) gpu_engine_grav_device(e);
+  if (e->gp.enabled && !hybrid && e->halo) {
+    ge->halo.gravity = 1;
+    gpu_engine_grav_ranks(e);
+    ge->halo.gravity = 0;
+  } else {
+    if (e->gp.enabled && !hybrid && gpu_engine_grav_prepare(e, 1)) gpu_engine_grav_cpu(e, 1);
+    if (e->gp.enabled && !hybrid) gpu_engine_grav_device(e);
+  }
   /* hybrid: prepare gravity (CUDA calls) before the hydro thread starts */
   int cpu_work = 0;
   if (hybrid) {
@@ -1039,7 +1100,7 @@ void gpu_engine_force(struct engine *e) {
        * drives the GPU, so the CPU's gravity runs whole first (ga and pot
        * complete on the host; the kick's hook uploads them) */
       const double w0 = error_walltime();
-      engine_run_gravity_stages(e);
+      engine_run_gravity_stages(e, engine_run_task);
       const double w = error_walltime() - w0;
       ge->t_grav_walk += w;
       ge->t_cpu_side += w;
@@ -1273,6 +1334,7 @@ void gpu_engine_free(struct engine *e) {
   gpu_cells_free(&ge->cells);
   free(ge->tc_h_cap);
   free(ge->reorder);
+  free(ge->remote);
   free(ge);
   e->gpu = NULL;
 }

@@ -68,6 +68,8 @@ struct halo {
   size_t gnsend, gnrecv;
   double *gsbuf, *grbuf;
   size_t gsbuf_cap, grbuf_cap;
+  char *gdbuf; /**< their fields for the device (halo_device.gravity) */
+  size_t gdbuf_cap;
   double t_grefresh, gcopies;
   long nr_grefresh;
   /* the far field by the top-level cells' records (halo_gravity_records;
@@ -1429,6 +1431,21 @@ void halo_refresh_gravity_finish(struct engine *e) {
     p->x[i] = b[0], p->y[i] = b[1], p->z[i] = b[2], p->m[i] = b[3], p->h[i] = b[4];
     p->gax[i] = b[5], p->gay[i] = b[6], p->gaz[i] = b[7];
   }
+  if (H->dev && H->dev->gravity && H->gnrecv > 0) {
+    /* the GPU computes gravity's interactions: the fields its P2P reads
+     * (ga not: its upward pass is the host's), into the device's copies */
+    unsigned char sel[PART_NR_FIELDS];
+    size_t bytes = 0;
+    for (int f = 0; f < part_nr_fields; f++) {
+      const char *nm = part_fields[f].name;
+      sel[f] = !strcmp(nm, "x") || !strcmp(nm, "y") || !strcmp(nm, "z") || !strcmp(nm, "m") ||
+               !strcmp(nm, "h");
+      bytes += sel[f] ? part_fields[f].size : 0;
+    }
+    char *blk = halo_grow(&H->gdbuf, &H->gdbuf_cap, H->gnrecv * bytes + 1);
+    halo_pack_sel(p, H->gridx, H->gnrecv, blk, sel);
+    H->dev->unpack(H->dev->ctx, H->gridx, H->gnrecv, blk, sel, (int64_t)H->nrecv);
+  }
   H->t_grefresh += error_walltime() - w0;
   H->nr_grefresh++;
 #endif
@@ -1567,6 +1584,7 @@ void halo_free(struct engine *e) {
   free(H->gridx);
   free(H->gsbuf);
   free(H->grbuf);
+  free(H->gdbuf);
   free(H->gcount);
   free(H->gprov);
   free(H->gmine);

@@ -60,13 +60,16 @@ void halo_refresh(struct engine *e);
  *  particles idx, the fields of sel or every field with NULL, in the
  *  layout of halo.c's blocks) and writes the copies' records into the
  *  device too (unpack: into slot[0 .. n), marked as copies whose msrc
- *  counts from q0), besides the host's arrays.  NULL: the host's arrays
- *  only.  Nothing with one rank. */
+ *  counts from q0), besides the host's arrays.  With gravity set (the GPU
+ *  computes self-gravity's interactions), halo_refresh_gravity also writes
+ *  the copies for gravity's position, mass and h into the device.  NULL:
+ *  the host's arrays only.  Nothing with one rank. */
 struct halo_device {
   void *ctx;
   void (*pack)(void *ctx, const size_t *idx, size_t n, char *dst, const unsigned char *sel);
   void (*unpack)(void *ctx, const size_t *slot, size_t n, const char *src, const unsigned char *sel,
                  int64_t q0);
+  int gravity;
 };
 void halo_set_device(struct engine *e, const struct halo_device *dev);
 

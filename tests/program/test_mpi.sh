@@ -24,16 +24,19 @@
 # the solid with fracture; with self-gravity the planet, the impact, the
 # far bodies, the planet with rebuilds and the solid impact), whose FORCE
 # phase the GPU runs in the stages of several ranks (src/gpu/gpu_engine.c),
-# their self-gravity on the CPU before it (the one-rank reference with
-# gravity on the CPU too: Scheduler:gpu lists the hydrodynamic families);
-# and Scheduler:gpu_walks: device on 2 ranks stops with one line.
+# gravity's multipoles and walks on the CPU before it and its interactions
+# on the GPU (the one-rank reference with gravity's walks and multipoles on
+# the CPU too); the planet once more with the whole of self-gravity on the
+# CPU beside the GPU (Scheduler:gpu lists the hydrodynamic families, on
+# both sides); and Scheduler:gpu_walks: device on 2 ranks stops with one
+# line.
 set -u
 B=${BOLIDE_BUILDDIR:?}
 H=$(cd "$(dirname "$0")/../helpers" && pwd) # restart_compare.py
 PY=${PYTHON:-python3}
 fail() { echo "FAIL: $*"; exit 1; }
 grep -q '^#define HAVE_MPI 1' "$B/config.h" || { echo "not built with MPI: skip"; exit 77; }
-gpu="" ref=()
+gpu="" ref=() gline=""
 if [ -n "${BOLIDE_MPI_GPU:-}" ]; then
   grep -q '^#define HAVE_CUDA 1' "$B/config.h" || { echo "not built with CUDA: skip"; exit 77; }
   gpu=--gpu
@@ -131,8 +134,8 @@ runs() {
     grep -q "domain decomposition: $r ranks" mpi$r/run.log || fail "$case: no decomposition over $r ranks"
     [ -z "$gpu" ] || grep -q "the foreign copies' records gathered and scattered on the device" \
       mpi$r/run.log || fail "$case: $r ranks did not run their FORCE phases on the GPU"
-    [ ${#ref[@]} -eq 0 ] || grep -q "self-gravity entirely on the CPU workers (several MPI ranks" \
-      mpi$r/run.log || fail "$case: $r ranks: no line on self-gravity beside the GPU"
+    [ -z "$gline" ] || grep -q "$gline" mpi$r/run.log ||
+      fail "$case: $r ranks: no line on self-gravity with the GPU ($gline)"
     [ "$(sed -n 's/.*done: \([0-9]*\) steps.*/\1/p' mpi$r/run.log)" = "$steps" ] ||
       fail "$case: $r ranks took other than the serial run's $steps steps"
     for f in serial/$snaps; do
@@ -211,7 +214,8 @@ sys.exit(0 if (d > 0).sum() > 0 else 'damage: no particle damaged: the case test
 if [ -n "$gpu" ]; then
   grep -m1 "GPU runner" mpi2/run.log
   echo "several ranks on the GPU: the cases without self-gravity agree with one rank"
-  ref=(-P "Scheduler:gpu:[density, gradient, force, damage, drift, kick]")
+  ref=(-P "Scheduler:gpu_walks:host" -P "Scheduler:gpu_multipoles:host")
+  gline="self-gravity: multipoles and walks on the CPU workers, M2L, L2L, L2P, M2P and P2P on the GPU (several MPI ranks"
 fi
 # 4. a self-gravitating SEA planet (VALIDATION "SEA planet": Earth-mass
 #    Tillotson granite on stretched equal-area shells, here 3,000
@@ -237,6 +241,19 @@ YML
 snaps='snapshot_000[0-2].hdf5'
 stats=statistics.txt box=2e7
 runs 2 3
+if [ -n "$gpu" ]; then
+  # the planet with the whole of self-gravity on the CPU workers beside the
+  # GPU's hydrodynamics, on one rank and on two
+  case=planet-cpu-gravity
+  mkdir -p cpug && cd cpug
+  sed -e 's#\.\./planet.hdf5#../../planet.hdf5#' ../p.yml >p.yml
+  printf 'Scheduler:\n  gpu: [density, gradient, force, damage, drift, kick]\n' >>p.yml
+  saved=("${ref[@]}") savedg=$gline
+  ref=() gline="self-gravity entirely on the CPU workers (several MPI ranks"
+  runs 2
+  ref=("${saved[@]}") gline=$savedg
+  cd ..
+fi
 # 5. the impact of 1. with self-gravity: particles move between the ranks
 #    and between the two kinds of copies at the rebuilds; the domain
 #    partitioned again at the rebuilds (DomainDecomposition:trigger 1e-6,
@@ -342,7 +359,7 @@ snaps='snapshot_000[0-2].hdf5'
 stats=statistics.txt box=1.43e5
 runs 3
 if [ -n "$gpu" ]; then
-  grep -m1 "self-gravity entirely on the CPU workers" mpi3/run.log | cut -c1-240
+  grep -m1 "self-gravity: multipoles and walks on the CPU workers" mpi3/run.log | cut -c1-240
   # gravity's walks asked for on the device: one line, non-zero, no hang
   cd "$work/impactg/mpi2"
   timeout 60 "$MPIRUN" -n 2 "$B/bolide" --gpu -n 3 -t 1 -P Scheduler:gpu_walks:device p.yml \
@@ -350,7 +367,7 @@ if [ -n "$gpu" ]; then
   rc=$?
   [ $rc = 124 ] && fail "mpirun -n 2 --gpu with Scheduler:gpu_walks: device hung"
   [ $rc != 0 ] || fail "mpirun -n 2 --gpu with Scheduler:gpu_walks: device exited 0"
-  grep -q "bolide: error: p.yml: Scheduler:gpu_walks: device: on 2 MPI ranks self-gravity runs" \
+  grep -q "bolide: error: p.yml: Scheduler:gpu_walks: device: on 2 MPI ranks gravity's multipoles and walks run" \
     walks.err || { cat walks.err; fail "mpirun -n 2 --gpu with Scheduler:gpu_walks: device: no error line"; }
   cd "$work/solidg"
   echo "several ranks on the GPU: the cases with self-gravity agree with one rank"
