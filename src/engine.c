@@ -904,6 +904,9 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   if (!e->params_text) e->params_text = params_to_string(params);
   engine_stats_open(e);
 
+#ifdef HAVE_CUDA
+  gpu_engine_near(e); /* (the workers pinned near this rank's GPU) */
+#endif
   scheduler_init(&e->sched, e->nr_threads);
   e->sched.fixed_costs = params_get_bool(params, "Scheduler:deterministic");
   /* several MPI ranks: each its GPU (self-gravity then on the CPU workers:

@@ -3,7 +3,9 @@
 
 #include <hwloc.h>
 #include <stdatomic.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "src/error.h"
 
@@ -13,6 +15,7 @@ struct runner_pinning {
   hwloc_topology_t topo;   /**< restricted to the CPUs the process may use */
   hwloc_obj_type_t target; /**< HWLOC_OBJ_CORE or HWLOC_OBJ_PU */
   hwloc_bitmap_t saved;    /**< binding of thread 0 before it was pinned */
+  hwloc_bitmap_t near;     /**< the CPUs near the GPU the objects are counted in (NULL: all) */
   int first;               /**< the object of thread 0 (runner_share_node) */
 };
 
@@ -22,6 +25,64 @@ static int runner_local_rank = 0, runner_local_ranks = 1;
 void runner_share_node(int local_rank, int local_ranks) {
   runner_local_rank = local_rank;
   runner_local_ranks = local_ranks > 0 ? local_ranks : 1;
+}
+
+/** The node's GPUs (runner_near_devices). */
+#define RUNNER_MAX_DEVICES 64
+static char runner_bus[RUNNER_MAX_DEVICES][RUNNER_BUS_ID_LEN];
+static int runner_nr_devices = 0;
+
+void runner_near_devices(const char (*bus_id)[RUNNER_BUS_ID_LEN], int nr_devices) {
+  if (nr_devices > RUNNER_MAX_DEVICES) nr_devices = RUNNER_MAX_DEVICES;
+  for (int d = 0; d < nr_devices; d++) snprintf(runner_bus[d], RUNNER_BUS_ID_LEN, "%s", bus_id[d]);
+  runner_nr_devices = nr_devices > 0 ? nr_devices : 0;
+}
+
+int runner_near_place(hwloc_topology_t topo, const char (*bus_id)[RUNNER_BUS_ID_LEN],
+                      int nr_devices, int local_rank, int local_ranks, int nr_threads,
+                      hwloc_bitmap_t set, int *first, char *why, size_t len) {
+  if (nr_devices <= 0 || local_ranks < 1 || local_rank < 0 || local_rank >= local_ranks) {
+    snprintf(why, len, "no GPU");
+    return 0;
+  }
+  /* the CPUs near each device */
+  hwloc_const_cpuset_t near[RUNNER_MAX_DEVICES];
+  const int nd = nr_devices > RUNNER_MAX_DEVICES ? RUNNER_MAX_DEVICES : nr_devices;
+  for (int d = 0; d < nd; d++) {
+    hwloc_obj_t pci = hwloc_get_pcidev_by_busidstring(topo, bus_id[d]);
+    hwloc_obj_t anc = pci ? hwloc_get_non_io_ancestor_obj(topo, pci) : NULL;
+    if (!anc || !anc->cpuset || hwloc_bitmap_iszero(anc->cpuset)) {
+      snprintf(why, len, "hwloc does not find GPU %d (PCI %s) or the CPUs near it", d, bus_id[d]);
+      return 0;
+    }
+    near[d] = anc->cpuset;
+  }
+  const hwloc_const_cpuset_t all = hwloc_topology_get_topology_cpuset(topo);
+  const hwloc_const_cpuset_t mine = near[local_rank % nd];
+  if (hwloc_bitmap_isincluded(all, mine)) {
+    snprintf(why, len, "GPU %d (PCI %s) is near every CPU of the process", local_rank % nd,
+             bus_id[local_rank % nd]);
+    return 0;
+  }
+  /* every rank's share of the CPUs near its GPU, so that all decide alike */
+  for (int r = 0; r < local_ranks; r++) {
+    const hwloc_const_cpuset_t cr = near[r % nd];
+    int share = 0;
+    for (int k = 0; k < local_ranks; k++) share += hwloc_bitmap_isequal(near[k % nd], cr);
+    const int cores = hwloc_get_nbobjs_inside_cpuset_by_type(topo, cr, HWLOC_OBJ_CORE);
+    if (share * nr_threads > cores) {
+      snprintf(why, len,
+               "%d rank(s) of %d thread(s) do not fit the %d core(s) near GPU %d (PCI %s)", share,
+               nr_threads, cores, r % nd, bus_id[r % nd]);
+      return 0;
+    }
+    if (r != local_rank) continue;
+    int slot = 0;
+    for (int k = 0; k < r; k++) slot += hwloc_bitmap_isequal(near[k % nd], cr);
+    *first = slot * nr_threads;
+    hwloc_bitmap_copy(set, cr);
+  }
+  return 1;
 }
 
 /** Pinning problems are reported once per process, not once per thread. */
@@ -34,7 +95,9 @@ static void runner_warn_once(const char *what) {
 
 /** Bind the calling thread to target object number `id`. */
 static void runner_pin(struct runner_pinning *p, int id) {
-  hwloc_obj_t obj = hwloc_get_obj_by_type(p->topo, p->target, (unsigned)(p->first + id));
+  hwloc_obj_t obj = p->near ? hwloc_get_obj_inside_cpuset_by_type(p->topo, p->near, p->target,
+                                                                  (unsigned)(p->first + id))
+                            : hwloc_get_obj_by_type(p->topo, p->target, (unsigned)(p->first + id));
   if (!obj || hwloc_set_cpubind(p->topo, obj->cpuset, HWLOC_CPUBIND_THREAD) != 0)
     runner_warn_once("hwloc_set_cpubind");
 }
@@ -52,6 +115,9 @@ static struct runner_pinning *runner_pinning_new(int nr_threads) {
 #if HWLOC_API_VERSION >= 0x00020100
   flags |= HWLOC_TOPOLOGY_FLAG_RESTRICT_TO_CPUBINDING | HWLOC_TOPOLOGY_FLAG_DONT_CHANGE_BINDING;
 #endif
+  /* the PCI devices too where GPUs may be used (their CPUs) */
+  if (runner_nr_devices > 0)
+    hwloc_topology_set_io_types_filter(p->topo, HWLOC_TYPE_FILTER_KEEP_IMPORTANT);
   if (hwloc_topology_set_flags(p->topo, flags) != 0 || hwloc_topology_load(p->topo) != 0) {
     hwloc_topology_destroy(p->topo);
     free(p);
@@ -60,9 +126,31 @@ static struct runner_pinning *runner_pinning_new(int nr_threads) {
   }
   int nr_cores = hwloc_get_nbobjs_by_type(p->topo, HWLOC_OBJ_CORE);
   int nr_pus = hwloc_get_nbobjs_by_type(p->topo, HWLOC_OBJ_PU);
-  /* the processes of this node that see every CPU share them out */
+  /* the processes of this node that see every CPU share them out: near
+   * their GPUs where they fit there */
   const int all = runner_local_ranks * nr_threads;
-  if (runner_local_ranks > 1 && all <= nr_pus) {
+  char why[256] = "";
+  if (runner_nr_devices > 0 && all <= nr_pus) {
+    p->near = hwloc_bitmap_alloc();
+    if (runner_near_place(p->topo, (const char(*)[RUNNER_BUS_ID_LEN])runner_bus, runner_nr_devices,
+                          runner_local_rank, runner_local_ranks, nr_threads, p->near, &p->first,
+                          why, sizeof why)) {
+      p->target = HWLOC_OBJ_CORE;
+      char cpus[256];
+      hwloc_bitmap_list_snprintf(cpus, sizeof cpus, p->near);
+      error_log(1, "threads pinned near GPU %d (PCI %s): cores %d-%d of those of CPUs %s",
+                runner_local_rank % runner_nr_devices,
+                runner_bus[runner_local_rank % runner_nr_devices], p->first,
+                p->first + nr_threads - 1, cpus);
+    } else {
+      hwloc_bitmap_free(p->near);
+      p->near = NULL;
+      error_log(1, "threads not pinned near a GPU: %s", why);
+    }
+  }
+  if (p->near) {
+    /* (placed) */
+  } else if (runner_local_ranks > 1 && all <= nr_pus) {
     p->target = all <= nr_cores ? HWLOC_OBJ_CORE : HWLOC_OBJ_PU;
     p->first = runner_local_rank * nr_threads;
   } else if (nr_threads <= nr_cores)
@@ -140,6 +228,7 @@ void runner_stop(struct runner_pool *s) {
       hwloc_set_cpubind(p->topo, p->saved, HWLOC_CPUBIND_THREAD);
       hwloc_bitmap_free(p->saved);
     }
+    if (p->near) hwloc_bitmap_free(p->near);
     hwloc_topology_destroy(p->topo);
     free(p);
     s->pinning = NULL;

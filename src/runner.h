@@ -8,7 +8,9 @@
 #ifndef BOLIDE_RUNNER_H
 #define BOLIDE_RUNNER_H
 
+#include <hwloc.h>
 #include <pthread.h>
+#include <stddef.h>
 
 struct runner_pool;
 
@@ -34,12 +36,6 @@ struct runner_pool {
   int shutdown;              /**< 1: workers exit */
 };
 
-/** Pin the calling thread as thread 0 and start threads 1 .. nr_threads-1,
- *  each calling work(ctx, thread) in every run.  Threads are pinned one per
- *  core (or per hardware thread when there are more threads than cores) of
- *  the CPU set the process may use; with more threads than hardware
- *  threads, or if hwloc fails (a warning, once), they are left to the
- *  operating system. */
 /** Several processes of one run on this node (MPI ranks): this one is
  *  local_rank of local_ranks.  When the CPUs each may use hold a core for
  *  every thread of all of them (mpirun --bind-to none), the threads of
@@ -48,6 +44,40 @@ struct runner_pool {
  *  own set as a single one does.  Call before runner_start(). */
 void runner_share_node(int local_rank, int local_ranks);
 
+/** The longest PCI bus id of runner_near_devices ("0000:3b:00.0" and the
+ *  terminating 0, with room). */
+#define RUNNER_BUS_ID_LEN 32
+
+/** The node's GPUs, by CUDA device number: bus_id[d] is device d's PCI bus
+ *  id; local rank r of runner_share_node uses device r % nr_devices (as
+ *  gpu_init chooses).  runner_start then pins each rank's threads to the
+ *  cores nearest its GPU (runner_near_place) where they all fit, and as
+ *  without GPUs otherwise.  Call before runner_start(); nr_devices 0:
+ *  none. */
+void runner_near_devices(const char (*bus_id)[RUNNER_BUS_ID_LEN], int nr_devices);
+
+/** Where the threads go near the GPUs, in topo (loaded with its PCI
+ *  devices, restricted to the CPUs the process may use): for every local
+ *  rank the CPUs of the first ancestor of its GPU's PCI device that is not
+ *  an I/O object (its package or NUMA node); the ranks whose GPUs lie near
+ *  the same CPUs share out their cores in the order of their local ranks,
+ *  nr_threads each.  On success returns 1 with the CPUs of local_rank's
+ *  GPU in set and the number of its thread 0's core among those of set in
+ *  *first; returns 0 with the reason in why when hwloc does not see a GPU,
+ *  a GPU is near every CPU (nothing to choose), or some rank's threads do
+ *  not fit the cores near its GPU (then no rank pins near its GPU, since
+ *  every rank decides the same; hardware threads of one core are not
+ *  shared, which costs the compute-bound loops more than the distance). */
+int runner_near_place(hwloc_topology_t topo, const char (*bus_id)[RUNNER_BUS_ID_LEN],
+                      int nr_devices, int local_rank, int local_ranks, int nr_threads,
+                      hwloc_bitmap_t set, int *first, char *why, size_t len);
+
+/** Pin the calling thread as thread 0 and start threads 1 .. nr_threads-1,
+ *  each calling work(ctx, thread) in every run.  Threads are pinned one per
+ *  core (or per hardware thread when there are more threads than cores) of
+ *  the CPU set the process may use (near its GPU: runner_near_devices);
+ *  with more threads than hardware threads, or if hwloc fails (a warning,
+ *  once), they are left to the operating system. */
 void runner_start(struct runner_pool *pool, int nr_threads, void (*work)(void *, int), void *ctx);
 
 /** Stop and join the workers; restore the calling thread's CPU binding. */

@@ -239,6 +239,21 @@ static void **gpu_field_slot(struct parts *s, int k) {
   return (void **)((char *)s + part_fields[k].offset);
 }
 
+extern "C" int gpu_bus_ids(char *ids, size_t len, int max) {
+  int nd = 0;
+  if (cudaGetDeviceCount(&nd) != cudaSuccess) {
+    cudaGetLastError();
+    return 0;
+  }
+  if (nd > max) nd = max;
+  for (int d = 0; d < nd; d++)
+    if (cudaDeviceGetPCIBusId(ids + (size_t)d * len, (int)len, d) != cudaSuccess) {
+      cudaGetLastError();
+      return 0;
+    }
+  return nd;
+}
+
 extern "C" struct gpu *gpu_init(int device, char *why, size_t len) {
   int nd = 0;
   const cudaError_t err = cudaGetDeviceCount(&nd);

@@ -77,6 +77,10 @@ struct gpu_force_out {
  *  modulo their number (several MPI ranks of a node: each its own, from
  *  the node-local rank); NULL when there is none, with the reason in why. */
 struct gpu *gpu_init(int device, char *why, size_t len);
+/** The PCI bus ids ("0000:3b:00.0") of the CUDA devices 0 .. n-1 into
+ *  ids[k] (len bytes each, at most max of them), without choosing one;
+ *  returns n (0: none, or CUDA cannot be used). */
+int gpu_bus_ids(char *ids, size_t len, int max);
 /** "NVIDIA H100 80GB HBM3 (132 SMs, 79.1 GiB)" */
 const char *gpu_name(const struct gpu *g);
 /** Copy the flat array of Weibull flaw thresholds (n of them, indexed by the

@@ -679,6 +679,16 @@ static void gpu_engine_absent(struct engine *e) {
             saved);
 }
 
+void gpu_engine_near(const struct engine *e) {
+  const struct gpu_policy pol = gpu_policy_read(e->params);
+  if (e->opt.use_gpu == 0 || pol.kind == GPU_POLICY_OFF ||
+      (pol.kind == GPU_POLICY_LIST && pol.families == 0))
+    return;
+  char ids[16][RUNNER_BUS_ID_LEN];
+  const int n = gpu_bus_ids(&ids[0][0], RUNNER_BUS_ID_LEN, 16);
+  runner_near_devices((const char(*)[RUNNER_BUS_ID_LEN])ids, n);
+}
+
 void gpu_engine_init(struct engine *e) {
   const struct gpu_policy pol = gpu_policy_read(e->params);
   char asked[300];

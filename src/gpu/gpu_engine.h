@@ -95,6 +95,10 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
 /** Choose where tasks run from Scheduler:gpu and --gpu/--no-gpu, set
  *  e->gpu when the FORCE phase goes to a device, and say so in one line. */
 void gpu_engine_init(struct engine *e);
+/** Before the CPU workers start (scheduler_init): where the run may use a
+ *  GPU, tell the runner the node's GPUs (runner_near_devices), so that
+ *  each rank's threads go to the cores nearest its own. */
+void gpu_engine_near(const struct engine *e);
 /** The FORCE phase of the engine on its GPU. */
 void gpu_engine_force(struct engine *e);
 /** The DRIFT phase on the GPU: kick1 and drift of the resident particles;
