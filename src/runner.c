@@ -102,6 +102,28 @@ static void runner_pin(struct runner_pinning *p, int id) {
     runner_warn_once("hwloc_set_cpubind");
 }
 
+/** Place the threads on the cores near this rank's GPU (runner_near_place)
+ *  and say so; 0 (and why) where they are not. */
+static int runner_pin_near(struct runner_pinning *p, int nr_threads) {
+  char why[256] = "";
+  p->near = hwloc_bitmap_alloc();
+  if (!runner_near_place(p->topo, (const char(*)[RUNNER_BUS_ID_LEN])runner_bus, runner_nr_devices,
+                         runner_local_rank, runner_local_ranks, nr_threads, p->near, &p->first, why,
+                         sizeof why)) {
+    hwloc_bitmap_free(p->near);
+    p->near = NULL;
+    error_log(1, "threads not pinned near a GPU: %s", why);
+    return 0;
+  }
+  p->target = HWLOC_OBJ_CORE;
+  char cpus[256];
+  hwloc_bitmap_list_snprintf(cpus, sizeof cpus, p->near);
+  const int d = runner_local_rank % runner_nr_devices;
+  error_log(1, "threads pinned near GPU %d (PCI %s): cores %d-%d of those of CPUs %s", d,
+            runner_bus[d], p->first, p->first + nr_threads - 1, cpus);
+  return 1;
+}
+
 /** Decide where threads go; NULL when they stay unpinned. */
 static struct runner_pinning *runner_pinning_new(int nr_threads) {
   struct runner_pinning *p = error_calloc(1, sizeof *p, "thread pinning");
@@ -129,27 +151,8 @@ static struct runner_pinning *runner_pinning_new(int nr_threads) {
   /* the processes of this node that see every CPU share them out: near
    * their GPUs where they fit there */
   const int all = runner_local_ranks * nr_threads;
-  char why[256] = "";
-  if (runner_nr_devices > 0 && all <= nr_pus) {
-    p->near = hwloc_bitmap_alloc();
-    if (runner_near_place(p->topo, (const char(*)[RUNNER_BUS_ID_LEN])runner_bus, runner_nr_devices,
-                          runner_local_rank, runner_local_ranks, nr_threads, p->near, &p->first,
-                          why, sizeof why)) {
-      p->target = HWLOC_OBJ_CORE;
-      char cpus[256];
-      hwloc_bitmap_list_snprintf(cpus, sizeof cpus, p->near);
-      error_log(1, "threads pinned near GPU %d (PCI %s): cores %d-%d of those of CPUs %s",
-                runner_local_rank % runner_nr_devices,
-                runner_bus[runner_local_rank % runner_nr_devices], p->first,
-                p->first + nr_threads - 1, cpus);
-    } else {
-      hwloc_bitmap_free(p->near);
-      p->near = NULL;
-      error_log(1, "threads not pinned near a GPU: %s", why);
-    }
-  }
-  if (p->near) {
-    /* (placed) */
+  if (runner_nr_devices > 0 && all <= nr_pus && runner_pin_near(p, nr_threads)) {
+    /* (the cores near this rank's GPU) */
   } else if (runner_local_ranks > 1 && all <= nr_pus) {
     p->target = all <= nr_cores ? HWLOC_OBJ_CORE : HWLOC_OBJ_PU;
     p->first = runner_local_rank * nr_threads;

@@ -679,11 +679,15 @@ static void gpu_engine_absent(struct engine *e) {
             saved);
 }
 
+/** Whether --no-gpu or Scheduler:gpu (pol) keeps every task off the GPU. */
+static int gpu_engine_off(const struct engine *e, const struct gpu_policy *pol) {
+  return e->opt.use_gpu == 0 || pol->kind == GPU_POLICY_OFF ||
+         (pol->kind == GPU_POLICY_LIST && pol->families == 0);
+}
+
 void gpu_engine_near(const struct engine *e) {
   const struct gpu_policy pol = gpu_policy_read(e->params);
-  if (e->opt.use_gpu == 0 || pol.kind == GPU_POLICY_OFF ||
-      (pol.kind == GPU_POLICY_LIST && pol.families == 0))
-    return;
+  if (gpu_engine_off(e, &pol)) return;
   char ids[16][RUNNER_BUS_ID_LEN];
   const int n = gpu_bus_ids(&ids[0][0], RUNNER_BUS_ID_LEN, 16);
   runner_near_devices((const char(*)[RUNNER_BUS_ID_LEN])ids, n);
@@ -694,8 +698,7 @@ void gpu_engine_init(struct engine *e) {
   char asked[300];
   snprintf(asked, sizeof asked, "Scheduler:gpu: %s%s", pol.text,
            e->opt.use_gpu == 2 ? ", --gpu" : "");
-  if (e->opt.use_gpu == 0 || pol.kind == GPU_POLICY_OFF ||
-      (pol.kind == GPU_POLICY_LIST && pol.families == 0)) {
+  if (gpu_engine_off(e, &pol)) {
     error_log(0, "GPU off (%s): every task runs on the CPU",
               e->opt.use_gpu == 0 ? "--no-gpu" : asked);
     return;
