@@ -768,14 +768,6 @@ void gpu_engine_init(struct engine *e) {
   ge->walk_on_device = params_get_enum(e->params, "Scheduler:gpu_walks") == 1;
   const int walks_given = params_given(e->params, "Scheduler:gpu_walks");
   const int up_given = params_given(e->params, "Scheduler:gpu_multipoles");
-  if (e->gp.enabled && ranks &&
-      ((walks_given && ge->walk_on_device) || (up_given && ge->up_on_device)))
-    error_exit(
-        "%s: Scheduler:%s: device: on %d MPI ranks gravity's multipoles and walks run on the "
-        "CPU workers (theory/mpi.md, \"GPUs on several ranks\")",
-        params_filename(e->params),
-        walks_given && ge->walk_on_device ? "gpu_walks" : "gpu_multipoles", ranks_size());
-  if (ranks) ge->up_on_device = ge->walk_on_device = 0;
   /* the far-field reuse decides on the shortest M2L/M2P distance, which
    * the CPU's walks measure: there the walks stay on the CPU unless asked
    * for on the device (an error); so do they where the multipoles were
@@ -789,6 +781,16 @@ void gpu_engine_init(struct engine *e) {
           "walks read the multipoles where they are computed)",
           params_filename(e->params));
     ge->up_on_device = 1;
+  }
+  /* several MPI ranks: the multipoles of walks on the CPU are the CPU's
+   * (the copies for gravity reach the host before the walks' stages) */
+  if (e->gp.enabled && ranks && !ge->walk_on_device && ge->up_on_device) {
+    if (up_given)
+      error_exit(
+          "%s: Scheduler:gpu_multipoles: device needs Scheduler:gpu_walks: device on %d MPI "
+          "ranks (the walks on the CPU read the multipoles of the CPU's stages)",
+          params_filename(e->params), ranks_size());
+    ge->up_on_device = 0;
   }
   if (ge->walk_on_device && reuse)
     error_exit(
@@ -830,9 +832,9 @@ void gpu_engine_init(struct engine *e) {
   const char *grav = "";
   if (e->gp.enabled && mode == GPU_MODE_SERIAL)
     grav = ranks ? "; self-gravity: multipoles and walks on the CPU workers, M2L, L2L, L2P, M2P "
-                   "and P2P on the GPU (several MPI ranks: before the GPU's hydrodynamics, the "
-                   "ranks' exchanges on thread 0; the far field of the other ranks' records on "
-                   "the CPU, added to ga)"
+                   "and P2P on the GPU (several MPI ranks, Scheduler:gpu_walks: host: before the "
+                   "GPU's hydrodynamics, the ranks' exchanges on thread 0; the far field of the "
+                   "other ranks' records on the CPU, added to ga)"
                  : "; self-gravity: multipoles and walks on the CPU, M2L, L2L, L2P, M2P and P2P "
                    "on the GPU (one after the other: the CPU part, the GPU part, then the "
                    "hydrodynamics)";
@@ -852,7 +854,11 @@ void gpu_engine_init(struct engine *e) {
                  "P2P, L2P) while the GPU computes the hydrodynamics; ga goes up for the "
                  "kick";
   if (e->gp.enabled && mode != GPU_MODE_CPU_GRAV && !e->gp.direct && ge->up_on_device)
-    grav = ge->walk_on_device
+    grav = ge->walk_on_device && ranks
+               ? "; self-gravity on the GPU (Scheduler:gpu_walks: device: multipoles, walks, "
+                 "M2L, L2L, L2P, M2P and P2P; several MPI ranks: the walks with the other ranks' "
+                 "records on the CPU workers, added to ga), before the hydrodynamics"
+           : ge->walk_on_device
                ? "; self-gravity entirely on the GPU (Scheduler:gpu_walks: device: multipoles, "
                  "walks, M2L, L2L, L2P, M2P and P2P), before the hydrodynamics"
            : mode == GPU_MODE_SERIAL
@@ -918,14 +924,41 @@ static int gpu_engine_grav_prepare(struct engine *e, int on_gpu) {
 static void gpu_engine_grav_device(struct engine *e);
 static void gpu_engine_grav_ranks(struct engine *e) {
   struct gpu_engine *ge = e->gpu;
-  if (!gpu_engine_grav_prepare(e, 1))
-    error_bug("several MPI ranks: gravity's walks not on the CPU");
-  const double w0 = error_walltime();
-  engine_run_gravity_stages(e, gpu_engine_grav_task);
-  ge->t_grav_walk += error_walltime() - w0;
   struct parts *p = &e->parts;
   const size_t n = p->count;
   const int records = halo_gravity_by_records(e);
+  const double w0 = error_walltime();
+  if (ge->walk_on_device) {
+    /* the walks on the device too (skipping the cells of copies only and
+     * those read by records, gravity_gpu_prepare); the multipoles back on
+     * the host for the records, whose walks the host's long-range tasks
+     * make (remote_only), then its grav_down tasks */
+    halo_refresh_gravity(e);
+    if (gpu_engine_grav_prepare(e, 1))
+      error_bug("several MPI ranks: gravity's walks not on the GPU");
+    if (records) {
+      halo_gravity_records(e);
+      memset(p->gax, 0, n * sizeof(double));
+      memset(p->gay, 0, n * sizeof(double));
+      memset(p->gaz, 0, n * sizeof(double));
+      memset(p->pot, 0, n * sizeof(double));
+      engine_activate_phase(e, ENGINE_PHASE_FORCE);
+      for (int k = 0; k < e->sched.nr_tasks; k++) {
+        struct task *t = scheduler_task(&e->sched, k);
+        t->skip = t->subtype != task_subtype_grav ||
+                  (t->type != task_type_grav_long_range && t->type != task_type_grav_down);
+      }
+      e->gp.remote_only = 1;
+      scheduler_run(&e->sched, engine_run_task, e);
+      e->gp.remote_only = 0;
+      halo_gravity_after(e);
+    }
+  } else {
+    if (!gpu_engine_grav_prepare(e, 1))
+      error_bug("several MPI ranks: gravity's walks not on the CPU");
+    engine_run_gravity_stages(e, gpu_engine_grav_task);
+  }
+  ge->t_grav_walk += error_walltime() - w0;
   if (records) {
     if (n > ge->nr_remote) {
       free(ge->remote);

@@ -1432,14 +1432,15 @@ void halo_refresh_gravity_finish(struct engine *e) {
     p->gax[i] = b[5], p->gay[i] = b[6], p->gaz[i] = b[7];
   }
   if (H->dev && H->dev->gravity && H->gnrecv > 0) {
-    /* the GPU computes gravity's interactions: the fields its P2P reads
-     * (ga not: its upward pass is the host's), into the device's copies */
+    /* the GPU computes gravity's interactions: the fields its P2P reads,
+     * and the acceleration of the last pass that its upward pass reads
+     * (the adaptive criterion's a_min), into the device's copies */
     unsigned char sel[PART_NR_FIELDS];
     size_t bytes = 0;
     for (int f = 0; f < part_nr_fields; f++) {
       const char *nm = part_fields[f].name;
       sel[f] = !strcmp(nm, "x") || !strcmp(nm, "y") || !strcmp(nm, "z") || !strcmp(nm, "m") ||
-               !strcmp(nm, "h");
+               !strcmp(nm, "h") || !strcmp(nm, "gax") || !strcmp(nm, "gay") || !strcmp(nm, "gaz");
       bytes += sel[f] ? part_fields[f].size : 0;
     }
     char *blk = halo_grow(&H->gdbuf, &H->gdbuf_cap, H->gnrecv * bytes + 1);

@@ -62,8 +62,8 @@ void halo_refresh(struct engine *e);
  *  device too (unpack: into slot[0 .. n), marked as copies whose msrc
  *  counts from q0), besides the host's arrays.  With gravity set (the GPU
  *  computes self-gravity's interactions), halo_refresh_gravity also writes
- *  the copies for gravity's position, mass and h into the device.  NULL:
- *  the host's arrays only.  Nothing with one rank. */
+ *  the copies for gravity's position, mass, h and acceleration into the
+ *  device.  NULL: the host's arrays only.  Nothing with one rank. */
 struct halo_device {
   void *ctx;
   void (*pack)(void *ctx, const size_t *idx, size_t n, char *dst, const unsigned char *sel);

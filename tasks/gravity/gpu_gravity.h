@@ -72,9 +72,12 @@ void gpu_grav_up(struct gpu_grav *gg, struct parts *p, int order, double h_facto
  *  evaluation's gpu_grav_up (required before): the interactions stay on
  *  the device for the next gpu_grav_run, which then uploads no records.
  *  theta, h_support (the constant support), G, epsilon_fmm, h_factor,
- *  order: as struct gravity_props. */
+ *  order: as struct gravity_props.  skip (host, nr_top entries; NULL:
+ *  none): the top-level cells of copies only and those read by their
+ *  records on several MPI ranks (gravity_walk_root). */
 void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_top, double theta,
-                   double h_support, double G, double epsilon_fmm, double h_factor, int order);
+                   double h_support, double G, double epsilon_fmm, double h_factor, int order,
+                   const unsigned char *skip);
 /** One gravity evaluation on the device, ending with p's pot, gax, gay, gaz
  *  complete on the device and on the host.  replay = 0: the multipoles
  *  (gpu_grav_multipoles) and the interactions that the walks recorded in
@@ -140,9 +143,10 @@ void gpu_grav_host_free(struct gpu_grav_host *h);
 void gpu_grav_up_cells(struct gpu_grav *gg, struct parts *p, const struct space *s,
                        struct gravity_cell *gc, const struct gravity_props *gp, int resident);
 /** The walks of every top-level cell of s on the device (gpu_grav_walk,
- *  after gpu_grav_up_cells), with the cells' boxes as they are now. */
+ *  after gpu_grav_up_cells), with the cells' boxes as they are now; skip
+ *  as gpu_grav_walk's. */
 void gpu_grav_walk_cells(struct gpu_grav *gg, struct gpu_grav_host *h, const struct space *s,
-                         const struct gravity_props *gp);
+                         const struct gravity_props *gp, const unsigned char *skip);
 /** The whole tree method with the far field on the GPU, without tasks, in
  *  the order of gravity_tree_all: gravity_up of every top-level cell on
  *  the CPU, the walks recorded (gravity_gpu_record) into rec (emptied

@@ -134,7 +134,7 @@ void gpu_grav_up_cells(struct gpu_grav *gg, struct parts *p, const struct space 
 }
 
 void gpu_grav_walk_cells(struct gpu_grav *gg, struct gpu_grav_host *h, const struct space *s,
-                         const struct gravity_props *gp) {
+                         const struct gravity_props *gp, const unsigned char *skip) {
   const int nt = s->nr_top;
   if (nt > h->lo_hi_cap) {
     h->lo_hi_cap = nt;
@@ -146,7 +146,7 @@ void gpu_grav_walk_cells(struct gpu_grav *gg, struct gpu_grav_host *h, const str
       h->lo_hi[6 * i + 3 + d] = s->cells[i].bmax[d];
     }
   gpu_grav_walk(gg, h->lo_hi, nt, gp->theta, gp->h_support, gp->G, gp->epsilon_fmm, gp->h_factor,
-                gp->order);
+                gp->order, skip);
 }
 
 /* ------------------------------------------------------------------ serial */
@@ -176,7 +176,7 @@ void gpu_grav_tree_all(struct gpu_grav *gg, struct gpu_grav_host *h, struct grav
   }
   rec->part.n = rec->field.n = rec->part_sym.n = rec->field_sym.n = 0;
   if (up_on_device && walk_on_device) {
-    gpu_grav_walk_cells(gg, h, s, gp);
+    gpu_grav_walk_cells(gg, h, s, gp, NULL);
     gpu_grav_run(gg, p, rec, 1, gp->G, gp->eps, gp->softening, gp->eps2_expansion, gp->order,
                  resident, 0);
     return;

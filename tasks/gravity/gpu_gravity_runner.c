@@ -23,6 +23,8 @@ struct gravity_gpu {
   int nr_rec;                   /**< workers (length of rec) */
   int up_on_device;             /**< Scheduler:gpu_multipoles: device (P2M, M2M on the GPU) */
   int walk_on_device;           /**< Scheduler:gpu_walks: device (the walks on the GPU too) */
+  unsigned char *skip;          /**< several MPI ranks: the walks' skips per top-level cell */
+  int skip_cap;                 /**< its length */
 };
 
 struct gravity_gpu *gravity_gpu_new(struct gpu *g, int up_on_device, int walk_on_device,
@@ -42,6 +44,7 @@ void gravity_gpu_free(struct gravity_gpu *gg) {
   for (int w = 0; w < gg->nr_rec; w++) gravity_gpu_rec_free(&gg->rec[w]);
   free(gg->rec);
   gpu_grav_host_free(&gg->host);
+  free(gg->skip);
   free(gg);
 }
 
@@ -59,12 +62,31 @@ int gravity_gpu_prepare(struct engine *e, struct gravity_gpu *gg) {
   /* Scheduler:gpu_multipoles: device: P2M and M2M on the GPU, the
    * multipoles back where the CPU walks; the runner skips the grav_up
    * tasks */
+  /* (several MPI ranks: the multipoles back for the records and the host's
+   * walks with them) */
   if (gg->up_on_device)
-    gpu_grav_up_cells(gg->dev, &e->parts, &e->space, gg->walk_on_device ? NULL : e->grav->cells,
-                      &e->gp, 1);
-  /* Scheduler:gpu_walks: device: the walks too; nothing left for the CPU */
+    gpu_grav_up_cells(gg->dev, &e->parts, &e->space,
+                      gg->walk_on_device && !e->halo ? NULL : e->grav->cells, &e->gp, 1);
+  /* Scheduler:gpu_walks: device: the walks too; nothing left for the CPU
+   * but, on several MPI ranks, the walks with the other ranks' records
+   * (gravity_long_range with remote_only) */
   if (gg->walk_on_device) {
-    gpu_grav_walk_cells(gg->dev, h, &e->space, &e->gp);
+    const unsigned char *skip = NULL;
+    if (e->halo) {
+      /* the top-level cells of copies only receive nothing, those of which
+       * only some particles are here are read by their records */
+      const int nt = e->space.nr_top;
+      if (nt > gg->skip_cap) {
+        gg->skip = error_realloc(gg->skip, (size_t)nt, "GPU gravity skips");
+        gg->skip_cap = nt;
+      }
+      for (int c = 0; c < nt; c++)
+        gg->skip[c] = e->gp.top_partial && e->gp.top_partial[c] ? 2
+                      : e->space.cells[c].foreign               ? 1
+                                                                : 0;
+      skip = gg->skip;
+    }
+    gpu_grav_walk_cells(gg->dev, h, &e->space, &e->gp, skip);
     return 0;
   }
   const int nw = e->sched.nr_threads > 0 ? e->sched.nr_threads : 1;

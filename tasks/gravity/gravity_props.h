@@ -49,10 +49,13 @@ struct gravity_props {
                               its entry of remote, -1 for a cell of this rank's own particles
                               and an empty one; NULL: one rank */
   const struct gravity_remote *remote; /**< the other ranks' top-level cells (gravity_cpu.h) */
-  const unsigned char *top_partial;    /**< several MPI ranks, per top-level cell of the last
-                                            rebuild: 1 for another rank's cell of which only some
-                                            particles are here (copies for the hydrodynamics); the
-                                            long-range walks read it by its record; NULL: none */
+  int remote_only; /**< several MPI ranks with the walks on the GPU: the long-range walks
+                        read only the other ranks' cells whose particles are not all here
+                        (by their records; the GPU walks the rest) */
+  const unsigned char *top_partial; /**< several MPI ranks, per top-level cell of the last
+                                         rebuild: 1 for another rank's cell of which only some
+                                         particles are here (copies for the hydrodynamics); the
+                                         long-range walks read it by its record; NULL: none */
 };
 
 /** The family's state in a run (tasks/gravity/gravity_state.h), opaque to

@@ -24,12 +24,14 @@
 # the solid with fracture; with self-gravity the planet, the impact, the
 # far bodies, the planet with rebuilds and the solid impact), whose FORCE
 # phase the GPU runs in the stages of several ranks (src/gpu/gpu_engine.c),
-# gravity's multipoles and walks on the CPU before it and its interactions
-# on the GPU (the one-rank reference with gravity's walks and multipoles on
-# the CPU too); the planet once more with the whole of self-gravity on the
-# CPU beside the GPU (Scheduler:gpu lists the hydrodynamic families, on
-# both sides); and Scheduler:gpu_walks: device on 2 ranks stops with one
-# line.
+# self-gravity on the GPU before it, the walks with the other ranks'
+# records on the CPU (the one-rank reference: its gravity on the GPU); the
+# far bodies once more with gravity's walks and multipoles on the CPU and
+# its interactions on the GPU (Scheduler:gpu_walks: host and
+# gpu_multipoles: host, on both sides), and the planet with the whole of
+# self-gravity on the CPU beside the GPU (Scheduler:gpu lists the
+# hydrodynamic families, on both sides); and gpu_multipoles: device with
+# gpu_walks: host on 2 ranks stops with one line.
 set -u
 B=${BOLIDE_BUILDDIR:?}
 H=$(cd "$(dirname "$0")/../helpers" && pwd) # restart_compare.py
@@ -214,8 +216,7 @@ sys.exit(0 if (d > 0).sum() > 0 else 'damage: no particle damaged: the case test
 if [ -n "$gpu" ]; then
   grep -m1 "GPU runner" mpi2/run.log
   echo "several ranks on the GPU: the cases without self-gravity agree with one rank"
-  ref=(-P "Scheduler:gpu_walks:host" -P "Scheduler:gpu_multipoles:host")
-  gline="self-gravity: multipoles and walks on the CPU workers, M2L, L2L, L2P, M2P and P2P on the GPU (several MPI ranks"
+  gline="self-gravity on the GPU (Scheduler:gpu_walks: device: multipoles, walks, M2L, L2L, L2P, M2P and P2P; several MPI ranks"
 fi
 # 4. a self-gravitating SEA planet (VALIDATION "SEA planet": Earth-mass
 #    Tillotson granite on stretched equal-area shells, here 3,000
@@ -248,10 +249,9 @@ if [ -n "$gpu" ]; then
   mkdir -p cpug && cd cpug
   sed -e 's#\.\./planet.hdf5#../../planet.hdf5#' ../p.yml >p.yml
   printf 'Scheduler:\n  gpu: [density, gradient, force, damage, drift, kick]\n' >>p.yml
-  saved=("${ref[@]}") savedg=$gline
-  ref=() gline="self-gravity entirely on the CPU workers (several MPI ranks"
+  savedg=$gline gline="self-gravity entirely on the CPU workers (several MPI ranks"
   runs 2
-  ref=("${saved[@]}") gline=$savedg
+  gline=$savedg
   cd ..
 fi
 # 5. the impact of 1. with self-gravity: particles move between the ranks
@@ -317,6 +317,20 @@ used, rebuilds, frac, misses = int(m[1]), int(m[2]), float(m[3]), int(m[4])
 sys.exit(0 if used >= 1 and frac < 100.0 and misses == 0 else 1)
 PY
 done
+if [ -n "$gpu" ]; then
+  # the far bodies with gravity's walks and multipoles on the CPU workers,
+  # its interactions on the GPU, the records' far field added on the host
+  case=far-host-walks
+  mkdir -p hw && cd hw
+  sed -e 's#\.\./far.hdf5#../../far.hdf5#' ../p.yml >p.yml
+  printf '  gpu_walks: host\n  gpu_multipoles: host\n' >>p.yml
+  savedg=$gline
+  gline="self-gravity: multipoles and walks on the CPU workers, M2L, L2L, L2P, M2P and P2P on the GPU (several MPI ranks"
+  runs 2
+  gline=$savedg
+  grep "far field by the top-level cells' records" mpi2/run.log | cut -c1-200
+  cd ..
+fi
 case=planet-rebuilds
 cd "$work/planet" && mkdir -p rb && cd rb
 sed -e 's#\.\./planet.hdf5#../../planet.hdf5#' ../p.yml >p.yml
@@ -359,16 +373,16 @@ snaps='snapshot_000[0-2].hdf5'
 stats=statistics.txt box=1.43e5
 runs 3
 if [ -n "$gpu" ]; then
-  grep -m1 "self-gravity: multipoles and walks on the CPU workers" mpi3/run.log | cut -c1-240
-  # gravity's walks asked for on the device: one line, non-zero, no hang
+  grep -m1 "self-gravity on the GPU" mpi3/run.log | cut -c1-240
+  # the multipoles on the device for walks on the CPU: one line, non-zero, no hang
   cd "$work/impactg/mpi2"
-  timeout 60 "$MPIRUN" -n 2 "$B/bolide" --gpu -n 3 -t 1 -P Scheduler:gpu_walks:device p.yml \
-    >walks.out 2>walks.err
+  timeout 60 "$MPIRUN" -n 2 "$B/bolide" --gpu -n 3 -t 1 -P Scheduler:gpu_walks:host \
+    -P Scheduler:gpu_multipoles:device p.yml >walks.out 2>walks.err
   rc=$?
-  [ $rc = 124 ] && fail "mpirun -n 2 --gpu with Scheduler:gpu_walks: device hung"
-  [ $rc != 0 ] || fail "mpirun -n 2 --gpu with Scheduler:gpu_walks: device exited 0"
-  grep -q "bolide: error: p.yml: Scheduler:gpu_walks: device: on 2 MPI ranks gravity's multipoles and walks run" \
-    walks.err || { cat walks.err; fail "mpirun -n 2 --gpu with Scheduler:gpu_walks: device: no error line"; }
+  [ $rc = 124 ] && fail "mpirun -n 2 --gpu with Scheduler:gpu_multipoles: device hung"
+  [ $rc != 0 ] || fail "mpirun -n 2 --gpu with Scheduler:gpu_multipoles: device exited 0"
+  grep -q "bolide: error: p.yml: Scheduler:gpu_multipoles: device needs Scheduler:gpu_walks: device on 2 MPI ranks" \
+    walks.err || { cat walks.err; fail "mpirun -n 2 --gpu with Scheduler:gpu_multipoles: device: no error line"; }
   cd "$work/solidg"
   echo "several ranks on the GPU: the cases with self-gravity agree with one rank"
   exit 0

@@ -184,7 +184,8 @@ static void run(const char *name, int two_bodies, double h_factor) {
     deep += nw > 0;                                                                             \
   } while (0)
       for (long long r = 0; r < (long long)nt * nt; r++)
-        if (gravity_walk_root(count, lo_hi, nt, gp.theta, gp.h_support, r, stack)) WALK_ITEMS(1, 0);
+        if (gravity_walk_root(count, lo_hi, nt, gp.theta, gp.h_support, NULL, r, stack))
+          WALK_ITEMS(1, 0);
       for (int cur = 0; qn[cur] > 0; cur ^= 1, rounds++) {
         const unsigned long long m = qn[cur] < qcap ? qn[cur] : qcap;
         qn[cur ^ 1] = 0;
@@ -239,8 +240,57 @@ static void run(const char *name, int two_bodies, double h_factor) {
   parts_free(&p);
 }
 
+/** gravity_walk_root with the skips of several MPI ranks, on four
+ *  top-level cells in a row (0, 1 and 2 near each other, 3 far from all):
+ *  cell 0 of this rank, 1 of copies only, 2 read by its record (some of
+ *  its particles here), 3 of this rank.  Each root's walk (or none). */
+static void roots_skip(void) {
+  const int nt = 4, count[4] = {10, 10, 10, 10};
+  const double x[4] = {0.0, 1.0, 2.0, 40.0};
+  double lo_hi[24];
+  for (int c = 0; c < nt; c++)
+    for (int d = 0; d < 3; d++) {
+      lo_hi[6 * c + d] = (d == 0 ? x[c] : 0.0) - 0.5;
+      lo_hi[6 * c + 3 + d] = (d == 0 ? x[c] : 0.0) + 0.5;
+    }
+  const unsigned char skip[4] = {0, 1, 2, 0};
+  /* the expected (a, b, sym) of root (i, j); a = -1: no walk */
+  const int want[4][4][3] = {
+      {{0, 0, 1}, {0, 1, 0}, {-1, 0, 0}, {0, 3, 0}}, /* 0: self; one way from 1; 2 skipped; far 3 */
+      {{-1, 0, 0}, {-1, 0, 0}, {-1, 0, 0}, {-1, 0, 0}}, /* 1: copies only receive nothing */
+      {{-1, 0, 0}, {-1, 0, 0}, {-1, 0, 0}, {-1, 0, 0}}, /* 2: read by its record */
+      {{3, 0, 0}, {3, 1, 0}, {-1, 0, 0}, {3, 3, 1}}};   /* 3: far from 0 and 1 */
+  int bad = 0;
+  for (int i = 0; i < nt; i++)
+    for (int j = 0; j < nt; j++) {
+      int item[3] = {-1, -1, -1};
+      const int ok =
+          gravity_walk_root(count, lo_hi, nt, 0.5, 0.0, skip, (long long)i * nt + j, item);
+      const int *w = want[i][j];
+      if (ok != (w[0] >= 0) || (ok && (item[0] != w[0] || item[1] != w[1] || item[2] != w[2]))) {
+        printf("  root (%d, %d) with skips: %d (%d, %d, %d), expected %s (%d, %d, %d): FAIL\n", i,
+               j, ok, item[0], item[1], item[2], w[0] >= 0 ? "a walk" : "none", w[0], w[1], w[2]);
+        bad++;
+      }
+    }
+  /* without skips every root of the four has its walk as on one rank */
+  int n = 0;
+  for (long long r = 0; r < nt * nt; r++) {
+    int item[3];
+    n += gravity_walk_root(count, lo_hi, nt, 0.5, 0.0, NULL, r, item);
+  }
+  if (n != 4 + 3 + 6) {
+    printf("  roots without skips: %d walks, expected 13 (4 self, 3 near pairs, 6 far): FAIL\n", n);
+    bad++;
+  }
+  printf("  roots with the skips of several MPI ranks (copies only, read by record): %s\n",
+         bad ? "FAIL" : "same as the CPU's tasks");
+  failures += bad;
+}
+
 int main(int argc, char **argv) {
   error_init(argc > 0 ? argv[0] : "test_gravity_walk");
+  roots_skip();
   printf("stack walk (gravity_walk.h) against the recursive walks, recorded:\n");
   run("uniform sphere", 0, 0.0);
   run("two Plummer spheres", 1, 0.0);
