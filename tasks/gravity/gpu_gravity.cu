@@ -60,6 +60,7 @@ struct gpu_grav {
   struct gpu_grav_buf progeny, split; /**< the tree for the walks (gravity_walk_tree_arrays) */
   struct gpu_grav_buf lo_hi;          /**< boxes of the top-level cells (walks) */
   struct gpu_grav_buf skip;           /**< the walks' skipped top-level cells (MPI ranks) */
+  struct gpu_grav_buf top;            /**< the non-empty top-level cells of the roots */
   struct gpu_grav_buf wcount;         /**< 4 list counters, then the out-of-stack counter */
   struct gpu_grav_buf wlist[4];       /**< the walks' lists: targets, then sources (cap each) */
   unsigned long long wcap[4];         /**< their capacities (entries) */
@@ -115,13 +116,14 @@ extern "C" struct gpu_grav *gpu_grav_new(struct gpu *g) {
 
 extern "C" void gpu_grav_free(struct gpu_grav *gg) {
   if (!gg) return;
-  struct gpu_grav_buf *bufs[30] = {
+  struct gpu_grav_buf *bufs[31] = {
       &gg->mp,        &gg->field,     &gg->offset,    &gg->count,    &gg->l2l,      &gg->leaf,
       &gg->raw[0],    &gg->raw[1],    &gg->start[0],  &gg->start[1], &gg->src[0],   &gg->src[1],
       &gg->cursor,    &gg->centre,    &gg->scale,     &gg->progeny,  &gg->split,    &gg->lo_hi,
       &gg->wcount,    &gg->wlist[0],  &gg->wlist[1],  &gg->wlist[2], &gg->wlist[3], &gg->wqueue[0],
-      &gg->wqueue[1], &gg->sorted[0], &gg->sorted[1], &gg->sort_tmp, &gg->active,   &gg->skip};
-  for (int k = 0; k < 30; k++)
+      &gg->wqueue[1], &gg->sorted[0], &gg->sorted[1], &gg->sort_tmp, &gg->active,   &gg->skip,
+      &gg->top};
+  for (int k = 0; k < 31; k++)
     if (bufs[k]->ptr) gpu_dfree(bufs[k]->ptr);
   if (gg->mp_host) gpu_check(cudaFreeHost(gg->mp_host));
   if (gg->scale_host) gpu_check(cudaFreeHost(gg->scale_host));
@@ -249,7 +251,7 @@ extern "C" void gpu_grav_up(struct gpu_grav *gg, struct parts *p, int order, dou
 
 extern "C" void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_top, double theta,
                               double h_support, double G, double epsilon_fmm, double h_factor,
-                              int order, const unsigned char *skip) {
+                              int order, const unsigned char *skip, const int *top) {
   if (!gg->mp_on_device) error_bug("gpu_grav_walk without this evaluation's gpu_grav_up");
   cudaStream_t s = gpu_stream(gg->g, 0);
   const size_t nc = (size_t)gg->nr_cells;
@@ -258,9 +260,15 @@ extern "C" void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_t
                                      "gravity top-level boxes");
   gg_up(gg, s, dlo, lo_hi, 6 * (size_t)nr_top * sizeof(double));
   unsigned char *dskip = NULL;
+  int *dtop = NULL;
   if (skip) {
     dskip = (unsigned char *)gg_reserve(&gg->skip, (size_t)nr_top + 16, "gravity top-level skips");
     gg_up(gg, s, dskip, skip, (size_t)nr_top);
+  }
+  if (top) {
+    dtop =
+        (int *)gg_reserve(&gg->top, (size_t)nr_top * sizeof(int) + 16, "gravity top-level cells");
+    gg_up(gg, s, dtop, top, (size_t)nr_top * sizeof(int));
   }
   struct gravity_walk_tree T;
   T.progeny = (const int *)gg->progeny.ptr;
@@ -303,7 +311,7 @@ extern "C" void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_t
       Q[k].cap = gg->qcap;
     }
     gpu_check(cudaMemsetAsync(cnt, 0, 6 * sizeof(unsigned long long) + sizeof(int), s));
-    gravity_walk_roots_gpu_launch(s, T, wp, L, Q[0], dlo, nr_top, h_support, dskip, deep);
+    gravity_walk_roots_gpu_launch(s, T, wp, L, Q[0], dlo, nr_top, h_support, dskip, dtop, deep);
     /* rounds on what the walkers handed on, until none is left */
     unsigned long long hn[4], q_most = 0;
     for (int cur = 0;; cur ^= 1) {

@@ -72,12 +72,14 @@ void gpu_grav_up(struct gpu_grav *gg, struct parts *p, int order, double h_facto
  *  evaluation's gpu_grav_up (required before): the interactions stay on
  *  the device for the next gpu_grav_run, which then uploads no records.
  *  theta, h_support (the constant support), G, epsilon_fmm, h_factor,
- *  order: as struct gravity_props.  skip (host, nr_top entries; NULL:
- *  none): the top-level cells of copies only and those read by their
- *  records on several MPI ranks (gravity_walk_root). */
+ *  order: as struct gravity_props.  top (host, nr_top entries; NULL:
+ *  cells 0 .. nr_top - 1): the cell of each box, the non-empty top-level
+ *  cells only; skip (host, nr_top entries; NULL: none): the top-level cells
+ *  of copies only and those read by their records on several MPI ranks
+ *  (gravity_walk_root). */
 void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_top, double theta,
                    double h_support, double G, double epsilon_fmm, double h_factor, int order,
-                   const unsigned char *skip);
+                   const unsigned char *skip, const int *top);
 /** One gravity evaluation on the device, ending with p's pot, gax, gay, gaz
  *  complete on the device and on the host.  replay = 0: the multipoles
  *  (gpu_grav_multipoles) and the interactions that the walks recorded in
@@ -118,8 +120,10 @@ struct gpu_grav_host {
   double *centre;                 /**< by cell: its box centre (3 doubles) */
   int *progeny;                   /**< by cell: 8 children or -1 (walks) */
   unsigned char *split;           /**< by cell: split flag (walks) */
-  double *lo_hi;                  /**< by top-level cell: its box (6 doubles, walks) */
-  int lo_hi_cap;                  /**< top-level cells it holds */
+  double *lo_hi;                  /**< by non-empty top-level cell: its box (6 doubles, walks) */
+  int *top;                       /**< the cell of each box */
+  unsigned char *top_skip;        /**< the walks' skip of each (several MPI ranks) */
+  int lo_hi_cap;                  /**< top-level cells they hold */
   int *l2l_tmp;                   /**< (child, parent, level) while building */
   int *l2l_child, *l2l_parent;    /**< pairs by level */
   int nr_l2l, l2l_cap;            /**< pairs and allocated length */

@@ -108,6 +108,8 @@ void gpu_grav_host_free(struct gpu_grav_host *h) {
   free(h->progeny);
   free(h->split);
   free(h->lo_hi);
+  free(h->top);
+  free(h->top_skip);
   free(h->l2l_tmp);
   free(h->l2l_child);
   free(h->l2l_parent);
@@ -139,14 +141,24 @@ void gpu_grav_walk_cells(struct gpu_grav *gg, struct gpu_grav_host *h, const str
   if (nt > h->lo_hi_cap) {
     h->lo_hi_cap = nt;
     h->lo_hi = error_realloc(h->lo_hi, 6 * (size_t)nt * sizeof(double), "GPU gravity walks");
+    h->top = error_realloc(h->top, (size_t)nt * sizeof(int), "GPU gravity walks");
+    h->top_skip = error_realloc(h->top_skip, (size_t)nt, "GPU gravity walks");
   }
-  for (int i = 0; i < nt; i++)
+  /* the roots among the non-empty cells only: a grid of 64^3 cells, most
+   * of them empty, made 6.9e10 roots */
+  int ne = 0;
+  for (int i = 0; i < nt; i++) {
+    if (s->cells[i].count == 0 || (skip && skip[i] == 2)) continue;
+    h->top[ne] = i;
+    h->top_skip[ne] = skip ? skip[i] : 0;
     for (int d = 0; d < 3; d++) {
-      h->lo_hi[6 * i + d] = s->cells[i].bmin[d];
-      h->lo_hi[6 * i + 3 + d] = s->cells[i].bmax[d];
+      h->lo_hi[6 * ne + d] = s->cells[i].bmin[d];
+      h->lo_hi[6 * ne + 3 + d] = s->cells[i].bmax[d];
     }
-  gpu_grav_walk(gg, h->lo_hi, nt, gp->theta, gp->h_support, gp->G, gp->epsilon_fmm, gp->h_factor,
-                gp->order, skip);
+    ne++;
+  }
+  gpu_grav_walk(gg, h->lo_hi, ne, gp->theta, gp->h_support, gp->G, gp->epsilon_fmm, gp->h_factor,
+                gp->order, skip ? h->top_skip : NULL, h->top);
 }
 
 /* ------------------------------------------------------------------ serial */

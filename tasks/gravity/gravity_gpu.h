@@ -79,13 +79,14 @@ void gravity_up_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_up
 /** Gravity (tasks/gravity/gravity_tree_gpu.cu): the first round of the
  *  walks of gravity_walk.h, from every pair of the nt top-level cells
  *  (boxes lo_hi: 6 doubles each; h_support_top: the constant support of
- *  the near test; skip: gravity_walk_root's, on the device, or NULL),
+ *  the near test; skip, top: gravity_walk_root's, on the device, or NULL),
  *  recorded in L (counters on the device); what the walkers leave goes to
  *  out; *deep (device) counts walks out of stack. */
 void gravity_walk_roots_gpu_launch(cudaStream_t s, struct gravity_walk_tree T,
                                    struct gravity_walk_params wp, struct gravity_walk_lists L,
                                    struct gravity_walk_queue out, const double *lo_hi, int nt,
-                                   double h_support_top, const unsigned char *skip, int *deep);
+                                   double h_support_top, const unsigned char *skip, const int *top,
+                                   int *deep);
 /** A later round: the entries of in (n_in on the host: the device's *in.n
  *  as read after the last round), what is left again to out. */
 void gravity_walk_queue_gpu_launch(cudaStream_t s, struct gravity_walk_tree T,

@@ -133,7 +133,8 @@ __global__ void __launch_bounds__(GRAVITY_WALK_BLOCK)
     gravity_walk_roots_gpu_kernel(struct gravity_walk_tree T, struct gravity_walk_params wp,
                                   struct gravity_walk_lists L, struct gravity_walk_queue out,
                                   const double *__restrict__ lo_hi, int nt, double h_support_top,
-                                  const unsigned char *__restrict__ skip, int *deep) {
+                                  const unsigned char *__restrict__ skip,
+                                  const int *__restrict__ top, int *deep) {
   const long long r0 =
       ((long long)blockIdx.x * blockDim.x + threadIdx.x) * (long long)GRAVITY_WALK_ROOTS;
   const long long nroots = (long long)nt * nt;
@@ -143,7 +144,7 @@ __global__ void __launch_bounds__(GRAVITY_WALK_BLOCK)
   for (int k = 0; k < 4; k++) B.n[k] = 0;
   const long long r1 = r0 + GRAVITY_WALK_ROOTS < nroots ? r0 + GRAVITY_WALK_ROOTS : nroots;
   for (long long r = r0; r < r1; r++)
-    if (gravity_walk_root(T.count, lo_hi, nt, wp.theta, h_support_top, skip, r, stack))
+    if (gravity_walk_root(T.count, lo_hi, nt, wp.theta, h_support_top, skip, top, r, stack))
       gravity_walk_share(&T, &wp, &L, &B, &out, stack, 1, deep);
   for (int k = 0; k < 4; k++) gravity_walk_flush(&L, &B, k);
 }
@@ -169,13 +170,14 @@ __global__ void __launch_bounds__(GRAVITY_WALK_BLOCK)
 void gravity_walk_roots_gpu_launch(cudaStream_t s, struct gravity_walk_tree T,
                                    struct gravity_walk_params wp, struct gravity_walk_lists L,
                                    struct gravity_walk_queue out, const double *lo_hi, int nt,
-                                   double h_support_top, const unsigned char *skip, int *deep) {
+                                   double h_support_top, const unsigned char *skip, const int *top,
+                                   int *deep) {
   const long long nroots = (long long)nt * nt;
   const long long threads = (nroots + GRAVITY_WALK_ROOTS - 1) / GRAVITY_WALK_ROOTS;
   if (threads == 0) return;
   const int block = GRAVITY_WALK_BLOCK;
   gravity_walk_roots_gpu_kernel<<<(unsigned)((threads + block - 1) / block), block, 0, s>>>(
-      T, wp, L, out, lo_hi, nt, h_support_top, skip, deep);
+      T, wp, L, out, lo_hi, nt, h_support_top, skip, top, deep);
   gpu_check_launch(gravity_walk_roots_gpu_kernel);
 }
 

@@ -192,25 +192,28 @@ BOLIDE_INLINE int gravity_walk_top_near(const double *lo_i, const double *hi_i, 
 }
 
 /** Root r of the nt x nt pairs (i, j) = (r / nt, r % nt) of top-level
- *  cells (particle counts count[], boxes lo_hi: lo then hi, 6 doubles per
- *  cell), as the CPU's tasks divide the walks: i == j the self walk, a
- *  near pair (gravity_walk_top_near) with j > i the symmetric walk, a far
- *  pair the long-range walk of i.  skip (several MPI ranks; NULL: none),
- *  per top-level cell: 1 for a cell of copies only, which receives
- *  nothing (no self or long-range walk; a near pair with a cell of this
- *  rank walked one way, for that cell, as gravity_task.c does), 2 for a
- *  cell of which only some particles are here, which no walk reads (the
- *  host reads it by its record).  Returns 1 with the walk's stack entry
- *  (a, b, sym) in item, 0 where the root has no walk (an empty or skipped
+ *  cells top[i] and top[j] (top NULL: i and j; the non-empty ones only, so
+ *  that a grid of mostly empty cells makes no nt^2 roots), with particle
+ *  counts count[] by cell and boxes lo_hi by i (lo then hi, 6 doubles), as
+ *  the CPU's tasks divide the walks: i == j the self walk, a near pair
+ *  (gravity_walk_top_near) with j > i the symmetric walk, a far pair the
+ *  long-range walk of i.  skip (several MPI ranks; NULL: none), by i: 1
+ *  for a cell of copies only, which receives nothing (no self or
+ *  long-range walk; a near pair with a cell of this rank walked one way,
+ *  for that cell, as gravity_task.c does), 2 for a cell of which only some
+ *  particles are here, which no walk reads (the host reads it by its
+ *  record).  Returns 1 with the walk's stack entry (a, b, sym) of cell
+ *  indices in item, 0 where the root has no walk (an empty or skipped
  *  cell, a near pair with j < i). */
 BOLIDE_INLINE int gravity_walk_root(const int *count, const double *lo_hi, int nt, double theta,
-                                    double h_support_top, const unsigned char *skip, long long r,
-                                    int item[3]) {
+                                    double h_support_top, const unsigned char *skip, const int *top,
+                                    long long r, int item[3]) {
   const int i = (int)(r / nt), j = (int)(r % nt);
-  if (count[i] == 0 || count[j] == 0) return 0;
+  const int ci = top ? top[i] : i, cj = top ? top[j] : j;
+  if (count[ci] == 0 || count[cj] == 0) return 0;
   const int si = skip ? skip[i] : 0, sj = skip ? skip[j] : 0;
   if (si == 2 || sj == 2) return 0;
-  item[0] = i, item[1] = j, item[2] = 1;
+  item[0] = ci, item[1] = cj, item[2] = 1;
   if (i == j) return si == 0;
   const int near = gravity_walk_top_near(lo_hi + 6 * i, lo_hi + 6 * i + 3, lo_hi + 6 * j,
                                          lo_hi + 6 * j + 3, theta, h_support_top);
@@ -218,7 +221,7 @@ BOLIDE_INLINE int gravity_walk_root(const int *count, const double *lo_hi, int n
     if (j < i || (si && sj)) return 0;
     if (si || sj) {
       /* one way, the cell of this rank's particles receiving */
-      item[0] = si ? j : i, item[1] = si ? i : j, item[2] = 0;
+      item[0] = si ? cj : ci, item[1] = si ? ci : cj, item[2] = 0;
     }
     return 1;
   }

@@ -184,7 +184,7 @@ static void run(const char *name, int two_bodies, double h_factor) {
     deep += nw > 0;                                                                             \
   } while (0)
       for (long long r = 0; r < (long long)nt * nt; r++)
-        if (gravity_walk_root(count, lo_hi, nt, gp.theta, gp.h_support, NULL, r, stack))
+        if (gravity_walk_root(count, lo_hi, nt, gp.theta, gp.h_support, NULL, NULL, r, stack))
           WALK_ITEMS(1, 0);
       for (int cur = 0; qn[cur] > 0; cur ^= 1, rounds++) {
         const unsigned long long m = qn[cur] < qcap ? qn[cur] : qcap;
@@ -265,7 +265,7 @@ static void roots_skip(void) {
     for (int j = 0; j < nt; j++) {
       int item[3] = {-1, -1, -1};
       const int ok =
-          gravity_walk_root(count, lo_hi, nt, 0.5, 0.0, skip, (long long)i * nt + j, item);
+          gravity_walk_root(count, lo_hi, nt, 0.5, 0.0, skip, NULL, (long long)i * nt + j, item);
       const int *w = want[i][j];
       if (ok != (w[0] >= 0) || (ok && (item[0] != w[0] || item[1] != w[1] || item[2] != w[2]))) {
         printf("  root (%d, %d) with skips: %d (%d, %d, %d), expected %s (%d, %d, %d): FAIL\n", i,
@@ -277,7 +277,25 @@ static void roots_skip(void) {
   int n = 0;
   for (long long r = 0; r < nt * nt; r++) {
     int item[3];
-    n += gravity_walk_root(count, lo_hi, nt, 0.5, 0.0, NULL, r, item);
+    n += gravity_walk_root(count, lo_hi, nt, 0.5, 0.0, NULL, NULL, r, item);
+  }
+  /* the same four among six cells, two of them empty, by the non-empty
+   * ones only (top): the same walks, on the cells' own numbers */
+  {
+    const int count6[6] = {10, 0, 10, 10, 0, 10}, top[4] = {0, 2, 3, 5};
+    for (int i = 0; i < nt; i++)
+      for (int j = 0; j < nt; j++) {
+        int item[3] = {-1, -1, -1};
+        const int ok =
+            gravity_walk_root(count6, lo_hi, nt, 0.5, 0.0, skip, top, (long long)i * nt + j, item);
+        const int *w = want[i][j];
+        if (ok != (w[0] >= 0) ||
+            (ok && (item[0] != top[w[0]] || item[1] != top[w[1]] || item[2] != w[2]))) {
+          printf("  root (%d, %d) of the non-empty cells: %d (%d, %d, %d): FAIL\n", i, j, ok,
+                 item[0], item[1], item[2]);
+          bad++;
+        }
+      }
   }
   if (n != 4 + 3 + 6) {
     printf("  roots without skips: %d walks, expected 13 (4 self, 3 near pairs, 6 far): FAIL\n", n);
