@@ -149,6 +149,15 @@ static void run(const char *name, int two_bodies, double h_factor) {
       for (int d = 0; d < 3; d++)
         lo_hi[6 * i + d] = sp.cells[i].bmin[d], lo_hi[6 * i + 3 + d] = sp.cells[i].bmax[d];
     const size_t capk = 4 * (rec.part.n + rec.field.n + rec.part_sym.n + rec.field_sym.n) + 16;
+    /* the roots among the non-empty cells only (top, as the GPU's walk
+     * takes them), in the walkers' mode that hands on */
+    int *ctop = malloc((size_t)nt * sizeof(int)), ne = 0;
+    double *clo_hi = malloc(6 * (size_t)nt * sizeof(double));
+    for (int i = 0; i < nt; i++)
+      if (sp.cells[i].count > 0) {
+        memcpy(clo_hi + 6 * ne, lo_hi + 6 * i, 6 * sizeof(double));
+        ctop[ne++] = i;
+      }
     for (int mode = 0; mode < 2; mode++) {
       unsigned long long cnt[4] = {0, 0, 0, 0};
       struct gravity_walk_lists L;
@@ -183,8 +192,10 @@ static void run(const char *name, int two_bodies, double h_factor) {
     }                                                                                           \
     deep += nw > 0;                                                                             \
   } while (0)
-      for (long long r = 0; r < (long long)nt * nt; r++)
-        if (gravity_walk_root(count, lo_hi, nt, gp.theta, gp.h_support, NULL, NULL, r, stack))
+      const int rn = mode ? ne : nt;
+      for (long long r = 0; r < (long long)rn * rn; r++)
+        if (gravity_walk_root(count, mode ? clo_hi : lo_hi, rn, gp.theta, gp.h_support, NULL,
+                              mode ? ctop : NULL, r, stack))
           WALK_ITEMS(1, 0);
       for (int cur = 0; qn[cur] > 0; cur ^= 1, rounds++) {
         const unsigned long long m = qn[cur] < qcap ? qn[cur] : qcap;
@@ -223,7 +234,7 @@ static void run(const char *name, int two_bodies, double h_factor) {
       for (int k = 0; k < 4; k++) free(L.target[k]), free(L.source[k]);
       free(qi[0]), free(qi[1]);
     }
-    free(lo_hi);
+    free(lo_hi), free(clo_hi), free(ctop);
     size_t n_m2p = 0;
     for (size_t k = 0; k < rec.part.n; k++) n_m2p += rec.part.source[k] < 0;
     if (rec.field_sym.n == 0 || rec.part_sym.n == 0 || rec.field.n == 0 ||
