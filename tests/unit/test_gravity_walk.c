@@ -251,6 +251,128 @@ static void run(const char *name, int two_bodies, double h_factor) {
   parts_free(&p);
 }
 
+/** Several MPI ranks as the GPU's walk sees them (gravity_walk_root's
+ *  skips): some top-level cells of copies only (1), some of which only
+ *  some particles are here (2, read by their records on the host), the
+ *  rest this rank's.  The stack walk from the skipped roots among the
+ *  non-empty cells must record what the CPU's tasks walk there
+ *  (gravity_task.c): the self walk of each cell of this rank, the near
+ *  pairs of two such cells both ways and of one with a cell of copies one
+ *  way (for it), no walk with a cell of the second kind, and the
+ *  long-range walk of each cell of this rank against every far cell of
+ *  the first two kinds (the copies' multipoles being their records'). */
+static void run_ranks(const char *name, int two_bodies) {
+  const size_t n = 30000;
+  struct parts p;
+  parts_alloc(&p, n);
+  p.count = n;
+  srand48(11);
+  const double c[3] = {0.5 * BOX, 0.5 * BOX, 0.5 * BOX};
+  gset_fill_walk(&p, n, c, two_bodies);
+  const double box[3] = {BOX, BOX, BOX};
+  struct space sp;
+  space_init(&sp, &p, box, 0, 16, 8);
+  space_rebuild(&sp);
+  struct gravity_props gp;
+  gravity_props_set(&gp, 1.0, 0.5, 2e-3, GRAVITY_SOFTENING_SPLINE, GRAVITY_ORDER_DEFAULT);
+  gp.epsilon_fmm = GRAVITY_EPSILON_FMM_DEFAULT;
+  int cap = 0;
+  struct gravity_cell *gc = gravity_cells_reserve(NULL, &cap, sp.cells_capacity);
+  memset(gc, 0, (size_t)cap * sizeof *gc);
+  const int nc = sp.nr_cells, nt = sp.nr_top;
+  gravity_tree_all(&p, sp.cells, nt, gc, &gp); /* |ga| for the adaptive criterion */
+  for (int i = 0; i < nt; i++) gravity_up(&p, sp.cells + i, gc, &gp);
+  /* the kinds: of the non-empty cells, every third of copies only, every
+   * seventh (of the rest) of some particles only */
+  unsigned char *skip = calloc((size_t)(nt > 0 ? nt : 1), 1);
+  int k = 0, kinds[3] = {0, 0, 0};
+  for (int i = 0; i < nt; i++) {
+    if (sp.cells[i].count == 0) continue;
+    skip[i] = k % 3 == 1 ? 1 : (k % 7 == 2 ? 2 : 0);
+    kinds[skip[i]]++;
+    k++;
+  }
+  /* the CPU's tasks, recorded */
+  struct gravity_gpu_rec rec;
+  memset(&rec, 0, sizeof rec);
+  gravity_gpu_record(&rec);
+  int one_way = 0;
+  for (int i = 0; i < nt; i++) {
+    const struct cell *ci = sp.cells + i;
+    if (ci->count == 0 || skip[i] == 2) continue;
+    if (skip[i] == 0) gravity_interact_cells(&p, ci, ci, gc, &gp);
+    for (int j = 0; j < nt; j++) {
+      const struct cell *cj = sp.cells + j;
+      if (j == i || cj->count == 0 || skip[j] == 2) continue;
+      if (gravity_top_pair_is_near(ci, cj, &gp)) {
+        if (j < i) continue;
+        if (!skip[i] && !skip[j])
+          gravity_interact_cells(&p, ci, cj, gc, &gp);
+        else if (!skip[i] || !skip[j]) {
+          gravity_interact_pair_one_way(&p, skip[i] ? cj : ci, skip[i] ? ci : cj, gc, &gp);
+          one_way++;
+        }
+      } else if (!skip[i])
+        gravity_interact_pair_one_way(&p, ci, cj, gc, &gp);
+    }
+  }
+  gravity_gpu_record(NULL);
+  /* the stack walk from the non-empty cells' roots with the skips */
+  int *progeny = malloc(8 * (size_t)nc * sizeof(int)), *count = malloc((size_t)nc * sizeof(int));
+  unsigned char *split = malloc((size_t)nc);
+  gravity_walk_tree_arrays(sp.cells, nc, progeny, count, split);
+  struct gravity_multipole *mp = malloc((size_t)nc * sizeof *mp);
+  double *a_min = malloc((size_t)nc * sizeof(double)), *hs = malloc((size_t)nc * sizeof(double));
+  for (int q = 0; q < nc; q++) mp[q] = gc[q].mp, a_min[q] = gc[q].a_min, hs[q] = gc[q].h_support;
+  const struct gravity_walk_tree T = {progeny, count, split, mp, a_min, hs, NULL};
+  const struct gravity_walk_params wp = {gp.G,         gp.theta,    gp.epsilon_fmm,
+                                         gp.h_support, gp.h_factor, gp.order};
+  int *top = malloc((size_t)nt * sizeof(int)), ne = 0;
+  unsigned char *cskip = malloc((size_t)nt);
+  double *lo_hi = malloc(6 * (size_t)nt * sizeof(double));
+  for (int i = 0; i < nt; i++) {
+    if (sp.cells[i].count == 0 || skip[i] == 2) continue;
+    top[ne] = i, cskip[ne] = skip[i];
+    for (int d = 0; d < 3; d++)
+      lo_hi[6 * ne + d] = sp.cells[i].bmin[d], lo_hi[6 * ne + 3 + d] = sp.cells[i].bmax[d];
+    ne++;
+  }
+  const size_t capk = 4 * (rec.part.n + rec.field.n + rec.part_sym.n + rec.field_sym.n) + 16;
+  unsigned long long cnt[4] = {0, 0, 0, 0};
+  struct gravity_walk_lists L;
+  L.n = cnt;
+  for (int q = 0; q < 4; q++) {
+    L.target[q] = malloc(capk * sizeof(int));
+    L.source[q] = malloc(capk * sizeof(int));
+    L.cap[q] = capk;
+  }
+  struct gravity_walk_buf B;
+  memset(B.n, 0, sizeof B.n);
+  int *stack = malloc(3 * (size_t)TEST_STACK * sizeof(int));
+  int deep = 0;
+  for (long long r = 0; r < (long long)ne * ne; r++)
+    if (gravity_walk_root(count, lo_hi, ne, gp.theta, gp.h_support, cskip, top, r, stack))
+      deep += gravity_walk_run(&T, &wp, &L, &B, stack, TEST_STACK, 1, (long long)1 << 62) > 0;
+  for (int q = 0; q < 4; q++) gravity_walk_flush(&L, &B, q);
+  char what[200];
+  snprintf(what, sizeof what, "%s, ranks' skips (%d, %d, %d cells; %d one way)", name, kinds[0],
+           kinds[1], kinds[2], one_way);
+  if (deep || !kinds[1] || !kinds[2] || !one_way) {
+    printf("  %s: %d walks out of stack, or a kind of cell missing: FAIL\n", what, deep);
+    failures++;
+  }
+  compare(what, "part", &rec.part, L.target[0], L.source[0], cnt[0]);
+  compare(what, "field", &rec.field, L.target[1], L.source[1], cnt[1]);
+  compare(what, "part_sym", &rec.part_sym, L.target[2], L.source[2], cnt[2]);
+  compare(what, "field_sym", &rec.field_sym, L.target[3], L.source[3], cnt[3]);
+  for (int q = 0; q < 4; q++) free(L.target[q]), free(L.source[q]);
+  gravity_gpu_rec_free(&rec);
+  free(stack), free(lo_hi), free(cskip), free(top), free(progeny), free(count), free(split);
+  free(mp), free(a_min), free(hs), free(skip), free(gc);
+  space_free(&sp);
+  parts_free(&p);
+}
+
 /** gravity_walk_root with the skips of several MPI ranks, on four
  *  top-level cells in a row (0, 1 and 2 near each other, 3 far from all):
  *  cell 0 of this rank, 1 of copies only, 2 read by its record (some of
@@ -324,6 +446,8 @@ int main(int argc, char **argv) {
   run("uniform sphere", 0, 0.0);
   run("two Plummer spheres", 1, 0.0);
   run("two Plummer spheres", 1, 1.0);
+  run_ranks("uniform sphere", 0);
+  run_ranks("two Plummer spheres", 1);
   printf(failures ? "FAIL\n" : "PASS\n");
   return failures ? 1 : 0;
 }
