@@ -44,6 +44,9 @@ struct gpu_engine {
   int up_on_device;         /**< Scheduler:gpu_multipoles: device (P2M, M2M on the GPU) */
   int walk_on_device;       /**< Scheduler:gpu_walks: device (the walks on the GPU too) */
   double t_grav_walk;       /**< host seconds of the gravity tasks (up, walks) */
+  double t_ranks[4];        /**< several ranks, walks on the device: seconds in the copies'
+                                 refresh, the device's upward pass and walks, the records'
+                                 exchange, the host's walks with the records */
   double t_grav_gpu;        /**< seconds of the device part (copies included) */
   long grav_evals;          /**< gravity evaluations */
   double t_phase;           /**< host seconds of the FORCE phases */
@@ -934,10 +937,16 @@ static void gpu_engine_grav_ranks(struct engine *e) {
      * the host for the records, whose walks the host's long-range tasks
      * make (remote_only), then its grav_down tasks */
     halo_refresh_gravity(e);
+    const double w1 = error_walltime();
     if (gpu_engine_grav_prepare(e, 1))
       error_bug("several MPI ranks: gravity's walks not on the GPU");
+    const double w2 = error_walltime();
+    ge->t_ranks[0] += w1 - w0;
+    ge->t_ranks[1] += w2 - w1;
     if (records) {
       halo_gravity_records(e);
+      const double w3 = error_walltime();
+      ge->t_ranks[2] += w3 - w2;
       memset(p->gax, 0, n * sizeof(double));
       memset(p->gay, 0, n * sizeof(double));
       memset(p->gaz, 0, n * sizeof(double));
@@ -952,6 +961,7 @@ static void gpu_engine_grav_ranks(struct engine *e) {
       scheduler_run(&e->sched, engine_run_task, e);
       e->gp.remote_only = 0;
       halo_gravity_after(e);
+      ge->t_ranks[3] += error_walltime() - w3;
     }
   } else {
     if (!gpu_engine_grav_prepare(e, 1))
@@ -1369,6 +1379,13 @@ void gpu_engine_print(const struct engine *e, FILE *f) {
             "GPU gravity host side, ms per evaluation: multipoles + walks on the CPU %.3f, "
             "device part (copies included) %.3f\n",
             1e3 * ge->t_grav_walk / ge->grav_evals, 1e3 * ge->t_grav_gpu / ge->grav_evals);
+  if (ge->grav_evals && e->halo && ge->walk_on_device)
+    fprintf(f,
+            "GPU gravity on several ranks, ms per evaluation: the copies' refresh %.3f, the "
+            "device's multipoles and walks (copied back) %.3f, the records' exchange %.3f, the "
+            "host's walks with the records and their L2L, L2P %.3f\n",
+            1e3 * ge->t_ranks[0] / ge->grav_evals, 1e3 * ge->t_ranks[1] / ge->grav_evals,
+            1e3 * ge->t_ranks[2] / ge->grav_evals, 1e3 * ge->t_ranks[3] / ge->grav_evals);
 }
 
 void gpu_engine_free(struct engine *e) {

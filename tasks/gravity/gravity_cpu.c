@@ -688,7 +688,17 @@ static long walk_remote(struct parts *p, const struct cell *a, const struct grav
 void gravity_long_range(struct parts *p, const struct cell *ci, const struct cell *tops, int nr_top,
                         struct gravity_cell *gc, const struct gravity_props *gp) {
   if (ci->count == 0 || (gp->active && !gp->active[ci->index])) return;
-  for (int j = 0; j < nr_top; j++) {
+  /* with remote_only, only the other ranks' cells whose particles are not
+   * all here; else those with particles here or a record (a grid of 64^3
+   * cells is mostly empty); in the same order: the sums are those of the
+   * full loop */
+  const int *list = gp->remote_only ? gp->remote_partial
+                    : gp->tops_used && tops == gp->tops_base && nr_top == gp->nr_tops
+                        ? gp->tops_used
+                        : NULL;
+  const int nj = gp->remote_only ? gp->nr_remote_partial : list ? gp->nr_tops_used : nr_top;
+  for (int k = 0; k < nj; k++) {
+    const int j = list ? list[k] : k;
     const struct cell *cj = tops + j;
     if (cj == ci) continue;
     if (gp->remote_idx && gp->remote_idx[j] >= 0) {
@@ -713,6 +723,18 @@ void gravity_long_range(struct parts *p, const struct cell *ci, const struct cel
     if (gp->remote_only || cj->count == 0 || gravity_top_pair_is_near(ci, cj, gp)) continue;
     walk_pair(p, ci, cj, 0, gc, gp);
   }
+}
+
+int gravity_remote_reads(const struct cell *ci, const struct gravity_props *gp) {
+  if (ci->count == 0 || (gp->active && !gp->active[ci->index])) return 0;
+  for (int k = 0; k < gp->nr_remote_partial; k++) {
+    const int j = gp->remote_partial[k];
+    const struct gravity_remote *rj = gp->remote + gp->remote_idx[j];
+    if (j != ci->index &&
+        !gravity_walk_top_near(ci->bmin, ci->bmax, rj->bmin, rj->bmax, gp->theta, gp->h_support))
+      return 1;
+  }
+  return 0;
 }
 
 /* ------------------------------------------------------------------ down */

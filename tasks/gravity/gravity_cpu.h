@@ -144,6 +144,12 @@ struct gravity_remote {
 void gravity_long_range(struct parts *p, const struct cell *ci, const struct cell *tops, int nr_top,
                         struct gravity_cell *gc, const struct gravity_props *gp);
 
+/** Whether gravity_long_range with gp->remote_only walks anything for ci
+ *  (an other rank's cell whose particles are not all here, not near ci):
+ *  where it does not, ci's field tensors stay zero and its grav_down has
+ *  nothing to push. */
+int gravity_remote_reads(const struct cell *ci, const struct gravity_props *gp);
+
 /** L2L down c's octree and L2P to its particles (into ga and pot), then
  *  the particles' ga and pot. */
 void gravity_down(struct parts *p, const struct cell *c, struct gravity_cell *gc,

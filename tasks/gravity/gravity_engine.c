@@ -28,6 +28,8 @@ void gravity_engine_clean(struct engine *e) {
   free(g->x0);
   free(g->remote);
   free(g->remote_idx);
+  free(g->remote_partial);
+  free(g->tops_used);
   restart_gravity_free(&g->restart);
   free(g);
   e->grav = NULL;
@@ -35,6 +37,26 @@ void gravity_engine_clean(struct engine *e) {
 
 int64_t gravity_cell_doubles(void) {
   return (int64_t)(sizeof(struct gravity_cell) / sizeof(double));
+}
+
+/** gp.tops_used: the top-level cells with particles here or a record
+ *  (gp.remote_idx), which the long-range walks visit; at each rebuild and
+ *  each exchange of records, the only times either changes. */
+static void gravity_tops_used_update(struct engine *e) {
+  struct gravity_state *g = e->grav;
+  const int nt = e->space.nr_top;
+  if (g->tops_used_cap < nt) {
+    g->tops_used = error_realloc(g->tops_used, (size_t)nt * sizeof(int), "gravity top-level cells");
+    g->tops_used_cap = nt;
+  }
+  int n = 0;
+  for (int c = 0; c < nt; c++)
+    if (e->space.cells[c].count > 0 || (e->gp.remote_idx && e->gp.remote_idx[c] >= 0))
+      g->tops_used[n++] = c;
+  e->gp.tops_used = g->tops_used;
+  e->gp.nr_tops_used = n;
+  e->gp.tops_base = e->space.cells;
+  e->gp.nr_tops = nt;
 }
 
 void gravity_graph_made(struct engine *e, int nr_tasks) {
@@ -49,6 +71,7 @@ void gravity_graph_made(struct engine *e, int nr_tasks) {
     g->nr_lists = nr_tasks;
     g->lists = error_calloc(g->nr_lists, sizeof *g->lists, "gravity interaction lists");
   }
+  gravity_tops_used_update(e);
 }
 
 void gravity_graph_free(struct engine *e) {
@@ -316,18 +339,25 @@ void gravity_top_records_use(struct engine *e, const double *recs, const int *ro
   for (int c = 0; c < nt; c++) n += use[c] && row[c] >= 0;
   if (g->remote_cap < n) {
     g->remote = error_realloc(g->remote, (size_t)n * sizeof *g->remote, "gravity remote cells");
+    g->remote_partial =
+        error_realloc(g->remote_partial, (size_t)n * sizeof(int), "gravity remote cells");
     g->remote_cap = n;
   }
   n = 0;
+  int np = 0;
   for (int c = 0; c < nt; c++) {
     g->remote_idx[c] = use[c] && row[c] >= 0 ? n : -1;
     if (g->remote_idx[c] < 0) continue;
     gravity_top_record_unpack(recs + (size_t)row[c] * R, g->remote + n);
     g->remote[n].complete = complete[c] != 0;
+    if (!g->remote[n].complete) g->remote_partial[np++] = c;
     n++;
   }
   e->gp.remote_idx = g->remote_idx;
   e->gp.remote = g->remote;
+  e->gp.remote_partial = g->remote_partial;
+  e->gp.nr_remote_partial = np;
+  gravity_tops_used_update(e);
 }
 
 /** Whether the walk between top-level cells a (receiving) and b, known

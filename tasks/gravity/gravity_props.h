@@ -49,9 +49,19 @@ struct gravity_props {
                               its entry of remote, -1 for a cell of this rank's own particles
                               and an empty one; NULL: one rank */
   const struct gravity_remote *remote; /**< the other ranks' top-level cells (gravity_cpu.h) */
-  int remote_only; /**< several MPI ranks with the walks on the GPU: the long-range walks
-                        read only the other ranks' cells whose particles are not all here
-                        (by their records; the GPU walks the rest) */
+  int remote_only;      /**< several MPI ranks with the walks on the GPU: the long-range walks
+                             read only the other ranks' cells whose particles are not all here
+                             (by their records; the GPU walks the rest) */
+  const int *tops_used; /**< the top-level cells the long-range walks visit (set by the
+                             engine at each rebuild and exchange of records): those with
+                             particles here or a record, increasing; NULL: every one */
+  int nr_tops_used;     /**< their number */
+  const struct cell *tops_base; /**< the top-level cells tops_used refers to (nr_tops of them):
+                                     other arrays are walked in full */
+  int nr_tops;
+  const int *remote_partial;        /**< those cells (top-level indices, increasing), the only ones
+                                         the walks visit with remote_only */
+  int nr_remote_partial;            /**< their number */
   const unsigned char *top_partial; /**< several MPI ranks, per top-level cell of the last
                                          rebuild: 1 for another rank's cell of which only some
                                          particles are here (copies for the hydrodynamics); the

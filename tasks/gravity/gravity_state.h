@@ -29,7 +29,11 @@ struct gravity_state {
   struct gravity_remote *remote;  /**< several MPI ranks: the other ranks' top-level cells
                                        (gravity_top_records_use; gp.remote) */
   int *remote_idx;                /**< per top-level cell, its entry of remote or -1 */
-  int remote_cap, remote_idx_cap; /**< their allocated lengths */
+  int *remote_partial;            /**< the top-level cells of remote whose particles are not
+                                       all here, in increasing order (gp.remote_partial) */
+  int *tops_used;                 /**< gp.tops_used (gravity_tops_used_update) */
+  int tops_used_cap;              /**< its allocated length */
+  int remote_cap, remote_idx_cap; /**< their allocated lengths (remote_partial: remote_cap) */
 };
 
 #endif

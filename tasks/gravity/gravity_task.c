@@ -61,5 +61,8 @@ void gravity_long_range_task(struct engine *e, struct task *t) {
 
 void gravity_down_task(struct engine *e, struct task *t) {
   if (((const struct cell *)t->ci)->foreign) return; /* (copies only: src/mpi/halo.h) */
+  /* (several ranks, walks on the GPU: only where the host's walks with the
+   * records put something in the field tensors) */
+  if (e->gp.remote_only && !gravity_remote_reads(t->ci, &e->gp)) return;
   gravity_down(&e->parts, t->ci, e->grav->cells, &e->gp);
 }
