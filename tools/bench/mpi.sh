@@ -25,10 +25,10 @@
 #
 # With -G every rank runs its FORCE phases on a GPU (--gpu; a build with
 # --with-mpi --with-cuda): rank k of a node on its device k modulo the
-# node's GPUs (theory/mpi.md, "GPUs on several ranks"). With -g too, a
-# run of several ranks computes self-gravity on its CPU workers before the
-# GPU's phase, one rank (each layout as a user gets it) the GPU's gravity
-# beside the CPU's walks.
+# node's GPUs (theory/mpi.md, "GPUs on several ranks"). With -g too, each
+# rank computes self-gravity on its GPU before the GPU's hydrodynamics (the
+# upward pass, the walks and the interactions; the walks with the other
+# ranks' records on its CPU workers), each layout as a user gets it.
 #
 # Usage: BOLIDE_BENCH_IC=.../make_impact_ic.py BOLIDE_BUILD=_build_mpi \
 #          tools/bench/mpi.sh [-n 1.1e5] [-c "1x2 2x1"] [-s 5] [-r 3] [-m 16] [-w] [-g] [-G] [-S DIR]
