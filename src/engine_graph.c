@@ -297,6 +297,9 @@ static void engine_make_gravity_tasks(struct engine *e, const int *first, int *c
     if (!up[a]) continue;
     for (int b = a + 1; b < nt; b++) {
       if (!up[b] || !gravity_top_pair_is_near(&s->cells[a], &s->cells[b], &e->gp)) continue;
+      /* (several MPI ranks: two cells of copies only receive nothing from
+       * each other: gravity_walk_task) */
+      if (s->cells[a].foreign && s->cells[b].foreign) continue;
       struct cell *ua[8], *ub[8];
       const int na = engine_grav_units(&s->cells[a], gself[a] != NULL, ua);
       const int nb = engine_grav_units(&s->cells[b], gself[b] != NULL, ub);
