@@ -143,9 +143,14 @@ void gpu_grav_host_free(struct gpu_grav_host *h);
  *  into gc (multipole, a_min, h_support; the field zeroed) for the CPU's
  *  walks, as gravity_up of every top-level cell would leave it (host ga
  *  and pot are not zeroed: the device's evaluation overwrites them); gc
- *  NULL: nothing copied back (the walks on the device too). */
+ *  NULL: nothing copied back (the walks on the device too).  Only the
+ *  first nr_fill cells are copied into gc (-1: every cell; the top-level
+ *  cells come first); back (NULL: not wanted) receives the pinned staging
+ *  of every cell, valid until the next upward pass, for
+ *  gravity_back_fill. */
 void gpu_grav_up_cells(struct gpu_grav *gg, struct parts *p, const struct space *s,
-                       struct gravity_cell *gc, const struct gravity_props *gp, int resident);
+                       struct gravity_cell *gc, const struct gravity_props *gp, int resident,
+                       int nr_fill, struct gravity_back *back);
 /** The walks of every top-level cell of s on the device (gpu_grav_walk,
  *  after gpu_grav_up_cells), with the cells' boxes as they are now; skip
  *  as gpu_grav_walk's. */

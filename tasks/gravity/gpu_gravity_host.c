@@ -119,7 +119,8 @@ void gpu_grav_host_free(struct gpu_grav_host *h) {
 }
 
 void gpu_grav_up_cells(struct gpu_grav *gg, struct parts *p, const struct space *s,
-                       struct gravity_cell *gc, const struct gravity_props *gp, int resident) {
+                       struct gravity_cell *gc, const struct gravity_props *gp, int resident,
+                       int nr_fill, struct gravity_back *back) {
   if (!gc) {
     gpu_grav_up(gg, p, gp->order, gp->h_factor, resident, NULL, NULL, NULL);
     return;
@@ -127,12 +128,10 @@ void gpu_grav_up_cells(struct gpu_grav *gg, struct parts *p, const struct space 
   const struct gravity_multipole *mp;
   const double *a_min, *h_support;
   gpu_grav_up(gg, p, gp->order, gp->h_factor, resident, &mp, &a_min, &h_support);
-  for (int k = 0; k < s->nr_cells; k++) {
-    gc[k].mp = mp[k];
-    gc[k].a_min = a_min[k];
-    gc[k].h_support = h_support[k];
-    gravity_field_zero(&gc[k].field);
-  }
+  const struct gravity_back b = {mp, a_min, h_support};
+  if (back) *back = b;
+  if (nr_fill < 0 || nr_fill > s->nr_cells) nr_fill = s->nr_cells;
+  for (int k = 0; k < nr_fill; k++) gravity_back_fill_cell(&b, k, gc);
 }
 
 void gpu_grav_walk_cells(struct gpu_grav *gg, struct gpu_grav_host *h, const struct space *s,
@@ -178,7 +177,7 @@ void gpu_grav_tree_all(struct gpu_grav *gg, struct gpu_grav_host *h, struct grav
   }
   if (up_on_device) {
     /* the host's copy only where the host walks */
-    gpu_grav_up_cells(gg, p, s, walk_on_device ? NULL : gc, gp, resident);
+    gpu_grav_up_cells(gg, p, s, walk_on_device ? NULL : gc, gp, resident, -1, NULL);
   } else {
     struct gravity_multipole *mp = gpu_grav_multipoles(gg, s->nr_cells);
     for (int i = 0; i < nr_top; i++) {

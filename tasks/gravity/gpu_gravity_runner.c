@@ -64,9 +64,15 @@ int gravity_gpu_prepare(struct engine *e, struct gravity_gpu *gg) {
    * tasks */
   /* (several MPI ranks: the multipoles back for the records and the host's
    * walks with them) */
+  /* (several MPI ranks with the walks on the device: the top-level cells
+   * back for the records, the others where the host's walks with the
+   * records read them: gravity_long_range_task) */
+  const int ranks_walk = gg->walk_on_device && e->halo;
+  e->grav->back.mp = NULL;
   if (gg->up_on_device)
     gpu_grav_up_cells(gg->dev, &e->parts, &e->space,
-                      gg->walk_on_device && !e->halo ? NULL : e->grav->cells, &e->gp, 1);
+                      gg->walk_on_device && !e->halo ? NULL : e->grav->cells, &e->gp, 1,
+                      ranks_walk ? e->space.nr_top : -1, ranks_walk ? &e->grav->back : NULL);
   /* Scheduler:gpu_walks: device: the walks too; nothing left for the CPU
    * but, on several MPI ranks, the walks with the other ranks' records
    * (gravity_long_range with remote_only) */

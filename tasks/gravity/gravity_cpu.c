@@ -725,6 +725,14 @@ void gravity_long_range(struct parts *p, const struct cell *ci, const struct cel
   }
 }
 
+void gravity_back_fill(const struct gravity_back *b, const struct cell *c,
+                       struct gravity_cell *gc) {
+  gravity_back_fill_cell(b, c->index, gc);
+  if (c->split)
+    for (int q = 0; q < 8; q++)
+      if (c->progeny[q]) gravity_back_fill(b, c->progeny[q], gc);
+}
+
 int gravity_remote_reads(const struct cell *ci, const struct gravity_props *gp) {
   if (ci->count == 0 || (gp->active && !gp->active[ci->index])) return 0;
   for (int k = 0; k < gp->nr_remote_partial; k++) {

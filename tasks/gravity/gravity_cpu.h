@@ -76,6 +76,25 @@ struct gravity_cell {
                          0 unless Gravity:softening_h_factor > 0) */
 };
 
+/** An upward pass made elsewhere (the GPU's, copied back to its staging),
+ *  by cell index: what gravity_up would leave in a gravity_cell. */
+struct gravity_back {
+  const struct gravity_multipole *mp;
+  const double *a_min, *h_support;
+};
+
+/** gc[k] from b (multipole, a_min, h_support; the field zeroed). */
+BOLIDE_INLINE void gravity_back_fill_cell(const struct gravity_back *b, int k,
+                                          struct gravity_cell *gc) {
+  gc[k].mp = b->mp[k];
+  gc[k].a_min = b->a_min[k];
+  gc[k].h_support = b->h_support[k];
+  gravity_field_zero(&gc[k].field);
+}
+
+/** gravity_back_fill_cell for c and every cell below it. */
+void gravity_back_fill(const struct gravity_back *b, const struct cell *c, struct gravity_cell *gc);
+
 /** Record the particle-level interactions of the walks this thread runs
  *  until gravity_record_end into il (emptied first; NULL: record nothing). */
 void gravity_record_begin(struct gravity_ilist *il);

@@ -31,6 +31,10 @@ struct gravity_state {
   int *remote_idx;                /**< per top-level cell, its entry of remote or -1 */
   int *remote_partial;            /**< the top-level cells of remote whose particles are not
                                        all here, in increasing order (gp.remote_partial) */
+  struct gravity_back back;       /**< several MPI ranks with the walks on the GPU: the device's
+                                       upward pass of every cell (only the top-level cells are in
+                                       cells); a long-range task with gp.remote_only fills its
+                                       cell's tree from it where it walks (back.mp NULL: none) */
   int *tops_used;                 /**< gp.tops_used (gravity_tops_used_update) */
   int tops_used_cap;              /**< its allocated length */
   int remote_cap, remote_idx_cap; /**< their allocated lengths (remote_partial: remote_cap) */

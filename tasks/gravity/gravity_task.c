@@ -53,6 +53,10 @@ void gravity_pair_task(struct engine *e, struct task *t) {
 }
 
 void gravity_long_range_task(struct engine *e, struct task *t) {
+  /* (several MPI ranks with the walks on the GPU: the cell's tree from the
+   * device's upward pass, where the walks with the records read it) */
+  if (t->ci && e->gp.remote_only && e->grav->back.mp && gravity_remote_reads(t->ci, &e->gp))
+    gravity_back_fill(&e->grav->back, t->ci, e->grav->cells);
   if (t->ci)
     gravity_walk_task(e, t, t->ci, NULL);
   else /* Gravity:direct: exact summation in one task */
