@@ -33,6 +33,7 @@
 #include "tasks/gravity/gravity_cpu.h"
 #include "tasks/gravity/gravity_walk.h"
 #include "tests/helpers/gravity_sets.h"
+#include "tests/helpers/gravity_walk_set.h"
 
 #define BOX 4.0
 
@@ -81,29 +82,15 @@ static double difference(const struct parts *p, const struct space *sp, const un
 
 int main(void) {
   const size_t n = 30000;
-  struct parts p;
-  parts_alloc(&p, n);
-  p.count = n;
-  srand48(11);
-  const double c[3] = {0.5 * BOX, 0.5 * BOX, 0.5 * BOX};
-  gset_fill_walk(&p, n, c, 1);
-  const double box[3] = {BOX, BOX, BOX};
-  struct space sp;
-  space_init(&sp, &p, box, 0, 16, 16);
-  space_rebuild(&sp);
-  struct gravity_props gp;
-  gravity_props_set(&gp, 1.0, 0.5, 2e-3, GRAVITY_SOFTENING_SPLINE, GRAVITY_ORDER_DEFAULT);
-  gp.epsilon_fmm = GRAVITY_EPSILON_FMM_DEFAULT;
-  int cap = 0;
-  struct gravity_cell *gc = gravity_cells_reserve(NULL, &cap, sp.cells_capacity);
-  memset(gc, 0, (size_t)cap * sizeof *gc);
-  const int nt = sp.nr_top;
+  struct gset_tree W;
+  gset_tree_make(&W, n, 11, 1, BOX, 16);
+  const int nt = W.sp.nr_top;
   /* the first pass: every particle's |ga|, the adaptive criterion's scale */
-  gravity_tree_all(&p, sp.cells, nt, gc, &gp);
+  gravity_tree_all(&W.p, W.sp.cells, nt, W.gc, &W.gp);
   double *ga0 = malloc(3 * n * sizeof(double)), *ref = malloc(4 * n * sizeof(double));
-  memcpy(ga0, p.gax, n * sizeof(double));
-  memcpy(ga0 + n, p.gay, n * sizeof(double));
-  memcpy(ga0 + 2 * n, p.gaz, n * sizeof(double));
+  memcpy(ga0, W.p.gax, n * sizeof(double));
+  memcpy(ga0 + n, W.p.gay, n * sizeof(double));
+  memcpy(ga0 + 2 * n, W.p.gaz, n * sizeof(double));
   /* "another rank's": the non-empty cells right of x = c + 0.2 (the small
    * body, centred at c + 0.8) */
   unsigned char *recv = malloc((size_t)nt), *all = malloc((size_t)nt);
@@ -111,37 +98,37 @@ int main(void) {
   struct gravity_remote *rem = malloc((size_t)nt * sizeof *rem);
   int nrem = 0, nrecv = 0;
   for (int k = 0; k < nt; k++) {
-    const struct cell *cl = sp.cells + k;
+    const struct cell *cl = W.sp.cells + k;
     all[k] = 1;
-    recv[k] = !(cl->count > 0 && cl->loc[0] >= c[0] + 0.2);
+    recv[k] = !(cl->count > 0 && cl->loc[0] >= 0.5 * BOX + 0.2);
     nrecv += recv[k] && cl->count > 0;
   }
   /* the reference: every cell's walks as one rank */
-  memcpy(p.gax, ga0, n * sizeof(double));
-  memcpy(p.gay, ga0 + n, n * sizeof(double));
-  memcpy(p.gaz, ga0 + 2 * n, n * sizeof(double));
-  evaluate(&p, &sp, gc, &gp, all);
-  memcpy(ref, p.gax, n * sizeof(double));
-  memcpy(ref + n, p.gay, n * sizeof(double));
-  memcpy(ref + 2 * n, p.gaz, n * sizeof(double));
-  memcpy(ref + 3 * n, p.pot, n * sizeof(double));
+  memcpy(W.p.gax, ga0, n * sizeof(double));
+  memcpy(W.p.gay, ga0 + n, n * sizeof(double));
+  memcpy(W.p.gaz, ga0 + 2 * n, n * sizeof(double));
+  evaluate(&W.p, &W.sp, W.gc, &W.gp, all);
+  memcpy(ref, W.p.gax, n * sizeof(double));
+  memcpy(ref + n, W.p.gay, n * sizeof(double));
+  memcpy(ref + 2 * n, W.p.gaz, n * sizeof(double));
+  memcpy(ref + 3 * n, W.p.pot, n * sizeof(double));
   for (int mode = 0; mode < 3; mode++) {
-    memcpy(p.gax, ga0, n * sizeof(double));
-    memcpy(p.gay, ga0 + n, n * sizeof(double));
-    memcpy(p.gaz, ga0 + 2 * n, n * sizeof(double));
+    memcpy(W.p.gax, ga0, n * sizeof(double));
+    memcpy(W.p.gay, ga0 + n, n * sizeof(double));
+    memcpy(W.p.gaz, ga0 + 2 * n, n * sizeof(double));
     /* the upward pass of this evaluation first: the records are this
      * step's multipoles, as the other rank sends them */
-    for (int i = 0; i < nt; i++) gravity_up(&p, sp.cells + i, gc, &gp);
+    for (int i = 0; i < nt; i++) gravity_up(&W.p, W.sp.cells + i, W.gc, &W.gp);
     nrem = 0;
     int absent = 0;
     for (int k = 0; k < nt; k++) {
-      const struct cell *cl = sp.cells + k;
+      const struct cell *cl = W.sp.cells + k;
       idx[k] = -1;
       if (recv[k]) continue;
       struct gravity_remote *r = rem + nrem;
-      r->mp = gc[k].mp;
-      r->a_min = gc[k].a_min;
-      r->h_support = gc[k].h_support;
+      r->mp = W.gc[k].mp;
+      r->a_min = W.gc[k].a_min;
+      r->h_support = W.gc[k].h_support;
       memcpy(r->bmin, cl->bmin, sizeof r->bmin);
       memcpy(r->bmax, cl->bmax, sizeof r->bmax);
       r->count = (long long)cl->count;
@@ -150,17 +137,17 @@ int main(void) {
        * with the cell does not end at the top (the rule of the rebuild's
        * choice, gravity_top_needed, without its margin) */
       int need = 0, near = 0;
-      const struct gravity_walk_params wp = {gp.G,         gp.theta,    gp.epsilon_fmm,
-                                             gp.h_support, gp.h_factor, gp.order};
+      const struct gravity_walk_params wp = {W.gp.G,         W.gp.theta,    W.gp.epsilon_fmm,
+                                             W.gp.h_support, W.gp.h_factor, W.gp.order};
       for (int j = 0; j < nt && !need; j++) {
-        const struct cell *a = sp.cells + j;
+        const struct cell *a = W.sp.cells + j;
         if (!recv[j] || a->count == 0) continue;
         int a_big = 0;
         double r2;
         const int dec = gravity_walk_choose((int)a->count, (int)cl->count, a->split, cl->split,
-                                            &gc[j].mp, &r->mp, gc[j].a_min, r->a_min,
-                                            gc[j].h_support, r->h_support, &wp, &a_big, &r2);
-        near = near || gravity_top_pair_is_near(cl, a, &gp);
+                                            &W.gc[j].mp, &r->mp, W.gc[j].a_min, r->a_min,
+                                            W.gc[j].h_support, r->h_support, &wp, &a_big, &r2);
+        near = near || gravity_top_pair_is_near(cl, a, &W.gp);
         need = near || !(dec == GRAVITY_WALK_M2L || (dec == GRAVITY_WALK_M2P && a_big));
       }
       /* (C: the choice of B, the a_min of the records then made tiny) */
@@ -170,17 +157,17 @@ int main(void) {
       idx[k] = nrem++;
     }
     /* (the upward pass reads the last pass's ga for a_min and clears it) */
-    memcpy(p.gax, ga0, n * sizeof(double));
-    memcpy(p.gay, ga0 + n, n * sizeof(double));
-    memcpy(p.gaz, ga0 + 2 * n, n * sizeof(double));
-    gp.remote_idx = idx;
-    gp.remote = rem;
+    memcpy(W.p.gax, ga0, n * sizeof(double));
+    memcpy(W.p.gay, ga0 + n, n * sizeof(double));
+    memcpy(W.p.gaz, ga0 + 2 * n, n * sizeof(double));
+    W.gp.remote_idx = idx;
+    W.gp.remote = rem;
     gravity_remote_misses(1);
-    evaluate(&p, &sp, gc, &gp, recv);
-    gp.remote_idx = NULL;
-    gp.remote = NULL;
+    evaluate(&W.p, &W.sp, W.gc, &W.gp, recv);
+    W.gp.remote_idx = NULL;
+    W.gp.remote = NULL;
     const long miss = gravity_remote_misses(1);
-    const double d = difference(&p, &sp, recv, ref);
+    const double d = difference(&W.p, &W.sp, recv, ref);
     int ok;
     const char *what;
     if (mode == 0) {
@@ -205,9 +192,7 @@ int main(void) {
   free(all);
   free(idx);
   free(rem);
-  free(gc);
-  space_free(&sp);
-  parts_free(&p);
+  gset_tree_free(&W);
   printf("test_gravity_remote: %s\n", failures ? "FAIL" : "PASS");
   return failures ? 1 : 0;
 }

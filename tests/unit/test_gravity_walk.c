@@ -25,6 +25,7 @@
 #include "tasks/gravity/gravity_cpu.h"
 #include "tasks/gravity/gravity_walk.h"
 #include "tests/helpers/gravity_sets.h"
+#include "tests/helpers/gravity_walk_set.h"
 #include "src/part.h"
 #include "src/space.h"
 
@@ -71,62 +72,52 @@ static void compare(const char *what, const char *kind, const struct gravity_rec
 
 static void run(const char *name, int two_bodies, double h_factor) {
   const size_t n = 30000;
-  struct parts p;
-  parts_alloc(&p, n);
-  p.count = n;
-  srand48(7);
-  const double c[3] = {0.5 * BOX, 0.5 * BOX, 0.5 * BOX};
-  gset_fill_walk(&p, n, c, two_bodies);
-  const double box[3] = {BOX, BOX, BOX};
-  struct space sp;
-  space_init(&sp, &p, box, 0, 16, 8);
-  space_rebuild(&sp);
-  struct gravity_props gp;
-  gravity_props_set(&gp, 1.0, 0.5, 2e-3, GRAVITY_SOFTENING_SPLINE, GRAVITY_ORDER_DEFAULT);
-  gp.epsilon_fmm = GRAVITY_EPSILON_FMM_DEFAULT;
-  gp.h_factor = h_factor;
-  int cap = 0;
-  struct gravity_cell *gc = gravity_cells_reserve(NULL, &cap, sp.cells_capacity);
-  memset(gc, 0, (size_t)cap * sizeof *gc);
-  const int nc = sp.nr_cells, nt = sp.nr_top;
+  struct gset_tree W;
+  gset_tree_make(&W, n, 7, two_bodies, BOX, 8);
+  W.gp.h_factor = h_factor;
+  const int nc = W.sp.nr_cells, nt = W.sp.nr_top;
   /* the tree as index arrays */
   int *progeny = malloc(8 * (size_t)nc * sizeof(int)), *count = malloc((size_t)nc * sizeof(int));
   unsigned char *split = malloc((size_t)nc);
-  gravity_walk_tree_arrays(sp.cells, nc, progeny, count, split);
+  gravity_walk_tree_arrays(W.sp.cells, nc, progeny, count, split);
   struct gravity_multipole *mp = malloc((size_t)nc * sizeof *mp);
   double *a_min = malloc((size_t)nc * sizeof(double)), *hs = malloc((size_t)nc * sizeof(double));
   int *stack = malloc(3 * (size_t)TEST_STACK * sizeof(int));
   unsigned char *act = malloc((size_t)nc);
   size_t entries_all = 0;
   for (int pass = 0; pass < 3; pass++) {
-    if (pass == 1) gravity_tree_all(&p, sp.cells, nt, gc, &gp); /* |ga| for the adaptive pass */
+    if (pass == 1)
+      gravity_tree_all(&W.p, W.sp.cells, nt, W.gc, &W.gp); /* |ga| for the adaptive pass */
     if (pass == 2) {
       /* time bins, a step of active particles only (gravity_props.active):
        * the particles of the lower half in x and every third one elsewhere
        * sleep, so that whole cells, and parts of cells, do not receive */
-      for (size_t i = 0; i < n; i++) p.flags[i] = p.x[i] < c[0] || i % 3 == 0 ? PART_INACTIVE : 0;
-      gp.active = act;
+      for (size_t i = 0; i < n; i++)
+        W.p.flags[i] = W.p.x[i] < 0.5 * BOX || i % 3 == 0 ? PART_INACTIVE : 0;
+      W.gp.active = act;
     }
-    for (int i = 0; i < nt; i++) gravity_up(&p, sp.cells + i, gc, &gp);
+    for (int i = 0; i < nt; i++) gravity_up(&W.p, W.sp.cells + i, W.gc, &W.gp);
     /* the recursive walks, recorded */
     struct gravity_gpu_rec rec;
     memset(&rec, 0, sizeof rec);
     gravity_gpu_record(&rec);
     for (int i = 0; i < nt; i++) {
-      gravity_interact_cells(&p, sp.cells + i, sp.cells + i, gc, &gp);
+      gravity_interact_cells(&W.p, W.sp.cells + i, W.sp.cells + i, W.gc, &W.gp);
       for (int j = i + 1; j < nt; j++)
-        if (gravity_top_pair_is_near(sp.cells + i, sp.cells + j, &gp))
-          gravity_interact_cells(&p, sp.cells + i, sp.cells + j, gc, &gp);
+        if (gravity_top_pair_is_near(W.sp.cells + i, W.sp.cells + j, &W.gp))
+          gravity_interact_cells(&W.p, W.sp.cells + i, W.sp.cells + j, W.gc, &W.gp);
     }
-    for (int i = 0; i < nt; i++) gravity_long_range(&p, sp.cells + i, sp.cells, nt, gc, &gp);
+    for (int i = 0; i < nt; i++)
+      gravity_long_range(&W.p, W.sp.cells + i, W.sp.cells, nt, W.gc, &W.gp);
     gravity_gpu_record(NULL);
     /* the stack walk from every root: as one walker per root (budget
      * unlimited), and as the GPU's kernels divide it (gravity_gpu.cu):
      * walkers of GRAVITY_TEST_BUDGET entries (or fewer: a full stack) that
      * hand what is left on their stack to a queue (one too small to take it all: the rest stays
      * with its walker), the queue then walked by the next round */
-    for (int k = 0; k < nc; k++) mp[k] = gc[k].mp, a_min[k] = gc[k].a_min, hs[k] = gc[k].h_support;
-    const struct gravity_walk_tree T = {progeny, count, split, mp, a_min, hs, gp.active};
+    for (int k = 0; k < nc; k++)
+      mp[k] = W.gc[k].mp, a_min[k] = W.gc[k].a_min, hs[k] = W.gc[k].h_support;
+    const struct gravity_walk_tree T = {progeny, count, split, mp, a_min, hs, W.gp.active};
     const size_t entries = rec.part.n + rec.field.n + rec.part_sym.n + rec.field_sym.n;
     if (pass == 1) entries_all = entries;
     if (pass == 2) {
@@ -142,19 +133,19 @@ static void run(const char *name, int two_bodies, double h_factor) {
         failures++;
       }
     }
-    const struct gravity_walk_params wp = {gp.G,         gp.theta,    gp.epsilon_fmm,
-                                           gp.h_support, gp.h_factor, gp.order};
+    const struct gravity_walk_params wp = {W.gp.G,         W.gp.theta,    W.gp.epsilon_fmm,
+                                           W.gp.h_support, W.gp.h_factor, W.gp.order};
     double *lo_hi = malloc(6 * (size_t)nt * sizeof(double));
     for (int i = 0; i < nt; i++)
       for (int d = 0; d < 3; d++)
-        lo_hi[6 * i + d] = sp.cells[i].bmin[d], lo_hi[6 * i + 3 + d] = sp.cells[i].bmax[d];
+        lo_hi[6 * i + d] = W.sp.cells[i].bmin[d], lo_hi[6 * i + 3 + d] = W.sp.cells[i].bmax[d];
     const size_t capk = 4 * (rec.part.n + rec.field.n + rec.part_sym.n + rec.field_sym.n) + 16;
     /* the roots among the non-empty cells only (top, as the GPU's walk
      * takes them), in the walkers' mode that hands on */
     int *ctop = malloc((size_t)nt * sizeof(int)), ne = 0;
     double *clo_hi = malloc(6 * (size_t)nt * sizeof(double));
     for (int i = 0; i < nt; i++)
-      if (sp.cells[i].count > 0) {
+      if (W.sp.cells[i].count > 0) {
         memcpy(clo_hi + 6 * ne, lo_hi + 6 * i, 6 * sizeof(double));
         ctop[ne++] = i;
       }
@@ -194,7 +185,7 @@ static void run(const char *name, int two_bodies, double h_factor) {
   } while (0)
       const int rn = mode ? ne : nt;
       for (long long r = 0; r < (long long)rn * rn; r++)
-        if (gravity_walk_root(count, mode ? clo_hi : lo_hi, rn, gp.theta, gp.h_support, NULL,
+        if (gravity_walk_root(count, mode ? clo_hi : lo_hi, rn, W.gp.theta, W.gp.h_support, NULL,
                               mode ? ctop : NULL, r, stack))
           WALK_ITEMS(1, 0);
       for (int cur = 0; qn[cur] > 0; cur ^= 1, rounds++) {
@@ -246,9 +237,7 @@ static void run(const char *name, int two_bodies, double h_factor) {
     gravity_gpu_rec_free(&rec);
   }
   free(progeny), free(count), free(split), free(mp), free(a_min), free(hs), free(stack), free(act);
-  free(gc);
-  space_free(&sp);
-  parts_free(&p);
+  gset_tree_free(&W);
 }
 
 /** Several MPI ranks as the GPU's walk sees them (gravity_walk_root's
@@ -263,31 +252,17 @@ static void run(const char *name, int two_bodies, double h_factor) {
  *  the first two kinds (the copies' multipoles being their records'). */
 static void run_ranks(const char *name, int two_bodies) {
   const size_t n = 30000;
-  struct parts p;
-  parts_alloc(&p, n);
-  p.count = n;
-  srand48(11);
-  const double c[3] = {0.5 * BOX, 0.5 * BOX, 0.5 * BOX};
-  gset_fill_walk(&p, n, c, two_bodies);
-  const double box[3] = {BOX, BOX, BOX};
-  struct space sp;
-  space_init(&sp, &p, box, 0, 16, 8);
-  space_rebuild(&sp);
-  struct gravity_props gp;
-  gravity_props_set(&gp, 1.0, 0.5, 2e-3, GRAVITY_SOFTENING_SPLINE, GRAVITY_ORDER_DEFAULT);
-  gp.epsilon_fmm = GRAVITY_EPSILON_FMM_DEFAULT;
-  int cap = 0;
-  struct gravity_cell *gc = gravity_cells_reserve(NULL, &cap, sp.cells_capacity);
-  memset(gc, 0, (size_t)cap * sizeof *gc);
-  const int nc = sp.nr_cells, nt = sp.nr_top;
-  gravity_tree_all(&p, sp.cells, nt, gc, &gp); /* |ga| for the adaptive criterion */
-  for (int i = 0; i < nt; i++) gravity_up(&p, sp.cells + i, gc, &gp);
+  struct gset_tree W;
+  gset_tree_make(&W, n, 11, two_bodies, BOX, 8);
+  const int nc = W.sp.nr_cells, nt = W.sp.nr_top;
+  gravity_tree_all(&W.p, W.sp.cells, nt, W.gc, &W.gp); /* |ga| for the adaptive criterion */
+  for (int i = 0; i < nt; i++) gravity_up(&W.p, W.sp.cells + i, W.gc, &W.gp);
   /* the kinds: of the non-empty cells, every third of copies only, every
    * seventh (of the rest) of some particles only */
   unsigned char *skip = calloc((size_t)(nt > 0 ? nt : 1), 1);
   int k = 0, kinds[3] = {0, 0, 0};
   for (int i = 0; i < nt; i++) {
-    if (sp.cells[i].count == 0) continue;
+    if (W.sp.cells[i].count == 0) continue;
     skip[i] = k % 3 == 1 ? 1 : (k % 7 == 2 ? 2 : 0);
     kinds[skip[i]]++;
     k++;
@@ -298,43 +273,44 @@ static void run_ranks(const char *name, int two_bodies) {
   gravity_gpu_record(&rec);
   int one_way = 0;
   for (int i = 0; i < nt; i++) {
-    const struct cell *ci = sp.cells + i;
+    const struct cell *ci = W.sp.cells + i;
     if (ci->count == 0 || skip[i] == 2) continue;
-    if (skip[i] == 0) gravity_interact_cells(&p, ci, ci, gc, &gp);
+    if (skip[i] == 0) gravity_interact_cells(&W.p, ci, ci, W.gc, &W.gp);
     for (int j = 0; j < nt; j++) {
-      const struct cell *cj = sp.cells + j;
+      const struct cell *cj = W.sp.cells + j;
       if (j == i || cj->count == 0 || skip[j] == 2) continue;
-      if (gravity_top_pair_is_near(ci, cj, &gp)) {
+      if (gravity_top_pair_is_near(ci, cj, &W.gp)) {
         if (j < i) continue;
         if (!skip[i] && !skip[j])
-          gravity_interact_cells(&p, ci, cj, gc, &gp);
+          gravity_interact_cells(&W.p, ci, cj, W.gc, &W.gp);
         else if (!skip[i] || !skip[j]) {
-          gravity_interact_pair_one_way(&p, skip[i] ? cj : ci, skip[i] ? ci : cj, gc, &gp);
+          gravity_interact_pair_one_way(&W.p, skip[i] ? cj : ci, skip[i] ? ci : cj, W.gc, &W.gp);
           one_way++;
         }
       } else if (!skip[i])
-        gravity_interact_pair_one_way(&p, ci, cj, gc, &gp);
+        gravity_interact_pair_one_way(&W.p, ci, cj, W.gc, &W.gp);
     }
   }
   gravity_gpu_record(NULL);
   /* the stack walk from the non-empty cells' roots with the skips */
   int *progeny = malloc(8 * (size_t)nc * sizeof(int)), *count = malloc((size_t)nc * sizeof(int));
   unsigned char *split = malloc((size_t)nc);
-  gravity_walk_tree_arrays(sp.cells, nc, progeny, count, split);
+  gravity_walk_tree_arrays(W.sp.cells, nc, progeny, count, split);
   struct gravity_multipole *mp = malloc((size_t)nc * sizeof *mp);
   double *a_min = malloc((size_t)nc * sizeof(double)), *hs = malloc((size_t)nc * sizeof(double));
-  for (int q = 0; q < nc; q++) mp[q] = gc[q].mp, a_min[q] = gc[q].a_min, hs[q] = gc[q].h_support;
+  for (int q = 0; q < nc; q++)
+    mp[q] = W.gc[q].mp, a_min[q] = W.gc[q].a_min, hs[q] = W.gc[q].h_support;
   const struct gravity_walk_tree T = {progeny, count, split, mp, a_min, hs, NULL};
-  const struct gravity_walk_params wp = {gp.G,         gp.theta,    gp.epsilon_fmm,
-                                         gp.h_support, gp.h_factor, gp.order};
+  const struct gravity_walk_params wp = {W.gp.G,         W.gp.theta,    W.gp.epsilon_fmm,
+                                         W.gp.h_support, W.gp.h_factor, W.gp.order};
   int *top = malloc((size_t)nt * sizeof(int)), ne = 0;
   unsigned char *cskip = malloc((size_t)nt);
   double *lo_hi = malloc(6 * (size_t)nt * sizeof(double));
   for (int i = 0; i < nt; i++) {
-    if (sp.cells[i].count == 0 || skip[i] == 2) continue;
+    if (W.sp.cells[i].count == 0 || skip[i] == 2) continue;
     top[ne] = i, cskip[ne] = skip[i];
     for (int d = 0; d < 3; d++)
-      lo_hi[6 * ne + d] = sp.cells[i].bmin[d], lo_hi[6 * ne + 3 + d] = sp.cells[i].bmax[d];
+      lo_hi[6 * ne + d] = W.sp.cells[i].bmin[d], lo_hi[6 * ne + 3 + d] = W.sp.cells[i].bmax[d];
     ne++;
   }
   const size_t capk = 4 * (rec.part.n + rec.field.n + rec.part_sym.n + rec.field_sym.n) + 16;
@@ -351,7 +327,7 @@ static void run_ranks(const char *name, int two_bodies) {
   int *stack = malloc(3 * (size_t)TEST_STACK * sizeof(int));
   int deep = 0;
   for (long long r = 0; r < (long long)ne * ne; r++)
-    if (gravity_walk_root(count, lo_hi, ne, gp.theta, gp.h_support, cskip, top, r, stack))
+    if (gravity_walk_root(count, lo_hi, ne, W.gp.theta, W.gp.h_support, cskip, top, r, stack))
       deep += gravity_walk_run(&T, &wp, &L, &B, stack, TEST_STACK, 1, (long long)1 << 62) > 0;
   for (int q = 0; q < 4; q++) gravity_walk_flush(&L, &B, q);
   char what[200];
@@ -368,9 +344,8 @@ static void run_ranks(const char *name, int two_bodies) {
   for (int q = 0; q < 4; q++) free(L.target[q]), free(L.source[q]);
   gravity_gpu_rec_free(&rec);
   free(stack), free(lo_hi), free(cskip), free(top), free(progeny), free(count), free(split);
-  free(mp), free(a_min), free(hs), free(skip), free(gc);
-  space_free(&sp);
-  parts_free(&p);
+  free(mp), free(a_min), free(hs), free(skip);
+  gset_tree_free(&W);
 }
 
 /** gravity_walk_root with the skips of several MPI ranks, on four
