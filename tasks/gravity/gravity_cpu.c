@@ -705,7 +705,6 @@ void gravity_long_range(struct parts *p, const struct cell *ci, const struct cel
       /* several MPI ranks: a cell of another rank, by its record unless the
        * walk must open it */
       const struct gravity_remote *rj = gp->remote + gp->remote_idx[j];
-      if (gp->remote_only && rj->complete) continue; /* (the GPU's walks: its copies) */
       if (gravity_walk_top_near(ci->bmin, ci->bmax, rj->bmin, rj->bmax, gp->theta, gp->h_support)) {
         if (!rj->complete)
           error_bug("top-level cell %d of another rank is near cell %d without its particles", j,
@@ -720,7 +719,7 @@ void gravity_long_range(struct parts *p, const struct cell *ci, const struct cel
         atomic_fetch_add(&remote_misses, walk_remote(p, ci, rj, gc, gp, 1));
       continue;
     }
-    if (gp->remote_only || cj->count == 0 || gravity_top_pair_is_near(ci, cj, gp)) continue;
+    if (cj->count == 0 || gravity_top_pair_is_near(ci, cj, gp)) continue;
     walk_pair(p, ci, cj, 0, gc, gp);
   }
 }
