@@ -296,6 +296,47 @@ static void engine_family_hooks(struct engine *e, enum task_family_when when) {
 #undef ENGINE_FAMILY_HOOK_
 }
 
+/** The solid state and the fracture fields (part_solid_fields,
+ *  part_damage_fields: 43 doubles and 6 damage fields, 384 of a particle's
+ *  824 bytes) are not held in a run that never uses them: no stress (no
+ *  material with strength or viscosity, no CSPM continuity, no free-surface
+ *  detection: hp.solids), no damage (no brittle material), the
+ *  kick-drift-kick scheme (the rk2 and pc integrators' states hold the
+ *  stress), and every particle's values zero (what the initial conditions
+ *  or a restart file gave stays).  The same on every rank.  The GPU leaves
+ *  them off the device too (gpu_engine_absent).  Marks them in unused
+ *  (part_nr_fields flags) and returns 1 where the run's settings allow it,
+ *  else 0. */
+static int engine_unused_fields(const struct engine *e, unsigned char *unused) {
+  memset(unused, 0, (size_t)part_nr_fields);
+  if (e->hp.solids || params_get_enum(e->params, "TimeIntegration:scheme") != ENGINE_SCHEME_KDK)
+    return 0;
+  for (int k = 0; k < e->mats->n; k++)
+    if (material_is_brittle(&e->mats->mats[k])) return 0;
+  for (int k = 0; k < part_nr_fields; k++)
+    for (int g = 0; g < 2; g++) {
+      const char *const *l = g ? part_damage_fields : part_solid_fields;
+      const int n = g ? part_nr_damage_fields : part_nr_solid_fields;
+      for (int q = 0; q < n; q++) unused[k] |= !strcmp(part_fields[k].name, l[q]);
+    }
+  return 1;
+}
+
+/** After the particles are read: the fields of engine_unused_fields dropped
+ *  where every particle's values are zero (the initial conditions read
+ *  without them leave nothing to drop). */
+static void engine_drop_unused_fields(struct engine *e) {
+  struct parts *p = &e->parts;
+  unsigned char unused[PART_NR_FIELDS];
+  int keep = !engine_unused_fields(e, unused);
+  for (int k = 0; k < part_nr_fields && !keep; k++)
+    if (unused[k] && !part_field_zero(p, k, 0, p->count)) keep = 1;
+  if (ranks_size() > 1 && !e->opt.one_rank) keep = ranks_any(keep);
+  if (keep) return;
+  parts_drop(p, part_solid_fields, part_nr_solid_fields);
+  parts_drop(p, part_damage_fields, part_nr_damage_fields);
+}
+
 /** Read the initial conditions named by the parameters into e->parts, with
  *  the box size (from the file or InitialConditions:box_size), the shift and
  *  the smoothing-length scaling applied. */
@@ -306,7 +347,9 @@ static void engine_read_ics(struct engine *e, char *icname, size_t len, double b
   const int nids = e->mats->n;
   int32_t *ids = error_malloc(nids * sizeof(int32_t), "material ids");
   for (int k = 0; k < nids; k++) ids[k] = e->mats->mats[k].id;
-  ic_read(icname, &e->us, ids, nids, &e->parts, &hdr);
+  unsigned char unused[PART_NR_FIELDS];
+  ic_read_unused(icname, &e->us, ids, nids, &e->parts, &hdr,
+                 engine_unused_fields(e, unused) ? unused : NULL);
   free(ids);
   for (int k = 0; k < 3; k++) box[k] = hdr.box_size[k];
   double b[3];
@@ -544,7 +587,7 @@ static void *engine_watchdog_scan(void *arg) {
   struct engine_wd_job *j = arg;
   for (int k = j->t; k < part_nr_fields; k += j->nt) {
     const struct part_field *f = &part_fields[k];
-    if (f->type != PART_DOUBLE) continue;
+    if (f->type != PART_DOUBLE || j->p->absent[k]) continue;
     const double *a = part_field_array(j->p, f);
     uint64_t bad = 0;
     /* exponent all ones: Inf or NaN (a loop the compiler vectorises) */
@@ -578,6 +621,9 @@ static void engine_watchdog_after_step(struct engine *e) {
     for (int k = 0; k < part_nr_fields; k++)
       if (!strcmp(part_fields[k].name, e->wd_inject_field))
         a = part_field_array(p, &part_fields[k]);
+    if (!a)
+      error_exit("BOLIDE_TEST_INJECT: the field %s is not held in this run (no stress, no damage)",
+                 e->wd_inject_field);
     a[p->count / 2] = e->wd_inject_value;
 #ifdef HAVE_CUDA
     gpu_engine_host_modified(e);
@@ -617,7 +663,7 @@ static void engine_watchdog_after_step(struct engine *e) {
   e->t_watchdog += error_walltime() - w0;
   for (int k = 0; k < part_nr_fields && bad; k++) {
     const struct part_field *f = &part_fields[k];
-    if (f->type != PART_DOUBLE) continue;
+    if (f->type != PART_DOUBLE || p->absent[k]) continue;
     const double *a = part_field_array(p, f);
     for (size_t i = 0; i < p->count; i++)
       if (!isfinite(a[i]) && !(p->flags[i] & PART_FOREIGN)) {
@@ -840,6 +886,7 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   snprintf(e->snap_basename, sizeof e->snap_basename, "%s",
            params_get_string(params, "Snapshots:basename"));
   e->write_acc = params_get_bool(params, "Snapshots:accelerations");
+  e->snap_enabled = params_get_bool(params, "Snapshots:enabled");
   e->compression = (int)params_get_int(params, "Snapshots:compression");
   e->stats_dt = params_get_real(params, "Statistics:delta_time");
   e->dump_tasks = params_get_int(params, "Scheduler:dump_tasks");
@@ -884,9 +931,12 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
               e->hp.gradient_correction ? "on" : "off",
               e->hp.momentum_form == HYDRO_MOMENTUM_SYMMETRIC ? "symmetric" : "standard",
               e->hp.as_eps, e->hp.as_n, e->hp.continuity_cspm ? ", CSPM continuity" : "");
-  error_log(0, "particle memory: %zu bytes per particle", parts_bytes_per_particle());
-
   drift_integrate_init(e);
+  engine_drop_unused_fields(e);
+  error_log(0, "particle memory: %zu bytes per particle%s", parts_bytes_held(&e->parts),
+            parts_bytes_held(&e->parts) < parts_bytes_per_particle()
+                ? " (the solid and damage fields not held: no stress, no damage, kick-drift-kick)"
+                : "");
   if (opt->check_only) {
     printf("%s: parameters, materials and initial conditions are valid (%zu particles)\n",
            params_filename(params), e->parts.count);
@@ -1479,7 +1529,9 @@ void engine_run(struct engine *e) {
   const double t_begin = e->time;
   const long step_begin = e->step;
   if (e->opt.max_steps == 0) {
-    /* the initial conditions as read, in their order, nothing computed */
+    /* the initial conditions as read, in their order, nothing computed
+     * (what --steps 0 is for, whatever Snapshots:enabled says) */
+    e->snap_enabled = 1;
     engine_snapshot(e);
     error_log(0, "--steps 0: wrote the initial conditions as snapshot, stopping");
     return;

@@ -148,6 +148,7 @@ struct engine {
   int nr_out, next_out;    /**< their count and the next to write */
   int snap_index;          /**< index of the next snapshot file */
   int write_acc;           /**< Snapshots:accelerations */
+  int snap_enabled;        /**< Snapshots:enabled */
   int compression;         /**< gzip level */
   char *params_text;       /**< the parameters in use, for snapshots */
 

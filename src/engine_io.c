@@ -279,7 +279,7 @@ static void engine_totals(const struct engine *e, struct engine_totals *t) {
     t->p_abs += m * sqrt(v2);
     t->E_int += m * p->u[i];
     t->E_clamp += m * p->e_clamp[i];
-    t->W_plastic += m * p->w_plastic[i];
+    if (p->w_plastic) t->W_plastic += m * p->w_plastic[i];
   }
   t->E_pot = e->gp.enabled ? gravity_potential_energy(p) : 0.0;
   if (e->hp.external) {
@@ -487,6 +487,7 @@ void engine_stats_maybe(struct engine *e) {
 }
 
 void engine_snapshot(struct engine *e) {
+  if (!e->snap_enabled) return; /* (Snapshots:enabled: false) */
   char path[2048];
   snprintf(path, sizeof path, "%s/%s_%04d.hdf5", e->outdir, e->snap_basename, e->snap_index);
   engine_snapshot_to(e, path);
@@ -498,12 +499,13 @@ void engine_snapshot(struct engine *e) {
  *  copies (PART_NOT_OWNED; the snapshots' particles). */
 static void engine_real_parts(const struct engine *e, struct parts *out) {
   const struct parts *p = &e->parts;
-  parts_alloc(out, p->count - e->nr_mirror - e->nr_foreign);
+  parts_alloc_like(out, p->count - e->nr_mirror - e->nr_foreign, p);
   size_t n = 0;
   for (size_t i = 0; i < p->count; i++) {
     if (p->flags[i] & PART_NOT_OWNED) continue;
     for (int f = 0; f < part_nr_fields; f++) {
       const struct part_field *pf = &part_fields[f];
+      if (p->absent[f]) continue;
       memcpy((char *)part_field_array(out, pf) + n * pf->size,
              (const char *)part_field_array(p, pf) + i * pf->size, pf->size);
     }

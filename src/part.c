@@ -39,6 +39,7 @@ void *part_field_array(const struct parts *p, const struct part_field *f) {
 int part_field_zero(const struct parts *p, int k, size_t lo, size_t hi) {
   const struct part_field *f = &part_fields[k];
   const void *a = part_field_array(p, f);
+  if (!a) return 1; /* (absent: zero wherever it is read) */
   for (size_t b = lo; b < hi; b += PART_ZERO_BLOCK) {
     const size_t e = hi - b < PART_ZERO_BLOCK ? hi : b + PART_ZERO_BLOCK;
     if (f->size == 8) {
@@ -71,10 +72,16 @@ static size_t part_field_pad(int k) {
 }
 
 void parts_alloc(struct parts *p, size_t n) {
+  parts_alloc_like(p, n, NULL);
+}
+
+void parts_alloc_like(struct parts *p, size_t n, const struct parts *like) {
   memset(p, 0, sizeof *p);
   p->count = n;
   p->capacity = n;
+  if (like) memcpy(p->absent, like->absent, sizeof p->absent);
   for (int k = 0; k < part_nr_fields; k++) {
+    if (p->absent[k]) continue;
     const size_t pad = part_field_pad(k);
     char *a = error_calloc(n * part_fields[k].size + pad, 1, part_fields[k].name);
     *part_field_slot(p, &part_fields[k]) = a + pad;
@@ -84,6 +91,7 @@ void parts_alloc(struct parts *p, size_t n) {
 void parts_reserve(struct parts *p, size_t n) {
   if (n <= p->capacity) return;
   for (int k = 0; k < part_nr_fields; k++) {
+    if (p->absent[k]) continue;
     const struct part_field *f = &part_fields[k];
     void **slot = part_field_slot(p, f);
     const size_t pad = part_field_pad(k);
@@ -112,6 +120,7 @@ void parts_permute(struct parts *p, const size_t *perm) {
   for (int k = 0; k < part_nr_fields; k++) {
     const struct part_field *f = &part_fields[k];
     char *a = *part_field_slot(p, f);
+    if (!a) continue; /* (absent) */
     const size_t s = f->size;
     for (size_t i = 0; i < n; i++) memcpy(tmp + i * s, a + perm[i] * s, s);
     memcpy(a, tmp, n * s);
@@ -123,7 +132,7 @@ void parts_copy_one(struct parts *p, size_t dst, size_t src) {
   for (int k = 0; k < part_nr_fields; k++) {
     const struct part_field *f = &part_fields[k];
     char *a = *part_field_slot(p, f);
-    memcpy(a + dst * f->size, a + src * f->size, f->size);
+    if (a) memcpy(a + dst * f->size, a + src * f->size, f->size);
   }
 }
 
@@ -131,4 +140,38 @@ size_t parts_bytes_per_particle(void) {
   size_t b = 0;
   for (int k = 0; k < part_nr_fields; k++) b += part_fields[k].size;
   return b;
+}
+
+size_t parts_bytes_held(const struct parts *p) {
+  size_t b = 0;
+  for (int k = 0; k < part_nr_fields; k++)
+    if (!p->absent[k]) b += part_fields[k].size;
+  return b;
+}
+
+const char *const part_solid_fields[] = {
+    "Sxx",  "Sxy",  "Sxz",  "Syy",  "Syz",   "Szz",       "Spxx",     "Spxy", "Spxz",
+    "Spyy", "Spyz", "Spzz", "dSxx", "dSxy",  "dSxz",      "dSyy",     "dSyz", "dSzz",
+    "Rxx",  "Rxy",  "Rxz",  "Ryy",  "Ryz",   "Rzz",       "gmxx",     "gmxy", "gmxz",
+    "gmyy", "gmyz", "gmzz", "gvxx", "gvxy",  "gvxz",      "gvyx",     "gvyy", "gvyz",
+    "gvzx", "gvzy", "gvzz", "wvol", "eps_p", "w_plastic", "dmg_shear"};
+const int part_nr_solid_fields = (int)(sizeof part_solid_fields / sizeof(char *));
+const char *const part_damage_fields[] = {"dmg",   "dcbrt",   "dmg_rate",
+                                          "n_act", "n_flaws", "flaw_first"};
+const int part_nr_damage_fields = (int)(sizeof part_damage_fields / sizeof(char *));
+
+size_t parts_drop(struct parts *p, const char *const *names, int n) {
+  size_t bytes = 0;
+  for (int q = 0; q < n; q++) {
+    int k = 0;
+    while (k < part_nr_fields && strcmp(part_fields[k].name, names[q])) k++;
+    if (k == part_nr_fields) error_bug("parts_drop: no particle field '%s'", names[q]);
+    if (p->absent[k]) continue;
+    void **slot = part_field_slot(p, &part_fields[k]);
+    if (*slot) free((char *)*slot - part_field_pad(k));
+    *slot = NULL;
+    p->absent[k] = 1;
+    bytes += part_fields[k].size;
+  }
+  return bytes;
 }

@@ -204,6 +204,8 @@ struct parts {
 #define PART_MEMBER(type, name, ...) type *name;
   BOLIDE_PART_FIELDS(PART_MEMBER)
 #undef PART_MEMBER
+  /** 1: the run never uses field k, whose array is not held (NULL; parts_drop) */
+  unsigned char absent[PART_NR_FIELDS];
 };
 
 /** Description of one field, generated from BOLIDE_PART_FIELDS. */
@@ -233,6 +235,23 @@ int part_field_zero(const struct parts *p, int k, size_t lo, size_t hi);
 
 /** Allocate every array for n particles (zero-filled). */
 void parts_alloc(struct parts *p, size_t n);
+/** Allocate for n particles (zero-filled) the arrays that like holds. */
+void parts_alloc_like(struct parts *p, size_t n, const struct parts *like);
+/** Free the arrays of the named fields and mark them absent: part_field_array
+ *  returns NULL for them, and parts_reserve, parts_permute, parts_copy_one,
+ *  the snapshots (zeros), the restart files (zeros) and the MPI records
+ *  (left out) skip them.  Returns the bytes per particle freed. */
+size_t parts_drop(struct parts *p, const char *const *names, int n);
+/** The solid state (deviatoric stress, its prediction and rate, the
+ *  artificial stress, the correction tensor and velocity gradient sums, the
+ *  kernel sum of the free-surface detection, the plastic strain and work,
+ *  the shear damage) and the fracture fields (Grady-Kipp damage, its cube
+ *  root and rate, the flaws): the fields that a run without stress, without
+ *  damage and with the kick-drift-kick scheme never reads or writes. */
+extern const char *const part_solid_fields[];
+extern const int part_nr_solid_fields;
+extern const char *const part_damage_fields[];
+extern const int part_nr_damage_fields;
 /** Grow the arrays to at least n particles, keeping the contents. */
 void parts_reserve(struct parts *p, size_t n);
 /** Free every array. */
@@ -243,5 +262,7 @@ void parts_permute(struct parts *p, const size_t *perm);
 void parts_copy_one(struct parts *p, size_t dst, size_t src);
 /** Bytes of memory per particle for all arrays. */
 size_t parts_bytes_per_particle(void);
+/** Bytes of memory per particle for the arrays p holds (not absent). */
+size_t parts_bytes_held(const struct parts *p);
 
 #endif

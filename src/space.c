@@ -122,7 +122,7 @@ static void space_count_removed(struct budget_removed *r, const struct parts *p,
   r->L[1] += m * (z * vx - x * vz);
   r->L[2] += m * (x * vy - y * vx);
   r->E_clamp += m * p->e_clamp[i];
-  r->W_plastic += m * p->w_plastic[i];
+  if (p->w_plastic) r->W_plastic += m * p->w_plastic[i];
 }
 
 /** Run fn on nt threads (at most SPACE_MAX_THREADS), the calling thread

@@ -708,7 +708,8 @@ static int gpu_halo_fields(struct gpu *g, const unsigned char *sel, const size_t
   int nf = 0;
   size_t off = 0, doff = 0;
   for (int f = 0; f < part_nr_fields; f++) {
-    if (sel && !sel[f]) continue;
+    /* (absent: on neither side, not in the records) */
+    if ((sel && !sel[f]) || g->absent[f]) continue;
     const size_t size = part_fields[f].size;
     char *dp = (char *)*gpu_field_slot((struct parts *)&g->dev, f);
     if (dp) {
@@ -746,7 +747,7 @@ extern "C" void gpu_halo_pack(struct gpu *g, const struct parts *p, const size_t
   size_t off = 0;
   int q = 0;
   for (int f = 0; f < part_nr_fields; f++) {
-    if (sel && !sel[f]) continue;
+    if ((sel && !sel[f]) || g->absent[f]) continue;
     const size_t size = part_fields[f].size;
     if (q < nf && hoff[q] == off) {
       memcpy(dst + off, g->halo_host + t.off[q], n * size);
@@ -837,6 +838,7 @@ static void gpu_pin(struct gpu *g, const struct parts *p) {
   gpu_unpin(g);
   for (int f = 0; f < part_nr_fields; f++) {
     void *a = *gpu_field_slot((struct parts *)p, f);
+    if (!a) continue; /* (absent on the host: parts_drop) */
     gpu_check(cudaHostRegister(a, p->capacity * part_fields[f].size, cudaHostRegisterDefault));
     g->pinned[f] = a;
   }

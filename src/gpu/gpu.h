@@ -124,11 +124,9 @@ void gpu_set_stage_hook(struct gpu *g, void (*fn)(void *, int), void *ctx);
 /** The records of several MPI ranks (src/mpi/halo.c) from and to the
  *  resident particles.  gpu_halo_pack: the fields of sel (NULL: every
  *  field) of particles idx[0 .. n), field after field as halo.c packs
- *  them, into the host buffer dst (a field the device does not hold from
- *  the host's p).  gpu_halo_unpack: a block of such records into particles
- *  slot[0 .. n) of the device, each marked a foreign copy (PART_FOREIGN,
- *  msrc = q0 + k) as the host marks them.  gpu_halo_ms: the milliseconds
- *  both took so far. */
+ *  them (the absent fields left out), into the host buffer dst.  gpu_halo_unpack: a block of such
+ * records into particles slot[0 .. n) of the device, each marked a foreign copy (PART_FOREIGN, msrc
+ * = q0 + k) as the host marks them.  gpu_halo_ms: the milliseconds both took so far. */
 void gpu_halo_pack(struct gpu *g, const struct parts *p, const size_t *idx, size_t n, char *dst,
                    const unsigned char *sel);
 void gpu_halo_unpack(struct gpu *g, const size_t *slot, size_t n, const char *src,
@@ -157,10 +155,11 @@ void gpu_upload_gravity(struct gpu *g, struct parts *p);
  *  driver refuses (the waits then keep spinning). */
 int gpu_set_blocking_sync(struct gpu *g);
 /** Mark the named particle fields (n of them) as absent from the device:
- *  never allocated, copied or reordered there (the run never uses them; the
- *  shared functions test the array pointer, e.g. p->Sxx, before they touch
- *  a group that may be absent).  Before the first upload only.  Returns the
- *  bytes per particle saved. */
+ *  the fields the host does not hold either (parts_drop), never allocated,
+ *  copied, reordered or put in the MPI records there (the run never uses
+ *  them; the shared functions test the array pointer, e.g. p->Sxx, before
+ *  they touch a group that may be absent).  Before the first upload only.
+ *  Returns the bytes per particle saved. */
 int gpu_set_absent(struct gpu *g, const char *const *names, int n);
 /** Copy every particle field to the device (after a rebuild or a restart). */
 void gpu_upload_all(struct gpu *g, const struct parts *p);

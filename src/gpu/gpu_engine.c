@@ -639,43 +639,17 @@ static const char *gpu_engine_cpu_only(const struct engine *e) {
   return NULL;
 }
 
-/** The solid state (stress and its rate, artificial stress, the velocity
- *  gradient and correction tensor, plastic strain and work, shear damage)
- *  and the damage fields, which a run without stress (no material with
- *  strength or viscosity, no CSPM continuity, no free-surface detection:
- *  hp.solids), without damage and with the kick-drift-kick scheme never
- *  uses: not held on the device (43 doubles and 6 damage fields, 384 of
- *  the 824 bytes of a particle's fields).  The rk2 and pc integrators'
- *  states (drift_rk.h) hold the stress: they keep every field. */
-static const char *const gpu_solid_fields[] = {
-    "Sxx",  "Sxy",  "Sxz",  "Syy",  "Syz",   "Szz",       "Spxx",     "Spxy", "Spxz",
-    "Spyy", "Spyz", "Spzz", "dSxx", "dSxy",  "dSxz",      "dSyy",     "dSyz", "dSzz",
-    "Rxx",  "Rxy",  "Rxz",  "Ryy",  "Ryz",   "Rzz",       "gmxx",     "gmxy", "gmxz",
-    "gmyy", "gmyz", "gmzz", "gvxx", "gvxy",  "gvxz",      "gvyx",     "gvyy", "gvyz",
-    "gvzx", "gvzy", "gvzz", "wvol", "eps_p", "w_plastic", "dmg_shear"};
-static const char *const gpu_damage_fields[] = {"dmg",   "dcbrt",   "dmg_rate",
-                                                "n_act", "n_flaws", "flaw_first"};
-
-/** 1 if every particle's value of each named field is zero (bits). */
-static int gpu_engine_all_zero(const struct parts *p, const char *const *names, int n) {
-  for (int q = 0; q < n; q++)
-    for (int k = 0; k < part_nr_fields; k++)
-      if (!strcmp(part_fields[k].name, names[q]) && !part_field_zero(p, k, 0, p->count)) return 0;
-  return 1;
-}
-
+/** The fields the host does not hold (engine_drop_unused_fields: the solid
+ *  state and the fracture fields of a run without stress, without damage,
+ *  with the kick-drift-kick scheme) are not held on the device either. */
 static void gpu_engine_absent(struct engine *e) {
-  if (e->hp.solids || e->damage || e->scheme != ENGINE_SCHEME_KDK) return;
-  const int ns = (int)(sizeof gpu_solid_fields / sizeof(char *)),
-            nd = (int)(sizeof gpu_damage_fields / sizeof(char *));
-  /* (the host reorders only some fields at a rebuild on the device: values
-   * that the initial conditions or a restart file gave stay, on the device) */
-  if (!gpu_engine_all_zero(&e->parts, gpu_solid_fields, ns) ||
-      !gpu_engine_all_zero(&e->parts, gpu_damage_fields, nd))
-    return;
-  struct gpu *g = e->gpu->gpu;
-  const int saved =
-      gpu_set_absent(g, gpu_solid_fields, ns) + gpu_set_absent(g, gpu_damage_fields, nd);
+  const struct parts *p = &e->parts;
+  const char *names[PART_NR_FIELDS];
+  int n = 0;
+  for (int k = 0; k < part_nr_fields; k++)
+    if (p->absent[k]) names[n++] = part_fields[k].name;
+  if (n == 0) return;
+  const int saved = gpu_set_absent(e->gpu->gpu, names, n);
   error_log(1,
             "GPU: the solid and damage fields are not held on the device (no stress, no "
             "damage, kick-drift-kick): %d bytes per particle less",

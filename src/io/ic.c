@@ -427,6 +427,12 @@ static void ic_validate(const char *path, const struct parts *p, const struct ic
 
 void ic_read(const char *path, const struct unit_system *internal, const int32_t *valid_mat,
              int n_valid_mat, struct parts *p, struct ic_info *info_out) {
+  ic_read_unused(path, internal, valid_mat, n_valid_mat, p, info_out, NULL);
+}
+
+void ic_read_unused(const char *path, const struct unit_system *internal, const int32_t *valid_mat,
+                    int n_valid_mat, struct parts *p, struct ic_info *info_out,
+                    const unsigned char *unused) {
   struct ic_info info_local;
   struct ic_info *info = info_out ? info_out : &info_local;
   memset(info, 0, sizeof *info);
@@ -480,8 +486,15 @@ void ic_read(const char *path, const struct unit_system *internal, const int32_t
     error_exit("%s: /Header/NumPart_Total says %lld particles but /PartType0/%s has %zu", path,
                header_count, first, n);
 
-  /* pass 2: read and convert */
-  parts_alloc(p, n);
+  /* pass 2: read and convert (the unused fields not allocated, unless the
+   * file has one of them: the groups that the shared functions test by one
+   * array's pointer are then all held) */
+  struct parts like = {0};
+  for (int k = 0; k < part_nr_fields && unused; k++) like.absent[k] = unused[k];
+  for (int k = 0; k < part_nr_fields; k++)
+    for (int c = 0; found[k] && c < part_fields[k].ncomp; c++)
+      if (like.absent[k + c]) memset(like.absent, 0, sizeof like.absent);
+  parts_alloc_like(p, n, &like);
   for (int k = 0; k < part_nr_fields; k++) {
     if (!found[k]) continue;
     const struct part_field *f = &part_fields[k];

@@ -35,6 +35,12 @@ struct ic_info {
  *  offending particle or dataset.  info may be NULL. */
 void ic_read(const char *path, const struct unit_system *internal, const int32_t *valid_mat,
              int n_valid_mat, struct parts *p, struct ic_info *info);
+/** ic_read, where the fields marked in unused (part_nr_fields flags; the
+ *  fields a run never uses) are not allocated (absent, parts_drop) unless
+ *  the file has a dataset of one of them: then every field is. */
+void ic_read_unused(const char *path, const struct unit_system *internal, const int32_t *valid_mat,
+                    int n_valid_mat, struct parts *p, struct ic_info *info,
+                    const unsigned char *unused);
 
 /** 1 if part_fields[k] was read according to info. */
 static inline int ic_field_read(const struct ic_info *info, int k) {

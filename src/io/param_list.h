@@ -50,6 +50,7 @@
   X("Snapshots:output_list_on", PARAM_BOOL, "true", 0, 0, NULL, "-", "use Snapshots:output_list when it names a file (SWIFT's switch: false ignores the list)") \
   X("Snapshots:accelerations", PARAM_BOOL, "false", 0, 0, NULL, "-", "write Accelerations (and Potentials with gravity) in every snapshot") \
   X("Snapshots:compression", PARAM_INT, "0", 0, 9, NULL, "-", "gzip level of the datasets (0: none)") \
+  X("Snapshots:enabled", PARAM_BOOL, "true", 0, 0, NULL, "-", "write snapshots (false: none, not even the first and last: benchmarks of large runs; the statistics, restart files and crash snapshots are still written)") \
                                                                                                          \
   X("Statistics:delta_time", PARAM_REAL, "0", 0, PARAM_INF, NULL, "internal time", "time between lines of the statistics file (0: every step)") \
   X("Statistics:time_first", PARAM_REAL, "0", -PARAM_INF, PARAM_INF, NULL, "internal time", "time of the first line of the statistics file (the start of the run when earlier); the lines follow every delta_time") \

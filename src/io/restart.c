@@ -155,7 +155,8 @@ void restart_write(const char *stem, const struct restart_state *st, const struc
    * particle order of the file (bit-exact copies) */
   int64_t *off = error_malloc((p->count + 1) * sizeof *off, "restart: flaw offsets");
   off[0] = 0;
-  for (size_t i = 0; i < p->count; i++) off[i + 1] = off[i] + (flaw_eps ? p->n_flaws[i] : 0);
+  for (size_t i = 0; i < p->count; i++)
+    off[i + 1] = off[i] + (flaw_eps && p->n_flaws ? p->n_flaws[i] : 0);
   const uint64_t nflaws = (uint64_t)off[p->count];
   size_t per_part = 0;
   for (int k = 0; k < part_nr_fields; k++) per_part += part_fields[k].size;
@@ -199,8 +200,21 @@ void restart_write(const char *stem, const struct restart_state *st, const struc
   restart_put(o, &cells->n, 8);
   restart_put(o, cells->h_max, 8 * (size_t)cells->n);
   restart_put(o, cells->dx_max, 8 * (size_t)cells->n);
-  for (int k = 0; k < part_nr_fields; k++)
-    restart_put(o, part_field_array(p, &part_fields[k]), part_fields[k].size * p->count);
+  for (int k = 0; k < part_nr_fields; k++) {
+    const void *a = part_field_array(p, &part_fields[k]);
+    if (a) {
+      restart_put(o, a, part_fields[k].size * p->count);
+    } else {
+      /* a field the run does not hold (parts_drop): zeros, the file's
+       * layout unchanged (the resumed run drops it again) */
+      static const unsigned char zeros[4096];
+      for (size_t left = part_fields[k].size * p->count; left;) {
+        const size_t b = left < sizeof zeros ? left : sizeof zeros;
+        restart_put(o, zeros, b);
+        left -= b;
+      }
+    }
+  }
   restart_put(o, &nflaws, 8);
   restart_put(o, off, 8 * (p->count + 1));
   for (size_t i = 0; i < p->count; i++)

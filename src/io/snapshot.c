@@ -361,7 +361,10 @@ static void snapshot_dataset(struct snapshot_writer *w, hid_t grp, int k, const 
   char *buf = error_malloc((n ? n : 1) * nc * s, what);
   for (size_t c = 0; c < nc; c++) {
     const char *a = part_field_array(p, &part_fields[k + (int)c]);
-    for (size_t i = 0; i < n; i++) memcpy(buf + (i * nc + c) * s, a + i * s, s);
+    if (!a) /* (a field the run does not hold, parts_drop: zeros) */
+      for (size_t i = 0; i < n; i++) memset(buf + (i * nc + c) * s, 0, s);
+    else
+      for (size_t i = 0; i < n; i++) memcpy(buf + (i * nc + c) * s, a + i * s, s);
   }
 
   /* the whole dataset: every rank's rows when several write it */

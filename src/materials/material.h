@@ -250,6 +250,12 @@ BOLIDE_INLINE int material_has_stress(const struct material *mat) {
   return mat->strength != STRENGTH_NONE || mat->viscosity > 0.0;
 }
 
+/** Whether particles of material `mat` take tensile damage: Weibull flaws
+ *  (weibull_k > 0) and a shear modulus (tasks/damage). */
+BOLIDE_INLINE int material_is_brittle(const struct material *mat) {
+  return mat->weibull_k > 0.0 && mat->shear_modulus > 0.0;
+}
+
 /** Temperature of material `mat` at (rho, u); 0 where its EOS defines none. */
 BOLIDE_INLINE double material_temperature(const struct material *mat, double rho, double u) {
   if (rho < mat->density_floor) rho = mat->density_floor;

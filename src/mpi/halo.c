@@ -134,6 +134,7 @@ static void halo_pack_sel(const struct parts *p, const size_t *idx, size_t n, ch
     if (sel && !sel[f]) continue;
     const struct part_field *pf = &part_fields[f];
     const char *a = part_field_array(p, pf);
+    if (!a) continue; /* (absent on every rank: not in the records, halo_record_bytes) */
     if (pf->size == 8)
       for (size_t k = 0; k < n; k++) memcpy(dst + 8 * k, a + 8 * idx[k], 8);
     else if (pf->size == 4)
@@ -152,6 +153,7 @@ static void halo_unpack_sel(struct parts *p, size_t first, const size_t *slot, s
     if (sel && !sel[f]) continue;
     const struct part_field *pf = &part_fields[f];
     char *a = part_field_array(p, pf);
+    if (!a) continue; /* (absent) */
     if (!slot)
       memcpy(a + pf->size * first, src, n * pf->size);
     else if (pf->size == 8)
@@ -181,11 +183,12 @@ TASK_FAMILIES(HALO_WRITES_)
 #undef HALO_WRITES_
 
 /** Mark in sel the fields of part_fields that family list l (n names)
- *  writes; its record bytes added to *rec. */
-static void halo_fields(unsigned char *sel, size_t *rec, const char *const *l, int n) {
+ *  writes and p holds; its record bytes added to *rec. */
+static void halo_fields(const struct parts *p, unsigned char *sel, size_t *rec,
+                        const char *const *l, int n) {
   for (int k = 0; k < n; k++)
     for (int f = 0; f < part_nr_fields; f++)
-      if (strcmp(part_fields[f].name, l[k]) == 0 && !sel[f]) {
+      if (strcmp(part_fields[f].name, l[k]) == 0 && !sel[f] && !p->absent[f]) {
         sel[f] = 1;
         *rec += part_fields[f].size;
       }
@@ -355,6 +358,7 @@ static void halo_remove(struct parts *p, unsigned char *drop) {
   for (int k = 0; k < part_nr_fields; k++) {
     const struct part_field *f = &part_fields[k];
     char *a = part_field_array(p, f);
+    if (!a) continue; /* (absent) */
     if (f->size == 8)
       for (size_t m = 0; m < nm; m++) ((uint64_t *)a)[mv[2 * m]] = ((uint64_t *)a)[mv[2 * m + 1]];
     else if (f->size == 4)
@@ -990,7 +994,7 @@ void halo_init(struct engine *e) {
   struct halo *H = error_calloc(1, sizeof *H, "MPI halo");
   H->nranks = ranks_size();
   H->me = ranks_rank();
-  H->rec = parts_bytes_per_particle();
+  H->rec = parts_bytes_held(&e->parts);
   H->scount = error_calloc(4 * (size_t)H->nranks, sizeof(int), "MPI halo counts");
   H->sdispl = H->scount + H->nranks;
   H->rcount = H->scount + 2 * H->nranks;
@@ -1017,9 +1021,12 @@ void halo_init(struct engine *e) {
   for (int k = 0; k < 2; k++)
     H->sel[k] = error_calloc((size_t)part_nr_fields, 1, "MPI refresh fields");
 #define HALO_N_(a) ((int)(sizeof a / sizeof a[0]) - 1)
-  halo_fields(H->sel[0], &H->rec_sel[0], halo_writes_density + 1, HALO_N_(halo_writes_density));
-  halo_fields(H->sel[0], &H->rec_sel[0], halo_writes_ghost + 1, HALO_N_(halo_writes_ghost));
-  halo_fields(H->sel[1], &H->rec_sel[1], halo_writes_gradient + 1, HALO_N_(halo_writes_gradient));
+  halo_fields(&e->parts, H->sel[0], &H->rec_sel[0], halo_writes_density + 1,
+              HALO_N_(halo_writes_density));
+  halo_fields(&e->parts, H->sel[0], &H->rec_sel[0], halo_writes_ghost + 1,
+              HALO_N_(halo_writes_ghost));
+  halo_fields(&e->parts, H->sel[1], &H->rec_sel[1], halo_writes_gradient + 1,
+              HALO_N_(halo_writes_gradient));
 #undef HALO_N_
   H->gxc = H->xc + 4 * H->nranks;
   e->halo = H;
@@ -1556,7 +1563,7 @@ void halo_gather(const struct engine *e, struct parts *out) {
   free(buf);
   if (H->me == 0) {
     const size_t n = (size_t)total / rec;
-    parts_alloc(out, n);
+    parts_alloc_like(out, n, p);
     out->count = n;
     for (int r = 0; r < H->nranks; r++)
       halo_unpack_block(out, (size_t)displ[r] / rec, NULL, (size_t)counts[r] / rec, all + displ[r]);

@@ -59,18 +59,28 @@ void damage_init_flaws(struct engine *e) {
      * FlawOffsets in the particle order of the file) */
     struct flaws fl;
     if (flaws_io_read(icname, e->parts.count, &fl)) {
-      for (size_t i = 0; i < e->parts.count; i++) {
-        e->parts.flaw_first[i] = fl.offset[i];
-        e->parts.n_flaws[i] = (int32_t)(fl.offset[i + 1] - fl.offset[i]);
+      if (!e->parts.flaw_first) {
+        /* (the damage fields are not held: no material takes damage) */
+        error_warning(
+            "%s: the Weibull flaws of the initial conditions are not used: no "
+            "material has weibull_k and shear_modulus",
+            icname);
+        free(fl.offset);
+        free(fl.eps);
+      } else {
+        for (size_t i = 0; i < e->parts.count; i++) {
+          e->parts.flaw_first[i] = fl.offset[i];
+          e->parts.n_flaws[i] = (int32_t)(fl.offset[i + 1] - fl.offset[i]);
+        }
+        e->flaw_eps = fl.eps;
+        e->nr_flaws = fl.offset[e->parts.count];
+        e->flaws_from = "the initial conditions";
+        free(fl.offset);
       }
-      e->flaw_eps = fl.eps;
-      e->nr_flaws = fl.offset[e->parts.count];
-      e->flaws_from = "the initial conditions";
-      free(fl.offset);
     }
   }
   for (int k = 0; k < e->mats->n; k++)
-    if (e->mats->mats[k].weibull_k > 0.0 && e->mats->mats[k].shear_modulus > 0.0) e->damage = 1;
+    if (material_is_brittle(&e->mats->mats[k])) e->damage = 1;
   struct parts *p = &e->parts;
   const size_t n = p->count;
   if (e->flaw_eps) {
@@ -78,7 +88,7 @@ void damage_init_flaws(struct engine *e) {
     size_t idle = 0, bare = 0;
     for (size_t i = 0; i < n; i++) {
       const struct material *mat = material_table_find(e->mats, p->mat[i]);
-      const int brittle = mat && mat->weibull_k > 0.0 && mat->shear_modulus > 0.0;
+      const int brittle = mat && material_is_brittle(mat);
       idle += !brittle && p->n_flaws[i] > 0;
       bare += brittle && p->n_flaws[i] == 0;
     }

@@ -189,9 +189,11 @@ static void drift_mirror_set(struct engine *e, size_t g) {
   drift_mirror_tensor(n, t);                                                      \
   p->S##xx[g] = t[0], p->S##xy[g] = t[1], p->S##xz[g] = t[2], p->S##yy[g] = t[3], \
   p->S##yz[g] = t[4], p->S##zz[g] = t[5];
-  DRIFT_MIRROR_TENSOR_(S)
-  DRIFT_MIRROR_TENSOR_(Sp)
-  DRIFT_MIRROR_TENSOR_(R)
+  if (p->Sxx) { /* (a run without stress holds none: parts_drop) */
+    DRIFT_MIRROR_TENSOR_(S)
+    DRIFT_MIRROR_TENSOR_(Sp)
+    DRIFT_MIRROR_TENSOR_(R)
+  }
 #undef DRIFT_MIRROR_TENSOR_
   p->flags[g] = (p->flags[src] & ~PART_INACTIVE) | PART_MIRROR;
 }

@@ -4,7 +4,7 @@
 # naming the file or key and a non-zero exit, and leaves no half-written
 # output; --check validates without running; -n 0 turns the initial
 # conditions into a t = 0 snapshot with every field bit-identical, with an
-# XDMF file beside it.
+# XDMF file beside it; a fluid run holds no solid fields; Snapshots:enabled.
 set -uo pipefail
 B=${BOLIDE_BUILDDIR:?}; S=${BOLIDE_SRCDIR:?}
 work=$(mktemp -d); trap 'chmod -R u+w "$work"; rm -rf "$work"' EXIT
@@ -134,4 +134,29 @@ grep -q "self-gravity is off" grav.txt && { echo "FAIL: Gravity warning with -G"
 # a short run: steps, statistics, final snapshot
 "$bolide" -t 2 params.yml >run.txt 2>&1 || { echo "FAIL: run"; tail -5 run.txt; fail=1; }
 [ -f out/statistics.txt ] && [ -f out/snapshot_0001.hdf5 ] || { echo "FAIL: run outputs"; ls out; fail=1; }
+
+# a run without stress, damage or another integrator than kdk does not hold
+# the solid and damage fields (parts_drop): its memory line says so, and
+# its snapshots still have those datasets, zeros; rk2 holds them
+grep -q "particle memory: 440 bytes per particle (the solid and damage fields not held" run.txt ||
+  { echo "FAIL: the fluid run's particle memory"; grep "particle memory" run.txt; fail=1; }
+"$PYTHON" - <<'PY' || { echo "FAIL: the fluid run's snapshot lacks the solid fields' zeros"; fail=1; }
+import sys, h5py, numpy as np
+p = h5py.File("out/snapshot_0001.hdf5", "r")["PartType0"]
+for name in ("DeviatoricStress", "Damage", "PlasticStrains", "ShearDamage", "NumberOfFlaws"):
+    if name not in p or np.any(p[name][...] != 0):
+        sys.exit("%s: %s" % (name, "missing" if name not in p else "not zero"))
+PY
+"$bolide" --check -P TimeIntegration:scheme:rk2 params.yml >rk2.txt 2>&1
+grep -q "particle memory: 824 bytes per particle$" rk2.txt ||
+  { echo "FAIL: rk2's particle memory"; grep "particle memory" rk2.txt; fail=1; }
+
+# Snapshots:enabled: false writes no snapshot, not the first nor the last,
+# and the statistics all the same; -n 0 writes its snapshot anyway
+"$bolide" -t 2 -P Snapshots:subdir:out_none -P Snapshots:enabled:false params.yml >none.txt 2>&1 ||
+  { echo "FAIL: run without snapshots"; tail -5 none.txt; fail=1; }
+[ -f out_none/statistics.txt ] && [ -z "$(ls out_none | grep -E 'hdf5|xmf')" ] ||
+  { echo "FAIL: Snapshots:enabled: false"; ls out_none; fail=1; }
+"$bolide" -n 0 -P Snapshots:subdir:out_none0 -P Snapshots:enabled:false params.yml >none0.txt 2>&1 &&
+  [ -f out_none0/snapshot_0000.hdf5 ] || { echo "FAIL: -n 0 with Snapshots:enabled: false"; fail=1; }
 exit $fail

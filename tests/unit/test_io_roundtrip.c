@@ -180,6 +180,99 @@ static void cgs_to_si(const char *path) {
   parts_free(&q);
 }
 
+/** The fields a run never uses (parts_drop): not held, zeros in a snapshot
+ *  (the layout unchanged), left absent by parts_reserve, parts_alloc_like,
+ *  parts_permute and parts_copy_one; ic_read_unused leaves them out of a
+ *  file without them and holds every field of a file with one of them. */
+static void dropped(const char *path, const char *bare) {
+  const size_t n = 200;
+  struct parts p, q;
+  fill_random(&p, n);
+  for (size_t i = 0; i < n; i++) p.id[i] = (int64_t)i + 1;
+  size_t dropped_bytes = 0;
+  unsigned char unused[PART_NR_FIELDS] = {0};
+  for (int g = 0; g < 2; g++) {
+    const char *const *l = g ? part_damage_fields : part_solid_fields;
+    const int nl = g ? part_nr_damage_fields : part_nr_solid_fields;
+    for (int k = 0; k < part_nr_fields; k++)
+      for (int j = 0; j < nl; j++)
+        if (!strcmp(part_fields[k].name, l[j])) {
+          unused[k] = 1;
+          dropped_bytes += part_fields[k].size;
+        }
+  }
+  CHECK(dropped_bytes == 384, "the solid and damage fields are %zu bytes, not 384", dropped_bytes);
+  const double x1 = p.x[1], m1 = p.m[1];
+  CHECK(parts_drop(&p, part_solid_fields, part_nr_solid_fields) +
+                parts_drop(&p, part_damage_fields, part_nr_damage_fields) ==
+            dropped_bytes,
+        "parts_drop's bytes");
+  CHECK(parts_drop(&p, part_solid_fields, part_nr_solid_fields) == 0, "dropped twice");
+  CHECK(parts_bytes_held(&p) == parts_bytes_per_particle() - dropped_bytes,
+        "held %zu bytes per particle", parts_bytes_held(&p));
+  CHECK(p.Sxx == NULL && p.dmg == NULL && p.flaw_first == NULL && p.x != NULL,
+        "the dropped arrays are not NULL");
+  for (int k = 0; k < part_nr_fields; k++)
+    CHECK(!unused[k] == (part_field_array(&p, &part_fields[k]) != NULL) && p.absent[k] == unused[k],
+          "field %s held %d", part_fields[k].name, part_field_array(&p, &part_fields[k]) != NULL);
+  parts_reserve(&p, 3 * n);
+  CHECK(p.Sxx == NULL && p.dmg_rate == NULL && p.capacity == 3 * n, "parts_reserve");
+  parts_copy_one(&p, 0, 1);
+  size_t *perm = malloc(n * sizeof *perm);
+  for (size_t i = 0; i < n; i++) perm[i] = n - 1 - i;
+  parts_permute(&p, perm);
+  free(perm);
+  CHECK(p.x[n - 1] == x1 && p.m[n - 1] == m1, "parts_copy_one, parts_permute");
+  for (size_t i = 0; i < n; i++) p.x[i] = (double)i, p.id[i] = (int64_t)i + 1; /* (distinct again) */
+  struct parts c;
+  parts_alloc_like(&c, 5, &p);
+  CHECK(c.Sxx == NULL && c.Rzz == NULL && c.x != NULL && c.absent[0] == 0, "parts_alloc_like");
+  parts_free(&c);
+
+  /* the snapshot: every dataset there, the dropped ones zero */
+  struct unit_system si;
+  units_init_si(&si);
+  struct snapshot_meta meta = {.time = 0.5, .box_size = {1, 1, 1}, .run_name = "dropped"};
+  snapshot_write(path, &meta, &p, &si, 0);
+  struct ic_info info;
+  ic_read(path, &si, NULL, 0, &q, &info);
+  CHECK(q.count == n && q.Sxx != NULL, "the snapshot read back");
+  for (size_t i = 0; i < n && q.count == n; i++)
+    if (q.Sxx[i] != 0.0 || q.Szz[i] != 0.0 || q.dmg[i] != 0.0 || q.eps_p[i] != 0.0 ||
+        q.x[i] != p.x[i]) {
+      CHECK(0, "particle %zu: S %g %g, d %g, eps_p %g, x %g (%g)", i, q.Sxx[i], q.Szz[i], q.dmg[i],
+            q.eps_p[i], q.x[i], p.x[i]);
+      break;
+    }
+  parts_free(&q);
+  /* a file with one of them (the snapshot's zeros): every field held */
+  ic_read_unused(path, &si, NULL, 0, &q, NULL, unused);
+  CHECK(q.Sxx != NULL && q.dmg != NULL && parts_bytes_held(&q) == parts_bytes_per_particle(),
+        "ic_read_unused: a file with DeviatoricStress: every field held");
+  parts_free(&q);
+  /* a file without them: left out */
+  snapshot_write(bare, &meta, &p, &si, 0);
+  hid_t file = H5Fopen(bare, H5F_ACC_RDWR, H5P_DEFAULT);
+  for (int k = 0; k < part_nr_fields; k++)
+    if (unused[k] && part_fields[k].h5name && part_fields[k].comp == 0) {
+      char name[128];
+      snprintf(name, sizeof name, "/PartType0/%s", part_fields[k].h5name);
+      if (H5Lexists(file, name, H5P_DEFAULT) > 0) H5Ldelete(file, name, H5P_DEFAULT);
+    }
+  H5Fclose(file);
+  ic_read_unused(bare, &si, NULL, 0, &q, NULL, unused);
+  CHECK(q.count == n && q.Sxx == NULL && q.dmg == NULL && q.x != NULL &&
+            parts_bytes_held(&q) == parts_bytes_per_particle() - dropped_bytes,
+        "ic_read_unused: a file without them: %zu bytes per particle held", parts_bytes_held(&q));
+  for (size_t i = 0; i < n && q.count == n; i++)
+    if (q.x[i] != p.x[i] || q.m[i] != p.m[i]) {
+      CHECK(0, "ic_read_unused: particle %zu differs", i);
+      break;
+    }
+  parts_free(&q);
+  parts_free(&p);
+}
+
 int main(int argc, char **argv) {
   error_init(argv[0]);
   char dir[] = "/tmp/bolide-io-XXXXXX";
@@ -191,6 +284,10 @@ int main(int argc, char **argv) {
   roundtrip(a, 0);
   roundtrip(b, 6);
   cgs_to_si(c);
+  char d[256], e[256];
+  snprintf(d, sizeof d, "%s/dropped.hdf5", dir);
+  snprintf(e, sizeof e, "%s/bare.hdf5", dir);
+  dropped(d, e);
   /* no temporary files left, the XDMF files exist */
   snprintf(x, sizeof x, "%s/plain.hdf5.tmp", dir);
   CHECK(access(x, F_OK) != 0, "temporary file %s left behind", x);
