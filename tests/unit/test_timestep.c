@@ -116,7 +116,7 @@ int main(void) {
   hp.continuity_cspm = 0;
   parts_free(&p);
 
-  /* a GPU run without stress holds no stress arrays (gpu_set_absent): the
+  /* a run without stress holds no stress arrays (parts_drop, gpu_set_absent): the
    * kick, the drift and the relative-change criterion skip them and give
    * what zero stress gives, field for field */
   {
