@@ -223,7 +223,8 @@ static void dropped(const char *path, const char *bare) {
   parts_permute(&p, perm);
   free(perm);
   CHECK(p.x[n - 1] == x1 && p.m[n - 1] == m1, "parts_copy_one, parts_permute");
-  for (size_t i = 0; i < n; i++) p.x[i] = (double)i, p.id[i] = (int64_t)i + 1; /* (distinct again) */
+  for (size_t i = 0; i < n; i++)
+    p.x[i] = (double)i, p.id[i] = (int64_t)i + 1; /* (distinct again) */
   struct parts c;
   parts_alloc_like(&c, 5, &p);
   CHECK(c.Sxx == NULL && c.Rzz == NULL && c.x != NULL && c.absent[0] == 0, "parts_alloc_like");
