@@ -87,14 +87,22 @@ struct gpu_grav {
   double n_entries[2];                /**< grouped part and field interactions of the last */
 };
 
-/** Make b hold at least bytes (grown by half again; contents lost). */
-static void *gg_reserve(struct gpu_grav_buf *b, size_t bytes, const char *what) {
+/** Make b hold at least bytes, allocated with bytes / spare more for the
+ *  next call's growth (spare 0: none; contents lost). */
+static void *gg_reserve_spare(struct gpu_grav_buf *b, size_t bytes, size_t spare,
+                              const char *what) {
   if (bytes > b->bytes || !b->ptr) {
     if (b->ptr) gpu_dfree(b->ptr);
-    b->bytes = bytes + bytes / 2 + 64;
+    b->bytes = bytes + (spare ? bytes / spare : 0) + 64;
     b->ptr = gpu_alloc(b->bytes, what);
   }
   return b->ptr;
+}
+
+/** gg_reserve_spare with half again: the buffers of the cells, whose
+ *  count changes a little from rebuild to rebuild. */
+static void *gg_reserve(struct gpu_grav_buf *b, size_t bytes, const char *what) {
+  return gg_reserve_spare(b, bytes, 2, what);
 }
 
 /** Copy bytes from host to the device on stream s, counted. */
@@ -296,8 +304,9 @@ extern "C" void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_t
   for (int attempt = 0;; attempt++) {
     struct gravity_walk_lists L;
     for (int k = 0; k < 4; k++) {
-      int *b =
-          (int *)gg_reserve(&gg->wlist[k], 2 * gg->wcap[k] * sizeof(int), "gravity walk lists");
+      /* (the capacity has the room to grow: wcap) */
+      int *b = (int *)gg_reserve_spare(&gg->wlist[k], 2 * gg->wcap[k] * sizeof(int), 0,
+                                       "gravity walk lists");
       L.target[k] = b;
       L.source[k] = b + gg->wcap[k];
       L.cap[k] = gg->wcap[k];
@@ -394,7 +403,9 @@ static struct gravity_gpu_groups gg_group_dev(struct gpu_grav *gg, int k, const 
   const int nc = gg->nr_cells;
   int *start = (int *)gg_reserve(&gg->start[k], ((size_t)nc + 1) * sizeof(int), "gravity lists");
   int *cursor = (int *)gg_reserve(&gg->cursor, ((size_t)nc + 1) * sizeof(int), "gravity lists");
-  int *out = (int *)gg_reserve(&gg->src[k], ntot * sizeof(int) + 16, "grouped gravity lists");
+  /* (the lists are the largest of gravity's buffers: an eighth to grow) */
+  int *out =
+      (int *)gg_reserve_spare(&gg->src[k], ntot * sizeof(int) + 16, 8, "grouped gravity lists");
   gpu_check(cudaMemsetAsync(start, 0, ((size_t)nc + 1) * sizeof(int), s));
   gpu_grav_count_kernel<<<gg_grid(n1), 256, 0, s>>>(t1, n1, start);
   gpu_check_launch(gpu_grav_count_kernel);
@@ -420,7 +431,8 @@ static struct gravity_gpu_groups gg_group_dev(struct gpu_grav *gg, int k, const 
   /* a cell's sources come in the order of the atomics (the walks' appends,
    * the scatter's cursors), which changes from run to run: sorted, the
    * sums of every cell, and so the run, are the same each time */
-  int *sorted = (int *)gg_reserve(&gg->sorted[k], ntot * sizeof(int) + 16, "sorted gravity lists");
+  int *sorted =
+      (int *)gg_reserve_spare(&gg->sorted[k], ntot * sizeof(int) + 16, 8, "sorted gravity lists");
   size_t tmp_bytes = 0;
   gpu_check(cub::DeviceSegmentedSort::SortKeys(NULL, tmp_bytes, out, sorted, (int)ntot, nc, start,
                                                start + 1, s));
