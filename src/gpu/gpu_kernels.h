@@ -173,31 +173,32 @@ void kick2_gpu_launch(cudaStream_t s, struct parts p, struct gpu_leaves_dev lv,
                       double *leaf_dt);
 
 /** In place, by one block of at most 1024 threads: c[0..n) become their
- *  exclusive prefix sums, c[n] the total.  Each thread sums a chunk, thread
- *  0 scans the chunks' sums, each thread then writes its chunk.  (The list
- *  builds of tasks/gravity/gpu_gravity.cu and gpu_lists.cu.) */
-static __device__ __forceinline__ void gpu_block_exclusive_scan(int *c, int n) {
-  __shared__ int part[1024];
+ *  exclusive prefix sums, c[n] the total (T: int or unsigned long long).  Each thread sums a chunk,
+ * thread 0 scans the chunks' sums, each thread then writes its chunk.  (The list builds of
+ * tasks/gravity/gpu_gravity.cu and gpu_lists.cu.) */
+template <typename T>
+static __device__ __forceinline__ void gpu_block_exclusive_scan(T *c, int n) {
+  __shared__ T part[1024];
   const int t = threadIdx.x, nt = blockDim.x;
   const int chunk = (n + nt - 1) / nt;
   const int b = min(t * chunk, n), e = min(b + chunk, n);
-  int sum = 0;
+  T sum = 0;
   for (int i = b; i < e; i++) sum += c[i];
   part[t] = sum;
   __syncthreads();
   if (t == 0) {
-    int run = 0;
+    T run = 0;
     for (int k = 0; k < nt; k++) {
-      const int v = part[k];
+      const T v = part[k];
       part[k] = run;
       run += v;
     }
     c[n] = run;
   }
   __syncthreads();
-  int run = part[t];
+  T run = part[t];
   for (int i = b; i < e; i++) {
-    const int v = c[i];
+    const T v = c[i];
     c[i] = run;
     run += v;
   }

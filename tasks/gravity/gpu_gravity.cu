@@ -366,23 +366,24 @@ extern "C" void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_t
 }
 
 /** Add 1 to cnt[t[k]] for k < n. */
-__global__ void gpu_grav_count_kernel(const int *__restrict__ t, size_t n, int *cnt) {
+__global__ void gpu_grav_count_kernel(const int *__restrict__ t, size_t n,
+                                      unsigned long long *cnt) {
   for (size_t k = blockIdx.x * (size_t)blockDim.x + threadIdx.x; k < n;
        k += (size_t)gridDim.x * blockDim.x)
-    atomicAdd(cnt + t[k], 1);
+    atomicAdd(cnt + t[k], 1ULL);
 }
 
 /** The counts c[0..n) become their exclusive prefix sums, c[n] the total (one block). */
-__global__ void gpu_grav_scan_kernel(int *c, int n) {
+__global__ void gpu_grav_scan_kernel(unsigned long long *c, int n) {
   gpu_block_exclusive_scan(c, n);
 }
 
 /** Entry k < n goes to the next free place of cell t[k]: out = s[k]. */
 __global__ void gpu_grav_scatter_kernel(const int *__restrict__ t, const int *__restrict__ s,
-                                        size_t n, int *cursor, int *out) {
+                                        size_t n, unsigned long long *cursor, int *out) {
   for (size_t k = blockIdx.x * (size_t)blockDim.x + threadIdx.x; k < n;
        k += (size_t)gridDim.x * blockDim.x)
-    out[atomicAdd(cursor + t[k], 1)] = s[k];
+    out[atomicAdd(cursor + t[k], 1ULL)] = s[k];
 }
 
 /** Grid of the grid-stride kernels over n entries. */
@@ -398,15 +399,14 @@ static struct gravity_gpu_groups gg_group_dev(struct gpu_grav *gg, int k, const 
                                               const int *s1, size_t n1, const int *a2,
                                               const int *b2, size_t n2, cudaStream_t s) {
   const size_t ntot = n1 + 2 * n2;
-  if (ntot > (size_t)INT_MAX)
-    error_exit("%zu recorded gravity interactions: more than the GPU lists hold", ntot);
   const int nc = gg->nr_cells;
-  int *start = (int *)gg_reserve(&gg->start[k], ((size_t)nc + 1) * sizeof(int), "gravity lists");
-  int *cursor = (int *)gg_reserve(&gg->cursor, ((size_t)nc + 1) * sizeof(int), "gravity lists");
+  typedef unsigned long long ull;
+  ull *start = (ull *)gg_reserve(&gg->start[k], ((size_t)nc + 1) * sizeof(ull), "gravity lists");
+  ull *cursor = (ull *)gg_reserve(&gg->cursor, ((size_t)nc + 1) * sizeof(ull), "gravity lists");
   /* (the lists are the largest of gravity's buffers: an eighth to grow) */
   int *out =
       (int *)gg_reserve_spare(&gg->src[k], ntot * sizeof(int) + 16, 8, "grouped gravity lists");
-  gpu_check(cudaMemsetAsync(start, 0, ((size_t)nc + 1) * sizeof(int), s));
+  gpu_check(cudaMemsetAsync(start, 0, ((size_t)nc + 1) * sizeof(ull), s));
   gpu_grav_count_kernel<<<gg_grid(n1), 256, 0, s>>>(t1, n1, start);
   gpu_check_launch(gpu_grav_count_kernel);
   gpu_grav_count_kernel<<<gg_grid(n2), 256, 0, s>>>(a2, n2, start);
@@ -415,7 +415,7 @@ static struct gravity_gpu_groups gg_group_dev(struct gpu_grav *gg, int k, const 
   gpu_check_launch(gpu_grav_count_kernel);
   gpu_grav_scan_kernel<<<1, 1024, 0, s>>>(start, nc);
   gpu_check_launch(gpu_grav_scan_kernel);
-  gpu_check(cudaMemcpyAsync(cursor, start, (size_t)nc * sizeof(int), cudaMemcpyDeviceToDevice, s));
+  gpu_check(cudaMemcpyAsync(cursor, start, (size_t)nc * sizeof(ull), cudaMemcpyDeviceToDevice, s));
   gpu_grav_scatter_kernel<<<gg_grid(n1), 256, 0, s>>>(t1, s1, n1, cursor, out);
   gpu_check_launch(gpu_grav_scatter_kernel);
   gpu_grav_scatter_kernel<<<gg_grid(n2), 256, 0, s>>>(a2, b2, n2, cursor, out);
@@ -428,6 +428,11 @@ static struct gravity_gpu_groups gg_group_dev(struct gpu_grav *gg, int k, const 
   v.source = out;
   gg->n_entries[k] = (double)ntot;
   if (!gg->reproducible) return v;
+  if (ntot > (size_t)INT_MAX)
+    error_exit(
+        "Gravity:gpu_reproducible: %zu gravity interactions of one kind, more than the "
+        "sort of the GPU lists takes (2^31 - 1); run without it",
+        ntot);
   /* a cell's sources come in the order of the atomics (the walks' appends,
    * the scatter's cursors), which changes from run to run: sorted, the
    * sums of every cell, and so the run, are the same each time */

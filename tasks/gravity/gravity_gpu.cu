@@ -40,15 +40,16 @@ __global__ void gravity_field_gpu_kernel(struct parts p, struct gravity_gpu_dev 
   const int lane = threadIdx.x & 31;
   const int c = (int)((blockIdx.x * (size_t)blockDim.x + threadIdx.x) >> 5);
   if (c >= l.nr_cells) return; /* the whole warp */
-  const int k0 = l.start[c], k1 = l.start[c + 1];
-  if (k0 == k1) return;
+  const int *__restrict__ src = l.source + l.start[c];
+  const int ns = (int)(l.start[c + 1] - l.start[c]); /* (one cell's: fewer than 2^31) */
+  if (ns == 0) return;
   const struct gravity_multipole *mc = d.mp + c;
   const double zc[3] = {mc->com[0], mc->com[1], mc->com[2]};
   struct gravity_field f;
 #pragma unroll
   for (int i = 0; i < GRAVITY_NCOMP(P); i++) f.F[i] = 0.0;
-  for (int k = k0 + lane; k < k1; k += 32) {
-    const int s = l.source[k];
+  for (int k = lane; k < ns; k += 32) {
+    const int s = src[k];
     double D[GRAVITY_NCOMP(P)];
     if (s >= 0) {
       /* M2L, one way: target c, source s, the tensor at z_c - z_s */
@@ -126,14 +127,15 @@ __global__ void gravity_p2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
   const size_t beg = d.offset[c];
   const int cnt = d.count[c];
   if (cnt == 0) return; /* the whole block */
-  const int k0 = l.start[c], k1 = l.start[c + 1];
+  const int *__restrict__ src = l.source + l.start[c];
+  const int ns = (int)(l.start[c + 1] - l.start[c]);
   const int B = (int)blockDim.x;
   const int slices = cnt >= B ? 1 : B / cnt;
   if (slices == 1) {
     for (int t = threadIdx.x; t < cnt; t += B) {
       const size_t i = beg + (size_t)t;
       double pot = 0.0, a[3] = {0.0, 0.0, 0.0};
-      gravity_p2p_sources(p, d, l.source, i, k0, k1, 1, &pot, a);
+      gravity_p2p_sources(p, d, src, i, 0, ns, 1, &pot, a);
       p.pot[i] += pot;
       p.gax[i] += a[0];
       p.gay[i] += a[1];
@@ -144,7 +146,7 @@ __global__ void gravity_p2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
   const int t = threadIdx.x, slice = t / cnt;
   double pot = 0.0, a[3] = {0.0, 0.0, 0.0};
   if (slice < slices)
-    gravity_p2p_sources(p, d, l.source, beg + (size_t)(t % cnt), k0 + slice, k1, slices, &pot, a);
+    gravity_p2p_sources(p, d, src, beg + (size_t)(t % cnt), slice, ns, slices, &pot, a);
   part_sum[4 * t] = pot;
   part_sum[4 * t + 1] = a[0];
   part_sum[4 * t + 2] = a[1];
@@ -175,9 +177,10 @@ __global__ void gravity_m2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
   const int c = leaf[blockIdx.x];
   const size_t beg = d.offset[c];
   const int cnt = d.count[c];
-  const int k0 = l.start[c], k1 = l.start[c + 1];
+  const int *__restrict__ src = l.source + l.start[c];
+  const int ns = (int)(l.start[c + 1] - l.start[c]);
   int any = 0;
-  for (int k = k0; k < k1 && !any; k++) any = l.source[k] < 0;
+  for (int k = 0; k < ns && !any; k++) any = src[k] < 0;
   if (!any) return;
   const int B = (int)blockDim.x;
   const struct gpu_lanes ln = gpu_lanes_of(cnt);
@@ -187,8 +190,8 @@ __global__ void gravity_m2p_gpu_kernel(struct parts p, struct gravity_gpu_dev d,
     const size_t i = beg + (size_t)t;
     const double xi[3] = {p.x[i], p.y[i], p.z[i]};
     double v[4] = {0.0, 0.0, 0.0, 0.0}; /* pot, a */
-    for (int k = k0 + sub; k < k1; k += g) {
-      const int s = l.source[k];
+    for (int k = sub; k < ns; k += g) {
+      const int s = src[k];
       if (s >= 0) continue;
       const struct gravity_multipole *ms = d.mp + (-1 - s);
       const double R[3] = {ms->com[0] - xi[0], ms->com[1] - xi[1], ms->com[2] - xi[2]};

@@ -62,8 +62,10 @@ struct gravity_gpu_up {
 
 /** Recorded interactions grouped by receiving cell (tasks/gravity/gpu_gravity.cu). */
 struct gravity_gpu_groups {
-  int nr_cells;      /**< cells */
-  const int *start;  /**< nr_cells + 1: cell c's sources are [start[c], start[c+1]) */
+  int nr_cells; /**< cells */
+  /** nr_cells + 1: cell c's sources are [start[c], start[c+1]) (64 bits:
+   *  at 1.1e8 particles the M2L and P2L lists pass 2^31 entries) */
+  const unsigned long long *start;
   const int *source; /**< the sources (struct gravity_gpu_rec) */
 };
 
