@@ -280,48 +280,135 @@ static size_t ic_dataset_length(struct ic_reader *r, hid_t grp, const char *name
   return (size_t)dims[0];
 }
 
-/** The particles sorted by ic_cmp_pos. */
-static const struct parts *ic_sort_parts;
-
-/** Order of particle indices by position (x, then y, then z). */
-static int ic_cmp_pos(const void *a, const void *b) {
-  const struct parts *p = ic_sort_parts;
-  const size_t i = *(const size_t *)a, j = *(const size_t *)b;
-  if (p->x[i] != p->x[j]) return p->x[i] < p->x[j] ? -1 : 1;
-  if (p->y[i] != p->y[j]) return p->y[i] < p->y[j] ? -1 : 1;
-  if (p->z[i] != p->z[j]) return p->z[i] < p->z[j] ? -1 : 1;
-  return 0;
+/** Sort the pairs (key[i], val[i]) by key, stably: least significant
+ *  digit first, 11 bits a pass (6 passes; a pass whose digit every key
+ *  shares is skipped).  tk, tv: room for n each.  Linear in n, where the
+ *  qsort of the two checks below was most of the read of a large file. */
+static void ic_sort_keys(uint64_t *key, size_t *val, uint64_t *tk, size_t *tv, size_t n) {
+  enum { BITS = 11, BUCKETS = 1 << BITS };
+  size_t *cnt = error_malloc(BUCKETS * sizeof *cnt, "initial conditions: key sort");
+  uint64_t *k0 = key, *k1 = tk;
+  size_t *v0 = val, *v1 = tv;
+  for (int shift = 0; shift < 64; shift += BITS) {
+    memset(cnt, 0, BUCKETS * sizeof *cnt);
+    for (size_t i = 0; i < n; i++) cnt[k0[i] >> shift & (BUCKETS - 1)]++;
+    if (cnt[k0[0] >> shift & (BUCKETS - 1)] == n) continue; /* one digit: in order */
+    size_t sum = 0;
+    for (int d = 0; d < BUCKETS; d++) {
+      const size_t c = cnt[d];
+      cnt[d] = sum;
+      sum += c;
+    }
+    for (size_t i = 0; i < n; i++) {
+      const size_t b = cnt[k0[i] >> shift & (BUCKETS - 1)]++;
+      k1[b] = k0[i];
+      v1[b] = v0[i];
+    }
+    uint64_t *tkk = k0;
+    k0 = k1, k1 = tkk;
+    size_t *tvv = v0;
+    v0 = v1, v1 = tvv;
+  }
+  if (k0 != key) {
+    memcpy(key, k0, n * sizeof *key);
+    memcpy(val, v0, n * sizeof *val);
+  }
+  free(cnt);
 }
 
-static int ic_cmp_int64(const void *a, const void *b) {
-  const int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
-  return (x > y) - (x < y);
+/** Sorted pairs (key, index) of n keys, from fill(i) (the arrays: 2n
+ *  each, the second halves the sort's work room). */
+struct ic_keys {
+  uint64_t *key;
+  size_t *idx;
+};
+
+static struct ic_keys ic_keys_new(size_t n) {
+  struct ic_keys k = {error_malloc(2 * n * sizeof *k.key, "initial conditions: sorted keys"),
+                      error_malloc(2 * n * sizeof *k.idx, "initial conditions: sorted keys")};
+  for (size_t i = 0; i < n; i++) k.idx[i] = i;
+  return k;
 }
 
-/** Particle ids must be unique: sort a copy, report the first duplicate with
- *  the indices of two particles holding it. */
+static void ic_keys_sort(struct ic_keys *k, size_t n) {
+  ic_sort_keys(k->key, k->idx, k->key + n, k->idx + n, n);
+}
+
+static void ic_keys_free(struct ic_keys *k) {
+  free(k->key);
+  free(k->idx);
+}
+
+/** Particle ids must be unique: sort them, report the smallest duplicate
+ *  with the first two particles (in file order) holding it. */
 static void ic_check_unique_ids(const char *path, const struct parts *p) {
   const size_t n = p->count;
   if (n < 2) return;
-  int64_t *s = error_malloc(n * sizeof *s, "sorted particle ids");
-  memcpy(s, p->id, n * sizeof *s);
-  qsort(s, n, sizeof *s, ic_cmp_int64);
+  struct ic_keys k = ic_keys_new(n);
+  /* (the sign bit flipped: the order of the signed ids) */
+  for (size_t i = 0; i < n; i++) k.key[i] = (uint64_t)p->id[i] ^ (UINT64_C(1) << 63);
+  ic_keys_sort(&k, n);
   for (size_t i = 1; i < n; i++)
-    if (s[i] == s[i - 1]) {
-      const int64_t dup = s[i];
-      free(s);
-      size_t a = n, b = n;
-      for (size_t j = 0; j < n && b == n; j++)
-        if (p->id[j] == dup) {
-          if (a == n)
-            a = j;
-          else
-            b = j;
-        }
+    if (k.key[i] == k.key[i - 1]) {
+      /* (stable: the first two in file order) */
+      const size_t a = k.idx[i - 1], b = k.idx[i];
+      const long long dup = (long long)p->id[a];
+      ic_keys_free(&k);
       error_exit("%s: particles %zu and %zu have the same id %lld (ids must be unique)", path, a, b,
-                 (long long)dup);
+                 dup);
     }
-  free(s);
+  ic_keys_free(&k);
+}
+
+/** The bits of x, -0 as +0 (equal positions, equal bits). */
+static uint64_t ic_bits(double x) {
+  x += 0.0;
+  uint64_t b;
+  memcpy(&b, &x, sizeof b);
+  return b;
+}
+
+/** A 64-bit mix (the finaliser of splitmix64, Steele et al. 2014). */
+static uint64_t ic_mix(uint64_t z) {
+  z = (z ^ (z >> 30)) * UINT64_C(0xbf58476d1ce4e5b9);
+  z = (z ^ (z >> 27)) * UINT64_C(0x94d049bb133111eb);
+  return z ^ (z >> 31);
+}
+
+static int ic_same_pos(const struct parts *p, size_t i, size_t j) {
+  return p->x[i] == p->x[j] && p->y[i] == p->y[j] && p->z[i] == p->z[j];
+}
+
+/** No two particles at the same position: their pair has no direction, and
+ *  a file with all particles at one point would cost minutes of smoothing
+ *  length iterations before failing.  Sorts a hash of each position (equal
+ *  positions, equal hashes) and compares the positions of equal hashes;
+ *  reports the first two particles in file order of the first such run. */
+static void ic_check_distinct_positions(const char *path, const struct parts *p) {
+  const size_t n = p->count;
+  if (n < 2) return;
+  struct ic_keys k = ic_keys_new(n);
+  /* (33 bits of the hash: 3 passes of the sort; a particle shares its
+   * hash with another of 1.1e8 at random once in 80) */
+  for (size_t i = 0; i < n; i++)
+    k.key[i] = ic_mix(ic_bits(p->x[i]) ^ ic_mix(ic_bits(p->y[i]) ^ ic_mix(ic_bits(p->z[i])))) >> 31;
+  ic_keys_sort(&k, n);
+  for (size_t r0 = 0, r1; r0 < n; r0 = r1) {
+    for (r1 = r0 + 1; r1 < n && k.key[r1] == k.key[r0];) r1++;
+    /* a run of one hash: distinct positions that share it are rare (the
+     * pairs are compared); equal ones show at the run's first pair */
+    for (size_t u = r0; u < r1; u++)
+      for (size_t v = u + 1; v < r1; v++)
+        if (ic_same_pos(p, k.idx[u], k.idx[v])) {
+          const size_t a = k.idx[u], b = k.idx[v]; /* (stable: a < b) */
+          ic_keys_free(&k);
+          error_exit(
+              "%s: particles %zu (id %lld) and %zu (id %lld) are at the same position (%g, %g, "
+              "%g)",
+              path, a, (long long)p->id[a], b, (long long)p->id[b], p->x[a], p->y[a], p->z[a]);
+        }
+  }
+  ic_keys_free(&k);
 }
 
 /** Allowed ranges of the fields read (inclusive); NaN and infinities are
@@ -334,34 +421,6 @@ static const struct {
     {"u", 0.0, INFINITY}, {"rho", 0.0, INFINITY},  {"dmg", 0.0, 1.0},
     {"dcbrt", 0.0, 1.0},  {"dmg_shear", 0.0, 1.0}, {"eps_p", 0.0, INFINITY},
 };
-
-static int ic_cmp_pos(const void *a, const void *b);
-
-/** No two particles at the same position: their pair has no direction, and
- *  a file with all particles at one point would cost minutes of smoothing
- *  length iterations before failing.  Sorts the indices by position. */
-static void ic_check_distinct_positions(const char *path, const struct parts *p) {
-  const size_t n = p->count;
-  if (n < 2) return;
-  size_t *idx = error_malloc(n * sizeof *idx, "sorted positions");
-  for (size_t i = 0; i < n; i++) idx[i] = i;
-  ic_sort_parts = p;
-  qsort(idx, n, sizeof *idx, ic_cmp_pos);
-  for (size_t k = 1; k < n; k++)
-    if (ic_cmp_pos(&idx[k - 1], &idx[k]) == 0) {
-      size_t a = idx[k - 1], b = idx[k];
-      free(idx);
-      if (a > b) {
-        const size_t t = a;
-        a = b, b = t;
-      }
-      error_exit(
-          "%s: particles %zu (id %lld) and %zu (id %lld) are at the same position (%g, %g, "
-          "%g)",
-          path, a, (long long)p->id[a], b, (long long)p->id[b], p->x[a], p->y[a], p->z[a]);
-    }
-  free(idx);
-}
 
 /** Check every particle; stop at the first offender. */
 static void ic_validate(const char *path, const struct parts *p, const struct ic_info *info,
@@ -380,7 +439,35 @@ static void ic_validate(const char *path, const struct parts *p, const struct ic
         krange[r] = k;
   }
   const int check_mat = kmat >= 0 && ic_field_read(info, kmat);
-  for (size_t i = 0; i < p->count; i++) {
+  /* the checks a field at a time first (tight loops: the loop below, every
+   * field of a particle, then the next, took most of the read); then that
+   * loop from the first particle that fails one, for the message of the
+   * first of its checks */
+  size_t first = p->count;
+  for (int k = 0; k < part_nr_fields; k++) {
+    const struct part_field *f = &part_fields[k];
+    if (!ic_field_read(info, k) || f->type != PART_DOUBLE) continue;
+    const double *a = part_field_array(p, f);
+    for (size_t i = 0; i < first; i++)
+      if (!isfinite(a[i])) first = i;
+  }
+  for (size_t r = 0; r < sizeof ic_ranges / sizeof ic_ranges[0]; r++) {
+    if (krange[r] < 0) continue;
+    const double *a = part_field_array(p, &part_fields[krange[r]]);
+    for (size_t i = 0; i < first; i++)
+      if (a[i] < ic_ranges[r].min || a[i] > ic_ranges[r].max) first = i;
+  }
+  for (size_t i = 0; i < first; i++)
+    if (!(p->m[i] > 0) || (check_h && !(p->h[i] > 0))) first = i;
+  for (size_t i = 0; check_mat && i < first; i++) {
+    int ok = p->mat[i] >= 0;
+    if (valid_mat) {
+      ok = 0;
+      for (int j = 0; j < n_valid_mat; j++) ok |= valid_mat[j] == p->mat[i];
+    }
+    if (!ok) first = i;
+  }
+  for (size_t i = first; i < p->count; i++) {
     for (int k = 0; k < part_nr_fields; k++) {
       const struct part_field *f = &part_fields[k];
       if (!ic_field_read(info, k) || f->type != PART_DOUBLE) continue;
