@@ -27,6 +27,41 @@ def good():
     }
 
 
+MANY = 600000
+
+
+def many():
+    """A valid IC of MANY particles at random positions (none equal)."""
+    rng = np.random.default_rng(5)
+    return {
+        "Coordinates": rng.random((MANY, 3)),
+        "Velocities": np.zeros((MANY, 3)),
+        "Masses": np.full(MANY, 1e-6),
+        "SmoothingLengths": np.full(MANY, 0.01),
+        "InternalEnergies": np.full(MANY, 1e3),
+        "Densities": np.full(MANY, 2700.0),
+        "ParticleIDs": np.arange(1, MANY + 1, dtype=np.int64),
+        "MaterialIDs": np.full(MANY, 101, dtype=np.int32),
+    }
+
+
+def _mix(z):
+    """splitmix64's finaliser (Steele et al. 2014), on uint64 arrays."""
+    with np.errstate(over="ignore"):
+        z = (z ^ (z >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
+        z = (z ^ (z >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
+    return z ^ (z >> np.uint64(31))
+
+
+def position_hash_collisions(x):
+    """Pairs of distinct positions that share the reader's 33-bit hash (the
+    positions as read: the file's SI metres in units of 100 m, -0 as +0)."""
+    b = [np.ascontiguousarray(x[:, k] / 100.0 + 0.0).view(np.uint64) for k in range(3)]
+    key = _mix(b[0] ^ _mix(b[1] ^ _mix(b[2]))) >> np.uint64(31)
+    _, counts = np.unique(key, return_counts=True)
+    return int((counts * (counts - 1) // 2).sum())
+
+
 def write(path, data, units=True, header=True, attrs=None):
     with h5py.File(path, "w") as f:
         if header:
@@ -150,6 +185,15 @@ def main():
     d = good()
     d["Coordinates"][13] = d["Coordinates"][6]
     write(p("same_position"), d)
+
+    # many particles, some of which share the reader's 33-bit hash of their
+    # position (ic_check_distinct_positions) without sharing the position:
+    # the file loads; with one true duplicate among them, that pair is named
+    d = many()
+    assert position_hash_collisions(d["Coordinates"]) > 0
+    write(p("many_hash_collisions"), d)
+    d["Coordinates"][400000] = d["Coordinates"][123456]
+    write(p("many_same_position"), d)
 
     with open(p("not_hdf5"), "w") as f:
         f.write("this is not an HDF5 file\n")
