@@ -316,8 +316,8 @@ static void ic_sort_keys(uint64_t *key, size_t *val, uint64_t *tk, size_t *tv, s
   free(cnt);
 }
 
-/** Sorted pairs (key, index) of n keys, from fill(i) (the arrays: 2n
- *  each, the second halves the sort's work room). */
+/** Pairs (key, particle index) for ic_sort_keys: 2n of each, the second
+ *  halves the sort's work room. */
 struct ic_keys {
   uint64_t *key;
   size_t *idx;

@@ -12,37 +12,22 @@ import numpy as np
 N = 20
 
 
-def good():
-    """Arrays of a valid IC (SI)."""
-    rng = np.random.default_rng(3)
+def good(n=N, seed=3, mass=0.05, h=0.1):
+    """Arrays of a valid IC (SI) of n particles at random positions."""
+    rng = np.random.default_rng(seed)
     return {
-        "Coordinates": rng.random((N, 3)),
-        "Velocities": rng.standard_normal((N, 3)),
-        "Masses": np.full(N, 0.05),
-        "SmoothingLengths": np.full(N, 0.1),
-        "InternalEnergies": np.full(N, 1e3),
-        "Densities": np.full(N, 2700.0),
-        "ParticleIDs": np.arange(1, N + 1, dtype=np.int64),
-        "MaterialIDs": np.full(N, 101, dtype=np.int32),
+        "Coordinates": rng.random((n, 3)),
+        "Velocities": rng.standard_normal((n, 3)),
+        "Masses": np.full(n, mass),
+        "SmoothingLengths": np.full(n, h),
+        "InternalEnergies": np.full(n, 1e3),
+        "Densities": np.full(n, 2700.0),
+        "ParticleIDs": np.arange(1, n + 1, dtype=np.int64),
+        "MaterialIDs": np.full(n, 101, dtype=np.int32),
     }
 
 
 MANY = 600000
-
-
-def many():
-    """A valid IC of MANY particles at random positions (none equal)."""
-    rng = np.random.default_rng(5)
-    return {
-        "Coordinates": rng.random((MANY, 3)),
-        "Velocities": np.zeros((MANY, 3)),
-        "Masses": np.full(MANY, 1e-6),
-        "SmoothingLengths": np.full(MANY, 0.01),
-        "InternalEnergies": np.full(MANY, 1e3),
-        "Densities": np.full(MANY, 2700.0),
-        "ParticleIDs": np.arange(1, MANY + 1, dtype=np.int64),
-        "MaterialIDs": np.full(MANY, 101, dtype=np.int32),
-    }
 
 
 def _mix(z):
@@ -189,7 +174,7 @@ def main():
     # many particles, some of which share the reader's 33-bit hash of their
     # position (ic_check_distinct_positions) without sharing the position:
     # the file loads; with one true duplicate among them, that pair is named
-    d = many()
+    d = good(MANY, seed=5, mass=1e-6, h=0.01)
     assert position_hash_collisions(d["Coordinates"]) > 0
     write(p("many_hash_collisions"), d)
     d["Coordinates"][400000] = d["Coordinates"][123456]
