@@ -788,8 +788,6 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   e->individual = !params_get_bool(params, "TimeIntegration:global_step");
   e->hp.bin_limit =
       e->individual ? (int)params_get_int(params, "TimeIntegration:max_bin_ratio") : 0;
-  e->rebase = e->individual && params_get_bool(params, "TimeIntegration:rebase_time_line");
-  e->rebase_margin = params_get_real(params, "TimeIntegration:rebase_margin");
   /* the time line of individual time steps (with the global step only to
    * report the bins that the particles' own limits would give, the
    * timesteps file) */
@@ -855,10 +853,6 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
     e->need_rebuild = (int)rs.need_rebuild;
     e->restart_stats_offset = rs.stats_offset;
     e->ti_current = rs.ti_current;
-    e->timeline.time_begin = rs.tl_begin;
-    e->timeline.time_base = rs.tl_base;
-    e->timeline.bin_max = (int)rs.tl_bin_max;
-    e->timeline.ti_end = rs.tl_ti_end;
     e->restarted = 1;
   } else {
     /* several ranks read the same file: rank 0 first, so that a problem
@@ -1132,10 +1126,6 @@ static void engine_write_restart(struct engine *e) {
   st.time = e->time;
   st.dt = e->dt;
   st.ti_current = e->ti_current;
-  st.tl_begin = e->timeline.time_begin;
-  st.tl_base = e->timeline.time_base;
-  st.tl_bin_max = e->timeline.bin_max;
-  st.tl_ti_end = e->timeline.ti_end;
   st.dt_next = e->dt_max;
   for (int t = 0; t < e->nr_tcells; t++)
     if (e->cell_dt_min[t] < st.dt_next) st.dt_next = e->cell_dt_min[t];
@@ -1376,13 +1366,12 @@ double engine_next_dt(struct engine *e) {
  *  comes first) into e->ti_next, and its length. */
 static double engine_next_dt_bins(struct engine *e) {
   const struct timeline *tl = &e->timeline;
-  const integertime_t end = tl->ti_end;
-  integertime_t ti = end, ti_last = -1;
+  const integertime_t end = (integertime_t)1 << TIMELINE_NR_BINS;
+  integertime_t ti = end;
   double dt_lim = HUGE_VAL;
   int64_t bin0 = 0;
   for (int t = 0; t < e->nr_tcells; t++) {
     if (e->cell_kick[t].ti_end_min < ti) ti = e->cell_kick[t].ti_end_min;
-    if (e->cell_kick[t].ti_end_max > ti_last) ti_last = e->cell_kick[t].ti_end_max;
     if (e->cell_dt_min[t] < dt_lim) dt_lim = e->cell_dt_min[t];
     bin0 += e->cell_bins[(size_t)t * (TIMELINE_NR_BINS + 1)];
   }
@@ -1396,32 +1385,10 @@ static double engine_next_dt_bins(struct engine *e) {
                bin0 > 0 ? 2.0 * tl->time_base : e->dt_min, why);
   }
   if (e->next_out < e->nr_out) {
-    /* (time_end, the last output time, is the line's own tick: a rounded
-     * one a tick off would end the run in the middle of every step) */
-    const integertime_t ti_out = e->out_times[e->next_out] >= e->time_end
-                                     ? end
-                                     : timeline_integer_time(tl, e->out_times[e->next_out]);
+    const integertime_t ti_out = timeline_integer_time(tl, e->out_times[e->next_out]);
     if (ti_out > e->ti_current && ti_out < ti) ti = ti_out;
   }
   e->ti_next = ti;
-  /* where every particle ends its step, the steps that begin there may
-   * take a new line whose bin edge lies at the smallest limit of the last
-   * kick less the margin (timeline_rebase), when that lengthens the
-   * shortest bin's step by more than a tenth of the margin */
-  e->tl_next = timeline_same(tl, ti);
-  e->rebasing = 0;
-  if (e->rebase && ti == ti_last && ti < end && dt_lim < HUGE_VAL) {
-    /* (the limit as a resumed run's first step sees it: at most dt_max,
-     * engine_write_restart's dt_next) */
-    const double dt_max = e->dt_max > 0.0 ? e->dt_max : e->time_end - e->time;
-    struct timeline_next n;
-    const double gain = timeline_rebase(tl, ti, fmin(dt_lim, dt_max) * (1.0 - e->rebase_margin),
-                                        e->time_end, dt_max, &n);
-    if (gain > 1.0 + 0.1 * e->rebase_margin) {
-      e->tl_next = n;
-      e->rebasing = 1;
-    }
-  }
   return (double)(ti - e->ti_current) * tl->time_base;
 }
 
@@ -1443,16 +1410,13 @@ static void engine_count_active_cells(struct engine *e) {
  *  step before the restart file left in e->cell_kick). */
 static void engine_bins_resume(struct engine *e) {
   integertime_t ti = INT64_MAX;
-  integertime_t last = -1;
   for (size_t i = 0; i < e->parts.count; i++) {
     const int b = e->parts.time_bin[i];
     const integertime_t end = timeline_next_sync(b > 0 ? b : 1, e->ti_current);
     if (end < ti) ti = end;
-    if (end > last) last = end;
   }
   for (int t = 0; t < e->nr_tcells; t++) {
     e->cell_kick[t].ti_end_min = t == 0 ? ti : INT64_MAX;
-    e->cell_kick[t].ti_end_max = t == 0 ? last : -1;
     e->cell_kick[t].active = 0;
   }
   memset(e->cell_bins, 0, (size_t)e->nr_tcells * (TIMELINE_NR_BINS + 1) * sizeof(int64_t));
@@ -1502,8 +1466,6 @@ static void engine_first_force(struct engine *e) {
   e->first_force = 1;
   e->dt = 0.0;
   e->ti_next = e->ti_current;
-  e->tl_next = timeline_same(&e->timeline, e->ti_current);
-  e->rebasing = 0;
   engine_family_hooks(e, task_family_at_first_force);
   e->gp.replay = 0;
   /* the adaptive criterion's scale |ga| for the first evaluation (issue 25):
@@ -1530,8 +1492,9 @@ static int engine_step_kdk(struct engine *e) {
   engine_watchdog_after_drift(e);
   if (e->individual) {
     e->ti_current = e->ti_next;
-    e->time = e->ti_current == e->timeline.ti_end ? e->time_end
-                                                  : timeline_time(&e->timeline, e->ti_current);
+    e->time = e->ti_current == (integertime_t)1 << TIMELINE_NR_BINS
+                  ? e->time_end
+                  : timeline_time(&e->timeline, e->ti_current);
   } else {
     e->time += e->dt;
   }
@@ -1559,14 +1522,6 @@ static int engine_step_kdk(struct engine *e) {
   engine_run_phase(e, ENGINE_PHASE_FORCE);
   e->t_eval += error_walltime() - wf;
   e->nr_eval++;
-  if (e->rebasing) {
-    /* the kick put every particle's next step on the new line, which
-     * begins now */
-    e->timeline = e->tl_next.tl;
-    e->ti_current = e->ti_next = e->tl_next.ti;
-    e->rebasing = 0;
-    e->nr_rebases++;
-  }
   return 1;
 }
 
@@ -1686,12 +1641,11 @@ void engine_run(struct engine *e) {
   if (e->individual)
     error_log(0,
               "time bins: %lld particle updates in %ld steps, %.1f%% of the particles per step on "
-              "average; %ld new time lines (TimeIntegration:rebase_time_line)",
+              "average",
               e->updates, e->step,
               e->step > 0 && e->parts.count > 0
                   ? 100.0 * (double)e->updates / ((double)e->step * (double)e->parts.count)
-                  : 0.0,
-              e->nr_rebases);
+                  : 0.0);
   else if (e->bin_all > 0.0)
     error_log(0,
               "time bins: individual time steps (issue 20; TimeIntegration:global_step) would have "

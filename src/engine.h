@@ -106,19 +106,13 @@ struct engine {
   int64_t *cell_bins;           /**< per task cell, TIMELINE_NR_BINS + 1 counts of its particles by
                                      the time bin of their own limit (CPU kick; issue 20) */
   int64_t bins[TIMELINE_NR_BINS + 1]; /**< the sum of cell_bins after the last step */
-  double bin_updates;           /**< sum over the CPU steps of this process of the particle updates
-                                     that time bins would have done (timeline_active_fraction) */
-  double bin_all;               /**< and of the particle updates done */
-  int individual;               /**< TimeIntegration:global_step false: individual time steps in
-                                     time bins (drift_cell_bins_cpu, kick2_cell_bins_cpu) */
-  integertime_t ti_current;     /**< with individual steps: the time on the time line */
-  integertime_t ti_next;        /**< and the end of the step being taken (the drift's target) */
-  struct timeline_next tl_next; /**< the line of the steps that begin at this step's kick: the
-                                     same, or a new one (timeline_rebase) */
-  int rebase;                   /**< TimeIntegration:rebase_time_line */
-  double rebase_margin;         /**< TimeIntegration:rebase_margin */
-  int rebasing;                 /**< 1: this step's kick begins tl_next, a new line */
-  long nr_rebases;              /**< new time lines begun in this process's run */
+  double bin_updates;       /**< sum over the CPU steps of this process of the particle updates
+                                 that time bins would have done (timeline_active_fraction) */
+  double bin_all;           /**< and of the particle updates done */
+  int individual;           /**< TimeIntegration:global_step false: individual time steps in
+                                 time bins (drift_cell_bins_cpu, kick2_cell_bins_cpu) */
+  integertime_t ti_current; /**< with individual steps: the time on the time line */
+  integertime_t ti_next;    /**< and the end of the step being taken (the drift's target) */
   struct timeline_sums *cell_kick; /**< per task cell, what its kick with bins left */
   int64_t nr_active;               /**< particles kicked at the end of the last step */
   int need_rebuild;                /**< set by tasks (atomic): h outgrew the cells */

@@ -17,18 +17,6 @@
  * may move to a shorter bin at any of its steps' ends, to a longer one only
  * at a time that is a multiple of the longer step (timeline_bin_allowed).
  *
- * A particle's step is its limit rounded down to a power of two of ticks,
- * so the shortest bin in use steps by between half its particles' smallest
- * limit and that limit: on average about 0.7 of it, and 0.5 when the limit
- * stays just below a bin's edge for a long time (a planetary impact after
- * its contact: 1.86 times the global step's steps).  At a step's end where
- * every particle ends its step the line can begin again
- * (timeline_rebase, TimeIntegration:rebase_time_line): a new line from
- * that time whose ticks put the edge of a bin at the smallest limit less a
- * margin, so that the shortest bin steps by nearly its limit.  Its longest
- * step still divides the rest of the run, so that every particle ends its
- * step at time_end, whose tick the line holds (ti_end).
- *
  * Pure functions only, usable on the host and the device. */
 #ifndef BOLIDE_TIMELINE_H
 #define BOLIDE_TIMELINE_H
@@ -47,23 +35,15 @@ typedef int64_t integertime_t;
 
 /** The time line of a run. */
 struct timeline {
-  double time_begin;    /**< TimeIntegration:time_begin: tick 0 */
-  double time_base;     /**< physical length of one tick */
-  int bin_max;          /**< longest bin allowed: its step <= TimeIntegration:dt_max */
-  integertime_t ti_end; /**< the tick of time_end, a multiple of the step of bin_max */
+  double time_begin; /**< TimeIntegration:time_begin: tick 0 */
+  double time_base;  /**< physical length of one tick */
+  int bin_max;       /**< longest bin allowed: its step <= TimeIntegration:dt_max */
 };
-
-/** A new time line keeps the rest of the run at least this many of its
- *  longest step (timeline_rebase), so that the rounding of their number
- *  shortens the steps by at most 1/16. */
-#define TIMELINE_REBASE_STEPS 16
 
 /** What a cell's kick with time bins leaves for the engine
  *  (kick2_cell_bins_cpu). */
 struct timeline_sums {
   integertime_t ti_end_min; /**< the earliest end of a step of its particles (INT64_MAX: none) */
-  integertime_t ti_end_max; /**< the latest (-1: none); equal to the earliest over every cell
-                                 when every particle ends its step together */
   int64_t active;           /**< particles that ended their step at ti_new */
 };
 
@@ -118,7 +98,6 @@ BOLIDE_INLINE struct timeline timeline_make(double time_begin, double time_end, 
   tl.time_base = ldexp(time_end - time_begin, -TIMELINE_NR_BINS);
   tl.bin_max = TIMELINE_NR_BINS;
   while (tl.bin_max > 1 && ldexp(tl.time_base, tl.bin_max) > dt_max) tl.bin_max--;
-  tl.ti_end = (integertime_t)1 << TIMELINE_NR_BINS;
   return tl;
 }
 
@@ -180,67 +159,6 @@ BOLIDE_INLINE int timeline_bin_allowed(int old_bin, int new_bin, integertime_t t
   const int sync = timeline_max_active_bin(ti);
   const int b = sync > old_bin ? sync : old_bin;
   return new_bin < b ? new_bin : b;
-}
-
-/** The time line of the particles' steps that begin at a kick
- *  (kick2_part_bins): the line of the step that ends there, or a new one
- *  that begins there (timeline_rebase). */
-struct timeline_next {
-  struct timeline tl; /**< the line */
-  integertime_t ti;   /**< the kick's time on it (0 on a new line) */
-  int shift;          /**< a step of bin b on the old line is at least one of bin b - shift on
-                           this one (0: the same line) */
-};
-
-/** The line tl itself at the kick's time ti (no new line). */
-BOLIDE_INLINE struct timeline_next timeline_same(const struct timeline *tl, integertime_t ti) {
-  struct timeline_next n;
-  n.tl = *tl;
-  n.ti = ti;
-  n.shift = 0;
-  return n;
-}
-
-/** A new time line that begins at tick ti of tl, a time at which every
- *  particle ends its step, for the rest of the run to time_end.  Its bin k
- *  steps by dt_anchor or a little less, dt_anchor (rest / (N 2^s)) with N
- *  the number of steps of its longest bin, k + s, in the rest; s as large
- *  as keeps N >= TIMELINE_REBASE_STEPS (0 near the end of the run) and the
- *  longest step within dt_max.  So time_end is the tick N 2^(k + s), which
- *  ends every particle's step, and a particle whose limit is dt_anchor or
- *  a little more takes bin k.  k: as large as lets the rest fit in
- *  2^TIMELINE_NR_BINS ticks.  Into *n with n->ti = 0; returns the step of
- *  the bin of a limit of dt_anchor on the new line over that on tl, or 0
- *  when there is no new line (the rest of the run is not positive, or too
- *  long for dt_anchor). */
-BOLIDE_INLINE double timeline_rebase(const struct timeline *tl, integertime_t ti, double dt_anchor,
-                                     double time_end, double dt_max, struct timeline_next *n) {
-  const double t0 = timeline_time(tl, ti);
-  const double rest = time_end - t0;
-  if (dt_max < dt_anchor) dt_anchor = dt_max;
-  if (!(dt_anchor > 0.0) || !(rest > 0.0) || !isfinite(dt_anchor) || ti >= tl->ti_end) return 0.0;
-  const double x = rest / dt_anchor; /* steps of dt_anchor in the rest */
-  if (!(x < ldexp(1.0, TIMELINE_NR_BINS - 2))) return 0.0;
-  int s = 0;
-  while (ldexp(dt_anchor, s + 1) <= dt_max && x >= ldexp((double)TIMELINE_REBASE_STEPS, s + 1)) s++;
-  const double N = ceil(ldexp(x, -s)); /* steps of the longest bin, >= 1 */
-  int eN;
-  const double mN = frexp(N, &eN); /* N <= 2^eN */
-  const int cN = mN == 0.5 ? eN - 1 : eN;
-  const int k = TIMELINE_NR_BINS - s - cN;
-  if (k < 1) return 0.0;
-  n->tl.time_begin = t0;
-  n->tl.time_base = rest / ldexp(N, s + k);
-  n->tl.bin_max = k + s;
-  n->tl.ti_end = (integertime_t)N << (s + k);
-  n->ti = 0;
-  /* shift = ceil(log2(new tick / old tick)) */
-  int e2;
-  const double m = frexp(n->tl.time_base / tl->time_base, &e2);
-  n->shift = m == 0.5 ? e2 - 1 : e2;
-  const int b_old = timeline_bin(tl, dt_anchor);
-  if (b_old < 1) return 2.0;
-  return timeline_dt_of_bin(&n->tl, k) / timeline_dt_of_bin(tl, b_old);
 }
 
 /** Fraction of particle updates that time bins would do, over one step of

@@ -352,7 +352,7 @@ static struct gpu_leaves_dev gpu_upload_cells(struct gpu *g, const struct gpu_le
                         (lv->lists ? 0 : n + 1) * sizeof(int),
                         nn * sizeof(int),
                         nn * sizeof(unsigned char),
-                        4 * n * sizeof(double)};
+                        3 * n * sizeof(double)};
   size_t off[8], total = 0;
   for (int k = 0; k < 8; k++) {
     off[k] = total;
@@ -587,7 +587,7 @@ extern "C" void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu
   double *leaf_dt = g->leaf_dt;
   if (!resident) gpu_copy_fields(g, p, g->out, nr_out, 0);
   gpu_check(cudaMemcpyAsync(leaf_dt_min, leaf_dt,
-                            (g->bins.on ? 4 : 1) * (size_t)lv->n * sizeof(double),
+                            (g->bins.on ? 3 : 1) * (size_t)lv->n * sizeof(double),
                             cudaMemcpyDeviceToHost, s));
   gpu_check(cudaEventRecord(g->ev[GPU_T_N], s));
   gpu_check(cudaStreamSynchronize(s));

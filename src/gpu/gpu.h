@@ -97,9 +97,8 @@ void gpu_set_flaws(struct gpu *g, const double *eps, size_t n);
  *  resident = 1: the device arrays are current (gpu_upload_all), nothing
  *  but the leaf time steps comes back.  leaf_dt_min[L]: smallest new time
  *  step of leaf L; with time bins (gpu_set_bins) also, bit for bit in the
- *  doubles, the int64 earliest end of a step leaf_dt_min[n + L], the
- *  int64 number of particles kicked leaf_dt_min[2 n + L] and the int64
- *  latest end of a step leaf_dt_min[3 n + L] (n leaves).  A particle whose h does not
+ *  doubles, the int64 earliest end of a step leaf_dt_min[n + L] and the
+ *  int64 number of particles kicked leaf_dt_min[2 n + L] (n leaves).  A particle whose h does not
  * converge in hp->max_iterations stops the run with an error. */
 void gpu_force_phase(struct gpu *g, struct parts *p, const struct gpu_leaves *lv,
                      const struct hydro_props *hp, const struct material_table *mats,
@@ -142,7 +141,6 @@ struct gpu_bins {
   integertime_t ti_old; /**< the drift's start on the time line */
   integertime_t ti_new; /**< the drift's end, the kick's time */
   struct timeline tl;   /**< the run's time line */
-  struct timeline_next next; /**< the line of the steps that begin at the kick (kick2_part_bins) */
 };
 
 /** The time bins of the next FORCE phases' kicks (NULL or on = 0: the

@@ -565,7 +565,7 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
       /* same leaves and lists; only the cells' caps moved */
       for (int l = 0; l < gc->n; l++) gc->h_cap[l] = tc_h_cap[gc->top[l]];
     }
-    leaf_dt = error_realloc(leaf_dt, 4 * (gc->n + 1) * sizeof(double), "GPU leaf time steps");
+    leaf_dt = error_realloc(leaf_dt, 3 * (gc->n + 1) * sizeof(double), "GPU leaf time steps");
     const struct gpu_leaves lv = {
         gc->n,         gc->offset,   gc->count,     gc->h_cap,  gc->h_list_cap,
         gc->ngb_start, gc->ngb_leaf, gc->ngb_shift, gc->nr_ngb, gc->host_lists ? NULL : gc->dev};
@@ -585,15 +585,13 @@ int gpu_cells_force(struct gpu *g, struct gpu_cells *gc, struct parts *p, struct
   for (int l = 0; l < gc->n; l++)
     if (leaf_dt[l] < tc_dt_min[gc->top[l]]) tc_dt_min[gc->top[l]] = leaf_dt[l];
   if (tc_sums) {
-    for (int t = 0; t < nr; t++) tc_sums[t] = (struct timeline_sums){INT64_MAX, -1, 0};
+    for (int t = 0; t < nr; t++) tc_sums[t] = (struct timeline_sums){INT64_MAX, 0};
     for (int l = 0; l < gc->n; l++) {
-      int64_t ti_end, kicked, ti_last;
+      int64_t ti_end, kicked;
       memcpy(&ti_end, &leaf_dt[gc->n + l], sizeof ti_end);
       memcpy(&kicked, &leaf_dt[2 * gc->n + l], sizeof kicked);
-      memcpy(&ti_last, &leaf_dt[3 * gc->n + l], sizeof ti_last);
       struct timeline_sums *ts = &tc_sums[gc->top[l]];
       if (ti_end < ts->ti_end_min) ts->ti_end_min = ti_end;
-      if (ti_last > ts->ti_end_max) ts->ti_end_max = ti_last;
       ts->active += kicked;
     }
   }
@@ -980,8 +978,7 @@ static void gpu_engine_grav_cpu(struct engine *e, int on_gpu) {
 
 /** The engine's time bins for the GPU's next drift or kick (gpu_set_bins). */
 static void gpu_engine_set_bins(struct engine *e) {
-  const struct gpu_bins b = {e->individual, e->first_force, e->ti_current,
-                             e->ti_next,    e->timeline,    e->tl_next};
+  const struct gpu_bins b = {e->individual, e->first_force, e->ti_current, e->ti_next, e->timeline};
   gpu_set_bins(e->gpu->gpu, &b);
 }
 

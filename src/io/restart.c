@@ -1,4 +1,4 @@
-/* Restart files (see restart.h).  Layout of version 8:
+/* Restart files (see restart.h).  Layout of version 7:
  *
  *   header (RESTART_HEADER_BYTES = 128): magic "BOLIDE-RESTART\n\0" (16),
  *     uint32 version, uint32 byte-order mark 0x01020304, char build[48]
@@ -20,10 +20,8 @@
  * Version 3 (before the far field) is refused with one line: a run
  * resumed from it would not repeat the uninterrupted run's reuse; version
  * 4 (before the integer time and the particles' time bins of individual
- * time steps) likewise, version 5 (before the ranks of the run in the
- * state, which a run resumed on another number of ranks reads), and
- * version 7 (before the time line, which a run in time bins may begin
- * anew, in the state). */
+ * time steps) likewise, and version 5 (before the ranks of the run in the
+ * state, which a run resumed on another number of ranks reads). */
 #include "src/io/restart.h"
 
 #include <errno.h>
@@ -455,15 +453,6 @@ int restart_read_buffer(const void *buf, size_t len, const char *name,
   if (st->stats_offset < 0) FAIL("statistics file offset %lld", (long long)st->stats_offset);
   if (st->ti_current < 0 || st->ti_current > ((int64_t)1 << TIMELINE_NR_BINS))
     FAIL("integer time %lld (must be in [0, 2^%d])", (long long)st->ti_current, TIMELINE_NR_BINS);
-  if (!isfinite(st->tl_begin) || !isfinite(st->tl_base) || !(st->tl_base > 0.0) ||
-      st->tl_bin_max < 1 || st->tl_bin_max > TIMELINE_NR_BINS || st->tl_ti_end < 1 ||
-      st->tl_ti_end > ((int64_t)1 << TIMELINE_NR_BINS) || st->ti_current > st->tl_ti_end ||
-      st->tl_ti_end % ((int64_t)1 << st->tl_bin_max) != 0)
-    FAIL(
-        "time line from %g in ticks of %g, longest bin %lld, end at tick %lld, now %lld (must be "
-        "finite, > 0, a bin in 1 .. %d whose step divides the end, now <= end <= 2^%d)",
-        st->tl_begin, st->tl_base, (long long)st->tl_bin_max, (long long)st->tl_ti_end,
-        (long long)st->ti_current, TIMELINE_NR_BINS, TIMELINE_NR_BINS);
   if (st->nr_ranks < 1 || st->nr_ranks > RESTART_MAX_RANKS || st->rank < 0 ||
       st->rank >= st->nr_ranks)
     FAIL("written by rank %lld of %lld ranks", (long long)st->rank, (long long)st->nr_ranks);

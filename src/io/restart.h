@@ -29,7 +29,7 @@
 #include "src/budget.h"
 #include "src/part.h"
 
-#define RESTART_VERSION 8
+#define RESTART_VERSION 7
 #define RESTART_HEADER_BYTES 128
 
 /** The engine's scalars saved with the particles (every member 8 bytes: no
@@ -56,11 +56,6 @@ struct restart_state {
   int64_t nr_ranks;              /**< MPI ranks of the run that wrote the file (since format 6;
                                       1: STEM.bin, more: STEM_rankNNNN.bin, one per rank) */
   int64_t rank;                  /**< the rank that wrote it, 0 .. nr_ranks - 1 */
-  double tl_begin;               /**< the integer time line's tick 0 (since format 8: a run in
-                                      time bins begins new lines, timeline_rebase) */
-  double tl_base;                /**< its tick */
-  int64_t tl_bin_max;            /**< its longest bin */
-  int64_t tl_ti_end;             /**< its tick of time_end */
 };
 
 /** The cells' h_max and dx_max at the end of the step (space.cells order). */

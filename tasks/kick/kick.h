@@ -101,18 +101,15 @@ BOLIDE_INLINE double kick2_part(struct parts *BOLIDE_RESTRICT p, size_t i, doubl
  *  line tl (TimeIntegration:global_step: false): a particle whose step ends
  *  at ti_new (or any, first: the first force computation, no kick) takes
  *  its second half kick by half its step (kick2_part) and the time bin of
- *  its new limit on the line of its next step, tn (timeline_bin; a longer
- *  bin only where tn->ti allows it, timeline_bin_allowed), its new limit in
- *  *dt; the others, in the middle of their step, nothing (*dt = 1e300).
- *  tn is tl at ti_new, or at a time where every particle ends its step a
- *  new line (timeline_rebase), on which the limiter's neighbour bin (of the
- *  old line) counts tn->shift bins lower.  *ti_end: the end of its step on
- *  tn's line.  Returns 1 when it was kicked. */
+ *  its new limit (timeline_bin; a longer bin only where ti_new allows it,
+ *  timeline_bin_allowed), its new limit in *dt; the others, in the middle
+ *  of their step, nothing (*dt = 1e300).  *ti_end: the
+ *  end of its step.  Returns 1 when it was kicked. */
 BOLIDE_INLINE int kick2_part_bins(struct parts *BOLIDE_RESTRICT p, size_t i,
                                   const struct hydro_props *hp, const struct material_table *mats,
                                   const struct timestep_props *tp, const struct timeline *tl,
-                                  integertime_t ti_new, const struct timeline_next *tn, int first,
-                                  integertime_t *ti_end, double *dt) {
+                                  integertime_t ti_new, int first, integertime_t *ti_end,
+                                  double *dt) {
   const int old_bin = p->time_bin[i];
   const integertime_t step = timeline_step_of_bin(old_bin > 0 ? old_bin : 1);
   if (!first && ti_new % step != 0) {
@@ -145,18 +142,15 @@ BOLIDE_INLINE int kick2_part_bins(struct parts *BOLIDE_RESTRICT p, size_t i,
     return 0;
   }
   *dt = kick2_part(p, i, first ? 0.0 : 0.5 * (double)step * tl->time_base, hp, mats, tp);
-  int want = timeline_bin(&tn->tl, *dt);
+  int want = timeline_bin(tl, *dt);
   /* the limiter: at most bin_limit bins longer than the shortest neighbour's
-   * (the force loop's, on the old line; none in a gravity-only run) */
-  if (hp->bin_limit && hp->enabled && !first &&
-      p->ngb_bin_min[i] - tn->shift + hp->bin_limit < want) {
-    want = p->ngb_bin_min[i] - tn->shift + hp->bin_limit;
-    if (want < 1) want = 1;
-  }
+   * (the force loop's; none in a gravity-only run) */
+  if (hp->bin_limit && hp->enabled && !first && p->ngb_bin_min[i] + hp->bin_limit < want)
+    want = p->ngb_bin_min[i] + hp->bin_limit;
   p->wake[i] = 0;
-  const int bin = first ? want : timeline_bin_allowed(old_bin, want, tn->ti);
+  const int bin = first ? want : timeline_bin_allowed(old_bin, want, ti_new);
   p->time_bin[i] = bin;
-  *ti_end = tn->ti + timeline_step_of_bin(bin > 0 ? bin : 1);
+  *ti_end = ti_new + timeline_step_of_bin(bin > 0 ? bin : 1);
   return 1;
 }
 

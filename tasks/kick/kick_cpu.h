@@ -28,16 +28,14 @@ double kick2_cell_cpu(struct parts *p, const struct cell *c, double dt_kick,
  *  false) at ti_new on the time line tl: a particle of c whose step ends
  *  at ti_new (or every one, first: the first force computation, no kick)
  *  takes its second half kick by half its step (kick2_part) and the time
- *  bin of its new limit on the line tn of the steps that begin now
- *  (kick2_part_bins); the others, in the middle of their step, only the
- *  rates (kick2_rates).  bins (TIMELINE_NR_BINS + 1): particles by bin
- *  after the kick; sums: the earliest and latest ends of their steps on
- *  tn's line, and the number kicked; returns the smallest new time-step
+ *  bin of its new limit (timeline_bin; a longer bin only where ti_new
+ *  allows it, timeline_bin_allowed); the others, in the middle of their
+ *  step, only the rates (kick2_rates).  bins (TIMELINE_NR_BINS + 1):
+ *  particles by bin after the kick; returns the smallest new time-step
  *  limit of those kicked (1e300: none). */
 double kick2_cell_bins_cpu(struct parts *p, const struct cell *c, const struct hydro_props *hp,
                            const struct material_table *mats, const struct timestep_props *tp,
-                           const struct timeline *tl, integertime_t ti_new,
-                           const struct timeline_next *tn, int first, int64_t *bins,
-                           struct timeline_sums *sums);
+                           const struct timeline *tl, integertime_t ti_new, int first,
+                           int64_t *bins, struct timeline_sums *sums);
 
 #endif

@@ -4,8 +4,8 @@
  * (timestep_part: hydrodynamic, damage and gravitational, the softening
  * tied to h included); each block reduces the smallest time step of its
  * leaf.  With time bins (gpu_set_bins) kick2_part_bins, the CPU task's
- * function, and each block also the earliest and the latest end of a step
- * and the number of particles kicked. */
+ * function, and each block also the earliest end of a step and the number
+ * of particles kicked. */
 #include <limits.h>
 
 #include "src/gpu/gpu_kernels.h"
@@ -17,7 +17,7 @@ __global__ void kick2_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, struc
                                  double damage_max_change, struct gpu_gravity grav,
                                  struct gpu_bins bins, double *leaf_dt) {
   __shared__ double dt_min[GPU_BLOCK];
-  __shared__ long long ti_min[GPU_BLOCK], ti_max[GPU_BLOCK], kicked[GPU_BLOCK];
+  __shared__ long long ti_min[GPU_BLOCK], kicked[GPU_BLOCK];
   const int L = blockIdx.x;
   const size_t beg = lv.offset[L];
   /* the GPU runs only with hydrodynamics on (gpu_engine.c); porous rates
@@ -31,17 +31,16 @@ __global__ void kick2_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, struc
   tp.grav_h_factor = grav.h_factor;
   tp.grav_eta = grav.eta;
   double dt = 1e300;
-  long long ti = LLONG_MAX, tl = -1, n = 0;
+  long long ti = LLONG_MAX, n = 0;
   for (int t = threadIdx.x; t < lv.count[L]; t += blockDim.x) {
     /* (no kick: a foreign copy of several MPI ranks, as kick2_cell_cpu) */
     if (PART_IS_NOT_OWNED(&p, beg + (size_t)t)) continue;
     double d;
     if (bins.on) {
       integertime_t ti_end;
-      n += kick2_part_bins(&p, beg + (size_t)t, &hp, mats, &tp, &bins.tl, bins.ti_new, &bins.next,
-                           bins.first, &ti_end, &d);
+      n += kick2_part_bins(&p, beg + (size_t)t, &hp, mats, &tp, &bins.tl, bins.ti_new, bins.first,
+                           &ti_end, &d);
       if (ti_end < ti) ti = ti_end;
-      if (ti_end > tl) tl = ti_end;
     } else {
       d = kick2_part(&p, beg + (size_t)t, dt_kick, &hp, mats, &tp);
     }
@@ -49,7 +48,6 @@ __global__ void kick2_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, struc
   }
   dt_min[threadIdx.x] = dt;
   ti_min[threadIdx.x] = ti;
-  ti_max[threadIdx.x] = tl;
   kicked[threadIdx.x] = n;
   __syncthreads();
   for (int w = blockDim.x / 2; w > 0; w /= 2) {
@@ -58,8 +56,6 @@ __global__ void kick2_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, struc
         dt_min[threadIdx.x] = dt_min[threadIdx.x + w];
       if (ti_min[threadIdx.x + w] < ti_min[threadIdx.x])
         ti_min[threadIdx.x] = ti_min[threadIdx.x + w];
-      if (ti_max[threadIdx.x + w] > ti_max[threadIdx.x])
-        ti_max[threadIdx.x] = ti_max[threadIdx.x + w];
       kicked[threadIdx.x] += kicked[threadIdx.x + w];
     }
     __syncthreads();
@@ -69,7 +65,6 @@ __global__ void kick2_gpu_kernel(struct parts p, struct gpu_leaves_dev lv, struc
     if (bins.on) {
       leaf_dt[lv.n + L] = __longlong_as_double(ti_min[0]);
       leaf_dt[2 * lv.n + L] = __longlong_as_double(kicked[0]);
-      leaf_dt[3 * lv.n + L] = __longlong_as_double(ti_max[0]);
     }
   }
 }

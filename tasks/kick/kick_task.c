@@ -37,7 +37,7 @@ void kick2_task(struct engine *e, struct task *tk) {
   if (e->individual)
     e->cell_dt_min[t] =
         kick2_cell_bins_cpu(&e->parts, e->tcells[t], &e->hp, e->mats, &tp, &e->timeline, e->ti_next,
-                            &e->tl_next, e->first_force, bins, &e->cell_kick[t]);
+                            e->first_force, bins, &e->cell_kick[t]);
   else
     e->cell_dt_min[t] =
         kick2_cell_cpu(&e->parts, e->tcells[t],

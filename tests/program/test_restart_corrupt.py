@@ -34,7 +34,7 @@ def checksum(buf):
 
 
 def layout(buf):
-    """Offsets of the parts of a version-8 file (the far-field flag: the last
+    """Offsets of the parts of a version-7 file (the far-field flag: the last
     8 bytes before the checksum when the file holds no far field)."""
     count = struct.unpack_from("<Q", buf, 72)[0]
     nf = struct.unpack_from("<i", buf, 128)[0]
@@ -45,7 +45,7 @@ def layout(buf):
         fields.append((name, size))
         pos += 36
     state = pos
-    pos += 376
+    pos += 344
     plen = struct.unpack_from("<Q", buf, pos)[0]
     params = pos
     pos += 8 + plen
@@ -68,7 +68,7 @@ def reseal(buf):
 STATE = dict(time=0, dt=8, dt_next=16, step=24, updates=32, nr_removed=40, snap_index=48, next_out=56,
              next_stats=64, box=72, periodic=96, removed_m=104, start_E_tot=184, start_set=264,
              start_com=272, rebuild_h_max=296, need_rebuild=304, stats_offset=312, ti_current=320,
-             nr_ranks=328, rank=336, tl_begin=344, tl_base=352, tl_bin_max=360, tl_ti_end=368)
+             nr_ranks=328, rank=336)
 
 
 def main():
@@ -176,11 +176,6 @@ def main():
     corpus.append(("negative statistics offset", setf(good, st + STATE["stats_offset"], "<q", -3)))
     corpus.append(("integer time -1", setf(good, st + STATE["ti_current"], "<q", -1)))
     corpus.append(("integer time past the run", setf(good, st + STATE["ti_current"], "<q", 2 ** 57)))
-    corpus.append(("NaN time line", setf(good, st + STATE["tl_begin"], "<d", nan)))
-    corpus.append(("time line of zero ticks", setf(good, st + STATE["tl_base"], "<d", 0.0)))
-    corpus.append(("time line's longest bin 57", setf(good, st + STATE["tl_bin_max"], "<q", 57)))
-    corpus.append(("time line's end not a step of its longest bin",
-                   setf(good, st + STATE["tl_ti_end"], "<q", 2 ** 56 - 1)))
     corpus.append(("0 ranks", setf(good, st + STATE["nr_ranks"], "<q", 0)))
     corpus.append(("rank 5 of 1", setf(good, st + STATE["rank"], "<q", 5)))
     corpus.append(("cell count 1e12", setf(good, L["cells"], "<q", 10 ** 12)))

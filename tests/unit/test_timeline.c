@@ -8,14 +8,9 @@
  *    bin's steps meet at the synchronisation points of the longer bins;
  *  - a particle moves to a shorter bin at once, to a longer one only at a
  *    synchronisation point of the longer one;
- *  - the fraction of updates time bins would do;
- *  - a new line begun at a time where every particle ends its step
- *    (timeline_rebase) puts a bin's edge at the limit it is given, begins
- *    at that time, holds the rest of the run and the run's end, and states
- *    how old bins compare with its own (the limiter's shift). */
+ *  - the fraction of updates time bins would do. */
 #include <math.h>
 #include <stdio.h>
-#include <string.h>
 
 #include "src/timeline.h"
 
@@ -112,69 +107,11 @@ static void test_fraction(void) {
         timeline_active_fraction(n));
 }
 
-static void test_rebase(void) {
-  /* the line of a 2e4 s run: a limit of 9.06 s steps by 20000 / 2^12 =
-   * 4.88 s (the planetary impact after contact) */
-  const struct timeline tl = timeline_make(0.0, 2e4, 1e30);
-  CHECK(tl.ti_end == (integertime_t)1 << TIMELINE_NR_BINS, "time_end is the last tick");
-  CHECK(timeline_dt_of_bin(&tl, timeline_bin(&tl, 9.06)) == 2e4 / 4096.0, "old step %g",
-        timeline_dt_of_bin(&tl, timeline_bin(&tl, 9.06)));
-  const integertime_t ti = (integertime_t)1 << 47; /* 20000 / 512 = 39.06 s */
-  const double t0 = timeline_time(&tl, ti), a = 0.9 * 9.06;
-  struct timeline_next n;
-  memset(&n, 0, sizeof n);
-  const double gain = timeline_rebase(&tl, ti, a, 2e4, 1e30, &n);
-  CHECK(n.ti == 0 && n.tl.time_begin == t0, "the new line begins at %g (%g)", n.tl.time_begin, t0);
-  /* the anchor's bin steps by the anchor less at most 1/TIMELINE_REBASE_STEPS */
-  const int b = timeline_bin(&n.tl, a);
-  const double step = timeline_dt_of_bin(&n.tl, b);
-  CHECK(step <= a && step > a * (1.0 - 1.0 / TIMELINE_REBASE_STEPS), "anchor %g steps by %.17g", a,
-        step);
-  CHECK(timeline_dt_of_bin(&n.tl, timeline_bin(&n.tl, 9.06)) == step, "9.06 s steps by it too");
-  CHECK(fabs(gain - step / (2e4 / 4096.0)) < 1e-12 && gain > 1.5, "gain %g", gain);
-  /* time_end: a tick that every bin's steps reach, whose time is time_end */
-  CHECK(n.tl.ti_end > 0 && n.tl.ti_end <= (integertime_t)1 << TIMELINE_NR_BINS, "end tick %lld",
-        (long long)n.tl.ti_end);
-  CHECK(n.tl.ti_end % timeline_step_of_bin(n.tl.bin_max) == 0, "every bin ends at time_end");
-  CHECK(fabs(timeline_time(&n.tl, n.tl.ti_end) - 2e4) <= 2e4 * 1e-15, "end time %.17g",
-        timeline_time(&n.tl, n.tl.ti_end));
-  const double nmax = (2e4 - t0) / timeline_dt_of_bin(&n.tl, n.tl.bin_max);
-  CHECK(nmax >= TIMELINE_REBASE_STEPS - 1e-9 && nmax < 2 * TIMELINE_REBASE_STEPS + 1e-9,
-        "the rest holds %g longest steps", nmax);
-  /* the shift: an old bin is at least as long as the new bin b - shift, and
-   * shorter than b - shift + 1 */
-  for (int ob = 5; ob < 50; ob += 7) {
-    const double old = timeline_dt_of_bin(&tl, ob);
-    CHECK(timeline_dt_of_bin(&n.tl, ob - n.shift) <= old &&
-              timeline_dt_of_bin(&n.tl, ob - n.shift + 1) > old,
-          "old bin %d (%g s) against new bin %d", ob, old, ob - n.shift);
-  }
-  /* dt_max caps the anchor and the longest bin */
-  const double g2 = timeline_rebase(&tl, ti, 50.0, 2e4, 30.0, &n);
-  CHECK(g2 > 0.0 && timeline_dt_of_bin(&n.tl, n.tl.bin_max) <= 30.0 &&
-            timeline_dt_of_bin(&n.tl, n.tl.bin_max) > 30.0 * (1.0 - 1.0 / TIMELINE_REBASE_STEPS),
-        "dt_max 30: longest %g", timeline_dt_of_bin(&n.tl, n.tl.bin_max));
-  /* near the end: the longest bin is the anchor's, a whole number of
-   * them to time_end */
-  const integertime_t late = tl.ti_end - ((integertime_t)1 << 44); /* 4.88 s before the end */
-  CHECK(timeline_rebase(&tl, late, 1.0, 2e4, 1e30, &n) > 0.0 && n.tl.ti_end % 5 == 0 &&
-            n.tl.ti_end / 5 == timeline_step_of_bin(n.tl.bin_max),
-        "4.88 s before the end: 5 steps of %g s", timeline_dt_of_bin(&n.tl, n.tl.bin_max));
-  /* no new line at the end of the run, or for a limit too short for it */
-  CHECK(timeline_rebase(&tl, tl.ti_end, 1.0, 2e4, 1e30, &n) == 0.0, "none at the end");
-  CHECK(timeline_rebase(&tl, 0, 1e-14, 2e4, 1e30, &n) == 0.0, "none for 2e4 / 1e-14 > 2^54");
-  CHECK(timeline_rebase(&tl, 0, 0.0, 2e4, 1e30, &n) == 0.0, "none for a zero limit");
-  /* timeline_same keeps the line */
-  const struct timeline_next sm = timeline_same(&tl, ti);
-  CHECK(sm.ti == ti && sm.shift == 0 && sm.tl.time_base == tl.time_base, "the same line");
-}
-
 int main(void) {
   test_round_trip();
   test_bins();
   test_sync();
   test_fraction();
-  test_rebase();
   printf("test_timeline: %d checks, %d failed\n", checks, failures);
   return failures ? 1 : 0;
 }

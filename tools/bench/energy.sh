@@ -14,9 +14,7 @@
 #       cpu-bins, gpu-bins: the same with individual time steps
 #       (TimeIntegration:global_step: false); cpu-binsall: cpu-bins with
 #       self-gravity for every particle at every step (Gravity:active_only:
-#       false, as the GPU computes it); cpu-bins1, gpu-bins1: bins on one
-#       time line for the whole run (TimeIntegration:rebase_time_line:
-#       false, src/timeline.h); cpu-rk2, gpu-rk2, cpu-pc, gpu-pc:
+#       false, as the GPU computes it); cpu-rk2, gpu-rk2, cpu-pc, gpu-pc:
 #       the global step with the integrators TimeIntegration:scheme rk2
 #       (its default error bound) and pc (theory/integrators.md)
 #   -S DIR: SWIFT too, after Bolide's modes (DIR: a SWIFT build configured
@@ -83,10 +81,9 @@ print(*(m @ x / m.sum()))
 PY
 )
   for m in $modes; do
-    base=${m%-bins}; base=${base%-binsall}; base=${base%-bins1}; base=${base%-rk2}; base=${base%-pc}
+    base=${m%-bins}; base=${base%-binsall}; base=${base%-rk2}; base=${base%-pc}
     gpu="--no-gpu"; [ "$base" = gpu ] && gpu=""
-    glob=true; case $m in *-bins | *-binsall | *-bins1) glob=false ;; esac
-    rebase=true; case $m in *-bins1) rebase=false ;; esac
+    glob=true; case $m in *-bins | *-binsall) glob=false ;; esac
     scheme=kdk; case $m in *-rk2) scheme=rk2 ;; *-pc) scheme=pc ;; esac
     active=true; [ "${m%-binsall}" != "$m" ] && active=false
     cat >p.yml <<YML
@@ -95,7 +92,6 @@ InitialConditions:
 TimeIntegration:
   time_end: $tend
   global_step: $glob
-  rebase_time_line: $rebase
   scheme: $scheme
 Snapshots:
   subdir: out_$m
