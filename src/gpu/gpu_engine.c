@@ -1192,14 +1192,13 @@ static void gpu_engine_bounds(struct engine *e) {
 int gpu_engine_rebuild_begin(struct engine *e) {
   struct gpu_engine *ge = e->gpu;
   if (!ge || !ge->dev_valid || !ge->rebuild_on_device || e->nr_planes > 0 ||
-      e->restart_h_max > 0.0 || e->individual || e->halo) {
+      e->restart_h_max > 0.0 || e->halo) {
     if (ge)
       error_log(1, "GPU rebuild %d on the host: %s", e->space.nr_rebuilds + 1,
                 !ge->dev_valid           ? "the host holds the current particles"
                 : !ge->rebuild_on_device ? "Scheduler:gpu_rebuild: host"
                 : e->halo                ? "several MPI ranks (particles move between them)"
                 : e->nr_planes > 0       ? "mirror planes"
-                : e->individual          ? "time bins (not yet reordered on the device)"
                                          : "a resumed run's first rebuild");
     gpu_engine_to_host(e);
     gpu_engine_host_modified(e);

@@ -24,7 +24,8 @@
 #     on the device against every field copied back, reordered on the host
 #     and uploaded: GPU runs of the Sedov blast (periodic: positions
 #     wrapped), the solid impact, the Evrard collapse (self-gravity on the
-#     device) and the solid impact with rk2, rebuilt often: each against a
+#     device), the solid impact with rk2, and the solid impact and the Evrard
+#     collapse in time bins, rebuilt often: each against a
 #     CPU run as above, and bit for bit the same (self-gravity too, with
 #     Gravity:gpu_reproducible: each cell's interactions sorted on the device).
 # The runs differ only by the order of the SPH sums (round-off, ~1e-15
@@ -236,7 +237,9 @@ done
 # host-rebuild run bit for bit (with self-gravity too, under
 # Gravity:gpu_reproducible, which makes every GPU run repeat bit for bit:
 # without it the atomics of the device's walks order the sums differently
-# from run to run).  Time bins rebuild on the host: not here.
+# from run to run).  With time bins (TimeIntegration:global_step: false)
+# too: the solid impact and the Evrard collapse, whose steps kick some of
+# the particles only.
 # rebuild_same NAME SRC IC STEPS FRACTION SAME [OPTION...]
 rebuild_same() {
   local name=$1 src=$2 ic=$3 steps=$4 frac=$5 same=$6
@@ -275,6 +278,9 @@ rebuild_same rbsedov sedov sedov.hdf5 40 0.01 bits || fail=1
 rebuild_same rbimpact impact impact.hdf5 40 0.01 bits || fail=1
 rebuild_same rbevrard evrard evrard.hdf5 80 0.01 bits -P Gravity:gpu_reproducible:true || fail=1
 rebuild_same rbimrk2 impact impact.hdf5 20 0.02 bits -P TimeIntegration:scheme:rk2 || fail=1
+rebuild_same rbimbins impact impact.hdf5 40 0.01 bits -P TimeIntegration:global_step:false || fail=1
+rebuild_same rbevbins evrard evrard.hdf5 80 0.01 bits -P TimeIntegration:global_step:false \
+  -P Gravity:gpu_reproducible:true || fail=1
 compare sedov || fail=1
 compare impact || fail=1
 compare impactc || fail=1
