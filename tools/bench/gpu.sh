@@ -41,8 +41,21 @@
 # the GPU's stage times (with the device memory's largest uses).
 #
 # Usage: tools/bench/gpu.sh [-n "1e5 1e6"] [-p "basalt gravity"] [-m "cpu gpu hybrid"]
-#                           [-r 3] [-s 4] [-g "GPU ARGS"] [-T SECONDS]
+#                           [-r 3] [-s 4] [-g "GPU ARGS"] [-T SECONDS] [-S SWIFT_DIR]
 #   -g  extra bolide arguments for the GPU runs only
+#   -S  SWIFT beside Bolide on the same host (issue 21's benchmark): mode
+#       "swift" (give it last in -m) runs SWIFT_DIR/swift (a build with
+#       --with-hydro=planetary --with-equation-of-state=planetary) on the
+#       same IC of the impact or gravity problem, every core, SWIFT's
+#       settings of the benchmark set (tools/bench/swift_params.sh: eta
+#       1.2348, CFL 0.2, alpha 1.5; epsilon_fmm 1e-3, theta 0.5) and the
+#       same softening, with dt_max the mean step of the block's last Bolide
+#       run and the run 2^20 such steps long: SWIFT then steps by half of
+#       it, every particle in its top bin; s/step is the mean wall-clock
+#       time of its steps after the first two that moved every particle
+#       (SWIFT's step 0 is the first force computation; "timeout" if none
+#       did), and a line after the block gives SWIFT's s/step over each
+#       mode's
 #   -T  time limit of each bolide run (default 0: none); a run over it is
 #       killed (SIGKILL: a SIGTERM would let it finish its step and write a
 #       restart file first, which at 1e7 particles takes minutes), reported
@@ -62,10 +75,19 @@ build=${BOLIDE_BUILD:-$top/_build}
 python=${PYTHON:-python3}
 gen=${BOLIDE_BENCH_IC:?"set BOLIDE_BENCH_IC to the reference impact IC generator of the benchmark set (make_impact_ic.py; theory/validation.md, Benchmarks)"}
 sizes="1e5 1e6"; problems="basalt gravity"; modes="cpu gpu hybrid"; repeat=3; steps=4; gpu_args=""; tlimit=0
-while getopts "n:p:m:r:s:g:T:" o; do
+swift=""
+while getopts "n:p:m:r:s:g:T:S:" o; do
   case $o in n) sizes=$OPTARG ;; p) problems=$OPTARG ;; m) modes=$OPTARG ;; r) repeat=$OPTARG ;;
-             s) steps=$OPTARG ;; g) gpu_args=$OPTARG ;; T) tlimit=$OPTARG ;; *) exit 2 ;; esac
+             s) steps=$OPTARG ;; g) gpu_args=$OPTARG ;; T) tlimit=$OPTARG ;; S) swift=$OPTARG ;;
+             *) exit 2 ;; esac
 done
+case " $modes " in
+  *" swift "*) [ -n "$swift" ] && [ -x "$swift/swift" ] ||
+                 { echo "gpu.sh: error: mode swift needs -S DIR holding SWIFT's swift" >&2; exit 2; }
+               swift=$(cd "$swift" && pwd)
+               # shellcheck source=tools/bench/swift_params.sh
+               . "$top/tools/bench/swift_params.sh" ;;
+esac
 out=${BENCH_OUT:-/dev/null}
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
@@ -95,11 +117,30 @@ one() {
        END {print (r == "" ? "-" : r)}' run.log
 }
 
+# one SWIFT run on ic.hdf5 (mode swift); prints "step - -" or "timeout"
+one_swift() {
+  local lim=()
+  [ "$tlimit" = 0 ] || lim=(timeout -s KILL "$tlimit")
+  local phys=(--hydro)
+  [ "$prob" = gravity ] && phys+=(--self-gravity)
+  # (a run of 2^20 top-bin steps: the time line's top bin is dt_max itself)
+  swift_params ic.hdf5 "$(awk -v d="$swift_dt" 'BEGIN {printf "%.17g", d * 1048576 * (1 - 1e-9)}')" "$swift_dt" 1e10 \
+    "$(awk -v e="$soft" 'BEGIN {printf "%.6g", e / 1e6}')" 16 >swift.yml
+  if ! "${lim[@]}" "$swift/swift" "${phys[@]}" --threads="$ncpu" -n "$((steps + 1))" swift.yml >swift.log 2>&1; then
+    grep -qi "error" swift.log && { tail -3 swift.log >&2; exit 1; }
+    echo timeout; return
+  fi
+  # (the steps that moved every particle: a step of a few particles, where
+  # some limit fell below dt_max, is not the step measured)
+  awk -v n="$N" '$1 ~ /^[0-9]+$/ && NF >= 15 && $1 > 1 && $8 == n {s += $13 / 1000; c++}
+                 END {if (c) printf "%.6f - -\n", s / c; else print "timeout"}' swift.log
+}
+
 # median over the repeats of "$@"; sets med_step, last_eval
 measure() {
   local res=() r
   for r in $(seq "$repeat"); do
-    r=$(one "$@")
+    if [ "$1" = swift ]; then r=$(one_swift); else r=$(one "$@"); fi
     [ "$r" = timeout ] && { med_step=timeout; last_eval=-; last_rebuild=-; return; }
     res+=("$r")
   done
@@ -157,9 +198,15 @@ Scheduler:
 YML
     N=$(awk '/read [0-9]+ particles/ {for (k = 1; k <= NF; k++) if ($k == "read") print $(k + 1)}' \
         <("$build/bolide" --check p.yml 2>&1 || true) | head -1)
-    cpu_step=""
+    cpu_step=""; swift_line=""; declare -A mode_step=()
     for mode in $modes; do
       case $mode in
+        swift)
+          [ $prob = impact ] || [ $prob = gravity ] ||
+            { echo "gpu.sh: mode swift runs the impact and gravity problems only" >&2; exit 2; }
+          [ -f run.log ] || { echo "gpu.sh: give mode swift after a Bolide mode (its step)" >&2; exit 2; }
+          swift_dt=$(awk '$1 ~ /^[0-9]+$/ && NF == 6 {s += $3; n++} END {printf "%.6g", s / n}' run.log)
+          measure swift ;;
         cpu) measure --no-gpu ;;
         gpu) measure --gpu -P Scheduler:gpu:all $gpu_args ;;
         hybrid) measure --gpu -P Scheduler:gpu:auto $gpu_args ;;
@@ -170,6 +217,18 @@ YML
         *) echo "gpu.sh: unknown mode $mode" >&2; exit 2 ;;
       esac
       [ $mode = cpu ] && cpu_step=$med_step
+      mode_step[$mode]=$med_step
+      if [ $mode = swift ]; then
+        [ -n "${BENCH_KEEP:-}" ] && mkdir -p "$BENCH_KEEP" && cp swift.log "$BENCH_KEEP/$prob-$n-swift.log"
+        swift_line="# $prob $N: SWIFT (dt_max $swift_dt, every particle active) s/step over each mode's:"
+        for m in "${!mode_step[@]}"; do
+          [ $m = swift ] && continue
+          swift_line="$swift_line $m $(awk -v a="$med_step" -v b="${mode_step[$m]}" 'BEGIN {if (a + 0 > 0 && b + 0 > 0) printf "%.2f", a / b; else print "-"}')"
+        done
+        say "| $prob | $N | swift | $med_step | - | - | $( [ -n "$cpu_step" ] && [ "$cpu_step" != timeout ] && [ "$med_step" != timeout ] && awk -v a=$cpu_step -v b=$med_step 'BEGIN {printf "%.2f", a / b}' || echo -) | - | - | - | - |"
+        say "$swift_line"
+        continue
+      fi
       [ -n "${BENCH_KEEP:-}" ] && mkdir -p "$BENCH_KEEP" && cp run.log "$BENCH_KEEP/$prob-$n-$mode.log"
       ratio=-; bus=-; share=-; mem=-; rec=-
       if [ "$med_step" != timeout ] && [ -n "$cpu_step" ] && [ "$cpu_step" != timeout ]; then
