@@ -198,7 +198,7 @@ Scheduler:
 YML
     N=$(awk '/read [0-9]+ particles/ {for (k = 1; k <= NF; k++) if ($k == "read") print $(k + 1)}' \
         <("$build/bolide" --check p.yml 2>&1 || true) | head -1)
-    cpu_step=""; swift_line=""; declare -A mode_step=()
+    cpu_step=""; declare -A mode_step=()
     for mode in $modes; do
       case $mode in
         swift)
@@ -218,23 +218,13 @@ YML
       esac
       [ $mode = cpu ] && cpu_step=$med_step
       mode_step[$mode]=$med_step
-      if [ $mode = swift ]; then
-        [ -n "${BENCH_KEEP:-}" ] && mkdir -p "$BENCH_KEEP" && cp swift.log "$BENCH_KEEP/$prob-$n-swift.log"
-        swift_line="# $prob $N: SWIFT (dt_max $swift_dt, every particle active) s/step over each mode's:"
-        for m in "${!mode_step[@]}"; do
-          [ $m = swift ] && continue
-          swift_line="$swift_line $m $(awk -v a="$med_step" -v b="${mode_step[$m]}" 'BEGIN {if (a + 0 > 0 && b + 0 > 0) printf "%.2f", a / b; else print "-"}')"
-        done
-        say "| $prob | $N | swift | $med_step | - | - | $( [ -n "$cpu_step" ] && [ "$cpu_step" != timeout ] && [ "$med_step" != timeout ] && awk -v a=$cpu_step -v b=$med_step 'BEGIN {printf "%.2f", a / b}' || echo -) | - | - | - | - |"
-        say "$swift_line"
-        continue
-      fi
-      [ -n "${BENCH_KEEP:-}" ] && mkdir -p "$BENCH_KEEP" && cp run.log "$BENCH_KEEP/$prob-$n-$mode.log"
+      log=run.log; [ $mode = swift ] && log=swift.log
+      [ -n "${BENCH_KEEP:-}" ] && mkdir -p "$BENCH_KEEP" && cp $log "$BENCH_KEEP/$prob-$n-$mode.log"
       ratio=-; bus=-; share=-; mem=-; rec=-
       if [ "$med_step" != timeout ] && [ -n "$cpu_step" ] && [ "$cpu_step" != timeout ]; then
         ratio=$(awk -v a=$cpu_step -v b=$med_step 'BEGIN {printf "%.2f", a / b}')
       fi
-      if [ $mode != cpu ] && [ "$med_step" != timeout ]; then
+      if [ $mode != cpu ] && [ $mode != swift ] && [ "$med_step" != timeout ]; then
         bus=$(awk '/^GPU \(/ {for (k = 1; k <= NF; k++) if ($k == "bus") {u = $(k + 1); d = $(k + 4)}} END {printf "%.1f", u + d}' run.log)
         share=$(awk -v b=$bus -v t=$med_step 'BEGIN {printf "%.1f%%", 100 * b * 1e6 / 25e9 / t}')
         rec=$(awk -v t=$med_step '/^GPU \(/ {for (k = 1; k <= NF; k++) if ($k == "copies") r = $(k + 1)}
@@ -244,6 +234,15 @@ YML
       fi
       say "| $prob | $N | $mode | $med_step | $last_eval | $last_rebuild | $ratio | $bus | $share | $rec | $mem |"
     done
+    if [ -n "${mode_step[swift]:-}" ]; then
+      swift_line="# $prob $N: SWIFT (dt_max $swift_dt, every particle active) s/step over each mode's:"
+      for m in $modes; do
+        [ $m = swift ] && continue
+        swift_line="$swift_line $m $(awk -v a="${mode_step[swift]}" -v b="${mode_step[$m]}" \
+          'BEGIN {if (a + 0 > 0 && b + 0 > 0) printf "%.2f", a / b; else print "-"}')"
+      done
+      say "$swift_line"
+    fi
   done
 done
 printf "\nGPU stage times of the last run of each case:\n%s" "$stages" | tee -a "$out"
