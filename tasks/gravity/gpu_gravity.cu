@@ -34,6 +34,10 @@ enum { GG_UP, GG_GROUP, GG_FIELD, GG_L2L, GG_PART, GG_L2P, GG_DOWN, GG_N };
 static const char *const gg_stage_names[GG_N] = {"upload",  "grouping", "M2L+P2L", "L2L",
                                                  "P2P+M2P", "L2P",      "ga back"};
 
+/** Rounds of a walk timed one by one (the roots' round first; later ones
+ *  add to the last). */
+#define GG_ROUNDS 12
+
 struct gpu_grav {
   struct gpu *g;                      /**< the device */
   struct gpu_grav_buf mp, field;      /**< multipoles, local expansions (by cell) */
@@ -72,6 +76,11 @@ struct gpu_grav {
   cudaEvent_t ev_walk[2];             /**< the walks */
   double t_walk;                      /**< their accumulated milliseconds */
   long calls_walk, walk_retries;      /**< walks on the device; repeated for longer lists */
+  cudaEvent_t ev_rnd[GG_ROUNDS + 1];  /**< the rounds of a walk's last attempt */
+  double t_round[GG_ROUNDS];          /**< their milliseconds, walks after the first */
+  double n_round[GG_ROUNDS];          /**< entries each round took, walks after the first */
+  long walks_timed;                   /**< walks after the first (t_round, n_round) */
+  double t_walk_first;                /**< the first walk's milliseconds (lists allocated) */
   struct gravity_gpu_groups gl[2];    /**< device views of them (last full evaluation) */
   struct gravity_multipole *mp_host;  /**< pinned staging of the multipoles */
   int mp_host_cap;                    /**< its length */
@@ -119,6 +128,7 @@ extern "C" struct gpu_grav *gpu_grav_new(struct gpu *g) {
   for (int k = 0; k <= GG_N; k++) gpu_check(cudaEventCreate(&gg->ev[k]));
   for (int k = 0; k < 2; k++) gpu_check(cudaEventCreate(&gg->ev_up[k]));
   for (int k = 0; k < 2; k++) gpu_check(cudaEventCreate(&gg->ev_walk[k]));
+  for (int k = 0; k <= GG_ROUNDS; k++) gpu_check(cudaEventCreate(&gg->ev_rnd[k]));
   return gg;
 }
 
@@ -138,6 +148,7 @@ extern "C" void gpu_grav_free(struct gpu_grav *gg) {
   for (int k = 0; k <= GG_N; k++) gpu_check(cudaEventDestroy(gg->ev[k]));
   for (int k = 0; k < 2; k++) gpu_check(cudaEventDestroy(gg->ev_up[k]));
   for (int k = 0; k < 2; k++) gpu_check(cudaEventDestroy(gg->ev_walk[k]));
+  for (int k = 0; k <= GG_ROUNDS; k++) gpu_check(cudaEventDestroy(gg->ev_rnd[k]));
   free(gg->level_start);
   free(gg);
 }
@@ -320,21 +331,30 @@ extern "C" void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_t
       Q[k].cap = gg->qcap;
     }
     gpu_check(cudaMemsetAsync(cnt, 0, 6 * sizeof(unsigned long long) + sizeof(int), s));
+    /* each round from its launch to the next one's (the count read back
+     * and the host's turn included) */
+    gpu_check(cudaEventRecord(gg->ev_rnd[0], s));
     gravity_walk_roots_gpu_launch(s, T, wp, L, Q[0], dlo, nr_top, h_support, dskip, dtop, deep);
     /* rounds on what the walkers handed on, until none is left */
-    unsigned long long hn[4], q_most = 0;
+    unsigned long long hn[4], q_most = 0, taken[GG_ROUNDS] = {0};
+    int rounds = 1;
     for (int cur = 0;; cur ^= 1) {
       unsigned long long m;
       gpu_check(cudaMemcpyAsync(&m, cnt + 4 + cur, sizeof m, cudaMemcpyDeviceToHost, s));
       gpu_check(cudaStreamSynchronize(s));
       if (m > q_most) q_most = m;
       if (m == 0) break;
+      if (rounds < GG_ROUNDS) gpu_check(cudaEventRecord(gg->ev_rnd[rounds], s));
+      taken[rounds < GG_ROUNDS ? rounds : GG_ROUNDS - 1] += m;
+      rounds++;
       /* the other queue (empty, or walked by the round before) takes what is left */
       gpu_check(cudaMemsetAsync(cnt + 4 + (cur ^ 1), 0, sizeof(unsigned long long), s));
       gravity_walk_queue_gpu_launch(s, T, wp, L, Q[cur], m < gg->qcap ? m : gg->qcap, Q[cur ^ 1],
                                     deep);
       gg->walk_rounds++;
     }
+    const int timed = rounds < GG_ROUNDS ? rounds : GG_ROUNDS;
+    gpu_check(cudaEventRecord(gg->ev_rnd[timed], s));
     /* a queue that was too small slowed the walk (its walkers kept what
      * did not fit): the next walk gets room for all */
     if (q_most > gg->qcap) gg->qcap = q_most + q_most / 4;
@@ -356,11 +376,25 @@ extern "C" void gpu_grav_walk(struct gpu_grav *gg, const double *lo_hi, int nr_t
         grown = 1;
       }
     }
-    if (!grown) break;
+    if (!grown) {
+      if (gg->calls_walk > 0) {
+        /* (the stream was synchronised after the last event) */
+        for (int r = 0; r < timed; r++) {
+          float ms = 0.0f;
+          gpu_check(cudaEventElapsedTime(&ms, gg->ev_rnd[r], gg->ev_rnd[r + 1]));
+          gg->t_round[r] += ms;
+          gg->n_round[r] += (double)taken[r];
+        }
+        gg->walks_timed++;
+      }
+      break;
+    }
     if (attempt > 2) error_bug("the GPU walk's lists did not fit after growing");
     gg->walk_retries++;
   }
-  gg->t_walk += gg_stage_end(gg->ev_walk, s);
+  const double ms = gg_stage_end(gg->ev_walk, s);
+  if (gg->calls_walk == 0) gg->t_walk_first = ms;
+  gg->t_walk += ms;
   gg->calls_walk++;
   gg->walk_on_device = 1;
 }
@@ -582,6 +616,17 @@ extern "C" void gpu_grav_print(const struct gpu_grav *gg, FILE *f) {
             gg->calls_walk, gg->t_walk / gg->calls_walk,
             1.0 + (double)gg->walk_rounds / (double)(gg->calls_walk + gg->walk_retries),
             gg->walk_retries);
+  if (gg->walks_timed) {
+    fprintf(f, "; the first walk %.3f ms; the %ld after it, ms each by round (entries taken):",
+            gg->t_walk_first, gg->walks_timed);
+    const double w = (double)gg->walks_timed;
+    for (int r = 0; r < GG_ROUNDS && gg->t_round[r] > 0.0; r++)
+      if (r == 0)
+        fprintf(f, " roots %.3f", gg->t_round[0] / w);
+      else
+        fprintf(f, " %d%s %.3f (%.0f)", r, r == GG_ROUNDS - 1 ? "+" : "", gg->t_round[r] / w,
+                gg->n_round[r] / w);
+  }
   fprintf(f, "; bus %.1f MB per evaluation; last full evaluation %.3g P2P/M2P, %.3g M2L/P2L\n",
           gg->bytes / gg->calls / 1e6, gg->n_entries[0], gg->n_entries[1]);
 }
