@@ -100,11 +100,16 @@ void gravity_up_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_up
   }
 }
 
-/** Roots (pairs of top-level cells) per thread of the first round. */
-#define GRAVITY_WALK_ROOTS 16
+/** Roots (pairs of top-level cells) per thread of the first round.  One:
+ *  a thread's roots are walked one after the other, and at 16 the roots'
+ *  round took 4.4 of a 6.5-ms walk at 1e5 particles (BENCHMARKS.md, "The
+ *  GPU walk's first round"). */
+#define GRAVITY_WALK_ROOTS 1
 
-/** Entries a walker takes from its stack before it hands the rest on. */
-#define GRAVITY_WALK_BUDGET 64
+/** Entries a walker takes from its stack before it hands the rest on
+ *  (32: more walkers sooner, each round shorter; 64 took 1.15 times as
+ *  long at 1.1e6). */
+#define GRAVITY_WALK_BUDGET 32
 
 /** Threads per block of the walk kernels. */
 #define GRAVITY_WALK_BLOCK 64
