@@ -100,10 +100,11 @@ void gravity_up_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_up
   }
 }
 
-/** Roots (pairs of top-level cells) per thread of the first round.  One:
- *  a thread's roots are walked one after the other, and at 16 the roots'
- *  round took 4.4 of a 6.5-ms walk at 1e5 particles (BENCHMARKS.md, "The
- *  GPU walk's first round"). */
+/** Roots (pairs of top-level cells) per thread of the first round, more
+ *  only past GRAVITY_WALK_MAX_THREADS threads.  One: a thread's roots are
+ *  walked one after the other, and at 16 the roots' round took 4.4 of a
+ *  6.5-ms walk at 1e5 particles (BENCHMARKS.md, "The GPU walk's first
+ *  round"). */
 #define GRAVITY_WALK_ROOTS 1
 
 /** Entries a walker takes from its stack before it hands the rest on
@@ -113,6 +114,10 @@ void gravity_up_gpu_launch(cudaStream_t s, struct parts p, struct gravity_gpu_up
 
 /** Threads per block of the walk kernels. */
 #define GRAVITY_WALK_BLOCK 64
+
+/** Most threads of the roots' round (2^24 blocks): past them each thread
+ *  takes more roots (below the device's 2^31 - 1 blocks). */
+#define GRAVITY_WALK_MAX_THREADS (1LL << 30)
 
 /** One walker's share: the n entries on its stack for at most
  *  GRAVITY_WALK_BUDGET steps (fewer where the stack fills), the rest to
@@ -132,22 +137,21 @@ __device__ static void gravity_walk_share(const struct gravity_walk_tree *T,
   if (n > 0) atomicAdd(deep, 1);
 }
 
-/** The first round: the roots [r0, r0 + GRAVITY_WALK_ROOTS) of the nt x nt
- *  pairs of top-level cells (gravity_walk_root). */
+/** The first round: the roots [r0, r0 + per) of the nt x nt pairs of
+ *  top-level cells (gravity_walk_root). */
 __global__ void __launch_bounds__(GRAVITY_WALK_BLOCK)
     gravity_walk_roots_gpu_kernel(struct gravity_walk_tree T, struct gravity_walk_params wp,
                                   struct gravity_walk_lists L, struct gravity_walk_queue out,
                                   const double *__restrict__ lo_hi, int nt, double h_support_top,
                                   const unsigned char *__restrict__ skip,
-                                  const int *__restrict__ top, int *deep) {
-  const long long r0 =
-      ((long long)blockIdx.x * blockDim.x + threadIdx.x) * (long long)GRAVITY_WALK_ROOTS;
+                                  const int *__restrict__ top, long long per, int *deep) {
+  const long long r0 = ((long long)blockIdx.x * blockDim.x + threadIdx.x) * per;
   const long long nroots = (long long)nt * nt;
   if (r0 >= nroots) return;
   int stack[3 * GRAVITY_WALK_STACK];
   struct gravity_walk_buf B;
   for (int k = 0; k < 4; k++) B.n[k] = 0;
-  const long long r1 = r0 + GRAVITY_WALK_ROOTS < nroots ? r0 + GRAVITY_WALK_ROOTS : nroots;
+  const long long r1 = r0 + per < nroots ? r0 + per : nroots;
   for (long long r = r0; r < r1; r++)
     if (gravity_walk_root(T.count, lo_hi, nt, wp.theta, h_support_top, skip, top, r, stack))
       gravity_walk_share(&T, &wp, &L, &B, &out, stack, 1, deep);
@@ -178,11 +182,13 @@ void gravity_walk_roots_gpu_launch(cudaStream_t s, struct gravity_walk_tree T,
                                    double h_support_top, const unsigned char *skip, const int *top,
                                    int *deep) {
   const long long nroots = (long long)nt * nt;
-  const long long threads = (nroots + GRAVITY_WALK_ROOTS - 1) / GRAVITY_WALK_ROOTS;
+  long long per = (nroots + GRAVITY_WALK_MAX_THREADS - 1) / GRAVITY_WALK_MAX_THREADS;
+  if (per < GRAVITY_WALK_ROOTS) per = GRAVITY_WALK_ROOTS;
+  const long long threads = (nroots + per - 1) / per;
   if (threads == 0) return;
   const int block = GRAVITY_WALK_BLOCK;
   gravity_walk_roots_gpu_kernel<<<(unsigned)((threads + block - 1) / block), block, 0, s>>>(
-      T, wp, L, out, lo_hi, nt, h_support_top, skip, top, deep);
+      T, wp, L, out, lo_hi, nt, h_support_top, skip, top, per, deep);
   gpu_check_launch(gravity_walk_roots_gpu_kernel);
 }
 
