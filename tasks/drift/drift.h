@@ -10,6 +10,7 @@
 #include "src/timeline.h"
 #include "tasks/ghost/continuity_floor.h"
 #include "tasks/ghost/ghost_part.h"
+#include "tasks/gradient/extra_ghost_part.h"
 #include "tasks/hydro/hydro_props.h"
 #include "src/materials/material.h"
 
@@ -157,8 +158,10 @@ BOLIDE_INLINE void drift_part(struct parts *BOLIDE_RESTRICT p, size_t i, double 
  *  its floor), and its pressure, sound speed and (solids) longitudinal
  *  sound speed are its material's equation of state at the predicted
  *  density and energy (ghost_part_eos, the ghost's; theory/sph.md, "Time
- *  integration").  The grad-h factor, the Balsara switch and the
- *  velocity gradients stay those of its step's start. */
+ *  integration"); a plastic particle's predicted stress is returned onto
+ *  the yield surface of that state (extra_ghost_predicted_return).  The
+ *  grad-h factor, the Balsara switch and the velocity gradients stay those
+ *  of its step's start. */
 BOLIDE_INLINE void drift_predict_hydro(struct parts *BOLIDE_RESTRICT p, size_t i, double w,
                                        const struct hydro_props *hp,
                                        const struct material_table *mats) {
@@ -172,6 +175,9 @@ BOLIDE_INLINE void drift_predict_hydro(struct parts *BOLIDE_RESTRICT p, size_t i
     p->rho[i] *= exp(-3.0 * w);
   }
   ghost_part_eos(p, i, hp, mat, 1);
+  if (hp->solids && p->Sxx && mat->strength != STRENGTH_NONE && mat->strength != STRENGTH_ELASTIC &&
+      mat->shear_modulus > 0.0)
+    extra_ghost_predicted_return(p, i, mat);
 }
 
 /** With individual time steps (TimeIntegration:global_step: false):

@@ -66,6 +66,32 @@ BOLIDE_INLINE double extra_ghost_plastic_return(struct parts *BOLIDE_RESTRICT p,
   return Y;
 }
 
+/** With time bins, the predicted stress Sp of particle i, asleep in the
+ *  middle of its step (PART_INACTIVE), radially returned onto the yield
+ *  surface of its predicted state (pressure and energy of the drift's
+ *  prediction, its plastic strain and damage of its step's start, the strain
+ *  rate of its step's start gradients): the prediction S + dS/dt (t - t_mid)
+ *  extrapolates the elastic rate and leaves the surface when the particle
+ *  flows.  Only the prediction that snapshots, the statistics and the
+ *  neighbours' force loops read is returned: the plastic strain, plastic
+ *  work and shear damage of the return are the kick's, at the end of the
+ *  particle's own step (kick2_plastic_return), and counted once there.
+ *  mat: a material with strength (not elastic) and a shear modulus. */
+BOLIDE_INLINE void extra_ghost_predicted_return(struct parts *BOLIDE_RESTRICT p, size_t i,
+                                                const struct material *mat) {
+  const double mu = mat->shear_modulus;
+  double Sp[6], dS[6];
+  EXTRA_GHOST_GET6(Sp, p, Sp, i);
+  const double gv[9] = {p->gvxx[i], p->gvxy[i], p->gvxz[i], p->gvyx[i], p->gvyy[i],
+                        p->gvyz[i], p->gvzx[i], p->gvzy[i], p->gvzz[i]};
+  const double eps_rate = gradient_stress_rate(gv, Sp, mu, dS);
+  const struct strength_state st = {p->P[i],  p->rho[i],
+                                    p->up[i], p->eps_p[i],
+                                    eps_rate, damage_total(p->dmg[i], p->dmg_shear[i])};
+  if (strength_radial_return(Sp, strength_yield(mat, &st), mu) > 0.0)
+    EXTRA_GHOST_PUT6(Sp, p, Sp, i);
+}
+
 /** The corrected velocity gradient gv = G M^-1 of particle i (Randles &
  *  Libersky 1996; G alone without SPH:velocity_gradient_correction), from
  *  its gradient sums; stored back into the gv fields. */
