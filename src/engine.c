@@ -788,6 +788,8 @@ void engine_init(struct engine *e, const struct params *params, const struct eng
   e->individual = !params_get_bool(params, "TimeIntegration:global_step");
   e->hp.bin_limit =
       e->individual ? (int)params_get_int(params, "TimeIntegration:max_bin_ratio") : 0;
+  e->hp.wake_density = e->hp.bin_limit > 0 && e->hp.bin_limit < TIMELINE_NR_BINS &&
+                       params_get_enum(params, "TimeIntegration:limiter_wake") == 1;
   /* the time line of individual time steps (with the global step only to
    * report the bins that the particles' own limits would give, the
    * timesteps file) */

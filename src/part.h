@@ -185,6 +185,10 @@ enum part_state {
                                every FORCE phase and between its stages it takes its owner's
                                state; its own sums are not computed (its h is not iterated), it
                                is never kicked, written or counted */
+  PART_WOKEN = 512,       /**< with TimeIntegration:limiter_wake: density, a sleeping particle the
+                               density phase woke: its ghost made it active (PART_INACTIVE cleared)
+                               for the rest of the step, and the kick closes its truncated step
+                               (kick2_part_bins) */
 };
 
 /** The flags of particles a rank holds but does not own (no kick, no output,

@@ -729,6 +729,10 @@ void gpu_engine_init(struct engine *e) {
   const int ranks = ranks_size() > 1 && !e->opt.one_rank;
   if (e->gp.enabled && ranks && mode == GPU_MODE_HYBRID) mode = GPU_MODE_SERIAL;
   if (!e->gp.enabled) mode = GPU_MODE_SERIAL; /* nothing to run beside the hydrodynamics */
+  if (e->hp.wake_density)
+    params_error(e->params, "TimeIntegration:limiter_wake",
+                 "density runs on the CPU only yet (issue 20): run with --no-gpu (or "
+                 "Scheduler:gpu: off), or with limiter_wake: force");
   struct gpu_engine *ge = error_calloc(1, sizeof *ge, "GPU state");
   ge->gpu = g;
   ge->mode = mode;

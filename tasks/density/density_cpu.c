@@ -4,7 +4,12 @@
  * sums are kept in a local accumulator over its inner loop. */
 #include "tasks/density/density_cpu.h"
 
+#include "tasks/density/density_wake.h"
 #include "tasks/hydro_parts.h"
+
+/* TimeIntegration:limiter_wake: density: what the symmetric loops of this
+ * thread's task need to decide the wakes (NULL: none; density_task.c) */
+static _Thread_local const struct density_wake *density_wk;
 
 /** What the symmetric loops cache of a neighbour j: its velocity, mass,
  *  inverse smoothing length, whether it is inactive, and its sums (the only
@@ -45,6 +50,25 @@ BOLIDE_ALWAYS_INLINE void density_sym(double r2, const double dx[3], double hi, 
   }
 }
 
+/** The wakes of the pair (i, j) (density_wake.h): the active one's
+ *  support decides, within H_i for i active and j asleep, within H_j for
+ *  the other way round; vi and cj->v the predicted velocities. */
+BOLIDE_ALWAYS_INLINE void density_sym_wake(struct parts *p, size_t i, size_t j, double r2,
+                                           const double dx[3], double hi, double hj,
+                                           const double vi[3], const struct density_jcache *cj) {
+  const int inactive_i = PART_IS_INACTIVE(p, i) != 0;
+  if (inactive_i == cj->inactive) return;
+  const double dv[3] = {vi[0] - cj->v[0], vi[1] - cj->v[1], vi[2] - cj->v[2]};
+  if (!inactive_i) {
+    const double Hi = kernel_gamma * hi;
+    if (r2 < Hi * Hi) density_wake_pair(p, i, j, r2, dx, dv, density_wk);
+  } else {
+    const double Hj = kernel_gamma * hj;
+    const double mdx[3] = {-dx[0], -dx[1], -dx[2]}, mdv[3] = {-dv[0], -dv[1], -dv[2]};
+    if (r2 < Hj * Hj) density_wake_pair(p, j, i, r2, mdx, mdv, density_wk);
+  }
+}
+
 /** Gather form into the local accumulator of i. */
 BOLIDE_ALWAYS_INLINE void density_gather(const struct parts *p, size_t j, double r2,
                                          const double dx[3], double hi_inv, const double vi[3],
@@ -67,19 +91,24 @@ BOLIDE_ALWAYS_INLINE void density_gather(const struct parts *p, size_t j, double
 #define IACT_LOOP_ACC_END_J(p, i, ai) \
   if (!PART_IS_INACTIVE(p, i)) density_acc_merge(&(ai)->sum, &acc_i)
 #define IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj) /* only the cached form is used */
-#define IACT_LOOP_SYM_J(p, i, j, r2, dx, hi, hj, aj) \
-  density_sym(r2, dx, hi, hi_inv, hj, mi, vi, &acc_i, aj)
+#define IACT_LOOP_SYM_J(p, i, j, r2, dx, hi, hj, aj)       \
+  density_sym(r2, dx, hi, hi_inv, hj, mi, vi, &acc_i, aj); \
+  if (density_wk) density_sym_wake(p, i, j, r2, dx, hi, hj, vi, aj)
 #define IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, hj) density_gather(p, j, r2, dx, hi_inv, vi, &acc_i)
 #define IACT_LOOP_ACTIVE(p, i) (!((p)->flags[i] & PART_H_CONVERGED))
 #include "tasks/iact_loop.h"
 
-void density_self_cpu(struct parts *p, const struct cell *c) {
+void density_self_cpu(struct parts *p, const struct cell *c, const struct density_wake *wake) {
+  density_wk = wake;
   loop_density_self(p, c);
+  density_wk = NULL;
 }
 
 void density_pair_cpu(struct parts *p, const struct cell *ci, const struct cell *cj,
-                      const double shift[3]) {
+                      const double shift[3], const struct density_wake *wake) {
+  density_wk = wake;
   loop_density_pair(p, ci, cj, shift);
+  density_wk = NULL;
 }
 
 void density_gather_unconverged_cpu(struct parts *p, const struct cell *ci, const struct cell *cj,

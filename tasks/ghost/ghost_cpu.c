@@ -11,10 +11,11 @@
 #include "src/error.h"
 #include "tasks/ghost/ghost_part.h"
 #include "tasks/hydro/kernel.h"
+#include "tasks/kick/kick.h"
 
 int ghost_cell_cpu(struct parts *p, struct cell *c, const struct ghost_ngbs *ngbs,
                    const struct hydro_props *hp, const struct material_table *mats, double H_limit,
-                   long long *resummed) {
+                   const struct ghost_wake *wake, long long *resummed) {
   const size_t beg = c->offset, end = c->offset + c->count;
   const double h_cap = H_limit / kernel_gamma;
   int capped = 0;
@@ -23,6 +24,11 @@ int ghost_cell_cpu(struct parts *p, struct cell *c, const struct ghost_ngbs *ngb
   for (size_t i = beg; i < end; i++) {
     if (PART_IS_INACTIVE(p, i)) { /* (time bins: it keeps its h and sums) */
       p->flags[i] |= PART_H_CONVERGED;
+      if (wake && p->wake[i] > 0) {
+        /* woken by the density phase: active from here on (kick.h) */
+        kick_wake_part(p, i, wake->ti, wake->time_base, hp->solids);
+        c->active++;
+      }
       continue;
     }
     ghost_part_start(p, i);
@@ -61,6 +67,6 @@ int ghost_cell_cpu(struct parts *p, struct cell *c, const struct ghost_ngbs *ngb
   }
   cell_update_h_max(p, c);
   for (size_t i = beg; i < end; i++)
-    if (!PART_IS_INACTIVE(p, i)) ghost_part_finish(p, i, hp, mats);
+    if (!PART_IS_INACTIVE(p, i) && !(p->flags[i] & PART_WOKEN)) ghost_part_finish(p, i, hp, mats);
   return capped;
 }

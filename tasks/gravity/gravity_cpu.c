@@ -18,6 +18,7 @@
 #include "src/cell.h"
 #include "src/error.h"
 #include "src/part.h"
+#include "src/timeline.h"
 
 void gravity_props_set(struct gravity_props *gp, double G, double theta, double eps, int softening,
                        int order) {
@@ -59,11 +60,14 @@ struct gravity_cell *gravity_cells_reserve(struct gravity_cell *gc, int *capacit
 /** Multipole of c from its particles (leaf) or its progeny (split cell):
  *  gravity_up_leaf and gravity_up_node, shared with the GPU's kernels.
  *  act (a step of active particles only, gravity_props.active; else
- *  NULL): whether each cell holds a particle that ends its step, by cell
+ *  NULL): whether each cell holds a particle that ends its step at
+ *  active_ti (its bin's step divides it: the test the drift made, read from
+ *  the bins rather than from PART_INACTIVE, which the ghost clears for the
+ *  particles the density phase wakes while this pass may run), by cell
  *  index; a leaf without one keeps its particles' ga and pot, since no
  *  walk adds to them this step. */
 static void up_rec(struct parts *p, const struct cell *c, struct gravity_cell *gc, int order,
-                   double h_factor, unsigned char *act) {
+                   double h_factor, unsigned char *act, integertime_t active_ti) {
   struct gravity_cell *g = gc + c->index;
   gravity_field_zero(&g->field);
   const double centre[3] = {c->loc[0] + 0.5 * c->width[0], c->loc[1] + 0.5 * c->width[1],
@@ -81,7 +85,7 @@ static void up_rec(struct parts *p, const struct cell *c, struct gravity_cell *g
     for (int q = 0; q < 8; q++) {
       const struct cell *cp = c->progeny[q];
       if (cp == NULL || cp->count == 0) continue;
-      up_rec(p, cp, gc, order, h_factor, act);
+      up_rec(p, cp, gc, order, h_factor, act, active_ti);
       if (act) act[c->index] |= act[cp->index];
       ch[n] = &gc[cp->index].mp, ch_a[n] = gc[cp->index].a_min, ch_h[n] = gc[cp->index].h_support;
       n++;
@@ -94,7 +98,8 @@ static void up_rec(struct parts *p, const struct cell *c, struct gravity_cell *g
     const size_t end = c->offset + c->count;
     if (act) {
       for (size_t i = c->offset; i < end && !act[c->index]; i++)
-        act[c->index] = !PART_IS_INACTIVE(p, i);
+        act[c->index] =
+            active_ti % timeline_step_of_bin(p->time_bin[i] > 0 ? p->time_bin[i] : 1) == 0;
       if (!act[c->index]) return;
     }
     for (size_t i = c->offset; i < end; i++) p->gax[i] = p->gay[i] = p->gaz[i] = p->pot[i] = 0.0;
@@ -109,7 +114,7 @@ void gravity_up(struct parts *p, const struct cell *c, struct gravity_cell *gc,
       p->gax[i] = p->gay[i] = p->gaz[i] = p->pot[i] = 0.0;
     return;
   }
-  up_rec(p, c, gc, gp->order, gp->h_factor, gp->active);
+  up_rec(p, c, gc, gp->order, gp->h_factor, gp->active, gp->active_ti);
 }
 
 /* ------------------------------------------------------------------ P2P */

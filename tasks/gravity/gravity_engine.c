@@ -120,6 +120,7 @@ void gravity_active_decide(struct engine *e, int full) {
     return;
   e->gp.active_step = 1;
   if (!e->gpu) e->gp.active = g->active; /* (the GPU runner marks its cells on the device) */
+  e->gp.active_ti = e->ti_current;
   g->active_steps++;
   g->d_min = HUGE_VAL; /* (no replay of a far field these steps overwrite) */
 }

@@ -9,6 +9,8 @@
 #ifndef BOLIDE_GRAVITY_PROPS_H
 #define BOLIDE_GRAVITY_PROPS_H
 
+#include <stdint.h>
+
 struct params;
 struct unit_system;
 
@@ -45,6 +47,8 @@ struct gravity_props {
                               bins, per cell index, whether the cell holds a particle that ends
                               its step (the upward pass fills it); only those cells receive
                               (walks, local expansions, L2P); NULL: every cell receives */
+  int64_t active_ti;     /**< with `active`: the step's end on the time line (integertime_t:
+                              the particles whose bin's step divides it end their step) */
   const int *remote_idx; /**< several MPI ranks (gravity_top_records_use): per top-level cell,
                               its entry of remote, -1 for a cell of this rank's own particles
                               and an empty one; NULL: one rank */

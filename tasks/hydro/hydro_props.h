@@ -17,6 +17,8 @@ struct hydro_props {
   int h_continuity;   /**< SPH:h_evolution: continuity (dh/dt = -h/(3 rho) drho/dt, no iteration) */
   int bin_limit;      /**< time bins: TimeIntegration:max_bin_ratio (the force loop's limiter);
                            0 with the global step */
+  int wake_density;   /**< time bins: TimeIntegration:limiter_wake density (the density loop
+                           wakes, tasks/density/density_wake.h); 0 with the global step */
   int stage_end;      /**< 1 during the evaluation at the end of a step of TimeIntegration:scheme
                            rk2 or pc: the kick, which kicks nothing there, returns porous
                            particles to their crush curve (tasks/drift/drift_integrate.c) */

@@ -9,6 +9,7 @@
 #include "tasks/ghost/continuity_floor.h"
 #include "tasks/gradient/extra_ghost_part.h"
 #include "tasks/hydro/hydro_props.h"
+#include "tasks/hydro_parts.h"
 #include "src/inline.h"
 #include "src/materials/material.h"
 #include "src/part.h"
@@ -97,6 +98,26 @@ BOLIDE_INLINE double kick2_part(struct parts *BOLIDE_RESTRICT p, size_t i, doubl
   return dt;
 }
 
+/** With TimeIntegration:limiter_wake: density, the ghost's part of the
+ *  wake of particle i, asleep in the middle of its step of bin b (2^b
+ *  ticks, begun at ti - d) when the density phase at ti asked it to wake
+ *  (wake > 0): its step is cut to d = ti mod 2^b and closes with the
+ *  kick-drift-kick of a step of d, its force at ti computed in this step.
+ *  Its first half kick gave it 2^b / 2 of the rates of its step's start,
+ *  now d / 2 (the drift over d used the longer one's velocity: that part of
+ *  it stays); it becomes active for the rest of the step (PART_WOKEN; its h
+ *  and density stay the drift's predictions, its sums of the gradient and
+ *  force loops start from zero) and kick2_part_bins gives it the second
+ *  half kick, d / 2 of its new rates. */
+BOLIDE_INLINE void kick_wake_part(struct parts *BOLIDE_RESTRICT p, size_t i, integertime_t ti,
+                                  double time_base, int solids) {
+  const integertime_t step = timeline_step_of_bin(p->time_bin[i] > 0 ? p->time_bin[i] : 1);
+  kick_part(p, i, 0.5 * (double)(ti % step - step) * time_base);
+  p->flags[i] = (p->flags[i] & ~PART_INACTIVE) | PART_WOKEN;
+  hydro_force_reset(p, i);
+  if (solids) hydro_gradient_reset(p, i);
+}
+
 /** The kick of particle i with individual time steps at ti_new on the time
  *  line tl (TimeIntegration:global_step: false): a particle whose step ends
  *  at ti_new (or any, first: the first force computation, no kick) takes
@@ -112,6 +133,24 @@ BOLIDE_INLINE int kick2_part_bins(struct parts *BOLIDE_RESTRICT p, size_t i,
                                   double *dt) {
   const int old_bin = p->time_bin[i];
   const integertime_t step = timeline_step_of_bin(old_bin > 0 ? old_bin : 1);
+  if (p->flags[i] & PART_WOKEN) {
+    /* woken in the density phase (kick_wake_part): the second half kick of
+     * its step cut to d, with the rates of now; then the bin of its new
+     * limit, at most the one asked for and the longest ti_new allows */
+    *dt = kick2_part(p, i, 0.5 * (double)(ti_new % step) * tl->time_base, hp, mats, tp);
+    int bin = timeline_bin(tl, *dt);
+    if (hp->bin_limit && p->ngb_bin_min[i] + hp->bin_limit < bin)
+      bin = p->ngb_bin_min[i] + hp->bin_limit;
+    if (TIMELINE_NR_BINS + 1 - p->wake[i] < bin) bin = TIMELINE_NR_BINS + 1 - p->wake[i];
+    const int sync = timeline_max_active_bin(ti_new);
+    if (bin > sync) bin = sync;
+    if (bin < 1) bin = 1;
+    p->wake[i] = 0;
+    p->flags[i] &= ~PART_WOKEN;
+    p->time_bin[i] = bin;
+    *ti_end = ti_new + timeline_step_of_bin(bin);
+    return 1;
+  }
   if (!first && ti_new % step != 0) {
     /* (its rates are those of the start of its step: the FORCE phase
      * skipped it, PART_INACTIVE) */

@@ -421,17 +421,17 @@ static int case_cpu(struct parts *p, struct space *sp, const struct engine_cell_
                     double damage_max_change, double *dt_cpu) {
   const size_t n = p->count;
   for (size_t k = 0; k < n; k++) hydro_density_reset(p, k);
-  for (int c = 0; c < sp->nr_top; c++) density_self_cpu(p, &sp->cells[c]);
+  for (int c = 0; c < sp->nr_top; c++) density_self_cpu(p, &sp->cells[c], NULL);
   for (size_t k = 0; k < np; k++)
-    density_pair_cpu(p, &sp->cells[pairs[k].ci], &sp->cells[pairs[k].cj], pairs[k].shift);
+    density_pair_cpu(p, &sp->cells[pairs[k].ci], &sp->cells[pairs[k].cj], pairs[k].shift, NULL);
   int capped_cpu = 0;
   for (int c = 0; c < sp->nr_top; c++) {
     struct cell *cells[32];
     for (int k = 0; k < ct[c].nr_ngb; k++) cells[k] = &sp->cells[ct[c].ngb[k]];
     struct ghost_ngbs ng = {ct[c].nr_ngb, cells, (const double(*)[3])ct[c].ngb_shift};
     long long resummed;
-    capped_cpu |=
-        ghost_cell_cpu(p, &sp->cells[c], &ng, hp, mats, top_h_cap[c] * kernel_gamma, &resummed);
+    capped_cpu |= ghost_cell_cpu(p, &sp->cells[c], &ng, hp, mats, top_h_cap[c] * kernel_gamma, NULL,
+                                 &resummed);
   }
   if (solid) {
     /* ghost -> gradient -> extra ghost -> force */

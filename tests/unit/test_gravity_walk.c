@@ -91,10 +91,16 @@ static void run(const char *name, int two_bodies, double h_factor) {
     if (pass == 2) {
       /* time bins, a step of active particles only (gravity_props.active):
        * the particles of the lower half in x and every third one elsewhere
-       * sleep, so that whole cells, and parts of cells, do not receive */
-      for (size_t i = 0; i < n; i++)
-        W.p.flags[i] = W.p.x[i] < 0.5 * BOX || i % 3 == 0 ? PART_INACTIVE : 0;
+       * sleep, so that whole cells, and parts of cells, do not receive (the
+       * upward pass reads the bins: at tick 2 those of bin 1 end their step,
+       * those of bin 2 are in the middle of theirs) */
+      for (size_t i = 0; i < n; i++) {
+        const int sleeps = W.p.x[i] < 0.5 * BOX || i % 3 == 0;
+        W.p.flags[i] = sleeps ? PART_INACTIVE : 0;
+        W.p.time_bin[i] = sleeps ? 2 : 1;
+      }
       W.gp.active = act;
+      W.gp.active_ti = 2;
     }
     for (int i = 0; i < nt; i++) gravity_up(&W.p, W.sp.cells + i, W.gc, &W.gp);
     /* the recursive walks, recorded */

@@ -81,9 +81,9 @@ static int check_at(int periodic, size_t n, unsigned long long seed, const struc
 
   /* symmetric cell loops */
   for (size_t i = 0; i < n; i++) hydro_density_reset(&p, i);
-  for (int c = 0; c < sp.nr_top; c++) density_self_cpu(&p, &sp.cells[c]);
+  for (int c = 0; c < sp.nr_top; c++) density_self_cpu(&p, &sp.cells[c], NULL);
   for (size_t k = 0; k < np; k++)
-    density_pair_cpu(&p, &sp.cells[pairs[k].ci], &sp.cells[pairs[k].cj], pairs[k].shift);
+    density_pair_cpu(&p, &sp.cells[pairs[k].ci], &sp.cells[pairs[k].cj], pairs[k].shift, NULL);
 
   /* gather form by brute force */
   int fail = 0;

@@ -93,9 +93,9 @@ static void test_gradient(void) {
   struct space_pair *pairs;
   const size_t np = space_top_pairs(&sp, &pairs);
   for (size_t i = 0; i < n; i++) hydro_density_reset(&p, i);
-  for (int c = 0; c < sp.nr_top; c++) density_self_cpu(&p, &sp.cells[c]);
+  for (int c = 0; c < sp.nr_top; c++) density_self_cpu(&p, &sp.cells[c], NULL);
   for (size_t k = 0; k < np; k++)
-    density_pair_cpu(&p, &sp.cells[pairs[k].ci], &sp.cells[pairs[k].cj], pairs[k].shift);
+    density_pair_cpu(&p, &sp.cells[pairs[k].ci], &sp.cells[pairs[k].cj], pairs[k].shift, NULL);
   for (size_t i = 0; i < n; i++) p.rho[i] += p.m[i] * kernel_W(0.0, p.h[i]);
 
   /* symmetric loops */
@@ -361,9 +361,9 @@ static void test_cspm_continuity(void) {
   struct space_pair *pairs;
   const size_t np = space_top_pairs(&sp, &pairs);
   for (size_t i = 0; i < n; i++) hydro_density_reset(&p, i);
-  for (int c = 0; c < sp.nr_top; c++) density_self_cpu(&p, &sp.cells[c]);
+  for (int c = 0; c < sp.nr_top; c++) density_self_cpu(&p, &sp.cells[c], NULL);
   for (size_t k = 0; k < np; k++)
-    density_pair_cpu(&p, &sp.cells[pairs[k].ci], &sp.cells[pairs[k].cj], pairs[k].shift);
+    density_pair_cpu(&p, &sp.cells[pairs[k].ci], &sp.cells[pairs[k].cj], pairs[k].shift, NULL);
   for (size_t i = 0; i < n; i++) p.rho[i] += p.m[i] * kernel_W(0.0, p.h[i]);
 
   struct material_table mats;
