@@ -14,7 +14,9 @@
 #       cpu-bins, gpu-bins: the same with individual time steps
 #       (TimeIntegration:global_step: false); cpu-binsall: cpu-bins with
 #       self-gravity for every particle at every step (Gravity:active_only:
-#       false, as the GPU computes it); cpu-rk2, gpu-rk2, cpu-pc, gpu-pc:
+#       false, as the GPU computes it); cpu-binsw: cpu-bins with the
+#       limiter's wakes decided in the density phase
+#       (TimeIntegration:limiter_wake: density, CPU only); cpu-rk2, gpu-rk2, cpu-pc, gpu-pc:
 #       the global step with the integrators TimeIntegration:scheme rk2
 #       (its default error bound) and pc (theory/integrators.md)
 #   -S DIR: SWIFT too, after Bolide's modes (DIR: a SWIFT build configured
@@ -81,9 +83,10 @@ print(*(m @ x / m.sum()))
 PY
 )
   for m in $modes; do
-    base=${m%-bins}; base=${base%-binsall}; base=${base%-rk2}; base=${base%-pc}
+    base=${m%-bins}; base=${base%-binsall}; base=${base%-binsw}; base=${base%-rk2}; base=${base%-pc}
     gpu="--no-gpu"; [ "$base" = gpu ] && gpu=""
-    glob=true; case $m in *-bins | *-binsall) glob=false ;; esac
+    glob=true; case $m in *-bins | *-binsall | *-binsw) glob=false ;; esac
+    wake=force; [ "${m%-binsw}" != "$m" ] && wake=density
     scheme=kdk; case $m in *-rk2) scheme=rk2 ;; *-pc) scheme=pc ;; esac
     active=true; [ "${m%-binsall}" != "$m" ] && active=false
     cat >p.yml <<YML
@@ -92,6 +95,7 @@ InitialConditions:
 TimeIntegration:
   time_end: $tend
   global_step: $glob
+  limiter_wake: $wake
   scheme: $scheme
 Snapshots:
   subdir: out_$m
