@@ -55,17 +55,18 @@ BOLIDE_ALWAYS_INLINE void density_sym(double r2, const double dx[3], double hi, 
  *  the other way round; vi and cj->v the predicted velocities. */
 BOLIDE_ALWAYS_INLINE void density_sym_wake(struct parts *p, size_t i, size_t j, double r2,
                                            const double dx[3], double hi, double hj,
-                                           const double vi[3], const struct density_jcache *cj) {
+                                           const double vi[3], const struct density_jcache *cj,
+                                           const struct density_wake *wk) {
   const int inactive_i = PART_IS_INACTIVE(p, i) != 0;
   if (inactive_i == cj->inactive) return;
   const double dv[3] = {vi[0] - cj->v[0], vi[1] - cj->v[1], vi[2] - cj->v[2]};
   if (!inactive_i) {
     const double Hi = kernel_gamma * hi;
-    if (r2 < Hi * Hi) density_wake_pair(p, i, j, r2, dx, dv, density_wk);
+    if (r2 < Hi * Hi) density_wake_pair(p, i, j, r2, dx, dv, wk);
   } else {
     const double Hj = kernel_gamma * hj;
     const double mdx[3] = {-dx[0], -dx[1], -dx[2]}, mdv[3] = {-dv[0], -dv[1], -dv[2]};
-    if (r2 < Hj * Hj) density_wake_pair(p, j, i, r2, mdx, mdv, density_wk);
+    if (r2 < Hj * Hj) density_wake_pair(p, j, i, r2, mdx, mdv, wk);
   }
 }
 
@@ -82,7 +83,9 @@ BOLIDE_ALWAYS_INLINE void density_gather(const struct parts *p, size_t j, double
   struct density_acc acc_i = {0, 0, 0, 0, 0, {0, 0, 0}};        \
   const double vi[3] = {(p)->vpx[i], (p)->vpy[i], (p)->vpz[i]}; \
   const double hi_inv = 1.0 / (p)->h[i], mi = (p)->m[i];        \
-  (void)mi
+  const struct density_wake *const wk_i = density_wk;           \
+  (void)mi;                                                     \
+  (void)wk_i
 #define IACT_LOOP_ACC_END(p, i) \
   if (!PART_IS_INACTIVE(p, i)) hydro_density_add(p, i, &acc_i)
 #define IACT_LOOP_JACC_T struct density_jcache
@@ -93,7 +96,7 @@ BOLIDE_ALWAYS_INLINE void density_gather(const struct parts *p, size_t j, double
 #define IACT_LOOP_SYM(p, i, j, r2, dx, hi, hj) /* only the cached form is used */
 #define IACT_LOOP_SYM_J(p, i, j, r2, dx, hi, hj, aj)       \
   density_sym(r2, dx, hi, hi_inv, hj, mi, vi, &acc_i, aj); \
-  if (density_wk) density_sym_wake(p, i, j, r2, dx, hi, hj, vi, aj)
+  if (wk_i) density_sym_wake(p, i, j, r2, dx, hi, hj, vi, aj, wk_i)
 #define IACT_LOOP_NONSYM(p, i, j, r2, dx, hi, hj) density_gather(p, j, r2, dx, hi_inv, vi, &acc_i)
 #define IACT_LOOP_ACTIVE(p, i) (!((p)->flags[i] & PART_H_CONVERGED))
 #include "tasks/iact_loop.h"
